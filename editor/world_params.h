@@ -1,0 +1,96 @@
+// The parameters that fully describe a world's unedited terrain, and their
+// parameter-file form (`name.world` / `name.planet`). Planet files written with
+// seed 004's keys (generator, radius, max_height, ocean_level, omega, seed,
+// w_factor, exponent) load unchanged.
+#ifndef OROGEN_EDITOR_WORLD_PARAMS_H
+#define OROGEN_EDITOR_WORLD_PARAMS_H
+
+#include "io/err.h"
+
+#include <stddef.h>
+#include <stdint.h>
+
+typedef enum world_kind { WORLD_FLAT = 0, WORLD_PLANET = 1 } world_kind;
+
+// Generator indices are what `generator N` and `generator = N;` accept. 0 and 1 are
+// seed 004's two generators (simple and advanced fBm), so its files keep their meaning.
+typedef enum gen_kind {
+    GEN_FBM = 0,            // fBm over Perlin gradient noise (fractional octaves)
+    GEN_FBM_ADVANCED = 1,   // fBm + seed 004's ocean-floor root and exponent shaping
+    GEN_RIDGED = 2,         // Musgrave's ridged multifractal
+    GEN_DIAMOND_SQUARE = 3, // seed 003's diamond-square, seamless over int32 tiles
+    GEN_FAULTS = 4,         // random fault lines
+    GEN_FLAT = 5,           // constant height (base_height)
+    GEN_COUNT
+} gen_kind;
+
+typedef struct world_params {
+    world_kind kind;
+    gen_kind generator;
+    int64_t seed;        // any integer; the generators use it modulo 2^32
+    double octaves;      // fBm octave count, fractional allowed (seed 004)
+    double w_factor;     // fBm gain: weight multiplier per octave
+    double exponent;     // fBm lacunarity: frequency multiplier per octave
+    double max_height;   // metres: generated heights lie in (-max_height, max_height)
+    double ocean_level;  // metres above the datum where the water plane sits
+    double radius;       // planets: metres from the centre to the datum
+    double omega;        // planets: angular velocity, radians per second (seed 004)
+    double spacing;      // metres between coarse samples
+    int64_t size;        // flat worlds: coarse samples per side; 0 = unbounded
+    int32_t detail_ratio; // detail samples per coarse sample, per side
+    double feature_size; // metres: wavelength of the lowest octave; 0 = automatic
+    double base_height;  // metres added to every generated height (flat generator's height)
+    double roughness;    // diamond-square: first displacement, as a fraction of max_height
+    double smoothing;    // diamond-square: roughness multiplier per subdivision
+    double ridge_offset; // ridged multifractal: offset subtracted from |noise|
+    int32_t fault_count; // faults: number of fault lines per 64 km x 64 km cell
+    char tiles[1024];    // tile store path as written (relative to the file); "" = name.tiles
+} world_params;
+
+// The built-in defaults for a kind (a pleasant landscape or an Earth-like planet).
+void world_params_default(world_params *p, world_kind kind);
+
+// Generator names: "fbm", "fbm_advanced", "ridged", "diamond_square", "faults", "flat".
+const char *gen_kind_name(gen_kind g);
+// Accepts a name or an index; returns -1 if neither.
+int gen_kind_parse(const char *text);
+
+// Sets one key from its text value. Returns 0, or -1 with err describing the bad value
+// ("seed: expected an integer, got 'abc'"); the parameter is unchanged on error.
+// Unknown keys return 1 (callers warn).
+int world_params_set(world_params *p, const char *key, const char *value, og_error *err);
+// Formats one key's value (canonical text) into buf; returns -1 for unknown keys.
+int world_params_get(const world_params *p, const char *key, char *buf, size_t len);
+
+// Every key, in canonical order, for `params`, `set` and the writer.
+size_t world_params_key_count(void);
+const char *world_params_key(size_t i);
+const char *world_params_key_help(const char *key); // one-line description, NULL if unknown
+
+// Checks cross-field constraints (spacing > 0, size within limits, ...). Returns 0 or
+// -1 with err naming the field.
+int world_params_validate(const world_params *p, og_error *err);
+
+// Loads a parameter file. The kind defaults from the extension (.planet -> planet)
+// unless the file sets `kind`. Bad values are reported as "path:line: error: ..." and
+// keep their default; unknown keys as "path:line: warning: ...". All messages go
+// to report (one call per message, no trailing newline) when it is not NULL.
+// Returns 0 when the file was read (even with diagnostics; *errors counts the errors),
+// -1 when it could not be read at all (err names the path).
+int world_params_load(const char *path, world_params *p, int *errors,
+                      void (*report)(void *user, const char *message), void *user, og_error *err);
+
+// Writes the canonical file: a header, then for each key a `# comment` line and
+// `key = value;`. Floats are printed so that they read back bit-exactly.
+// Atomic (see param_file_write_atomic).
+int world_params_save(const char *path, const world_params *p, og_error *err);
+// The canonical text alone (malloc'd, NUL-terminated).
+char *world_params_format(const world_params *p);
+
+// Resolves the tile store path for a parameter file at param_path into out: relative
+// to the parameter file's folder; must stay inside that folder (no absolute paths, no
+// `..` escaping it). Returns -1 with err naming the `tiles` value otherwise.
+int world_params_tiles_path(const world_params *p, const char *param_path, char *out, size_t len,
+                            og_error *err);
+
+#endif

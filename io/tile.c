@@ -1,0 +1,27 @@
+#include "io/tile.h"
+
+#include <stdio.h>
+
+size_t tile_layer_bytes(tile_layer layer) {
+    switch (layer) {
+    case TILE_LAYER_COARSE:
+    case TILE_LAYER_DETAIL: return (size_t)TILE_SAMPLES * sizeof(float);
+    case TILE_LAYER_MATERIAL: return (size_t)TILE_SAMPLES * TILE_MATERIALS;
+    default: return 0;
+    }
+}
+
+tile_format tile_layer_format(tile_layer layer) {
+    return layer == TILE_LAYER_MATERIAL ? TILE_FORMAT_U8X8 : TILE_FORMAT_F32;
+}
+
+const char *tile_layer_name(tile_layer layer) {
+    static const char *names[] = {"coarse", "detail", "material", "volume"};
+    return (unsigned)layer < TILE_LAYER_COUNT ? names[layer] : "unknown";
+}
+
+const char *tile_key_describe(tile_key key, char *buf, size_t len) {
+    snprintf(buf, len, "%s face %d level %d tile (%d,%d)", tile_layer_name((tile_layer)key.layer),
+             key.face, key.level, key.tx, key.ty);
+    return buf;
+}

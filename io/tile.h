@@ -1,0 +1,51 @@
+// The unit of everything Orogen stores, caches and renders: a fixed square of
+// samples addressed by (layer, face, level, tx, ty). See ARCHITECTURE.md "The world".
+#ifndef OROGEN_IO_TILE_H
+#define OROGEN_IO_TILE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+// Samples per tile side, for every layer.
+#define TILE_SIZE 256
+#define TILE_SAMPLES (TILE_SIZE * TILE_SIZE)
+// Material weight channels per sample (uint8 weights that sum to 255).
+#define TILE_MATERIALS 8
+// Deepest mip level a key may name (level L samples are 2^L apart).
+#define TILE_MAX_LEVEL 24
+
+typedef enum tile_layer {
+    TILE_LAYER_COARSE = 0,   // float32 metres, one per coarse sample
+    TILE_LAYER_DETAIL = 1,   // float32 metres offset, detail_ratio samples per coarse sample
+    TILE_LAYER_MATERIAL = 2, // TILE_MATERIALS x uint8 weights per sample
+    TILE_LAYER_VOLUME = 3,   // reserved for volume edits (overhangs, caves)
+    TILE_LAYER_COUNT
+} tile_layer;
+
+typedef struct tile_key {
+    int32_t layer; // tile_layer
+    int32_t face;  // 0 for flat worlds, 0-5 for planet cube faces
+    int32_t level; // mip level, 0 = full resolution
+    int32_t tx, ty;
+} tile_key;
+
+// How a tile's bytes are laid out; the store picks its compression transform from it.
+typedef enum tile_format {
+    TILE_FORMAT_F32 = 1, // TILE_SAMPLES float32
+    TILE_FORMAT_U8X8 = 2 // TILE_SAMPLES x TILE_MATERIALS uint8, interleaved per sample
+} tile_format;
+
+static inline int tile_key_equal(tile_key a, tile_key b) {
+    return a.layer == b.layer && a.face == b.face && a.level == b.level && a.tx == b.tx &&
+           a.ty == b.ty;
+}
+
+// Bytes and format of one tile of a layer. The volume layer has no payload yet.
+size_t tile_layer_bytes(tile_layer layer);
+tile_format tile_layer_format(tile_layer layer);
+const char *tile_layer_name(tile_layer layer);
+
+// "coarse face 0 level 2 tile (3,-7)" into buf; returns buf. For messages.
+const char *tile_key_describe(tile_key key, char *buf, size_t len);
+
+#endif

@@ -1,0 +1,73 @@
+// The tile store: one SQLite file (WAL) beside a world's parameter file holding
+// only the tiles a person sculpted, painted or imported. Unedited terrain is never
+// stored; it is regenerated from the parameters.
+//
+// Blobs are losslessly compressed (a float-aware transform, then zstd) and carry
+// a checksum. Writes happen in transactions, so a process killed at any instant
+// leaves the old or the new state. A tile that fails its checksum or does not
+// decompress is reported as corrupt (never a crash); callers fall back to the
+// generated terrain.
+//
+// Thread-safe: one store may be used from several threads at once.
+#ifndef OROGEN_IO_TILE_STORE_H
+#define OROGEN_IO_TILE_STORE_H
+
+#include "io/err.h"
+#include "io/tile.h"
+
+#include <stddef.h>
+#include <stdint.h>
+
+typedef struct tile_store tile_store;
+
+typedef enum tile_store_status {
+    TILE_STORE_OK = 0,
+    TILE_STORE_NOT_FOUND = 1, // no such tile stored: use the generated terrain
+    TILE_STORE_CORRUPT = 2,   // stored but unreadable: err names the tile; use generated terrain
+    TILE_STORE_ERROR = -1     // I/O or database failure: err says what
+} tile_store_status;
+
+// Opens (creating if needed) the store at path. Fails with a message naming the
+// path if it is not an Orogen tile store, has a newer schema, or cannot be opened.
+tile_store *tile_store_open(const char *path, og_error *err);
+void tile_store_close(tile_store *store);
+const char *tile_store_path(const tile_store *store);
+
+// Reads one tile into out (bytes must equal tile_layer_bytes(key.layer)).
+tile_store_status tile_store_get(tile_store *store, tile_key key, void *out, size_t bytes,
+                                 og_error *err);
+
+// Whether a tile is stored (cheap; no decompression).
+int tile_store_has(tile_store *store, tile_key key);
+
+// One tile to write (or delete when data is NULL) in a batch.
+typedef struct tile_store_write {
+    tile_key key;
+    const void *data; // tile_layer_bytes(key.layer) bytes, or NULL to delete the tile
+} tile_store_write;
+
+// Writes a batch of tiles in one transaction: all of them land or none does.
+// Returns 0, or -1 with err set (the store is unchanged).
+int tile_store_put_batch(tile_store *store, const tile_store_write *writes, size_t count,
+                         og_error *err);
+static inline int tile_store_put(tile_store *store, tile_key key, const void *data, og_error *err) {
+    tile_store_write w = {key, data};
+    return tile_store_put_batch(store, &w, 1, err);
+}
+
+// Number of tiles stored, optionally for one layer only (layer < 0: all layers).
+int64_t tile_store_count(tile_store *store, int layer);
+
+// Calls fn for every stored key (any order) until it returns non-zero.
+int tile_store_each(tile_store *store, int (*fn)(void *user, tile_key key), void *user,
+                    og_error *err);
+
+// Compression alone, exposed for tests and benchmarks: encode a tile payload into
+// a self-describing blob (transform + zstd + checksum) and decode it back.
+// encode returns the blob size or 0 on failure; *blob is malloc'd.
+size_t tile_blob_encode(tile_layer layer, const void *data, void **blob);
+// Returns 0, or -1 when the blob is corrupt (err says why).
+int tile_blob_decode(tile_layer layer, const void *blob, size_t blob_bytes, void *out,
+                     og_error *err);
+
+#endif
