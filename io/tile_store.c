@@ -1,0 +1,720 @@
+#include "io/tile_store.h"
+
+#include <errno.h>
+#include <limits.h>
+#include <pthread.h>
+#include <sqlite3.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <zstd.h>
+
+// ---------------------------------------------------------------------------
+// Blob format (all numbers little-endian), version 1:
+//
+//   offset size  field
+//        0    4  magic "OGTB"
+//        4    1  format version (1)
+//        5    1  layer (tile_layer)
+//        6    1  transform id (BLOB_TRANSFORM_*)
+//        7    1  reserved, 0
+//        8    4  raw size: bytes of the decoded tile payload
+//       12    4  compressed size: bytes following the header
+//       16    4  CRC32C of the raw payload (the tile's values as little-endian bytes)
+//       20    4  CRC32C of header bytes 0..19
+//       24    .  zstd frame of the transformed payload
+//
+// The header CRC lets decode reject a damaged header before trusting any size
+// in it; the payload CRC catches anything zstd's own checks let through.
+// ---------------------------------------------------------------------------
+
+#define BLOB_MAGIC 0x4254474Fu // "OGTB" read as little-endian
+#define BLOB_VERSION 1
+#define BLOB_HEADER_BYTES 24
+
+enum {
+    // float32: bit patterns mapped to ordered integers, 2D Lorenzo predictor
+    // (left + up - upleft) in wrapping integer arithmetic, zigzag residuals,
+    // then the 4 residual bytes split into 4 planes (low bytes first).
+    BLOB_TRANSFORM_F32_LORENZO_PLANES = 1,
+    // uint8 x 8: the 8 channels split into planes, each plane delta-coded
+    // against its left neighbour (the up neighbour in the first column).
+    BLOB_TRANSFORM_U8X8_PLANES_DELTA = 2,
+};
+
+// zstd level 3 (zstd's default): on smooth terrain residuals, levels 5-9 gain
+// only a few percent of size while encoding 2-4x slower, and level 1 loses
+// more than it saves. Decoding speed is about the same for every level, and
+// encoding runs on write-back, so level 3 is the balance point.
+#define BLOB_ZSTD_LEVEL 3
+
+// Orogen tile store identification and schema version, stored in the SQLite
+// header (PRAGMA application_id / user_version) so `file` and sqlite3 see them.
+#define STORE_APPLICATION_ID 0x4F524F47 // "OROG"
+#define STORE_SCHEMA_VERSION 1
+#define STORE_BUSY_TIMEOUT_MS 10000
+
+// ---------------------------------------------------------------------------
+// Little-endian helpers
+// ---------------------------------------------------------------------------
+
+static void put_u32le(uint8_t *p, uint32_t v) {
+    p[0] = (uint8_t)v;
+    p[1] = (uint8_t)(v >> 8);
+    p[2] = (uint8_t)(v >> 16);
+    p[3] = (uint8_t)(v >> 24);
+}
+
+static uint32_t get_u32le(const uint8_t *p) {
+    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+}
+
+// ---------------------------------------------------------------------------
+// CRC32C (Castagnoli, reflected polynomial 0x82F63B78), slicing-by-8 tables
+// built once at first use. Check value: crc32c("123456789") = 0xE3069283.
+// ---------------------------------------------------------------------------
+
+static uint32_t crc_table[8][256];
+static pthread_once_t crc_once = PTHREAD_ONCE_INIT;
+
+static void crc_init(void) {
+    for (uint32_t n = 0; n < 256; n++) {
+        uint32_t c = n;
+        for (int k = 0; k < 8; k++)
+            c = (c >> 1) ^ (0x82F63B78u & (0u - (c & 1)));
+        crc_table[0][n] = c;
+    }
+    for (uint32_t n = 0; n < 256; n++)
+        for (int t = 1; t < 8; t++)
+            crc_table[t][n] = (crc_table[t - 1][n] >> 8) ^ crc_table[0][crc_table[t - 1][n] & 0xFF];
+}
+
+static uint32_t crc32c_update(uint32_t crc, const void *data, size_t n) {
+    pthread_once(&crc_once, crc_init);
+    const uint8_t *p = data;
+    crc = ~crc;
+    while (n >= 8) {
+        uint32_t lo = crc ^ get_u32le(p);
+        uint32_t hi = get_u32le(p + 4);
+        crc = crc_table[7][lo & 0xFF] ^ crc_table[6][(lo >> 8) & 0xFF] ^
+              crc_table[5][(lo >> 16) & 0xFF] ^ crc_table[4][lo >> 24] ^ crc_table[3][hi & 0xFF] ^
+              crc_table[2][(hi >> 8) & 0xFF] ^ crc_table[1][(hi >> 16) & 0xFF] ^
+              crc_table[0][hi >> 24];
+        p += 8;
+        n -= 8;
+    }
+    while (n--)
+        crc = (crc >> 8) ^ crc_table[0][(crc ^ *p++) & 0xFF];
+    return ~crc;
+}
+
+// CRC of a tile payload as little-endian bytes, whatever the host's byte order.
+static uint32_t payload_crc(tile_format format, const void *data, size_t n) {
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+    if (format == TILE_FORMAT_F32) {
+        uint8_t chunk[4096];
+        const uint8_t *p = data;
+        uint32_t crc = 0;
+        for (size_t off = 0; off < n; off += sizeof chunk) {
+            size_t len = n - off < sizeof chunk ? n - off : sizeof chunk;
+            for (size_t i = 0; i + 4 <= len; i += 4) {
+                uint32_t v;
+                memcpy(&v, p + off + i, 4);
+                put_u32le(chunk + i, v);
+            }
+            crc = crc32c_update(crc, chunk, len);
+        }
+        return crc;
+    }
+#endif
+    (void)format;
+    return crc32c_update(0, data, n);
+}
+
+// ---------------------------------------------------------------------------
+// Transforms. Each maps a tile payload to a same-size buffer that zstd
+// compresses well, and back, bit-exactly for every input (NaN payloads,
+// -0.0, denormals included) because all arithmetic is on integers.
+// ---------------------------------------------------------------------------
+
+// Float bits -> unsigned integers in the same order as the floats, so close
+// heights have close integers across the sign boundary.
+static inline uint32_t f32_order(uint32_t u) {
+    return (u & 0x80000000u) ? ~u : u | 0x80000000u;
+}
+static inline uint32_t f32_unorder(uint32_t m) {
+    return (m & 0x80000000u) ? m & 0x7FFFFFFFu : ~m;
+}
+static inline uint32_t zigzag(uint32_t d) {
+    return (d << 1) ^ (0u - (d >> 31));
+}
+static inline uint32_t unzigzag(uint32_t z) {
+    return (z >> 1) ^ (0u - (z & 1));
+}
+
+// Prediction from already-coded neighbours; prev is the previous row's
+// ordered values (NULL on the first row), cur the current row so far.
+static inline uint32_t lorenzo(const uint32_t *prev, const uint32_t *cur, int x) {
+    if (!prev) return x ? cur[x - 1] : 0;
+    if (!x) return prev[0];
+    return cur[x - 1] + prev[x] - prev[x - 1];
+}
+
+static void f32_forward(const void *src, uint8_t *planes) {
+    const uint8_t *in = src;
+    uint32_t rows[2][TILE_SIZE];
+    uint8_t *p0 = planes, *p1 = p0 + TILE_SAMPLES, *p2 = p1 + TILE_SAMPLES, *p3 = p2 + TILE_SAMPLES;
+    for (int y = 0; y < TILE_SIZE; y++) {
+        uint32_t *cur = rows[y & 1];
+        const uint32_t *prev = y ? rows[(y - 1) & 1] : NULL;
+        for (int x = 0; x < TILE_SIZE; x++) {
+            size_t i = (size_t)y * TILE_SIZE + (size_t)x;
+            uint32_t u;
+            memcpy(&u, in + i * 4, 4);
+            cur[x] = f32_order(u);
+            uint32_t z = zigzag(cur[x] - lorenzo(prev, cur, x));
+            p0[i] = (uint8_t)z;
+            p1[i] = (uint8_t)(z >> 8);
+            p2[i] = (uint8_t)(z >> 16);
+            p3[i] = (uint8_t)(z >> 24);
+        }
+    }
+}
+
+static void f32_inverse(const uint8_t *planes, void *dst) {
+    uint8_t *out = dst;
+    uint32_t rows[2][TILE_SIZE];
+    const uint8_t *p0 = planes, *p1 = p0 + TILE_SAMPLES, *p2 = p1 + TILE_SAMPLES,
+                  *p3 = p2 + TILE_SAMPLES;
+    for (int y = 0; y < TILE_SIZE; y++) {
+        uint32_t *cur = rows[y & 1];
+        const uint32_t *prev = y ? rows[(y - 1) & 1] : NULL;
+        for (int x = 0; x < TILE_SIZE; x++) {
+            size_t i = (size_t)y * TILE_SIZE + (size_t)x;
+            uint32_t z = (uint32_t)p0[i] | (uint32_t)p1[i] << 8 | (uint32_t)p2[i] << 16 |
+                         (uint32_t)p3[i] << 24;
+            cur[x] = unzigzag(z) + lorenzo(prev, cur, x);
+            uint32_t u = f32_unorder(cur[x]);
+            memcpy(out + i * 4, &u, 4);
+        }
+    }
+}
+
+static void u8x8_forward(const void *src, uint8_t *planes) {
+    const uint8_t *in = src;
+    for (int c = 0; c < TILE_MATERIALS; c++) {
+        uint8_t *plane = planes + (size_t)c * TILE_SAMPLES;
+        for (size_t i = 0; i < TILE_SAMPLES; i++) {
+            uint8_t v = in[i * TILE_MATERIALS + (size_t)c];
+            uint8_t pred = (i % TILE_SIZE) ? in[(i - 1) * TILE_MATERIALS + (size_t)c]
+                           : i             ? in[(i - TILE_SIZE) * TILE_MATERIALS + (size_t)c]
+                                           : 0;
+            plane[i] = (uint8_t)(v - pred);
+        }
+    }
+}
+
+static void u8x8_inverse(const uint8_t *planes, void *dst) {
+    uint8_t *out = dst;
+    for (int c = 0; c < TILE_MATERIALS; c++) {
+        const uint8_t *plane = planes + (size_t)c * TILE_SAMPLES;
+        for (size_t i = 0; i < TILE_SAMPLES; i++) {
+            uint8_t pred = (i % TILE_SIZE) ? out[(i - 1) * TILE_MATERIALS + (size_t)c]
+                           : i             ? out[(i - TILE_SIZE) * TILE_MATERIALS + (size_t)c]
+                                           : 0;
+            out[i * TILE_MATERIALS + (size_t)c] = (uint8_t)(plane[i] + pred);
+        }
+    }
+}
+
+static int layer_transform(tile_layer layer) {
+    return tile_layer_format(layer) == TILE_FORMAT_U8X8 ? BLOB_TRANSFORM_U8X8_PLANES_DELTA
+                                                        : BLOB_TRANSFORM_F32_LORENZO_PLANES;
+}
+
+// ---------------------------------------------------------------------------
+// Blob encode / decode
+// ---------------------------------------------------------------------------
+
+size_t tile_blob_encode(tile_layer layer, const void *data, void **blob) {
+    *blob = NULL;
+    size_t raw = tile_layer_bytes(layer);
+    if (!raw || !data || raw > UINT32_MAX) return 0;
+    int transform = layer_transform(layer);
+    uint8_t *planes = malloc(raw);
+    size_t cap = BLOB_HEADER_BYTES + ZSTD_compressBound(raw);
+    uint8_t *out = malloc(cap);
+    if (!planes || !out) {
+        free(planes);
+        free(out);
+        return 0;
+    }
+    if (transform == BLOB_TRANSFORM_F32_LORENZO_PLANES)
+        f32_forward(data, planes);
+    else
+        u8x8_forward(data, planes);
+    size_t comp = ZSTD_compress(out + BLOB_HEADER_BYTES, cap - BLOB_HEADER_BYTES, planes, raw,
+                                BLOB_ZSTD_LEVEL);
+    free(planes);
+    if (ZSTD_isError(comp) || comp > UINT32_MAX) {
+        free(out);
+        return 0;
+    }
+    put_u32le(out, BLOB_MAGIC);
+    out[4] = BLOB_VERSION;
+    out[5] = (uint8_t)layer;
+    out[6] = (uint8_t)transform;
+    out[7] = 0;
+    put_u32le(out + 8, (uint32_t)raw);
+    put_u32le(out + 12, (uint32_t)comp);
+    put_u32le(out + 16, payload_crc(tile_layer_format(layer), data, raw));
+    put_u32le(out + 20, crc32c_update(0, out, 20));
+    *blob = out;
+    return BLOB_HEADER_BYTES + comp;
+}
+
+int tile_blob_decode(tile_layer layer, const void *blob, size_t blob_bytes, void *out,
+                     og_error *err) {
+    const uint8_t *b = blob;
+    size_t raw = tile_layer_bytes(layer);
+    if (!raw) return og_error_set(err, "layer %d has no stored payload", (int)layer);
+    if (!b || blob_bytes < BLOB_HEADER_BYTES)
+        return og_error_set(err, "blob too short (%zu bytes, header needs %d)", blob_bytes,
+                            BLOB_HEADER_BYTES);
+    if (get_u32le(b) != BLOB_MAGIC) return og_error_set(err, "bad blob magic");
+    if (get_u32le(b + 20) != crc32c_update(0, b, 20))
+        return og_error_set(err, "blob header checksum mismatch");
+    if (b[4] != BLOB_VERSION)
+        return og_error_set(err, "blob format version %u (expected %d)", b[4], BLOB_VERSION);
+    if (b[5] != (uint8_t)layer)
+        return og_error_set(err, "blob holds layer %u, expected %s", b[5], tile_layer_name(layer));
+    if (b[6] != layer_transform(layer))
+        return og_error_set(err, "blob transform %u does not fit layer %s", b[6],
+                            tile_layer_name(layer));
+    uint32_t raw_size = get_u32le(b + 8), comp_size = get_u32le(b + 12);
+    if (raw_size != raw) return og_error_set(err, "blob raw size %u, expected %zu", raw_size, raw);
+    if (comp_size != blob_bytes - BLOB_HEADER_BYTES)
+        return og_error_set(err, "blob payload is %zu bytes, header says %u",
+                            blob_bytes - BLOB_HEADER_BYTES, comp_size);
+    unsigned long long frame = ZSTD_getFrameContentSize(b + BLOB_HEADER_BYTES, comp_size);
+    if (frame != raw) return og_error_set(err, "compressed frame does not hold %zu bytes", raw);
+
+    uint8_t *planes = malloc(raw);
+    if (!planes) return og_error_set(err, "out of memory decoding a tile");
+    size_t got = ZSTD_decompress(planes, raw, b + BLOB_HEADER_BYTES, comp_size);
+    if (ZSTD_isError(got) || got != raw) {
+        int rc = og_error_set(err, "decompression failed: %s",
+                              ZSTD_isError(got) ? ZSTD_getErrorName(got) : "short output");
+        free(planes);
+        return rc;
+    }
+    if (b[6] == BLOB_TRANSFORM_F32_LORENZO_PLANES)
+        f32_inverse(planes, out);
+    else
+        u8x8_inverse(planes, out);
+    free(planes);
+    if (payload_crc(tile_layer_format(layer), out, raw) != get_u32le(b + 16))
+        return og_error_set(err, "payload checksum mismatch");
+    return 0;
+}
+
+// ---------------------------------------------------------------------------
+// The store
+// ---------------------------------------------------------------------------
+
+struct tile_store {
+    pthread_mutex_t lock; // one connection, used by one thread at a time
+    sqlite3 *db;
+    char *path;
+    sqlite3_stmt *get, *has, *put, *del, *count_all, *count_layer, *each;
+    sqlite3_stmt *begin, *commit, *rollback;
+};
+
+const char *tile_store_path(const tile_store *store) {
+    return store->path;
+}
+
+// Error naming the store's path, the operation and SQLite's reason.
+static int db_fail(const tile_store *store, og_error *err, const char *what) {
+    int code = sqlite3_extended_errcode(store->db);
+    const char *hint = "";
+    if ((code & 0xFF) == SQLITE_FULL) hint = " (disk full?)";
+    if ((code & 0xFF) == SQLITE_READONLY || (code & 0xFF) == SQLITE_CANTOPEN ||
+        (code & 0xFF) == SQLITE_PERM)
+        hint = " (is the file or its folder writable?)";
+    return og_error_set(err, "tile store '%s': %s: %s%s", store->path, what,
+                        sqlite3_errmsg(store->db), hint);
+}
+
+static int key_valid(tile_key key, og_error *err, const char *path) {
+    char desc[128];
+    if (key.layer < 0 || key.layer >= TILE_LAYER_COUNT)
+        return og_error_set(err, "tile store '%s': layer %d is not a tile layer", path, key.layer);
+    if (!tile_layer_bytes((tile_layer)key.layer))
+        return og_error_set(err, "tile store '%s': %s: the %s layer has no payload to store", path,
+                            tile_key_describe(key, desc, sizeof desc),
+                            tile_layer_name((tile_layer)key.layer));
+    if (key.face < 0 || key.face > 5 || key.level < 0 || key.level > TILE_MAX_LEVEL)
+        return og_error_set(err, "tile store '%s': %s: face must be 0-5 and level 0-%d", path,
+                            tile_key_describe(key, desc, sizeof desc), TILE_MAX_LEVEL);
+    return 0;
+}
+
+static void bind_key(sqlite3_stmt *st, tile_key key) {
+    sqlite3_bind_int(st, 1, key.layer);
+    sqlite3_bind_int(st, 2, key.face);
+    sqlite3_bind_int(st, 3, key.level);
+    sqlite3_bind_int(st, 4, key.tx);
+    sqlite3_bind_int(st, 5, key.ty);
+}
+
+static int exec(tile_store *store, const char *sql, og_error *err, const char *what) {
+    if (sqlite3_exec(store->db, sql, NULL, NULL, NULL) != SQLITE_OK)
+        return db_fail(store, err, what);
+    return 0;
+}
+
+static int pragma_int(tile_store *store, const char *sql, int *value, og_error *err) {
+    sqlite3_stmt *st = NULL;
+    int rc = sqlite3_prepare_v2(store->db, sql, -1, &st, NULL);
+    if (rc == SQLITE_OK) rc = sqlite3_step(st);
+    if (rc != SQLITE_ROW) {
+        sqlite3_finalize(st);
+        if (rc == SQLITE_NOTADB || sqlite3_errcode(store->db) == SQLITE_NOTADB)
+            return og_error_set(err, "'%s' is not an Orogen tile store (not an SQLite database)",
+                                store->path);
+        return db_fail(store, err, "cannot read the file header");
+    }
+    *value = sqlite3_column_int(st, 0);
+    sqlite3_finalize(st);
+    return 0;
+}
+
+// Checks the identity and schema version; creates the schema in a fresh file.
+static int store_init_schema(tile_store *store, og_error *err) {
+    int app_id, version, objects;
+    if (pragma_int(store, "PRAGMA application_id", &app_id, err)) return -1;
+    if (pragma_int(store, "PRAGMA user_version", &version, err)) return -1;
+    if (pragma_int(store, "SELECT count(*) FROM sqlite_master", &objects, err)) return -1;
+
+    if (app_id == 0 && version == 0 && objects == 0) {
+        // Fresh file. Create under a write lock and re-check, so two processes
+        // creating the same store at once do not both build the schema.
+        if (exec(store, "BEGIN IMMEDIATE", err, "cannot start creating the store")) return -1;
+        if (pragma_int(store, "SELECT count(*) FROM sqlite_master", &objects, err)) {
+            sqlite3_exec(store->db, "ROLLBACK", NULL, NULL, NULL);
+            return -1;
+        }
+        if (objects == 0) {
+            static const char schema[] =
+                "CREATE TABLE meta(key TEXT PRIMARY KEY NOT NULL, value TEXT NOT NULL);"
+                "INSERT INTO meta VALUES('format', 'orogen tile store');"
+                "INSERT INTO meta VALUES('schema_version', '1');"
+                "INSERT INTO meta VALUES('blob_version', '1');"
+                // A rowid table (not WITHOUT ROWID): rows are ~100 KB blobs, which
+                // SQLite stores best out of line from a small primary-key index.
+                "CREATE TABLE tiles(layer INTEGER NOT NULL, face INTEGER NOT NULL,"
+                " level INTEGER NOT NULL, tx INTEGER NOT NULL, ty INTEGER NOT NULL,"
+                " data BLOB NOT NULL, PRIMARY KEY(layer, face, level, tx, ty));";
+            char sql[128];
+            snprintf(sql, sizeof sql, "PRAGMA application_id = %d; PRAGMA user_version = %d;",
+                     STORE_APPLICATION_ID, STORE_SCHEMA_VERSION);
+            if (exec(store, schema, err, "cannot create the schema") ||
+                exec(store, sql, err, "cannot write the store identity")) {
+                sqlite3_exec(store->db, "ROLLBACK", NULL, NULL, NULL);
+                return -1;
+            }
+        }
+        if (exec(store, "COMMIT", err, "cannot commit the new schema")) {
+            sqlite3_exec(store->db, "ROLLBACK", NULL, NULL, NULL);
+            return -1;
+        }
+        if (pragma_int(store, "PRAGMA application_id", &app_id, err)) return -1;
+        if (pragma_int(store, "PRAGMA user_version", &version, err)) return -1;
+    }
+    if (app_id != STORE_APPLICATION_ID)
+        return og_error_set(err,
+                            "'%s' is not an Orogen tile store (SQLite application_id 0x%08X, "
+                            "expected 0x%08X)",
+                            store->path, (unsigned)app_id, (unsigned)STORE_APPLICATION_ID);
+    if (version > STORE_SCHEMA_VERSION)
+        return og_error_set(err,
+                            "tile store '%s' has schema version %d, newer than this Orogen "
+                            "supports (%d); open it with a newer Orogen",
+                            store->path, version, STORE_SCHEMA_VERSION);
+    if (version < 1)
+        return og_error_set(err, "tile store '%s' has an invalid schema version %d", store->path,
+                            version);
+    return 0;
+}
+
+static int prepare(tile_store *store, sqlite3_stmt **st, const char *sql, og_error *err) {
+    if (sqlite3_prepare_v3(store->db, sql, -1, SQLITE_PREPARE_PERSISTENT, st, NULL) != SQLITE_OK)
+        return db_fail(store, err, "cannot prepare statements (damaged schema?)");
+    return 0;
+}
+
+void tile_store_close(tile_store *store) {
+    if (!store) return;
+    sqlite3_stmt *all[] = {store->get,       store->has,         store->put,  store->del,
+                           store->count_all, store->count_layer, store->each, store->begin,
+                           store->commit,    store->rollback};
+    for (size_t i = 0; i < sizeof all / sizeof all[0]; i++)
+        sqlite3_finalize(all[i]);
+    sqlite3_close(store->db);
+    pthread_mutex_destroy(&store->lock);
+    free(store->path);
+    free(store);
+}
+
+tile_store *tile_store_open(const char *path, og_error *err) {
+    tile_store *store = calloc(1, sizeof *store);
+    if (!store || !(store->path = strdup(path))) {
+        free(store);
+        og_error_set(err, "tile store '%s': out of memory", path);
+        return NULL;
+    }
+    pthread_mutex_init(&store->lock, NULL);
+    // NOMUTEX: our own lock serialises use of the connection.
+    int rc = sqlite3_open_v2(
+        path, &store->db, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_NOMUTEX, NULL);
+    if (rc != SQLITE_OK) {
+        if (!store->db) {
+            og_error_set(err, "tile store '%s': cannot open: out of memory", path);
+        } else {
+            int e = sqlite3_system_errno(store->db);
+            og_error_set(err, "cannot open tile store '%s': %s%s%s", path,
+                         sqlite3_errmsg(store->db), e ? ": " : "", e ? strerror(e) : "");
+        }
+        tile_store_close(store);
+        return NULL;
+    }
+    sqlite3_extended_result_codes(store->db, 1);
+    sqlite3_busy_timeout(store->db, STORE_BUSY_TIMEOUT_MS);
+    if (store_init_schema(store, err)) goto fail;
+    if (sqlite3_db_readonly(store->db, "main") == 1) {
+        og_error_set(err, "tile store '%s' is read-only (check the file's permissions)", path);
+        goto fail;
+    }
+    // WAL: readers never block the writer and a commit is one append. With
+    // synchronous=FULL the WAL is synced at every commit, so a commit that
+    // returned survives power loss, and a kill at any instant leaves the old
+    // or the new state (NORMAL would keep atomicity but could lose the last
+    // commits on power loss: not acceptable for a user's save).
+    sqlite3_stmt *st = NULL;
+    int wal = 0;
+    if (sqlite3_prepare_v2(store->db, "PRAGMA journal_mode=WAL", -1, &st, NULL) == SQLITE_OK &&
+        sqlite3_step(st) == SQLITE_ROW) {
+        const unsigned char *mode = sqlite3_column_text(st, 0);
+        wal = mode && strcmp((const char *)mode, "wal") == 0;
+    }
+    sqlite3_finalize(st);
+    if (!wal) {
+        db_fail(store, err, "cannot switch to WAL journal mode");
+        goto fail;
+    }
+    if (exec(store, "PRAGMA synchronous=FULL", err, "cannot set synchronous mode")) goto fail;
+
+    if (prepare(store, &store->get,
+                "SELECT data FROM tiles WHERE layer=?1 AND face=?2 AND level=?3 AND tx=?4 "
+                "AND ty=?5",
+                err) ||
+        prepare(store, &store->has,
+                "SELECT 1 FROM tiles WHERE layer=?1 AND face=?2 AND level=?3 AND tx=?4 AND ty=?5",
+                err) ||
+        prepare(store, &store->put,
+                "INSERT INTO tiles(layer, face, level, tx, ty, data) VALUES(?1,?2,?3,?4,?5,?6) "
+                "ON CONFLICT(layer, face, level, tx, ty) DO UPDATE SET data=excluded.data",
+                err) ||
+        prepare(store, &store->del,
+                "DELETE FROM tiles WHERE layer=?1 AND face=?2 AND level=?3 AND tx=?4 AND ty=?5",
+                err) ||
+        prepare(store, &store->count_all, "SELECT count(*) FROM tiles", err) ||
+        prepare(store, &store->count_layer, "SELECT count(*) FROM tiles WHERE layer=?1", err) ||
+        prepare(store, &store->each, "SELECT layer, face, level, tx, ty FROM tiles", err) ||
+        prepare(store, &store->begin, "BEGIN IMMEDIATE", err) ||
+        prepare(store, &store->commit, "COMMIT", err) ||
+        prepare(store, &store->rollback, "ROLLBACK", err))
+        goto fail;
+    return store;
+fail:
+    tile_store_close(store);
+    return NULL;
+}
+
+// Runs a statement without result rows; returns its final code.
+static int step_done(sqlite3_stmt *st) {
+    int rc = sqlite3_step(st);
+    sqlite3_reset(st);
+    return rc;
+}
+
+tile_store_status tile_store_get(tile_store *store, tile_key key, void *out, size_t bytes,
+                                 og_error *err) {
+    if (key_valid(key, err, store->path)) return TILE_STORE_ERROR;
+    size_t want = tile_layer_bytes((tile_layer)key.layer);
+    char desc[128];
+    if (bytes != want) {
+        og_error_set(err, "tile store '%s': %s: buffer is %zu bytes, the tile is %zu", store->path,
+                     tile_key_describe(key, desc, sizeof desc), bytes, want);
+        return TILE_STORE_ERROR;
+    }
+
+    // Copy the blob out under the lock; decompress after releasing it so other
+    // threads can use the connection meanwhile.
+    void *blob = NULL;
+    size_t blob_bytes = 0;
+    int kind = SQLITE_NULL;
+    pthread_mutex_lock(&store->lock);
+    bind_key(store->get, key);
+    int rc = sqlite3_step(store->get);
+    if (rc == SQLITE_ROW) {
+        kind = sqlite3_column_type(store->get, 0);
+        const void *data = sqlite3_column_blob(store->get, 0);
+        int n = sqlite3_column_bytes(store->get, 0);
+        if (data && n > 0 && (blob = malloc((size_t)n))) {
+            memcpy(blob, data, (size_t)n);
+            blob_bytes = (size_t)n;
+        } else if (n > 0) {
+            rc = SQLITE_NOMEM;
+        }
+    }
+    tile_store_status status = TILE_STORE_OK;
+    if (rc == SQLITE_DONE) {
+        status = TILE_STORE_NOT_FOUND;
+    } else if (rc != SQLITE_ROW) {
+        db_fail(store, err, tile_key_describe(key, desc, sizeof desc));
+        status = TILE_STORE_ERROR;
+    }
+    sqlite3_reset(store->get);
+    pthread_mutex_unlock(&store->lock);
+    if (status != TILE_STORE_OK) {
+        free(blob);
+        return status;
+    }
+
+    og_error why = {{0}};
+    if (kind != SQLITE_BLOB) {
+        og_error_set(&why, "stored value is not a blob");
+    } else if (tile_blob_decode((tile_layer)key.layer, blob, blob_bytes, out, &why) == 0) {
+        free(blob);
+        return TILE_STORE_OK;
+    }
+    free(blob);
+    og_error_set(err, "tile store '%s': %s is corrupt: %s", store->path,
+                 tile_key_describe(key, desc, sizeof desc), why.msg);
+    return TILE_STORE_CORRUPT;
+}
+
+int tile_store_has(tile_store *store, tile_key key) {
+    pthread_mutex_lock(&store->lock);
+    bind_key(store->has, key);
+    int found = sqlite3_step(store->has) == SQLITE_ROW;
+    sqlite3_reset(store->has);
+    pthread_mutex_unlock(&store->lock);
+    return found;
+}
+
+int tile_store_put_batch(tile_store *store, const tile_store_write *writes, size_t count,
+                         og_error *err) {
+    if (!count) return 0;
+    if (!writes) return og_error_set(err, "tile store '%s': no writes given", store->path);
+    for (size_t i = 0; i < count; i++)
+        if (key_valid(writes[i].key, err, store->path)) return -1;
+
+    // Compress everything before taking the lock: encoding is the slow part
+    // and must not hold up readers or other writers.
+    void **blobs = calloc(count, sizeof *blobs);
+    size_t *sizes = calloc(count, sizeof *sizes);
+    int result = 0;
+    char desc[128];
+    if (!blobs || !sizes) {
+        result = og_error_set(err, "tile store '%s': out of memory for a batch of %zu tiles",
+                              store->path, count);
+        goto done;
+    }
+    for (size_t i = 0; i < count; i++) {
+        if (!writes[i].data) continue;
+        sizes[i] = tile_blob_encode((tile_layer)writes[i].key.layer, writes[i].data, &blobs[i]);
+        if (!sizes[i] || sizes[i] > INT_MAX) {
+            result = og_error_set(err, "tile store '%s': %s: cannot compress the tile", store->path,
+                                  tile_key_describe(writes[i].key, desc, sizeof desc));
+            goto done;
+        }
+    }
+
+    pthread_mutex_lock(&store->lock);
+    if (step_done(store->begin) != SQLITE_DONE) {
+        result = db_fail(store, err, "cannot start a write transaction");
+        pthread_mutex_unlock(&store->lock);
+        goto done;
+    }
+    for (size_t i = 0; i < count && result == 0; i++) {
+        sqlite3_stmt *st = writes[i].data ? store->put : store->del;
+        bind_key(st, writes[i].key);
+        if (writes[i].data) sqlite3_bind_blob(st, 6, blobs[i], (int)sizes[i], SQLITE_STATIC);
+        if (step_done(st) != SQLITE_DONE) {
+            char what[192];
+            snprintf(what, sizeof what, "cannot write %s",
+                     tile_key_describe(writes[i].key, desc, sizeof desc));
+            result = db_fail(store, err, what);
+        }
+        sqlite3_clear_bindings(st);
+    }
+    if (result == 0 && step_done(store->commit) != SQLITE_DONE)
+        result = db_fail(store, err, "cannot commit the write");
+    if (result != 0 && !sqlite3_get_autocommit(store->db)) step_done(store->rollback);
+    pthread_mutex_unlock(&store->lock);
+
+done:
+    if (blobs)
+        for (size_t i = 0; i < count; i++)
+            free(blobs[i]);
+    free(blobs);
+    free(sizes);
+    return result;
+}
+
+int64_t tile_store_count(tile_store *store, int layer) {
+    pthread_mutex_lock(&store->lock);
+    sqlite3_stmt *st = layer < 0 ? store->count_all : store->count_layer;
+    if (layer >= 0) sqlite3_bind_int(st, 1, layer);
+    int64_t n = sqlite3_step(st) == SQLITE_ROW ? sqlite3_column_int64(st, 0) : -1;
+    sqlite3_reset(st);
+    pthread_mutex_unlock(&store->lock);
+    return n;
+}
+
+int tile_store_each(tile_store *store, int (*fn)(void *user, tile_key key), void *user,
+                    og_error *err) {
+    // Collect the keys first and call fn without the lock, so fn may use the
+    // store (typically to get the tile) without deadlocking.
+    tile_key *keys = NULL;
+    size_t n = 0, cap = 0;
+    int rc, result = 0;
+    pthread_mutex_lock(&store->lock);
+    while ((rc = sqlite3_step(store->each)) == SQLITE_ROW) {
+        if (n == cap) {
+            size_t grown = cap ? cap * 2 : 256;
+            tile_key *more = realloc(keys, grown * sizeof *keys);
+            if (!more) {
+                result =
+                    og_error_set(err, "tile store '%s': out of memory listing tiles", store->path);
+                break;
+            }
+            keys = more;
+            cap = grown;
+        }
+        keys[n++] =
+            (tile_key){sqlite3_column_int(store->each, 0), sqlite3_column_int(store->each, 1),
+                       sqlite3_column_int(store->each, 2), sqlite3_column_int(store->each, 3),
+                       sqlite3_column_int(store->each, 4)};
+    }
+    if (result == 0 && rc != SQLITE_DONE) result = db_fail(store, err, "cannot list tiles");
+    sqlite3_reset(store->each);
+    pthread_mutex_unlock(&store->lock);
+    for (size_t i = 0; i < n && result == 0; i++)
+        if (fn(user, keys[i])) break;
+    free(keys);
+    return result;
+}
