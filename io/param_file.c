@@ -156,6 +156,8 @@ static int parse_line(param_file *pf, const char *s, size_t n, int line) {
 
 int param_file_parse(const char *text, size_t len, param_file *out) {
     *out = (param_file){0};
+    // Editors on Windows may start the file with a UTF-8 byte order mark.
+    if (len >= 3 && !memcmp(text, "\xEF\xBB\xBF", 3)) text += 3, len -= 3;
     size_t blank = 0;
     while (blank < len && (is_space(text[blank]) || text[blank] == '\n'))
         blank++;

@@ -819,6 +819,13 @@ static void test_param_file_parse(void **state) {
     assert_int_equal(pf.diags[0].line, 3);
     param_file_free(&pf);
 
+    // A UTF-8 byte order mark is not part of the first key.
+    assert_int_equal(param_file_parse("\xEF\xBB\xBFseed = 4;\n", 13, &pf), 0);
+    assert_int_equal(pf.diag_count, 0);
+    assert_int_equal(pf.count, 1);
+    assert_string_equal(pf.entries[0].key, "seed");
+    param_file_free(&pf);
+
     // Thousands of bad lines do not produce thousands of diagnostics.
     size_t n = 5000 * 4;
     char *junk = malloc(n);
