@@ -168,10 +168,7 @@ static locale_t c_locale(void) {
 // Value as shown in messages: quoted, cut short when long.
 static void quote(char *buf, size_t len, const char *value) {
     size_t n = strlen(value);
-    if (n > 48)
-        snprintf(buf, len, "'%.40s...'", value);
-    else
-        snprintf(buf, len, "'%s'", value);
+    snprintf(buf, len, "'%.*s%s'", (int)(n > 48 ? 40 : n), value, n > 48 ? "..." : "");
 }
 
 static int bad_value(og_error *err, const key_def *d, const char *expected, const char *value) {
