@@ -1,0 +1,233 @@
+// orogen: the command line. Batch mode (--batch FILE, -c 'cmd; cmd') runs the
+// command language with no window and no GL; interactive mode opens the default
+// world (or the one named) in the console.
+#include "editor/commands.h"
+#include "editor/world.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#ifndef OROGEN_RESOURCE_DIR
+#define OROGEN_RESOURCE_DIR "resources"
+#endif
+
+static void usage(FILE *out) {
+    fprintf(out,
+            "usage: orogen [options] [WORLD_FILE]\n"
+            "  WORLD_FILE          a .world or .planet parameter file to open (default: the\n"
+            "                      built-in default world)\n"
+            "  --batch FILE        run the commands in FILE with no window, then exit\n"
+            "  -c 'CMD; CMD'       run these commands with no window, then exit\n"
+            "                      (--batch and -c may be repeated; they run in order)\n"
+            "  --cache-mb N        tile cache budget in MiB (default 1024)\n"
+            "  --workers N         tile loader/generator threads (default 2)\n"
+            "  --help, --version\n"
+            "Batch errors are reported as FILE:LINE: error: MESSAGE with exit status 1.\n"
+            "Type 'help' in the console or run `orogen -c help` for the command list.\n");
+}
+
+static char *read_file(const char *path, size_t *len, char *why, size_t why_len) {
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        snprintf(why, why_len, "%s", strerror(errno));
+        return NULL;
+    }
+    size_t cap = 1 << 16, n = 0;
+    char *buf = malloc(cap);
+    for (;;) {
+        if (n == cap) {
+            if (cap >= ((size_t)256 << 20)) {
+                snprintf(why, why_len, "larger than 256 MiB");
+                free(buf);
+                fclose(f);
+                return NULL;
+            }
+            cap *= 2;
+            buf = realloc(buf, cap);
+        }
+        size_t got = fread(buf + n, 1, cap - n, f);
+        n += got;
+        if (got == 0) break;
+    }
+    int failed = ferror(f);
+    fclose(f);
+    if (failed) {
+        snprintf(why, why_len, "read error (is it a folder?)");
+        free(buf);
+        return NULL;
+    }
+    *len = n;
+    return buf;
+}
+
+static int file_exists(const char *path) { return access(path, R_OK) == 0; }
+
+// The built-in default world: the parameters shipped in resources/default.world,
+// opened as a new unsaved world so nothing is ever written into resources/.
+static world *open_default_world(const world_settings *settings, og_error *err) {
+    char path[4096] = "";
+    const char *env = getenv("OROGEN_RESOURCES");
+    char exe[4096];
+    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    const char *candidates[3] = {env, NULL, OROGEN_RESOURCE_DIR};
+    char installed[4200];
+    if (n > 0) {
+        exe[n] = 0;
+        char *slash = strrchr(exe, '/');
+        if (slash) *slash = 0;
+        snprintf(installed, sizeof installed, "%s/../share/orogen/resources", exe);
+        candidates[1] = installed;
+    }
+    for (int i = 0; i < 3 && !path[0]; i++) {
+        if (!candidates[i]) continue;
+        snprintf(path, sizeof path, "%s/default.world", candidates[i]);
+        if (!file_exists(path)) path[0] = 0;
+    }
+    world_params p;
+    world_params_default(&p, WORLD_FLAT);
+    if (path[0]) {
+        int errors = 0;
+        og_error load_err = {{0}};
+        if (world_params_load(path, &p, &errors, NULL, NULL, &load_err) != 0 || errors)
+            fprintf(stderr, "orogen: warning: %s has problems; using built-in defaults\n", path);
+        if (errors) world_params_default(&p, WORLD_FLAT);
+    } else {
+        fprintf(stderr, "orogen: warning: resources/default.world not found; using built-in "
+                        "defaults\n");
+    }
+    p.tiles[0] = 0;
+    return world_create(&p, settings, err);
+}
+
+typedef struct script {
+    const char *text; // for -c
+    const char *path; // for --batch
+} script;
+
+static int run_console(cmd_context *ctx) {
+    fprintf(stdout, "Orogen console. Type 'help' for commands, 'exit' to quit.\n");
+    char line[8192];
+    int lineno = 0;
+    for (;;) {
+        fprintf(stdout, "orogen> ");
+        fflush(stdout);
+        if (!fgets(line, sizeof line, stdin)) break;
+        lineno++;
+        og_error err = {{0}};
+        if (cmd_run(ctx, line, strlen(line), "console", &err) != 0) fprintf(stderr, "%s\n", err.msg);
+        if (ctx->exit_requested) break;
+    }
+    return 0;
+}
+
+int main(int argc, char **argv) {
+    script scripts[64];
+    int script_count = 0;
+    const char *world_file = NULL;
+    world_settings settings = {0};
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        int has_value = i + 1 < argc;
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
+            usage(stdout);
+            return 0;
+        } else if (strcmp(a, "--version") == 0) {
+            printf("orogen 0.1\n");
+            return 0;
+        } else if ((strcmp(a, "--batch") == 0 || strcmp(a, "-c") == 0) && has_value) {
+            if (script_count == 64) {
+                fprintf(stderr, "orogen: at most 64 --batch/-c options\n");
+                return 2;
+            }
+            scripts[script_count++] = a[1] == 'c' ? (script){argv[++i], NULL}
+                                                  : (script){NULL, argv[++i]};
+        } else if ((strcmp(a, "--cache-mb") == 0 || strcmp(a, "--workers") == 0) && has_value) {
+            char *end;
+            long v = strtol(argv[++i], &end, 10);
+            long max = a[2] == 'c' ? 1L << 20 : 64;
+            if (*end || v < 1 || v > max) {
+                fprintf(stderr, "orogen: %s expects an integer from 1 to %ld, got '%s'\n", a, max,
+                        argv[i]);
+                return 2;
+            }
+            if (a[2] == 'c')
+                settings.cache_budget_bytes = (size_t)v << 20;
+            else
+                settings.workers = (int)v;
+        } else if (a[0] == '-' && a[1]) {
+            fprintf(stderr, "orogen: unknown or incomplete option '%s'\n", a);
+            usage(stderr);
+            return 2;
+        } else if (!world_file) {
+            world_file = a;
+        } else {
+            fprintf(stderr, "orogen: only one world file may be given ('%s' and '%s')\n",
+                    world_file, a);
+            return 2;
+        }
+    }
+
+    if (script_count == 0) {
+        // Interactive: the editor window needs a display. Say so instead of failing later.
+        const char *x = getenv("DISPLAY"), *wl = getenv("WAYLAND_DISPLAY");
+        if (!(x && *x) && !(wl && *wl)) {
+            fprintf(stderr,
+                    "orogen: no display found (DISPLAY and WAYLAND_DISPLAY are unset), so the "
+                    "editor cannot open.\n"
+                    "Batch mode needs no display: orogen --batch SCRIPT or orogen -c 'CMD; CMD'\n"
+                    "  e.g. orogen -c 'info; sample 100 200; save my.world'\n");
+            return 2;
+        }
+    }
+
+    og_error err = {{0}};
+    world *w;
+    if (world_file) {
+        int errors = 0;
+        w = world_load(world_file, &settings, &errors, &err);
+    } else {
+        w = open_default_world(&settings, &err);
+    }
+    if (!w) {
+        fprintf(stderr, "orogen: %s\n", err.msg);
+        return 1;
+    }
+    cmd_context ctx = {.world = w, .next = *world_get_params(w), .settings = settings, .out = stdout};
+
+    int status = 0;
+    if (script_count == 0) {
+        status = run_console(&ctx);
+    } else {
+        for (int s = 0; s < script_count && !ctx.exit_requested; s++) {
+            size_t len;
+            char why[256];
+            char *text = NULL;
+            const char *label = "-c";
+            if (scripts[s].path) {
+                label = scripts[s].path;
+                text = read_file(scripts[s].path, &len, why, sizeof why);
+                if (!text) {
+                    fprintf(stderr, "orogen: cannot read batch file %s: %s\n", scripts[s].path, why);
+                    status = 1;
+                    break;
+                }
+            } else {
+                len = strlen(scripts[s].text);
+            }
+            int rc = cmd_run(&ctx, text ? text : scripts[s].text, len, label, &err);
+            free(text);
+            if (rc != 0) {
+                fflush(stdout);
+                fprintf(stderr, "%s\n", err.msg);
+                status = 1;
+                break;
+            }
+        }
+    }
+    fflush(stdout);
+    world_close(ctx.world);
+    return status;
+}

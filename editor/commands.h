@@ -1,0 +1,29 @@
+// The command language: one interpreter for batch scripts (`orogen --batch FILE`,
+// `orogen -c 'cmd; cmd'`), the in-app console, the UI's actions and the tests.
+// Commands are separated by newlines or `;`, arguments by blanks; "double quotes"
+// keep blanks in an argument; `#` outside quotes starts a comment.
+#ifndef OROGEN_EDITOR_COMMANDS_H
+#define OROGEN_EDITOR_COMMANDS_H
+
+#include "editor/world.h"
+#include "io/err.h"
+
+#include <stdio.h>
+
+typedef struct cmd_context {
+    world *world;             // the current world (replaced by new/load)
+    world_params next;        // parameters for the next `generate` (nparams)
+    world_settings settings;  // used for worlds created by new/load
+    FILE *out;                // where commands print results
+    int exit_requested;       // set by `exit`
+} cmd_context;
+
+// Runs every command in text. Stops at the first failing command and returns -1 with
+// err->msg = "label:line: error: message". label names the script ("-c" for -c).
+int cmd_run(cmd_context *ctx, const char *text, size_t len, const char *label, og_error *err);
+
+// Number of commands and their names, for completion and `cmdlist`.
+size_t cmd_count(void);
+const char *cmd_name(size_t i);
+
+#endif
