@@ -46,7 +46,7 @@ static int parse_int(const char *text, const char *what, long long *out, og_erro
 static int parse_face(int argc, char **argv, int index, int *face, og_error *err) {
     *face = 0;
     if (argc <= index) return 0;
-    long long f;
+    long long f = 0;
     if (parse_int(argv[index], "face", &f, err) != 0) return -1;
     *face = (int)(f < -1 ? -1 : (f > 6 ? 6 : f));
     return 0;
@@ -182,7 +182,7 @@ static int c_info(cmd_context *ctx, int argc, char **argv, og_error *err) {
 }
 
 static int c_sample(cmd_context *ctx, int argc, char **argv, og_error *err) {
-    double x, z, h;
+    double x = 0, z = 0, h = 0;
     int face;
     if (parse_double(argv[1], "X", &x, err) || parse_double(argv[2], "Z", &z, err) ||
         parse_face(argc, argv, 3, &face, err))

@@ -26,6 +26,10 @@ double gen_octaves_at_level(const world_params *p, int level);
 void gen_fractal_tile(const world_params *p, tile_key key, float *out);
 void gen_diamond_square_tile(const world_params *p, tile_key key, float *out);
 void gen_faults_tile(const world_params *p, tile_key key, float *out);
+// Diamond-square over any rectangle of level-L sample indices (x0, z0 in units of 2^L
+// level-0 samples), not only tile-aligned ones: the one big array tiles must match.
+void gen_diamond_square_region(const world_params *p, int level, int64_t x0, int64_t z0, int nx,
+                               int nz, float *out);
 
 // Integer hashing shared by the generators: well-mixed 32 bits from coordinates.
 static inline uint32_t gen_hash32(uint32_t x) {

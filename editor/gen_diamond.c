@@ -45,7 +45,7 @@ static uint32_t point_hash(uint32_t seed, int64_t x, int64_t z) {
 }
 
 // Top-grid heights: seed 003's super blocks, as a smooth fBm over top cells.
-static void fill_top(const world_params *p, int K, ds_grid *g) {
+static void fill_top(const world_params *p, ds_grid *g) {
     gen_fractal f = {.kind = GEN_FRACTAL_FBM,
                      .seed = gen_hash32((uint32_t)p->seed ^ 0xd1a3050dU),
                      .octaves = 3.0,
@@ -61,7 +61,6 @@ static void fill_top(const world_params *p, int K, ds_grid *g) {
     for (int64_t k = 0; k < g->nx * g->nz; k++) g->v[k] *= amp;
     free(xs);
     free(zs);
-    (void)K;
 }
 
 static inline float *at(ds_grid *g, int64_t x, int64_t z) {
@@ -104,26 +103,22 @@ static void subdivide(const world_params *p, int K, int k, const ds_grid *parent
     }
 }
 
-void gen_diamond_square_tile(const world_params *p, tile_key key, float *out) {
-    int K = top_level(p), L = key.level;
-    ds_range rx = {(int64_t)key.tx * TILE_SIZE, (int64_t)key.tx * TILE_SIZE + TILE_SIZE - 1};
-    ds_range rz = {(int64_t)key.ty * TILE_SIZE, (int64_t)key.ty * TILE_SIZE + TILE_SIZE - 1};
-    ds_grid g;
+void gen_diamond_square_region(const world_params *p, int level, int64_t x0, int64_t z0, int nx,
+                               int nz, float *out) {
+    int K = top_level(p), L = level;
+    ds_range rx = {x0, x0 + nx - 1}, rz = {z0, z0 + nz - 1};
     if (L >= K) {
         // Coarser than the top grid: the samples are top-grid points themselves.
         int64_t step = (int64_t)1 << (L - K);
-        ds_grid top = {rx.lo, rz.lo, TILE_SIZE, TILE_SIZE, NULL};
         if (step == 1) {
-            top.v = out;
-            fill_top(p, K, &top);
+            ds_grid top = {rx.lo, rz.lo, nx, nz, out};
+            fill_top(p, &top);
         } else {
-            // Sample every 2^shift-th top point: evaluate them directly.
-            top.nx = top.nz = 1;
-            for (int j = 0; j < TILE_SIZE; j++)
-                for (int i = 0; i < TILE_SIZE; i++) {
-                    top.x0 = (rx.lo + i) * step, top.z0 = (rz.lo + j) * step;
-                    top.v = &out[j * TILE_SIZE + i];
-                    fill_top(p, K, &top);
+            for (int j = 0; j < nz; j++)
+                for (int i = 0; i < nx; i++) {
+                    ds_grid one = {(rx.lo + i) * step, (rz.lo + j) * step, 1, 1,
+                                   &out[(size_t)j * nx + i]};
+                    fill_top(p, &one);
                 }
         }
     } else {
@@ -133,24 +128,29 @@ void gen_diamond_square_tile(const world_params *p, tile_key key, float *out) {
             xr[k + 1] = (ds_range){world_grid_floor_div(xr[k].lo - 2, 2), ceil_div2(xr[k].hi + 2)};
             zr[k + 1] = (ds_range){world_grid_floor_div(zr[k].lo - 2, 2), ceil_div2(zr[k].hi + 2)};
         }
-        ds_grid top = {xr[K].lo, zr[K].lo, xr[K].hi - xr[K].lo + 1, zr[K].hi - zr[K].lo + 1, NULL};
-        top.v = malloc(sizeof(float) * (size_t)(top.nx * top.nz));
-        fill_top(p, K, &top);
-        ds_grid parent = top;
+        ds_grid parent = {xr[K].lo, zr[K].lo, xr[K].hi - xr[K].lo + 1, zr[K].hi - zr[K].lo + 1,
+                          NULL};
+        parent.v = malloc(sizeof(float) * (size_t)(parent.nx * parent.nz));
+        fill_top(p, &parent);
         for (int k = K - 1; k >= L; k--) {
+            ds_grid g;
             subdivide(p, K, k, &parent, xr[k], zr[k], &g);
             free(parent.v);
             parent = g;
         }
-        for (int j = 0; j < TILE_SIZE; j++)
-            for (int i = 0; i < TILE_SIZE; i++)
-                out[j * TILE_SIZE + i] = *at(&parent, rx.lo + i, rz.lo + j);
+        for (int j = 0; j < nz; j++)
+            for (int i = 0; i < nx; i++)
+                out[(size_t)j * nx + i] = *at(&parent, rx.lo + i, rz.lo + j);
         free(parent.v);
     }
-    for (size_t k = 0; k < TILE_SAMPLES; k++) {
-        float h = out[k];
-        float m = (float)p->max_height;
-        h = h < -m ? -m : (h > m ? m : h);
+    float m = (float)p->max_height;
+    for (size_t k = 0; k < (size_t)nx * nz; k++) {
+        float h = out[k] < -m ? -m : (out[k] > m ? m : out[k]);
         out[k] = (float)(h + p->base_height);
     }
+}
+
+void gen_diamond_square_tile(const world_params *p, tile_key key, float *out) {
+    gen_diamond_square_region(p, key.level, (int64_t)key.tx * TILE_SIZE,
+                              (int64_t)key.ty * TILE_SIZE, TILE_SIZE, TILE_SIZE, out);
 }

@@ -151,9 +151,11 @@ world *world_load(const char *path, const world_settings *settings, int *errors,
     if (world_params_load(path, &p, &errs, forward_report, (void *)settings, err) != 0) return NULL;
     if (errors) *errors = errs;
     if (check_params(&p, err) != 0) {
-        char msg[sizeof err->msg];
+        char msg[sizeof err->msg + 4200];
         snprintf(msg, sizeof msg, "%s: error: %s", path, err->msg);
-        snprintf(err->msg, sizeof err->msg, "%s", msg);
+        size_t n = strlen(msg) < sizeof err->msg - 1 ? strlen(msg) : sizeof err->msg - 1;
+        memcpy(err->msg, msg, n);
+        err->msg[n] = 0;
         return NULL;
     }
     char tiles[4096];
