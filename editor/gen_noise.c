@@ -10,7 +10,8 @@
 
 #define INLINE static inline __attribute__((always_inline))
 
-// Octaves beyond this are finer than a double position can resolve anyway.
+// Octave counts are clamped to this: finer octaves are below what a double
+// position far from the origin can resolve anyway.
 #define MAX_OCTAVES 32
 // Columns per grid chunk and points per block: small enough for stack scratch.
 #define CHUNK 64
