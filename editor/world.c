@@ -166,7 +166,12 @@ world *world_load(const char *path, const world_settings *settings, int *errors,
         return NULL;
     }
     snprintf(w->path, sizeof w->path, "%s", path);
-    w->store = tile_store_open(tiles, err);
+    // Loading never creates files: a world with no tile store yet keeps its edits
+    // in a scratch store until it is saved.
+    if (access(tiles, F_OK) == 0)
+        w->store = tile_store_open(tiles, err);
+    else if (open_scratch_store(w, err) != 0)
+        w->store = NULL;
     if (!w->store || start_cache(w, err) != 0) {
         world_close(w);
         return NULL;
