@@ -1,0 +1,122 @@
+#!/usr/bin/env bash
+# End-to-end: the real orogen binary in batch mode. Usage: e2e_batch.sh ORGOEN TESTS_DIR
+set -u
+orogen=$1
+tests=$2
+work=$(mktemp -d "${TMPDIR:-/tmp}/orogen-e2e-XXXXXX")
+trap 'rm -rf "$work"' EXIT
+failures=0
+passes=0
+
+check() { # name, condition already evaluated as $?
+    if [ "$2" = 0 ]; then passes=$((passes + 1)); else echo "FAIL: $1"; failures=$((failures + 1)); fi
+}
+run() { # captures stdout, stderr and status of orogen
+    "$orogen" "$@" >"$work/out" 2>"$work/err"
+    status=$?
+}
+
+# 1. info prints key=value facts
+run -c 'info'
+check "info exits 0" $status
+grep -q '^kind=flat$' "$work/out"; check "info has kind=flat" $?
+grep -q '^cache_workers=2$' "$work/out"; check "info has cache_workers" $?
+
+# 2. first failure in a batch file: FILE:LINE: error, non-zero exit, rest not run
+printf 'seed 5\n\nfrobnicate 1 2\nsave %s/never.world\n' "$work" >"$work/script.og"
+run --batch "$work/script.og"
+[ $status = 1 ]; check "batch failure exits 1" $?
+grep -q "^$work/script.og:3: error: unknown command 'frobnicate'" "$work/err"; check "batch error names file:line" $?
+[ ! -e "$work/never.world" ]; check "commands after the failure do not run" $?
+
+# 3. -c with several commands; errors name -c and the command's line
+run -c 'seed 1; octaves abc'
+[ $status = 1 ]; check "-c failure exits 1" $?
+grep -q "^-c:1: error: octaves: expected" "$work/err"; check "-c error message" $?
+run -c 'octaves 30.5'
+[ $status = 1 ]; check "out-of-range octaves rejected" $?
+
+# 4. determinism: same digest for 1 and 2 workers and across runs; the seed matters
+area='hash -3000 -2000 2500 3100'
+run --workers 1 -c "$area"; h1=$(cat "$work/out")
+run --workers 2 -c "$area"; h2=$(cat "$work/out")
+run --workers 4 -c "$area"; h4=$(cat "$work/out")
+[ -n "$h1" ] && [ "$h1" = "$h2" ] && [ "$h2" = "$h4" ]; check "hash independent of worker count" $?
+run -c "seed 99; generate; $area"; h5=$(cat "$work/out")
+[ "$h5" != "$h1" ]; check "hash changes with the seed" $?
+for g in fbm fbm_advanced ridged diamond_square faults flat; do
+    run --workers 1 -c "generator $g; generate; $area"; a=$(cat "$work/out")
+    run --workers 2 -c "generator $g; generate; $area"; b=$(cat "$work/out")
+    [ -n "$a" ] && [ "$a" = "$b" ]; check "generator $g deterministic across workers" $?
+done
+
+# 5. save -> load -> save is exact, and the terrain is the same after loading
+run -c "generator ridged; seed 7; octaves 6.5; generate; save $work/a.world; $area"
+check "save exits 0" $status
+ha=$(tail -n 1 "$work/out")
+run -c "load $work/a.world; save $work/b.world; $area"
+hb=$(tail -n 1 "$work/out")
+cmp -s "$work/a.world" "$work/b.world"; check "load/save round trip is byte-identical" $?
+[ "$ha" = "$hb" ]; check "loaded world regenerates the same terrain" $?
+run "$work/a.world" -c 'params'
+grep -q '^octaves = 6.5;$' "$work/out"; check "world file given on the command line" $?
+
+# 6. a seed 004 planet file loads unchanged
+run -c "load $tests/data/params/seed004.planet; params"
+check "seed 004 planet loads" $status
+grep -q '^kind = planet;$' "$work/out" && grep -q '^radius = 10;$' "$work/out" &&
+    grep -q '^w_factor = 0.5;$' "$work/out"; check "seed 004 values kept" $?
+[ ! -s "$work/err" ]; check "seed 004 planet loads without diagnostics" $?
+
+# 7. a parameter file with a bad value and an unknown key: reported with lines, rest read
+printf 'seed = 12;\noctaves = lots;\ncolour = blue;\nmax_height = 900;\n' >"$work/bad.world"
+run -c "load $work/bad.world; params"
+check "file with bad values still loads" $status
+grep -q "bad.world:2: error: " "$work/err"; check "bad value reported with its line" $?
+grep -q "bad.world:3: warning: unknown key 'colour'" "$work/err"; check "unknown key warned with its line" $?
+grep -q '^max_height = 900;$' "$work/out" && grep -q '^octaves = 8;$' "$work/out"; check "bad key keeps default, later keys read" $?
+
+# 8. no display: a clear message pointing at batch mode, not a crash
+env -u DISPLAY -u WAYLAND_DISPLAY "$orogen" >"$work/out" 2>"$work/err" </dev/null
+[ $? = 2 ] && grep -q "no display" "$work/err" && grep -q -- "--batch" "$work/err"; check "no display message" $?
+
+# 9. bounded worlds, faces and bad numbers
+run -c 'size 1024; generate; sample 100 100; sample 5000 10'
+[ $status = 1 ] && grep -q "outside the world" "$work/err"; check "sample outside a bounded world" $?
+[ "$(head -n 1 "$work/out" | grep -c '^-\?[0-9]*\.[0-9]*$')" = 1 ]; check "sample prints a number" $?
+run -c 'new planet; sample 1000 2000 3; hash 0 0 5000 5000 5'
+check "planet sample and hash on faces" $status
+run -c 'new planet; sample 1000 2000 6'
+[ $status = 1 ] && grep -q "face 6 does not exist" "$work/err"; check "bad face rejected" $?
+run -c 'sample nan 3'
+[ $status = 1 ]; check "NaN position rejected" $?
+run -c 'new planet; generator diamond_square; generate'
+[ $status = 1 ] && grep -q "flat worlds only" "$work/err"; check "diamond-square on a planet rejected" $?
+
+# 10. files that cannot be read or are not what they claim
+run --batch "$work/does-not-exist.og"
+[ $status = 1 ] && grep -q "does-not-exist.og" "$work/err"; check "missing batch file named" $?
+head -c 5000 /dev/urandom >"$work/garbage.tiles"
+printf 'tiles = garbage.tiles;\n' >"$work/g.world"
+run -c "load $work/g.world"
+[ $status = 1 ] && grep -q "garbage.tiles" "$work/err"; check "corrupt tile store named" $?
+printf 'tiles = ../escape.tiles;\n' >"$work/e.world"
+run -c "load $work/e.world"
+[ $status = 1 ] && grep -q "tiles" "$work/err"; check "tiles path escaping the folder refused" $?
+run -c "save $work/no/such/folder/x.world"
+[ $status = 1 ] && grep -q "$work/no/such/folder" "$work/err"; check "unwritable save path named" $?
+
+# 11. help and the command list cover the issue's commands
+run -c 'cmdlist'
+for c in new load save generate generator seed octaves w_factor exponent radius max_height \
+    ocean_level omega spacing size set params nparams info sample hash help cmdlist exit; do
+    grep -qx "$c" "$work/out" || { echo "missing command $c"; false; }
+done
+check "cmdlist complete" $?
+run -c 'help hash'
+grep -q 'hash X0 Z0 X1 Z1' "$work/out"; check "help for one command" $?
+run -c 'exit; frobnicate'
+check "exit stops before later commands" $status
+
+echo "$passes passed, $failures failed"
+[ $failures = 0 ]
