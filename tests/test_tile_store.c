@@ -653,41 +653,90 @@ static uint32_t verify_versions(const char *path) {
     return version;
 }
 
-// The child: write the whole set at version v, v+1, ... until killed.
-static void kill_child(const char *path, uint32_t start) {
+static void fill_kill_batch(uint32_t v, void *data[KILL_TILES], tile_store_write *w) {
+    for (int i = 0; i < KILL_TILES; i++) {
+        fill_version(kill_layer(i), i, v, data[i]);
+        w[i] = (tile_store_write){key_of(kill_layer(i), i, -i), data[i]};
+    }
+}
+
+// The child: write the whole set at version v, v+1, ... until killed. It
+// writes one byte to ready_fd once the store is open.
+static void kill_child(const char *path, uint32_t start, int ready_fd) {
     og_error err;
     tile_store *s = tile_store_open(path, &err);
     if (!s) _exit(3);
+    if (write(ready_fd, "r", 1) != 1) _exit(5);
     void *data[KILL_TILES];
     tile_store_write w[KILL_TILES];
     for (int i = 0; i < KILL_TILES; i++)
         data[i] = malloc(U8X8_BYTES);
     for (uint32_t v = start;; v++) {
-        for (int i = 0; i < KILL_TILES; i++) {
-            fill_version(kill_layer(i), i, v, data[i]);
-            w[i] = (tile_store_write){key_of(kill_layer(i), i, -i), data[i]};
-        }
+        fill_kill_batch(v, data, w);
         if (tile_store_put_batch(s, w, KILL_TILES, &err)) _exit(4);
     }
+}
+
+static double now_us(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec * 1e6 + (double)ts.tv_nsec * 1e-3;
 }
 
 static void test_kill_during_writes(void **state) {
     (void)state;
     const char *dir = test_tmpdir("store-kill");
-    char path[4096];
+    char path[4096], calib[4096];
     if (snprintf(path, sizeof path, "%s/w.tiles", dir) >= (int)sizeof path) abort();
+    if (snprintf(calib, sizeof calib, "%s/calib.tiles", dir) >= (int)sizeof calib) abort();
+
+    // How long one batch takes here (sanitizers, slow disks): kills are spread
+    // over a few batches' time so they land before, during and after commits.
+    og_error err = {{0}};
+    tile_store *s = tile_store_open(calib, &err);
+    assert_non_null(s);
+    void *data[KILL_TILES];
+    tile_store_write w[KILL_TILES];
+    for (int i = 0; i < KILL_TILES; i++)
+        data[i] = malloc(U8X8_BYTES);
+    double t0 = now_us();
+    for (uint32_t v = 1; v <= 4; v++) {
+        fill_kill_batch(v, data, w);
+        assert_int_equal(tile_store_put_batch(s, w, KILL_TILES, &err), 0);
+    }
+    double batch_us = (now_us() - t0) / 4;
+    tile_store_close(s);
+    for (int i = 0; i < KILL_TILES; i++)
+        free(data[i]);
+    int max_delay = (int)(batch_us * 4) + 2000;
+
     srand((unsigned)time(NULL));
     uint32_t version = 0, advanced = 0;
     const int iterations = 60;
     for (int it = 0; it < iterations; it++) {
+        int ready[2];
+        assert_int_equal(pipe(ready), 0);
         fflush(NULL);
         pid_t pid = fork();
         assert_true(pid >= 0);
-        if (pid == 0) kill_child(path, version + 1);
-        // Delays from microseconds (before the first commit) to tens of ms.
-        useconds_t delay = (useconds_t)(rand() % 4 == 0 ? rand() % 500 : rand() % 40000);
+        if (pid == 0) {
+            close(ready[0]);
+            kill_child(path, version + 1, ready[1]);
+        }
+        close(ready[1]);
+        // Mostly: wait until the store is open, then kill within a few batches
+        // (microseconds to tens of ms). Sometimes: kill while it is opening.
+        useconds_t delay;
+        if (it % 8 == 7) {
+            delay = (useconds_t)(rand() % 1000);
+        } else {
+            char byte;
+            assert_int_equal(read(ready[0], &byte, 1), 1);
+            delay = (useconds_t)(rand() % max_delay);
+        }
         usleep(delay);
         kill(pid, SIGKILL);
+        close(ready[0]);
         int status = 0;
         assert_int_equal(waitpid(pid, &status, 0), pid);
         // Killed, not exited on an error of its own.
@@ -697,8 +746,9 @@ static void test_kill_during_writes(void **state) {
         if (v > version) advanced++;
         version = v;
     }
-    print_message("kill test: %d kills, version reached %u, advanced in %u iterations\n",
-                  iterations, version, advanced);
+    print_message("kill test: %d kills within %d us of opening (one batch %.0f us), version "
+                  "reached %u, advanced in %u iterations\n",
+                  iterations, max_delay, batch_us, version, advanced);
     // The test only means something if kills landed while batches committed.
     assert_true(advanced >= (uint32_t)iterations / 4);
     test_rmtree(dir);
