@@ -7,6 +7,7 @@
 
 #include <fcntl.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -66,6 +67,51 @@ static void fill_fbm_tile(float *t, int tx, int ty) {
             }
             t[y * TILE_SIZE + x] = (float)(h * 1300.0 - 100.0);
         }
+}
+
+// One loader thread: gets tiles first, first + step, ... (as tile cache
+// workers would share a request queue).
+typedef struct loader {
+    tile_store *store;
+    int first, step, ntiles, failed;
+} loader;
+
+static void *load_tiles(void *arg) {
+    loader *l = arg;
+    float *out = malloc(TILE_BYTES);
+    og_error err;
+    for (int i = l->first; out && i < l->ntiles; i += l->step) {
+        tile_key k = {TILE_LAYER_COARSE, 0, 0, i % 32, i / 32};
+        if (tile_store_get(l->store, k, out, TILE_BYTES, &err) != TILE_STORE_OK) l->failed = 1;
+    }
+    free(out);
+    return NULL;
+}
+
+// Opens the store and loads every tile with nthreads threads; returns MB/s.
+static double load_store(const char *path, int ntiles, int nthreads) {
+    og_error err;
+    double t0 = now_s();
+    tile_store *s = tile_store_open(path, &err);
+    if (!s) {
+        fprintf(stderr, "%s\n", err.msg);
+        exit(1);
+    }
+    pthread_t th[16];
+    loader l[16];
+    for (int t = 0; t < nthreads; t++) {
+        l[t] = (loader){s, t, nthreads, ntiles, 0};
+        pthread_create(&th[t], NULL, load_tiles, &l[t]);
+    }
+    for (int t = 0; t < nthreads; t++) {
+        pthread_join(th[t], NULL);
+        if (l[t].failed) {
+            fprintf(stderr, "tile load failed\n");
+            exit(1);
+        }
+    }
+    tile_store_close(s);
+    return (double)ntiles * (double)TILE_BYTES / 1e6 / (now_s() - t0);
 }
 
 // Empties the OS page cache: globally when allowed (root), otherwise by
@@ -180,35 +226,16 @@ int main(int argc, char **argv) {
     stat(store_path, &st);
     const char *files[] = {store_path, raw_path};
 
-    double cold[64], raw[64], warm[64];
+    long cpus = sysconf(_SC_NPROCESSORS_ONLN);
+    int nthreads = cpus < 2 ? 1 : cpus > 16 ? 16 : (int)cpus;
+    double cold[64], cold_mt[64], raw[64], warm[64];
     const char *how = "";
     for (int r = 0; r < runs; r++) {
         how = drop_caches(files, 2);
-        t0 = now_s();
-        s = tile_store_open(store_path, &err);
-        if (!s) {
-            fprintf(stderr, "%s\n", err.msg);
-            return 1;
-        }
-        for (int i = 0; i < ntiles; i++) {
-            tile_key k = {TILE_LAYER_COARSE, 0, 0, i % 32, i / 32};
-            if (tile_store_get(s, k, out, TILE_BYTES, &err) != TILE_STORE_OK) {
-                fprintf(stderr, "%s\n", err.msg);
-                return 1;
-            }
-        }
-        tile_store_close(s);
-        cold[r] = raw_mb / (now_s() - t0);
-
-        // Warm: the same load again with the file in the page cache.
-        t0 = now_s();
-        s = tile_store_open(store_path, &err);
-        for (int i = 0; s && i < ntiles; i++) {
-            tile_key k = {TILE_LAYER_COARSE, 0, 0, i % 32, i / 32};
-            tile_store_get(s, k, out, TILE_BYTES, &err);
-        }
-        tile_store_close(s);
-        warm[r] = raw_mb / (now_s() - t0);
+        cold[r] = load_store(store_path, ntiles, 1);
+        warm[r] = load_store(store_path, ntiles, 1); // now in the page cache
+        drop_caches(files, 2);
+        cold_mt[r] = load_store(store_path, ntiles, nthreads);
 
         drop_caches(files, 2);
         t0 = now_s();
@@ -234,9 +261,13 @@ int main(int argc, char **argv) {
     printf("in memory: encode %.0f MB/s, decode %.0f MB/s (decompressed bytes)\n",
            median(enc, runs), median(dec, runs));
     printf("store write (batches of 32, fsync per commit): %.0f MB/s\n", raw_mb / write_s);
-    printf("store warm load: %.0f MB/s decompressed\n", median(warm, runs));
-    printf("store cold load: %.0f MB/s decompressed; raw file read: %.0f MB/s; ratio %.2f\n", c, p,
-           c / p);
+    printf("store warm load: %.0f MB/s decompressed (1 thread)\n", median(warm, runs));
+    printf("store cold load, %d threads: %.0f MB/s decompressed; raw file read: %.0f MB/s; "
+           "ratio %.2f\n",
+           nthreads, median(cold_mt, runs), p, median(cold_mt, runs) / p);
+    printf(
+        "store cold load, 1 thread: %.0f MB/s decompressed; raw file read: %.0f MB/s; ratio %.2f\n",
+        c, p, c / p);
 
     for (int i = 0; i < ntiles; i++)
         free(blobs[i]);
