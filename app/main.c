@@ -1,6 +1,7 @@
 // orogen: the command line. Batch mode (--batch FILE, -c 'cmd; cmd') runs the
-// command language with no window and no GL; interactive mode opens the default
-// world (or the one named) in the console.
+// command language with no window and no GL; interactive mode opens the editor
+// window on the default world (or the one named), with the console on stdin.
+#include "app/window.h"
 #include "editor/commands.h"
 #include "editor/world.h"
 
@@ -107,22 +108,6 @@ typedef struct script {
     const char *path; // for --batch
 } script;
 
-static int run_console(cmd_context *ctx) {
-    fprintf(stdout, "Orogen console. Type 'help' for commands, 'exit' to quit.\n");
-    char line[8192];
-    int lineno = 0;
-    for (;;) {
-        fprintf(stdout, "orogen> ");
-        fflush(stdout);
-        if (!fgets(line, sizeof line, stdin)) break;
-        lineno++;
-        og_error err = {{0}};
-        if (cmd_run(ctx, line, strlen(line), "console", &err) != 0) fprintf(stderr, "%s\n", err.msg);
-        if (ctx->exit_requested) break;
-    }
-    return 0;
-}
-
 int main(int argc, char **argv) {
     script scripts[64];
     int script_count = 0;
@@ -199,7 +184,11 @@ int main(int argc, char **argv) {
 
     int status = 0;
     if (script_count == 0) {
-        status = run_console(&ctx);
+        if (window_run(&ctx, &err) != 0) {
+            fprintf(stderr, "orogen: %s\nBatch mode needs no window: orogen --batch SCRIPT or "
+                            "orogen -c 'CMD; CMD'\n", err.msg);
+            status = 1;
+        }
     } else {
         for (int s = 0; s < script_count && !ctx.exit_requested; s++) {
             size_t len;
