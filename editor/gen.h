@@ -4,6 +4,7 @@
 #ifndef OROGEN_EDITOR_GEN_H
 #define OROGEN_EDITOR_GEN_H
 
+#include "editor/gen_hash.h"
 #include "editor/world_params.h"
 #include "io/tile.h"
 
@@ -30,22 +31,5 @@ void gen_faults_tile(const world_params *p, tile_key key, float *out);
 // level-0 samples), not only tile-aligned ones: the one big array tiles must match.
 void gen_diamond_square_region(const world_params *p, int level, int64_t x0, int64_t z0, int nx,
                                int nz, float *out);
-
-// Integer hashing shared by the generators: well-mixed 32 bits from coordinates.
-static inline uint32_t gen_hash32(uint32_t x) {
-    x ^= x >> 16;
-    x *= 0x7feb352dU;
-    x ^= x >> 15;
-    x *= 0x846ca68bU;
-    x ^= x >> 16;
-    return x;
-}
-static inline uint32_t gen_hash_3(uint32_t a, uint32_t b, uint32_t c) {
-    return gen_hash32(a ^ gen_hash32(b ^ gen_hash32(c + 0x9e3779b9U)));
-}
-// Uniform in [-1, 1) from a hash.
-static inline float gen_hash_unit(uint32_t h) {
-    return (float)(int32_t)h * (1.0f / 2147483648.0f);
-}
 
 #endif

@@ -4,6 +4,8 @@
 // The batch paths are compiled twice (baseline x86-64 and AVX2) and picked at run time.
 #include "editor/gen_noise.h"
 
+#include "editor/gen_hash.h"
+
 #include <math.h>
 #include <stdatomic.h>
 #include <string.h>
@@ -30,16 +32,6 @@
 // The 3D gradient set (12 cube edges) peaks at 1.0363 near (0.36, 0.48, 0.5) of a
 // cell; scale so the output stays within [-1, 1]. The 2D set peaks at exactly 1.
 #define NOISE3_SCALE 0.9649f
-
-// Seed mixer for octave seeds and offsets (not on the hot path).
-static uint32_t mix32(uint32_t h) {
-    h ^= h >> 16;
-    h *= 0x21F0AAADu;
-    h ^= h >> 15;
-    h *= 0x735A2D97u;
-    h ^= h >> 15;
-    return h;
-}
 
 // Lattice hash: pre is the xor of the per-axis terms. The seed enters between two
 // multiply rounds so that changing it scrambles every lattice point independently
@@ -175,7 +167,7 @@ float gen_noise2(uint32_t seed, double x, double y) {
     float fx, fy;
     lattice_split(x, &cx, &fx);
     lattice_split(y, &cy, &fy);
-    return noise2_cell(cx * PX, cy * PY, mix32(seed), fx, fy, fade(fx), fade(fy));
+    return noise2_cell(cx * PX, cy * PY, gen_hash32(seed), fx, fy, fade(fx), fade(fy));
 }
 
 float gen_noise3(uint32_t seed, double x, double y, double z) {
@@ -184,7 +176,7 @@ float gen_noise3(uint32_t seed, double x, double y, double z) {
     lattice_split(x, &cx, &fx);
     lattice_split(y, &cy, &fy);
     lattice_split(z, &cz, &fz);
-    return noise3_cell(cx * PX, cy * PY, cz * PZ, mix32(seed), fx, fy, fz);
+    return noise3_cell(cx * PX, cy * PY, cz * PZ, gen_hash32(seed), fx, fy, fz);
 }
 
 // Everything a fractal evaluation needs per octave, derived once from the
@@ -217,10 +209,10 @@ static void plan_octaves(const gen_fractal *f, octave_plan *pl) {
         pl->freq[o] = n;
         // A distinct seed and a sub-cell offset per octave: octaves are not scaled
         // copies of each other and their lattices never line up at the origin.
-        uint32_t s = mix32(f->seed + 0x9E3779B9u * (uint32_t)(o + 1));
+        uint32_t s = gen_hash32(f->seed + 0x9E3779B9u * (uint32_t)(o + 1));
         pl->seed[o] = s;
         for (int axis = 0; axis < 3; axis++) {
-            uint32_t h = mix32(s + 0x632BE5ABu * (uint32_t)(axis + 1));
+            uint32_t h = gen_hash32(s + 0x632BE5ABu * (uint32_t)(axis + 1));
             pl->off[o][axis] = 0.125 + 0.75 * (double)(h >> 8) * (1.0 / 16777216.0);
         }
         w *= f->gain;
