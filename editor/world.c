@@ -336,6 +336,8 @@ int world_sample(world *w, int face, double x, double z, double *height, og_erro
         return og_error_set(err, "position (%g, %g) m lies beyond the int32 tile range", x, z);
     int64_t i0 = (int64_t)floor(fx), j0 = (int64_t)floor(fz);
     double tx = fx - (double)i0, tz = fz - (double)j0;
+    // Neighbours are read only when they carry weight, so the last row and column
+    // of a bounded world need nothing beyond it.
     float h00, h10 = 0, h01 = 0, h11 = 0;
     if (read_sample(w, face, i0, j0, &h00, err) != 0) return -1;
     if (tx > 0 && read_sample(w, face, i0 + 1, j0, &h10, err) != 0) return -1;
@@ -343,7 +345,6 @@ int world_sample(world *w, int face, double x, double z, double *height, og_erro
     if (tx > 0 && tz > 0 && read_sample(w, face, i0 + 1, j0 + 1, &h11, err) != 0) return -1;
     double top = h00 + (h10 - h00) * tx, bottom = h01 + (h11 - h01) * tx;
     *height = tz > 0 ? top + (bottom - top) * tz : top;
-    if (tx == 0) *height = tz > 0 ? h00 + (h01 - h00) * tz : h00;
     return 0;
 }
 
