@@ -371,6 +371,12 @@ int world_hash(world *w, int face, double x0, double z0, double x1, double z1, u
         *count = 0;
         return 0;
     }
+    // A typo in a corner should not start an hour-long walk: 2^32 samples (65536^2,
+    // 16 GiB of heights) is far beyond any interactive check.
+    double area = ((double)gx1 - (double)gx0 + 1) * ((double)gz1 - (double)gz0 + 1);
+    if (area > 4294967296.0)
+        return og_error_set(err, "rectangle holds %.4g samples; at most 2^32 (65536 x 65536) "
+                                 "are hashed at once", area);
     int64_t tx0 = world_grid_floor_div(gx0, TILE_SIZE), tx1 = world_grid_floor_div(gx1, TILE_SIZE);
     int64_t tz0 = world_grid_floor_div(gz0, TILE_SIZE), tz1 = world_grid_floor_div(gz1, TILE_SIZE);
     int64_t across = tx1 - tx0 + 1, total = across * (tz1 - tz0 + 1);

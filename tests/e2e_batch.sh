@@ -93,6 +93,13 @@ run -c 'sample nan 3'
 run -c 'new planet; generator diamond_square; generate'
 [ $status = 1 ] && grep -q "flat worlds only" "$work/err"; check "diamond-square on a planet rejected" $?
 
+run -c 'hash -1e9 -1e9 1e9 1e9'
+[ $status = 1 ] && grep -q "at most 2^32" "$work/err"; check "huge hash rectangle refused" $?
+run -c 'set spacing 0'
+[ $status = 1 ] && grep -q "spacing" "$work/err"; check "zero spacing refused" $?
+run -c 'size 999999999999999'
+[ $status = 1 ] && grep -q "size" "$work/err"; check "huge size refused" $?
+
 # 10. files that cannot be read or are not what they claim
 run --batch "$work/does-not-exist.og"
 [ $status = 1 ] && grep -q "does-not-exist.og" "$work/err"; check "missing batch file named" $?
