@@ -133,10 +133,6 @@ world *world_create(const world_params *params, const world_settings *settings, 
     return w;
 }
 
-typedef struct load_report {
-    const world_settings *settings;
-} load_report;
-
 static void forward_report(void *user, const char *message) {
     const world_settings *s = user;
     if (s && s->warn)
