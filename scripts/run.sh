@@ -3,5 +3,5 @@
 # Arguments are passed to orogen (a world file, --batch FILE, -c 'CMDS', ...).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-"$root/scripts/build.sh" >/dev/null
+"$root/scripts/build.sh" >&2
 exec "$root/build/orogen" "$@"
