@@ -162,8 +162,10 @@ static int c_info(cmd_context *ctx, int argc, char **argv, og_error *err) {
     fprintf(o, "size=%" PRId64 "\n", p->size);
     fprintf(o, "spacing=%.17g\n", p->spacing);
     fprintf(o, "tile_size=%d\n", TILE_SIZE);
-    fprintf(o, "tile_store=%s\n", tile_store_path(world_store(ctx->world)));
-    fprintf(o, "tiles_stored=%" PRId64 "\n", tile_store_count(world_store(ctx->world), -1));
+    tile_store *store = world_store(ctx->world);
+    fprintf(o, "tile_store=%s\n", store ? tile_store_path(store) : "");
+    fprintf(o, "tiles_stored=%" PRId64 "\n", store ? tile_store_count(store, -1) : 0);
+    fprintf(o, "tiles_unsaved=%" PRId64 "\n", tile_store_count(world_journal(ctx->world), -1));
     fprintf(o, "unsaved_changes=%d\n", tile_cache_has_dirty(world_cache(ctx->world)));
     fprintf(o, "cache_budget_bytes=%zu\n", s.budget_bytes);
     fprintf(o, "cache_resident_bytes=%zu\n", s.resident_bytes);

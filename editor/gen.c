@@ -119,7 +119,8 @@ int gen_tile(const world_params *p, tile_key key, void *out) {
     if (key.face < 0 || key.face >= faces || key.level < 0 || key.level > TILE_MAX_LEVEL)
         return -1;
     switch (key.layer) {
-    case TILE_LAYER_DETAIL: memset(out, 0, tile_layer_bytes(TILE_LAYER_DETAIL)); return 0;
+    case TILE_LAYER_DETAIL: // offsets and their slopes are zero until edited
+    case TILE_LAYER_DETAIL_PD: memset(out, 0, tile_layer_bytes((tile_layer)key.layer)); return 0;
     case TILE_LAYER_MATERIAL: {
         uint8_t *w = out;
         memset(w, 0, tile_layer_bytes(TILE_LAYER_MATERIAL));

@@ -21,8 +21,12 @@ struct world {
     world_params params;
     world_settings settings;
     char path[4096];       // parameter file; "" until saved
-    char scratch_dir[4096]; // non-empty while the tile store is a scratch one
-    tile_store *store;
+    char scratch_dir[4096]; // the journal's folder in $TMPDIR
+    // Edits go to the journal (a scratch store) until saved; the world's own store,
+    // when it has one, is only read until `save` merges the journal into it. So a
+    // world closed without saving leaves its files exactly as they were.
+    tile_store *journal;
+    tile_store *store; // NULL until the world has been saved (or loaded with its tiles)
     tile_cache *cache;
     world_generation *gen;
 };
@@ -54,7 +58,8 @@ static int start_cache(world *w, og_error *err) {
         .workers = w->settings.workers,
         .source = generation_source,
         .source_user = g,
-        .store = w->store,
+        .store = w->journal,
+        .base_store = w->store,
         .warn = w->settings.warn,
         .warn_user = w->settings.warn_user,
     };
@@ -81,16 +86,18 @@ static int remove_entry(const char *path, const struct stat *st, int flag, struc
     return remove(path);
 }
 
-static void close_store(world *w) {
+static void close_stores(world *w) {
     tile_store_close(w->store);
     w->store = NULL;
+    tile_store_close(w->journal);
+    w->journal = NULL;
     if (w->scratch_dir[0]) {
         nftw(w->scratch_dir, remove_entry, 8, FTW_DEPTH | FTW_PHYS);
         w->scratch_dir[0] = 0;
     }
 }
 
-static int open_scratch_store(world *w, og_error *err) {
+static int open_journal(world *w, og_error *err) {
     const char *tmp = getenv("TMPDIR");
     snprintf(w->scratch_dir, sizeof w->scratch_dir, "%s/orogen-scratch-XXXXXX",
              tmp && *tmp ? tmp : "/tmp");
@@ -102,9 +109,9 @@ static int open_scratch_store(world *w, og_error *err) {
     }
     char path[4200];
     snprintf(path, sizeof path, "%s/unsaved.tiles", w->scratch_dir);
-    w->store = tile_store_open(path, err);
-    if (!w->store) {
-        close_store(w);
+    w->journal = tile_store_open(path, err);
+    if (!w->journal) {
+        close_stores(w);
         return -1;
     }
     return 0;
@@ -126,7 +133,7 @@ world *world_create(const world_params *params, const world_settings *settings, 
         og_error_set(err, "out of memory");
         return NULL;
     }
-    if (open_scratch_store(w, err) != 0 || start_cache(w, err) != 0) {
+    if (open_journal(w, err) != 0 || start_cache(w, err) != 0) {
         world_close(w);
         return NULL;
     }
@@ -162,13 +169,10 @@ world *world_load(const char *path, const world_settings *settings, int *errors,
         return NULL;
     }
     snprintf(w->path, sizeof w->path, "%s", path);
-    // Loading never creates files: a world with no tile store yet keeps its edits
-    // in a scratch store until it is saved.
-    if (access(tiles, F_OK) == 0)
-        w->store = tile_store_open(tiles, err);
-    else if (open_scratch_store(w, err) != 0)
-        w->store = NULL;
-    if (!w->store || start_cache(w, err) != 0) {
+    // Loading never creates files: a world with no tile store yet has only its journal.
+    int failed = open_journal(w, err) != 0;
+    if (!failed && access(tiles, F_OK) == 0) failed = !(w->store = tile_store_open(tiles, err));
+    if (failed || start_cache(w, err) != 0) {
         world_close(w);
         return NULL;
     }
@@ -182,64 +186,8 @@ void world_close(world *w) {
         if (stop_cache(w, &err) != 0)
             w->settings.warn(w->settings.warn_user, err.msg);
     }
-    close_store(w);
+    close_stores(w);
     free(w);
-}
-
-typedef struct copy_state {
-    tile_store *from;
-    tile_key *keys;
-    size_t count, cap;
-} copy_state;
-
-static int collect_key(void *user, tile_key key) {
-    copy_state *s = user;
-    if (s->count == s->cap) {
-        size_t cap = s->cap ? s->cap * 2 : 256;
-        tile_key *k = realloc(s->keys, cap * sizeof *k);
-        if (!k) return 1;
-        s->keys = k;
-        s->cap = cap;
-    }
-    s->keys[s->count++] = key;
-    return 0;
-}
-
-// Makes `to` hold exactly the tiles of `from`, in batches of 64 tiles.
-static int copy_store(tile_store *from, tile_store *to, og_error *err) {
-    copy_state stale = {0}, src = {0};
-    int rc = 0;
-    if (tile_store_each(to, collect_key, &stale, err) != 0 ||
-        tile_store_each(from, collect_key, &src, err) != 0) {
-        rc = -1;
-        goto done;
-    }
-    // Tiles of whatever world was saved here before are removed first.
-    for (size_t i = 0; i < stale.count && rc == 0; i += 64) {
-        tile_store_write batch[64];
-        size_t n = stale.count - i < 64 ? stale.count - i : 64;
-        for (size_t k = 0; k < n; k++) batch[k] = (tile_store_write){stale.keys[i + k], NULL};
-        rc = tile_store_put_batch(to, batch, n, err);
-    }
-    for (size_t i = 0; i < src.count && rc == 0; i += 64) {
-        tile_store_write batch[64];
-        void *bufs[64] = {0};
-        size_t n = src.count - i < 64 ? src.count - i : 64;
-        for (size_t k = 0; k < n && rc == 0; k++) {
-            tile_key key = src.keys[i + k];
-            size_t bytes = tile_layer_bytes((tile_layer)key.layer);
-            bufs[k] = malloc(bytes ? bytes : 1);
-            tile_store_status st = tile_store_get(from, key, bufs[k], bytes, err);
-            if (st != TILE_STORE_OK) rc = -1;
-            batch[k] = (tile_store_write){key, bufs[k]};
-        }
-        if (rc == 0) rc = tile_store_put_batch(to, batch, n, err);
-        for (size_t k = 0; k < n; k++) free(bufs[k]);
-    }
-done:
-    free(stale.keys);
-    free(src.keys);
-    return rc;
 }
 
 int world_save(world *w, const char *path, og_error *err) {
@@ -251,28 +199,34 @@ int world_save(world *w, const char *path, og_error *err) {
     if (world_params_tiles_path(&p, path, tiles, sizeof tiles, err) != 0) return -1;
     if (tile_cache_flush(w->cache, err) != 0) return -1;
 
-    if (strcmp(tiles, tile_store_path(w->store)) != 0) {
-        tile_store *target = tile_store_open(tiles, err);
-        if (!target) return -1;
-        if (copy_store(w->store, target, err) != 0) {
-            tile_store_close(target);
-            return -1;
-        }
-        if (world_params_save(path, &p, err) != 0) {
-            tile_store_close(target);
-            return -1;
-        }
-        // Switch the world over to the saved files.
-        stop_cache(w, NULL);
-        close_store(w);
-        w->store = target;
-        w->params = p;
-        snprintf(w->path, sizeof w->path, "%s", path);
-        return start_cache(w, err);
+    int same_store = w->store && strcmp(tiles, tile_store_path(w->store)) == 0;
+    tile_store *target = same_store ? w->store : tile_store_open(tiles, err);
+    if (!target) return -1;
+    // A new place first gets the saved tiles (and loses those of whatever was saved
+    // there before); then the journal's edits go in, in one transaction.
+    int rc = 0;
+    if (!same_store) {
+        rc = tile_store_clear(target, err);
+        if (rc == 0 && w->store) rc = tile_store_merge_from(target, tile_store_path(w->store), err);
     }
-    if (world_params_save(path, &p, err) != 0) return -1;
+    if (rc == 0) rc = tile_store_merge_from(target, tile_store_path(w->journal), err);
+    if (rc == 0) rc = world_params_save(path, &p, err);
+    if (rc != 0) {
+        if (!same_store) tile_store_close(target);
+        return -1;
+    }
+    // Everything is in the saved files now; a failure to empty the journal only
+    // costs space (its tiles equal the saved ones).
+    og_error ignored;
+    tile_store_clear(w->journal, &ignored);
+    w->params = p;
     snprintf(w->path, sizeof w->path, "%s", path);
-    return 0;
+    if (same_store) return 0;
+    // Switch the cache over to the new store.
+    stop_cache(w, NULL);
+    tile_store_close(w->store);
+    w->store = target;
+    return start_cache(w, err);
 }
 
 int world_regenerate(world *w, const world_params *params, og_error *err) {
@@ -289,6 +243,7 @@ const world_params *world_get_params(const world *w) { return &w->params; }
 const char *world_path(const world *w) { return w->path; }
 tile_cache *world_cache(world *w) { return w->cache; }
 tile_store *world_store(world *w) { return w->store; }
+tile_store *world_journal(world *w) { return w->journal; }
 
 // Level-0 samples per side, or 0 when unbounded.
 static int64_t world_extent(const world *w) {

@@ -27,7 +27,7 @@ world *world_create(const world_params *params, const world_settings *settings, 
 // unknown keys) go to settings->warn; *errors counts the errors among them.
 // Returns NULL (err set) only when the file cannot be read or the store cannot be opened.
 world *world_load(const char *path, const world_settings *settings, int *errors, og_error *err);
-// Writes back edits still in memory and frees the world (scratch stores are deleted).
+// Frees the world. Unsaved edits are discarded: the world's files stay as last saved.
 void world_close(world *w);
 
 // Saves the parameter file to path (NULL: the current path) and the tile store
@@ -41,7 +41,10 @@ int world_regenerate(world *w, const world_params *params, og_error *err);
 const world_params *world_get_params(const world *w);
 const char *world_path(const world *w); // "" for a never-saved world
 tile_cache *world_cache(world *w);
+// The world's own tile store (NULL until saved), and the journal of unsaved edits
+// (where the cache writes dirty tiles; merged into the store by world_save).
 tile_store *world_store(world *w);
+tile_store *world_journal(world *w);
 
 // Coarse height in metres at face-local metres (x, z): bilinear between level-0 samples.
 // Fails for positions outside a bounded world or a non-existent face.

@@ -7,16 +7,19 @@ size_t tile_layer_bytes(tile_layer layer) {
     case TILE_LAYER_COARSE:
     case TILE_LAYER_DETAIL: return (size_t)TILE_SAMPLES * sizeof(float);
     case TILE_LAYER_MATERIAL: return (size_t)TILE_SAMPLES * TILE_MATERIALS;
+    case TILE_LAYER_DETAIL_PD: return (size_t)TILE_SAMPLES * 2 * sizeof(int16_t);
     default: return 0;
     }
 }
 
 tile_format tile_layer_format(tile_layer layer) {
-    return layer == TILE_LAYER_MATERIAL ? TILE_FORMAT_U8X8 : TILE_FORMAT_F32;
+    if (layer == TILE_LAYER_MATERIAL) return TILE_FORMAT_U8X8;
+    if (layer == TILE_LAYER_DETAIL_PD) return TILE_FORMAT_S16X2;
+    return TILE_FORMAT_F32;
 }
 
 const char *tile_layer_name(tile_layer layer) {
-    static const char *names[] = {"coarse", "detail", "material", "volume"};
+    static const char *names[] = {"coarse", "detail", "material", "volume", "detail_pd"};
     return (unsigned)layer < TILE_LAYER_COUNT ? names[layer] : "unknown";
 }
 

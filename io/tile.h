@@ -13,12 +13,17 @@
 #define TILE_MATERIALS 8
 // Deepest mip level a key may name (level L samples are 2^L apart).
 #define TILE_MAX_LEVEL 24
+// Fixed-point scale of the detail PD layer: slope 1 (45 degrees) = 4096; range +-8.
+#define DETAIL_PD_SCALE 4096.0f
 
 typedef enum tile_layer {
     TILE_LAYER_COARSE = 0,   // float32 metres, one per coarse sample
     TILE_LAYER_DETAIL = 1,   // float32 metres offset, detail_ratio samples per coarse sample
     TILE_LAYER_MATERIAL = 2, // TILE_MATERIALS x uint8 weights per sample
     TILE_LAYER_VOLUME = 3,   // reserved for volume edits (overhangs, caves)
+    // Partial derivatives of the detail layer (seed 000's PD map): int16 d/dx, d/dz per
+    // detail sample, slope x DETAIL_PD_SCALE. Derived data the editor keeps current.
+    TILE_LAYER_DETAIL_PD = 4,
     TILE_LAYER_COUNT
 } tile_layer;
 
@@ -32,7 +37,8 @@ typedef struct tile_key {
 // How a tile's bytes are laid out; the store picks its compression transform from it.
 typedef enum tile_format {
     TILE_FORMAT_F32 = 1, // TILE_SAMPLES float32
-    TILE_FORMAT_U8X8 = 2 // TILE_SAMPLES x TILE_MATERIALS uint8, interleaved per sample
+    TILE_FORMAT_U8X8 = 2, // TILE_SAMPLES x TILE_MATERIALS uint8, interleaved per sample
+    TILE_FORMAT_S16X2 = 3 // TILE_SAMPLES x 2 int16, interleaved per sample
 } tile_format;
 
 static inline int tile_key_equal(tile_key a, tile_key b) {

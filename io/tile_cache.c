@@ -207,15 +207,18 @@ static void make_room(tile_cache *c, size_t need) {
 // Returns 1 if loaded, 0 if generated, -1 if the key lies outside the world.
 static int produce(tile_cache *c, tile_key key, void *buf) {
     size_t bytes = tile_layer_bytes((tile_layer)key.layer);
-    if (c->desc.store) {
+    tile_store *stores[2] = {c->desc.store, c->desc.base_store};
+    for (int s = 0; s < 2; s++) {
+        if (!stores[s]) continue;
         og_error err = {{0}};
-        tile_store_status st = tile_store_get(c->desc.store, key, buf, bytes, &err);
+        tile_store_status st = tile_store_get(stores[s], key, buf, bytes, &err);
         if (st == TILE_STORE_OK) return 1;
         if (st != TILE_STORE_NOT_FOUND) {
             warnf(c, "warning: %s; using the generated terrain instead%s", err.msg, "");
             pthread_mutex_lock(&c->lock);
             c->counters.corrupt++;
             pthread_mutex_unlock(&c->lock);
+            break;
         }
     }
     return c->desc.source(c->desc.source_user, key, buf) == 0 ? 0 : -1;

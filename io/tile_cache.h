@@ -26,6 +26,8 @@ typedef struct tile_cache_desc {
     tile_source_fn source;   // required
     void *source_user;
     tile_store *store;       // optional; read first, and where dirty tiles go
+    tile_store *base_store;  // optional; read (never written) when store lacks a tile:
+                             // the saved world under a journal of unsaved edits
     // Warnings that are not errors of the caller (a corrupt stored tile that fell
     // back to generated terrain, a failed write-back). Called from any thread.
     void (*warn)(void *user, const char *message);

@@ -40,6 +40,9 @@ enum {
     // uint8 x 8: the 8 channels split into planes, each plane delta-coded
     // against its left neighbour (the up neighbour in the first column).
     BLOB_TRANSFORM_U8X8_PLANES_DELTA = 2,
+    // int16 x 2: each channel delta-coded against its left neighbour (up in the
+    // first column) in wrapping 16-bit arithmetic, split into low/high byte planes.
+    BLOB_TRANSFORM_S16X2_PLANES_DELTA = 3,
 };
 
 // zstd level 3 (zstd's default). Measured on 256x256 tiles: sculpted-like
@@ -273,9 +276,45 @@ static void u8x8_inverse(const uint8_t *planes, void *dst) {
     }
 }
 
+static uint16_t s16x2_at(const uint8_t *in, size_t i, int c) {
+    uint16_t v;
+    memcpy(&v, in + (i * 2 + (size_t)c) * 2, 2);
+    return v;
+}
+
+static uint16_t s16x2_pred(const uint8_t *tile, size_t i, int c) {
+    return (i % TILE_SIZE) ? s16x2_at(tile, i - 1, c) : i ? s16x2_at(tile, i - TILE_SIZE, c) : 0;
+}
+
+static void s16x2_forward(const void *src, uint8_t *planes) {
+    const uint8_t *in = src;
+    for (int c = 0; c < 2; c++) {
+        uint8_t *lo = planes + (size_t)(2 * c) * TILE_SAMPLES, *hi = lo + TILE_SAMPLES;
+        for (size_t i = 0; i < TILE_SAMPLES; i++) {
+            uint16_t d = (uint16_t)(s16x2_at(in, i, c) - s16x2_pred(in, i, c));
+            lo[i] = (uint8_t)d;
+            hi[i] = (uint8_t)(d >> 8);
+        }
+    }
+}
+
+static void s16x2_inverse(const uint8_t *planes, void *dst) {
+    uint8_t *out = dst;
+    for (int c = 0; c < 2; c++) {
+        const uint8_t *lo = planes + (size_t)(2 * c) * TILE_SAMPLES, *hi = lo + TILE_SAMPLES;
+        for (size_t i = 0; i < TILE_SAMPLES; i++) {
+            uint16_t v = (uint16_t)(s16x2_pred(out, i, c) + (uint16_t)(lo[i] | (hi[i] << 8)));
+            memcpy(out + (i * 2 + (size_t)c) * 2, &v, 2);
+        }
+    }
+}
+
 static int layer_transform(tile_layer layer) {
-    return tile_layer_format(layer) == TILE_FORMAT_U8X8 ? BLOB_TRANSFORM_U8X8_PLANES_DELTA
-                                                        : BLOB_TRANSFORM_F32_LORENZO_PLANES;
+    switch (tile_layer_format(layer)) {
+    case TILE_FORMAT_U8X8: return BLOB_TRANSFORM_U8X8_PLANES_DELTA;
+    case TILE_FORMAT_S16X2: return BLOB_TRANSFORM_S16X2_PLANES_DELTA;
+    default: return BLOB_TRANSFORM_F32_LORENZO_PLANES;
+    }
 }
 
 // ---------------------------------------------------------------------------
@@ -297,6 +336,8 @@ size_t tile_blob_encode(tile_layer layer, const void *data, void **blob) {
     }
     if (transform == BLOB_TRANSFORM_F32_LORENZO_PLANES)
         f32_forward(data, planes);
+    else if (transform == BLOB_TRANSFORM_S16X2_PLANES_DELTA)
+        s16x2_forward(data, planes);
     else
         u8x8_forward(data, planes);
     size_t comp = ZSTD_compress(out + BLOB_HEADER_BYTES, cap - BLOB_HEADER_BYTES, planes, raw,
@@ -356,6 +397,8 @@ int tile_blob_decode(tile_layer layer, const void *blob, size_t blob_bytes, void
     }
     if (b[6] == BLOB_TRANSFORM_F32_LORENZO_PLANES)
         f32_inverse(planes, out);
+    else if (b[6] == BLOB_TRANSFORM_S16X2_PLANES_DELTA)
+        s16x2_inverse(planes, out);
     else
         u8x8_inverse(planes, out);
     free(planes);
@@ -765,4 +808,45 @@ int tile_store_each(tile_store *store, int (*fn)(void *user, tile_key key), void
         if (fn(user, keys[i])) break;
     free(keys);
     return result;
+}
+
+int tile_store_merge_from(tile_store *store, const char *source_path, og_error *err) {
+    pthread_mutex_lock(&store->lock);
+    sqlite3_stmt *st = NULL;
+    int rc = 0;
+    if (sqlite3_prepare_v2(store->db, "ATTACH DATABASE ?1 AS merge_source", -1, &st, NULL) !=
+        SQLITE_OK) {
+        rc = db_fail(store, err, "cannot prepare attaching the unsaved edits");
+    } else {
+        sqlite3_bind_text(st, 1, source_path, -1, SQLITE_TRANSIENT);
+        if (sqlite3_step(st) != SQLITE_DONE) rc = db_fail(store, err, "cannot attach the unsaved edits");
+    }
+    sqlite3_finalize(st);
+    if (rc == 0) {
+        // Blobs are copied as they are: both stores share the blob format.
+        if (exec(store, "BEGIN IMMEDIATE", err, "cannot start the merge") == 0) {
+            if (exec(store,
+                     "INSERT INTO main.tiles(layer, face, level, tx, ty, data) "
+                     "SELECT layer, face, level, tx, ty, data FROM merge_source.tiles WHERE true "
+                     "ON CONFLICT(layer, face, level, tx, ty) DO UPDATE SET data=excluded.data",
+                     err, "cannot merge the unsaved edits") == 0)
+                rc = exec(store, "COMMIT", err, "cannot commit the merge");
+            else
+                rc = -1;
+            if (rc != 0 && !sqlite3_get_autocommit(store->db))
+                sqlite3_exec(store->db, "ROLLBACK", NULL, NULL, NULL);
+        } else {
+            rc = -1;
+        }
+        sqlite3_exec(store->db, "DETACH DATABASE merge_source", NULL, NULL, NULL);
+    }
+    pthread_mutex_unlock(&store->lock);
+    return rc;
+}
+
+int tile_store_clear(tile_store *store, og_error *err) {
+    pthread_mutex_lock(&store->lock);
+    int rc = exec(store, "DELETE FROM tiles", err, "cannot clear the tiles");
+    pthread_mutex_unlock(&store->lock);
+    return rc;
 }

@@ -62,6 +62,13 @@ int64_t tile_store_count(tile_store *store, int layer);
 int tile_store_each(tile_store *store, int (*fn)(void *user, tile_key key), void *user,
                     og_error *err);
 
+// Copies every tile of the store file at source_path into this store in one
+// transaction (tiles present in both take the source's). The source must not be
+// mid-write. Used by save to move unsaved edits into the world's own store.
+int tile_store_merge_from(tile_store *store, const char *source_path, og_error *err);
+// Deletes every tile (one transaction).
+int tile_store_clear(tile_store *store, og_error *err);
+
 // Compression alone, exposed for tests and benchmarks: encode a tile payload into
 // a self-describing blob (transform + zstd + checksum) and decode it back.
 // encode returns the blob size or 0 on failure; *blob is malloc'd.
