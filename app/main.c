@@ -180,7 +180,8 @@ int main(int argc, char **argv) {
         fprintf(stderr, "orogen: %s\n", err.msg);
         return 1;
     }
-    cmd_context ctx = {.world = w, .next = *world_get_params(w), .settings = settings, .out = stdout};
+    cmd_context ctx;
+    cmd_context_init(&ctx, w, &settings, stdout);
 
     int status = 0;
     if (script_count == 0) {

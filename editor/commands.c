@@ -1,5 +1,7 @@
 #include "editor/commands.h"
 
+#include "editor/edit.h"
+#include "editor/edit_commands.h"
 #include "editor/gen.h"
 
 #include <errno.h>
@@ -107,7 +109,7 @@ static int c_save(cmd_context *ctx, int argc, char **argv, og_error *err) {
 
 static int c_generate(cmd_context *ctx, int argc, char **argv, og_error *err) {
     (void)argc, (void)argv;
-    return world_regenerate(ctx->world, &ctx->next, err);
+    return edit_generate(ctx->world, &ctx->next, err);
 }
 
 static int c_generator(cmd_context *ctx, int argc, char **argv, og_error *err) {
@@ -166,7 +168,7 @@ static int c_info(cmd_context *ctx, int argc, char **argv, og_error *err) {
     fprintf(o, "tile_store=%s\n", store ? tile_store_path(store) : "");
     fprintf(o, "tiles_stored=%" PRId64 "\n", store ? tile_store_count(store, -1) : 0);
     fprintf(o, "tiles_unsaved=%" PRId64 "\n", tile_store_count(world_journal(ctx->world), -1));
-    fprintf(o, "unsaved_changes=%d\n", tile_cache_has_dirty(world_cache(ctx->world)));
+    fprintf(o, "unsaved_changes=%d\n", world_is_modified(ctx->world));
     fprintf(o, "cache_budget_bytes=%zu\n", s.budget_bytes);
     fprintf(o, "cache_resident_bytes=%zu\n", s.resident_bytes);
     fprintf(o, "cache_resident_tiles=%zu\n", s.resident_tiles);
@@ -240,11 +242,26 @@ static const cmd_def commands[] = {
     {"info", "info", "Prints key=value facts about the world, its tile store and the tile cache.", 0, 0, c_info},
     {"sample", "sample X Z [FACE]", "Prints the height in metres at world position X, Z (metres).", 2, 3, c_sample},
     {"hash", "hash X0 Z0 X1 Z1 [FACE]", "Prints a hex digest of the coarse heights in that rectangle (metres).", 4, 5, c_hash},
+    {"tool", "tool [NAME] [KEY=VALUE ...]", "Picks and sets up the brush: raise lower smooth flatten set ramp noise terrace thermal hydraulic paint. Keys: radius (m) strength (0-1) falloff (smooth linear spherical constant curve) curve=t:v,... spacing (x radius) invert target (coarse detail) face amount height mode (both raise lower) scale octaves seed step sharpness talus iterations droplets erosion deposition evaporation capacity inertia material. Without arguments, prints the brush.", 0, 24, cmd_tool},
+    {"dab", "dab X Z [PRESSURE]", "One dab of the brush at X, Z (metres); one undo step.", 2, 3, cmd_dab},
+    {"stroke", "stroke X0 Z0 X1 Z1 [X2 Z2 ...]", "Drags the brush along the points (metres), dabbing every spacing x radius; one undo step.", 2, 30, cmd_stroke},
+    {"undo", "undo", "Undoes the last change (stroke, stamp, generate).", 0, 0, cmd_undo},
+    {"redo", "redo", "Redoes the last undone change.", 0, 0, cmd_redo},
+    {"history", "history [budget=MIB]", "Lists the undo steps (* = applied) and their memory; sets the history memory budget.", 0, 1, cmd_history},
     {"help", "help [COMMAND]", "Prints help on all commands or one.", 0, 1, c_help},
     {"cmdlist", "cmdlist", "Lists the command names.", 0, 0, c_cmdlist},
     {"exit", "exit", "Stops (the rest of the script is not run).", 0, 0, c_exit},
 };
 #define COMMAND_COUNT (sizeof commands / sizeof commands[0])
+
+void cmd_context_init(cmd_context *ctx, world *w, const world_settings *settings, FILE *out) {
+    memset(ctx, 0, sizeof *ctx);
+    ctx->world = w;
+    ctx->next = *world_get_params(w);
+    if (settings) ctx->settings = *settings;
+    ctx->out = out;
+    brush_defaults(&ctx->brush, BRUSH_RAISE);
+}
 
 size_t cmd_count(void) { return COMMAND_COUNT; }
 const char *cmd_name(size_t i) { return i < COMMAND_COUNT ? commands[i].name : NULL; }

@@ -5,6 +5,7 @@
 #ifndef OROGEN_EDITOR_COMMANDS_H
 #define OROGEN_EDITOR_COMMANDS_H
 
+#include "editor/brush.h"
 #include "editor/world.h"
 #include "io/err.h"
 
@@ -16,7 +17,11 @@ typedef struct cmd_context {
     world_settings settings;  // used for worlds created by new/load
     FILE *out;                // where commands print results
     int exit_requested;       // set by `exit`
+    brush brush;              // the current tool (`tool`), used by dab and stroke
 } cmd_context;
+
+// A context on world w with the default tool (raise).
+void cmd_context_init(cmd_context *ctx, world *w, const world_settings *settings, FILE *out);
 
 // Runs every command in text. Stops at the first failing command and returns -1 with
 // err->msg = "label:line: error: message". label names the script ("-c" for -c).

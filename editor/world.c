@@ -1,6 +1,7 @@
 #include "editor/world.h"
 
 #include "editor/gen.h"
+#include "editor/history.h"
 #include "editor/world_grid.h"
 
 #include <errno.h>
@@ -29,6 +30,7 @@ struct world {
     tile_store *store; // NULL until the world has been saved (or loaded with its tiles)
     tile_cache *cache;
     world_generation *gen;
+    history *history;
 };
 
 static int generation_source(void *user, tile_key key, void *out) {
@@ -123,6 +125,11 @@ static world *world_alloc(const world_params *params, const world_settings *sett
     w->params = *params;
     if (settings) w->settings = *settings;
     if (!w->settings.warn) w->settings.warn = default_warn;
+    w->history = history_create(w->settings.history_budget_bytes);
+    if (!w->history) {
+        free(w);
+        return NULL;
+    }
     return w;
 }
 
@@ -187,6 +194,7 @@ void world_close(world *w) {
             w->settings.warn(w->settings.warn_user, err.msg);
     }
     close_stores(w);
+    history_destroy(w->history);
     free(w);
 }
 
@@ -219,6 +227,7 @@ int world_save(world *w, const char *path, og_error *err) {
     // costs space (its tiles equal the saved ones).
     og_error ignored;
     tile_store_clear(w->journal, &ignored);
+    history_mark_saved(w->history);
     w->params = p;
     snprintf(w->path, sizeof w->path, "%s", path);
     if (same_store) return 0;
@@ -244,6 +253,11 @@ const char *world_path(const world *w) { return w->path; }
 tile_cache *world_cache(world *w) { return w->cache; }
 tile_store *world_store(world *w) { return w->store; }
 tile_store *world_journal(world *w) { return w->journal; }
+history *world_history(world *w) { return w->history; }
+int world_is_modified(const world *w) { return history_modified(w->history); }
+void world_warn(const world *w, const char *message) {
+    w->settings.warn(w->settings.warn_user, message);
+}
 
 // Level-0 samples per side, or 0 when unbounded.
 static int64_t world_extent(const world *w) {

@@ -12,6 +12,7 @@
 
 typedef struct world_settings {
     size_t cache_budget_bytes; // 0 = 1 GiB
+    size_t history_budget_bytes; // undo memory; 0 = 512 MiB
     int workers;               // 0 = 2
     // Warnings (corrupt tiles, unknown keys while loading); NULL = stderr.
     void (*warn)(void *user, const char *message);
@@ -19,6 +20,7 @@ typedef struct world_settings {
 } world_settings;
 
 typedef struct world world;
+typedef struct history history;
 
 // A new, unsaved world. Its edits live in a scratch tile store in $TMPDIR until
 // the first save moves them beside the parameter file.
@@ -45,6 +47,12 @@ tile_cache *world_cache(world *w);
 // (where the cache writes dirty tiles; merged into the store by world_save).
 tile_store *world_store(world *w);
 tile_store *world_journal(world *w);
+// The undo history (editor/history.h; applied by editor/edit.h).
+history *world_history(world *w);
+// Whether the world differs from its last save (or from how it was created or loaded).
+int world_is_modified(const world *w);
+// Reports something the user should know that is not an error (settings->warn).
+void world_warn(const world *w, const char *message);
 
 // Coarse height in metres at face-local metres (x, z): bilinear between level-0 samples.
 // Fails for positions outside a bounded world or a non-existent face.

@@ -15,6 +15,7 @@ typedef struct entry {
     entry_state state;
     int pins;     // views, waiters and write-backs holding it resident
     int dirty;    // changed since last written to the store
+    int edited;   // loaded from a store, or written since it was generated
     int invalid;  // the source said the key lies outside the world
     void *data;
     struct entry *hnext;         // hash chain
@@ -253,6 +254,7 @@ static void *worker_main(void *arg) {
             e->invalid = 1;
         } else {
             e->data = buf;
+            e->edited = how == 1;
             if (how == 1) c->counters.loaded++; else c->counters.generated++;
         }
         e->state = ENTRY_READY;
@@ -332,6 +334,7 @@ static void pin_into(entry *e, tile_view *view) {
     view->key = e->key;
     view->data = e->data;
     view->handle_ = e;
+    view->edited = e->edited;
 }
 
 static int32_t floor_shift(int32_t v, int d) {
@@ -414,7 +417,7 @@ static int acquire(tile_cache *c, tile_key key, tile_view *view, int write, og_e
         rc = og_error_set(err, "%s lies outside the world", tile_key_describe(key, what, sizeof what));
     } else {
         pin_into(e, view);
-        if (write) e->dirty = 1;
+        if (write) e->dirty = e->edited = 1;
     }
     pthread_mutex_unlock(&c->lock);
     return rc;
@@ -426,6 +429,20 @@ int tile_cache_acquire(tile_cache *c, tile_key key, tile_view *view, og_error *e
 
 int tile_cache_acquire_write(tile_cache *c, tile_key key, tile_view *view, og_error *err) {
     return acquire(c, key, view, 1, err);
+}
+
+int tile_cache_discard(tile_cache *c, tile_key key) {
+    pthread_mutex_lock(&c->lock);
+    entry *e = find(c, key, key_hash(key));
+    int rc = 0;
+    if (e) {
+        if (e->state == ENTRY_READY && e->pins == 0)
+            free_entry(c, e);
+        else
+            rc = -1;
+    }
+    pthread_mutex_unlock(&c->lock);
+    return rc;
 }
 
 void tile_cache_release(tile_cache *c, tile_view *view) {

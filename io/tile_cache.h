@@ -44,6 +44,8 @@ typedef enum tile_status {
 typedef struct tile_view {
     tile_key key;     // the tile actually provided (coarser than asked for a fallback)
     void *data;       // NULL when nothing is provided
+    int edited;       // the tile came from a store or was written since generated
+                      // (as it was when pinned)
     void *handle_;    // internal
 } tile_view;
 
@@ -72,6 +74,10 @@ int tile_cache_acquire(tile_cache *cache, tile_key key, tile_view *view, og_erro
 // As acquire, for writing: the tile is marked dirty (written back before eviction).
 int tile_cache_acquire_write(tile_cache *cache, tile_key key, tile_view *view, og_error *err);
 void tile_cache_release(tile_cache *cache, tile_view *view);
+// Forgets a resident tile without writing it back, so the next request loads or
+// generates it afresh (undo back to never-edited terrain). Returns -1 if the tile is
+// pinned or still being produced (it then stays), 0 otherwise.
+int tile_cache_discard(tile_cache *cache, tile_key key);
 
 // Writes every dirty tile to the store in one transaction. Tiles stay resident.
 int tile_cache_flush(tile_cache *cache, og_error *err);

@@ -1,0 +1,403 @@
+#include "editor/brush_dab.h"
+
+#include "editor/gen_noise.h"
+#include "editor/parallel.h"
+#include "editor/world_grid.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+// ---- shared per-sample pieces ---------------------------------------------------------
+
+static inline float keep_finite(float v, float old) {
+    if (v != v) return old;
+    if (v > (float)BRUSH_HEIGHT_LIMIT) return (float)BRUSH_HEIGHT_LIMIT;
+    if (v < (float)-BRUSH_HEIGHT_LIMIT) return (float)-BRUSH_HEIGHT_LIMIT;
+    return v;
+}
+
+static int is_ramp(const brush_dab *d) { return d->brush->tool == BRUSH_RAMP; }
+
+// Distance (samples) from the ramp's segment, and where along it (0-1) x, z projects.
+static double ramp_distance(const brush_dab *d, double x, double z, double *along) {
+    double ux = d->bx - d->ax, uz = d->bz - d->az, len2 = ux * ux + uz * uz;
+    double t = len2 > 0 ? ((x - d->ax) * ux + (z - d->az) * uz) / len2 : 0.0;
+    t = t < 0 ? 0 : t > 1 ? 1 : t;
+    *along = t;
+    double px = d->ax + t * ux - x, pz = d->az + t * uz - z;
+    return sqrt(px * px + pz * pz);
+}
+
+grid_rect brush_dab_rect(const brush_dab *d) {
+    double r = d->radius;
+    if (is_ramp(d)) {
+        return (grid_rect){(int64_t)ceil(fmin(d->ax, d->bx) - r), (int64_t)ceil(fmin(d->az, d->bz) - r),
+                           (int64_t)floor(fmax(d->ax, d->bx) + r) + 1,
+                           (int64_t)floor(fmax(d->az, d->bz) + r) + 1};
+    }
+    return (grid_rect){(int64_t)ceil(d->cx - r), (int64_t)ceil(d->cz - r),
+                       (int64_t)floor(d->cx + r) + 1, (int64_t)floor(d->cz + r) + 1};
+}
+
+// Weight of every sample of one row span [x0, x1) at row z: falloff x strength.
+static void row_weights(const brush_dab *d, int64_t z, int64_t x0, int64_t x1, float *w) {
+    const brush *b = d->brush;
+    float inv_r = (float)(1.0 / d->radius);
+    if (is_ramp(d)) {
+        for (int64_t x = x0; x < x1; x++) {
+            double along;
+            float t = (float)ramp_distance(d, (double)x, (double)z, &along) * inv_r;
+            w[x - x0] = brush_falloff_weight(b, t) * d->strength;
+        }
+        return;
+    }
+    float dz = (float)((double)z - d->cz), dz2 = dz * dz;
+    float fx0 = (float)((double)x0 - d->cx);
+    if (b->falloff == FALLOFF_SMOOTH) { // the common case, kept branch-free to vectorise
+        for (int64_t i = 0; i < x1 - x0; i++) {
+            float dx = fx0 + (float)i;
+            float t = sqrtf(dx * dx + dz2) * inv_r;
+            t = t < 1.0f ? t : 1.0f;
+            w[i] = (1.0f - t * t * (3.0f - 2.0f * t)) * d->strength;
+        }
+        return;
+    }
+    for (int64_t i = 0; i < x1 - x0; i++) {
+        float dx = fx0 + (float)i;
+        w[i] = brush_falloff_weight(b, sqrtf(dx * dx + dz2) * inv_r) * d->strength;
+    }
+}
+
+static float terrace(const brush *b, float h) {
+    double step = b->terrace_step, k = floor(h / step), f = h / step - k;
+    // f^p: flat treads and steep risers as sharpness goes to 1.
+    double p = 1.0 + 15.0 * b->terrace_sharpness * b->terrace_sharpness;
+    return (float)((k + pow(f, p)) * step);
+}
+
+// Pointwise tools on one row span of heights.
+static void height_row(const brush_dab *d, float *row, int64_t z, int64_t x0, int64_t x1, float *w) {
+    const brush *b = d->brush;
+    row_weights(d, z, x0, x1, w);
+    int64_t n = x1 - x0;
+    switch (b->tool) {
+    case BRUSH_RAISE: {
+        float a = (float)(b->invert ? -b->amount : b->amount);
+        for (int64_t i = 0; i < n; i++) row[i] = keep_finite(row[i] + w[i] * a, row[i]);
+        break;
+    }
+    case BRUSH_FLATTEN:
+    case BRUSH_SET: {
+        float t = d->target;
+        for (int64_t i = 0; i < n; i++) {
+            float h = row[i];
+            if (b->tool == BRUSH_FLATTEN && ((b->flatten == FLATTEN_RAISE && h >= t) ||
+                                             (b->flatten == FLATTEN_LOWER && h <= t)))
+                continue;
+            row[i] = keep_finite(h + w[i] * (t - h), h);
+        }
+        break;
+    }
+    case BRUSH_RAMP:
+        for (int64_t i = 0; i < n; i++) {
+            if (w[i] <= 0.0f) continue;
+            double along;
+            ramp_distance(d, (double)(x0 + i), (double)z, &along);
+            float t = (float)(d->ha + along * (d->hb - d->ha));
+            row[i] = keep_finite(row[i] + w[i] * (t - row[i]), row[i]);
+        }
+        break;
+    case BRUSH_NOISE: {
+        gen_fractal f = {GEN_FRACTAL_FBM, b->seed, b->noise_octaves, 0.5, 2.0, 1.0};
+        double k = d->spacing / b->noise_scale, zz = (double)z * k;
+        float a = (float)(b->invert ? -b->amount : b->amount);
+        for (int64_t i = 0; i < n; i++) {
+            if (w[i] <= 0.0f) continue;
+            float v = gen_fractal2(&f, (double)(x0 + i) * k, zz);
+            row[i] = keep_finite(row[i] + w[i] * a * v, row[i]);
+        }
+        break;
+    }
+    case BRUSH_TERRACE:
+        for (int64_t i = 0; i < n; i++) {
+            if (w[i] <= 0.0f) continue;
+            float h = row[i];
+            row[i] = keep_finite(h + w[i] * (terrace(b, h) - h), h);
+        }
+        break;
+    default: break;
+    }
+}
+
+// Material weights of one sample: move toward (or away from) material m by w,
+// keeping the 8 weights summing to exactly 255 (largest remainder rounding).
+static void paint_sample(uint8_t *m8, int m, float w, int invert) {
+    int sum = 0;
+    for (int c = 0; c < TILE_MATERIALS; c++) sum += m8[c];
+    double want[TILE_MATERIALS];
+    double old_m = sum ? m8[m] * 255.0 / sum : 0.0;
+    double new_m = invert ? old_m * (1.0 - w) : old_m + w * (255.0 - old_m);
+    double rest_old = (sum ? 255.0 : 0.0) - old_m, rest_new = 255.0 - new_m;
+    for (int c = 0; c < TILE_MATERIALS; c++) {
+        if (c == m) want[c] = new_m;
+        else if (rest_old > 0) want[c] = (sum ? m8[c] * 255.0 / sum : 0) * rest_new / rest_old;
+        else want[c] = 0;
+    }
+    if (rest_old <= 0 && rest_new > 0) want[m == 0 ? 1 : 0] += rest_new; // removed from a pure sample
+    int total = 0;
+    double frac[TILE_MATERIALS];
+    int out[TILE_MATERIALS];
+    for (int c = 0; c < TILE_MATERIALS; c++) {
+        out[c] = (int)floor(want[c]);
+        frac[c] = want[c] - out[c];
+        total += out[c];
+    }
+    while (total < 255) { // hand out the remaining units by largest remainder
+        int best = 0;
+        for (int c = 1; c < TILE_MATERIALS; c++)
+            if (frac[c] > frac[best]) best = c;
+        out[best]++;
+        frac[best] = -1;
+        total++;
+    }
+    for (int c = 0; c < TILE_MATERIALS; c++) m8[c] = (uint8_t)out[c];
+}
+
+static void paint_row(const brush_dab *d, uint8_t *row, int64_t z, int64_t x0, int64_t x1, float *w) {
+    row_weights(d, z, x0, x1, w);
+    for (int64_t i = 0; i < x1 - x0; i++)
+        if (w[i] > 0.0f) paint_sample(row + i * TILE_MATERIALS, d->brush->material, w[i], d->brush->invert);
+}
+
+static int is_pointwise(const brush *b) {
+    return b->tool != BRUSH_SMOOTH && b->tool != BRUSH_THERMAL && b->tool != BRUSH_HYDRAULIC;
+}
+
+// ---- neighbourhood tools on a gathered area ---------------------------------------
+
+static int halo_of(const brush_dab *d) {
+    switch (d->brush->tool) {
+    case BRUSH_SMOOTH: return 2 * (int)fmax(1.0, floor(d->radius / 8.0)); // two box passes
+    case BRUSH_THERMAL: return 1;
+    case BRUSH_HYDRAULIC: return (int)ceil(d->brush->hydraulic.radius_cells) + 2;
+    default: return 0;
+    }
+}
+
+// Box blur of radius k along rows (stride 1) or columns, src -> dst, edges clamped.
+static void box_pass(const float *src, float *dst, int64_t w, int64_t h, int k, int along_rows) {
+    int64_t n = along_rows ? w : h, lines = along_rows ? h : w;
+    int64_t step = along_rows ? 1 : w, line_step = along_rows ? w : 1;
+    double inv = 1.0 / (2 * k + 1);
+    for (int64_t l = 0; l < lines; l++) {
+        const float *s = src + l * line_step;
+        float *o = dst + l * line_step;
+        double sum = 0;
+        for (int64_t i = -k; i <= k; i++) sum += s[(i < 0 ? 0 : i >= n ? n - 1 : i) * step];
+        for (int64_t i = 0; i < n; i++) {
+            o[i * step] = (float)(sum * inv);
+            int64_t add = i + k + 1, sub = i - k;
+            sum += s[(add >= n ? n - 1 : add) * step] - s[(sub < 0 ? 0 : sub) * step];
+        }
+    }
+}
+
+// Runs a neighbourhood tool on heights (w x h, covering `area`), changing only
+// samples whose weight > 0. weight gets the per-sample weights.
+static int neighbourhood(const brush_dab *d, float *heights, float *weight, grid_rect area,
+                         og_error *err) {
+    int64_t w = area.x1 - area.x0, h = area.z1 - area.z0;
+    int halo = halo_of(d);
+    grid_rect inner = {area.x0 + halo, area.z0 + halo, area.x1 - halo, area.z1 - halo};
+    memset(weight, 0, (size_t)(w * h) * sizeof *weight);
+    for (int64_t z = inner.z0; z < inner.z1; z++)
+        row_weights(d, z, inner.x0, inner.x1, weight + (z - area.z0) * w + halo);
+    const brush *b = d->brush;
+    if (b->tool == BRUSH_SMOOTH) {
+        int k = halo / 2;
+        float *a = malloc((size_t)(w * h) * sizeof *a), *c = malloc((size_t)(w * h) * sizeof *c);
+        if (!a || !c) {
+            free(a);
+            free(c);
+            return og_error_set(err, "out of memory smoothing (%lld x %lld samples)", (long long)w,
+                                (long long)h);
+        }
+        box_pass(heights, a, w, h, k, 1);
+        box_pass(a, c, w, h, k, 1);
+        box_pass(c, a, w, h, k, 0);
+        box_pass(a, c, w, h, k, 0);
+        for (int64_t i = 0; i < w * h; i++) {
+            if (weight[i] <= 0.0f) continue;
+            float old = heights[i], delta = c[i] - old;
+            heights[i] = keep_finite(old + (b->invert ? -weight[i] : weight[i]) * delta, old);
+        }
+        free(a);
+        free(c);
+        return 0;
+    }
+    if (w > INT32_MAX / (h ? h : 1)) return og_error_set(err, "brush area too large");
+    erosion_grid g = {heights, weight, (int)w, (int)h, (float)d->spacing};
+    if (b->tool == BRUSH_THERMAL) {
+        erosion_thermal(&g, &b->thermal);
+    } else {
+        hydraulic_params p = b->hydraulic;
+        p.seed = d->seed;
+        erosion_hydraulic(&g, &p, NULL);
+    }
+    for (int64_t i = 0; i < w * h; i++) heights[i] = keep_finite(heights[i], 0.0f);
+    return 0;
+}
+
+// ---- the plain-array path -------------------------------------------------------------
+
+static void read_clamped(const float *data, grid_rect area, grid_rect r, float *out) {
+    int64_t aw = area.x1 - area.x0, w = r.x1 - r.x0;
+    for (int64_t z = r.z0; z < r.z1; z++) {
+        int64_t cz = z < area.z0 ? area.z0 : z >= area.z1 ? area.z1 - 1 : z;
+        for (int64_t x = r.x0; x < r.x1; x++) {
+            int64_t cx = x < area.x0 ? area.x0 : x >= area.x1 ? area.x1 - 1 : x;
+            out[(z - r.z0) * w + (x - r.x0)] = data[(cz - area.z0) * aw + (cx - area.x0)];
+        }
+    }
+}
+
+int brush_dab_apply_array(const brush_dab *d, tile_layer layer, void *data, grid_rect area,
+                          og_error *err) {
+    grid_rect r = grid_rect_intersect(brush_dab_rect(d), area);
+    if (grid_rect_empty(r)) return 0;
+    int64_t aw = area.x1 - area.x0, n = r.x1 - r.x0;
+    float *w = malloc((size_t)n * sizeof *w);
+    if (!w) return og_error_set(err, "out of memory");
+    if (layer == TILE_LAYER_MATERIAL) {
+        for (int64_t z = r.z0; z < r.z1; z++)
+            paint_row(d, (uint8_t *)data + ((z - area.z0) * aw + (r.x0 - area.x0)) * TILE_MATERIALS, z,
+                      r.x0, r.x1, w);
+        free(w);
+        return 0;
+    }
+    float *f = data;
+    if (is_pointwise(d->brush)) {
+        for (int64_t z = r.z0; z < r.z1; z++)
+            height_row(d, f + (z - area.z0) * aw + (r.x0 - area.x0), z, r.x0, r.x1, w);
+        free(w);
+        return 0;
+    }
+    free(w);
+    int halo = halo_of(d);
+    grid_rect g = {r.x0 - halo, r.z0 - halo, r.x1 + halo, r.z1 + halo};
+    int64_t gw = g.x1 - g.x0, gh = g.z1 - g.z0;
+    float *h = malloc((size_t)(gw * gh) * sizeof *h), *wt = malloc((size_t)(gw * gh) * sizeof *wt);
+    int rc = -1;
+    if (!h || !wt) {
+        og_error_set(err, "out of memory");
+    } else {
+        read_clamped(f, area, g, h);
+        rc = neighbourhood(d, h, wt, g, err);
+        for (int64_t z = r.z0; z < r.z1 && rc == 0; z++)
+            for (int64_t x = r.x0; x < r.x1; x++) {
+                size_t i = (size_t)((z - g.z0) * gw + (x - g.x0));
+                if (wt[i] > 0.0f) f[(z - area.z0) * aw + (x - area.x0)] = h[i];
+            }
+    }
+    free(h);
+    free(wt);
+    return rc;
+}
+
+// ---- the tiled path ---------------------------------------------------------------------
+
+typedef struct tile_job {
+    edit *e;
+    const layer_grid *g;
+    const brush_dab *d;
+    grid_rect r;
+    int64_t tx0, tz0, tw;
+    // neighbourhood tools: the computed area to copy from
+    const float *heights, *weight;
+    grid_rect area;
+    int failed;
+    og_error err;
+} tile_job;
+
+static void tile_task(void *user, int task) {
+    tile_job *j = user;
+    int64_t tx = j->tx0 + task % j->tw, tz = j->tz0 + task / j->tw;
+    grid_rect t = grid_rect_intersect(
+        j->r, (grid_rect){tx * TILE_SIZE, tz * TILE_SIZE, (tx + 1) * TILE_SIZE, (tz + 1) * TILE_SIZE});
+    if (grid_rect_empty(t)) return;
+    if (j->heights) { // skip tiles where the weights are all zero (a disc's corners)
+        int any = 0;
+        for (int64_t z = t.z0; z < t.z1 && !any; z++)
+            for (int64_t x = t.x0; x < t.x1 && !any; x++)
+                any = j->weight[(z - j->area.z0) * (j->area.x1 - j->area.x0) + (x - j->area.x0)] > 0.0f;
+        if (!any) return;
+    }
+    tile_key key = {j->g->layer, j->g->face, 0, (int32_t)tx, (int32_t)tz};
+    tile_view v;
+    og_error err;
+    if (edit_tile_acquire(j->e, key, &v, &err) != 0) {
+        j->failed = 1;
+        j->err = err;
+        return;
+    }
+    float w[TILE_SIZE];
+    int64_t ox = tx * TILE_SIZE, oz = tz * TILE_SIZE;
+    for (int64_t z = t.z0; z < t.z1; z++) {
+        size_t at = (size_t)((z - oz) * TILE_SIZE + (t.x0 - ox));
+        if (j->g->layer == TILE_LAYER_MATERIAL) {
+            paint_row(j->d, (uint8_t *)v.data + at * TILE_MATERIALS, z, t.x0, t.x1, w);
+        } else if (!j->heights) {
+            height_row(j->d, (float *)v.data + at, z, t.x0, t.x1, w);
+        } else {
+            int64_t aw = j->area.x1 - j->area.x0;
+            const float *src = j->heights + (z - j->area.z0) * aw - j->area.x0;
+            const float *wt = j->weight + (z - j->area.z0) * aw - j->area.x0;
+            float *dst = (float *)v.data + at - t.x0;
+            for (int64_t x = t.x0; x < t.x1; x++)
+                if (wt[x] > 0.0f) dst[x] = src[x];
+        }
+    }
+    edit_tile_release(j->e, &v);
+}
+
+int brush_dab_apply(edit *e, const layer_grid *g, const brush_dab *d, og_error *err) {
+    grid_rect r = layer_grid_clip(g, brush_dab_rect(d));
+    if (grid_rect_empty(r)) return 0;
+    tile_job job = {.e = e, .g = g, .d = d, .r = r};
+    float *heights = NULL, *weight = NULL;
+    if (g->layer != TILE_LAYER_MATERIAL && !is_pointwise(d->brush)) {
+        int halo = halo_of(d);
+        grid_rect area = {r.x0 - halo, r.z0 - halo, r.x1 + halo, r.z1 + halo};
+        size_t n = (size_t)((area.x1 - area.x0) * (area.z1 - area.z0));
+        heights = malloc(n * sizeof *heights);
+        weight = malloc(n * sizeof *weight);
+        if (!heights || !weight) {
+            free(heights);
+            free(weight);
+            return og_error_set(err, "out of memory for a brush of %zu samples", n);
+        }
+        if (layer_grid_read(edit_world(e), g, area, heights, err) != 0 ||
+            neighbourhood(d, heights, weight, area, err) != 0) {
+            free(heights);
+            free(weight);
+            return -1;
+        }
+        job.heights = heights;
+        job.weight = weight;
+        job.area = area;
+    }
+    job.tx0 = world_grid_floor_div(r.x0, TILE_SIZE);
+    job.tz0 = world_grid_floor_div(r.z0, TILE_SIZE);
+    job.tw = world_grid_floor_div(r.x1 - 1, TILE_SIZE) - job.tx0 + 1;
+    int64_t th = world_grid_floor_div(r.z1 - 1, TILE_SIZE) - job.tz0 + 1;
+    parallel_run((int)(job.tw * th), tile_task, &job);
+    free(heights);
+    free(weight);
+    if (job.failed) {
+        *err = job.err;
+        return -1;
+    }
+    edit_dirty(e, g->layer, g->face, r);
+    return 0;
+}
