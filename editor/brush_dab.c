@@ -1,8 +1,7 @@
 #include "editor/brush_dab.h"
 
+#include "editor/edit_rows.h"
 #include "editor/gen_noise.h"
-#include "editor/parallel.h"
-#include "editor/world_grid.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -249,155 +248,127 @@ static int neighbourhood(const brush_dab *d, float *heights, float *weight, grid
     return 0;
 }
 
-// ---- the plain-array path -------------------------------------------------------------
+// ---- row functions shared by both paths ------------------------------------------------
 
-static void read_clamped(const float *data, grid_rect area, grid_rect r, float *out) {
-    int64_t aw = area.x1 - area.x0, w = r.x1 - r.x0;
-    for (int64_t z = r.z0; z < r.z1; z++) {
-        int64_t cz = z < area.z0 ? area.z0 : z >= area.z1 ? area.z1 - 1 : z;
-        for (int64_t x = r.x0; x < r.x1; x++) {
-            int64_t cx = x < area.x0 ? area.x0 : x >= area.x1 ? area.x1 - 1 : x;
-            out[(z - r.z0) * w + (x - r.x0)] = data[(cz - area.z0) * aw + (cx - area.x0)];
+typedef struct dab_rows {
+    const brush_dab *d;
+    // neighbourhood tools: the computed area and its weights
+    const float *heights, *weight;
+    grid_rect area;
+} dab_rows;
+
+static void dab_row(void *user, void *row, int64_t z, int64_t x0, int64_t x1) {
+    dab_rows *j = user;
+    float w[TILE_SIZE];
+    for (int64_t s = x0; s < x1; s += TILE_SIZE) { // array rows can be longer than a tile
+        int64_t e = s + TILE_SIZE < x1 ? s + TILE_SIZE : x1;
+        if (!j->heights && j->d->brush->tool == BRUSH_PAINT) {
+            paint_row(j->d, (uint8_t *)row + (s - x0) * TILE_MATERIALS, z, s, e, w);
+        } else if (!j->heights) {
+            height_row(j->d, (float *)row + (s - x0), z, s, e, w);
+        } else {
+            int64_t aw = j->area.x1 - j->area.x0;
+            const float *src = j->heights + (z - j->area.z0) * aw - j->area.x0;
+            const float *wt = j->weight + (z - j->area.z0) * aw - j->area.x0;
+            float *dst = (float *)row - x0;
+            for (int64_t x = s; x < e; x++)
+                if (wt[x] > 0.0f) dst[x] = src[x];
         }
     }
+}
+
+// Neighbourhood tools only write where the weight is > 0: skip tiles a disc grazes.
+static int dab_wanted(void *user, grid_rect part) {
+    dab_rows *j = user;
+    if (!j->heights) return 1;
+    int64_t aw = j->area.x1 - j->area.x0;
+    for (int64_t z = part.z0; z < part.z1; z++)
+        for (int64_t x = part.x0; x < part.x1; x++)
+            if (j->weight[(z - j->area.z0) * aw + (x - j->area.x0)] > 0.0f) return 1;
+    return 0;
+}
+
+// Gathers the area around r (r + halo) and runs the neighbourhood tool on it.
+typedef int (*area_reader)(void *src, grid_rect area, float *out, og_error *err);
+
+static int prepare(const brush_dab *d, tile_layer layer, grid_rect r, area_reader read, void *src,
+                   dab_rows *rows, og_error *err) {
+    *rows = (dab_rows){.d = d};
+    if (layer == TILE_LAYER_MATERIAL || is_pointwise(d->brush)) return 0;
+    int halo = halo_of(d);
+    grid_rect area = {r.x0 - halo, r.z0 - halo, r.x1 + halo, r.z1 + halo};
+    size_t n = (size_t)((area.x1 - area.x0) * (area.z1 - area.z0));
+    float *heights = malloc(n * sizeof *heights), *weight = malloc(n * sizeof *weight);
+    if (!heights || !weight || read(src, area, heights, err) != 0 ||
+        neighbourhood(d, heights, weight, area, err) != 0) {
+        if (!heights || !weight) og_error_set(err, "out of memory for a brush of %zu samples", n);
+        free(heights);
+        free(weight);
+        return -1;
+    }
+    rows->heights = heights;
+    rows->weight = weight;
+    rows->area = area;
+    return 0;
+}
+
+static void release(dab_rows *rows) {
+    free((void *)rows->heights);
+    free((void *)rows->weight);
+}
+
+// ---- the plain-array path ---------------------------------------------------------------
+
+typedef struct array_source {
+    const float *data;
+    grid_rect area;
+} array_source;
+
+static int read_array(void *src, grid_rect r, float *out, og_error *err) {
+    (void)err;
+    array_source *a = src;
+    int64_t aw = a->area.x1 - a->area.x0, w = r.x1 - r.x0;
+    for (int64_t z = r.z0; z < r.z1; z++) {
+        int64_t cz = z < a->area.z0 ? a->area.z0 : z >= a->area.z1 ? a->area.z1 - 1 : z;
+        for (int64_t x = r.x0; x < r.x1; x++) {
+            int64_t cx = x < a->area.x0 ? a->area.x0 : x >= a->area.x1 ? a->area.x1 - 1 : x;
+            out[(z - r.z0) * w + (x - r.x0)] = a->data[(cz - a->area.z0) * aw + (cx - a->area.x0)];
+        }
+    }
+    return 0;
 }
 
 int brush_dab_apply_array(const brush_dab *d, tile_layer layer, void *data, grid_rect area,
                           og_error *err) {
     grid_rect r = grid_rect_intersect(brush_dab_rect(d), area);
     if (grid_rect_empty(r)) return 0;
-    int64_t aw = area.x1 - area.x0, n = r.x1 - r.x0;
-    float *w = malloc((size_t)n * sizeof *w);
-    if (!w) return og_error_set(err, "out of memory");
-    if (layer == TILE_LAYER_MATERIAL) {
-        for (int64_t z = r.z0; z < r.z1; z++)
-            paint_row(d, (uint8_t *)data + ((z - area.z0) * aw + (r.x0 - area.x0)) * TILE_MATERIALS, z,
-                      r.x0, r.x1, w);
-        free(w);
-        return 0;
-    }
-    float *f = data;
-    if (is_pointwise(d->brush)) {
-        for (int64_t z = r.z0; z < r.z1; z++)
-            height_row(d, f + (z - area.z0) * aw + (r.x0 - area.x0), z, r.x0, r.x1, w);
-        free(w);
-        return 0;
-    }
-    free(w);
-    int halo = halo_of(d);
-    grid_rect g = {r.x0 - halo, r.z0 - halo, r.x1 + halo, r.z1 + halo};
-    int64_t gw = g.x1 - g.x0, gh = g.z1 - g.z0;
-    float *h = malloc((size_t)(gw * gh) * sizeof *h), *wt = malloc((size_t)(gw * gh) * sizeof *wt);
-    int rc = -1;
-    if (!h || !wt) {
-        og_error_set(err, "out of memory");
-    } else {
-        read_clamped(f, area, g, h);
-        rc = neighbourhood(d, h, wt, g, err);
-        for (int64_t z = r.z0; z < r.z1 && rc == 0; z++)
-            for (int64_t x = r.x0; x < r.x1; x++) {
-                size_t i = (size_t)((z - g.z0) * gw + (x - g.x0));
-                if (wt[i] > 0.0f) f[(z - area.z0) * aw + (x - area.x0)] = h[i];
-            }
-    }
-    free(h);
-    free(wt);
-    return rc;
+    array_source src = {data, area};
+    dab_rows rows;
+    if (prepare(d, layer, r, read_array, &src, &rows, err) != 0) return -1;
+    edit_rows_apply_array(layer, data, area, r, dab_row, &rows);
+    release(&rows);
+    return 0;
 }
 
 // ---- the tiled path ---------------------------------------------------------------------
 
-typedef struct tile_job {
-    edit *e;
+typedef struct world_source {
+    world *w;
     const layer_grid *g;
-    const brush_dab *d;
-    grid_rect r;
-    int64_t tx0, tz0, tw;
-    // neighbourhood tools: the computed area to copy from
-    const float *heights, *weight;
-    grid_rect area;
-    int failed;
-    og_error err;
-} tile_job;
+} world_source;
 
-static void tile_task(void *user, int task) {
-    tile_job *j = user;
-    int64_t tx = j->tx0 + task % j->tw, tz = j->tz0 + task / j->tw;
-    grid_rect t = grid_rect_intersect(
-        j->r, (grid_rect){tx * TILE_SIZE, tz * TILE_SIZE, (tx + 1) * TILE_SIZE, (tz + 1) * TILE_SIZE});
-    if (grid_rect_empty(t)) return;
-    if (j->heights) { // skip tiles where the weights are all zero (a disc's corners)
-        int any = 0;
-        for (int64_t z = t.z0; z < t.z1 && !any; z++)
-            for (int64_t x = t.x0; x < t.x1 && !any; x++)
-                any = j->weight[(z - j->area.z0) * (j->area.x1 - j->area.x0) + (x - j->area.x0)] > 0.0f;
-        if (!any) return;
-    }
-    tile_key key = {j->g->layer, j->g->face, 0, (int32_t)tx, (int32_t)tz};
-    tile_view v;
-    og_error err;
-    if (edit_tile_acquire(j->e, key, &v, &err) != 0) {
-        j->failed = 1;
-        j->err = err;
-        return;
-    }
-    float w[TILE_SIZE];
-    int64_t ox = tx * TILE_SIZE, oz = tz * TILE_SIZE;
-    for (int64_t z = t.z0; z < t.z1; z++) {
-        size_t at = (size_t)((z - oz) * TILE_SIZE + (t.x0 - ox));
-        if (j->g->layer == TILE_LAYER_MATERIAL) {
-            paint_row(j->d, (uint8_t *)v.data + at * TILE_MATERIALS, z, t.x0, t.x1, w);
-        } else if (!j->heights) {
-            height_row(j->d, (float *)v.data + at, z, t.x0, t.x1, w);
-        } else {
-            int64_t aw = j->area.x1 - j->area.x0;
-            const float *src = j->heights + (z - j->area.z0) * aw - j->area.x0;
-            const float *wt = j->weight + (z - j->area.z0) * aw - j->area.x0;
-            float *dst = (float *)v.data + at - t.x0;
-            for (int64_t x = t.x0; x < t.x1; x++)
-                if (wt[x] > 0.0f) dst[x] = src[x];
-        }
-    }
-    edit_tile_release(j->e, &v);
+static int read_world(void *src, grid_rect r, float *out, og_error *err) {
+    world_source *s = src;
+    return layer_grid_read(s->w, s->g, r, out, err);
 }
 
 int brush_dab_apply(edit *e, const layer_grid *g, const brush_dab *d, og_error *err) {
     grid_rect r = layer_grid_clip(g, brush_dab_rect(d));
     if (grid_rect_empty(r)) return 0;
-    tile_job job = {.e = e, .g = g, .d = d, .r = r};
-    float *heights = NULL, *weight = NULL;
-    if (g->layer != TILE_LAYER_MATERIAL && !is_pointwise(d->brush)) {
-        int halo = halo_of(d);
-        grid_rect area = {r.x0 - halo, r.z0 - halo, r.x1 + halo, r.z1 + halo};
-        size_t n = (size_t)((area.x1 - area.x0) * (area.z1 - area.z0));
-        heights = malloc(n * sizeof *heights);
-        weight = malloc(n * sizeof *weight);
-        if (!heights || !weight) {
-            free(heights);
-            free(weight);
-            return og_error_set(err, "out of memory for a brush of %zu samples", n);
-        }
-        if (layer_grid_read(edit_world(e), g, area, heights, err) != 0 ||
-            neighbourhood(d, heights, weight, area, err) != 0) {
-            free(heights);
-            free(weight);
-            return -1;
-        }
-        job.heights = heights;
-        job.weight = weight;
-        job.area = area;
-    }
-    job.tx0 = world_grid_floor_div(r.x0, TILE_SIZE);
-    job.tz0 = world_grid_floor_div(r.z0, TILE_SIZE);
-    job.tw = world_grid_floor_div(r.x1 - 1, TILE_SIZE) - job.tx0 + 1;
-    int64_t th = world_grid_floor_div(r.z1 - 1, TILE_SIZE) - job.tz0 + 1;
-    parallel_run((int)(job.tw * th), tile_task, &job);
-    free(heights);
-    free(weight);
-    if (job.failed) {
-        *err = job.err;
-        return -1;
-    }
-    edit_dirty(e, g->layer, g->face, r);
-    return 0;
+    world_source src = {edit_world(e), g};
+    dab_rows rows;
+    if (prepare(d, g->layer, r, read_world, &src, &rows, err) != 0) return -1;
+    int rc = edit_rows_apply(e, g, r, dab_row, dab_wanted, &rows, err);
+    release(&rows);
+    return rc;
 }
