@@ -66,10 +66,9 @@ static char *read_file(const char *path, size_t *len, char *why, size_t why_len)
 
 static int file_exists(const char *path) { return access(path, R_OK) == 0; }
 
-// The built-in default world: the parameters shipped in resources/default.world,
-// opened as a new unsaved world so nothing is ever written into resources/.
-static world *open_default_world(const world_settings *settings, og_error *err) {
-    char path[4096] = "";
+// The resources folder: $OROGEN_RESOURCES, the installed share/orogen/resources
+// beside the binary, or the source tree's. "" when none has default.world.
+static void find_resource_dir(char *dir, size_t size) {
     const char *env = getenv("OROGEN_RESOURCES");
     char exe[4096];
     ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
@@ -82,11 +81,24 @@ static world *open_default_world(const world_settings *settings, og_error *err) 
         snprintf(installed, sizeof installed, "%s/../share/orogen/resources", exe);
         candidates[1] = installed;
     }
-    for (int i = 0; i < 3 && !path[0]; i++) {
+    dir[0] = 0;
+    for (int i = 0; i < 3; i++) {
+        char path[4300];
         if (!candidates[i]) continue;
         snprintf(path, sizeof path, "%s/default.world", candidates[i]);
-        if (!file_exists(path)) path[0] = 0;
+        if (file_exists(path)) {
+            snprintf(dir, size, "%s", candidates[i]);
+            return;
+        }
     }
+}
+
+// The built-in default world: the parameters shipped in resources/default.world,
+// opened as a new unsaved world so nothing is ever written into resources/.
+static world *open_default_world(const char *resource_dir, const world_settings *settings,
+                                 og_error *err) {
+    char path[4300] = "";
+    if (resource_dir[0]) snprintf(path, sizeof path, "%s/default.world", resource_dir);
     world_params p;
     world_params_default(&p, WORLD_FLAT);
     if (path[0]) {
@@ -169,19 +181,21 @@ int main(int argc, char **argv) {
     }
 
     og_error err = {{0}};
+    char resource_dir[4096];
+    find_resource_dir(resource_dir, sizeof resource_dir);
     world *w;
     if (world_file) {
         int errors = 0;
         w = world_load(world_file, &settings, &errors, &err);
     } else {
-        w = open_default_world(&settings, &err);
+        w = open_default_world(resource_dir, &settings, &err);
     }
     if (!w) {
         fprintf(stderr, "orogen: %s\n", err.msg);
         return 1;
     }
     cmd_context ctx;
-    cmd_context_init(&ctx, w, &settings, stdout);
+    cmd_context_init(&ctx, w, &settings, stdout, resource_dir);
 
     int status = 0;
     if (script_count == 0) {

@@ -245,6 +245,8 @@ static const cmd_def commands[] = {
     {"tool", "tool [NAME] [KEY=VALUE ...]", "Picks and sets up the brush: raise lower smooth flatten set ramp noise terrace thermal hydraulic paint. Keys: radius (m) strength (0-1) falloff (smooth linear spherical constant curve) curve=t:v,... spacing (x radius) invert target (coarse detail) face amount height mode (both raise lower) scale octaves seed step sharpness talus iterations droplets erosion deposition evaporation capacity inertia material. Without arguments, prints the brush.", 0, 24, cmd_tool},
     {"dab", "dab X Z [PRESSURE]", "One dab of the brush at X, Z (metres); one undo step.", 2, 3, cmd_dab},
     {"stroke", "stroke X0 Z0 X1 Z1 [X2 Z2 ...]", "Drags the brush along the points (metres), dabbing every spacing x radius; one undo step.", 2, 30, cmd_stroke},
+    {"stamp", "stamp NAME X Z [scale= rot= mirror= intensity= mode= layer= face=]", "Places a stamp centred at X, Z (metres): a functional shape, a library or user stamp (see stamps) or an image file. scale multiplies its natural size (128 samples, or one sample per pixel), rot is degrees, mirror none|x|z|xz, intensity metres at value 1 (50; 0.5 on detail), mode add|subtract|max|min|blend, layer coarse|detail. One undo step.", 3, 10, cmd_stamp},
+    {"stamps", "stamps", "Lists the stamps: functional shapes, the built-in library and the user's stamp folder.", 0, 0, cmd_stamps},
     {"undo", "undo", "Undoes the last change (stroke, stamp, generate).", 0, 0, cmd_undo},
     {"redo", "redo", "Redoes the last undone change.", 0, 0, cmd_redo},
     {"history", "history [budget=MIB]", "Lists the undo steps (* = applied) and their memory; sets the history memory budget.", 0, 1, cmd_history},
@@ -254,8 +256,17 @@ static const cmd_def commands[] = {
 };
 #define COMMAND_COUNT (sizeof commands / sizeof commands[0])
 
-void cmd_context_init(cmd_context *ctx, world *w, const world_settings *settings, FILE *out) {
+void cmd_context_init(cmd_context *ctx, world *w, const world_settings *settings, FILE *out,
+                      const char *resource_dir) {
     memset(ctx, 0, sizeof *ctx);
+    snprintf(ctx->resource_dir, sizeof ctx->resource_dir, "%s", resource_dir ? resource_dir : "");
+    const char *env = getenv("OROGEN_STAMP_DIR"), *xdg = getenv("XDG_DATA_HOME"), *home = getenv("HOME");
+    if (env && *env)
+        snprintf(ctx->stamp_dir, sizeof ctx->stamp_dir, "%s", env);
+    else if (xdg && *xdg)
+        snprintf(ctx->stamp_dir, sizeof ctx->stamp_dir, "%s/orogen/stamps", xdg);
+    else if (home && *home)
+        snprintf(ctx->stamp_dir, sizeof ctx->stamp_dir, "%s/.local/share/orogen/stamps", home);
     ctx->world = w;
     ctx->next = *world_get_params(w);
     if (settings) ctx->settings = *settings;

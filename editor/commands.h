@@ -18,10 +18,14 @@ typedef struct cmd_context {
     FILE *out;                // where commands print results
     int exit_requested;       // set by `exit`
     brush brush;              // the current tool (`tool`), used by dab and stroke
+    char resource_dir[4096];  // built-in resources (stamp library in resource_dir/stamps)
+    char stamp_dir[4096];     // the user's stamp folder
 } cmd_context;
 
-// A context on world w with the default tool (raise).
-void cmd_context_init(cmd_context *ctx, world *w, const world_settings *settings, FILE *out);
+// A context on world w with the default tool (raise). The user's stamp folder is
+// $OROGEN_STAMP_DIR, else $XDG_DATA_HOME/orogen/stamps, else ~/.local/share/orogen/stamps.
+void cmd_context_init(cmd_context *ctx, world *w, const world_settings *settings, FILE *out,
+                      const char *resource_dir);
 
 // Runs every command in text. Stops at the first failing command and returns -1 with
 // err->msg = "label:line: error: message". label names the script ("-c" for -c).

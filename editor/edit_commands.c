@@ -2,6 +2,7 @@
 
 #include "editor/edit.h"
 #include "editor/history.h"
+#include "editor/stamp.h"
 #include "editor/stroke.h"
 
 #include <errno.h>
@@ -153,5 +154,32 @@ int cmd_history(cmd_context *ctx, int argc, char **argv, og_error *err) {
     fprintf(ctx->out, "steps=%zu undoable=%zu redoable=%zu bytes=%zu budget=%zu dropped=%llu modified=%d\n",
             n, pos, n - pos, history_bytes(h), history_budget(h),
             (unsigned long long)history_dropped_total(h), world_is_modified(ctx->world));
+    return 0;
+}
+
+int cmd_stamp(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    stamp_placement p;
+    stamp_placement_defaults(&p);
+    if (cmd_parse_number(argv[2], "X", &p.x, err) != 0 || cmd_parse_number(argv[3], "Z", &p.z, err) != 0)
+        return -1;
+    int intensity_given = 0;
+    for (int i = 4; i < argc; i++) {
+        char buf[512], *key = NULL, *value = NULL;
+        if (cmd_split_setting(argv[i], buf, sizeof buf, &key, &value, err) != 0 ||
+            stamp_placement_set(&p, key, value, err) != 0)
+            return -1;
+        intensity_given |= strcmp(key, "intensity") == 0;
+    }
+    if (!intensity_given && p.layer == TILE_LAYER_DETAIL) p.intensity = 0.5; // detail is fine relief
+    stamp_source s;
+    if (stamp_find(argv[1], ctx->resource_dir, ctx->stamp_dir, &s, err) != 0) return -1;
+    int rc = stamp_apply(ctx->world, &s, &p, err);
+    stamp_source_free(&s);
+    return rc;
+}
+
+int cmd_stamps(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    (void)argc, (void)argv, (void)err;
+    stamp_list(ctx->resource_dir, ctx->stamp_dir, ctx->out);
     return 0;
 }

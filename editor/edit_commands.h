@@ -1,5 +1,5 @@
 // The editing commands of the command language: tool, dab, stroke, undo, redo,
-// history (and stamp, stamps in stamp_commands.c). Registered in commands.c.
+// history, stamp, stamps. Registered in commands.c.
 #ifndef OROGEN_EDITOR_EDIT_COMMANDS_H
 #define OROGEN_EDITOR_EDIT_COMMANDS_H
 
@@ -11,6 +11,8 @@ int cmd_stroke(cmd_context *ctx, int argc, char **argv, og_error *err);
 int cmd_undo(cmd_context *ctx, int argc, char **argv, og_error *err);
 int cmd_redo(cmd_context *ctx, int argc, char **argv, og_error *err);
 int cmd_history(cmd_context *ctx, int argc, char **argv, og_error *err);
+int cmd_stamp(cmd_context *ctx, int argc, char **argv, og_error *err);
+int cmd_stamps(cmd_context *ctx, int argc, char **argv, og_error *err);
 
 // Parses "key=value" into key and value (pointers into a copy in buf).
 int cmd_split_setting(const char *arg, char *buf, size_t size, char **key, char **value,
