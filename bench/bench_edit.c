@@ -1,0 +1,497 @@
+// Editing engine benchmarks, each figure beside its reference from the same run:
+//  1. one dab of radius 64 samples on resident tiles, per touched sample, against a
+//     memcpy of the same bytes (4 per touched sample) from cache: raise and smooth,
+//     both the steady state inside a stroke and the full cost of a one-dab edit
+//     (begin, first-touch snapshot, commit with undo capture and mips);
+//  2. one raise dab of radius 512 samples inside a stroke: on every core, on one
+//     core, and on a plain array (one thread, no tiles: the reference);
+//  3. a 1000-dab stroke over 4 tiles with undo capture, then its undo and redo;
+//  4. that stroke's history memory against the raw bytes of the tiles it covers and
+//     the bytes it actually changed;
+//  5. hydraulic (100k droplets) and thermal (20 iterations) erosion of a 1024^2
+//     grid against a memcpy of the grid.
+// Figures are medians of several runs, ratios medians of the per-run ratios; goals
+// are reported (PASS/MISS), not asserted.
+#include "editor/brush_dab.h"
+#include "editor/edit.h"
+#include "editor/erosion.h"
+#include "editor/gen.h"
+#include "editor/history.h"
+#include "editor/parallel.h"
+#include "editor/stroke.h"
+#include "editor/world.h"
+
+#include <dirent.h>
+#include <math.h>
+#include <sched.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#define RUNS 7
+
+static double now(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
+}
+
+static int cmp_double(const void *a, const void *b) {
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double median(double *v, int n) {
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+static void quiet(void *u, const char *m) {
+    (void)u, (void)m;
+}
+
+static void check(int rc, const og_error *err, const char *what) {
+    if (rc == 0) return;
+    fprintf(stderr, "bench_edit: %s: %s\n", what, err->msg);
+    exit(1);
+}
+
+static void *xmalloc(size_t n) {
+    void *p = malloc(n);
+    if (!p) {
+        fprintf(stderr, "bench_edit: out of memory (%zu bytes)\n", n);
+        exit(1);
+    }
+    return p;
+}
+
+// Called through a volatile pointer so the compiler keeps every copy.
+static void *(*volatile copy_bytes)(void *, const void *, size_t) = memcpy;
+
+// Seconds per copy of `bytes` from src to dst, both already in cache.
+static double memcpy_seconds(void *dst, const void *src, size_t bytes, int reps) {
+    copy_bytes(dst, src, bytes);
+    double t0 = now();
+    for (int i = 0; i < reps; i++)
+        copy_bytes(dst, src, bytes);
+    return (now() - t0) / reps;
+}
+
+// ---- the summary ----------------------------------------------------------------------
+
+static struct {
+    char text[200];
+    int pass;
+} goals[16];
+static int goal_count;
+
+// Records `value` against `limit` (at most, or strictly below when strict).
+static void goal(const char *what, double value, double limit, int strict, const char *unit) {
+    if (goal_count == (int)(sizeof goals / sizeof *goals)) return;
+    int pass = strict ? value < limit : value <= limit;
+    snprintf(goals[goal_count].text, sizeof goals[0].text, "%-46s %9.3f%s  (goal %s %g%s)", what,
+             value, unit, strict ? "<" : "<=", limit, unit);
+    goals[goal_count++].pass = pass;
+}
+
+// ---- shared setup ---------------------------------------------------------------------
+
+// An unbounded flat fBm world with 1 m between coarse samples.
+static world *bench_world(layer_grid *g) {
+    world_params p;
+    world_params_default(&p, WORLD_FLAT);
+    p.spacing = 1.0;
+    world_settings s = {.warn = quiet};
+    og_error err;
+    world *w = world_create(&p, &s, &err);
+    if (!w) check(-1, &err, "world_create");
+    check(layer_grid_init(g, world_get_params(w), TILE_LAYER_COARSE, 0, &err), &err,
+          "layer_grid_init");
+    return w;
+}
+
+static brush_dab dab_of(const brush *b, double cx, double cz) {
+    return (brush_dab){.brush = b,
+                       .cx = cx,
+                       .cz = cz,
+                       .radius = b->radius,
+                       .strength = (float)b->strength,
+                       .spacing = 1.0,
+                       .seed = 1};
+}
+
+// Samples whose falloff weight is > 0 (inside the disc), as brush_dab.c finds them.
+static long disc_samples(const brush_dab *d) {
+    grid_rect r = brush_dab_rect(d);
+    long n = 0;
+    for (int64_t z = r.z0; z < r.z1; z++)
+        for (int64_t x = r.x0; x < r.x1; x++) {
+            float dx = (float)((double)x - d->cx), dz = (float)((double)z - d->cz);
+            n += sqrtf(dx * dx + dz * dz) / (float)d->radius < 1.0f;
+        }
+    return n;
+}
+
+static long rect_samples(grid_rect r) {
+    return (long)((r.x1 - r.x0) * (r.z1 - r.z0));
+}
+
+// One edit with one dab, committed: generates the tiles and mips and makes them
+// edited (so that later steps never undo to pristine tiles, which would drop them).
+static void warm(world *w, const layer_grid *g, const brush_dab *d) {
+    og_error err;
+    edit *e = edit_begin(w, "warm", &err);
+    if (!e) check(-1, &err, "edit_begin");
+    check(brush_dab_apply(e, g, d, &err), &err, "brush_dab_apply");
+    check(edit_commit(e, &err), &err, "edit_commit");
+}
+
+// Seconds per dab, n dabs inside an open edit.
+static double dab_seconds(edit *e, const layer_grid *g, const brush_dab *d, int n) {
+    og_error err;
+    double t0 = now();
+    for (int i = 0; i < n; i++)
+        check(brush_dab_apply(e, g, d, &err), &err, "brush_dab_apply");
+    return (now() - t0) / n;
+}
+
+// Seconds per one-dab edit (begin, dab, commit); *commit_s gets the commit's share.
+static double dab_edit_seconds(world *w, const layer_grid *g, const brush_dab *d, int n,
+                               double *commit_s) {
+    og_error err;
+    double total = 0, commit = 0;
+    for (int i = 0; i < n; i++) {
+        double t0 = now();
+        edit *e = edit_begin(w, "dab", &err);
+        if (!e) check(-1, &err, "edit_begin");
+        check(brush_dab_apply(e, g, d, &err), &err, "brush_dab_apply");
+        double t1 = now();
+        check(edit_commit(e, &err), &err, "edit_commit");
+        double t2 = now();
+        total += t2 - t0;
+        commit += t2 - t1;
+    }
+    *commit_s = commit / n;
+    return total / n;
+}
+
+// ---- 1. a dab of radius 64 samples --------------------------------------------------------
+
+static void bench_dab64(brush_tool tool, double goal_ratio) {
+    layer_grid g;
+    world *w = bench_world(&g);
+    brush b;
+    brush_defaults(&b, tool);
+    b.radius = 64.0;
+    brush_dab d = dab_of(&b, 128.0, 128.0); // in the middle of tile (0, 0)
+    long disc = disc_samples(&d), rect = rect_samples(brush_dab_rect(&d));
+    size_t bytes = (size_t)disc * 4;
+    void *src = xmalloc(bytes), *dst = xmalloc(bytes);
+    memset(src, 1, bytes);
+    warm(w, &g, &d);
+
+    og_error err;
+    edit *e = edit_begin(w, "steady", &err);
+    if (!e) check(-1, &err, "edit_begin");
+    check(brush_dab_apply(e, &g, &d, &err), &err, "brush_dab_apply"); // first touch: snapshot
+    // Dabs and copies alternate in short chunks so that both see the same machine load;
+    // the ratio is the median of the per-run ratios.
+    const int chunks = 10, steady_n = tool == BRUSH_RAISE ? 100 : 20, edit_n = 50;
+    double steady[RUNS], full[RUNS], commit[RUNS], copy[RUNS], ratio[RUNS];
+    for (int r = 0; r < RUNS; r++) {
+        steady[r] = copy[r] = 0;
+        for (int k = 0; k < chunks; k++) {
+            steady[r] += dab_seconds(e, &g, &d, steady_n) / chunks;
+            copy[r] += memcpy_seconds(dst, src, bytes, 2000) / chunks;
+        }
+        ratio[r] = steady[r] / copy[r];
+    }
+    edit_abort(e);
+    for (int r = 0; r < RUNS; r++)
+        full[r] = dab_edit_seconds(w, &g, &d, edit_n, &commit[r]);
+
+    double s = median(steady, RUNS), c = median(copy, RUNS), f = median(full, RUNS);
+    double k = median(commit, RUNS), q = median(ratio, RUNS);
+    const char *name = brush_tool_name(tool);
+    printf("%s dab, radius 64 samples, resident tiles: %ld samples in the disc (%ld in the rect)\n",
+           name, disc, rect);
+    printf(
+        "  inside a stroke: %.1f us per dab = %.2f ns per disc sample (%.2f ns per rect sample)\n",
+        s * 1e6, s * 1e9 / disc, s * 1e9 / rect);
+    printf("  memcpy of the same %zu bytes (in cache): %.2f us = %.3f ns per sample; "
+           "dab / memcpy = %.1fx (goal <= %g)\n",
+           bytes, c * 1e6, c * 1e9 / disc, q, goal_ratio);
+    printf("  as its own edit (begin + snapshot + dab + commit with undo capture and mips): "
+           "%.0f us (commit %.0f us) = %.1f ns per disc sample, %.0fx the memcpy\n",
+           f * 1e6, k * 1e6, f * 1e9 / disc, f / c);
+    char what[80];
+    snprintf(what, sizeof what, "%s dab r=64, per sample vs memcpy", name);
+    goal(what, q, goal_ratio, 0, "x");
+    free(src);
+    free(dst);
+    world_close(w);
+}
+
+// ---- 2. a raise dab of radius 512 samples ---------------------------------------------------
+
+// Sets the CPU affinity of every thread of the process (the editor's pool included).
+static int pin_all_threads(const cpu_set_t *set) {
+    DIR *dir = opendir("/proc/self/task");
+    if (!dir) return -1;
+    int rc = 0;
+    struct dirent *ent;
+    while ((ent = readdir(dir)) != NULL) {
+        if (ent->d_name[0] < '0' || ent->d_name[0] > '9') continue;
+        if (sched_setaffinity((pid_t)atoi(ent->d_name), sizeof *set, set) != 0) rc = -1;
+    }
+    closedir(dir);
+    return rc;
+}
+
+static void bench_dab512(void) {
+    layer_grid g;
+    world *w = bench_world(&g);
+    brush b;
+    brush_defaults(&b, BRUSH_RAISE);
+    b.radius = 512.0;
+    brush_dab d = dab_of(&b, 1024.0, 1024.0); // 25 tiles
+    grid_rect area = brush_dab_rect(&d);
+    long disc = disc_samples(&d), rect = rect_samples(area);
+
+    og_error err;
+    edit *e = edit_begin(w, "steady", &err);
+    if (!e) check(-1, &err, "edit_begin");
+    check(brush_dab_apply(e, &g, &d, &err), &err, "brush_dab_apply"); // generate + snapshot
+    float *plain = xmalloc((size_t)rect * sizeof *plain);
+    check(layer_grid_read(w, &g, area, plain, &err), &err, "layer_grid_read");
+
+    cpu_set_t all, one;
+    int pinned = sched_getaffinity(0, sizeof all, &all) == 0 && CPU_COUNT(&all) > 1;
+    if (pinned) {
+        CPU_ZERO(&one);
+        for (int c = 0; c < CPU_SETSIZE; c++)
+            if (CPU_ISSET(c, &all)) {
+                CPU_SET(c, &one);
+                break;
+            }
+    }
+    const int n = 5;
+    double multi[RUNS], single[RUNS], array[RUNS];
+    for (int r = 0; r < RUNS; r++) {
+        multi[r] = dab_seconds(e, &g, &d, n);
+        if (pinned && pin_all_threads(&one) == 0) {
+            single[r] = dab_seconds(e, &g, &d, n);
+        } else {
+            pinned = 0;
+        }
+        if (pinned) pin_all_threads(&all);
+        double t0 = now();
+        for (int i = 0; i < n; i++)
+            check(brush_dab_apply_array(&d, TILE_LAYER_COARSE, plain, area, &err), &err,
+                  "brush_dab_apply_array");
+        array[r] = (now() - t0) / n;
+    }
+    edit_abort(e);
+    double m = median(multi, RUNS), a = median(array, RUNS);
+    printf("raise dab, radius 512 samples: %ld samples in the disc, %ld in the rect, 25 tiles\n",
+           disc, rect);
+    printf("  inside a stroke, %d threads: %.2f ms (%.2f ns per disc sample)\n", parallel_threads(),
+           m * 1e3, m * 1e9 / disc);
+    if (pinned) {
+        double s = median(single, RUNS);
+        printf("  inside a stroke, the same threads pinned to one core: %.2f ms; scaling %.2fx\n",
+               s * 1e3, s / m);
+    } else {
+        printf("  inside a stroke on one core: not measured (one CPU, or affinity refused)\n");
+    }
+    printf("  reference, brush_dab_apply_array on a plain %lldx%lld array (1 thread): %.2f ms; "
+           "tiled %d threads / array = %.2f\n",
+           (long long)(area.x1 - area.x0), (long long)(area.z1 - area.z0), a * 1e3,
+           parallel_threads(), m / a);
+    goal("raise dab r=512, ms inside a stroke", m * 1e3, 10.0, 0, " ms");
+    free(plain);
+    world_close(w);
+}
+
+// ---- 3 and 4. a 1000-dab stroke, its undo and redo, its history memory ------------------
+
+// Samples whose bytes differ between a and b (elements of `el` bytes).
+static long changed_samples(const unsigned char *a, const unsigned char *b, size_t bytes,
+                            size_t el) {
+    long n = 0;
+    for (size_t i = 0; i < bytes; i += el)
+        n += memcmp(a + i, b + i, el) != 0;
+    return n;
+}
+
+static void copy_tile(world *w, tile_key key, void *out) {
+    tile_view v;
+    og_error err;
+    check(tile_cache_acquire(world_cache(w), key, &v, &err), &err, "tile_cache_acquire");
+    memcpy(out, v.data, tile_layer_bytes((tile_layer)key.layer));
+    tile_cache_release(world_cache(w), &v);
+}
+
+static double stroke_seconds(world *w, const brush *b, double x0, double z0, double x1, double z1,
+                             long *dabs) {
+    og_error err;
+    double t0 = now();
+    stroke *s = stroke_begin(w, b, &err);
+    if (!s) check(-1, &err, "stroke_begin");
+    check(stroke_to(s, x0, z0, 1.0, &err), &err, "stroke_to");
+    check(stroke_to(s, x1, z1, 1.0, &err), &err, "stroke_to");
+    *dabs = stroke_dab_count(s);
+    check(stroke_end(s, &err), &err, "stroke_end");
+    return now() - t0;
+}
+
+static void bench_stroke(void) {
+    layer_grid g;
+    world *w = bench_world(&g);
+    brush b;
+    brush_defaults(&b, BRUSH_RAISE);
+    b.radius = 32.0;
+    // A diagonal through the corner shared by tiles (0,0), (1,0), (0,1) and (1,1); the
+    // discs stay inside those four. Dabs at 0, step, ..., 999 step: exactly 1000.
+    const double x0 = 128, z0 = 128, x1 = 384, z1 = 384;
+    b.spacing = hypot(x1 - x0, z1 - z0) / 999.5 / b.radius;
+    long dabs;
+    stroke_seconds(w, &b, x0, z0, x1, z1, &dabs); // warm: tiles resident and edited
+
+    history *h = world_history(w);
+    og_error err;
+    double st[RUNS], un[RUNS], re[RUNS], ratio[RUNS];
+    for (int r = 0; r < RUNS; r++) {
+        st[r] = stroke_seconds(w, &b, x0, z0, x1, z1, &dabs);
+        double t0 = now();
+        if (edit_undo(w, &err) != 1) check(-1, &err, "edit_undo");
+        double t1 = now();
+        if (edit_redo(w, &err) != 1) check(-1, &err, "edit_redo");
+        re[r] = now() - t1;
+        un[r] = t1 - t0;
+        ratio[r] = (un[r] + re[r]) / st[r];
+    }
+    double s = median(st, RUNS), u = median(un, RUNS), d = median(re, RUNS);
+    double q = median(ratio, RUNS);
+    printf("stroke: %ld raise dabs of radius 32 samples, (128,128) to (384,384) m, over 4 tiles\n",
+           dabs);
+    printf("  stroke with undo capture %.2f ms (%.1f us per dab); undo %.2f ms; redo %.2f ms; "
+           "(undo + redo) / stroke = %.3f\n",
+           s * 1e3, s * 1e6 / (double)dabs, u * 1e3, d * 1e3, q);
+    goal("(undo + redo) / stroke, 1000-dab stroke", q, 1.0, 1, "");
+
+    // The last stroke's step: compare every tile it holds before (undone) and after.
+    const history_step *step = history_at(h, history_position(h) - 1);
+    size_t tiles = step->tile_count;
+    unsigned char **after = xmalloc((tiles ? tiles : 1) * sizeof *after);
+    for (size_t i = 0; i < tiles; i++) {
+        after[i] = xmalloc(tile_layer_bytes((tile_layer)step->tiles[i].key.layer));
+        copy_tile(w, step->tiles[i].key, after[i]);
+    }
+    if (edit_undo(w, &err) != 1) check(-1, &err, "edit_undo");
+    long changed = 0, changed0 = 0;
+    size_t level0_tiles = 0, delta_bytes = 0;
+    for (size_t i = 0; i < tiles; i++) {
+        tile_key key = step->tiles[i].key;
+        size_t bytes = tile_layer_bytes((tile_layer)key.layer);
+        unsigned char *before = xmalloc(bytes);
+        copy_tile(w, key, before);
+        long c = changed_samples(before, after[i], bytes, bytes / TILE_SAMPLES);
+        changed += c;
+        if (key.level == 0) {
+            changed0 += c;
+            level0_tiles++;
+        }
+        delta_bytes += step->tiles[i].bytes;
+        free(before);
+        free(after[i]);
+    }
+    free(after);
+    if (edit_redo(w, &err) != 1) check(-1, &err, "edit_redo");
+    double held = (double)step->bytes;
+    printf("  history: the step holds %zu bytes (%zu in %zu compressed tile deltas: %zu at level "
+           "0, %zu mip tiles)\n",
+           step->bytes, delta_bytes, tiles, level0_tiles, tiles - level0_tiles);
+    printf("  vs raw bytes of its tiles (%zu): %.4f; vs 4 B x %ld samples changed (%ld at level 0, "
+           "%ld in mips) = %ld B: %.3f (level 0 only: %.3f)\n",
+           step->raw_bytes, held / (double)step->raw_bytes, changed, changed0, changed - changed0,
+           4 * changed, held / (4.0 * (double)changed), held / (4.0 * (double)changed0));
+    goal("stroke history bytes / (4 B x changed samples)", held / (4.0 * (double)changed), 1.0, 0,
+         "x");
+    world_close(w);
+}
+
+// ---- 5. erosion -------------------------------------------------------------------------
+
+static void bench_erosion(void) {
+    enum { N = 1024 };
+    world_params p;
+    world_params_default(&p, WORLD_FLAT);
+    p.spacing = 1.0;
+    float *terrain = xmalloc((size_t)N * N * sizeof *terrain);
+    float *h = xmalloc((size_t)N * N * sizeof *h), *wt = xmalloc((size_t)N * N * sizeof *wt);
+    float *tile = xmalloc(tile_layer_bytes(TILE_LAYER_COARSE));
+    for (int ty = 0; ty < N / TILE_SIZE; ty++)
+        for (int tx = 0; tx < N / TILE_SIZE; tx++) {
+            gen_tile(&p, (tile_key){TILE_LAYER_COARSE, 0, 0, tx, ty}, tile);
+            for (int z = 0; z < TILE_SIZE; z++)
+                memcpy(terrain + (size_t)(ty * TILE_SIZE + z) * N + tx * TILE_SIZE,
+                       tile + z * TILE_SIZE, TILE_SIZE * sizeof *tile);
+        }
+    free(tile);
+    for (int z = 0; z < N; z++)
+        for (int x = 0; x < N; x++)
+            wt[z * N + x] = x > 0 && z > 0 && x < N - 1 && z < N - 1 ? 1.0f : 0.0f;
+
+    hydraulic_params hp;
+    hydraulic_params_default(&hp);
+    hp.droplets = 100000;
+    thermal_params tp = {.talus_deg = 35.0f, .iterations = 20, .rate = 0.5f}; // brush defaults
+    erosion_grid g = {h, wt, N, N, 1.0f};
+    const int runs = 5;
+    double hyd[5], th[5], copy[5];
+    hydraulic_report rep = {0};
+    for (int r = 0; r < runs; r++) {
+        copy[r] = memcpy_seconds(h, terrain, (size_t)N * N * sizeof *h, 20);
+        double t0 = now();
+        erosion_hydraulic(&g, &hp, &rep);
+        hyd[r] = now() - t0;
+        memcpy(h, terrain, (size_t)N * N * sizeof *h);
+        t0 = now();
+        erosion_thermal(&g, &tp);
+        th[r] = now() - t0;
+    }
+    double y = median(hyd, runs), t = median(th, runs), c = median(copy, runs);
+    printf("erosion on %dx%d samples (weight 1 inside a 1-sample zero border):\n", N, N);
+    printf(
+        "  hydraulic, %d droplets (default parameters): %.1f ms = %.2f M droplets/s "
+        "(%d started, eroded %.0f m x cells); memcpy of the grid (4 MiB): %.3f ms; ratio %.0fx\n",
+        hp.droplets, y * 1e3, hp.droplets / y / 1e6, rep.droplets, rep.eroded, c * 1e3, y / c);
+    printf("  thermal, %d iterations (talus %g deg, rate %g): %.1f ms = %.2f ns per sample per "
+           "iteration; %.0fx the memcpy\n",
+           tp.iterations, tp.talus_deg, tp.rate, t * 1e3, t * 1e9 / ((double)N * N * tp.iterations),
+           t / c);
+    free(terrain);
+    free(h);
+    free(wt);
+}
+
+int main(void) {
+    double t0 = now();
+    printf("bench_edit: medians of %d runs (erosion: 5), %d threads in the editing pool\n", RUNS,
+           parallel_threads());
+    bench_dab64(BRUSH_RAISE, 8.0);
+    bench_dab64(BRUSH_SMOOTH, 20.0);
+    bench_dab512();
+    bench_stroke();
+    bench_erosion();
+    int passed = 0;
+    printf("summary (%.0f s):\n", now() - t0);
+    for (int i = 0; i < goal_count; i++) {
+        printf("  %s  %s\n", goals[i].pass ? "PASS" : "MISS", goals[i].text);
+        passed += goals[i].pass;
+    }
+    printf("  %d of %d goals met\n", passed, goal_count);
+    return 0;
+}
