@@ -9,11 +9,33 @@
 
 // ---- shared per-sample pieces ---------------------------------------------------------
 
+// Selects rather than branches, so loops using it vectorise.
 static inline float keep_finite(float v, float old) {
-    if (v != v) return old;
-    if (v > (float)BRUSH_HEIGHT_LIMIT) return (float)BRUSH_HEIGHT_LIMIT;
-    if (v < (float)-BRUSH_HEIGHT_LIMIT) return (float)-BRUSH_HEIGHT_LIMIT;
-    return v;
+    v = v == v ? v : old;
+    v = v > (float)BRUSH_HEIGHT_LIMIT ? (float)BRUSH_HEIGHT_LIMIT : v;
+    return v < (float)-BRUSH_HEIGHT_LIMIT ? (float)-BRUSH_HEIGHT_LIMIT : v;
+}
+
+// The hot loops get an AVX2 clone picked at run time (same results: no FMA, and
+// sqrt is exact in both).
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define HOT_LOOP __attribute__((target_clones("avx2", "default")))
+#else
+#define HOT_LOOP
+#endif
+
+HOT_LOOP static void smooth_weights(float fx0, float dz2, float inv_r, float strength, int n,
+                                    float *w) {
+    for (int i = 0; i < n; i++) { // int: int64 to float conversion does not vectorise
+        float dx = fx0 + (float)i;
+        float t = sqrtf(dx * dx + dz2) * inv_r;
+        t = t < 1.0f ? t : 1.0f;
+        w[i] = (1.0f - t * t * (3.0f - 2.0f * t)) * strength;
+    }
+}
+
+HOT_LOOP static void add_weighted(float *row, const float *w, float a, int64_t n) {
+    for (int64_t i = 0; i < n; i++) row[i] = keep_finite(row[i] + w[i] * a, row[i]);
 }
 
 static int is_ramp(const brush_dab *d) { return d->brush->tool == BRUSH_RAMP; }
@@ -53,13 +75,8 @@ static void row_weights(const brush_dab *d, int64_t z, int64_t x0, int64_t x1, f
     }
     float dz = (float)((double)z - d->cz), dz2 = dz * dz;
     float fx0 = (float)((double)x0 - d->cx);
-    if (b->falloff == FALLOFF_SMOOTH) { // the common case, kept branch-free to vectorise
-        for (int64_t i = 0; i < x1 - x0; i++) {
-            float dx = fx0 + (float)i;
-            float t = sqrtf(dx * dx + dz2) * inv_r;
-            t = t < 1.0f ? t : 1.0f;
-            w[i] = (1.0f - t * t * (3.0f - 2.0f * t)) * d->strength;
-        }
+    if (b->falloff == FALLOFF_SMOOTH) { // the common case, vectorised
+        smooth_weights(fx0, dz2, inv_r, d->strength, (int)(x1 - x0), w);
         return;
     }
     for (int64_t i = 0; i < x1 - x0; i++) {
@@ -82,8 +99,7 @@ static void height_row(const brush_dab *d, float *row, int64_t z, int64_t x0, in
     int64_t n = x1 - x0;
     switch (b->tool) {
     case BRUSH_RAISE: {
-        float a = (float)(b->invert ? -b->amount : b->amount);
-        for (int64_t i = 0; i < n; i++) row[i] = keep_finite(row[i] + w[i] * a, row[i]);
+        add_weighted(row, w, (float)(b->invert ? -b->amount : b->amount), n);
         break;
     }
     case BRUSH_FLATTEN:
@@ -184,21 +200,28 @@ static int halo_of(const brush_dab *d) {
     }
 }
 
-// Box blur of radius k along rows (stride 1) or columns, src -> dst, edges clamped.
-static void box_pass(const float *src, float *dst, int64_t w, int64_t h, int k, int along_rows) {
-    int64_t n = along_rows ? w : h, lines = along_rows ? h : w;
-    int64_t step = along_rows ? 1 : w, line_step = along_rows ? w : 1;
+// Box blur of radius k along columns, edges clamped: a running sum per column,
+// updated row by row, so the inner loops run across independent columns and
+// vectorise. Rows are blurred the same way on a transposed copy.
+static void transpose(const float *src, float *dst, int64_t w, int64_t h) {
+    for (int64_t z = 0; z < h; z++)
+        for (int64_t x = 0; x < w; x++) dst[x * h + z] = src[z * w + x];
+}
+
+HOT_LOOP static void box_columns(const float *src, float *dst, int64_t w, int64_t h, int k,
+                                 double *sum) {
     double inv = 1.0 / (2 * k + 1);
-    for (int64_t l = 0; l < lines; l++) {
-        const float *s = src + l * line_step;
-        float *o = dst + l * line_step;
-        double sum = 0;
-        for (int64_t i = -k; i <= k; i++) sum += s[(i < 0 ? 0 : i >= n ? n - 1 : i) * step];
-        for (int64_t i = 0; i < n; i++) {
-            o[i * step] = (float)(sum * inv);
-            int64_t add = i + k + 1, sub = i - k;
-            sum += s[(add >= n ? n - 1 : add) * step] - s[(sub < 0 ? 0 : sub) * step];
-        }
+    for (int64_t x = 0; x < w; x++) sum[x] = 0.0;
+    for (int64_t i = -k; i <= k; i++) {
+        const float *s = src + (i < 0 ? 0 : i >= h ? h - 1 : i) * w;
+        for (int64_t x = 0; x < w; x++) sum[x] += s[x];
+    }
+    for (int64_t i = 0; i < h; i++) {
+        float *o = dst + i * w;
+        for (int64_t x = 0; x < w; x++) o[x] = (float)(sum[x] * inv);
+        int64_t add = i + k + 1, sub = i - k;
+        const float *a = src + (add >= h ? h - 1 : add) * w, *r = src + (sub < 0 ? 0 : sub) * w;
+        for (int64_t x = 0; x < w; x++) sum[x] += (double)a[x] - (double)r[x];
     }
 }
 
@@ -216,16 +239,21 @@ static int neighbourhood(const brush_dab *d, float *heights, float *weight, grid
     if (b->tool == BRUSH_SMOOTH) {
         int k = halo / 2;
         float *a = malloc((size_t)(w * h) * sizeof *a), *c = malloc((size_t)(w * h) * sizeof *c);
-        if (!a || !c) {
+        double *scratch = malloc((size_t)(w > h ? w : h) * sizeof *scratch);
+        if (!a || !c || !scratch) {
             free(a);
             free(c);
+            free(scratch);
             return og_error_set(err, "out of memory smoothing (%lld x %lld samples)", (long long)w,
                                 (long long)h);
         }
-        box_pass(heights, a, w, h, k, 1);
-        box_pass(a, c, w, h, k, 1);
-        box_pass(c, a, w, h, k, 0);
-        box_pass(a, c, w, h, k, 0);
+        transpose(heights, a, w, h);
+        box_columns(a, c, h, w, k, scratch);
+        box_columns(c, a, h, w, k, scratch);
+        transpose(a, c, h, w);
+        box_columns(c, a, w, h, k, scratch);
+        box_columns(a, c, w, h, k, scratch);
+        free(scratch);
         for (int64_t i = 0; i < w * h; i++) {
             if (weight[i] <= 0.0f) continue;
             float old = heights[i], delta = c[i] - old;
