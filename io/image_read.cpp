@@ -1,0 +1,196 @@
+// OpenImageIO bridge. Everything C++ stays in this file: every entry point catches
+// all exceptions, and OIIO's own error text goes into the messages.
+#include "io/image_read.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <exception>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace {
+
+// Rows read per call: bounds the scratch buffer to a band, not the whole image.
+const int BAND_ROWS = 64;
+
+struct free_deleter {
+    void operator()(float *p) const { std::free(p); }
+};
+
+// OIIO messages may span lines; keep ours on one.
+std::string one_line(std::string s) {
+    while (!s.empty() && (s.back() == '\n' || s.back() == ' '))
+        s.pop_back();
+    std::replace(s.begin(), s.end(), '\n', ' ');
+    return s.empty() ? std::string("no details") : s;
+}
+
+int read_impl(const char *path, float **pixels, int *width, int *height, og_error *err) {
+    struct stat st;
+    if (stat(path, &st) != 0)
+        return og_error_set(err, "%s: cannot open: %s", path, strerror(errno));
+    if (S_ISDIR(st.st_mode)) return og_error_set(err, "%s: is a folder, not an image", path);
+
+    // Unassociated: colour as stored, not multiplied by the alpha we ignore.
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    auto in = OIIO::ImageInput::open(path, &config);
+    if (!in)
+        return og_error_set(err, "%s: not an image OpenImageIO can read (%s)", path,
+                            one_line(OIIO::geterror()).c_str());
+    const OIIO::ImageSpec spec = in->spec();
+    const int w = spec.width, h = spec.height;
+    if (spec.deep) return og_error_set(err, "%s: deep images are not supported", path);
+    if (spec.depth > 1) return og_error_set(err, "%s: volume images are not supported", path);
+    if (w <= 0 || h <= 0 || spec.nchannels <= 0)
+        return og_error_set(err, "%s: image has zero size (%d x %d, %d channels)", path, w, h,
+                            spec.nchannels);
+    if (w > IMAGE_MAX_SIZE || h > IMAGE_MAX_SIZE)
+        return og_error_set(err, "%s: image is %d x %d, larger than the %d x %d limit", path, w, h,
+                            IMAGE_MAX_SIZE, IMAGE_MAX_SIZE);
+    const int nch = spec.nchannels >= 3 ? 3 : 1; // grey (+ alpha) or colour (+ alpha)
+
+    int band = BAND_ROWS;
+    if (spec.tile_width > 0) {
+        if (spec.tile_height <= 0)
+            return og_error_set(err, "%s: tiled image with tile height %d", path, spec.tile_height);
+        band = std::max(1, BAND_ROWS / spec.tile_height) * spec.tile_height;
+    }
+    std::unique_ptr<float, free_deleter> out(
+        static_cast<float *>(std::malloc(sizeof(float) * (size_t)w * (size_t)h)));
+    if (!out) return og_error_set(err, "%s: out of memory for %d x %d pixels", path, w, h);
+    std::vector<float> buf((size_t)band * (size_t)w * (size_t)nch);
+
+    for (int y0 = 0; y0 < h; y0 += band) {
+        const int y1 = std::min(h, y0 + band);
+        bool ok = spec.tile_width > 0
+                      ? in->read_tiles(0, 0, spec.x, spec.x + w, spec.y + y0, spec.y + y1, spec.z,
+                                       spec.z + 1, 0, nch, OIIO::TypeFloat, buf.data())
+                      : in->read_scanlines(0, 0, spec.y + y0, spec.y + y1, spec.z, 0, nch,
+                                           OIIO::TypeFloat, buf.data());
+        if (!ok)
+            return og_error_set(err, "%s: cannot read pixels (%s)", path,
+                                one_line(in->geterror()).c_str());
+        for (int y = y0; y < y1; y++) {
+            const float *src = buf.data() + (size_t)(y - y0) * w * nch;
+            float *dst = out.get() + (size_t)y * w;
+            for (int x = 0; x < w; x++) {
+                const float *p = src + (size_t)x * nch;
+                // Double keeps the weighted sum of huge finite values from overflowing.
+                float v = nch == 1 ? p[0] : (float)(0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]);
+                if (!std::isfinite(v))
+                    return og_error_set(err, "%s: pixel (%d, %d) is not finite", path, x, y);
+                dst[x] = v;
+            }
+        }
+    }
+    in->close();
+    *pixels = out.release();
+    *width = w;
+    *height = h;
+    return 0;
+}
+
+// Removes the temp file unless the rename consumed it.
+struct temp_file {
+    std::string path;
+    bool keep = false;
+    ~temp_file() {
+        if (!path.empty() && !keep) unlink(path.c_str());
+    }
+};
+
+int fsync_path(const char *path, int flags) {
+    int fd = open(path, O_RDONLY | flags);
+    if (fd < 0) return -1;
+    int rc = fsync(fd);
+    close(fd);
+    return rc;
+}
+
+int write_impl(const char *path, const float *pixels, int width, int height, og_error *err) {
+    if (width <= 0 || height <= 0 || width > IMAGE_MAX_SIZE || height > IMAGE_MAX_SIZE)
+        return og_error_set(err, "%s: cannot write a %d x %d image (1 to %d per side)", path, width,
+                            height, IMAGE_MAX_SIZE);
+    const size_t n = (size_t)width * (size_t)height;
+    std::vector<uint16_t> q(n);
+    for (size_t i = 0; i < n; i++) {
+        float v = pixels[i];
+        if (std::isnan(v))
+            return og_error_set(err, "%s: pixel (%d, %d) is NaN", path, (int)(i % width),
+                                (int)(i / width));
+        v = v < 0.0f ? 0.0f : v > 1.0f ? 1.0f : v;
+        q[i] = (uint16_t)(v * 65535.0f + 0.5f);
+    }
+
+    temp_file tmp;
+    std::string name = std::string(path) + ".tmp-XXXXXX";
+    int fd = mkstemp(&name[0]);
+    if (fd < 0)
+        return og_error_set(err, "%s: cannot create a temp file beside it: %s", path,
+                            strerror(errno));
+    tmp.path = name;
+    fchmod(fd, 0644); // mkstemp's 0600 would carry over to the final file
+    close(fd);
+
+    // By format name: the temp file's name does not end in .png.
+    auto out = OIIO::ImageOutput::create("png");
+    if (!out)
+        return og_error_set(err, "%s: OpenImageIO has no PNG writer (%s)", path,
+                            one_line(OIIO::geterror()).c_str());
+    OIIO::ImageSpec spec(width, height, 1, OIIO::TypeUInt16);
+    spec.attribute("png:compressionLevel", 9);
+    if (!out->open(name, spec) || !out->write_image(OIIO::TypeUInt16, q.data()) || !out->close())
+        return og_error_set(err, "%s: cannot write PNG (%s)", path,
+                            one_line(out->geterror()).c_str());
+    if (fsync_path(name.c_str(), 0) != 0)
+        return og_error_set(err, "%s: cannot sync: %s", path, strerror(errno));
+    if (rename(name.c_str(), path) != 0)
+        return og_error_set(err, "%s: cannot rename the temp file into place: %s", path,
+                            strerror(errno));
+    tmp.keep = true;
+    std::string dir(path);
+    size_t slash = dir.rfind('/');
+    dir = slash == std::string::npos ? "." : slash == 0 ? "/" : dir.substr(0, slash);
+    fsync_path(dir.c_str(), O_DIRECTORY); // best effort: the file itself is already durable
+    return 0;
+}
+
+} // namespace
+
+extern "C" int image_read_luminance(const char *path, float **pixels, int *width, int *height,
+                                    og_error *err) {
+    *pixels = nullptr;
+    *width = *height = 0;
+    if (!path) return og_error_set(err, "image_read_luminance: no path");
+    try {
+        return read_impl(path, pixels, width, height, err);
+    } catch (const std::exception &e) {
+        return og_error_set(err, "%s: cannot read image: %s", path, e.what());
+    } catch (...) {
+        return og_error_set(err, "%s: cannot read image: unknown error", path);
+    }
+}
+
+extern "C" int image_write_gray16(const char *path, const float *pixels, int width, int height,
+                                  og_error *err) {
+    if (!path || !pixels) return og_error_set(err, "image_write_gray16: no path or pixels");
+    try {
+        return write_impl(path, pixels, width, height, err);
+    } catch (const std::exception &e) {
+        return og_error_set(err, "%s: cannot write image: %s", path, e.what());
+    } catch (...) {
+        return og_error_set(err, "%s: cannot write image: unknown error", path);
+    }
+}
