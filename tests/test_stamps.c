@@ -1,11 +1,18 @@
 // Stamps: the functional shapes (zero outside and at the edge of the footprint,
-// continuous and C1 there and everywhere, finite for any input, named).
+// continuous and C1 there and everywhere, finite for any input, named) and the
+// built-in library (committed files equal a fresh run of the generator, every stamp
+// loads, peaks at 1 and is 0 on its border).
+#include "editor/stamp_library.h"
 #include "editor/stamp_shapes.h"
+#include "io/image_read.h"
+
+#include "support/test_support.h"
 
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include <stdarg.h>
 #include <setjmp.h>
@@ -176,6 +183,94 @@ static void test_shape_profiles(void **state) {
     assert_true(value(STAMP_SHAPE_RIDGE, -0.4f, 0.2f) == value(STAMP_SHAPE_RIDGE, 0.4f, -0.2f));
 }
 
+static void check_border_and_range(const char *what, const float *px, int n) {
+    float max = 0.0f;
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            float h = px[(size_t)j * n + i];
+            if (!(h >= 0.0f && h <= 1.0f)) fail_msg("%s (%d, %d) = %g", what, i, j, h);
+            if ((i == 0 || j == 0 || i == n - 1 || j == n - 1) && h != 0.0f)
+                fail_msg("%s: border (%d, %d) = %g, want 0", what, i, j, h);
+            max = h > max ? h : max;
+        }
+    if (max != 1.0f) fail_msg("%s: peak %g, want 1", what, max);
+}
+
+static void test_library_entries(void **state) {
+    (void)state;
+    int n = stamp_library_count();
+    assert_true(n >= 8);
+    assert_null(stamp_library_entry_at(-1));
+    assert_null(stamp_library_entry_at(n));
+    char *readme = test_read_file(OROGEN_RESOURCE_DIR "/stamps/README.md", NULL);
+    assert_non_null(readme);
+    for (int i = 0; i < n; i++) {
+        const stamp_library_entry *e = stamp_library_entry_at(i);
+        assert_non_null(e);
+        assert_true(strlen(e->name) > 0 && strlen(e->about) > 0);
+        for (int k = 0; k < i; k++)
+            assert_string_not_equal(e->name, stamp_library_entry_at(k)->name);
+        char file[256];
+        snprintf(file, sizeof file, "`%s.png`", e->name);
+        if (!strstr(readme, file)) fail_msg("resources/stamps/README.md does not list %s", file);
+    }
+    free(readme);
+}
+
+// Rendering is deterministic, at any size, with the border at 0 and the peak at 1.
+static void test_library_render(void **state) {
+    (void)state;
+    enum { N = 65 };
+    float a[N * N], b[N * N];
+    for (int i = 0; i < stamp_library_count(); i++) {
+        assert_int_equal(stamp_library_render(i, N, a), 0);
+        assert_int_equal(stamp_library_render(i, N, b), 0);
+        assert_memory_equal(a, b, sizeof a);
+        check_border_and_range(stamp_library_entry_at(i)->name, a, N);
+    }
+    assert_int_equal(stamp_library_render(-1, N, a), -1);
+    assert_int_equal(stamp_library_render(stamp_library_count(), N, a), -1);
+    assert_int_equal(stamp_library_render(0, 2, a), -1);
+}
+
+static float *load(const char *dir, const char *name) {
+    char path[4096];
+    snprintf(path, sizeof path, "%s/%s.png", dir, name);
+    float *px;
+    int w, h;
+    og_error err;
+    if (image_read_luminance(path, &px, &w, &h, &err) != 0) fail_msg("%s", err.msg);
+    assert_int_equal(w, STAMP_LIBRARY_SIZE);
+    assert_int_equal(h, STAMP_LIBRARY_SIZE);
+    return px;
+}
+
+// The committed stamps are this generator's output: a fresh run matches every pixel.
+static void test_committed_library_is_regenerated(void **state) {
+    (void)state;
+    char dir[4096];
+    snprintf(dir, sizeof dir, "%s", test_tmpdir("stamps"));
+    og_error err;
+    if (stamp_library_generate(dir, &err) != 0) fail_msg("%s", err.msg);
+    const char *committed = OROGEN_RESOURCE_DIR "/stamps";
+    for (int i = 0; i < stamp_library_count(); i++) {
+        const char *name = stamp_library_entry_at(i)->name;
+        float *want = load(dir, name), *got = load(committed, name);
+        check_border_and_range(name, got, STAMP_LIBRARY_SIZE);
+        double worst = 0.0;
+        for (size_t k = 0; k < (size_t)STAMP_LIBRARY_SIZE * STAMP_LIBRARY_SIZE; k++)
+            worst = fmax(worst, fabs((double)want[k] - got[k]));
+        if (worst > 1.0 / 65535 + 1e-7)
+            fail_msg("resources/stamps/%s.png differs from make_stamps output by %g; "
+                     "regenerate with make_stamps resources/stamps",
+                     name, worst);
+        free(want), free(got);
+    }
+    test_rmtree(dir);
+    assert_int_equal(stamp_library_generate("/nonexistent/folder", &err), -1);
+    assert_non_null(strstr(err.msg, "/nonexistent/folder"));
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_shape_names),
@@ -184,6 +279,9 @@ int main(void) {
         cmocka_unit_test(test_smooth_everywhere),
         cmocka_unit_test(test_finite_for_any_input),
         cmocka_unit_test(test_shape_profiles),
+        cmocka_unit_test(test_library_entries),
+        cmocka_unit_test(test_library_render),
+        cmocka_unit_test(test_committed_library_is_regenerated),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
