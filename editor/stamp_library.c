@@ -260,7 +260,7 @@ static const stamp_def STAMPS[] = {
     {{"mountain", 0, "ridged multifractal (8 octaves) over a cone"}, mountain},
     {{"eroded_peak", 0, "cone + gaussian peak cut by radial gullies (zero crossings of 3D fBm)"},
      eroded_peak},
-    {{"volcano", 0, "the volcano shape with an fBm-ragged outline and rough flanks"}, volcano},
+    {{"stratovolcano", 0, "the volcano shape with an fBm-ragged outline and rough flanks"}, volcano},
     {{"crater_field", 0, "disjoint crater shapes of assorted sizes on a low dome"}, crater_field},
     {{"dunes", 0, "asymmetric transverse dunes along u, crests bent by fBm"}, dunes},
     {{"canyon", 1, "a meandering gorge with a bench along u; subtract it"}, canyon},

@@ -12,8 +12,7 @@
 #define OROGEN_EDITOR_STAMP_SHAPES_H
 
 typedef enum stamp_shape {
-    STAMP_SHAPE_GAUSSIAN, // exp(-4 |d|^2), renormalised: 1 at the centre, value and slope 0 at |d|
-                          // = 1
+    STAMP_SHAPE_GAUSSIAN, // exp(-4 r^2) renormalised: 1 at the centre, value and slope 0 at r = 1
     STAMP_SHAPE_CRATER,   // bowl down to -0.7, rim +0.3 at r = 0.65, ejecta blanket out to r = 1
     STAMP_SHAPE_CONE,     // straight flanks, rounded tip (1 at the centre), rounded foot
     STAMP_SHAPE_VOLCANO,  // concave cone, rim 1 at r = 0.16 around a caldera floored at 0.6

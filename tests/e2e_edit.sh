@@ -43,6 +43,7 @@ grep -q 'raise stroke' "$work/out"; check "history names the stroke" $?
 run -c 'stamps'
 [ "$(grep -c ' library' "$work/out")" -ge 6 ]; check "at least 6 built-in library stamps" $?
 [ "$(grep -c ' functional' "$work/out")" -eq 6 ]; check "6 functional stamps" $?
+[ -z "$(cut -d' ' -f1 "$work/out" | sort | uniq -d)" ]; check "stamp names are unique (each one reachable)" $?
 for s in gaussian crater cone volcano mesa ridge mountain dunes canyon; do
     run -c "$world; stamp $s 1000 1000 scale=2 rot=37 intensity=40; $area; undo; $area"
     [ $status = 0 ]; check "stamp $s runs" $?
