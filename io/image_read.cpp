@@ -169,7 +169,7 @@ int write_impl(const char *path, const float *pixels, int width, int height, og_
 
 } // namespace
 
-extern "C" int image_read_luminance(const char *path, float **pixels, int *width, int *height,
+extern "C" __attribute__((visibility("default"))) int orogen_image_module_read_luminance(const char *path, float **pixels, int *width, int *height,
                                     og_error *err) {
     *pixels = nullptr;
     *width = *height = 0;
@@ -183,7 +183,7 @@ extern "C" int image_read_luminance(const char *path, float **pixels, int *width
     }
 }
 
-extern "C" int image_write_gray16(const char *path, const float *pixels, int width, int height,
+extern "C" __attribute__((visibility("default"))) int orogen_image_module_write_gray16(const char *path, const float *pixels, int width, int height,
                                   og_error *err) {
     if (!path || !pixels) return og_error_set(err, "image_write_gray16: no path or pixels");
     try {
