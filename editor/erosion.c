@@ -1,13 +1,13 @@
 #include "editor/erosion.h"
 
 #include <math.h>
+#include <stdatomic.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
-// Clamps a weight to [0, 1]; NaN and negatives become 0. Two plain selects, so that
-// vector loops can use max and min.
+// Clamps a weight to [0, 1]; NaN and negatives become 0.
 static inline float wclamp(float w) {
     float a = w > 0.0f ? w : 0.0f;
     return a < 1.0f ? a : 1.0f;
@@ -34,8 +34,8 @@ int erosion_grid_validate(const erosion_grid *g, og_error *err) {
                             g->width, g->height);
     if (!g->heights) return og_error_set(err, "heights: NULL");
     if (!g->weight) return og_error_set(err, "weight: NULL");
-    if (!(g->spacing > 0.0f) || !isfinite(g->spacing))
-        return og_error_set(err, "spacing: expected a finite number > 0 metres, got %g",
+    if (!(g->spacing >= 1e-4f && g->spacing <= 1e7f))
+        return og_error_set(err, "spacing: expected 1e-4 to 1e7 metres, got %g",
                             (double)g->spacing);
     return 0;
 }
@@ -56,19 +56,18 @@ int erosion_thermal_validate(const thermal_params *p, og_error *err) {
 }
 
 // Rows [j0, j1) and columns [i0, i1) hold every cell with weight > 0. Returns 0 if none.
+// Scans each row from both ends, so a row that is weighted near its ends costs little.
 static int weighted_bounds(const erosion_grid *g, int *i0, int *i1, int *j0, int *j1) {
-    int W = g->width, H = g->height;
+    const int W = g->width, H = g->height;
     *i0 = W, *i1 = 0, *j0 = H, *j1 = 0;
     for (int j = 0; j < H; j++) {
         const float *wr = g->weight + (size_t)j * W;
-        int first = -1, last = -1;
-        for (int i = 0; i < W; i++) {
-            if (wclamp(wr[i]) > 0.0f) {
-                if (first < 0) first = i;
-                last = i;
-            }
-        }
-        if (first < 0) continue;
+        int first = 0, last = W - 1;
+        while (first < W && !(wr[first] > 0.0f))
+            first++;
+        if (first == W) continue;
+        while (!(wr[last] > 0.0f))
+            last--;
         if (first < *i0) *i0 = first;
         if (last + 1 > *i1) *i1 = last + 1;
         if (j < *j0) *j0 = j;
@@ -77,153 +76,218 @@ static int weighted_bounds(const erosion_grid *g, int *i0, int *i1, int *j0, int
     return *i0 < *i1;
 }
 
-static const int DI[8] = {-1, 0, 1, -1, 1, -1, 0, 1};
-static const int DJ[8] = {-1, -1, -1, 0, 0, 1, 1, 1};
-
-// The thermal pass works a row at a time over the weighted bounding box, in loops the
-// compiler vectorises. Deltas live in a ring of three rows: row j - 1 is final, and no
-// longer read, once row j has been processed, so it is applied then.
+// The thermal pass works on a copy of the weighted bounding box padded with one ring of
+// zero-weight cells, so that every cell has eight neighbours and the row loops have no
+// edge cases (GCC vectorises them). Per iteration and row: pass 1 finds each cell's
+// share f of its excess to move; pass 2 gathers, for each cell, what it receives minus
+// what it gives. The amount a pair exchanges is computed bit-identically from both
+// sides, so mass is conserved up to the rounding of the sums.
 typedef struct thermal_ws {
-    const erosion_grid *g;
-    int i0, i1, j0, j1, n; // box; n = i1 - i0
-    float thr[8];          // largest stable drop per direction, metres
+    int n, rows, stride; // box columns and rows; stride = n + 2
+    float *h, *w;        // padded copies, (rows + 2) x stride; border weights are 0
+    float *f[3];         // f of rows r - 1, r, r + 1 (ring; border entries stay 0)
+    float *d[2];         // deltas of rows r - 1, r (ring)
+    float ortho, diag;   // largest stable drop to an edge / corner neighbour, metres
     float half_rate;
-    float *e[8];    // excess drop towards each neighbour of the current row
-    float *f, *out; // per cell: share of the excess moved; total outflow
-    float *ring[3]; // deltas of rows j - 1, j, j + 1
 } thermal_ws;
 
-static inline float *ring_row(const thermal_ws *ws, int j) {
-    return ws->ring[(j - ws->j0) % 3];
+// The iteration is compiled twice, for baseline x86-64 and for AVX2 (about twice as fast),
+// from the same always-inlined bodies; both give the same bits (lane-wise IEEE
+// operations, no FMA).
+#define ROW_KERNEL static inline __attribute__((always_inline))
+
+// Excess drop from c towards a weighted neighbour, else 0.
+static inline float excess_to(float hc, float hn, float wn, float thr) {
+    float e = (hc - hn) - thr;
+    return select_bits((wn > 0.0f) & (e > 0.0f), e, 0.0f);
 }
 
-// The row kernels stay out of line: inlined, they lose `restrict` and GCC stops
-// vectorising them.
-#define ROW_KERNEL static __attribute__((noinline))
-
-// e = the drop beyond the threshold where both ends are weighted, else 0.
-ROW_KERNEL void excess_row(float *restrict e, const float *restrict hc, const float *restrict hn,
-                           const float *restrict wc, const float *restrict wn, float thr, int n) {
-    for (int x = 0; x < n; x++) {
-        float d = hc[x] - hn[x] - thr;
-        int keep = (wc[x] > 0.0f) & (wn[x] > 0.0f) & (d > 0.0f); // no branches: vectorises
-        e[x] = keep ? d : 0.0f;
-    }
-}
-
-// Moves f x e x (smaller weight) to the neighbour; out collects the cell's loss.
-ROW_KERNEL void scatter_row(float *restrict dn, float *restrict out, const float *restrict f,
-                            const float *restrict e, const float *restrict wc,
-                            const float *restrict wn, int n) {
-    for (int x = 0; x < n; x++) {
-        float a = wclamp(wc[x]), b = wclamp(wn[x]);
-        float t = f[x] * e[x] * (a < b ? a : b);
-        dn[x] += t;
-        out[x] += t;
-    }
-}
-
-// Half the largest excess, split by excess: no neighbour gets more than half its own
-// excess, so no pair overshoots its repose. Also clears out.
-ROW_KERNEL void share_row(float *restrict f, float *restrict out, const float *const e[8],
-                          float half_rate, int n) {
-    const float *restrict e0 = e[0], *restrict e1 = e[1], *restrict e2 = e[2], *restrict e3 = e[3],
-                          *restrict e4 = e[4], *restrict e5 = e[5], *restrict e6 = e[6],
-                          *restrict e7 = e[7];
-    for (int x = 0; x < n; x++) {
-        float sum = ((e0[x] + e1[x]) + (e2[x] + e3[x])) + ((e4[x] + e5[x]) + (e6[x] + e7[x]));
-        float mx = e0[x];
-        mx = select_bits(e1[x] > mx, e1[x], mx);
-        mx = select_bits(e2[x] > mx, e2[x], mx);
-        mx = select_bits(e3[x] > mx, e3[x], mx);
-        mx = select_bits(e4[x] > mx, e4[x], mx);
-        mx = select_bits(e5[x] > mx, e5[x], mx);
-        mx = select_bits(e6[x] > mx, e6[x], mx);
-        mx = select_bits(e7[x] > mx, e7[x], mx);
-        // Excesses are >= 0, so a zero sum means a zero max and f = 0.
+// Pass 1: moving half the largest excess, split by excess, gives no neighbour more than
+// half its own excess, so no pair overshoots its repose. Excesses are >= 0, so a zero
+// sum means a zero max and f = 0.
+ROW_KERNEL void share_row(float *restrict f, const float *restrict hm, const float *restrict hc,
+                          const float *restrict hp, const float *restrict wm,
+                          const float *restrict wc, const float *restrict wp, float ortho,
+                          float diag, float half_rate, int n) {
+    for (int x = 1; x <= n; x++) {
+        const float h = hc[x];
+        const float e0 = excess_to(h, hm[x - 1], wm[x - 1], diag);
+        const float e1 = excess_to(h, hm[x], wm[x], ortho);
+        const float e2 = excess_to(h, hm[x + 1], wm[x + 1], diag);
+        const float e3 = excess_to(h, hc[x - 1], wc[x - 1], ortho);
+        const float e4 = excess_to(h, hc[x + 1], wc[x + 1], ortho);
+        const float e5 = excess_to(h, hp[x - 1], wp[x - 1], diag);
+        const float e6 = excess_to(h, hp[x], wp[x], ortho);
+        const float e7 = excess_to(h, hp[x + 1], wp[x + 1], diag);
+        const float sum = ((e0 + e1) + (e2 + e3)) + ((e4 + e5) + (e6 + e7));
+        float mx = e0;
+        mx = select_bits(e1 > mx, e1, mx);
+        mx = select_bits(e2 > mx, e2, mx);
+        mx = select_bits(e3 > mx, e3, mx);
+        mx = select_bits(e4 > mx, e4, mx);
+        mx = select_bits(e5 > mx, e5, mx);
+        mx = select_bits(e6 > mx, e6, mx);
+        mx = select_bits(e7 > mx, e7, mx);
         f[x] = half_rate * (mx / select_bits(sum > 0.0f, sum, 1.0f));
-        out[x] = 0.0f;
     }
 }
 
-ROW_KERNEL void subtract_row(float *restrict d, const float *restrict out, int n) {
-    for (int x = 0; x < n; x++)
-        d[x] -= out[x];
+// What c receives from n minus what it gives to n, scaled by the smaller weight (0 for
+// the halo). At most one of the two is non-zero. From n's side the same expressions
+// give the same bits, negated.
+static inline float exchange(float hc, float fc, float wc, float hn, float fn, float wn,
+                             float thr) {
+    const float down = hc - hn, up = -down; // exact negation: up == hn - hc
+    const float eo = down - thr, ei = up - thr;
+    const float give = fc * select_bits(eo > 0.0f, eo, 0.0f);
+    const float take = fn * select_bits(ei > 0.0f, ei, 0.0f);
+    return (take - give) * select_bits(wc < wn, wc, wn);
 }
 
-static void thermal_row(thermal_ws *ws, int j) {
-    const erosion_grid *g = ws->g;
-    const int W = g->width, n = ws->n;
-    const float *hc = g->heights + (size_t)j * W + ws->i0;
-    const float *wc = g->weight + (size_t)j * W + ws->i0;
-    int valid[8];
-    for (int k = 0; k < 8; k++) {
-        const int nj = j + DJ[k], lo = (DI[k] < 0), hi = (DI[k] > 0) ? n - 1 : n;
-        float *e = ws->e[k];
-        valid[k] = nj >= ws->j0 && nj < ws->j1 && lo < hi;
-        if (!valid[k]) {
-            memset(e, 0, sizeof(float) * (size_t)n); // outside the box: all weights are 0
-            continue;
-        }
-        const ptrdiff_t shift = (ptrdiff_t)DJ[k] * W + DI[k];
-        e[0] = e[n - 1] = 0.0f;
-        excess_row(e + lo, hc + lo, hc + shift + lo, wc + lo, wc + shift + lo, ws->thr[k], hi - lo);
+// Pass 2.
+ROW_KERNEL void delta_row(float *restrict d, const float *restrict hm, const float *restrict hc,
+                          const float *restrict hp, const float *restrict wm,
+                          const float *restrict wc, const float *restrict wp,
+                          const float *restrict fm, const float *restrict fc,
+                          const float *restrict fp, float ortho, float diag, int n) {
+    for (int x = 1; x <= n; x++) {
+        const float h = hc[x], f = fc[x], w = wc[x];
+        float s = exchange(h, f, w, hm[x - 1], fm[x - 1], wm[x - 1], diag);
+        s += exchange(h, f, w, hm[x], fm[x], wm[x], ortho);
+        s += exchange(h, f, w, hm[x + 1], fm[x + 1], wm[x + 1], diag);
+        s += exchange(h, f, w, hc[x - 1], fc[x - 1], wc[x - 1], ortho);
+        s += exchange(h, f, w, hc[x + 1], fc[x + 1], wc[x + 1], ortho);
+        s += exchange(h, f, w, hp[x - 1], fp[x - 1], wp[x - 1], diag);
+        s += exchange(h, f, w, hp[x], fp[x], wp[x], ortho);
+        s += exchange(h, f, w, hp[x + 1], fp[x + 1], wp[x + 1], diag);
+        d[x] = s;
     }
-    share_row(ws->f, ws->out, (const float *const *)ws->e, ws->half_rate, n);
-    for (int k = 0; k < 8; k++) {
-        if (!valid[k]) continue;
-        const int lo = (DI[k] < 0), hi = (DI[k] > 0) ? n - 1 : n;
-        const ptrdiff_t shift = (ptrdiff_t)DJ[k] * W + DI[k];
-        float *dn = ring_row(ws, j + DJ[k]) + DI[k];
-        scatter_row(dn + lo, ws->out + lo, ws->f + lo, ws->e[k] + lo, wc + lo, wc + shift + lo,
-                    hi - lo);
-    }
-    subtract_row(ring_row(ws, j), ws->out, n);
 }
 
-// Adds row j's deltas to its weighted cells (others are rewritten with their own bits)
-// and clears the ring row for reuse.
-ROW_KERNEL void apply_row(float *restrict h, const float *restrict w, float *restrict d, int n) {
-    for (int x = 0; x < n; x++) {
+// Adds deltas to weighted cells; others keep their bits.
+ROW_KERNEL void apply_row(float *restrict h, const float *restrict w, const float *restrict d,
+                          int n) {
+    for (int x = 1; x <= n; x++)
         h[x] = select_bits(w[x] > 0.0f, h[x] + d[x], h[x]);
-        d[x] = 0.0f;
+}
+
+static inline float *ws_row(const thermal_ws *ws, float *base, int r) {
+    return base + (size_t)r * ws->stride;
+}
+
+ROW_KERNEL void thermal_share(thermal_ws *ws, int r) {
+    float *f = ws->f[r % 3];
+    if (r > ws->rows) {
+        memset(f, 0, sizeof(float) * (size_t)ws->stride);
+        return;
+    }
+    share_row(f, ws_row(ws, ws->h, r - 1), ws_row(ws, ws->h, r), ws_row(ws, ws->h, r + 1),
+              ws_row(ws, ws->w, r - 1), ws_row(ws, ws->w, r), ws_row(ws, ws->w, r + 1), ws->ortho,
+              ws->diag, ws->half_rate, ws->n);
+}
+
+// One iteration. Row r's delta needs the old heights of rows r - 1 .. r + 1 and f of
+// the same rows, so row r - 1 is updated once row r's delta is known.
+ROW_KERNEL void thermal_iterations(thermal_ws *ws, int iterations) {
+    for (int it = 0; it < iterations; it++) {
+        memset(ws->f[0], 0, sizeof(float) * (size_t)ws->stride); // row 0 is border
+        thermal_share(ws, 1);
+        for (int r = 1; r <= ws->rows; r++) {
+            thermal_share(ws, r + 1);
+            delta_row(ws->d[r % 2], ws_row(ws, ws->h, r - 1), ws_row(ws, ws->h, r),
+                      ws_row(ws, ws->h, r + 1), ws_row(ws, ws->w, r - 1), ws_row(ws, ws->w, r),
+                      ws_row(ws, ws->w, r + 1), ws->f[(r - 1) % 3], ws->f[r % 3],
+                      ws->f[(r + 1) % 3], ws->ortho, ws->diag, ws->n);
+            if (r > 1)
+                apply_row(ws_row(ws, ws->h, r - 1), ws_row(ws, ws->w, r - 1), ws->d[(r - 1) % 2],
+                          ws->n);
+        }
+        apply_row(ws_row(ws, ws->h, ws->rows), ws_row(ws, ws->w, ws->rows), ws->d[ws->rows % 2],
+                  ws->n);
     }
 }
 
-static void thermal_apply(thermal_ws *ws, int j) {
-    const erosion_grid *g = ws->g;
-    const size_t row = (size_t)j * g->width + ws->i0;
-    apply_row(g->heights + row, g->weight + row, ring_row(ws, j), ws->n);
+static void thermal_run_base(thermal_ws *ws, int iterations) {
+    thermal_iterations(ws, iterations);
+}
+
+#if defined(__x86_64__) || defined(__i386__)
+#define HAVE_AVX2_PATH 1
+__attribute__((target("avx2"))) static void thermal_run_avx2(thermal_ws *ws, int iterations) {
+    thermal_iterations(ws, iterations);
+}
+#endif
+
+// Test hook (not in the header): 0 forces the baseline build so tests can check that
+// both give the same bits.
+void erosion_allow_avx2(int allow);
+static atomic_int allow_avx2 = 1;
+void erosion_allow_avx2(int allow) {
+    atomic_store(&allow_avx2, allow);
+}
+
+static void thermal_run(thermal_ws *ws, int iterations) {
+#ifdef HAVE_AVX2_PATH
+    if (atomic_load_explicit(&allow_avx2, memory_order_relaxed) && __builtin_cpu_supports("avx2")) {
+        thermal_run_avx2(ws, iterations);
+        return;
+    }
+#endif
+    thermal_run_base(ws, iterations);
 }
 
 void erosion_thermal(erosion_grid *g, const thermal_params *p) {
     if (erosion_grid_validate(g, NULL) || erosion_thermal_validate(p, NULL)) return;
     if (p->iterations == 0) return;
-    thermal_ws ws = {.g = g};
-    if (!weighted_bounds(g, &ws.i0, &ws.i1, &ws.j0, &ws.j1)) return;
-    ws.n = ws.i1 - ws.i0;
-    float *block = calloc((size_t)13 * ws.n, sizeof(float));
+    int i0, i1, j0, j1;
+    if (!weighted_bounds(g, &i0, &i1, &j0, &j1)) return;
+    thermal_ws ws = {.n = i1 - i0, .rows = j1 - j0, .stride = i1 - i0 + 2};
+    const size_t plane = (size_t)ws.stride * (size_t)(ws.rows + 2),
+                 row_bytes = sizeof(float) * (size_t)ws.stride;
+    float *block = malloc((2 * plane + 5 * (size_t)ws.stride) * sizeof(float));
     if (!block) return;
-    for (int k = 0; k < 8; k++)
-        ws.e[k] = block + (size_t)k * ws.n;
-    ws.f = block + (size_t)8 * ws.n;
-    ws.out = block + (size_t)9 * ws.n;
-    for (int r = 0; r < 3; r++)
-        ws.ring[r] = block + (size_t)(10 + r) * ws.n;
+    ws.h = block;
+    ws.w = block + plane;
+    memset(block + 2 * plane, 0, 5 * row_bytes); // f and delta rings, borders included
+    for (int k = 0; k < 3; k++)
+        ws.f[k] = block + 2 * plane + (size_t)k * ws.stride;
+    for (int k = 0; k < 2; k++)
+        ws.d[k] = block + 2 * plane + (size_t)(3 + k) * ws.stride;
+    // The border has weight 0 and height 0 (only ever read next to a zero weight).
+    memset(ws_row(&ws, ws.h, 0), 0, row_bytes);
+    memset(ws_row(&ws, ws.w, 0), 0, row_bytes);
+    memset(ws_row(&ws, ws.h, ws.rows + 1), 0, row_bytes);
+    memset(ws_row(&ws, ws.w, ws.rows + 1), 0, row_bytes);
+    for (int r = 1; r <= ws.rows; r++) {
+        const size_t src = (size_t)(j0 + r - 1) * g->width + i0;
+        float *h = ws_row(&ws, ws.h, r), *w = ws_row(&ws, ws.w, r);
+        memcpy(h + 1, g->heights + src, sizeof(float) * (size_t)ws.n);
+        for (int x = 1; x <= ws.n; x++)
+            w[x] = wclamp(g->weight[src + x - 1]);
+        h[0] = h[ws.n + 1] = w[0] = w[ws.n + 1] = 0.0f;
+    }
 
     const double tan_talus = tan((double)p->talus_deg * (3.14159265358979323846 / 180.0));
-    const float ortho = (float)(tan_talus * g->spacing);
-    const float diag = (float)(tan_talus * g->spacing * 1.4142135623730951);
-    for (int k = 0; k < 8; k++)
-        ws.thr[k] = DI[k] != 0 && DJ[k] != 0 ? diag : ortho;
+    ws.ortho = (float)(tan_talus * g->spacing);
+    ws.diag = (float)(tan_talus * g->spacing * 1.4142135623730951);
     ws.half_rate = 0.5f * p->rate;
+    thermal_run(&ws, p->iterations);
 
-    for (int it = 0; it < p->iterations; it++) {
-        for (int j = ws.j0; j < ws.j1; j++) {
-            thermal_row(&ws, j);
-            if (j > ws.j0) thermal_apply(&ws, j - 1);
+    // Write back runs of weighted cells only.
+    for (int r = 1; r <= ws.rows; r++) {
+        float *dst = g->heights + (size_t)(j0 + r - 1) * g->width + i0; // cell x is dst[x - 1]
+        const float *h = ws_row(&ws, ws.h, r), *w = ws_row(&ws, ws.w, r);
+        for (int x = 1; x <= ws.n;) {
+            if (!(w[x] > 0.0f)) {
+                x++;
+                continue;
+            }
+            int end = x + 1;
+            while (end <= ws.n && w[end] > 0.0f)
+                end++;
+            memcpy(dst + x - 1, h + x, sizeof(float) * (size_t)(end - x));
+            x = end;
         }
-        thermal_apply(&ws, ws.j1 - 1);
     }
     free(block);
 }
@@ -346,6 +410,9 @@ typedef struct droplet_ctx {
     const float *wt;
     int W, H;
     disc disc;
+    // What earlier drops could not place because of float rounding; the next drop adds
+    // it, so a whole call loses at most one rounding.
+    double carry;
 } droplet_ctx;
 
 // A droplet may stand at (x, y) when its bilinear cell lies in the grid and all four
@@ -374,30 +441,46 @@ static inline double add_height(float *h, float d) {
     return (double)nw - (double)old;
 }
 
-// Lowers the weighted cells of the disc around the node nearest (x, y) by amount x
-// disc weight x cell weight, never below `floor_h`. Returns the height removed.
-static double erode_disc(droplet_ctx *c, float x, float y, double amount, float floor_h) {
+// Lowers cell n by amount x disc weight dw x its weight, never below floor_h; returns
+// the change stored. Branch-free: a zero-weight cell gets old - (+0), its own bits
+// (even -0).
+static inline double erode_cell(droplet_ctx *c, ptrdiff_t n, float amount, float dw,
+                                float floor_h) {
+    const float old = c->h[n];
+    float room = old - floor_h, take = amount * dw * wclamp(c->wt[n]);
+    room = room > 0.0f ? room : 0.0f;
+    take = take < room ? take : room;
+    const float nw = old - take;
+    c->h[n] = nw;
+    return (double)old - (double)nw;
+}
+
+// Erodes the disc around the node nearest (x, y); returns the height removed. Four
+// running sums (in a fixed order, so still deterministic) keep the additions from
+// serialising the loop.
+static double erode_disc(droplet_ctx *c, float x, float y, float amount, float floor_h) {
     const int ci = (int)(x + 0.5f), cj = (int)(y + 0.5f);
-    const size_t centre = (size_t)cj * c->W + ci;
+    const ptrdiff_t centre = (ptrdiff_t)cj * c->W + ci;
     const disc *d = &c->disc;
-    const int inside =
-        ci - d->reach >= 0 && ci + d->reach < c->W && cj - d->reach >= 0 && cj + d->reach < c->H;
-    double removed = 0.0;
-    for (int k = 0; k < d->count; k++) {
-        if (!inside) {
-            int i = ci + d->di[k], j = cj + d->dj[k];
-            if (i < 0 || i >= c->W || j < 0 || j >= c->H) continue;
+    double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+    if (ci - d->reach >= 0 && ci + d->reach < c->W && cj - d->reach >= 0 && cj + d->reach < c->H) {
+        int k = 0;
+        for (; k + 4 <= d->count; k += 4) {
+            s0 += erode_cell(c, centre + d->off[k], amount, d->w[k], floor_h);
+            s1 += erode_cell(c, centre + d->off[k + 1], amount, d->w[k + 1], floor_h);
+            s2 += erode_cell(c, centre + d->off[k + 2], amount, d->w[k + 2], floor_h);
+            s3 += erode_cell(c, centre + d->off[k + 3], amount, d->w[k + 3], floor_h);
         }
-        size_t n = (size_t)((ptrdiff_t)centre + d->off[k]);
-        float w = wclamp(c->wt[n]);
-        if (w == 0.0f) continue;
-        float room = c->h[n] - floor_h;
-        if (!(room > 0.0f)) continue;
-        float take = (float)(amount * d->w[k] * w);
-        if (take > room) take = room;
-        if (take > 0.0f) removed -= add_height(&c->h[n], -take);
+        for (; k < d->count; k++)
+            s0 += erode_cell(c, centre + d->off[k], amount, d->w[k], floor_h);
+    } else {
+        for (int k = 0; k < d->count; k++) {
+            int i = ci + d->di[k], j = cj + d->dj[k];
+            if (i >= 0 && i < c->W && j >= 0 && j < c->H)
+                s0 += erode_cell(c, centre + d->off[k], amount, d->w[k], floor_h);
+        }
     }
-    return removed;
+    return (s0 + s1) + (s2 + s3);
 }
 
 // Lays `amount` over the weighted cells of the disc around the node nearest (x, y),
@@ -424,7 +507,25 @@ static double drop_disc(droplet_ctx *c, float x, float y, double amount) {
         double w = (double)d->w[k] * wclamp(c->wt[n]);
         if (w > 0.0) added += add_height(&c->h[n], (float)(amount * (w / total)));
     }
+    // Big loads round visibly in float; the centre (a weighted corner) takes the rest.
+    if (added != amount) added += add_height(&c->h[centre], (float)(amount - added));
     return added;
+}
+
+#define SPAWN_AHEAD 16
+
+// Asks for the cache lines of the disc around (x, y) (both ends of each row).
+static void prefetch_disc(const droplet_ctx *c, float x, float y) {
+    const int ci = (int)(x + 0.5f), cj = (int)(y + 0.5f), R = c->disc.reach;
+    const int i0 = ci - R < 0 ? 0 : ci - R, i1 = ci + R >= c->W ? c->W - 1 : ci + R;
+    for (int j = cj - R; j <= cj + R; j++) {
+        if (j < 0 || j >= c->H) continue;
+        const size_t row = (size_t)j * c->W;
+        __builtin_prefetch(c->h + row + i0, 1);
+        __builtin_prefetch(c->h + row + i1, 1);
+        __builtin_prefetch(c->wt + row + i0, 0);
+        __builtin_prefetch(c->wt + row + i1, 0);
+    }
 }
 
 // Runs one droplet from (x, y); adds its books to r.
@@ -462,13 +563,14 @@ static void droplet_run(droplet_ctx *c, const hydraulic_params *p, float spacing
 
         const float nx = x + dx, ny = y + dy;
         if (!alive_at(c, nx, ny)) break;
+        r->steps++;
         const float dh = bilinear(c->h, W, nx, ny) - h_here;
 
         double cap = -(double)dh * speed * water * p->capacity;
         if (cap < min_cap) cap = min_cap;
         if (dh > 0.0f || sediment > cap) {
-            // Uphill: fill the hollow behind up to the new height if possible;
-            // otherwise drop a share of the surplus. Into the cell's four corners.
+            // Uphill: fill the hollow the droplet is in, up to the next height if it
+            // carries that much; else drop a share of the surplus. Into the four corners.
             double amount =
                 dh > 0.0f ? (dh < sediment ? dh : sediment) : (sediment - cap) * p->deposition;
             const size_t k = (size_t)j * W + i;
@@ -485,7 +587,7 @@ static void droplet_run(droplet_ctx *c, const hydraulic_params *p, float spacing
             // Never more than the drop, and no cell below where the water goes next.
             double amount = (cap - sediment) * p->erosion;
             if (amount > -(double)dh) amount = -(double)dh;
-            double removed = erode_disc(c, x, y, amount, h_here + dh);
+            double removed = erode_disc(c, x, y, (float)amount, h_here + dh);
             sediment += removed;
             r->eroded += removed;
         }
@@ -495,7 +597,14 @@ static void droplet_run(droplet_ctx *c, const hydraulic_params *p, float spacing
         water *= 1.0f - p->evaporation;
         x = nx, y = ny;
     }
-    if (sediment > 0.0) r->dropped += drop_disc(c, x, y, sediment);
+    const double load = sediment + c->carry;
+    if (load > 0.0) {
+        const double added = drop_disc(c, x, y, load);
+        r->dropped += added;
+        c->carry = load - added;
+    } else {
+        c->carry = load;
+    }
 }
 
 void erosion_hydraulic(erosion_grid *g, const hydraulic_params *p, hydraulic_report *report) {
@@ -506,12 +615,14 @@ void erosion_hydraulic(erosion_grid *g, const hydraulic_params *p, hydraulic_rep
     if (W < 2 || H < 2 || p->droplets == 0) return;
 
     // Spawn table: every bilinear cell whose four corners are weighted, with the
-    // running sum of its mean corner weight (sampled by bisection).
+    // running sum of its mean corner weight; a guide table (Chen & Asau's cutpoints)
+    // makes finding the cell for a random running sum O(1) on average.
     size_t cells = (size_t)(W - 1) * (H - 1), count = 0;
     uint32_t *spawn_cell = malloc(cells * sizeof *spawn_cell);
+    uint32_t *guide = malloc(cells * sizeof *guide);
     double *spawn_cdf = malloc(cells * sizeof *spawn_cdf);
     droplet_ctx c = {.h = g->heights, .wt = g->weight, .W = W, .H = H};
-    if (!spawn_cell || !spawn_cdf || disc_build(&c.disc, p->radius_cells, W)) goto done;
+    if (!spawn_cell || !guide || !spawn_cdf || disc_build(&c.disc, p->radius_cells, W)) goto done;
     double total = 0.0;
     for (int j = 0; j < H - 1; j++) {
         const float *w0 = g->weight + (size_t)j * W, *w1 = w0 + W;
@@ -527,29 +638,45 @@ void erosion_hydraulic(erosion_grid *g, const hydraulic_params *p, hydraulic_rep
         }
     }
     if (count == 0) goto done;
+    for (size_t m = 0, k = 0; m < count; m++) {
+        const double cut = total * ((double)m / (double)count);
+        while (k < count - 1 && spawn_cdf[k] <= cut)
+            k++;
+        guide[m] = (uint32_t)k;
+    }
 
-    uint64_t rng = p->seed;
-    for (int n = 0; n < p->droplets; n++) {
-        double pick = (double)(rng_next(&rng) >> 11) * 0x1p-53 * total;
-        size_t lo = 0, hi = count - 1; // first entry whose running sum exceeds pick
-        while (lo < hi) {
-            size_t mid = lo + (hi - lo) / 2;
-            if (spawn_cdf[mid] > pick)
-                hi = mid;
-            else
-                lo = mid + 1;
+    // Start points come from their own stream and are drawn SPAWN_AHEAD droplets early,
+    // so the memory around them can be prefetched: a start is a random spot of the grid,
+    // far from the last droplet's (about 10% faster on 1024^2).
+    uint64_t spawn_rng = p->seed, walk_rng = p->seed ^ 0x6A09E667F3BCC909ull;
+    float ahead[SPAWN_AHEAD][2];
+    for (int n = 0; n < p->droplets + SPAWN_AHEAD; n++) {
+        if (n >= SPAWN_AHEAD) {
+            const float *xy = ahead[n % SPAWN_AHEAD];
+            droplet_run(&c, p, g->spacing, xy[0], xy[1], &walk_rng, &rep);
+            rep.droplets++;
         }
-        const int i = (int)(spawn_cell[lo] % (uint32_t)W), j = (int)(spawn_cell[lo] / (uint32_t)W);
-        float x = (float)i + rng_unit(&rng), y = (float)j + rng_unit(&rng);
+        if (n >= p->droplets) continue;
+        // The first entry whose running sum exceeds `pick` (the last one if none does):
+        // start at the guide, then walk either way, so rounding in the cuts is harmless.
+        const double u = (double)(rng_next(&spawn_rng) >> 11) * 0x1p-53, pick = u * total;
+        size_t k = guide[(size_t)(u * (double)count)];
+        while (k < count - 1 && spawn_cdf[k] <= pick)
+            k++;
+        while (k > 0 && spawn_cdf[k - 1] > pick)
+            k--;
+        const int i = (int)(spawn_cell[k] % (uint32_t)W), j = (int)(spawn_cell[k] / (uint32_t)W);
+        float x = (float)i + rng_unit(&spawn_rng), y = (float)j + rng_unit(&spawn_rng);
         if ((int)x != i) x = (float)i; // rounded up into the next cell
         if ((int)y != j) y = (float)j;
-        droplet_run(&c, p, g->spacing, x, y, &rng, &rep);
-        rep.droplets++;
+        ahead[n % SPAWN_AHEAD][0] = x, ahead[n % SPAWN_AHEAD][1] = y;
+        prefetch_disc(&c, x, y);
     }
 
 done:
     disc_free(&c.disc);
     free(spawn_cell);
+    free(guide);
     free(spawn_cdf);
     if (report) *report = rep;
 }
