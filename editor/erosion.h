@@ -5,15 +5,18 @@
 // whose weight is > 0.
 //
 // Shared contract:
-//  - A cell whose weight is 0 is never written (its bits stay the same); it may be
-//    read. Negative or NaN weights count as 0 and weights above 1 as 1.
+//  - A cell whose weight is 0 never changes, to the bit (the hydraulic kernel may store
+//    its own bits back); it may be read. Negative or NaN weights count as 0, weights
+//    above 1 as 1.
 //  - Deterministic: the output depends only on the inputs (no threads, no global
 //    state); the hydraulic kernel draws from its own PRNG seeded by `seed`.
 //  - Finite heights in (|h| <= 1e9 m, not checked), finite heights out. Invalid grids
 //    or parameters (see the validate functions) leave the grid untouched, as does
 //    running out of memory.
-//  - Heights enter the physics only as slopes (height / spacing), so a grid and a
-//    copy scaled uniformly in all three axes erode alike.
+//  - Heights enter the physics only as slopes (height / spacing): a grid and a copy
+//    scaled by a power of two in all three axes give the same result, scaled.
+//  - Memory per call: thermal copies the weighted bounding box (8 bytes a cell);
+//    hydraulic builds a spawn table (16 bytes a cell of the grid).
 #ifndef OROGEN_EDITOR_EROSION_H
 #define OROGEN_EDITOR_EROSION_H
 
@@ -56,15 +59,22 @@ int erosion_thermal_validate(const thermal_params *p, og_error *err);
 void erosion_thermal(erosion_grid *g, const thermal_params *p);
 
 // --- Hydraulic erosion -------------------------------------------------------------
-// Droplets start at random points of the weighted area (density proportional to the
-// weight, so scaling all weights alike changes how much, not where), follow the
-// bilinear gradient with inertia, erode over a disc of radius_cells while they carry
-// less sediment than their capacity and deposit when they carry more, slow down
-// uphill and evaporate. Every change at a cell is multiplied by its weight; an
-// erosion never lowers a cell below the height the droplet flows to next, so no
-// pits are dug. A droplet that would step onto a cell touching a zero weight or
-// the grid's edge, or that reaches max_lifetime, dies and lays all the sediment it
-// still carries over the disc around where it is (weighted cells only).
+// Droplets start at random points of the bilinear cells whose four corners are
+// weighted, with density proportional to the cells' mean weight (so scaling all
+// weights alike changes how much happens, not where). Each step a droplet turns
+// towards the downhill bilinear gradient (keeping `inertia` of its direction), moves
+// one cell, and compares its sediment with its capacity
+//     max(-dh x speed x water x capacity, min_capacity x spacing)   (metres)
+// where dh is the height change of the step: below capacity it erodes
+// erosion x (capacity - sediment), at most -dh, over a disc of radius_cells; above
+// it it deposits deposition x (sediment - capacity), and going uphill up to dh of
+// its sediment, into the four corners of its cell. Then
+// speed^2 -= gravity x dh / spacing and water *= 1 - evaporation. Every change at
+// a cell is multiplied by the cell's weight, and erosion never lowers a cell below
+// the height the droplet flows to, so no pits are dug. A droplet whose next point's
+// cell has a zero-weight corner or leaves the grid, or that reaches max_lifetime,
+// dies and lays all the sediment it carries over the disc around where it is
+// (weighted cells only).
 //
 // Mass: every change is booked as the float difference actually stored, and what a
 // final drop cannot place for rounding is carried to the next one, so a call changes
@@ -76,15 +86,15 @@ typedef struct hydraulic_params {
     int droplets;        // [0, 100000000]
     int max_lifetime;    // steps of one cell, [1, 10000]
     float inertia;       // [0, 1]; how much of its direction a droplet keeps per step
-    float capacity;      // [0, 1000]; sediment capacity per unit slope x speed x water
-    float min_capacity;  // [0, 1000]; floor of the capacity, in cell heights (x spacing m)
-    float erosion;       // [0, 1]; fraction of the free capacity eroded per step
-    float deposition;    // [0, 1]; fraction of the surplus sediment deposited per step
-    float evaporation;   // [0, 1]; fraction of the water lost per step
-    float gravity;       // [0, 1000]; speed^2 gained per unit of slope descended
+    float capacity;      // [0, 1000]
+    float min_capacity;  // [0, 1000]; in units of spacing
+    float erosion;       // [0, 1]
+    float deposition;    // [0, 1]
+    float evaporation;   // [0, 1]
+    float gravity;       // [0, 1000]
     float radius_cells;  // (0, 32]; radius of the erosion disc in cells
     float initial_water; // (0, 1000]
-    float initial_speed; // [0, 1000]
+    float initial_speed; // [0, 1000]; cells per step (the step itself is always one cell)
 } hydraulic_params;
 
 // Height sums in m x cells (each cell's change added up), all >= 0.
