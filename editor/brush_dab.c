@@ -24,10 +24,12 @@ static inline float keep_finite(float v, float old) {
 #define HOT_LOOP
 #endif
 
-HOT_LOOP static void smooth_weights(float fx0, float dz2, float inv_r, float strength, int n,
-                                    float *w) {
+// dx of sample k of a row is fdx0 + k, k counted from the dab's own first column:
+// the same float whatever span (tile) the sample is computed in.
+HOT_LOOP static void smooth_weights(float fdx0, int k0, float dz2, float inv_r, float strength,
+                                    int n, float *w) {
     for (int i = 0; i < n; i++) { // int: int64 to float conversion does not vectorise
-        float dx = fx0 + (float)i;
+        float dx = fdx0 + (float)(k0 + i);
         float t = sqrtf(dx * dx + dz2) * inv_r;
         t = t < 1.0f ? t : 1.0f;
         w[i] = (1.0f - t * t * (3.0f - 2.0f * t)) * strength;
@@ -74,13 +76,15 @@ static void row_weights(const brush_dab *d, int64_t z, int64_t x0, int64_t x1, f
         return;
     }
     float dz = (float)((double)z - d->cz), dz2 = dz * dz;
-    float fx0 = (float)((double)x0 - d->cx);
+    int64_t first = brush_dab_rect(d).x0;
+    float fdx0 = (float)((double)first - d->cx);
+    int k0 = (int)(x0 - first);
     if (b->falloff == FALLOFF_SMOOTH) { // the common case, vectorised
-        smooth_weights(fx0, dz2, inv_r, d->strength, (int)(x1 - x0), w);
+        smooth_weights(fdx0, k0, dz2, inv_r, d->strength, (int)(x1 - x0), w);
         return;
     }
     for (int64_t i = 0; i < x1 - x0; i++) {
-        float dx = fx0 + (float)i;
+        float dx = fdx0 + (float)(k0 + i);
         w[i] = brush_falloff_weight(b, sqrtf(dx * dx + dz2) * inv_r) * d->strength;
     }
 }

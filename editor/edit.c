@@ -276,7 +276,10 @@ static void replay_task(void *user, int task) {
     tile_cache_release(cache, &v);
     // Back to never-edited terrain: forget the copy so it regenerates (a later
     // `generate` must change it like any untouched tile).
-    if (j->undo && t->was_pristine && tile_cache_discard(cache, t->key) == 0)
+    // A tile saved since then is not pristine any more: the saved store holds it.
+    tile_store *saved = world_store(j->world);
+    if (j->undo && t->was_pristine && !(saved && tile_store_has(saved, t->key)) &&
+        tile_cache_discard(cache, t->key) == 0)
         tile_store_put(world_journal(j->world), t->key, NULL, &err);
 }
 

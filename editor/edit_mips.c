@@ -18,6 +18,7 @@ int edit_mips_top_level(const world_params *p) {
 
 typedef struct level_job {
     edit *e;
+    int64_t child_extent; // children per side at the child level (bounded); 0 = unbounded
     int face, level, planet; // level: the parent level being written
     grid_rect parents;       // parent samples to update
     int64_t ptx0, ptz0, ptw; // parent tiles covering them
@@ -54,6 +55,20 @@ static int child_changes(level_job *j, int64_t cx0, int64_t cz0, int64_t w, int6
             }
             tile_cache_release(cache, &v);
         }
+    // Beyond a bounded world's edge the terrain reads as its edge sample (as brushes
+    // see it), so the change there is the edge's change.
+    int64_t n = j->child_extent;
+    if (any && n > 0 && (cx0 < 0 || cz0 < 0 || cx0 + w > n || cz0 + h > n)) {
+        for (int64_t z = 0; z < h; z++) {
+            int64_t gz = cz0 + z, sz = gz < 0 ? 0 : gz >= n ? n - 1 : gz;
+            for (int64_t x = 0; x < w; x++) {
+                int64_t gx = cx0 + x, sx = gx < 0 ? 0 : gx >= n ? n - 1 : gx;
+                if ((sx != gx || sz != gz) && sx - cx0 >= 0 && sx - cx0 < w && sz - cz0 >= 0 &&
+                    sz - cz0 < h)
+                    win[z * w + x] = win[(sz - cz0) * w + (sx - cx0)];
+            }
+        }
+    }
     return any;
 }
 
@@ -134,6 +149,8 @@ int edit_mips_update(edit *e, og_error *err) {
             }
             if (grid_rect_empty(pr)) break;
             level_job job = {.e = e, .face = face, .level = level, .planet = planet, .parents = pr};
+            if (extent > 0)
+                job.child_extent = planet ? extent >> (level - 1) : ((extent - 1) >> (level - 1)) + 1;
             job.ptx0 = floor_div(pr.x0, TILE_SIZE);
             job.ptz0 = floor_div(pr.z0, TILE_SIZE);
             job.ptw = floor_div(pr.x1 - 1, TILE_SIZE) - job.ptx0 + 1;
