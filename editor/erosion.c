@@ -9,7 +9,7 @@
 
 // Clamps a weight to [0, 1]; NaN and negatives become 0.
 static inline float wclamp(float w) {
-    float a = w > 0.0f ? w : 0.0f;
+    const float a = w > 0.0f ? w : 0.0f;
     return a < 1.0f ? a : 1.0f;
 }
 
@@ -422,8 +422,8 @@ static inline int alive_at(const droplet_ctx *c, float x, float y) {
     int i = (int)x, j = (int)y;
     if (i > c->W - 2 || j > c->H - 2) return 0; // float rounding at the upper edge
     size_t k = (size_t)j * c->W + i;
-    return wclamp(c->wt[k]) > 0.0f && wclamp(c->wt[k + 1]) > 0.0f &&
-           wclamp(c->wt[k + c->W]) > 0.0f && wclamp(c->wt[k + c->W + 1]) > 0.0f;
+    return c->wt[k] > 0.0f && c->wt[k + 1] > 0.0f && c->wt[k + c->W] > 0.0f &&
+           c->wt[k + c->W + 1] > 0.0f;
 }
 
 static inline float bilinear(const float *h, int W, float x, float y) {
@@ -447,7 +447,7 @@ static inline double add_height(float *h, float d) {
 static inline double erode_cell(droplet_ctx *c, ptrdiff_t n, float amount, float dw,
                                 float floor_h) {
     const float old = c->h[n];
-    float room = old - floor_h, take = amount * dw * wclamp(c->wt[n]);
+    float room = old - floor_h, take = amount * dw * c->wt[n];
     room = room > 0.0f ? room : 0.0f;
     take = take < room ? take : room;
     const float nw = old - take;
@@ -494,7 +494,7 @@ static double drop_disc(droplet_ctx *c, float x, float y, double amount) {
     for (int k = 0; k < d->count; k++) {
         int i = ci + d->di[k], j = cj + d->dj[k];
         if (i < 0 || i >= c->W || j < 0 || j >= c->H) continue;
-        total += (double)d->w[k] * wclamp(c->wt[(size_t)((ptrdiff_t)centre + d->off[k])]);
+        total += (double)d->w[k] * c->wt[(size_t)((ptrdiff_t)centre + d->off[k])];
     }
     // total > 0 while the droplet's cell is weighted (its nearest node is a weighted
     // corner); the fallback only guards against weights that underflow.
@@ -504,7 +504,7 @@ static double drop_disc(droplet_ctx *c, float x, float y, double amount) {
         int i = ci + d->di[k], j = cj + d->dj[k];
         if (i < 0 || i >= c->W || j < 0 || j >= c->H) continue;
         size_t n = (size_t)((ptrdiff_t)centre + d->off[k]);
-        double w = (double)d->w[k] * wclamp(c->wt[n]);
+        double w = (double)d->w[k] * c->wt[n];
         if (w > 0.0) added += add_height(&c->h[n], (float)(amount * (w / total)));
     }
     // Big loads round visibly in float; the centre (a weighted corner) takes the rest.
@@ -578,7 +578,7 @@ static void droplet_run(droplet_ctx *c, const hydraulic_params *p, float spacing
             const size_t at[4] = {k, k + 1, k + (size_t)W, k + (size_t)W + 1};
             double added = 0.0;
             for (int n = 0; n < 4; n++) {
-                float put = (float)(amount * bw[n] * wclamp(c->wt[at[n]]));
+                float put = (float)(amount * bw[n] * c->wt[at[n]]);
                 if (put > 0.0f) added += add_height(&c->h[at[n]], put);
             }
             sediment -= added;
@@ -621,14 +621,18 @@ void erosion_hydraulic(erosion_grid *g, const hydraulic_params *p, hydraulic_rep
     uint32_t *spawn_cell = malloc(cells * sizeof *spawn_cell);
     uint32_t *guide = malloc(cells * sizeof *guide);
     double *spawn_cdf = malloc(cells * sizeof *spawn_cdf);
-    droplet_ctx c = {.h = g->heights, .wt = g->weight, .W = W, .H = H};
-    if (!spawn_cell || !guide || !spawn_cdf || disc_build(&c.disc, p->radius_cells, W)) goto done;
+    // The droplets read clamped weights (clamping was an eighth of their work).
+    float *wt = malloc((size_t)W * H * sizeof *wt);
+    droplet_ctx c = {.h = g->heights, .wt = wt, .W = W, .H = H};
+    if (!spawn_cell || !guide || !spawn_cdf || !wt || disc_build(&c.disc, p->radius_cells, W))
+        goto done;
+    for (size_t k = 0; k < (size_t)W * H; k++)
+        wt[k] = wclamp(g->weight[k]);
     double total = 0.0;
     for (int j = 0; j < H - 1; j++) {
-        const float *w0 = g->weight + (size_t)j * W, *w1 = w0 + W;
+        const float *w0 = wt + (size_t)j * W, *w1 = w0 + W;
         for (int i = 0; i < W - 1; i++) {
-            float a = wclamp(w0[i]), b = wclamp(w0[i + 1]), d = wclamp(w1[i]),
-                  e = wclamp(w1[i + 1]);
+            const float a = w0[i], b = w0[i + 1], d = w1[i], e = w1[i + 1];
             if (a > 0.0f && b > 0.0f && d > 0.0f && e > 0.0f) {
                 total += 0.25 * ((double)a + b + d + e);
                 spawn_cell[count] = (uint32_t)((size_t)j * W + i);
@@ -677,6 +681,7 @@ done:
     disc_free(&c.disc);
     free(spawn_cell);
     free(guide);
+    free(wt);
     free(spawn_cdf);
     if (report) *report = rep;
 }

@@ -16,7 +16,7 @@
 //  - Heights enter the physics only as slopes (height / spacing): a grid and a copy
 //    scaled by a power of two in all three axes give the same result, scaled.
 //  - Memory per call: thermal copies the weighted bounding box (8 bytes a cell);
-//    hydraulic builds a spawn table (16 bytes a cell of the grid).
+//    hydraulic builds a spawn table and clamped weights (20 bytes a cell of the grid).
 #ifndef OROGEN_EDITOR_EROSION_H
 #define OROGEN_EDITOR_EROSION_H
 
