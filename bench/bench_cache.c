@@ -9,27 +9,13 @@
 #include "editor/world.h"
 #include "io/tile_cache.h"
 
+#include "bench/bench_timing.h"
+
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
 #include <unistd.h>
-
-static double now(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec + ts.tv_nsec * 1e-9;
-}
-
-static int cmp_double(const void *a, const void *b) {
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
-
-static double median(double *v, int n) {
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
-    return v[n / 2];
-}
 
 static void quiet(void *u, const char *m) { (void)u, (void)m; }
 
@@ -59,14 +45,14 @@ static void bench_warm_lookup(void) {
     double lookup[5], touch[5];
     volatile float sink = 0;
     for (int r = 0; r < 5; r++) {
-        double t0 = now();
+        double t0 = bench_now();
         for (int i = 0; i < n; i++) {
             tile_view v;
             tile_cache_request(c, keys[i & 63], &v);
             tile_cache_release(c, &v);
         }
-        lookup[r] = (now() - t0) / n * 1e9;
-        t0 = now();
+        lookup[r] = (bench_now() - t0) / n * 1e9;
+        t0 = bench_now();
         for (int i = 0; i < 256; i++) {
             tile_view v;
             tile_cache_request(c, keys[i & 63], &v);
@@ -76,12 +62,12 @@ static void bench_warm_lookup(void) {
             sink += acc;
             tile_cache_release(c, &v);
         }
-        touch[r] = (now() - t0) / 256 * 1e9;
+        touch[r] = (bench_now() - t0) / 256 * 1e9;
     }
     printf("cache warm lookup (request + release of a resident tile): %.0f ns; "
            "one pass over the tile's %zu KiB: %.0f ns; lookup = %.3f%% of the pass\n",
-           median(lookup, 5), tile_layer_bytes(TILE_LAYER_COARSE) >> 10, median(touch, 5),
-           100.0 * median(lookup, 5) / median(touch, 5));
+           bench_median(lookup, 5), tile_layer_bytes(TILE_LAYER_COARSE) >> 10, bench_median(touch, 5),
+           100.0 * bench_median(lookup, 5) / bench_median(touch, 5));
     world_close(w);
 }
 
@@ -95,7 +81,7 @@ static double generate_rate(int workers, int count, int offset) {
     og_error err;
     world *w = world_create(&p, &s, &err);
     tile_cache *c = world_cache(w);
-    double t0 = now();
+    double t0 = bench_now();
     for (int i = 0; i < count; i++) {
         tile_view v;
         tile_cache_request(c, (tile_key){0, 0, 0, offset + i, 77}, &v);
@@ -106,7 +92,7 @@ static double generate_rate(int workers, int count, int offset) {
         tile_cache_acquire(c, (tile_key){0, 0, 0, offset + i, 77}, &v, &err);
         tile_cache_release(c, &v);
     }
-    double rate = count / (now() - t0);
+    double rate = count / (bench_now() - t0);
     world_close(w);
     return rate;
 }
@@ -117,7 +103,7 @@ static void bench_generation_scaling(void) {
         one[r] = generate_rate(1, 96, r * 1000);
         two[r] = generate_rate(2, 96, r * 1000 + 500);
     }
-    double a = median(one, 5), b = median(two, 5);
+    double a = bench_median(one, 5), b = bench_median(two, 5);
     printf("generation (fbm, 8 octaves, 256x256 tiles): 1 worker %.1f tiles/s (%.1f Msamples/s); "
            "2 workers %.1f tiles/s; scaling %.2fx (goal >= 1.8x)\n",
            a, a * TILE_SAMPLES / 1e6, b, b / a);
@@ -161,7 +147,7 @@ static void bench_cold_load(void) {
                                .source_user = &p,
                                .store = store},
             &err);
-        double t0 = now();
+        double t0 = bench_now();
         // Walk the tiles in order with a few queued ahead, as `hash` and a moving
         // camera do (queuing all first would read the file backwards: newest first).
         for (int i = 0; i < count; i++) {
@@ -175,7 +161,7 @@ static void bench_cold_load(void) {
             tile_cache_acquire(c, (tile_key){0, 0, 0, i % 16, i / 16}, &v, &err);
             tile_cache_release(c, &v);
         }
-        store_mbs[r] = mb / (now() - t0);
+        store_mbs[r] = mb / (bench_now() - t0);
         tile_cache_stats st;
         tile_cache_stats_get(c, &st);
         if (st.loaded != (uint64_t)count) printf("  (warning: %llu of %d tiles loaded from the store)\n",
@@ -183,16 +169,16 @@ static void bench_cold_load(void) {
         tile_cache_destroy(c, &err);
 
         dropped &= drop_page_cache();
-        t0 = now();
+        t0 = bench_now();
         rf = fopen(raw, "rb");
         size_t total = 0, got;
         while ((got = fread(buf, 1, tile_layer_bytes(TILE_LAYER_COARSE), rf)) > 0) total += got;
         fclose(rf);
-        raw_mbs[r] = total / 1e6 / (now() - t0);
+        raw_mbs[r] = total / 1e6 / (bench_now() - t0);
     }
     printf("cold load through the cache (2 workers): %.0f MB/s decompressed; raw file read of the "
            "same bytes: %.0f MB/s; ratio %.2f%s\n",
-           median(store_mbs, 5), median(raw_mbs, 5), median(store_mbs, 5) / median(raw_mbs, 5),
+           bench_median(store_mbs, 5), bench_median(raw_mbs, 5), bench_median(store_mbs, 5) / bench_median(raw_mbs, 5),
            dropped ? "" : " (page cache could not be dropped: not root? both sides warm)");
     tile_store_close(store);
     free(buf);

@@ -25,28 +25,14 @@
 #include <dirent.h>
 #include <math.h>
 #include <sched.h>
+#include "bench/bench_timing.h"
+
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
 #define RUNS 7
-
-static double now(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
-}
-
-static int cmp_double(const void *a, const void *b) {
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median(double *v, int n) {
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 static void quiet(void *u, const char *m) {
     (void)u, (void)m;
@@ -73,10 +59,10 @@ static void *(*volatile copy_bytes)(void *, const void *, size_t) = memcpy;
 // Seconds per copy of `bytes` from src to dst, both already in cache.
 static double memcpy_seconds(void *dst, const void *src, size_t bytes, int reps) {
     copy_bytes(dst, src, bytes);
-    double t0 = now();
+    double t0 = bench_now();
     for (int i = 0; i < reps; i++)
         copy_bytes(dst, src, bytes);
-    return (now() - t0) / reps;
+    return (bench_now() - t0) / reps;
 }
 
 // ---- the summary ----------------------------------------------------------------------
@@ -151,10 +137,10 @@ static void warm(world *w, const layer_grid *g, const brush_dab *d) {
 // Seconds per dab, n dabs inside an open edit.
 static double dab_seconds(edit *e, const layer_grid *g, const brush_dab *d, int n) {
     og_error err;
-    double t0 = now();
+    double t0 = bench_now();
     for (int i = 0; i < n; i++)
         check(brush_dab_apply(e, g, d, &err), &err, "brush_dab_apply");
-    return (now() - t0) / n;
+    return (bench_now() - t0) / n;
 }
 
 // Seconds per one-dab edit (begin, dab, commit); *commit_s gets the commit's share.
@@ -163,13 +149,13 @@ static double dab_edit_seconds(world *w, const layer_grid *g, const brush_dab *d
     og_error err;
     double total = 0, commit = 0;
     for (int i = 0; i < n; i++) {
-        double t0 = now();
+        double t0 = bench_now();
         edit *e = edit_begin(w, "dab", &err);
         if (!e) check(-1, &err, "edit_begin");
         check(brush_dab_apply(e, g, d, &err), &err, "brush_dab_apply");
-        double t1 = now();
+        double t1 = bench_now();
         check(edit_commit(e, &err), &err, "edit_commit");
-        double t2 = now();
+        double t2 = bench_now();
         total += t2 - t0;
         commit += t2 - t1;
     }
@@ -212,8 +198,8 @@ static void bench_dab64(brush_tool tool, double goal_ratio) {
     for (int r = 0; r < RUNS; r++)
         full[r] = dab_edit_seconds(w, &g, &d, edit_n, &commit[r]);
 
-    double s = median(steady, RUNS), c = median(copy, RUNS), f = median(full, RUNS);
-    double k = median(commit, RUNS), q = median(ratio, RUNS);
+    double s = bench_median(steady, RUNS), c = bench_median(copy, RUNS), f = bench_median(full, RUNS);
+    double k = bench_median(commit, RUNS), q = bench_median(ratio, RUNS);
     const char *name = brush_tool_name(tool);
     printf("%s dab, radius 64 samples, resident tiles: %ld samples in the disc (%ld in the rect)\n",
            name, disc, rect);
@@ -287,20 +273,20 @@ static void bench_dab512(void) {
             pinned = 0;
         }
         if (pinned) pin_all_threads(&all);
-        double t0 = now();
+        double t0 = bench_now();
         for (int i = 0; i < n; i++)
             check(brush_dab_apply_array(&d, TILE_LAYER_COARSE, plain, area, &err), &err,
                   "brush_dab_apply_array");
-        array[r] = (now() - t0) / n;
+        array[r] = (bench_now() - t0) / n;
     }
     edit_abort(e);
-    double m = median(multi, RUNS), a = median(array, RUNS);
+    double m = bench_median(multi, RUNS), a = bench_median(array, RUNS);
     printf("raise dab, radius 512 samples: %ld samples in the disc, %ld in the rect, 25 tiles\n",
            disc, rect);
     printf("  inside a stroke, %d threads: %.2f ms (%.2f ns per disc sample)\n", parallel_threads(),
            m * 1e3, m * 1e9 / disc);
     if (pinned) {
-        double s = median(single, RUNS);
+        double s = bench_median(single, RUNS);
         printf("  inside a stroke, the same threads pinned to one core: %.2f ms; scaling %.2fx\n",
                s * 1e3, s / m);
     } else {
@@ -337,14 +323,14 @@ static void copy_tile(world *w, tile_key key, void *out) {
 static double stroke_seconds(world *w, const brush *b, double x0, double z0, double x1, double z1,
                              long *dabs) {
     og_error err;
-    double t0 = now();
+    double t0 = bench_now();
     stroke *s = stroke_begin(w, b, &err);
     if (!s) check(-1, &err, "stroke_begin");
     check(stroke_to(s, x0, z0, 1.0, &err), &err, "stroke_to");
     check(stroke_to(s, x1, z1, 1.0, &err), &err, "stroke_to");
     *dabs = stroke_dab_count(s);
     check(stroke_end(s, &err), &err, "stroke_end");
-    return now() - t0;
+    return bench_now() - t0;
 }
 
 static void bench_stroke(void) {
@@ -365,16 +351,16 @@ static void bench_stroke(void) {
     double st[RUNS], un[RUNS], re[RUNS], ratio[RUNS];
     for (int r = 0; r < RUNS; r++) {
         st[r] = stroke_seconds(w, &b, x0, z0, x1, z1, &dabs);
-        double t0 = now();
+        double t0 = bench_now();
         if (edit_undo(w, &err) != 1) check(-1, &err, "edit_undo");
-        double t1 = now();
+        double t1 = bench_now();
         if (edit_redo(w, &err) != 1) check(-1, &err, "edit_redo");
-        re[r] = now() - t1;
+        re[r] = bench_now() - t1;
         un[r] = t1 - t0;
         ratio[r] = (un[r] + re[r]) / st[r];
     }
-    double s = median(st, RUNS), u = median(un, RUNS), d = median(re, RUNS);
-    double q = median(ratio, RUNS);
+    double s = bench_median(st, RUNS), u = bench_median(un, RUNS), d = bench_median(re, RUNS);
+    double q = bench_median(ratio, RUNS);
     printf("stroke: %ld raise dabs of radius 32 samples, (128,128) to (384,384) m, over 4 tiles\n",
            dabs);
     printf("  stroke with undo capture %.2f ms (%.1f us per dab); undo %.2f ms; redo %.2f ms; "
@@ -455,15 +441,15 @@ static void bench_erosion(void) {
     hydraulic_report rep = {0};
     for (int r = 0; r < runs; r++) {
         copy[r] = memcpy_seconds(h, terrain, (size_t)N * N * sizeof *h, 20);
-        double t0 = now();
+        double t0 = bench_now();
         erosion_hydraulic(&g, &hp, &rep);
-        hyd[r] = now() - t0;
+        hyd[r] = bench_now() - t0;
         memcpy(h, terrain, (size_t)N * N * sizeof *h);
-        t0 = now();
+        t0 = bench_now();
         erosion_thermal(&g, &tp);
-        th[r] = now() - t0;
+        th[r] = bench_now() - t0;
     }
-    double y = median(hyd, runs), t = median(th, runs), c = median(copy, runs);
+    double y = bench_median(hyd, runs), t = bench_median(th, runs), c = bench_median(copy, runs);
     printf("erosion on %dx%d samples (weight 1 inside a 1-sample zero border):\n", N, N);
     printf(
         "  hydraulic, %d droplets (default parameters): %.1f ms = %.2f M droplets/s "
@@ -500,21 +486,21 @@ static void bench_stamp(void) {
     float *plain = xmalloc((size_t)(side * side) * sizeof *plain);
     memset(plain, 0, (size_t)(side * side) * sizeof *plain);
     for (int r = 0; r < RUNS; r++) {
-        double t0 = now();
+        double t0 = bench_now();
         check(stamp_apply(w, &src, &p, &err), &err, "stamp_apply");
-        t[r] = now() - t0;
-        t0 = now();
+        t[r] = bench_now() - t0;
+        t0 = bench_now();
         check(stamp_apply_array(world_get_params(w), &src, &p, plain, 1024 - side / 2, 1024 - side / 2,
                                 side, side, &err), &err, "stamp_apply_array");
-        a[r] = now() - t0;
+        a[r] = bench_now() - t0;
         c[r] = memcpy_seconds(dst, buf, bytes, 20);
     }
     printf("stamp: 512x512 library stamp at 37 degrees, scale 1 (%zu footprint samples)\n",
            bytes / sizeof(float));
     printf("  as its own undo step (rows on 2 threads + commit): %.2f ms; plain array, 1 thread: %.2f ms; "
            "memcpy of the footprint: %.3f ms (%.0fx)\n",
-           median(t, RUNS) * 1e3, median(a, RUNS) * 1e3, median(c, RUNS) * 1e3,
-           median(t, RUNS) / median(c, RUNS));
+           bench_median(t, RUNS) * 1e3, bench_median(a, RUNS) * 1e3, bench_median(c, RUNS) * 1e3,
+           bench_median(t, RUNS) / bench_median(c, RUNS));
     free(buf);
     free(dst);
     free(plain);
@@ -523,7 +509,7 @@ static void bench_stamp(void) {
 }
 
 int main(void) {
-    double t0 = now();
+    double t0 = bench_now();
     printf("bench_edit: medians of %d runs (erosion: 5), %d threads in the editing pool\n", RUNS,
            parallel_threads());
     bench_dab64(BRUSH_RAISE, 8.0);
@@ -533,7 +519,7 @@ int main(void) {
     bench_erosion();
     bench_stamp();
     int passed = 0;
-    printf("summary (%.0f s):\n", now() - t0);
+    printf("summary (%.0f s):\n", bench_now() - t0);
     for (int i = 0; i < goal_count; i++) {
         printf("  %s  %s\n", goals[i].pass ? "PASS" : "MISS", goals[i].text);
         passed += goals[i].pass;

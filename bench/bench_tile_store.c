@@ -8,6 +8,8 @@
 #include <fcntl.h>
 #include <math.h>
 #include <pthread.h>
+#include "bench/bench_timing.h"
+
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -16,22 +18,6 @@
 #include <unistd.h>
 
 #define TILE_BYTES ((size_t)TILE_SAMPLES * sizeof(float))
-
-static double now_s(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
-}
-
-static int cmp_double(const void *a, const void *b) {
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median(double *v, int n) {
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 // Lattice value noise with smoothstep interpolation; fBm of it gives
 // terrain-like heights continuous across tile edges.
@@ -91,7 +77,7 @@ static void *load_tiles(void *arg) {
 // Opens the store and loads every tile with nthreads threads; returns MB/s.
 static double load_store(const char *path, int ntiles, int nthreads) {
     og_error err;
-    double t0 = now_s();
+    double t0 = bench_now();
     tile_store *s = tile_store_open(path, &err);
     if (!s) {
         fprintf(stderr, "%s\n", err.msg);
@@ -111,7 +97,7 @@ static double load_store(const char *path, int ntiles, int nthreads) {
         }
     }
     tile_store_close(s);
-    return (double)ntiles * (double)TILE_BYTES / 1e6 / (now_s() - t0);
+    return (double)ntiles * (double)TILE_BYTES / 1e6 / (bench_now() - t0);
 }
 
 // Empties the OS page cache: globally when allowed (root), otherwise by
@@ -169,7 +155,7 @@ int main(int argc, char **argv) {
     size_t blob_total = 0;
     og_error err = {{0}};
     for (int r = 0; r < runs; r++) {
-        double t0 = now_s();
+        double t0 = bench_now();
         blob_total = 0;
         for (int i = 0; i < ntiles; i++) {
             free(blobs[i]);
@@ -181,14 +167,14 @@ int main(int argc, char **argv) {
             }
             blob_total += sizes[i];
         }
-        double t1 = now_s();
+        double t1 = bench_now();
         for (int i = 0; i < ntiles; i++)
             if (tile_blob_decode(TILE_LAYER_COARSE, blobs[i], sizes[i], out, &err) ||
                 memcmp(out, tiles + (size_t)i * TILE_SAMPLES, TILE_BYTES)) {
                 fprintf(stderr, "decode mismatch: %s\n", err.msg);
                 return 1;
             }
-        double t2 = now_s();
+        double t2 = bench_now();
         enc[r] = raw_mb / (t1 - t0);
         dec[r] = raw_mb / (t2 - t1);
     }
@@ -200,7 +186,7 @@ int main(int argc, char **argv) {
         fprintf(stderr, "%s\n", err.msg);
         return 1;
     }
-    double t0 = now_s();
+    double t0 = bench_now();
     for (int i = 0; i < ntiles; i += 32) {
         tile_store_write w[32];
         int n = ntiles - i < 32 ? ntiles - i : 32;
@@ -212,7 +198,7 @@ int main(int argc, char **argv) {
             return 1;
         }
     }
-    double write_s = now_s() - t0;
+    double write_s = bench_now() - t0;
     tile_store_close(s);
 
     // The peer: the same raw bytes in a plain file.
@@ -238,7 +224,7 @@ int main(int argc, char **argv) {
         cold_mt[r] = load_store(store_path, ntiles, nthreads);
 
         drop_caches(files, 2);
-        t0 = now_s();
+        t0 = bench_now();
         int fd = open(raw_path, O_RDONLY);
         size_t got = 0;
         ssize_t n;
@@ -249,22 +235,22 @@ int main(int argc, char **argv) {
             fprintf(stderr, "short read of %s\n", raw_path);
             return 1;
         }
-        raw[r] = raw_mb / (now_s() - t0);
+        raw[r] = raw_mb / (bench_now() - t0);
     }
 
-    double c = median(cold, runs), p = median(raw, runs);
+    double c = bench_median(cold, runs), p = bench_median(raw, runs);
     printf("tiles: %d x %zu bytes, %d runs (medians); cache dropped with %s\n", ntiles, TILE_BYTES,
            runs, how);
     printf("compression: %.1f MB -> %.1f MB blobs (%.3f of raw, %.2fx); store file %.1f MB\n",
            raw_mb, (double)blob_total / 1e6, (double)blob_total / (raw_mb * 1e6),
            raw_mb * 1e6 / (double)blob_total, (double)st.st_size / 1e6);
     printf("in memory: encode %.0f MB/s, decode %.0f MB/s (decompressed bytes)\n",
-           median(enc, runs), median(dec, runs));
+           bench_median(enc, runs), bench_median(dec, runs));
     printf("store write (batches of 32, fsync per commit): %.0f MB/s\n", raw_mb / write_s);
-    printf("store warm load: %.0f MB/s decompressed (1 thread)\n", median(warm, runs));
+    printf("store warm load: %.0f MB/s decompressed (1 thread)\n", bench_median(warm, runs));
     printf("store cold load, %d threads: %.0f MB/s decompressed; raw file read: %.0f MB/s; "
            "ratio %.2f\n",
-           nthreads, median(cold_mt, runs), p, median(cold_mt, runs) / p);
+           nthreads, bench_median(cold_mt, runs), p, bench_median(cold_mt, runs) / p);
     printf(
         "store cold load, 1 thread: %.0f MB/s decompressed; raw file read: %.0f MB/s; ratio %.2f\n",
         c, p, c / p);

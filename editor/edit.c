@@ -27,20 +27,9 @@ struct edit {
     size_t dirty_count, dirty_cap;
 };
 
-static uint64_t key_hash(tile_key k) {
-    uint64_t h = 0x9e3779b97f4a7c15ULL;
-    int32_t f[5] = {k.layer, k.face, k.level, k.tx, k.ty};
-    for (int i = 0; i < 5; i++) {
-        h ^= (uint32_t)f[i];
-        h *= 0xff51afd7ed558ccdULL;
-        h ^= h >> 33;
-    }
-    return h;
-}
-
 static snapshot *find_snap(edit *e, tile_key key) {
     if (!e->index_size) return NULL;
-    for (size_t i = key_hash(key) & (e->index_size - 1);; i = (i + 1) & (e->index_size - 1)) {
+    for (size_t i = tile_key_hash(key) & (e->index_size - 1);; i = (i + 1) & (e->index_size - 1)) {
         if (!e->index[i]) return NULL;
         snapshot *s = &e->snaps[e->index[i] - 1];
         if (tile_key_equal(s->key, key)) return s;
@@ -54,7 +43,7 @@ static int reindex(edit *e, size_t size) {
     e->index = index;
     e->index_size = size;
     for (size_t n = 0; n < e->count; n++) {
-        size_t i = key_hash(e->snaps[n].key) & (size - 1);
+        size_t i = tile_key_hash(e->snaps[n].key) & (size - 1);
         while (index[i]) i = (i + 1) & (size - 1);
         index[i] = n + 1;
     }
@@ -76,7 +65,7 @@ static snapshot *add_snap(edit *e, tile_key key, int pristine, void *before) {
             return NULL;
         }
     } else {
-        size_t i = key_hash(key) & (e->index_size - 1);
+        size_t i = tile_key_hash(key) & (e->index_size - 1);
         while (e->index[i]) i = (i + 1) & (e->index_size - 1);
         e->index[i] = e->count;
     }

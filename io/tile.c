@@ -28,3 +28,14 @@ const char *tile_key_describe(tile_key key, char *buf, size_t len) {
              key.face, key.level, key.tx, key.ty);
     return buf;
 }
+
+uint64_t tile_key_hash(tile_key k) {
+    uint64_t h = 0x9e3779b97f4a7c15ULL;
+    int32_t f[5] = {k.layer, k.face, k.level, k.tx, k.ty};
+    for (int i = 0; i < 5; i++) {
+        h ^= (uint32_t)f[i];
+        h *= 0xff51afd7ed558ccdULL;
+        h ^= h >> 33;
+    }
+    return h;
+}

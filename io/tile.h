@@ -46,6 +46,9 @@ static inline int tile_key_equal(tile_key a, tile_key b) {
            a.ty == b.ty;
 }
 
+// A well-mixed 64-bit hash of a key, for hash tables.
+uint64_t tile_key_hash(tile_key key);
+
 // Bytes and format of one tile of a layer. The volume layer has no payload yet.
 size_t tile_layer_bytes(tile_layer layer);
 tile_format tile_layer_format(tile_layer layer);

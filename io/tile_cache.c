@@ -41,17 +41,6 @@ struct tile_cache {
     int thread_count;
 };
 
-static uint32_t key_hash(tile_key k) {
-    uint64_t h = 0x9e3779b97f4a7c15ULL;
-    int32_t f[5] = {k.layer, k.face, k.level, k.tx, k.ty};
-    for (int i = 0; i < 5; i++) {
-        h ^= (uint32_t)f[i];
-        h *= 0xff51afd7ed558ccdULL;
-        h ^= h >> 33;
-    }
-    return (uint32_t)h;
-}
-
 static void warnf(tile_cache *c, const char *fmt, const char *a, const char *b) {
     if (!c->desc.warn) return;
     char msg[1400];
@@ -346,7 +335,7 @@ static int32_t floor_shift(int32_t v, int d) {
 
 // Finds or queues key. Caller holds the lock.
 static entry *find_or_queue(tile_cache *c, tile_key key, int *hit) {
-    uint32_t h = key_hash(key);
+    uint32_t h = (uint32_t)tile_key_hash(key);
     entry *e = find(c, key, h);
     *hit = e && e->state == ENTRY_READY;
     if (*hit) {
@@ -388,7 +377,7 @@ tile_status tile_cache_request(tile_cache *c, tile_key key, tile_view *view) {
             k.level += d;
             k.tx = floor_shift(key.tx, d);
             k.ty = floor_shift(key.ty, d);
-            entry *f = find(c, k, key_hash(k));
+            entry *f = find(c, k, (uint32_t)tile_key_hash(k));
             if (f && f->state == ENTRY_READY && f->data) {
                 pin_into(f, view);
                 break;
@@ -433,7 +422,7 @@ int tile_cache_acquire_write(tile_cache *c, tile_key key, tile_view *view, og_er
 
 int tile_cache_discard(tile_cache *c, tile_key key) {
     pthread_mutex_lock(&c->lock);
-    entry *e = find(c, key, key_hash(key));
+    entry *e = find(c, key, (uint32_t)tile_key_hash(key));
     int rc = 0;
     if (e) {
         if (e->state == ENTRY_READY && e->pins == 0)
