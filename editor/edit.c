@@ -123,10 +123,17 @@ void edit_dirty(edit *e, tile_layer layer, int face, grid_rect r) {
     if (last && last->layer == layer && last->face == face && last->rect.x0 <= r.x1 &&
         r.x0 <= last->rect.x1 && last->rect.z0 <= r.z1 && r.z0 <= last->rect.z1) {
         last->rect = grid_rect_union(last->rect, r);
-    } else if (e->dirty_count < e->dirty_cap ||
-               (e->dirty = realloc(e->dirty, (e->dirty_cap = e->dirty_cap ? e->dirty_cap * 2 : 16) *
-                                                 sizeof *e->dirty))) {
-        e->dirty[e->dirty_count++] = d;
+    } else {
+        if (e->dirty_count == e->dirty_cap) {
+            size_t cap = e->dirty_cap ? e->dirty_cap * 2 : 16;
+            dirty_rect *grown = realloc(e->dirty, cap * sizeof *grown);
+            if (grown) {
+                e->dirty = grown;
+                e->dirty_cap = cap;
+            }
+        }
+        // Out of memory: the area is still reported live below, only not kept for the step.
+        if (e->dirty_count < e->dirty_cap) e->dirty[e->dirty_count++] = d;
     }
     pthread_mutex_unlock(&e->lock);
     history_dirty_add(world_history(e->world), d); // live: the renderer shows the stroke
