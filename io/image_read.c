@@ -14,11 +14,15 @@
 
 typedef int (*read_fn)(const char *, float **, int *, int *, og_error *);
 typedef int (*write_fn)(const char *, const float *, int, int, og_error *);
+typedef int (*read_rgb8_fn)(const char *, unsigned char **, int *, int *, og_error *);
+typedef int (*write_rgb8_fn)(const char *, const unsigned char *, int, int, og_error *);
 
 static struct {
     pthread_once_t once;
     read_fn read;
     write_fn write;
+    read_rgb8_fn read_rgb8;
+    write_rgb8_fn write_rgb8;
     char why[1024];
 } module = {.once = PTHREAD_ONCE_INIT};
 
@@ -54,10 +58,15 @@ static void load_module(void) {
         if (!h) continue;
         module.read = (read_fn)dlsym(h, "orogen_image_module_read_luminance");
         module.write = (write_fn)dlsym(h, "orogen_image_module_write_gray16");
-        if (module.read && module.write) return;
+        module.read_rgb8 = (read_rgb8_fn)dlsym(h, "orogen_image_module_read_rgb8");
+        module.write_rgb8 = (write_rgb8_fn)dlsym(h, "orogen_image_module_write_rgb8");
+        if (module.read && module.write && module.read_rgb8 && module.write_rgb8) return;
+        // An older module lacks the newer entry points: all or nothing.
         snprintf(module.why, sizeof module.why, "%s is not Orogen's image module", candidates[i]);
         module.read = NULL;
         module.write = NULL;
+        module.read_rgb8 = NULL;
+        module.write_rgb8 = NULL;
     }
 }
 
@@ -68,8 +77,7 @@ static int ready(const char *path, og_error *err) {
                         module.why);
 }
 
-int image_read_luminance(const char *path, float **pixels, int *width, int *height,
-                         og_error *err) {
+int image_read_luminance(const char *path, float **pixels, int *width, int *height, og_error *err) {
     if (ready(path, err) != 0) return -1;
     return module.read(path, pixels, width, height, err);
 }
@@ -78,4 +86,17 @@ int image_write_gray16(const char *path, const float *pixels, int width, int hei
                        og_error *err) {
     if (ready(path, err) != 0) return -1;
     return module.write(path, pixels, width, height, err);
+}
+
+int image_write_rgb8(const char *path, const unsigned char *rgb, int width, int height,
+                     og_error *err) {
+    if (ready(path, err) != 0) return -1;
+    return module.write_rgb8(path, rgb, width, height, err);
+}
+
+int image_read_rgb8(const char *path, unsigned char **rgb, int *width, int *height, og_error *err) {
+    *rgb = NULL;
+    *width = *height = 0;
+    if (ready(path, err) != 0) return -1;
+    return module.read_rgb8(path, rgb, width, height, err);
 }

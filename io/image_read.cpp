@@ -25,7 +25,7 @@ namespace {
 const int BAND_ROWS = 64;
 
 struct free_deleter {
-    void operator()(float *p) const { std::free(p); }
+    void operator()(void *p) const { std::free(p); }
 };
 
 // OIIO messages may span lines; keep ours on one.
@@ -36,20 +36,20 @@ std::string one_line(std::string s) {
     return s.empty() ? std::string("no details") : s;
 }
 
-int read_impl(const char *path, float **pixels, int *width, int *height, og_error *err) {
+// Opens path and checks what every reader needs: a flat 2D image within the size limit.
+int open_checked(const char *path, std::unique_ptr<OIIO::ImageInput> &in, og_error *err) {
     struct stat st;
     if (stat(path, &st) != 0)
         return og_error_set(err, "%s: cannot open: %s", path, strerror(errno));
     if (S_ISDIR(st.st_mode)) return og_error_set(err, "%s: is a folder, not an image", path);
-
     // Unassociated: colour as stored, not multiplied by the alpha we ignore.
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
-    auto in = OIIO::ImageInput::open(path, &config);
+    in = OIIO::ImageInput::open(path, &config);
     if (!in)
         return og_error_set(err, "%s: not an image OpenImageIO can read (%s)", path,
                             one_line(OIIO::geterror()).c_str());
-    const OIIO::ImageSpec spec = in->spec();
+    const OIIO::ImageSpec &spec = in->spec();
     const int w = spec.width, h = spec.height;
     if (spec.deep) return og_error_set(err, "%s: deep images are not supported", path);
     if (spec.depth > 1) return og_error_set(err, "%s: volume images are not supported", path);
@@ -59,14 +59,20 @@ int read_impl(const char *path, float **pixels, int *width, int *height, og_erro
     if (w > IMAGE_MAX_SIZE || h > IMAGE_MAX_SIZE)
         return og_error_set(err, "%s: image is %d x %d, larger than the %d x %d limit", path, w, h,
                             IMAGE_MAX_SIZE, IMAGE_MAX_SIZE);
+    if (spec.tile_width > 0 && spec.tile_height <= 0)
+        return og_error_set(err, "%s: tiled image with tile height %d", path, spec.tile_height);
+    return 0;
+}
+
+int read_impl(const char *path, float **pixels, int *width, int *height, og_error *err) {
+    std::unique_ptr<OIIO::ImageInput> in;
+    if (open_checked(path, in, err) != 0) return -1;
+    const OIIO::ImageSpec spec = in->spec();
+    const int w = spec.width, h = spec.height;
     const int nch = spec.nchannels >= 3 ? 3 : 1; // grey (+ alpha) or colour (+ alpha)
 
     int band = BAND_ROWS;
-    if (spec.tile_width > 0) {
-        if (spec.tile_height <= 0)
-            return og_error_set(err, "%s: tiled image with tile height %d", path, spec.tile_height);
-        band = std::max(1, BAND_ROWS / spec.tile_height) * spec.tile_height;
-    }
+    if (spec.tile_width > 0) band = std::max(1, BAND_ROWS / spec.tile_height) * spec.tile_height;
     std::unique_ptr<float, free_deleter> out(
         static_cast<float *>(std::malloc(sizeof(float) * (size_t)w * (size_t)h)));
     if (!out) return og_error_set(err, "%s: out of memory for %d x %d pixels", path, w, h);
@@ -119,21 +125,10 @@ int fsync_path(const char *path, int flags) {
     return rc;
 }
 
-int write_impl(const char *path, const float *pixels, int width, int height, og_error *err) {
-    if (width <= 0 || height <= 0 || width > IMAGE_MAX_SIZE || height > IMAGE_MAX_SIZE)
-        return og_error_set(err, "%s: cannot write a %d x %d image (1 to %d per side)", path, width,
-                            height, IMAGE_MAX_SIZE);
-    const size_t n = (size_t)width * (size_t)height;
-    std::vector<uint16_t> q(n);
-    for (size_t i = 0; i < n; i++) {
-        float v = pixels[i];
-        if (std::isnan(v))
-            return og_error_set(err, "%s: pixel (%d, %d) is NaN", path, (int)(i % width),
-                                (int)(i / width));
-        v = v < 0.0f ? 0.0f : v > 1.0f ? 1.0f : v;
-        q[i] = (uint16_t)(v * 65535.0f + 0.5f);
-    }
-
+// Writes one PNG atomically: temp file in the same folder, fsync, rename, then a
+// best-effort fsync of the folder. The caller has checked the size.
+int write_png_atomic(const char *path, const OIIO::ImageSpec &spec, const void *data,
+                     og_error *err) {
     temp_file tmp;
     std::string name = std::string(path) + ".tmp-XXXXXX";
     int fd = mkstemp(&name[0]);
@@ -149,9 +144,7 @@ int write_impl(const char *path, const float *pixels, int width, int height, og_
     if (!out)
         return og_error_set(err, "%s: OpenImageIO has no PNG writer (%s)", path,
                             one_line(OIIO::geterror()).c_str());
-    OIIO::ImageSpec spec(width, height, 1, OIIO::TypeUInt16);
-    spec.attribute("png:compressionLevel", 9);
-    if (!out->open(name, spec) || !out->write_image(OIIO::TypeUInt16, q.data()) || !out->close())
+    if (!out->open(name, spec) || !out->write_image(spec.format, data) || !out->close())
         return og_error_set(err, "%s: cannot write PNG (%s)", path,
                             one_line(out->geterror()).c_str());
     if (fsync_path(name.c_str(), 0) != 0)
@@ -167,10 +160,79 @@ int write_impl(const char *path, const float *pixels, int width, int height, og_
     return 0;
 }
 
+int check_write_size(const char *path, int width, int height, og_error *err) {
+    if (width <= 0 || height <= 0 || width > IMAGE_MAX_SIZE || height > IMAGE_MAX_SIZE)
+        return og_error_set(err, "%s: cannot write a %d x %d image (1 to %d per side)", path, width,
+                            height, IMAGE_MAX_SIZE);
+    return 0;
+}
+
+int write_impl(const char *path, const float *pixels, int width, int height, og_error *err) {
+    if (check_write_size(path, width, height, err) != 0) return -1;
+    const size_t n = (size_t)width * (size_t)height;
+    std::vector<uint16_t> q(n);
+    for (size_t i = 0; i < n; i++) {
+        float v = pixels[i];
+        if (std::isnan(v))
+            return og_error_set(err, "%s: pixel (%d, %d) is NaN", path, (int)(i % width),
+                                (int)(i / width));
+        v = v < 0.0f ? 0.0f : v > 1.0f ? 1.0f : v;
+        q[i] = (uint16_t)(v * 65535.0f + 0.5f);
+    }
+    OIIO::ImageSpec spec(width, height, 1, OIIO::TypeUInt16);
+    spec.attribute("png:compressionLevel", 9);
+    return write_png_atomic(path, spec, q.data(), err);
+}
+
+int write_rgb8_impl(const char *path, const unsigned char *rgb, int width, int height,
+                    og_error *err) {
+    if (check_write_size(path, width, height, err) != 0) return -1;
+    OIIO::ImageSpec spec(width, height, 3, OIIO::TypeUInt8);
+    // Level 6 (zlib's default): these are screenshots and diffs, written often.
+    spec.attribute("png:compressionLevel", 6);
+    return write_png_atomic(path, spec, rgb, err);
+}
+
+// Reads the whole image as 8-bit RGB in one call: OIIO converts 16-bit and float to
+// uint8 (clamped, rounded); grey is replicated here and alpha is never read.
+int read_rgb8_impl(const char *path, unsigned char **rgb, int *width, int *height, og_error *err) {
+    std::unique_ptr<OIIO::ImageInput> in;
+    if (open_checked(path, in, err) != 0) return -1;
+    const OIIO::ImageSpec spec = in->spec();
+    const int w = spec.width, h = spec.height;
+    const int nch = spec.nchannels >= 3 ? 3 : 1;
+    const size_t n = (size_t)w * (size_t)h;
+    std::unique_ptr<unsigned char, free_deleter> out(
+        static_cast<unsigned char *>(std::malloc(3 * n)));
+    if (!out) return og_error_set(err, "%s: out of memory for %d x %d pixels", path, w, h);
+    // Grey is read into the last third of the buffer, then spread forward in place.
+    unsigned char *dst = out.get() + (nch == 1 ? 2 * n : 0);
+    bool ok = spec.tile_width > 0 ? in->read_tiles(0, 0, spec.x, spec.x + w, spec.y, spec.y + h,
+                                                   spec.z, spec.z + 1, 0, nch, OIIO::TypeUInt8, dst)
+                                  : in->read_scanlines(0, 0, spec.y, spec.y + h, spec.z, 0, nch,
+                                                       OIIO::TypeUInt8, dst);
+    if (!ok)
+        return og_error_set(err, "%s: cannot read pixels (%s)", path,
+                            one_line(in->geterror()).c_str());
+    in->close();
+    if (nch == 1) {
+        unsigned char *p = out.get();
+        for (size_t i = 0; i < n; i++) { // write index 3i <= read index 2n + i: never ahead
+            const unsigned char v = dst[i];
+            p[3 * i] = p[3 * i + 1] = p[3 * i + 2] = v;
+        }
+    }
+    *rgb = out.release();
+    *width = w;
+    *height = h;
+    return 0;
+}
+
 } // namespace
 
-extern "C" __attribute__((visibility("default"))) int orogen_image_module_read_luminance(const char *path, float **pixels, int *width, int *height,
-                                    og_error *err) {
+extern "C" __attribute__((visibility("default"))) int
+orogen_image_module_read_luminance(const char *path, float **pixels, int *width, int *height,
+                                   og_error *err) {
     *pixels = nullptr;
     *width = *height = 0;
     if (!path) return og_error_set(err, "image_read_luminance: no path");
@@ -183,11 +245,40 @@ extern "C" __attribute__((visibility("default"))) int orogen_image_module_read_l
     }
 }
 
-extern "C" __attribute__((visibility("default"))) int orogen_image_module_write_gray16(const char *path, const float *pixels, int width, int height,
-                                  og_error *err) {
+extern "C" __attribute__((visibility("default"))) int
+orogen_image_module_write_gray16(const char *path, const float *pixels, int width, int height,
+                                 og_error *err) {
     if (!path || !pixels) return og_error_set(err, "image_write_gray16: no path or pixels");
     try {
         return write_impl(path, pixels, width, height, err);
+    } catch (const std::exception &e) {
+        return og_error_set(err, "%s: cannot write image: %s", path, e.what());
+    } catch (...) {
+        return og_error_set(err, "%s: cannot write image: unknown error", path);
+    }
+}
+
+extern "C" __attribute__((visibility("default"))) int
+orogen_image_module_read_rgb8(const char *path, unsigned char **rgb, int *width, int *height,
+                              og_error *err) {
+    *rgb = nullptr;
+    *width = *height = 0;
+    if (!path) return og_error_set(err, "image_read_rgb8: no path");
+    try {
+        return read_rgb8_impl(path, rgb, width, height, err);
+    } catch (const std::exception &e) {
+        return og_error_set(err, "%s: cannot read image: %s", path, e.what());
+    } catch (...) {
+        return og_error_set(err, "%s: cannot read image: unknown error", path);
+    }
+}
+
+extern "C" __attribute__((visibility("default"))) int
+orogen_image_module_write_rgb8(const char *path, const unsigned char *rgb, int width, int height,
+                               og_error *err) {
+    if (!path || !rgb) return og_error_set(err, "image_write_rgb8: no path or pixels");
+    try {
+        return write_rgb8_impl(path, rgb, width, height, err);
     } catch (const std::exception &e) {
         return og_error_set(err, "%s: cannot write image: %s", path, e.what());
     } catch (...) {

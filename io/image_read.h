@@ -1,5 +1,6 @@
 // Image files in and out through OpenImageIO (a C++ library behind this C header):
-// heightmaps and stamps read as one float channel, 16-bit grey PNGs written.
+// heightmaps and stamps read as one float channel, 16-bit grey PNGs written; 8-bit
+// RGB read and written for screenshots, golden images and their diffs.
 #ifndef OROGEN_IO_IMAGE_READ_H
 #define OROGEN_IO_IMAGE_READ_H
 
@@ -25,6 +26,18 @@ int image_read_luminance(const char *path, float **pixels, int *width, int *heig
 // Writes a 16-bit greyscale PNG (values clamped to [0, 1], rounded to the nearest
 // 1/65535) atomically: temp file in the same folder, fsync, rename. NaN is an error.
 int image_write_gray16(const char *path, const float *pixels, int width, int height, og_error *err);
+
+// Writes an 8-bit RGB PNG (rgb is width x height x 3 bytes, rows top-first) atomically,
+// as image_write_gray16 does. Sizes 1..IMAGE_MAX_SIZE per side.
+int image_write_rgb8(const char *path, const unsigned char *rgb, int width, int height,
+                     og_error *err);
+
+// Reads any image OpenImageIO can as 8-bit RGB, rows top-first: grey is replicated into
+// the three channels, alpha is dropped (colour as stored, not premultiplied), 16-bit
+// and float are converted to uint8 by OIIO (clamped to [0, 1], rounded). On success
+// *rgb is malloc'd (width x height x 3 bytes; free() it); on failure it is NULL and
+// err names the file, with the same checks as image_read_luminance.
+int image_read_rgb8(const char *path, unsigned char **rgb, int *width, int *height, og_error *err);
 
 #ifdef __cplusplus
 }

@@ -1,6 +1,8 @@
 // Image I/O through OpenImageIO: grey and colour, 8/16-bit and half/float, PNG, TIFF
 // and EXR files made by oiiotool from PNM/PFM files written here, so every expected
-// pixel is known; errors that name the file; the 16-bit PNG writer round trip.
+// pixel is known; errors that name the file; the 16-bit PNG writer round trip; the
+// 8-bit RGB reader (grey replicated, alpha dropped, 16-bit and float converted) and the
+// RGB PNG writer.
 #include "io/image_read.h"
 
 #include "support/test_support.h"
@@ -295,13 +297,142 @@ static void test_write_gray16_round_trip(void **state) {
     assert_int_equal(count_entries(sub), 1);
 }
 
+static unsigned char *read_rgb_ok(const char *name, int w, int h) {
+    unsigned char *px = (unsigned char *)1;
+    int gw = -1, gh = -1;
+    og_error err = {{0}};
+    if (image_read_rgb8(in_dir(name), &px, &gw, &gh, &err) != 0) fail_msg("%s: %s", name, err.msg);
+    assert_non_null(px);
+    assert_int_equal(gw, w);
+    assert_int_equal(gh, h);
+    return px;
+}
+
+static void test_write_rgb8_round_trip(void **state) {
+    (void)state;
+    char sub[4200];
+    snprintf(sub, sizeof sub, "%s/rgbw", dir);
+    char cmd[8800];
+    snprintf(cmd, sizeof cmd, "mkdir '%s'", sub);
+    assert_int_equal(system(cmd), 0);
+    char path[4300];
+    snprintf(path, sizeof path, "%s/out.png", sub);
+    enum { W = 7, H = 5 };
+    unsigned char v[W * H * 3];
+    uint32_t s = 7;
+    for (int i = 0; i < W * H * 3; i++) {
+        s = s * 1664525u + 1013904223u;
+        v[i] = (unsigned char)(s >> 24);
+    }
+    v[0] = 0; // both ends of the range
+    v[1] = 255;
+    og_error err;
+    assert_int_equal(image_write_rgb8(path, v, W, H, &err), 0);
+    assert_int_equal(image_write_rgb8(path, v, W, H, &err), 0); // replaces it
+    assert_int_equal(count_entries(sub), 1);                    // no temp file left
+    unsigned char *px;
+    int w, h;
+    assert_int_equal(image_read_rgb8(path, &px, &w, &h, &err), 0);
+    assert_int_equal(w, W);
+    assert_int_equal(h, H);
+    assert_memory_equal(px, v, sizeof v); // exact, rows top-first
+    free(px);
+    snprintf(cmd, sizeof cmd, "iinfo '%s' | grep -q '3 channel, uint8 png'", path);
+    assert_int_equal(system(cmd), 0);
+
+    // Bad sizes and a missing folder fail, name the file and leave nothing behind.
+    assert_int_equal(image_write_rgb8(path, v, 0, H, &err), -1);
+    assert_non_null(strstr(err.msg, path));
+    assert_int_equal(image_write_rgb8(path, v, W, IMAGE_MAX_SIZE + 1, &err), -1);
+    assert_non_null(strstr(err.msg, "1 to 16384 per side"));
+    snprintf(path, sizeof path, "%s/no/such/folder/out.png", dir);
+    assert_int_equal(image_write_rgb8(path, v, W, H, &err), -1);
+    assert_non_null(strstr(err.msg, path));
+    assert_int_equal(image_write_rgb8(NULL, v, W, H, NULL), -1); // err may be NULL
+    assert_int_equal(count_entries(sub), 1);
+}
+
+// Grey, 8- and 16-bit, reads with the value in all three channels.
+static void test_read_rgb8_grey_replicated(void **state) {
+    (void)state;
+    const unsigned v[6] = {0, 1, 128, 255, 16, 32};
+    write_pgm("rg8.pgm", 3, 2, 255, v);
+    oiiotool("rg8.pgm", "-d uint8", "rg8.png");
+    unsigned char *px = read_rgb_ok("rg8.png", 3, 2);
+    for (int i = 0; i < 6; i++)
+        for (int c = 0; c < 3; c++)
+            assert_int_equal(px[3 * i + c], v[i]);
+    free(px);
+    // 16-bit k * 257 is exactly 8-bit k.
+    float f[6];
+    for (int i = 0; i < 6; i++)
+        f[i] = (float)(v[i] * 257 / 65535.0);
+    write_pfm("rg16.pfm", 2, 3, 1, f);
+    oiiotool("rg16.pfm", "-d uint16", "rg16.png");
+    px = read_rgb_ok("rg16.png", 2, 3);
+    for (int i = 0; i < 6; i++)
+        for (int c = 0; c < 3; c++)
+            assert_int_equal(px[3 * i + c], v[i]);
+    free(px);
+}
+
+// RGBA drops the alpha and keeps the colour as stored; float is clamped and rounded.
+static void test_read_rgb8_alpha_and_float(void **state) {
+    (void)state;
+    const float c[6] = {200 / 255.0f, 100 / 255.0f, 50 / 255.0f, 1.0f, 0.0f, 0.0f};
+    write_pfm("rc.pfm", 2, 1, 3, c);
+    oiiotool("rc.pfm", "--ch R,G,B,A=0.25 --attrib:type=int oiio:UnassociatedAlpha 1 -d uint8",
+             "rc.png");
+    unsigned char *px = read_rgb_ok("rc.png", 2, 1);
+    const unsigned char want[6] = {200, 100, 50, 255, 0, 0};
+    assert_memory_equal(px, want, 6);
+    free(px);
+
+    const float f[6] = {-1.0f, 0.0f, 0.2f, 0.5f, 1.0f, 7.0f};
+    write_pfm("rf.pfm", 2, 1, 3, f);
+    oiiotool("rf.pfm", "-d float", "rf.exr");
+    px = read_rgb_ok("rf.exr", 2, 1);
+    const unsigned char wantf[6] = {0, 0, 51, 128, 255, 255}; // 0.5 * 255 = 127.5 rounds up
+    assert_memory_equal(px, wantf, 6);
+    free(px);
+}
+
+static void test_read_rgb8_errors(void **state) {
+    (void)state;
+    unsigned char *px = (unsigned char *)1;
+    int w = -1, h = -1;
+    og_error err;
+    const char *path = in_dir("absent.png");
+    assert_int_equal(image_read_rgb8(path, &px, &w, &h, &err), -1);
+    assert_null(px);
+    assert_int_equal(w, 0);
+    assert_int_equal(h, 0);
+    assert_non_null(strstr(err.msg, path));
+    assert_non_null(strstr(err.msg, "cannot open"));
+    test_write_file(in_dir("rtext.png"), "not a png\n", 10);
+    path = in_dir("rtext.png");
+    assert_int_equal(image_read_rgb8(path, &px, &w, &h, &err), -1);
+    assert_non_null(strstr(err.msg, path));
+    assert_int_equal(image_read_rgb8(dir, &px, &w, &h, &err), -1);
+    assert_non_null(strstr(err.msg, "folder"));
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_grey_png_8bit),       cmocka_unit_test(test_grey_png_16bit),
-        cmocka_unit_test(test_float_exr_tiff_half), cmocka_unit_test(test_rgb_luminance_weights),
-        cmocka_unit_test(test_rgb_and_rgba_png),    cmocka_unit_test(test_errors_name_the_file),
-        cmocka_unit_test(test_size_limit),          cmocka_unit_test(test_truncated_png),
-        cmocka_unit_test(test_not_finite_pixels),   cmocka_unit_test(test_write_gray16_round_trip),
+        cmocka_unit_test(test_grey_png_8bit),
+        cmocka_unit_test(test_grey_png_16bit),
+        cmocka_unit_test(test_float_exr_tiff_half),
+        cmocka_unit_test(test_rgb_luminance_weights),
+        cmocka_unit_test(test_rgb_and_rgba_png),
+        cmocka_unit_test(test_errors_name_the_file),
+        cmocka_unit_test(test_size_limit),
+        cmocka_unit_test(test_truncated_png),
+        cmocka_unit_test(test_not_finite_pixels),
+        cmocka_unit_test(test_write_gray16_round_trip),
+        cmocka_unit_test(test_write_rgb8_round_trip),
+        cmocka_unit_test(test_read_rgb8_grey_replicated),
+        cmocka_unit_test(test_read_rgb8_alpha_and_float),
+        cmocka_unit_test(test_read_rgb8_errors),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
