@@ -2,6 +2,7 @@
 // command language with no window and no GL; interactive mode opens the editor
 // window on the default world (or the one named), with the console on stdin.
 #include "app/window.h"
+#include "renderer/viewport.h"
 #include "editor/commands.h"
 #include "editor/world.h"
 
@@ -232,6 +233,7 @@ int main(int argc, char **argv) {
         }
     }
     fflush(stdout);
+    viewport_destroy(ctx.viewport);
     world_close(ctx.world);
     return status;
 }

@@ -2,6 +2,7 @@
 
 #include "editor/edit.h"
 #include "editor/edit_commands.h"
+#include "renderer/view_commands.h"
 #include "editor/gen.h"
 
 #include <errno.h>
@@ -250,6 +251,11 @@ static const cmd_def commands[] = {
     {"undo", "undo", "Undoes the last change (stroke, stamp, generate).", 0, 0, cmd_undo},
     {"redo", "redo", "Redoes the last undone change.", 0, 0, cmd_redo},
     {"history", "history [budget=MIB]", "Lists the undo steps (* = applied) and their memory; sets the history memory budget.", 0, 1, cmd_history},
+    {"camera", "camera [X Y Z YAW PITCH [FOV] | default]", "Places the viewport camera: position in metres, yaw (0 looks toward -Z, 90 toward +X) and pitch in degrees, vertical field of view (60). Without arguments, prints it.", 0, 6, cmd_camera},
+    {"view", "view [MODE]", "Picks what the viewport shows: shaded, wireframe, levels (clipmap level colours), height or slope colours.", 0, 1, cmd_view},
+    {"render", "render [KEY=VALUE ...]", "Viewport settings: levels (3-12 clipmap levels), parallax (on/off), quality (parallax steps 1-32), detail_distance (m), culling, morph (on/off), fog (per metre, 0 = automatic), sun=YAW,PITCH. Without arguments, prints them.", 0, 9, cmd_render},
+    {"screenshot", "screenshot FILE [W H]", "Renders the viewport offscreen (no display needed) to an RGB PNG, W x H pixels (1280 x 720), once every visible tile is loaded.", 1, 3, cmd_screenshot},
+    {"pick", "pick PX PY [W H]", "Prints the terrain point (x y z metres) under pixel PX, PY of a W x H (1280 x 720) view.", 2, 4, cmd_pick},
     {"help", "help [COMMAND]", "Prints help on all commands or one.", 0, 1, c_help},
     {"cmdlist", "cmdlist", "Lists the command names.", 0, 0, c_cmdlist},
     {"exit", "exit", "Stops (the rest of the script is not run).", 0, 0, c_exit},

@@ -20,6 +20,8 @@ typedef struct cmd_context {
     brush brush;              // the current tool (`tool`), used by dab and stroke
     char resource_dir[4096];  // built-in resources (stamp library in resource_dir/stamps)
     char stamp_dir[4096];     // the user's stamp folder
+    struct viewport *viewport; // camera, render settings, renderer: made by the first view
+                               // command (batch) or set by the window; freed by the owner
 } cmd_context;
 
 // A context on world w with the default tool (raise). The user's stamp folder is

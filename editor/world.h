@@ -41,6 +41,8 @@ int world_save(world *w, const char *path, og_error *err);
 int world_regenerate(world *w, const world_params *params, og_error *err);
 
 const world_params *world_get_params(const world *w);
+// Unique per world opened in this process (views use it to tell worlds apart).
+uint64_t world_serial(const world *w);
 const char *world_path(const world *w); // "" for a never-saved world
 tile_cache *world_cache(world *w);
 // The world's own tile store (NULL until saved), and the journal of unsaved edits

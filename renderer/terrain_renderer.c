@@ -1,0 +1,696 @@
+#include "renderer/terrain_renderer.h"
+
+#include "editor/history.h"
+#include "renderer/clip_window.h"
+#include "renderer/clipmap_mesh.h"
+#include "renderer/frustum.h"
+#include "renderer/material_textures.h"
+#include "renderer/shader.h"
+
+#include <epoxy/gl.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#define CLIP_N 255            // vertices per level side (2^8 - 1)
+#define CLIP_TEXELS 256       // level texture side: the window plus one spare column
+#define DETAIL_TEXELS 512     // detail window side, detail samples
+#define DETAIL_SNAP 16        // the detail window moves in steps of this many samples
+#define TEX_PERIOD_NEAR 6.0   // metres per repeat of the material textures
+#define TEX_PERIOD_FAR 97.0   // metres per repeat of the variation layer
+#define UNBOUNDED 1e9f
+
+struct terrain_renderer {
+    GLuint prog_terrain, prog_sky, prog_water;
+    GLuint vao, vbo, ebo, empty_vao;
+    clipmap_mesh mesh;
+    GLuint tex_heights, tex_material, tex_albedo, tex_detail, tex_detail_pd, tex_falloff;
+    clip_window heights[RENDER_MAX_LEVELS];
+    clip_window material, detail, detail_pd;
+    float hmin[RENDER_MAX_LEVELS], hmax[RENDER_MAX_LEVELS];
+
+    // What the levels show: the world and parameters they were filled from.
+    world *world;
+    uint64_t world_serial;
+    world_params params;
+
+    // This frame's layout (terrain_renderer_update).
+    int levels, finest;
+    int64_t origin[RENDER_MAX_LEVELS][2]; // level sample index of local vertex (0, 0)
+    int src[RENDER_MAX_LEVELS];           // level whose texture draws level l (-1: none)
+    int material_current, detail_current;
+    int64_t detail_origin[2];
+
+    render_stats stats;
+    uint64_t frame_texels;
+    uint64_t texels_total;
+};
+
+static double now_ms(void) {
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return t.tv_sec * 1e3 + t.tv_nsec / 1e6;
+}
+
+static const char *const view_names[VIEW_MODE_COUNT] = {"shaded", "wireframe", "levels",
+                                                        "height", "slope"};
+
+const char *view_mode_name(view_mode m) {
+    return m >= 0 && m < VIEW_MODE_COUNT ? view_names[m] : "?";
+}
+
+int view_mode_parse(const char *text) {
+    for (int i = 0; i < VIEW_MODE_COUNT; i++)
+        if (strcmp(text, view_names[i]) == 0) return i;
+    return -1;
+}
+
+void render_settings_default(render_settings *s) {
+    *s = (render_settings){.levels = 8,
+                           .parallax = 1,
+                           .parallax_steps = 8,
+                           .detail_distance = 150.0,
+                           .view = VIEW_SHADED,
+                           .sun_yaw = 135.0,
+                           .sun_pitch = 35.0,
+                           .fog_density = 0.0,
+                           .culling = 1,
+                           .morph = 1};
+}
+
+static GLuint make_texture(GLenum target) {
+    GLuint t = 0;
+    glCreateTextures(target, 1, &t);
+    return t;
+}
+
+static void set_filter_wrap(GLuint t, GLenum filter, GLenum wrap) {
+    glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, filter);
+    glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, filter == GL_LINEAR_MIPMAP_LINEAR ? GL_LINEAR : filter);
+    glTextureParameteri(t, GL_TEXTURE_WRAP_S, wrap);
+    glTextureParameteri(t, GL_TEXTURE_WRAP_T, wrap);
+}
+
+static int create_textures(terrain_renderer *r, og_error *err) {
+    r->tex_heights = make_texture(GL_TEXTURE_2D_ARRAY);
+    glTextureStorage3D(r->tex_heights, 1, GL_R32F, CLIP_TEXELS, CLIP_TEXELS, RENDER_MAX_LEVELS);
+    set_filter_wrap(r->tex_heights, GL_LINEAR, GL_REPEAT);
+
+    r->tex_material = make_texture(GL_TEXTURE_2D);
+    glTextureStorage2D(r->tex_material, 1, GL_RG32UI, CLIP_TEXELS, CLIP_TEXELS);
+    set_filter_wrap(r->tex_material, GL_NEAREST, GL_REPEAT);
+
+    r->tex_detail = make_texture(GL_TEXTURE_2D);
+    glTextureStorage2D(r->tex_detail, 1, GL_R32F, DETAIL_TEXELS, DETAIL_TEXELS);
+    set_filter_wrap(r->tex_detail, GL_LINEAR, GL_REPEAT);
+    r->tex_detail_pd = make_texture(GL_TEXTURE_2D);
+    glTextureStorage2D(r->tex_detail_pd, 1, GL_RG16_SNORM, DETAIL_TEXELS, DETAIL_TEXELS);
+    set_filter_wrap(r->tex_detail_pd, GL_LINEAR, GL_REPEAT);
+
+    r->tex_falloff = make_texture(GL_TEXTURE_2D);
+    glTextureStorage2D(r->tex_falloff, 1, GL_R32F, BRUSH_FALLOFF_SAMPLES, 1);
+    set_filter_wrap(r->tex_falloff, GL_LINEAR, GL_CLAMP_TO_EDGE);
+
+    // The material textures the program makes itself (renderer/material_textures.c).
+    int mips = 1;
+    while ((MATERIAL_TEXTURE_SIZE >> mips) > 0) mips++;
+    r->tex_albedo = make_texture(GL_TEXTURE_2D_ARRAY);
+    glTextureStorage3D(r->tex_albedo, mips, GL_RGBA8, MATERIAL_TEXTURE_SIZE, MATERIAL_TEXTURE_SIZE,
+                       MATERIAL_TEXTURE_COUNT);
+    unsigned char *rgba = malloc((size_t)MATERIAL_TEXTURE_SIZE * MATERIAL_TEXTURE_SIZE * 4);
+    if (!rgba) return og_error_set(err, "out of memory for the material textures");
+    for (int i = 0; i < MATERIAL_TEXTURE_COUNT; i++) {
+        material_texture_generate(i, rgba);
+        glTextureSubImage3D(r->tex_albedo, 0, 0, 0, i, MATERIAL_TEXTURE_SIZE, MATERIAL_TEXTURE_SIZE,
+                            1, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+    }
+    free(rgba);
+    glGenerateTextureMipmap(r->tex_albedo);
+    set_filter_wrap(r->tex_albedo, GL_LINEAR_MIPMAP_LINEAR, GL_REPEAT);
+    if (epoxy_has_gl_extension("GL_EXT_texture_filter_anisotropic") ||
+        epoxy_has_gl_extension("GL_ARB_texture_filter_anisotropic"))
+        glTextureParameterf(r->tex_albedo, GL_TEXTURE_MAX_ANISOTROPY_EXT, 8.0f);
+    return 0;
+}
+
+static int create_windows(terrain_renderer *r, og_error *err) {
+    for (int l = 0; l < RENDER_MAX_LEVELS; l++)
+        if (clip_window_init(&r->heights[l], TILE_LAYER_COARSE, 0, l, CLIP_TEXELS) != 0)
+            return og_error_set(err, "out of memory for the clipmap levels");
+    if (clip_window_init(&r->material, TILE_LAYER_MATERIAL, 0, 0, CLIP_TEXELS) != 0 ||
+        clip_window_init(&r->detail, TILE_LAYER_DETAIL, 0, 0, DETAIL_TEXELS) != 0 ||
+        clip_window_init(&r->detail_pd, TILE_LAYER_DETAIL_PD, 0, 0, DETAIL_TEXELS) != 0)
+        return og_error_set(err, "out of memory for the clipmap windows");
+    return 0;
+}
+
+terrain_renderer *terrain_renderer_create(const char *resource_dir, og_error *err) {
+    terrain_renderer *r = calloc(1, sizeof *r);
+    if (!r) {
+        og_error_set(err, "out of memory");
+        return NULL;
+    }
+    char dir[4200];
+    snprintf(dir, sizeof dir, "%s/shaders", resource_dir);
+    if (!(r->prog_terrain = shader_program_load(dir, "terrain.vert", "terrain.frag", err)) ||
+        !(r->prog_sky = shader_program_load(dir, "fullscreen.vert", "sky.frag", err)) ||
+        !(r->prog_water = shader_program_load(dir, "water.vert", "water.frag", err)))
+        goto fail;
+    if (clipmap_mesh_build(&r->mesh, CLIP_N) != 0) {
+        og_error_set(err, "out of memory for the clipmap mesh");
+        goto fail;
+    }
+    glCreateVertexArrays(1, &r->vao);
+    glCreateVertexArrays(1, &r->empty_vao);
+    glCreateBuffers(1, &r->vbo);
+    glCreateBuffers(1, &r->ebo);
+    glNamedBufferStorage(r->vbo, (GLsizeiptr)(r->mesh.vertex_count * 2 * sizeof(uint16_t)),
+                         r->mesh.vertices, 0);
+    glNamedBufferStorage(r->ebo, (GLsizeiptr)(r->mesh.index_count * sizeof(uint16_t)),
+                         r->mesh.indices, 0);
+    glVertexArrayVertexBuffer(r->vao, 0, r->vbo, 0, 2 * sizeof(uint16_t));
+    glVertexArrayElementBuffer(r->vao, r->ebo);
+    glEnableVertexArrayAttrib(r->vao, 0);
+    glVertexArrayAttribIFormat(r->vao, 0, 2, GL_UNSIGNED_SHORT, 0);
+    glVertexArrayAttribBinding(r->vao, 0, 0);
+    if (create_textures(r, err) != 0 || create_windows(r, err) != 0) goto fail;
+    GLenum e = glGetError();
+    if (e != GL_NO_ERROR) {
+        og_error_set(err, "renderer set-up failed: GL error 0x%x", e);
+        goto fail;
+    }
+    return r;
+fail:
+    terrain_renderer_destroy(r);
+    return NULL;
+}
+
+void terrain_renderer_destroy(terrain_renderer *r) {
+    if (!r) return;
+    glDeleteProgram(r->prog_terrain);
+    glDeleteProgram(r->prog_sky);
+    glDeleteProgram(r->prog_water);
+    glDeleteVertexArrays(1, &r->vao);
+    glDeleteVertexArrays(1, &r->empty_vao);
+    glDeleteBuffers(1, &r->vbo);
+    glDeleteBuffers(1, &r->ebo);
+    GLuint tex[] = {r->tex_heights, r->tex_material, r->tex_albedo, r->tex_detail, r->tex_detail_pd,
+                    r->tex_falloff};
+    glDeleteTextures(6, tex);
+    clipmap_mesh_free(&r->mesh);
+    for (int l = 0; l < RENDER_MAX_LEVELS; l++) clip_window_free(&r->heights[l]);
+    clip_window_free(&r->material);
+    clip_window_free(&r->detail);
+    clip_window_free(&r->detail_pd);
+    free(r);
+}
+
+static int64_t floor_to_i64(double v) { return (int64_t)floor(v); }
+
+// The level layout for this camera (Asirvatham & Hoppe's nesting): level l's local
+// vertex (0,0) sits at an even sample index so the next coarser level's samples land
+// on its vertices, and the finer level sits m-1 or m quads inside it.
+static void layout_levels(terrain_renderer *r, const world_params *p, const camera *cam,
+                          const render_settings *s) {
+    int m = (CLIP_N + 1) / 4;
+    r->levels = s->levels < RENDER_MIN_LEVELS ? RENDER_MIN_LEVELS
+              : s->levels > RENDER_MAX_LEVELS ? RENDER_MAX_LEVELS : s->levels;
+    // Skip levels too fine to matter from high up (their whole extent is far below).
+    double ground;
+    double above = terrain_renderer_height_at(r, cam->pos[0], cam->pos[2], &ground) == 0
+                       ? fabs(cam->pos[1] - ground) : 0.0;
+    r->finest = 0;
+    while (r->finest < r->levels - 1 &&
+           0.4 * (CLIP_N - 1) * p->spacing * (double)(1 << r->finest) < above)
+        r->finest++;
+    for (int l = 0; l < r->levels; l++) {
+        double level_spacing = p->spacing * (double)((int64_t)1 << l);
+        for (int a = 0; a < 2; a++) {
+            double c = cam->pos[a == 0 ? 0 : 2] / level_spacing;
+            r->origin[l][a] = 2 * floor_to_i64(c / 2.0) - (2 * m - 2);
+        }
+    }
+}
+
+static void scan_bounds(terrain_renderer *r, int l, const texel_rect *rects, int count, int all) {
+    const clip_window *w = &r->heights[l];
+    const float *h = (const float *)w->mirror;
+    texel_rect whole = {0, 0, w->size, w->size};
+    if (all) rects = &whole, count = 1, r->hmin[l] = INFINITY, r->hmax[l] = -INFINITY;
+    for (int k = 0; k < count; k++)
+        for (int z = rects[k].z; z < rects[k].z + rects[k].h; z++)
+            for (int x = rects[k].x; x < rects[k].x + rects[k].w; x++) {
+                float v = h[(size_t)z * w->size + x];
+                if (v < r->hmin[l]) r->hmin[l] = v;
+                if (v > r->hmax[l]) r->hmax[l] = v;
+            }
+}
+
+// Sends what changed in a window's mirror to its texture (layer for array textures).
+static void upload_window(terrain_renderer *r, clip_window *w, GLuint tex, int layer,
+                          GLenum format, GLenum type) {
+    if (!w->upload_all && w->upload_count == 0) return;
+    texel_rect whole = {0, 0, w->size, w->size};
+    const texel_rect *rects = w->upload_all ? &whole : w->uploads;
+    int count = w->upload_all ? 1 : w->upload_count;
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, w->size);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    for (int k = 0; k < count; k++) {
+        const texel_rect *t = &rects[k];
+        const unsigned char *src = w->mirror + ((size_t)t->z * w->size + t->x) * w->texel_bytes;
+        if (layer >= 0)
+            glTextureSubImage3D(tex, 0, t->x, t->z, layer, t->w, t->h, 1, format, type, src);
+        else
+            glTextureSubImage2D(tex, 0, t->x, t->z, t->w, t->h, format, type, src);
+        r->frame_texels += (uint64_t)t->w * t->h;
+    }
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+    if (layer >= 0 && w->layer == TILE_LAYER_COARSE) scan_bounds(r, layer, rects, count, w->upload_all);
+    w->upload_all = 0;
+    w->upload_count = 0;
+}
+
+static void invalidate_all(terrain_renderer *r) {
+    for (int l = 0; l < RENDER_MAX_LEVELS; l++) clip_window_invalidate(&r->heights[l]);
+    clip_window_invalidate(&r->material);
+    clip_window_invalidate(&r->detail);
+    clip_window_invalidate(&r->detail_pd);
+}
+
+// Edits since the last frame: re-read just the changed samples of every window.
+static void apply_dirty(terrain_renderer *r, world *w) {
+    history *h = world_history(w);
+    tile_cache *cache = world_cache(w);
+    if (!h) return;
+    dirty_rect rects[64];
+    size_t n;
+    while ((n = history_dirty_take(h, rects, 64)) > 0) {
+        for (size_t i = 0; i < n; i++) {
+            grid_rect g = rects[i].rect;
+            if (rects[i].face != 0) continue;
+            switch (rects[i].layer) {
+            case TILE_LAYER_COARSE:
+                // Mips are tent-filtered: a change reaches one sample further per level.
+                for (int l = 0; l < RENDER_MAX_LEVELS; l++)
+                    clip_window_refresh(&r->heights[l], cache, (g.x0 >> l) - 1, (g.z0 >> l) - 1,
+                                        ((g.x1 - 1) >> l) + 2, ((g.z1 - 1) >> l) + 2);
+                break;
+            case TILE_LAYER_MATERIAL:
+                clip_window_refresh(&r->material, cache, g.x0, g.z0, g.x1, g.z1);
+                break;
+            case TILE_LAYER_DETAIL:
+            case TILE_LAYER_DETAIL_PD: // slopes change one sample around the change
+                clip_window_refresh(&r->detail, cache, g.x0 - 1, g.z0 - 1, g.x1 + 1, g.z1 + 1);
+                clip_window_refresh(&r->detail_pd, cache, g.x0 - 1, g.z0 - 1, g.x1 + 1, g.z1 + 1);
+                break;
+            default: break;
+            }
+        }
+        if (n < 64) break;
+    }
+}
+
+int terrain_renderer_update(terrain_renderer *r, world *w, const camera *cam,
+                            const render_settings *s, og_error *err) {
+    double t0 = now_ms();
+    const world_params *p = world_get_params(w);
+    if (p->kind != WORLD_FLAT)
+        return og_error_set(err, "the viewport draws flat worlds; this is a planet (planet "
+                                 "rendering is not built yet)");
+    if (r->world != w || r->world_serial != world_serial(w) ||
+        memcmp(&r->params, p, sizeof *p) != 0) {
+        invalidate_all(r);
+        r->world = w;
+        r->world_serial = world_serial(w);
+        r->params = *p;
+    }
+    r->frame_texels = 0;
+    apply_dirty(r, w);
+    layout_levels(r, p, cam, s);
+    tile_cache *cache = world_cache(w);
+    int all = 1;
+    // Finest first: the cache serves the last request first, so the coarsest level,
+    // which stands in for all the others, arrives first.
+    for (int l = r->finest; l < r->levels; l++) {
+        int ok = clip_window_update(&r->heights[l], cache, r->origin[l]);
+        if (ok < 0) return og_error_set(err, "the clipmap could not read level %d", l);
+        if (!ok) all = 0;
+    }
+    r->material_current = 0;
+    if (r->finest == 0) {
+        int ok = clip_window_update(&r->material, cache, r->origin[0]);
+        r->material_current = ok == 1;
+        if (!ok) all = 0;
+    }
+    r->detail_current = 0;
+    { // detail heights and slopes near the camera (slopes shade even without parallax)
+        double ds = p->spacing / p->detail_ratio;
+        for (int a = 0; a < 2; a++) {
+            int64_t c = floor_to_i64(cam->pos[a == 0 ? 0 : 2] / ds) - DETAIL_TEXELS / 2;
+            r->detail_origin[a] = (c / DETAIL_SNAP - (c % DETAIL_SNAP < 0)) * DETAIL_SNAP;
+        }
+        double ground;
+        int near_ground = terrain_renderer_height_at(r, cam->pos[0], cam->pos[2], &ground) == 0 &&
+                          fabs(cam->pos[1] - ground) < s->detail_distance;
+        if (near_ground) {
+            int a = clip_window_update(&r->detail, cache, r->detail_origin);
+            int b = clip_window_update(&r->detail_pd, cache, r->detail_origin);
+            r->detail_current = a == 1 && b == 1;
+            if (!r->detail_current) all = 0;
+        }
+    }
+    // Uploads, and which level each level draws from while its own is not current.
+    for (int l = r->finest; l < r->levels; l++)
+        upload_window(r, &r->heights[l], r->tex_heights, l, GL_RED, GL_FLOAT);
+    upload_window(r, &r->material, r->tex_material, -1, GL_RG_INTEGER, GL_UNSIGNED_INT);
+    upload_window(r, &r->detail, r->tex_detail, -1, GL_RED, GL_FLOAT);
+    upload_window(r, &r->detail_pd, r->tex_detail_pd, -1, GL_RG, GL_SHORT);
+    int below = -1;
+    for (int l = r->levels - 1; l >= 0; l--) {
+        if (l >= r->finest && clip_window_current(&r->heights[l], r->origin[l])) below = l;
+        r->src[l] = l >= r->finest ? below : -1;
+    }
+    r->texels_total += r->frame_texels;
+    r->stats.texels_uploaded = r->frame_texels;
+    r->stats.levels_ready = 0;
+    for (int l = r->finest; l < r->levels; l++) r->stats.levels_ready += r->src[l] == l;
+    r->stats.finest_level = r->finest;
+    r->stats.cpu_ms = now_ms() - t0;
+    return all;
+}
+
+int terrain_renderer_height_at(void *renderer, double x, double z, double *h) {
+    terrain_renderer *r = renderer;
+    if (!r->world) return -1;
+    double spacing = r->params.spacing;
+    for (int l = r->finest; l < r->levels; l++) {
+        const clip_window *w = &r->heights[l];
+        if (!clip_window_current(w, r->origin[l])) continue;
+        double ls = spacing * (double)((int64_t)1 << l);
+        double fx = x / ls - (double)w->have[0], fz = z / ls - (double)w->have[1];
+        if (fx < 0 || fz < 0 || fx >= CLIP_N - 1 || fz >= CLIP_N - 1) continue;
+        int ix = (int)fx, iz = (int)fz;
+        double ax = fx - ix, az = fz - iz;
+        const float *m = (const float *)w->mirror;
+        int mask = w->size - 1;
+        int64_t gx = w->have[0] + ix, gz = w->have[1] + iz;
+#define AT(dx, dz) m[(size_t)((gz + (dz)) & mask) * w->size + (size_t)((gx + (dx)) & mask)]
+        *h = (AT(0, 0) * (1 - ax) + AT(1, 0) * ax) * (1 - az) + (AT(0, 1) * (1 - ax) + AT(1, 1) * ax) * az;
+#undef AT
+        return 0;
+    }
+    return -1;
+}
+
+static void uniform_vec4s(GLuint prog, const char *name, const float (*v)[4], int count) {
+    glProgramUniform4fv(prog, glGetUniformLocation(prog, name), count, &v[0][0]);
+}
+
+static double positive_fmod(double a, double b) {
+    double m = fmod(a, b);
+    return m < 0 ? m + b : m;
+}
+
+// Where level-s texels are for level l's local coordinates: texel of local (0,0) and
+// texels per local unit, plus the texture layer.
+static void source_uniform(const terrain_renderer *r, int l, int s, float out[4]) {
+    double scale = 1.0 / (double)((int64_t)1 << (s - l));
+    double rel = 0;
+    for (int a = 0; a < 2; a++) {
+        rel = (double)r->origin[l][a] * scale - (double)r->origin[s][a];
+        out[a] = (float)((double)(r->origin[s][a] & (CLIP_TEXELS - 1)) + rel);
+    }
+    out[2] = (float)scale;
+    out[3] = (float)s;
+}
+
+static void sun_direction(const render_settings *s, float out[3]) {
+    double yaw = s->sun_yaw * M_PI / 180.0, pitch = s->sun_pitch * M_PI / 180.0;
+    out[0] = (float)(sin(yaw) * cos(pitch));
+    out[1] = (float)sin(pitch);
+    out[2] = (float)(-cos(yaw) * cos(pitch));
+}
+
+static double reach_metres(const terrain_renderer *r) {
+    return 0.5 * (CLIP_N - 1) * r->params.spacing * (double)((int64_t)1 << (r->levels - 1));
+}
+
+static void set_lighting(GLuint prog, const terrain_renderer *r, const render_settings *s) {
+    float sun[3];
+    sun_direction(s, sun);
+    glProgramUniform3fv(prog, glGetUniformLocation(prog, "u_sun_dir"), 1, sun);
+    float warm = (float)fmin(1.0, 0.35 + sun[1] * 2.0);
+    glProgramUniform3f(prog, glGetUniformLocation(prog, "u_sun_colour"), 1.05f, 0.97f * warm + 0.03f,
+                       0.86f * warm + 0.05f);
+    glProgramUniform3f(prog, glGetUniformLocation(prog, "u_sky_zenith"), 0.24f, 0.43f, 0.74f);
+    glProgramUniform3f(prog, glGetUniformLocation(prog, "u_sky_horizon"), 0.70f, 0.78f, 0.86f);
+    double density = s->fog_density > 0 ? s->fog_density : 2.5 / reach_metres(r);
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "u_fog_density"), (float)density);
+}
+
+static const float level_tints[RENDER_MAX_LEVELS][3] = {
+    {0.95f, 0.30f, 0.25f}, {0.95f, 0.65f, 0.20f}, {0.90f, 0.90f, 0.25f}, {0.45f, 0.85f, 0.30f},
+    {0.25f, 0.80f, 0.70f}, {0.30f, 0.55f, 0.95f}, {0.55f, 0.35f, 0.90f}, {0.90f, 0.40f, 0.80f},
+    {0.75f, 0.75f, 0.75f}, {0.60f, 0.45f, 0.30f}, {0.35f, 0.60f, 0.45f}, {0.40f, 0.40f, 0.65f}};
+
+static void set_terrain_uniforms(terrain_renderer *r, const camera *cam, const render_settings *s,
+                                 const brush_cursor *cursor, const float view_proj[16]) {
+    GLuint prog = r->prog_terrain;
+    const world_params *p = &r->params;
+    float offset[RENDER_MAX_LEVELS][4] = {{0}}, view[RENDER_MAX_LEVELS][4] = {{0}};
+    float src_a[RENDER_MAX_LEVELS][4] = {{0}}, src_b[RENDER_MAX_LEVELS][4] = {{0}};
+    float bounds[RENDER_MAX_LEVELS][4] = {{0}}, uv[RENDER_MAX_LEVELS][4] = {{0}};
+    float mat[RENDER_MAX_LEVELS][4] = {{0}}, detail[RENDER_MAX_LEVELS][4] = {{0}};
+    double ratio = p->detail_ratio;
+    for (int l = r->finest; l < r->levels; l++) {
+        if (r->src[l] < 0) continue;
+        double mult = (double)((int64_t)1 << l), ls = p->spacing * mult;
+        double x0 = (double)r->origin[l][0] * ls, z0 = (double)r->origin[l][1] * ls;
+        offset[l][0] = (float)(x0 - cam->pos[0]);
+        offset[l][1] = (float)(z0 - cam->pos[2]);
+        offset[l][2] = (float)ls;
+        view[l][0] = (float)(cam->pos[0] / ls - (double)r->origin[l][0]);
+        view[l][1] = (float)(cam->pos[2] / ls - (double)r->origin[l][1]);
+        int coarser = l + 1 < r->levels ? r->src[l + 1] : -1;
+        view[l][2] = s->morph && coarser >= 0 ? 1.0f : 0.0f;
+        source_uniform(r, l, r->src[l], src_a[l]);
+        source_uniform(r, l, coarser >= 0 ? coarser : r->src[l], src_b[l]);
+        if (p->size > 0) {
+            double last = (double)(p->size - 1) / mult;
+            bounds[l][0] = (float)(-(double)r->origin[l][0]);
+            bounds[l][1] = (float)(-(double)r->origin[l][1]);
+            bounds[l][2] = (float)(last - (double)r->origin[l][0]);
+            bounds[l][3] = (float)(last - (double)r->origin[l][1]);
+        } else {
+            bounds[l][0] = bounds[l][1] = -UNBOUNDED;
+            bounds[l][2] = bounds[l][3] = UNBOUNDED;
+        }
+        uv[l][0] = (float)positive_fmod(x0, TEX_PERIOD_NEAR);
+        uv[l][1] = (float)positive_fmod(z0, TEX_PERIOD_NEAR);
+        uv[l][2] = (float)positive_fmod(x0, TEX_PERIOD_FAR);
+        uv[l][3] = (float)positive_fmod(z0, TEX_PERIOD_FAR);
+        if (r->material_current) {
+            mat[l][0] = (float)((double)r->origin[l][0] * mult - (double)r->origin[0][0]);
+            mat[l][1] = (float)((double)r->origin[l][1] * mult - (double)r->origin[0][1]);
+            mat[l][2] = (float)mult;
+            mat[l][3] = 1;
+        }
+        if (r->detail_current && l <= 3) {
+            detail[l][0] = (float)((double)r->origin[l][0] * mult * ratio - (double)r->detail_origin[0]);
+            detail[l][1] = (float)((double)r->origin[l][1] * mult * ratio - (double)r->detail_origin[1]);
+            detail[l][2] = (float)(mult * ratio);
+            detail[l][3] = 1;
+        }
+    }
+    glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "u_view_proj"), 1, GL_FALSE, view_proj);
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "u_cam_y"), (float)cam->pos[1]);
+    // Hoppe's transition band: w = n/10 level units, ending one unit inside the edge.
+    float band = (float)(CLIP_N / 10);
+    glProgramUniform2f(prog, glGetUniformLocation(prog, "u_morph"), (CLIP_N - 1) / 2.0f - band - 1.0f, band);
+    uniform_vec4s(prog, "u_lvl_offset", offset, RENDER_MAX_LEVELS);
+    uniform_vec4s(prog, "u_lvl_view", view, RENDER_MAX_LEVELS);
+    uniform_vec4s(prog, "u_lvl_src_a", src_a, RENDER_MAX_LEVELS);
+    uniform_vec4s(prog, "u_lvl_src_b", src_b, RENDER_MAX_LEVELS);
+    uniform_vec4s(prog, "u_lvl_bounds", bounds, RENDER_MAX_LEVELS);
+    uniform_vec4s(prog, "u_lvl_uv", uv, RENDER_MAX_LEVELS);
+    uniform_vec4s(prog, "u_lvl_mat", mat, RENDER_MAX_LEVELS);
+    uniform_vec4s(prog, "u_lvl_detail", detail, RENDER_MAX_LEVELS);
+    glProgramUniform3fv(prog, glGetUniformLocation(prog, "u_level_tint"), RENDER_MAX_LEVELS, &level_tints[0][0]);
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "u_view_mode"), s->view);
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "u_ocean_level"), (float)p->ocean_level);
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "u_max_height"), (float)p->max_height);
+    glProgramUniform2f(prog, glGetUniformLocation(prog, "u_tex_period"), (float)TEX_PERIOD_NEAR, (float)TEX_PERIOD_FAR);
+    glProgramUniform2i(prog, glGetUniformLocation(prog, "u_mat_wrap"), (int)(r->origin[0][0] & (CLIP_TEXELS - 1)),
+                       (int)(r->origin[0][1] & (CLIP_TEXELS - 1)));
+    glProgramUniform2f(prog, glGetUniformLocation(prog, "u_detail_wrap"),
+                       (float)(r->detail_origin[0] & (DETAIL_TEXELS - 1)),
+                       (float)(r->detail_origin[1] & (DETAIL_TEXELS - 1)));
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "u_detail_spacing"), (float)(p->spacing / ratio));
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "u_detail_size"), DETAIL_TEXELS);
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "u_parallax"), s->parallax);
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "u_parallax_steps"), s->parallax_steps);
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "u_parallax_fade"), (float)s->detail_distance);
+    float brush[4] = {0, 0, 1, 0};
+    if (cursor && cursor->visible && cursor->radius > 0) {
+        brush[0] = (float)(cursor->x - cam->pos[0]);
+        brush[1] = (float)(cursor->z - cam->pos[2]);
+        brush[2] = (float)cursor->radius;
+        brush[3] = 1;
+        glTextureSubImage2D(r->tex_falloff, 0, 0, 0, BRUSH_FALLOFF_SAMPLES, 1, GL_RED, GL_FLOAT,
+                            cursor->falloff);
+    }
+    glProgramUniform4fv(prog, glGetUniformLocation(prog, "u_brush"), 1, brush);
+    set_lighting(prog, r, s);
+    const char *samplers[] = {"u_heights", "u_material", "u_albedo", "u_detail", "u_detail_pd", "u_falloff"};
+    for (int i = 0; i < 6; i++) glProgramUniform1i(prog, glGetUniformLocation(prog, samplers[i]), i);
+    GLuint tex[] = {r->tex_heights, r->tex_material, r->tex_albedo, r->tex_detail, r->tex_detail_pd,
+                    r->tex_falloff};
+    glBindTextures(0, 6, tex);
+}
+
+// The camera-relative bounding box of a piece of level l, for culling.
+static void piece_box(const terrain_renderer *r, int l, const clip_piece *pc, const camera *cam,
+                      float mn[3], float mx[3]) {
+    double ls = r->params.spacing * (double)((int64_t)1 << l);
+    double x0 = (double)r->origin[l][0] * ls - cam->pos[0], z0 = (double)r->origin[l][1] * ls - cam->pos[2];
+    int s = r->src[l], c = l + 1 < r->levels && r->src[l + 1] >= 0 ? r->src[l + 1] : s;
+    float lo = fminf(r->hmin[s], r->hmin[c]), hi = fmaxf(r->hmax[s], r->hmax[c]);
+    mn[0] = (float)(x0 + pc->x0 * ls), mx[0] = (float)(x0 + pc->x1 * ls);
+    mn[1] = (float)(lo - cam->pos[1]), mx[1] = (float)(hi - cam->pos[1]);
+    mn[2] = (float)(z0 + pc->z0 * ls), mx[2] = (float)(z0 + pc->z1 * ls);
+}
+
+static void draw_terrain(terrain_renderer *r, const camera *cam, const render_settings *s,
+                         const float view_proj[16]) {
+    frustum f;
+    frustum_from_matrix(&f, view_proj);
+    int m = r->mesh.m;
+    GLsizei counts[64];
+    const void *offsets[64];
+    glUseProgram(r->prog_terrain);
+    glBindVertexArray(r->vao);
+    GLint level_loc = glGetUniformLocation(r->prog_terrain, "u_level");
+    for (int l = r->finest; l < r->levels; l++) {
+        if (r->src[l] < 0) continue;
+        clip_trim trims[2] = {CLIP_TRIM_COUNT, CLIP_TRIM_COUNT};
+        if (l > r->finest) {
+            int off_x = (int)(r->origin[l - 1][0] / 2 - r->origin[l][0]);
+            int off_z = (int)(r->origin[l - 1][1] / 2 - r->origin[l][1]);
+            clipmap_trims_for_offset(m, off_x, off_z, trims);
+        }
+        int n = 0;
+        for (size_t i = 0; i < r->mesh.piece_count && n < 64; i++) {
+            const clip_piece *pc = &r->mesh.pieces[i];
+            if (pc->kind == CLIP_PIECE_INTERIOR && l != r->finest) continue;
+            if (pc->kind == CLIP_PIECE_TRIM && (l == r->finest || (pc->trim != (int)trims[0] &&
+                                                                    pc->trim != (int)trims[1])))
+                continue;
+            if (s->culling && (pc->kind == CLIP_PIECE_BLOCK || pc->kind == CLIP_PIECE_FIXUP ||
+                               pc->kind == CLIP_PIECE_INTERIOR)) {
+                float mn[3], mx[3];
+                piece_box(r, l, pc, cam, mn, mx);
+                if (!frustum_test_aabb(&f, mn, mx)) continue;
+            }
+            counts[n] = (GLsizei)pc->count;
+            offsets[n] = (const void *)(uintptr_t)(pc->first * sizeof(uint16_t));
+            r->stats.triangles += pc->count / 3;
+            n++;
+        }
+        if (n == 0) continue;
+        glProgramUniform1i(r->prog_terrain, level_loc, l);
+        glMultiDrawElements(GL_TRIANGLES, counts, GL_UNSIGNED_SHORT, offsets, n);
+        r->stats.draw_calls++;
+        r->stats.levels_drawn++;
+    }
+}
+
+static void draw_sky(terrain_renderer *r, const camera *cam, const render_settings *s, double aspect) {
+    GLuint prog = r->prog_sky;
+    double f[3], rt[3], up[3];
+    camera_forward(cam, f), camera_right(cam, rt), camera_up(cam, up);
+    glProgramUniform3f(prog, glGetUniformLocation(prog, "u_cam_forward"), (float)f[0], (float)f[1], (float)f[2]);
+    glProgramUniform3f(prog, glGetUniformLocation(prog, "u_cam_right"), (float)rt[0], (float)rt[1], (float)rt[2]);
+    glProgramUniform3f(prog, glGetUniformLocation(prog, "u_cam_up"), (float)up[0], (float)up[1], (float)up[2]);
+    double ty = tan(cam->fov_y * M_PI / 360.0);
+    glProgramUniform2f(prog, glGetUniformLocation(prog, "u_tan_half"), (float)(ty * aspect), (float)ty);
+    set_lighting(prog, r, s);
+    glUseProgram(prog);
+    glBindVertexArray(r->empty_vao);
+    glDepthMask(GL_FALSE);
+    glDisable(GL_DEPTH_TEST);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glEnable(GL_DEPTH_TEST);
+    glDepthMask(GL_TRUE);
+    r->stats.draw_calls++;
+}
+
+static void draw_water(terrain_renderer *r, const camera *cam, const render_settings *s,
+                       const float view_proj[16]) {
+    const world_params *p = &r->params;
+    double reach = reach_metres(r);
+    double x0 = cam->pos[0] - reach, x1 = cam->pos[0] + reach;
+    double z0 = cam->pos[2] - reach, z1 = cam->pos[2] + reach;
+    if (p->size > 0) {
+        double last = (double)(p->size - 1) * p->spacing;
+        x0 = fmax(x0, 0), z0 = fmax(z0, 0), x1 = fmin(x1, last), z1 = fmin(z1, last);
+        if (x0 >= x1 || z0 >= z1) return;
+    }
+    GLuint prog = r->prog_water;
+    glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "u_view_proj"), 1, GL_FALSE, view_proj);
+    glProgramUniform4f(prog, glGetUniformLocation(prog, "u_water_rect"), (float)(x0 - cam->pos[0]),
+                       (float)(z0 - cam->pos[2]), (float)(x1 - cam->pos[0]), (float)(z1 - cam->pos[2]));
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "u_water_y"), (float)(p->ocean_level - cam->pos[1]));
+    set_lighting(prog, r, s);
+    glUseProgram(prog);
+    glBindVertexArray(r->empty_vao);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    glDepthMask(GL_FALSE);
+    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+    r->stats.draw_calls++;
+}
+
+int terrain_renderer_draw(terrain_renderer *r, world *w, const camera *cam,
+                          const render_settings *s, const brush_cursor *cursor, int width,
+                          int height, og_error *err) {
+    double t0 = now_ms();
+    if (r->world != w) return og_error_set(err, "terrain_renderer_draw: update first");
+    r->stats.triangles = 0;
+    r->stats.draw_calls = 0;
+    r->stats.levels_drawn = 0;
+    double aspect = (double)width / (double)(height > 0 ? height : 1);
+    float view_proj[16];
+    camera_view_projection(cam, aspect, view_proj);
+    glViewport(0, 0, width, height);
+    // Reversed Z: depth 1 at the near plane, 0 at infinity, in a float buffer.
+    glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_GREATER);
+    glClearDepth(0.0);
+    glDisable(GL_CULL_FACE);
+    int wire = s->view == VIEW_WIREFRAME;
+    if (wire) glClearColor(0.06f, 0.07f, 0.09f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    if (!wire) draw_sky(r, cam, s, aspect);
+    if (r->levels > 0 && r->src[r->levels - 1] >= 0) {
+        set_terrain_uniforms(r, cam, s, cursor, view_proj);
+        if (wire) glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+        draw_terrain(r, cam, s, view_proj);
+        if (wire) glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+        if (!wire && s->view == VIEW_SHADED) draw_water(r, cam, s, view_proj);
+    }
+    glBindVertexArray(0);
+    glUseProgram(0);
+    GLenum e = glGetError();
+    r->stats.cpu_ms += now_ms() - t0;
+    if (e != GL_NO_ERROR) return og_error_set(err, "terrain_renderer_draw: GL error 0x%x", e);
+    return 0;
+}
+
+void terrain_renderer_stats(const terrain_renderer *r, render_stats *out) { *out = r->stats; }
+
+uint64_t terrain_renderer_texels_total(const terrain_renderer *r) { return r->texels_total; }

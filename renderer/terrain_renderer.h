@@ -1,0 +1,86 @@
+// The 3D viewport's renderer: GPU geometry clipmaps over the tile cache (seed 000),
+// with material splatting, parallax detail, sky, water, fog, the brush cursor and the
+// debug views. Needs a current OpenGL 4.5 core context (the window's or a headless
+// one); everything it holds is the same size whatever the world's size.
+#ifndef OROGEN_RENDERER_TERRAIN_RENDERER_H
+#define OROGEN_RENDERER_TERRAIN_RENDERER_H
+
+#include "editor/world.h"
+#include "io/err.h"
+#include "renderer/camera.h"
+
+#include <stdint.h>
+
+#define RENDER_MIN_LEVELS 3
+#define RENDER_MAX_LEVELS 12
+#define BRUSH_FALLOFF_SAMPLES 64
+
+typedef enum view_mode {
+    VIEW_SHADED = 0,
+    VIEW_WIREFRAME = 1,
+    VIEW_LEVELS = 2, // clipmap level colours
+    VIEW_HEIGHT = 3,
+    VIEW_SLOPE = 4,
+    VIEW_MODE_COUNT
+} view_mode;
+
+const char *view_mode_name(view_mode m);
+int view_mode_parse(const char *text); // -1 if unknown
+
+typedef struct render_settings {
+    int levels;             // clipmap levels, RENDER_MIN_LEVELS .. RENDER_MAX_LEVELS (8)
+    int parallax;           // parallax-mapped detail near the camera (1)
+    int parallax_steps;     // parallax iterations: the quality setting, 1 .. 32 (8)
+    double detail_distance; // metres: the detail fades out by this distance (150)
+    view_mode view;
+    double sun_yaw, sun_pitch; // degrees (135, 35)
+    double fog_density;     // per metre (0: automatic from the clipmap's reach)
+    int culling;            // per-block frustum culling (1)
+    int morph;              // transition morphing between levels (1)
+} render_settings;
+
+void render_settings_default(render_settings *s);
+
+typedef struct brush_cursor {
+    int visible;
+    double x, z;        // world metres
+    double radius;      // metres
+    float falloff[BRUSH_FALLOFF_SAMPLES]; // weight at distance i/(N-1) of the radius
+} brush_cursor;
+
+typedef struct render_stats {
+    uint64_t triangles;      // drawn this frame (terrain)
+    int draw_calls;
+    int levels_drawn, levels_ready, finest_level;
+    uint64_t texels_uploaded; // this frame
+    double cpu_ms;            // CPU time of update + draw submission
+} render_stats;
+
+typedef struct terrain_renderer terrain_renderer;
+
+// Loads the shaders from resource_dir/shaders and builds the fixed buffers.
+terrain_renderer *terrain_renderer_create(const char *resource_dir, og_error *err);
+void terrain_renderer_destroy(terrain_renderer *r);
+
+// Brings the clipmaps up to date for this camera without waiting: edits since the
+// last call are re-read, entering rows and columns are uploaded, tiles that are not
+// resident yet are requested (the levels that need them show the coarser level).
+// Returns 1 when every level is current, 0 while some still wait, -1 on error (a
+// planet world, which this viewport does not draw yet, or a cache failure).
+int terrain_renderer_update(terrain_renderer *r, world *w, const camera *cam,
+                            const render_settings *s, og_error *err);
+
+// Draws into the current framebuffer (width x height pixels).
+int terrain_renderer_draw(terrain_renderer *r, world *w, const camera *cam,
+                          const render_settings *s, const brush_cursor *cursor, int width,
+                          int height, og_error *err);
+
+void terrain_renderer_stats(const terrain_renderer *r, render_stats *out);
+// Texels copied into the level textures since creation (all levels and layers).
+uint64_t terrain_renderer_texels_total(const terrain_renderer *r);
+
+// The ground height at world x, z from the finest current level holding it (what the
+// viewport shows, without morphing). 0 and *h, or -1 when no level holds it.
+int terrain_renderer_height_at(void *renderer, double x, double z, double *h);
+
+#endif

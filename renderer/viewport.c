@@ -1,0 +1,120 @@
+#include "renderer/viewport.h"
+
+#include "renderer/gl_target.h"
+#include "renderer/pick.h"
+#include "io/image_read.h"
+
+#include <epoxy/gl.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+viewport *viewport_create(const char *resource_dir) {
+    viewport *v = calloc(1, sizeof *v);
+    if (!v) return NULL;
+    camera_default(&v->cam);
+    render_settings_default(&v->settings);
+    snprintf(v->resource_dir, sizeof v->resource_dir, "%s", resource_dir);
+    v->wait_seconds = 600;
+    return v;
+}
+
+void viewport_destroy(viewport *v) {
+    if (!v) return;
+    terrain_renderer_destroy(v->renderer);
+    gl_headless_destroy(v->headless);
+    free(v);
+}
+
+int viewport_default_camera(viewport *v, world *w, og_error *err) {
+    const world_params *p = world_get_params(w);
+    if (p->kind != WORLD_FLAT)
+        return og_error_set(err, "the viewport draws flat worlds; this is a planet");
+    double centre = p->size > 0 ? 0.5 * (double)(p->size - 1) * p->spacing : 0.0;
+    double ground = 0;
+    if (world_sample(w, 0, centre, centre, &ground, err) != 0) return -1;
+    camera_default(&v->cam);
+    v->cam.pos[0] = centre;
+    v->cam.pos[2] = centre;
+    v->cam.pos[1] = fmax(ground, p->ocean_level) + fmax(40.0, 0.25 * p->max_height);
+    v->cam.yaw = 30;
+    v->cam.pitch = -18;
+    v->cam_set = 1;
+    return 0;
+}
+
+int viewport_prepare(viewport *v, og_error *err) {
+    if (!v->window_context && !v->headless) {
+        v->headless = gl_headless_create(err);
+        if (!v->headless) return -1;
+        if (gl_require_features(err) != 0) return -1;
+    }
+    if (!v->renderer) {
+        v->renderer = terrain_renderer_create(v->resource_dir, err);
+        if (!v->renderer) return -1;
+    }
+    return 0;
+}
+
+static double seconds_now(void) {
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return t.tv_sec + t.tv_nsec * 1e-9;
+}
+
+int viewport_settle(viewport *v, world *w, og_error *err) {
+    if (viewport_prepare(v, err) != 0) return -1;
+    if (!v->cam_set && viewport_default_camera(v, w, err) != 0) return -1;
+    double start = seconds_now();
+    for (;;) {
+        int rc = terrain_renderer_update(v->renderer, w, &v->cam, &v->settings, err);
+        if (rc < 0) return -1;
+        // Twice current in a row: the finest level depends on the ground height the
+        // first current frame reveals.
+        if (rc == 1 && terrain_renderer_update(v->renderer, w, &v->cam, &v->settings, err) == 1)
+            return 0;
+        if (seconds_now() - start > v->wait_seconds)
+            return og_error_set(err, "the terrain's tiles did not arrive within %.0f s",
+                                v->wait_seconds);
+        struct timespec nap = {0, 2000000};
+        nanosleep(&nap, NULL);
+    }
+}
+
+int viewport_screenshot(viewport *v, world *w, const char *path, int width, int height,
+                        og_error *err) {
+    if (viewport_settle(v, w, err) != 0) return -1;
+    gl_target target;
+    if (gl_target_create(&target, width, height, err) != 0) return -1;
+    unsigned char *rgb = malloc((size_t)width * height * 3);
+    int rc = -1;
+    if (!rgb) {
+        og_error_set(err, "out of memory for a %d x %d image", width, height);
+    } else {
+        glBindFramebuffer(GL_FRAMEBUFFER, target.fbo);
+        rc = terrain_renderer_draw(v->renderer, w, &v->cam, &v->settings, &v->cursor, width, height,
+                                   err);
+        if (rc == 0) rc = gl_target_read_rgb(&target, rgb, err);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        if (rc == 0) rc = image_write_rgb8(path, rgb, width, height, err);
+    }
+    free(rgb);
+    gl_target_destroy(&target);
+    return rc;
+}
+
+int viewport_pick(viewport *v, world *w, double px, double py, int width, int height,
+                  double hit[3], og_error *err) {
+    if (viewport_settle(v, w, err) != 0) return -1;
+    double dir[3];
+    camera_ray(&v->cam, (double)width / height, px / width, py / height, dir);
+    const world_params *p = world_get_params(w);
+    // As far as the coarsest level reaches; steps of one coarse sample near the camera.
+    double reach = 0.75 * 254 * p->spacing * (double)((int64_t)1 << (v->settings.levels - 1));
+    if (pick_ray(terrain_renderer_height_at, v->renderer, v->cam.pos, dir, reach, p->spacing,
+                 hit) != 0)
+        return og_error_set(err, "no terrain under pixel (%g, %g)", px, py);
+    return 0;
+}

@@ -1,0 +1,48 @@
+// The viewport's state shared by the window and the batch commands: the camera, the
+// render settings, the brush cursor, and the renderer with the GL context it lives in
+// (the window's, or a headless EGL one made on first use in batch mode).
+#ifndef OROGEN_RENDERER_VIEWPORT_H
+#define OROGEN_RENDERER_VIEWPORT_H
+
+#include "editor/world.h"
+#include "io/err.h"
+#include "renderer/camera.h"
+#include "renderer/gl_context.h"
+#include "renderer/terrain_renderer.h"
+
+typedef struct viewport {
+    camera cam;
+    int cam_set;               // the camera was placed (else the first render places it)
+    render_settings settings;
+    brush_cursor cursor;
+    gl_headless *headless;     // owned; NULL when a window's context is used
+    int window_context;        // a window made its context current: never make a headless one
+    terrain_renderer *renderer;
+    char resource_dir[4096];
+    double wait_seconds;       // how long a screenshot waits for tiles (default 600)
+} viewport;
+
+viewport *viewport_create(const char *resource_dir);
+void viewport_destroy(viewport *v);
+
+// A view over the world's centre (or the origin of an unbounded world), a few hundred
+// metres above the ground, looking out over the terrain.
+int viewport_default_camera(viewport *v, world *w, og_error *err);
+
+// Makes sure a GL context is current and the renderer exists.
+int viewport_prepare(viewport *v, og_error *err);
+
+// Updates the clipmaps until every level is current (at most wait_seconds).
+int viewport_settle(viewport *v, world *w, og_error *err);
+
+// Renders width x height pixels offscreen and writes them to path as an RGB PNG.
+int viewport_screenshot(viewport *v, world *w, const char *path, int width, int height,
+                        og_error *err);
+
+// The terrain point under pixel (px, py) of a width x height image, by marching the
+// ray against the heights the viewport holds. 0 and hit, or -1 (err) when the ray
+// meets no terrain.
+int viewport_pick(viewport *v, world *w, double px, double py, int width, int height,
+                  double hit[3], og_error *err);
+
+#endif

@@ -1,0 +1,214 @@
+#version 450 core
+// Terrain shading: normals from the heights' partial derivatives (seed 000's PD
+// normals), 8-layer material splatting over automatic sand/grass/rock/snow rules
+// (seed 003), parallax-mapped detail near the camera, sun, fog, the brush cursor and
+// the debug views.
+#include "terrain_common.glsl"
+#include "lighting.glsl"
+
+in vec2 v_local;
+in vec3 v_rel;
+out vec4 o_colour;
+
+// Views (renderer/terrain_renderer.h view_mode).
+#define VIEW_SHADED 0
+#define VIEW_WIREFRAME 1
+#define VIEW_LEVELS 2
+#define VIEW_HEIGHT 3
+#define VIEW_SLOPE 4
+uniform int u_view_mode;
+
+uniform vec4 u_lvl_bounds[MAX_LEVELS]; // the world's extent in local units (x0, z0, x1, z1)
+uniform vec4 u_lvl_uv[MAX_LEVELS];     // local (0,0) in metres modulo the texture periods
+uniform vec4 u_lvl_mat[MAX_LEVELS];    // painted weights: texel of local (0,0), texels per unit, valid
+uniform vec4 u_lvl_detail[MAX_LEVELS]; // detail: sample of local (0,0), samples per unit, valid
+uniform float u_ocean_level, u_max_height;
+uniform vec2 u_tex_period;             // metres per repeat: near texture, far variation
+
+uniform usampler2D u_material;         // 8 x uint8 weights per texel (RG32UI), toroidal
+uniform ivec2 u_mat_wrap;              // texel of the window's origin sample
+uniform sampler2DArray u_albedo;       // the 8 procedural material textures
+uniform sampler2D u_detail;            // detail heights (metres), toroidal
+uniform sampler2D u_detail_pd;         // detail slopes (RG16 snorm, x 8)
+uniform vec2 u_detail_wrap;            // texel of the detail window's origin sample
+uniform float u_detail_spacing;        // metres between detail samples
+uniform int u_detail_size;
+uniform int u_parallax;                // on/off
+uniform int u_parallax_steps;          // iterations (the quality setting)
+uniform float u_parallax_fade;         // metres: detail fades out by this distance
+uniform vec4 u_brush;                  // centre relative to the camera (xz), radius, visible
+uniform sampler2D u_falloff;           // the brush's falloff curve over 0..1 of the radius (64x1)
+uniform vec3 u_level_tint[MAX_LEVELS];
+
+vec2 gradient_at(vec4 src, vec2 p, float spacing_here) {
+    vec2 t = src.xy + p * src.z + 0.5;
+    float l = texture(u_heights, vec3((t - vec2(1.0, 0.0)) / CLIP_SIZE, src.w)).r;
+    float r = texture(u_heights, vec3((t + vec2(1.0, 0.0)) / CLIP_SIZE, src.w)).r;
+    float d = texture(u_heights, vec3((t - vec2(0.0, 1.0)) / CLIP_SIZE, src.w)).r;
+    float u = texture(u_heights, vec3((t + vec2(0.0, 1.0)) / CLIP_SIZE, src.w)).r;
+    float source_spacing = spacing_here / src.z; // metres between the source's texels
+    return vec2(r - l, u - d) / (2.0 * source_spacing);
+}
+
+vec4 unpack4(uint v) {
+    return vec4(float(v & 255u), float((v >> 8) & 255u), float((v >> 16) & 255u), float(v >> 24));
+}
+
+// The 8 painted weights (sum 1), bilinear over the level-0 material window.
+void painted_weights(vec2 t, out vec4 w0, out vec4 w1) {
+    vec2 f = t - 0.5;
+    ivec2 i = ivec2(floor(f));
+    vec2 a = f - vec2(i);
+    w0 = vec4(0.0), w1 = vec4(0.0);
+    for (int k = 0; k < 4; k++) {
+        ivec2 o = ivec2(k & 1, k >> 1);
+        float wt = (o.x == 1 ? a.x : 1.0 - a.x) * (o.y == 1 ? a.y : 1.0 - a.y);
+        uvec2 v = texelFetch(u_material, (i + o + u_mat_wrap) & 255, 0).rg;
+        w0 += unpack4(v.x) * wt;
+        w1 += unpack4(v.y) * wt;
+    }
+    w0 /= 255.0, w1 /= 255.0;
+}
+
+vec4 albedo(int layer, vec2 uv, vec2 uv_far) {
+    vec4 near_c = texture(u_albedo, vec3(uv, float(layer)));
+    // A second, much larger scale breaks up the repetition.
+    float v = texture(u_albedo, vec3(uv_far, float(layer))).g;
+    return vec4(near_c.rgb * (0.82 + 0.36 * v), near_c.a);
+}
+
+// Height-aware blend: the material whose texture stands higher wins at the border.
+vec3 blend2(vec4 a, vec4 b, float t) {
+    float ha = a.a * (1.0 - t), hb = b.a * t;
+    float m = max(ha, hb) - 0.15;
+    float wa = max(ha - m, 0.0) + (1.0 - t) * 0.01, wb = max(hb - m, 0.0) + t * 0.01;
+    return (a.rgb * wa + b.rgb * wb) / (wa + wb);
+}
+
+// seed 003's four materials by height and slope: sand by the water, grass, rock on
+// steep ground, snow up high; cliff rock where it is steeper still.
+vec3 automatic(float h, float slope, vec2 uv, vec2 uv_far) {
+    vec4 sand = albedo(0, uv, uv_far), grass = albedo(1, uv, uv_far);
+    vec4 rock = albedo(2, uv, uv_far), snow = albedo(3, uv, uv_far), cliff = albedo(7, uv, uv_far);
+    float beach = u_ocean_level + max(u_max_height * 0.015, 2.0);
+    float snow_line = u_ocean_level + (u_max_height - u_ocean_level) * 0.62;
+    vec3 c = blend2(sand, grass, smoothstep(beach - 2.0, beach + 4.0, h));
+    c = blend2(vec4(c, 0.5), rock, smoothstep(0.42, 0.62, slope));
+    c = blend2(vec4(c, 0.5), cliff, smoothstep(0.85, 1.05, slope));
+    float snowy = smoothstep(snow_line - 40.0, snow_line + 40.0, h) * (1.0 - smoothstep(0.55, 0.8, slope));
+    return blend2(vec4(c, 0.5), snow, snowy);
+}
+
+vec3 ramp(float t) { // blue, green, yellow, red, white
+    t = clamp(t, 0.0, 1.0);
+    vec3 c0 = vec3(0.1, 0.2, 0.7), c1 = vec3(0.1, 0.65, 0.25), c2 = vec3(0.95, 0.85, 0.2);
+    vec3 c3 = vec3(0.85, 0.25, 0.1), c4 = vec3(1.0);
+    return t < 0.25 ? mix(c0, c1, t * 4.0) : t < 0.5 ? mix(c1, c2, t * 4.0 - 1.0)
+         : t < 0.75 ? mix(c2, c3, t * 4.0 - 2.0) : mix(c3, c4, t * 4.0 - 3.0);
+}
+
+void main() {
+    vec4 bounds = u_lvl_bounds[u_level];
+    if (v_local.x < bounds.x || v_local.y < bounds.y || v_local.x > bounds.z || v_local.y > bounds.w)
+        discard; // outside a bounded world
+    vec4 off = u_lvl_offset[u_level];
+    float spacing = off.z;
+    float alpha = morph_factor(v_local);
+    vec2 g = gradient_at(u_lvl_src_a[u_level], v_local, spacing);
+    if (alpha > 0.0) g = mix(g, gradient_at(u_lvl_src_b[u_level], v_local, spacing), alpha);
+    float h = v_rel.y + u_cam_y;
+    float dist = length(v_rel);
+    vec3 view_dir = v_rel / -max(dist, 1e-6);
+
+    if (u_view_mode == VIEW_WIREFRAME) {
+        o_colour = vec4(u_level_tint[u_level], 1.0);
+        return;
+    }
+
+    // Detail: iterative parallax with offset limiting (seed 000 4.4.3) over the detail
+    // window, faded out with distance.
+    vec2 detail_slope = vec2(0.0);
+    vec2 shift_m = vec2(0.0); // parallax shift of the texture lookups, metres
+    vec4 ld = u_lvl_detail[u_level];
+    float fade = 1.0 - smoothstep(u_parallax_fade * 0.6, u_parallax_fade, dist);
+    if (ld.w > 0.0 && fade > 0.0) {
+        vec2 dt = ld.xy + v_local * ld.z; // detail samples from the window's origin
+        float size = float(u_detail_size);
+        if (all(greaterThanEqual(dt, vec2(1.0))) && all(lessThan(dt, vec2(size - 2.0)))) {
+            vec2 tc = dt;
+            if (u_parallax != 0) {
+                vec3 n0 = normalize(vec3(-g.x, 1.0, -g.y));
+                vec3 t_axis = normalize(vec3(1.0, 0.0, 0.0) - n0 * n0.x);
+                vec3 b_axis = cross(t_axis, n0);
+                vec3 v = vec3(dot(view_dir, t_axis), dot(view_dir, b_axis), dot(view_dir, n0));
+                vec3 p = vec3(dt, 0.0);
+                float limit = 6.0; // offset limiting: at most this many detail samples
+                for (int i = 0; i < u_parallax_steps; i++) {
+                    float dh = texture(u_detail, (p.xy + u_detail_wrap + 0.5) / size).r * fade;
+                    vec3 step_v = (dh - p.z) * vec3(v.xy / u_detail_spacing, v.z);
+                    p += step_v;
+                    vec2 o = p.xy - dt;
+                    float len = length(o);
+                    if (len > limit) p.xy = dt + o * (limit / len);
+                }
+                tc = p.xy;
+            }
+            shift_m = (tc - dt) * u_detail_spacing;
+            detail_slope = texture(u_detail_pd, (tc + u_detail_wrap + 0.5) / size).rg * 8.0 * fade;
+        }
+    }
+    vec3 n = normalize(vec3(-(g.x + detail_slope.x), 1.0, -(g.y + detail_slope.y)));
+    float slope = sqrt(dot(g, g)); // rise over run of the coarse surface
+
+    if (u_view_mode == VIEW_LEVELS) {
+        vec3 c = u_level_tint[u_level] * (0.35 + 0.65 * max(dot(n, u_sun_dir), 0.0));
+        o_colour = vec4(c, 1.0);
+        return;
+    }
+    if (u_view_mode == VIEW_HEIGHT) {
+        float t = (h + u_max_height) / (2.0 * u_max_height);
+        o_colour = vec4(ramp(t) * (0.55 + 0.45 * max(dot(n, u_sun_dir), 0.0)), 1.0);
+        return;
+    }
+    if (u_view_mode == VIEW_SLOPE) {
+        float degrees_ = degrees(atan(slope));
+        o_colour = vec4(ramp(degrees_ / 60.0) * (0.55 + 0.45 * max(dot(n, u_sun_dir), 0.0)), 1.0);
+        return;
+    }
+
+    vec4 luv = u_lvl_uv[u_level];
+    vec2 metres_near = luv.xy + v_local * spacing + shift_m;
+    vec2 metres_far = luv.zw + v_local * spacing;
+    vec2 uv = metres_near / u_tex_period.x, uv_far = metres_far / u_tex_period.y;
+
+    vec3 auto_c = automatic(h, slope, uv, uv_far);
+    vec3 c = auto_c;
+    vec4 lm = u_lvl_mat[u_level];
+    if (lm.w > 0.0) {
+        vec2 mt = lm.xy + v_local * lm.z;
+        if (all(greaterThanEqual(mt, vec2(1.0))) && all(lessThan(mt, vec2(254.0)))) {
+            vec4 w0, w1;
+            painted_weights(mt, w0, w1);
+            // Weight 0 is "automatic"; 1..7 paint sand, grass, rock, snow, dirt, gravel, moss.
+            c = auto_c * w0.x;
+            c += albedo(0, uv, uv_far).rgb * w0.y + albedo(1, uv, uv_far).rgb * w0.z
+               + albedo(2, uv, uv_far).rgb * w0.w + albedo(3, uv, uv_far).rgb * w1.x
+               + albedo(4, uv, uv_far).rgb * w1.y + albedo(5, uv, uv_far).rgb * w1.z
+               + albedo(6, uv, uv_far).rgb * w1.w;
+        }
+    }
+    vec3 lit = sunlit(c, n, view_dir, 24.0, 0.04);
+
+    if (u_brush.w > 0.0) {
+        float d = length(v_rel.xz - u_brush.xy) / u_brush.z;
+        float fw = max(fwidth(d), 1e-4);
+        if (d < 1.0) {
+            float f = texture(u_falloff, vec2(d, 0.5)).r;
+            lit = mix(lit, vec3(1.0, 0.55, 0.1), 0.35 * f);
+        }
+        float ring = 1.0 - smoothstep(0.0, 1.5 * fw, abs(d - 1.0));
+        float centre = 1.0 - smoothstep(0.0, 1.5 * fw, d - 0.02);
+        lit = mix(lit, vec3(1.0, 0.9, 0.3), max(ring, centre));
+    }
+    o_colour = vec4(apply_fog(lit, v_rel), 1.0);
+}
