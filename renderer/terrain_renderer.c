@@ -4,6 +4,7 @@
 #include "renderer/clip_window.h"
 #include "renderer/clipmap_mesh.h"
 #include "renderer/frustum.h"
+#include "renderer/lighting.h"
 #include "renderer/material_textures.h"
 #include "renderer/shader.h"
 
@@ -426,28 +427,12 @@ static void source_uniform(const terrain_renderer *r, int l, int s, float out[4]
     out[3] = (float)s;
 }
 
-static void sun_direction(const render_settings *s, float out[3]) {
-    double yaw = s->sun_yaw * M_PI / 180.0, pitch = s->sun_pitch * M_PI / 180.0;
-    out[0] = (float)(sin(yaw) * cos(pitch));
-    out[1] = (float)sin(pitch);
-    out[2] = (float)(-cos(yaw) * cos(pitch));
-}
-
 static double reach_metres(const terrain_renderer *r) {
     return 0.5 * (CLIP_N - 1) * r->params.spacing * (double)((int64_t)1 << (r->levels - 1));
 }
 
 static void set_lighting(GLuint prog, const terrain_renderer *r, const render_settings *s) {
-    float sun[3];
-    sun_direction(s, sun);
-    glProgramUniform3fv(prog, glGetUniformLocation(prog, "u_sun_dir"), 1, sun);
-    float warm = (float)fmin(1.0, 0.35 + sun[1] * 2.0);
-    glProgramUniform3f(prog, glGetUniformLocation(prog, "u_sun_colour"), 1.05f, 0.97f * warm + 0.03f,
-                       0.86f * warm + 0.05f);
-    glProgramUniform3f(prog, glGetUniformLocation(prog, "u_sky_zenith"), 0.24f, 0.43f, 0.74f);
-    glProgramUniform3f(prog, glGetUniformLocation(prog, "u_sky_horizon"), 0.70f, 0.78f, 0.86f);
-    double density = s->fog_density > 0 ? s->fog_density : 2.5 / reach_metres(r);
-    glProgramUniform1f(prog, glGetUniformLocation(prog, "u_fog_density"), (float)density);
+    render_lighting_uniforms(prog, s, s->fog_density > 0 ? s->fog_density : 2.5 / reach_metres(r));
 }
 
 static const float level_tints[RENDER_MAX_LEVELS][3] = {

@@ -5,6 +5,7 @@
 // the debug views.
 #include "terrain_common.glsl"
 #include "lighting.glsl"
+#include "colour_ramp.glsl"
 
 in vec2 v_local;
 in vec3 v_rel;
@@ -97,14 +98,6 @@ vec3 automatic(float h, float slope, vec2 uv, vec2 uv_far) {
     c = blend2(vec4(c, 0.5), cliff, smoothstep(0.85, 1.05, slope));
     float snowy = smoothstep(snow_line - 40.0, snow_line + 40.0, h) * (1.0 - smoothstep(0.55, 0.8, slope));
     return blend2(vec4(c, 0.5), snow, snowy);
-}
-
-vec3 ramp(float t) { // blue, green, yellow, red, white
-    t = clamp(t, 0.0, 1.0);
-    vec3 c0 = vec3(0.1, 0.2, 0.7), c1 = vec3(0.1, 0.65, 0.25), c2 = vec3(0.95, 0.85, 0.2);
-    vec3 c3 = vec3(0.85, 0.25, 0.1), c4 = vec3(1.0);
-    return t < 0.25 ? mix(c0, c1, t * 4.0) : t < 0.5 ? mix(c1, c2, t * 4.0 - 1.0)
-         : t < 0.75 ? mix(c2, c3, t * 4.0 - 2.0) : mix(c3, c4, t * 4.0 - 3.0);
 }
 
 void main() {
