@@ -1,0 +1,216 @@
+// Clipmap geometry and level windows: the pieces tile every level exactly once around
+// the finer level for each of its four positions; the toroidal window holds exactly
+// the samples of its origin after any move, copies only what entered, never blocks,
+// and re-reads edited samples.
+#include "io/tile_cache.h"
+#include "renderer/clip_window.h"
+#include "renderer/clipmap_mesh.h"
+
+#include <pthread.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+#include <cmocka.h>
+
+// Marks the quad cells a piece's triangles cover (two triangles per cell); returns
+// the number of triangles with zero area.
+static int cover(const clipmap_mesh *m, const clip_piece *p, int *cells) {
+    int n = m->n, degenerate = 0;
+    for (uint32_t t = p->first; t < p->first + p->count; t += 3) {
+        int x[3], z[3];
+        for (int k = 0; k < 3; k++) {
+            uint16_t v = m->indices[t + k];
+            x[k] = m->vertices[2 * v], z[k] = m->vertices[2 * v + 1];
+        }
+        int area2 = (x[1] - x[0]) * (z[2] - z[0]) - (x[2] - x[0]) * (z[1] - z[0]);
+        if (area2 == 0) {
+            degenerate++;
+            continue;
+        }
+        assert_int_equal(abs(area2), 1); // half a unit quad
+        int cx = x[0] < x[1] ? x[0] : x[1], cz = z[0] < z[1] ? z[0] : z[1];
+        cx = x[2] < cx ? x[2] : cx, cz = z[2] < cz ? z[2] : cz;
+        cells[cz * (n - 1) + cx]++;
+    }
+    return degenerate;
+}
+
+static void check_level(const clipmap_mesh *m, int finest, int off_x, int off_z) {
+    int n = m->n, q = n - 1;
+    int *cells = calloc((size_t)q * q, sizeof *cells);
+    clip_trim trims[2];
+    clipmap_trims_for_offset(m->m, off_x, off_z, trims);
+    for (size_t i = 0; i < m->piece_count; i++) {
+        const clip_piece *p = &m->pieces[i];
+        if (p->kind == CLIP_PIECE_INTERIOR && !finest) continue;
+        if (p->kind == CLIP_PIECE_TRIM && (finest || (p->trim != (int)trims[0] && p->trim != (int)trims[1])))
+            continue;
+        int degenerate = cover(m, p, cells);
+        assert_int_equal(degenerate, p->kind == CLIP_PIECE_DEGENERATE ? (int)p->count / 3 : 0);
+    }
+    // The finer level: 2m-1 of this level's quads per side at the offset.
+    int fine = 2 * m->m - 1;
+    for (int z = 0; z < q; z++)
+        for (int x = 0; x < q; x++) {
+            int inside = !finest && x >= off_x && x < off_x + fine && z >= off_z && z < off_z + fine;
+            assert_int_equal(cells[z * q + x], inside ? 0 : 2);
+        }
+    free(cells);
+}
+
+static void test_pieces_tile_each_level_once(void **state) {
+    (void)state;
+    int sizes[3] = {15, 63, 255};
+    for (int s = 0; s < 3; s++) {
+        clipmap_mesh m;
+        assert_int_equal(clipmap_mesh_build(&m, sizes[s]), 0);
+        assert_int_equal(m.m, (sizes[s] + 1) / 4);
+        int kinds[5] = {0};
+        for (size_t i = 0; i < m.piece_count; i++) kinds[m.pieces[i].kind]++;
+        assert_int_equal(kinds[CLIP_PIECE_BLOCK], 12);
+        assert_int_equal(kinds[CLIP_PIECE_FIXUP], 4);
+        assert_int_equal(kinds[CLIP_PIECE_TRIM], CLIP_TRIM_COUNT);
+        assert_int_equal(kinds[CLIP_PIECE_DEGENERATE], 1);
+        assert_int_equal(kinds[CLIP_PIECE_INTERIOR], 1);
+        for (size_t i = 0; i < m.piece_count; i++)
+            if (m.pieces[i].kind == CLIP_PIECE_BLOCK) // m x m vertices
+                assert_int_equal(m.pieces[i].x1 - m.pieces[i].x0 + 1, m.m);
+        check_level(&m, 1, 0, 0);
+        for (int ox = m.m - 1; ox <= m.m; ox++)
+            for (int oz = m.m - 1; oz <= m.m; oz++) check_level(&m, 0, ox, oz);
+        clipmap_mesh_free(&m);
+    }
+}
+
+static void test_bad_sizes_are_refused(void **state) {
+    (void)state;
+    clipmap_mesh m;
+    int bad[5] = {0, 7, 100, 256, 511};
+    for (int i = 0; i < 5; i++) assert_int_equal(clipmap_mesh_build(&m, bad[i]), -1);
+}
+
+// Sample (x, z) of level L holds a value that names it.
+static float expected(int level, int64_t x, int64_t z) {
+    return (float)(x * 1000 + z) + 0.25f * (float)level;
+}
+
+typedef struct slow_source {
+    pthread_mutex_t lock;
+    int open;
+} slow_source;
+
+static int named_source(void *user, tile_key key, void *out) {
+    slow_source *g = user;
+    for (;;) {
+        pthread_mutex_lock(&g->lock);
+        int open = g->open;
+        pthread_mutex_unlock(&g->lock);
+        if (open) break;
+        usleep(1000);
+    }
+    float *h = out;
+    for (int j = 0; j < TILE_SIZE; j++)
+        for (int i = 0; i < TILE_SIZE; i++)
+            h[j * TILE_SIZE + i] = expected(key.level, (int64_t)key.tx * TILE_SIZE + i,
+                                            (int64_t)key.ty * TILE_SIZE + j);
+    return 0;
+}
+
+static void check_window(const clip_window *w) {
+    const float *m = (const float *)w->mirror;
+    for (int64_t z = w->have[1]; z < w->have[1] + w->size; z++)
+        for (int64_t x = w->have[0]; x < w->have[0] + w->size; x++) {
+            float got = m[(size_t)(z & (w->size - 1)) * w->size + (size_t)(x & (w->size - 1))];
+            if (got != expected(w->level, x, z))
+                fail_msg("sample (%lld, %lld): %g, expected %g", (long long)x, (long long)z, got,
+                         expected(w->level, x, z));
+        }
+}
+
+static int settle(clip_window *w, tile_cache *c, int64_t x, int64_t z) {
+    int64_t want[2] = {x, z};
+    for (int i = 0; i < 20000; i++) {
+        int rc = clip_window_update(w, c, want);
+        if (rc != 0) return rc;
+        usleep(500);
+    }
+    return 0;
+}
+
+static void test_window_moves_toroidally(void **state) {
+    (void)state;
+    slow_source g = {PTHREAD_MUTEX_INITIALIZER, 0};
+    og_error err;
+    tile_cache *c = tile_cache_create(
+        &(tile_cache_desc){.budget_bytes = 64u << 20, .workers = 2, .source = named_source, .source_user = &g},
+        &err);
+    assert_non_null(c);
+    clip_window w;
+    assert_int_equal(clip_window_init(&w, TILE_LAYER_COARSE, 0, 2, 256), 0);
+    int64_t want[2] = {-300, 77};
+    // Nothing resident: the update answers at once and the window stays empty.
+    assert_int_equal(clip_window_update(&w, c, want), 0);
+    assert_false(clip_window_current(&w, want));
+    assert_int_equal(w.texels_copied, 0);
+    pthread_mutex_lock(&g.lock);
+    g.open = 1;
+    pthread_mutex_unlock(&g.lock);
+    assert_int_equal(settle(&w, c, -300, 77), 1);
+    assert_true(w.upload_all);
+    check_window(&w);
+    w.upload_all = 0, w.upload_count = 0;
+
+    // Small moves copy only the entering columns and rows (and say which texels).
+    struct { int dx, dz; } moves[] = {{37, 0}, {0, -5}, {-64, 130}, {255, -255}, {1, 1}};
+    for (size_t i = 0; i < sizeof moves / sizeof moves[0]; i++) {
+        uint64_t before = w.texels_copied;
+        int64_t x = w.have[0] + moves[i].dx, z = w.have[1] + moves[i].dz;
+        assert_int_equal(settle(&w, c, x, z), 1);
+        check_window(&w);
+        uint64_t ax = (uint64_t)abs(moves[i].dx), az = (uint64_t)abs(moves[i].dz);
+        assert_int_equal(w.texels_copied - before, ax * 256 + az * 256);
+        uint64_t queued = 0;
+        for (int k = 0; k < w.upload_count; k++) {
+            assert_true(w.uploads[k].x >= 0 && w.uploads[k].x + w.uploads[k].w <= 256);
+            assert_true(w.uploads[k].z >= 0 && w.uploads[k].z + w.uploads[k].h <= 256);
+            queued += (uint64_t)w.uploads[k].w * w.uploads[k].h;
+        }
+        assert_false(w.upload_all);
+        assert_int_equal(queued, ax * 256 + az * 256);
+        w.upload_count = 0;
+    }
+    // A jump beyond the window refills it all.
+    assert_int_equal(settle(&w, c, 100000, -100000), 1);
+    assert_true(w.upload_all);
+    check_window(&w);
+
+    // An edit: change a resident tile, refresh the rectangle, see exactly that change.
+    tile_view v;
+    int64_t ex = w.have[0] + 10, ez = w.have[1] + 20; // a sample inside the window
+    tile_key k2 = {TILE_LAYER_COARSE, 0, 2, (int32_t)(ex >> 8), (int32_t)(ez >> 8)}; // floor division
+    assert_int_equal(tile_cache_acquire_write(c, k2, &v, &err), 0);
+    ((float *)v.data)[(ez & 255) * 256 + (ex & 255)] = -7.0f;
+    tile_cache_release(c, &v);
+    w.upload_all = 0, w.upload_count = 0;
+    clip_window_refresh(&w, c, ex, ez, ex + 1, ez + 1);
+    const float *m = (const float *)w.mirror;
+    assert_true(m[(size_t)(ez & 255) * 256 + (size_t)(ex & 255)] == -7.0f);
+    assert_int_equal(w.upload_count, 1);
+    assert_int_equal(w.uploads[0].w * w.uploads[0].h, 1);
+
+    clip_window_free(&w);
+    assert_int_equal(tile_cache_destroy(c, &err), 0);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_pieces_tile_each_level_once),
+        cmocka_unit_test(test_bad_sizes_are_refused),
+        cmocka_unit_test(test_window_moves_toroidally),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
