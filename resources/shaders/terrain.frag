@@ -94,8 +94,8 @@ vec3 automatic(float h, float slope, vec2 uv, vec2 uv_far) {
     float beach = u_ocean_level + max(u_max_height * 0.015, 2.0);
     float snow_line = u_ocean_level + (u_max_height - u_ocean_level) * 0.62;
     vec3 c = blend2(sand, grass, smoothstep(beach - 2.0, beach + 4.0, h));
-    c = blend2(vec4(c, 0.5), rock, smoothstep(0.42, 0.62, slope));
-    c = blend2(vec4(c, 0.5), cliff, smoothstep(0.85, 1.05, slope));
+    c = blend2(vec4(c, 0.5), rock, smoothstep(0.55, 0.85, slope));
+    c = blend2(vec4(c, 0.5), cliff, smoothstep(1.1, 1.5, slope));
     float snowy = smoothstep(snow_line - 40.0, snow_line + 40.0, h) * (1.0 - smoothstep(0.55, 0.8, slope));
     return blend2(vec4(c, 0.5), snow, snowy);
 }
