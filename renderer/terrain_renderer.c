@@ -324,6 +324,12 @@ int terrain_renderer_update(terrain_renderer *r, world *w, const camera *cam,
     if (p->kind != WORLD_FLAT)
         return og_error_set(err, "the viewport draws flat worlds; this is a planet (planet "
                                  "rendering is not built yet)");
+    // Tile coordinates are int32: keep the window's samples addressable (with margin).
+    double limit = 0.25 * 2147483647.0 * TILE_SIZE * p->spacing;
+    if (!(fabs(cam->pos[0]) < limit && fabs(cam->pos[2]) < limit && fabs(cam->pos[1]) < 1e12))
+        return og_error_set(err, "the camera (%g, %g, %g) m is outside the world's addressable "
+                                 "range (|x|, |z| < %g m at %g m spacing)",
+                            cam->pos[0], cam->pos[1], cam->pos[2], limit, p->spacing);
     if (r->world != w || r->world_serial != world_serial(w) ||
         memcmp(&r->params, p, sizeof *p) != 0) {
         invalidate_all(r);
