@@ -227,7 +227,9 @@ static void layout_levels(terrain_renderer *r, const world_params *p, const came
     double above = terrain_renderer_height_at(r, cam->pos[0], cam->pos[2], &ground) == 0
                        ? fabs(cam->pos[1] - ground) : 0.0;
     r->finest = 0;
-    while (r->finest < r->levels - 1 &&
+    // (Hoppe's rule: a level is drawn when its extent exceeds 2.5x the camera's height
+    // above the ground; at least three levels always are.)
+    while (r->finest < r->levels - 3 &&
            0.4 * (CLIP_N - 1) * p->spacing * (double)(1 << r->finest) < above)
         r->finest++;
     for (int l = 0; l < r->levels; l++) {
