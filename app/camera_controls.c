@@ -32,27 +32,27 @@ void camera_controls_orbit(const camera_controls *cc, camera *c, const double pi
     camera_orbit(c, pivot, dx * cc->orbit_deg_per_px, dy * cc->orbit_deg_per_px);
 }
 
-int camera_controls_move(const camera_controls *cc, camera *c, const move_keys *k, double dt,
+int camera_controls_move(const camera_controls *cc, camera *c, const move_keys *k,
                          pick_height_fn height, void *user) {
-    double fwd = (double)(k->forward - k->back), side = (double)(k->right - k->left);
-    double up = (double)(k->up - k->down);
-    double step = camera_controls_speed(cc) * (k->fast ? cc->fast_factor : 1.0);
-    if (!(dt > 0) || !isfinite(dt)) dt = 0;
-    step *= dt;
+    double speed = camera_controls_speed(cc) * (k->fast ? cc->fast_factor : 1.0);
+    // Metres along each axis: opposite keys cancel for the time both were held.
+    double fwd = speed * (k->forward - k->back), side = speed * (k->right - k->left);
+    double up = speed * (k->up - k->down);
+    if (!isfinite(fwd) || !isfinite(side) || !isfinite(up)) return 0;
     double before[3] = {c->pos[0], c->pos[1], c->pos[2]};
     if (!cc->walk) {
-        if (step == 0 || (fwd == 0 && side == 0 && up == 0)) return 0;
-        camera_move_local(c, fwd * step, side * step, up * step);
+        if (fwd == 0 && side == 0 && up == 0) return 0;
+        camera_move_local(c, fwd, side, up);
         return 1;
     }
-    // Walking: the heading only, so looking down does not slow the walk.
-    double yaw = c->yaw * DEG, len = sqrt(fwd * fwd + side * side);
-    if (len > 0) {
-        fwd /= len, side /= len; // diagonals are no faster
-        double hf[2] = {sin(yaw), -cos(yaw)}, hr[2] = {cos(yaw), sin(yaw)};
-        c->pos[0] += (hf[0] * fwd + hr[0] * side) * step;
-        c->pos[2] += (hf[1] * fwd + hr[1] * side) * step;
-    }
+    // Walking: along the heading only, so looking down does not slow the walk, and a
+    // diagonal is no faster than the longest-held key alone.
+    double len = sqrt(fwd * fwd + side * side);
+    double longest = speed * fmax(fmax(k->forward, k->back), fmax(k->left, k->right));
+    if (len > longest && len > 0) fwd *= longest / len, side *= longest / len;
+    double yaw = c->yaw * DEG;
+    c->pos[0] += sin(yaw) * fwd + cos(yaw) * side;
+    c->pos[2] += -cos(yaw) * fwd + sin(yaw) * side;
     if (camera_walk(c, height, user, cc->eye_height) != 0) {
         c->pos[0] = before[0], c->pos[2] = before[2]; // unknown ground: stay
         if (camera_walk(c, height, user, cc->eye_height) != 0) c->pos[1] = before[1];

@@ -20,9 +20,11 @@ typedef struct camera_controls {
     int walk;                // walk mode: the eye follows the ground
 } camera_controls;
 
-// Held movement keys, each 0 or 1.
+// Movement keys: how many seconds each was held since the last step (the window
+// measures press and release times, so a slow frame loses no movement), and Shift.
 typedef struct move_keys {
-    int forward, back, left, right, up, down, fast;
+    double forward, back, left, right, up, down;
+    int fast;
 } move_keys;
 
 void camera_controls_init(camera_controls *cc);
@@ -39,12 +41,12 @@ void camera_controls_look(const camera_controls *cc, camera *c, double dx, doubl
 void camera_controls_orbit(const camera_controls *cc, camera *c, const double pivot[3], double dx,
                            double dy);
 
-// Held keys for dt seconds. Flying: along the view (forward/back), sideways, and world
+// Moves for held keys. Flying: along the view (forward/back), sideways, and world
 // up/down. Walking: horizontally along the view's heading, then the eye is put
 // eye_height above the ground; a step onto ground of unknown height is not taken.
 // Walking also re-seats the eye when no key is held (the ground may have changed).
 // Returns 1 if the camera moved.
-int camera_controls_move(const camera_controls *cc, camera *c, const move_keys *keys, double dt,
+int camera_controls_move(const camera_controls *cc, camera *c, const move_keys *keys,
                          pick_height_fn height, void *user);
 
 // Wheel with the right button held: the current mode's speed x speed_per_notch^notches

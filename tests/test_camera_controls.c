@@ -89,23 +89,29 @@ static void test_fly(void **state) {
     camera_controls_init(&cc);
     camera c = cam_at(0, 100, 0, 90, 0); // looking east
     move_keys none = {0};
-    assert_int_equal(camera_controls_move(&cc, &c, &none, 0.5, slope_ground, NULL), 0);
-    move_keys w = {.forward = 1};
-    assert_int_equal(camera_controls_move(&cc, &c, &w, 0.5, slope_ground, NULL), 1);
+    assert_int_equal(camera_controls_move(&cc, &c, &none, slope_ground, NULL), 0);
+    move_keys w = {.forward = 0.5}; // W held for half a second
+    assert_int_equal(camera_controls_move(&cc, &c, &w, slope_ground, NULL), 1);
     assert_near(c.pos[0], 0.5 * cc.fly_speed, 1e-9); // m/s x s
     assert_near(c.pos[1], 100, 1e-9);                // flying ignores the ground
     move_keys sd = {.back = 1, .right = 1, .fast = 1};
     c = cam_at(0, 100, 0, 0, 0);
-    camera_controls_move(&cc, &c, &sd, 1.0, NULL, NULL);
+    camera_controls_move(&cc, &c, &sd, NULL, NULL);
     assert_near(c.pos[0], cc.fly_speed * cc.fast_factor, 1e-9); // right = east at yaw 0
     assert_near(c.pos[2], cc.fly_speed * cc.fast_factor, 1e-9); // back = south
-    move_keys e = {.up = 1};
+    move_keys e = {.up = 0.1};
     c = cam_at(0, 100, 0, 0, -60); // up is world up whatever the pitch
-    camera_controls_move(&cc, &c, &e, 0.1, NULL, NULL);
+    camera_controls_move(&cc, &c, &e, NULL, NULL);
     assert_near(c.pos[1], 100 + 0.1 * cc.fly_speed, 1e-9);
+    // Opposite keys cancel for the time both were held.
+    move_keys ws = {.forward = 1, .back = 0.25};
+    c = cam_at(0, 100, 0, 90, 0);
+    camera_controls_move(&cc, &c, &ws, NULL, NULL);
+    assert_near(c.pos[0], 0.75 * cc.fly_speed, 1e-9);
     // Forward follows the view down.
+    move_keys w1 = {.forward = 1};
     c = cam_at(0, 100, 0, 0, -90);
-    camera_controls_move(&cc, &c, &w, 1, NULL, NULL);
+    camera_controls_move(&cc, &c, &w1, NULL, NULL);
     assert_true(c.pos[1] < 100 - 0.99 * cc.fly_speed);
 }
 
@@ -116,8 +122,8 @@ static void test_walk(void **state) {
     camera c = cam_at(100, 500, 0, 90, -45); // east, looking down
     assert_int_equal(camera_controls_toggle_walk(&cc, &c, slope_ground, NULL), 1);
     assert_near(c.pos[1], 0.1 * 100 + 5 + 1.8, 1e-9); // seated at once
-    move_keys w = {.forward = 1};
-    camera_controls_move(&cc, &c, &w, 2, slope_ground, NULL);
+    move_keys w = {.forward = 2};
+    camera_controls_move(&cc, &c, &w, slope_ground, NULL);
     // Horizontal: the full walk speed east although the view looks down.
     assert_near(c.pos[0], 100 + 2 * cc.walk_speed, 1e-9);
     assert_near(c.pos[2], 0, 1e-9);
@@ -125,17 +131,19 @@ static void test_walk(void **state) {
     // Diagonals are no faster.
     camera d = c;
     move_keys wd = {.forward = 1, .left = 1};
-    camera_controls_move(&cc, &d, &wd, 1, slope_ground, NULL);
+    camera_controls_move(&cc, &d, &wd, slope_ground, NULL);
     double h = hypot(d.pos[0] - c.pos[0], d.pos[2] - c.pos[2]);
     assert_near(h, cc.walk_speed, 1e-9);
+    assert_true(d.pos[2] < c.pos[2]); // left of east is north (-Z)
     // Held nothing: the eye still follows the ground (it may have been sculpted).
     c.pos[1] = 0;
     move_keys none = {0};
-    assert_int_equal(camera_controls_move(&cc, &c, &none, 0.1, slope_ground, NULL), 1);
+    assert_int_equal(camera_controls_move(&cc, &c, &none, slope_ground, NULL), 1);
     assert_near(c.pos[1], 0.1 * c.pos[0] + 5 + 1.8, 1e-9);
     // No step onto unknown ground.
     c = cam_at(995, 0, 0, 90, 0);
-    camera_controls_move(&cc, &c, &w, 10, slope_ground, NULL);
+    move_keys far = {.forward = 10};
+    camera_controls_move(&cc, &c, &far, slope_ground, NULL);
     assert_near(c.pos[0], 995, 0);
     assert_near(c.pos[1], 99.5 + 5 + 1.8, 1e-9);
     assert_int_equal(camera_controls_toggle_walk(&cc, &c, slope_ground, NULL), 0);
