@@ -1,6 +1,10 @@
 #include "app/window.h"
 
-#include "renderer/map_image.h"
+#include "app/camera_controls.h"
+#include "editor/stroke.h"
+#include "renderer/gl_context.h"
+#include "renderer/pick.h"
+#include "renderer/viewport.h"
 
 #include <epoxy/gl.h>
 #include <GLFW/glfw3.h>
@@ -17,117 +21,168 @@ static void on_glfw_error(int code, const char *description) {
     snprintf(glfw_message, sizeof glfw_message, "%s (GLFW error 0x%x)", description, code);
 }
 
+// The movement keys: W S A D E Q.
+enum { MOVE_KEY_COUNT = 6 };
+static const int move_key_codes[MOVE_KEY_COUNT] = {GLFW_KEY_W, GLFW_KEY_S, GLFW_KEY_A,
+                                                   GLFW_KEY_D, GLFW_KEY_E, GLFW_KEY_Q};
+
+typedef enum drag_kind { DRAG_NONE, DRAG_SCULPT, DRAG_ORBIT } drag_kind;
+
 typedef struct window_state {
     cmd_context *ctx;
-    world *shown;        // the world the view belongs to (new/load replace it)
-    map_view view;
-    int dragging;
-    double last_x, last_y;
-    int dirty;           // the map must be composed again
+    viewport *v;
+    GLFWwindow *win;
+    uint64_t shown; // serial of the world the camera belongs to (new/load replace it)
+    camera_controls cc;
+    double mouse_x, mouse_y; // window coordinates of the last motion event
+    int mouse_in;
+    drag_kind drag;  // left or middle button
+    int looking;     // right button held: mouse look, WASD, wheel sets the speed
+    double pivot[3]; // orbit pivot of the current drag
+    int key_down[MOVE_KEY_COUNT];
+    double key_since[MOVE_KEY_COUNT], key_held[MOVE_KEY_COUNT]; // seconds, see bank_keys
+    stroke *stroke;    // the sculpting drag's stroke (NULL: none, or ended early)
+    int dirty;         // something changed: draw a frame
+    int settled;       // frames in a row with every level current
+    int pending;       // levels (or layers) still waiting for tiles
+    int render_failed; // the renderer refused this world (a planet): said once
+    char title[512];
     char stdin_buf[8192];
     size_t stdin_len;
     int stdin_open;
 } window_state;
 
-static const char *vertex_src =
-    "#version 450 core\n"
-    "out vec2 uv;\n"
-    "void main() {\n"
-    "    // One triangle that covers the viewport.\n"
-    "    vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);\n"
-    "    uv = vec2(p.x, 1.0 - p.y); // image row 0 at the top\n"
-    "    gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);\n"
-    "}\n";
-
-static const char *fragment_src =
-    "#version 450 core\n"
-    "in vec2 uv;\n"
-    "out vec4 colour;\n"
-    "layout(binding = 0) uniform sampler2D map;\n"
-    "void main() { colour = texture(map, uv); }\n";
-
-static GLuint compile(GLenum type, const char *src, const char *name, og_error *err) {
-    GLuint s = glCreateShader(type);
-    glShaderSource(s, 1, &src, NULL);
-    glCompileShader(s);
-    GLint ok = 0;
-    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[1024] = "";
-        glGetShaderInfoLog(s, sizeof log, NULL, log);
-        og_error_set(err, "app/window.c: %s shader: %s", name, log);
-        glDeleteShader(s);
-        return 0;
-    }
-    return s;
+static void report(const char *what, const og_error *err) {
+    fprintf(stderr, "orogen: %s: %s\n", what, err->msg);
 }
 
-static void reset_view(window_state *st) {
-    st->shown = st->ctx->world;
-    st->view = map_view_default(st->shown);
-    st->dirty = 1;
+// --- picking -----------------------------------------------------------------------
+
+// The terrain point under window position (x, y): the ray through that pixel marched
+// against the heights the renderer holds (what is on screen), one coarse sample steps.
+static int pick_at(window_state *st, double x, double y, double hit[3]) {
+    if (!st->v->renderer) return -1;
+    int ww, wh;
+    glfwGetWindowSize(st->win, &ww, &wh);
+    if (ww <= 0 || wh <= 0) return -1;
+    double dir[3];
+    camera_ray(&st->v->cam, (double)ww / wh, x / ww, y / wh, dir);
+    const world_params *p = world_get_params(st->ctx->world);
+    double reach = 0.75 * 254 * p->spacing * (double)((int64_t)1 << (st->v->settings.levels - 1));
+    return pick_ray(terrain_renderer_height_at, st->v->renderer, st->v->cam.pos, dir, reach,
+                    p->spacing, hit);
 }
 
-static void on_mouse_button(GLFWwindow *win, int button, int action, int mods) {
-    (void)mods;
-    window_state *st = glfwGetWindowUserPointer(win);
-    // The drag starts where the last motion event left the cursor (not where the
-    // pointer is now: events queue up, and querying would skip the moves between).
-    if (button == GLFW_MOUSE_BUTTON_LEFT || button == GLFW_MOUSE_BUTTON_MIDDLE)
-        st->dragging = action == GLFW_PRESS;
+// A point along the ray under (x, y) when no terrain is there: `dist` metres out.
+static void point_along_ray(window_state *st, double x, double y, double dist, double out[3]) {
+    int ww, wh;
+    glfwGetWindowSize(st->win, &ww, &wh);
+    double dir[3];
+    camera_ray(&st->v->cam, ww > 0 && wh > 0 ? (double)ww / wh : 1.0, ww > 0 ? x / ww : 0.5,
+               wh > 0 ? y / wh : 0.5, dir);
+    for (int i = 0; i < 3; i++)
+        out[i] = st->v->cam.pos[i] + dir[i] * dist;
 }
 
-static void on_cursor(GLFWwindow *win, double x, double y) {
-    window_state *st = glfwGetWindowUserPointer(win);
-    if (st->dragging) {
-        st->view.cx -= (x - st->last_x) * st->view.mpp;
-        st->view.cz -= (y - st->last_y) * st->view.mpp;
-        st->dirty = 1;
-    }
-    st->last_x = x, st->last_y = y;
-}
+// --- sculpting ---------------------------------------------------------------------
 
-static void on_scroll(GLFWwindow *win, double dx, double dy) {
-    (void)dx;
-    window_state *st = glfwGetWindowUserPointer(win);
-    // Zoom about the cursor: the point under it stays put.
-    double mx = st->last_x, my = st->last_y;
-    int w, h;
-    glfwGetWindowSize(win, &w, &h);
-    double px = st->view.cx + (mx - w * 0.5) * st->view.mpp;
-    double pz = st->view.cz + (my - h * 0.5) * st->view.mpp;
-    double mpp = st->view.mpp * pow(0.8, dy);
-    double spacing = world_get_params(st->shown)->spacing;
-    mpp = fmax(spacing / 16.0, fmin(mpp, spacing * ldexp(1.0, TILE_MAX_LEVEL)));
-    st->view.cx = px - (mx - w * 0.5) * mpp;
-    st->view.cz = pz - (my - h * 0.5) * mpp;
-    st->view.mpp = mpp;
-    st->dirty = 1;
-}
-
-static void run_commands(window_state *st, const char *text) {
+static void sculpt_to(window_state *st, double x, double y) {
+    double hit[3];
+    if (!st->stroke || pick_at(st, x, y, hit) != 0) return; // off the terrain: skip
     og_error err = {{0}};
-    if (cmd_run(st->ctx, text, strlen(text), "console", &err) != 0) fprintf(stderr, "%s\n", err.msg);
-    fflush(stdout);
-    st->dirty = 1; // parameters or the world may have changed
+    if (stroke_to(st->stroke, hit[0], hit[2], 1.0, &err) != 0) {
+        report("sculpt", &err);
+        stroke_cancel(st->stroke);
+        st->stroke = NULL;
+    }
+    st->dirty = 1;
 }
 
-static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods) {
-    (void)scancode;
-    window_state *st = glfwGetWindowUserPointer(win);
-    if (action != GLFW_PRESS) return;
-    if (key == GLFW_KEY_S && (mods & GLFW_MOD_CONTROL)) {
-        if (world_path(st->ctx->world)[0])
-            run_commands(st, "save");
-        else
-            fprintf(stderr, "console: this world has no file yet: type save FILE\n");
-    } else if (key == GLFW_KEY_HOME) {
-        reset_view(st);
-    } else if (key >= GLFW_KEY_1 && key <= GLFW_KEY_6 &&
-               world_get_params(st->ctx->world)->kind == WORLD_PLANET) {
-        st->view.face = key - GLFW_KEY_1;
-        st->dirty = 1;
+static void sculpt_begin(window_state *st) {
+    og_error err = {{0}};
+    st->stroke = stroke_begin(st->ctx->world, &st->ctx->brush, &err);
+    if (!st->stroke) {
+        report("sculpt", &err);
+        return;
     }
+    sculpt_to(st, st->mouse_x, st->mouse_y);
+}
+
+// Commits the drag's stroke (one undo step); a stroke that laid no dab leaves no step.
+static void sculpt_end(window_state *st) {
+    if (!st->stroke) return;
+    stroke *s = st->stroke;
+    st->stroke = NULL;
+    if (stroke_dab_count(s) == 0) {
+        stroke_cancel(s);
+        return;
+    }
+    og_error err = {{0}};
+    if (stroke_end(s, &err) != 0) report("sculpt", &err);
+    st->dirty = 1;
+}
+
+// --- the camera --------------------------------------------------------------------
+
+static void reset_camera(window_state *st) {
+    og_error err = {{0}};
+    st->shown = world_serial(st->ctx->world);
+    st->cc.walk = 0;
+    st->render_failed = 0;
+    if (viewport_default_camera(st->v, st->ctx->world, &err) != 0) report("camera", &err);
+    st->dirty = 1;
+}
+
+static int ground_height(void *user, double x, double z, double *h) {
+    window_state *st = user;
+    return st->v->renderer ? terrain_renderer_height_at(st->v->renderer, x, z, h) : -1;
+}
+
+// Movement keys count while the right button is held, or always while walking. Their
+// held time is banked at every press, release and mode change, so the camera moves
+// for as long as a key was held even when frames are slow.
+static int movement_allowed(const window_state *st) {
+    return st->looking || st->cc.walk;
+}
+
+static void bank_keys(window_state *st) {
+    double now = glfwGetTime();
+    for (int i = 0; i < MOVE_KEY_COUNT; i++) {
+        if (st->key_down[i] && movement_allowed(st)) st->key_held[i] += now - st->key_since[i];
+        st->key_since[i] = now;
+    }
+}
+
+// The banked time as a step for camera_controls_move; clears the bank.
+static move_keys take_keys(window_state *st) {
+    bank_keys(st);
+    GLFWwindow *w = st->win;
+    double *h = st->key_held;
+    move_keys k = {h[0], h[1], h[2], h[3], h[4], h[5], 0};
+    k.fast = glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) || glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT);
+    for (int i = 0; i < MOVE_KEY_COUNT; i++)
+        h[i] = 0;
+    return k;
+}
+
+static int keys_held(const window_state *st) {
+    if (!movement_allowed(st)) return 0;
+    for (int i = 0; i < MOVE_KEY_COUNT; i++)
+        if (st->key_down[i]) return 1;
+    return 0;
+}
+
+// --- the command language ----------------------------------------------------------
+
+static void run_commands(window_state *st, const char *text, const char *label) {
+    sculpt_end(st); // a drag's stroke is committed before anything else changes the world
+    camera before = st->v->cam;
+    og_error err = {{0}};
+    if (cmd_run(st->ctx, text, strlen(text), label, &err) != 0) fprintf(stderr, "%s\n", err.msg);
+    fflush(stdout);
+    if (memcmp(&before, &st->v->cam, sizeof before) != 0) st->cc.walk = 0; // `camera` placed it
+    if (world_serial(st->ctx->world) != st->shown) reset_camera(st);
+    st->dirty = 1;
 }
 
 // Runs every complete line waiting on standard input, without blocking.
@@ -146,7 +201,7 @@ static void poll_stdin(window_state *st) {
         char *nl;
         while ((nl = memchr(st->stdin_buf, '\n', st->stdin_len))) {
             *nl = 0;
-            run_commands(st, st->stdin_buf);
+            run_commands(st, st->stdin_buf, "console");
             size_t used = (size_t)(nl - st->stdin_buf) + 1;
             memmove(st->stdin_buf, nl + 1, st->stdin_len - used);
             st->stdin_len -= used;
@@ -159,20 +214,238 @@ static void poll_stdin(window_state *st) {
     }
 }
 
-static void set_title(GLFWwindow *win, window_state *st, int pending) {
-    char title[512];
-    const char *path = world_path(st->shown);
-    snprintf(title, sizeof title,
-             "Orogen - %s - centre (%.1f, %.1f) m - %.3f m/px - face %d - level %d - pending %d",
-             path[0] ? path : "unsaved world", st->view.cx, st->view.cz, st->view.mpp,
-             st->view.face, map_view_level(st->shown, &st->view), pending);
-    glfwSetWindowTitle(win, title);
+// --- GLFW input --------------------------------------------------------------------
+
+static void on_mouse_button(GLFWwindow *win, int button, int action, int mods) {
+    window_state *st = glfwGetWindowUserPointer(win);
+    st->dirty = 1;
+    // Drags start where the last motion event left the cursor (not where the pointer
+    // is now: events queue up, and querying would skip the moves between).
+    if (button == GLFW_MOUSE_BUTTON_RIGHT) {
+        bank_keys(st);
+        st->looking = action == GLFW_PRESS;
+        return;
+    }
+    if (button != GLFW_MOUSE_BUTTON_LEFT && button != GLFW_MOUSE_BUTTON_MIDDLE) return;
+    if (action == GLFW_RELEASE) {
+        if (st->drag == DRAG_SCULPT && button == GLFW_MOUSE_BUTTON_LEFT) sculpt_end(st);
+        st->drag = DRAG_NONE;
+        return;
+    }
+    if (st->drag != DRAG_NONE) return; // one drag at a time
+    if (button == GLFW_MOUSE_BUTTON_MIDDLE || (mods & GLFW_MOD_ALT)) {
+        st->drag = DRAG_ORBIT;
+        if (pick_at(st, st->mouse_x, st->mouse_y, st->pivot) != 0) {
+            int ww, wh;
+            glfwGetWindowSize(win, &ww, &wh);
+            if (pick_at(st, ww * 0.5, wh * 0.5, st->pivot) != 0)
+                point_along_ray(st, ww * 0.5, wh * 0.5, 100.0, st->pivot);
+        }
+        st->cc.walk = 0;
+    } else {
+        st->drag = DRAG_SCULPT;
+        sculpt_begin(st);
+    }
+}
+
+static void on_cursor(GLFWwindow *win, double x, double y) {
+    window_state *st = glfwGetWindowUserPointer(win);
+    double dx = x - st->mouse_x, dy = y - st->mouse_y;
+    st->mouse_x = x, st->mouse_y = y;
+    st->dirty = 1;
+    if (st->drag == DRAG_ORBIT)
+        camera_controls_orbit(&st->cc, &st->v->cam, st->pivot, dx, dy);
+    else if (st->drag == DRAG_SCULPT)
+        sculpt_to(st, x, y);
+    if (st->looking) camera_controls_look(&st->cc, &st->v->cam, dx, dy);
+}
+
+static void on_cursor_enter(GLFWwindow *win, int entered) {
+    window_state *st = glfwGetWindowUserPointer(win);
+    st->mouse_in = entered;
+    st->dirty = 1;
+}
+
+static void on_scroll(GLFWwindow *win, double dx, double dy) {
+    (void)dx;
+    window_state *st = glfwGetWindowUserPointer(win);
+    st->dirty = 1;
+    if (st->looking) {
+        camera_controls_speed_wheel(&st->cc, dy);
+        return;
+    }
+    double pivot[3];
+    if (pick_at(st, st->mouse_x, st->mouse_y, pivot) != 0)
+        point_along_ray(st, st->mouse_x, st->mouse_y, fmax(100.0, 4.0 * st->cc.fly_speed), pivot);
+    st->cc.walk = 0;
+    camera_controls_dolly(&st->cc, &st->v->cam, pivot, dy);
+}
+
+static void save_shortcut(window_state *st) {
+    if (!world_path(st->ctx->world)[0]) {
+        fprintf(stderr, "orogen: this world has never been saved: type save FILE in the console "
+                        "(after that, Ctrl+S saves it there)\n");
+        return;
+    }
+    run_commands(st, "save", "Ctrl+S");
+}
+
+static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods) {
+    (void)scancode;
+    window_state *st = glfwGetWindowUserPointer(win);
+    st->dirty = 1;
+    for (int i = 0; i < MOVE_KEY_COUNT; i++) {
+        if (key != move_key_codes[i] || action == GLFW_REPEAT) continue;
+        bank_keys(st);
+        // Ctrl+S is a shortcut, not a step back.
+        st->key_down[i] = action == GLFW_PRESS && !(mods & GLFW_MOD_CONTROL);
+    }
+    if (action != GLFW_PRESS) return;
+    if (mods & GLFW_MOD_CONTROL) {
+        if (key == GLFW_KEY_S)
+            save_shortcut(st);
+        else if (key == GLFW_KEY_Z && (mods & GLFW_MOD_SHIFT))
+            run_commands(st, "redo", "Ctrl+Shift+Z");
+        else if (key == GLFW_KEY_Z)
+            run_commands(st, "undo", "Ctrl+Z");
+        else if (key == GLFW_KEY_Y)
+            run_commands(st, "redo", "Ctrl+Y");
+        return;
+    }
+    double hit[3];
+    switch (key) {
+    case GLFW_KEY_F:
+        if (pick_at(st, st->mouse_x, st->mouse_y, hit) == 0)
+            camera_controls_focus(&st->cc, &st->v->cam, hit, st->ctx->brush.radius);
+        else
+            fprintf(stderr, "orogen: focus: no terrain under the cursor\n");
+        break;
+    case GLFW_KEY_G:
+        bank_keys(st);
+        camera_controls_toggle_walk(&st->cc, &st->v->cam, ground_height, st);
+        break;
+    case GLFW_KEY_HOME:
+        reset_camera(st);
+        break;
+    case GLFW_KEY_1:
+    case GLFW_KEY_2:
+    case GLFW_KEY_3:
+    case GLFW_KEY_4:
+    case GLFW_KEY_5:
+        st->v->settings.view = (view_mode)(key - GLFW_KEY_1);
+        break;
+    default:
+        break;
+    }
+}
+
+static void on_refresh(GLFWwindow *win) {
+    window_state *st = glfwGetWindowUserPointer(win);
+    st->dirty = 1;
+}
+
+// --- the frame ---------------------------------------------------------------------
+
+static void update_title(window_state *st) {
+    char title[sizeof st->title], name[256];
+    const char *path = world_path(st->ctx->world);
+    const char *slash = strrchr(path, '/');
+    snprintf(name, sizeof name, "%s", path[0] ? (slash ? slash + 1 : path) : "unsaved world");
+    const camera *c = &st->v->cam;
+    render_stats rs = {0};
+    if (st->v->renderer) terrain_renderer_stats(st->v->renderer, &rs);
+    int used = st->v->settings.levels - rs.finest_level;
+    if (st->render_failed)
+        snprintf(title, sizeof title, "Orogen - %s%s - planet worlds are not drawn yet", name,
+                 world_is_modified(st->ctx->world) ? " *" : "");
+    else
+        snprintf(title, sizeof title,
+                 "Orogen - %s%s - cam (%.1f, %.1f, %.1f) yaw %.1f pitch %.1f - %s %.3g m/s - "
+                 "levels %d/%d - tool %s r%g - pending %d",
+                 name, world_is_modified(st->ctx->world) ? " *" : "", c->pos[0], c->pos[1],
+                 c->pos[2], c->yaw, c->pitch, st->cc.walk ? "walk" : "fly",
+                 camera_controls_speed(&st->cc), rs.levels_ready, used,
+                 brush_tool_name(st->ctx->brush.tool), st->ctx->brush.radius, st->pending);
+    if (strcmp(title, st->title) != 0) {
+        snprintf(st->title, sizeof st->title, "%s", title);
+        glfwSetWindowTitle(st->win, title);
+    }
+}
+
+static void update_cursor(window_state *st) {
+    brush_cursor *bc = &st->v->cursor;
+    double hit[3];
+    bc->visible = st->mouse_in && !st->looking && st->drag != DRAG_ORBIT &&
+                  pick_at(st, st->mouse_x, st->mouse_y, hit) == 0;
+    if (!bc->visible) return;
+    bc->x = hit[0], bc->z = hit[2];
+    bc->radius = st->ctx->brush.radius;
+    for (int i = 0; i < BRUSH_FALLOFF_SAMPLES; i++)
+        bc->falloff[i] =
+            brush_falloff_weight(&st->ctx->brush, (float)i / (BRUSH_FALLOFF_SAMPLES - 1));
+}
+
+// Brings the clipmaps up to date without waiting for tiles. Returns 1 when the picture
+// changed (texels arrived), 0 when not, -1 when this world cannot be drawn.
+static int update_view(window_state *st) {
+    og_error err = {{0}};
+    viewport *v = st->v;
+    if (st->render_failed) return -1;
+    int rc = terrain_renderer_update(v->renderer, st->ctx->world, &v->cam, &v->settings, &err);
+    if (rc < 0) {
+        report("viewport", &err);
+        st->render_failed = 1;
+        st->pending = 0;
+        st->settled = 2; // nothing to wait for
+        return -1;
+    }
+    render_stats rs;
+    terrain_renderer_stats(v->renderer, &rs);
+    if (rc == 1) {
+        st->settled++;
+        st->pending = 0;
+    } else {
+        int missing = v->settings.levels - rs.finest_level - rs.levels_ready;
+        st->settled = 0;
+        st->pending = missing > 0 ? missing : 1; // else the material or detail layers
+    }
+    return rs.texels_uploaded > 0;
+}
+
+static void draw_view(window_state *st, int width, int height) {
+    og_error err = {{0}};
+    viewport *v = st->v;
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    if (st->render_failed) {
+        glViewport(0, 0, width, height);
+        glClearColor(0.1f, 0.1f, 0.12f, 1.0f);
+        glClear(GL_COLOR_BUFFER_BIT);
+        return;
+    }
+    update_cursor(st);
+    if (terrain_renderer_draw(v->renderer, st->ctx->world, &v->cam, &v->settings, &v->cursor, width,
+                              height, &err) != 0)
+        report("viewport", &err);
+}
+
+// Makes the viewport the console's view commands use: this window's context, its renderer.
+static viewport *attach_viewport(cmd_context *ctx, og_error *err) {
+    viewport *v = viewport_create(ctx->resource_dir);
+    if (!v) return og_error_set(err, "out of memory"), NULL;
+    if (ctx->viewport) { // made by a batch command: keep its camera and settings
+        v->cam = ctx->viewport->cam;
+        v->cam_set = ctx->viewport->cam_set;
+        v->settings = ctx->viewport->settings;
+        viewport_destroy(ctx->viewport);
+    }
+    v->window_context = 1;
+    ctx->viewport = v;
+    return v;
 }
 
 int window_run(cmd_context *ctx, og_error *err) {
     glfwSetErrorCallback(on_glfw_error);
-    if (!glfwInit())
-        return og_error_set(err, "cannot start the window system: %s", glfw_message);
+    if (!glfwInit()) return og_error_set(err, "cannot start the window system: %s", glfw_message);
     glfwWindowHint(GLFW_CONTEXT_CREATION_API, GLFW_EGL_CONTEXT_API);
     glfwWindowHint(GLFW_CLIENT_API, GLFW_OPENGL_API);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
@@ -181,81 +454,83 @@ int window_run(cmd_context *ctx, og_error *err) {
     GLFWwindow *win = glfwCreateWindow(1280, 800, "Orogen", NULL, NULL);
     if (!win) {
         glfwTerminate();
-        return og_error_set(err, "cannot open a window with an OpenGL 4.5 core context through "
-                                 "EGL: %s", glfw_message);
+        return og_error_set(err,
+                            "cannot open a window with an OpenGL 4.5 core context through "
+                            "EGL: %s",
+                            glfw_message);
     }
     glfwMakeContextCurrent(win);
     glfwSwapInterval(1);
-
-    GLuint vs = compile(GL_VERTEX_SHADER, vertex_src, "map vertex", err);
-    GLuint fs = vs ? compile(GL_FRAGMENT_SHADER, fragment_src, "map fragment", err) : 0;
-    if (!fs) {
+    og_error gl_err = {{0}};
+    viewport *v = NULL;
+    if (gl_require_features(&gl_err) != 0 || !(v = attach_viewport(ctx, &gl_err)) ||
+        viewport_prepare(v, &gl_err) != 0) {
+        og_error_set(err, "the window's OpenGL context cannot run the viewport: %s", gl_err.msg);
+        if (v) viewport_destroy(v), ctx->viewport = NULL;
         glfwDestroyWindow(win);
         glfwTerminate();
         return -1;
     }
-    GLuint prog = glCreateProgram();
-    glAttachShader(prog, vs);
-    glAttachShader(prog, fs);
-    glLinkProgram(prog);
-    glDeleteShader(vs);
-    glDeleteShader(fs);
-    GLuint vao, tex = 0;
-    glCreateVertexArrays(1, &vao);
-    int tex_w = 0, tex_h = 0;
-    uint8_t *pixels = NULL;
 
-    window_state st = {.ctx = ctx, .stdin_open = 1};
-    reset_view(&st);
+    window_state st = {.ctx = ctx, .v = v, .win = win, .stdin_open = 1, .dirty = 1};
+    camera_controls_init(&st.cc);
+    if (v->cam_set)
+        st.shown = world_serial(ctx->world);
+    else
+        reset_camera(&st);
+    glfwGetCursorPos(win, &st.mouse_x, &st.mouse_y);
     glfwSetWindowUserPointer(win, &st);
     glfwSetMouseButtonCallback(win, on_mouse_button);
     glfwSetCursorPosCallback(win, on_cursor);
+    glfwSetCursorEnterCallback(win, on_cursor_enter);
     glfwSetScrollCallback(win, on_scroll);
     glfwSetKeyCallback(win, on_key);
-    printf("Orogen: drag to pan, wheel to zoom, Home to recentre, Ctrl+S to save.\n"
+    glfwSetWindowRefreshCallback(win, on_refresh);
+    printf("Orogen viewport:\n"
+           "  left-drag sculpts with the current tool (console: tool NAME key=value ...)\n"
+           "  Alt+left-drag or middle-drag orbits, wheel dollies to the point under the cursor\n"
+           "  right-drag looks; with it held W A S D move, Q E down/up, Shift faster, wheel "
+           "sets the speed\n"
+           "  G walk mode (WASD walk on the ground), F focus on the point under the cursor, "
+           "Home resets the view\n"
+           "  1-5 shaded, wireframe, levels, height, slope views\n"
+           "  Ctrl+Z undo, Ctrl+Shift+Z or Ctrl+Y redo, Ctrl+S save\n"
            "Console: type commands here ('help' lists them, 'exit' quits).\n");
     fflush(stdout);
 
-    int pending = 0;
+    GLenum last_gl_error = GL_NO_ERROR;
     while (!glfwWindowShouldClose(win) && !ctx->exit_requested) {
-        // Sleep until input, but wake often while tiles are still arriving.
-        glfwWaitEventsTimeout(pending ? 0.03 : 0.1);
+        // Input first; wake often while tiles arrive or keys fly the camera, rarely when idle.
+        int busy = st.pending || st.settled < 2 || keys_held(&st) || st.stroke;
+        glfwWaitEventsTimeout(busy ? 0.01 : 0.1);
+        move_keys keys = take_keys(&st);
+        if (camera_controls_move(&st.cc, &v->cam, &keys, ground_height, &st)) st.dirty = 1;
         poll_stdin(&st);
         if (ctx->exit_requested) break;
-        if (st.shown != ctx->world) reset_view(&st);
+        if (world_serial(ctx->world) != st.shown) reset_camera(&st);
+
+        // Tiles are requested every wake-up while some are missing; a frame is drawn
+        // when input or commands changed something or new texels arrived.
         int w, h;
         glfwGetFramebufferSize(win, &w, &h);
-        if (w <= 0 || h <= 0) continue; // minimised
-        if (w != tex_w || h != tex_h) {
-            if (tex) glDeleteTextures(1, &tex);
-            glCreateTextures(GL_TEXTURE_2D, 1, &tex);
-            glTextureStorage2D(tex, 1, GL_RGBA8, w, h);
-            glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-            glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-            free(pixels);
-            pixels = malloc((size_t)w * h * 4);
-            tex_w = w, tex_h = h;
-            st.dirty = 1;
+        if (w > 0 && h > 0 && (st.dirty || st.pending || st.settled < 2)) {
+            int arrived = update_view(&st);
+            if (st.dirty || arrived) {
+                st.dirty = 0;
+                draw_view(&st, w, h);
+                glfwSwapBuffers(win);
+                GLenum e = glGetError();
+                if (e != GL_NO_ERROR && e != last_gl_error)
+                    fprintf(stderr, "orogen: OpenGL error 0x%x in the viewport\n", e);
+                last_gl_error = e;
+            }
         }
-        if (st.dirty || pending) {
-            pending = map_image_compose(ctx->world, &st.view, w, h, pixels);
-            glTextureSubImage2D(tex, 0, 0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, pixels);
-            st.dirty = 0;
-            set_title(win, &st, pending);
-        }
-        glViewport(0, 0, w, h);
-        glUseProgram(prog);
-        glBindTextureUnit(0, tex);
-        glBindVertexArray(vao);
-        glDrawArrays(GL_TRIANGLES, 0, 3);
-        glfwSwapBuffers(win);
-        GLenum gl_err = glGetError();
-        if (gl_err != GL_NO_ERROR) fprintf(stderr, "orogen: OpenGL error 0x%x in the map view\n", gl_err);
+        update_title(&st);
     }
-    free(pixels);
-    glDeleteTextures(1, &tex);
-    glDeleteVertexArrays(1, &vao);
-    glDeleteProgram(prog);
+    sculpt_end(&st);
+    // The renderer's GL objects belong to this context: free them while it is current.
+    viewport_destroy(v);
+    ctx->viewport = NULL;
     glfwDestroyWindow(win);
     glfwTerminate();
     return 0;

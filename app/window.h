@@ -1,14 +1,18 @@
-// The editor window: a GLFW window with an EGL OpenGL 4.5 core context showing
-// the world's shaded map (renderer/map_image), panned with the mouse, with the
-// console on standard input. The 3D clipmap viewport will take its place.
+// The editor window: a GLFW window with an EGL OpenGL 4.5 core context whose 3D
+// viewport (renderer/viewport.h) fills it. Mouse and keys navigate (app/camera_controls)
+// and sculpt with the current tool; the console runs the command language from
+// standard input while the window runs. One direction per frame: input -> commands ->
+// world -> cache -> renderer.
 #ifndef OROGEN_APP_WINDOW_H
 #define OROGEN_APP_WINDOW_H
 
 #include "editor/commands.h"
 #include "io/err.h"
 
-// Runs until the window is closed or `exit` is typed. Returns 0, or -1 with err set
-// when no window or no suitable GL context can be had.
+// Runs until the window is closed or `exit` is typed. The window's viewport is
+// ctx->viewport while it runs (so `camera`, `view`, `render`, `screenshot` and `pick`
+// use it) and is freed before returning (ctx->viewport = NULL). Returns 0, or -1 with
+// err set when no window or no suitable GL context can be had.
 int window_run(cmd_context *ctx, og_error *err);
 
 #endif
