@@ -65,12 +65,7 @@ static int pick_at(window_state *st, double x, double y, double hit[3]) {
     int ww, wh;
     glfwGetWindowSize(st->win, &ww, &wh);
     if (ww <= 0 || wh <= 0) return -1;
-    double dir[3];
-    camera_ray(&st->v->cam, (double)ww / wh, x / ww, y / wh, dir);
-    const world_params *p = world_get_params(st->ctx->world);
-    double reach = 0.75 * 254 * p->spacing * (double)((int64_t)1 << (st->v->settings.levels - 1));
-    return pick_ray(terrain_renderer_height_at, st->v->renderer, st->v->cam.pos, dir, reach,
-                    p->spacing, hit);
+    return viewport_pick_loaded(st->v, st->ctx->world, x / ww, y / wh, (double)ww / wh, hit);
 }
 
 // A point along the ray under (x, y) when no terrain is there: `dist` metres out.

@@ -105,16 +105,22 @@ int viewport_screenshot(viewport *v, world *w, const char *path, int width, int 
     return rc;
 }
 
-int viewport_pick(viewport *v, world *w, double px, double py, int width, int height,
-                  double hit[3], og_error *err) {
-    if (viewport_settle(v, w, err) != 0) return -1;
+int viewport_pick_loaded(viewport *v, world *w, double sx, double sy, double aspect,
+                         double hit[3]) {
+    if (!v->renderer) return -1;
     double dir[3];
-    camera_ray(&v->cam, (double)width / height, px / width, py / height, dir);
+    camera_ray(&v->cam, aspect, sx, sy, dir);
     const world_params *p = world_get_params(w);
     // As far as the coarsest level reaches; steps of one coarse sample near the camera.
     double reach = 0.75 * 254 * p->spacing * (double)((int64_t)1 << (v->settings.levels - 1));
-    if (pick_ray(terrain_renderer_height_at, v->renderer, v->cam.pos, dir, reach, p->spacing,
-                 hit) != 0)
+    return pick_ray(terrain_renderer_height_at, v->renderer, v->cam.pos, dir, reach, p->spacing,
+                    hit);
+}
+
+int viewport_pick(viewport *v, world *w, double px, double py, int width, int height,
+                  double hit[3], og_error *err) {
+    if (viewport_settle(v, w, err) != 0) return -1;
+    if (viewport_pick_loaded(v, w, px / width, py / height, (double)width / height, hit) != 0)
         return og_error_set(err, "no terrain under pixel (%g, %g)", px, py);
     return 0;
 }

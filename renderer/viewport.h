@@ -42,6 +42,10 @@ int viewport_screenshot(viewport *v, world *w, const char *path, int width, int 
 // The terrain point under pixel (px, py) of a width x height image, by marching the
 // ray against the heights the viewport holds. 0 and hit, or -1 (err) when the ray
 // meets no terrain.
+// The same without waiting, against whatever the levels hold now (the window's
+// brushes): sx, sy in [0, 1] from the top-left. 0 and hit, or -1 on no terrain.
+int viewport_pick_loaded(viewport *v, world *w, double sx, double sy, double aspect,
+                         double hit[3]);
 int viewport_pick(viewport *v, world *w, double px, double py, int width, int height,
                   double hit[3], og_error *err);
 
