@@ -23,8 +23,11 @@ if [ -n "${ASAN_OPTIONS:-}" ]; then export ASAN_OPTIONS="$ASAN_OPTIONS:detect_le
 
 run() { "$orogen" -c "$1" >"$work/out" 2>"$work/err"; }
 rmse() { "$rmse_tool" "$1" "$2" | sed -n 's/^rmse=//p'; }
-# less A B: A < B as numbers
-less() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a < b) }'; }
+# less A B: A < B as numbers (false when either is not a number: a failed comparison)
+less() {
+    awk -v a="$1" -v b="$2" 'BEGIN { n = "^[-+]?[0-9.]+([eE][-+]?[0-9]+)?$"
+                                     exit !(a ~ n && b ~ n && a + 0 < b + 0) }'
+}
 
 W=320
 H=180
@@ -126,5 +129,5 @@ expect_error "a camera looking past straight up" "camera 0 0 0 0 120" "PITCH: 12
 expect_error "a planet" "new planet; screenshot $work/planet.png 64 64" "planet"
 [ ! -e "$work/x.png" ] && [ ! -e "$work/planet.png" ]; check "failed screenshots write no file" $?
 
-echo "$passes passed, $failures failed"
+echo "e2e_render: $passes passed, $failures failed"
 [ $failures = 0 ]
