@@ -5,7 +5,7 @@
 # is as steady as one at the origin, picking agrees with the heights, bad input fails
 # clearly. Usage: e2e_render.sh OROGEN TESTS_DIR
 # Regenerate the goldens after a deliberate change to the renderer (and look at them):
-#   OROGEN_UPDATE_GOLDEN=1 bash tests/e2e_render.sh build/orogen tests
+#   tests/golden_update.sh [BUILD_DIR]   (= OROGEN_UPDATE_GOLDEN=1 bash tests/e2e_render.sh ...)
 set -u
 orogen=$1
 tests=$2
