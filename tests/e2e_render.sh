@@ -74,7 +74,7 @@ for f in "$work"/a/*.png; do cp "$f" "$work/"; done
 
 # --- goldens ------------------------------------------------------------------------
 max_golden=2.0
-mkdir -p "$failed_dir"
+rm -rf "$failed_dir" && mkdir -p "$failed_dir" # only this run's failures
 for name in $golden_names; do
     if [ "${OROGEN_UPDATE_GOLDEN:-0}" = 1 ]; then
         mkdir -p "$golden" && cp "$work/$name.png" "$golden/$name.png"
@@ -88,7 +88,11 @@ for name in $golden_names; do
     "$rmse_tool" "$golden/$name.png" "$work/$name.png" --max $max_golden \
         --diff "$failed_dir/$name-diff.png" >"$work/rmse" 2>&1
     status=$?
-    if [ $status != 0 ]; then cp "$work/$name.png" "$failed_dir/$name-got.png"; fi
+    if [ $status != 0 ]; then # the golden, what this run drew and |difference| x 4, side by side
+        cp "$golden/$name.png" "$failed_dir/$name-golden.png" && cp "$work/$name.png" "$failed_dir/$name-got.png"
+    else
+        rm -f "$failed_dir/$name-diff.png"
+    fi
     check "$name matches its golden within RMSE $max_golden ($(cat "$work/rmse"); on failure see $failed_dir)" $status
 done
 [ $failures = 0 ] && rm -rf "$failed_dir"
