@@ -1,0 +1,696 @@
+// Viewport renderer benchmarks, all offscreen on one headless context in one run,
+// each figure beside its reference from the same run:
+//  1. frames per second of the geometry clipmap against a naive full-resolution mesh
+//     (bench/naive_mesh.c: every sample of a bounded 4096^2 world, one draw call) on
+//     the same fly-over; the naive mesh is timed on three frames of the path only;
+//  2. triangles and draw calls per frame, both;
+//  3. CPU milliseconds per frame (render_stats.cpu_ms: update + draw submission) and
+//     wall time with glFinish, on a bounded 1024^2 world against an unbounded one
+//     (same parameters, same path, levels settled first; goal: within 1.2x);
+//  4. texels uploaded per frame in straight flight at 50, 100 and 200 m/s (60 frames
+//     per second of simulated time), against the full level textures (levels x 256^2);
+//  5. parallax detail off and on (4, 8 and 16 steps) a few metres above sculpted
+//     detail (a noise brush on the detail layer, through the command language);
+//  6. clipmap levels 3, 5, 7, 9, 11 against frames per second (seed 000's Table 10);
+//  7. visual accuracy: seed 002's RMSE between the clipmap and the naive mesh in the
+//     height view (same camera, projection, sun, sky and fog), goal <= 3, from three
+//     cameras; both images and an amplified difference are written as PNGs.
+// Usage: bench_render [OUT_DIR [SECTIONS]]: images go to OUT_DIR (default $TMPDIR, else
+// /tmp; created if missing); SECTIONS picks sections, e.g. "7" or "345" (default all).
+// llvmpipe on two cores is slow (the naive mesh's 33M triangles take seconds a frame,
+// the clipmap most of one), so passes are short: figures are medians over frames of
+// interleaved passes (the machine is noisy); goals are reported (PASS/MISS), not asserted.
+#include "bench/bench_timing.h"
+#include "bench/naive_mesh.h"
+
+#include "editor/commands.h"
+#include "editor/layer_grid.h"
+#include "editor/world.h"
+#include "io/image_compare.h"
+#include "io/image_read.h"
+#include "renderer/camera.h"
+#include "renderer/gl_context.h"
+#include "renderer/gl_target.h"
+#include "renderer/terrain_renderer.h"
+
+#include <epoxy/gl.h>
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+
+#ifndef OROGEN_BENCH_SHADER_DIR
+#error "bench/CMakeLists.txt defines OROGEN_BENCH_SHADER_DIR"
+#endif
+
+#define WIDTH 960
+#define HEIGHT 540
+#define FLY_FRAMES 60  // the fly-over (1): two passes in the height view, one shaded
+#define CPU_FRAMES 30  // the bounded/unbounded flight (3): two passes over each world
+#define MAX_FRAMES 120 // the longest path (4)
+#define REPEATS 5      // interleaved repeats at a fixed camera (5, 6), one frame each
+#define SETTLE_SECONDS 300.0
+
+static void quiet(void *u, const char *m) {
+    (void)u, (void)m;
+}
+
+static void check(int rc, const og_error *err, const char *what) {
+    if (rc == 0) return;
+    fprintf(stderr, "bench_render: %s: %s\n", what, err->msg);
+    exit(1);
+}
+
+static void *xmalloc(size_t n) {
+    void *p = malloc(n);
+    if (!p) {
+        fprintf(stderr, "bench_render: out of memory (%zu bytes)\n", n);
+        exit(1);
+    }
+    return p;
+}
+
+// ---- the summary ----------------------------------------------------------------------
+
+static struct {
+    char text[200];
+    int pass;
+} goals[8];
+static int goal_count;
+
+static void goal(const char *what, double value, double limit, int at_least, const char *unit) {
+    if (goal_count == (int)(sizeof goals / sizeof *goals)) return;
+    int pass = at_least ? value >= limit : value <= limit;
+    snprintf(goals[goal_count].text, sizeof goals[0].text, "%-52s %9.2f%s  (goal %s %g%s)", what,
+             value, unit, at_least ? ">=" : "<=", limit, unit);
+    goals[goal_count++].pass = pass;
+}
+
+// ---- set-up ---------------------------------------------------------------------------
+
+static double t_start;
+
+// Progress on stderr, so a long run shows where it is.
+static void progress(const char *fmt, ...) {
+    va_list ap;
+    va_start(ap, fmt);
+    fprintf(stderr, "[%6.1f s] ", bench_now() - t_start);
+    vfprintf(stderr, fmt, ap);
+    fputc('\n', stderr);
+    va_end(ap);
+}
+
+typedef struct bench {
+    gl_headless *ctx;
+    gl_target target;
+    terrain_renderer *r;
+    unsigned char *rgb;
+    const char *out_dir;
+    double t_start;
+} bench;
+
+// resources/default.world with `size` samples per side (0: unbounded).
+static world *make_world(int64_t size) {
+    world_params p;
+    int errors = 0;
+    og_error err;
+    world_params_default(&p, WORLD_FLAT);
+    check(world_params_load(OROGEN_RESOURCE_DIR "/default.world", &p, &errors, NULL, NULL, &err),
+          &err, "default.world");
+    p.size = size;
+    world_settings s = {.warn = quiet};
+    world *w = world_create(&p, &s, &err);
+    if (!w) check(-1, &err, "world_create");
+    return w;
+}
+
+// The ground height (0 outside a bounded world).
+static double ground_at(world *w, double x, double z) {
+    double h = 0;
+    og_error err;
+    if (world_sample(w, 0, x, z, &h, &err) != 0) return 0;
+    return h;
+}
+
+// The ground or the water surface, whichever is higher.
+static double surface_at(world *w, double x, double z) {
+    return fmax(ground_at(w, x, z), world_get_params(w)->ocean_level);
+}
+
+// Updates until every level is current twice in a row (as viewport_settle does).
+static void settle(bench *b, world *w, const camera *c, const render_settings *s) {
+    og_error err;
+    double t0 = bench_now();
+    for (;;) {
+        int rc = terrain_renderer_update(b->r, w, c, s, &err);
+        check(rc < 0 ? -1 : 0, &err, "terrain_renderer_update");
+        if (rc == 1 && terrain_renderer_update(b->r, w, c, s, &err) == 1) return;
+        if (bench_now() - t0 > SETTLE_SECONDS) {
+            fprintf(stderr, "bench_render: tiles did not arrive within %.0f s\n", SETTLE_SECONDS);
+            exit(1);
+        }
+        struct timespec nap = {0, 2000000};
+        nanosleep(&nap, NULL);
+    }
+}
+
+typedef struct frame_time {
+    double wall_ms;   // update + draw + glFinish
+    double update_ms; // terrain_renderer_update alone
+    render_stats st;
+} frame_time;
+
+// One clipmap frame into the offscreen target.
+static frame_time clip_frame(bench *b, world *w, const camera *c, const render_settings *s) {
+    og_error err;
+    frame_time f;
+    double t0 = bench_now();
+    check(terrain_renderer_update(b->r, w, c, s, &err) < 0 ? -1 : 0, &err, "update");
+    f.update_ms = (bench_now() - t0) * 1e3;
+    glBindFramebuffer(GL_FRAMEBUFFER, b->target.fbo);
+    check(terrain_renderer_draw(b->r, w, c, s, NULL, WIDTH, HEIGHT, &err), &err, "draw");
+    glFinish();
+    f.wall_ms = (bench_now() - t0) * 1e3;
+    terrain_renderer_stats(b->r, &f.st);
+    return f;
+}
+
+static double naive_frame(bench *b, naive_mesh *m, const camera *c, const render_settings *s) {
+    og_error err;
+    double t0 = bench_now();
+    glBindFramebuffer(GL_FRAMEBUFFER, b->target.fbo);
+    check(naive_mesh_draw(m, c, s, WIDTH, HEIGHT, &err), &err, "naive draw");
+    glFinish();
+    return (bench_now() - t0) * 1e3;
+}
+
+static void read_image(bench *b, unsigned char *rgb) {
+    og_error err;
+    check(gl_target_read_rgb(&b->target, rgb, &err), &err, "read pixels");
+}
+
+static void write_image(bench *b, const char *name, const unsigned char *rgb) {
+    char path[4200];
+    og_error err;
+    snprintf(path, sizeof path, "%s/%s", b->out_dir, name);
+    check(image_write_rgb8(path, rgb, WIDTH, HEIGHT, &err), &err, path);
+}
+
+// ---- camera paths ---------------------------------------------------------------------
+
+// A straight flight at constant altitude: `above` metres over the highest ground
+// along the way, looking along the flight (yaw from the direction) at `pitch`.
+typedef struct path {
+    camera cam[MAX_FRAMES];
+    int frames;
+    double metres_per_frame;
+} path;
+
+static void make_path(path *p, world *w, double x0, double z0, double x1, double z1, int frames,
+                      double above, double pitch) {
+    p->frames = frames;
+    double dx = x1 - x0, dz = z1 - z0, len = sqrt(dx * dx + dz * dz);
+    p->metres_per_frame = len / (frames - 1);
+    double top = -1e30;
+    for (double t = 0; t <= 1.0 + 1e-9; t += 1.0 / 256)
+        top = fmax(top, surface_at(w, x0 + dx * t, z0 + dz * t));
+    double yaw = atan2(dx, -dz) * 180.0 / M_PI; // 0 looks toward -Z, 90 toward +X
+    if (yaw < 0) yaw += 360;
+    for (int i = 0; i < frames; i++) {
+        double t = (double)i / (frames - 1);
+        camera *c = &p->cam[i];
+        camera_default(c);
+        c->pos[0] = x0 + dx * t, c->pos[2] = z0 + dz * t, c->pos[1] = top + above;
+        c->yaw = yaw, c->pitch = pitch;
+    }
+}
+
+// Settles every camera of the path once so that every tile it needs is in the cache.
+static void warm_path(bench *b, world *w, const path *p, const render_settings *s) {
+    for (int i = 0; i < p->frames; i++)
+        settle(b, w, &p->cam[i], s);
+}
+
+// ---- 1 and 2: clipmap against the naive full-resolution mesh ---------------------------
+
+// Frames of several passes pooled: FPS over all of them, medians per frame.
+typedef struct pool {
+    double wall[4 * MAX_FRAMES], cpu[4 * MAX_FRAMES], update[4 * MAX_FRAMES];
+    double tris[4 * MAX_FRAMES], calls[4 * MAX_FRAMES];
+    int n;
+} pool;
+
+// Flies the path after settling at its start; the first frame's image goes to `image`
+// unless that is NULL.
+static void fly_into(bench *b, world *w, const path *p, const render_settings *s, pool *out,
+                     const char *image) {
+    settle(b, w, &p->cam[0], s);
+    double total = 0;
+    for (int i = 0; i < p->frames; i++) {
+        frame_time f = clip_frame(b, w, &p->cam[i], s);
+        if (i == 0 && image) {
+            unsigned char *rgb = xmalloc((size_t)WIDTH * HEIGHT * 3);
+            read_image(b, rgb);
+            write_image(b, image, rgb);
+            free(rgb);
+        }
+        int k = out->n++;
+        out->wall[k] = f.wall_ms, out->cpu[k] = f.st.cpu_ms, out->update[k] = f.update_ms;
+        out->tris[k] = (double)f.st.triangles, out->calls[k] = f.st.draw_calls;
+        total += f.wall_ms;
+    }
+    progress("  pass: %d frames in %.1f s, view %s", p->frames, total * 1e-3,
+             view_mode_name(s->view));
+}
+
+typedef struct pooled {
+    double fps, frame_ms, cpu_ms, update_ms, tris, calls;
+} pooled;
+
+static pooled pool_result(pool *p) {
+    double total = 0;
+    for (int i = 0; i < p->n; i++)
+        total += p->wall[i];
+    return (pooled){.fps = p->n / (total * 1e-3),
+                    .frame_ms = bench_median(p->wall, p->n),
+                    .cpu_ms = bench_median(p->cpu, p->n),
+                    .update_ms = bench_median(p->update, p->n),
+                    .tris = bench_median(p->tris, p->n),
+                    .calls = bench_median(p->calls, p->n)};
+}
+
+static void bench_vs_naive(bench *b, world *w4096, naive_mesh *m) {
+    render_settings s;
+    render_settings_default(&s);
+    static path p;
+    const double above = 120;
+    make_path(&p, w4096, 2000, 2500, 2000 + 520, 2500 + 300, FLY_FRAMES, above, -12);
+    progress("1. warming the fly-over");
+    warm_path(b, w4096, &p, &s);
+    static pool shaded, height;
+    double naive_ms[3];
+    for (int rep = 0; rep < 3; rep++) {
+        if (rep < 2) {
+            s.view = VIEW_HEIGHT;
+            fly_into(b, w4096, &p, &s, &height, NULL);
+        } else {
+            s.view = VIEW_SHADED;
+            fly_into(b, w4096, &p, &s, &shaded, NULL);
+        }
+        // The naive mesh: one frame per pass (first, middle, last frame of the path).
+        int i = rep * (p.frames - 1) / 2;
+        s.view = VIEW_HEIGHT;
+        naive_ms[rep] = naive_frame(b, m, &p.cam[i], &s);
+        progress("  naive frame %d: %.0f ms", i, naive_ms[rep]);
+    }
+    pooled rs = pool_result(&shaded), rh = pool_result(&height);
+    double naive_med = bench_median(naive_ms, 3);
+    double naive_fps = 1e3 / naive_med;
+    printf("\n1. Frames per second, %dx%d, fly-over of %d frames (%.1f m/frame, %.0f m above the "
+           "highest ground) over a bounded 4096^2 world (spacing %.0f m)\n",
+           WIDTH, HEIGHT, p.frames, p.metres_per_frame, above, world_get_params(w4096)->spacing);
+    printf("   %-44s %10s %16s %8s\n", "renderer", "FPS", "median frame ms", "frames");
+    printf("   %-44s %10.3f %16.0f %8d\n", "clipmap, height view (8 levels)", rh.fps, rh.frame_ms,
+           height.n);
+    printf("   %-44s %10.3f %16.0f %8d\n", "clipmap, shaded view (8 levels)", rs.fps, rs.frame_ms,
+           shaded.n);
+    printf("   %-44s %10.3f %16.0f %8d   (first/middle/last frame of the path)\n",
+           "naive full-resolution mesh, height view", naive_fps, naive_med, 3);
+    printf("   clipmap / naive, same view and shading: %.2fx the frame rate\n", rh.fps / naive_fps);
+
+    printf("\n2. Geometry per frame (medians over the fly-over)\n");
+    printf("   %-44s %14s %12s\n", "renderer", "triangles", "draw calls");
+    printf("   %-44s %14.0f %12.0f   (sky + one per level + water)\n", "clipmap, shaded view",
+           rs.tris, rs.calls);
+    printf("   %-44s %14.0f %12.0f   (sky + one per level)\n", "clipmap, height view", rh.tris,
+           rh.calls);
+    printf("   %-44s %14llu %12d   (sky + the mesh; %zu MB of vertex and index buffers)\n",
+           "naive full-resolution mesh", (unsigned long long)m->triangles, 2, m->gpu_bytes >> 20);
+    printf("   clipmap triangles / naive: %.4f; clipmap triangles per pixel: %.2f\n",
+           rh.tris / (double)m->triangles, rh.tris / ((double)WIDTH * HEIGHT));
+}
+
+// ---- 7: visual accuracy ---------------------------------------------------------------
+
+static void accuracy_view(bench *b, world *w, naive_mesh *m, const camera *c, const char *name,
+                          double *rmse_out) {
+    render_settings s;
+    render_settings_default(&s);
+    s.view = VIEW_HEIGHT;
+    s.fog_density = 1.0 / 12000.0; // explicit: the same for both
+    size_t px = (size_t)WIDTH * HEIGHT;
+    unsigned char *a = xmalloc(px * 3), *n = xmalloc(px * 3), *d = xmalloc(px * 3);
+    settle(b, w, c, &s);
+    frame_time f = clip_frame(b, w, c, &s);
+    read_image(b, a);
+    naive_frame(b, m, c, &s);
+    read_image(b, n);
+    double rmse = image_rmse_rgb8(a, n, px);
+    image_diff_rgb8(a, n, px, 8, d);
+    char file[256];
+    snprintf(file, sizeof file, "render_%s_clipmap.png", name);
+    write_image(b, file, a);
+    snprintf(file, sizeof file, "render_%s_naive.png", name);
+    write_image(b, file, n);
+    snprintf(file, sizeof file, "render_%s_diff_x8.png", name);
+    write_image(b, file, d);
+    size_t differ = 0;
+    for (size_t i = 0; i < px * 3; i++)
+        differ += abs((int)a[i] - (int)n[i]) > 8;
+    double above = c->pos[1] - ground_at(w, c->pos[0], c->pos[2]);
+    printf("   %-10s %8.0f %8d %10.2f %22.2f%%   render_%s_*.png\n", name, above, f.st.finest_level,
+           rmse, 100.0 * differ / (px * 3), name);
+    free(a), free(n), free(d);
+    *rmse_out = rmse;
+}
+
+static void bench_accuracy(bench *b, world *w4096, naive_mesh *m) {
+    const world_params *p = world_get_params(w4096);
+    printf("\n7. Visual accuracy: RMSE (seed 002, 8-bit RGB) of the clipmap against the naive "
+           "full-resolution mesh,\n   height view, fog 1/12000 per metre, %dx%d; images in %s\n",
+           WIDTH, HEIGHT, b->out_dir);
+    printf("   %-10s %8s %8s %10s %23s\n", "view", "above m", "finest", "RMSE",
+           "channels off by > 8");
+    // The viewport's default camera (renderer/viewport.c viewport_default_camera).
+    camera c;
+    camera_default(&c);
+    double centre = 0.5 * (double)(p->size - 1) * p->spacing;
+    c.pos[0] = c.pos[2] = centre;
+    c.pos[1] = surface_at(w4096, centre, centre) + fmax(40.0, 0.25 * p->max_height);
+    c.yaw = 30, c.pitch = -18;
+    double r1, r2, r3;
+    accuracy_view(b, w4096, m, &c, "default", &r1);
+    // Low (60 m) over the middle of the world looking north across half of it: the finest
+    // level in front, the far levels at grazing angles.
+    camera_default(&c);
+    c.pos[0] = centre, c.pos[2] = centre + 2500;
+    c.pos[1] = ground_at(w4096, c.pos[0], c.pos[2]) + 60;
+    c.yaw = 0, c.pitch = -4;
+    accuracy_view(b, w4096, m, &c, "low", &r2);
+    // Seed 002's "large section of the terrain at a great distance": 3.5 km up, 9 km
+    // south-west of the world, looking at its centre.
+    camera_default(&c);
+    c.pos[0] = -2500, c.pos[2] = centre + 6600;
+    c.pos[1] = 3500;
+    c.yaw = 45, c.pitch = -20;
+    accuracy_view(b, w4096, m, &c, "distant", &r3);
+    goal("7. RMSE clipmap vs naive, default view", r1, 3, 0, "");
+    goal("7. RMSE clipmap vs naive, low view", r2, 3, 0, "");
+    goal("7. RMSE clipmap vs naive, distant view", r3, 3, 0, "");
+}
+
+// ---- 3: CPU cost, bounded against unbounded -------------------------------------------
+
+static void bench_cpu(bench *b, world *w1024, world *winf) {
+    render_settings s;
+    render_settings_default(&s);
+    static path p;
+    make_path(&p, winf, 500, 1500, 500 + 600, 1500 - 800, CPU_FRAMES, 120, -12);
+    progress("3. warming the flights");
+    warm_path(b, w1024, &p, &s);
+    warm_path(b, winf, &p, &s);
+    static pool bounded, unbounded;
+    for (int rep = 0; rep < 2; rep++) {
+        fly_into(b, w1024, &p, &s, &bounded, rep ? NULL : "render_cpu_bounded.png");
+        fly_into(b, winf, &p, &s, &unbounded, rep ? NULL : "render_cpu_unbounded.png");
+    }
+    pooled rb = pool_result(&bounded), ru = pool_result(&unbounded);
+    printf("\n3. CPU per frame, shaded view, %d-frame flight (%.1f m/frame) inside the 1024^2 "
+           "world, 2 interleaved passes per world, levels settled first\n",
+           p.frames, p.metres_per_frame);
+    printf("   %-24s %18s %11s %14s %16s %10s %8s\n", "world", "cpu ms (upd+draw)", "update ms",
+           "draw submit ms", "wall ms (glFinish)", "triangles", "FPS");
+    printf("   %-24s %18.2f %11.2f %14.2f %16.0f %10.0f %8.3f\n", "bounded 1024^2", rb.cpu_ms,
+           rb.update_ms, rb.cpu_ms - rb.update_ms, rb.frame_ms, rb.tris, rb.fps);
+    printf("   %-24s %18.2f %11.2f %14.2f %16.0f %10.0f %8.3f\n", "unbounded (reference)",
+           ru.cpu_ms, ru.update_ms, ru.cpu_ms - ru.update_ms, ru.frame_ms, ru.tris, ru.fps);
+    printf(
+        "   (medians per frame; draw submit = cpu ms - update ms, which on llvmpipe includes the "
+        "driver's vertex work; first frames: render_cpu_*.png)\n");
+    double ratio = rb.cpu_ms > ru.cpu_ms ? rb.cpu_ms / ru.cpu_ms : ru.cpu_ms / rb.cpu_ms;
+    printf("   cpu ms ratio (larger / smaller): %.3f; wall ratio bounded / unbounded: %.3f\n",
+           ratio, rb.frame_ms / ru.frame_ms);
+    goal("3. CPU ms per frame, bounded vs unbounded (ratio)", ratio, 1.2, 0, "x");
+}
+
+// ---- 4: texels uploaded while flying --------------------------------------------------
+
+static void bench_uploads(bench *b, world *w1024, world *winf) {
+    (void)w1024;
+    render_settings s;
+    render_settings_default(&s);
+    const double speeds[] = {50, 100, 200};
+    const int frames = 120;
+    const double full = (double)s.levels * 256 * 256;
+    printf("\n4. Texels uploaded per frame, straight flight 60 m above the highest ground, "
+           "60 frames/s of simulated time, %d frames, update only\n",
+           frames);
+    printf("   %-9s %12s %12s %12s %12s %10s   %s\n", "speed", "mean texels", "median",
+           "max texels", "mean / full", "max / full",
+           "worst frame: metres above ground, finest level (frame before -> it)");
+    for (int k = 0; k < 3; k++) {
+        static path p;
+        double len = speeds[k] / 60.0 * (frames - 1);
+        double x0 = 5000.0 * (k + 1), z0 = -3000;
+        make_path(&p, winf, x0, z0, x0 + len * 0.6, z0 + len * 0.8, frames, 60, -10);
+        warm_path(b, winf, &p, &s);
+        settle(b, winf, &p.cam[0], &s);
+        double sum = 0, mx = -1, texels[MAX_FRAMES];
+        int worst = 1, finest[MAX_FRAMES] = {0};
+        og_error err;
+        render_stats st;
+        terrain_renderer_stats(b->r, &st);
+        finest[0] = st.finest_level;
+        for (int i = 1; i < p.frames; i++) {
+            check(terrain_renderer_update(b->r, winf, &p.cam[i], &s, &err) < 0 ? -1 : 0, &err,
+                  "update");
+            terrain_renderer_stats(b->r, &st);
+            texels[i - 1] = (double)st.texels_uploaded;
+            finest[i] = st.finest_level;
+            sum += texels[i - 1];
+            if (texels[i - 1] > mx) mx = texels[i - 1], worst = i;
+        }
+        double mean = sum / (p.frames - 1);
+        double median = bench_median(texels, p.frames - 1);
+        char label[32];
+        snprintf(label, sizeof label, "%.0f m/s", speeds[k]);
+        const camera *a = &p.cam[worst - 1], *c = &p.cam[worst];
+        printf("   %-9s %12.0f %12.0f %12.0f %11.2f%% %9.2f%%   %.0f -> %.0f m, level %d -> %d\n",
+               label, mean, median, mx, 100 * mean / full, 100 * mx / full,
+               a->pos[1] - ground_at(winf, a->pos[0], a->pos[2]),
+               c->pos[1] - ground_at(winf, c->pos[0], c->pos[2]), finest[worst - 1], finest[worst]);
+    }
+    printf("   reference: the full level textures, %d levels x 256^2 = %.0f texels (heights; the "
+           "material and detail windows add 256^2 + 2 x 512^2;\n   the detail windows are filled "
+           "only within %.0f m of the ground)\n",
+           s.levels, full, s.detail_distance);
+}
+
+// ---- 5: parallax ----------------------------------------------------------------------
+
+// The gentlest dry 200 m x 200 m square of a bounded world (coarse 40 m grid), by its
+// height range: where a camera a few metres up sees ground, not a hillside.
+static void flattest_square(world *w, double *x0, double *z0) {
+    const world_params *p = world_get_params(w);
+    double extent = (double)(p->size - 1) * p->spacing, best = INFINITY;
+    for (double z = 100; z + 300 < extent; z += 100)
+        for (double x = 100; x + 300 < extent; x += 100) {
+            double lo = INFINITY, hi = -INFINITY;
+            for (double dz = 0; dz <= 200; dz += 40)
+                for (double dx = 0; dx <= 200; dx += 40) {
+                    double h = ground_at(w, x + dx, z + dz);
+                    lo = fmin(lo, h), hi = fmax(hi, h);
+                }
+            if (lo > p->ocean_level + 2 && hi - lo < best) best = hi - lo, *x0 = x, *z0 = z;
+        }
+}
+
+static void bench_parallax(bench *b, world *w1024, world *winf) {
+    (void)winf;
+    double x0 = 900, z0 = 880;
+    flattest_square(w1024, &x0, &z0);
+    // Sculpt the detail layer over the square through the command language: 11 noise
+    // strokes 20 m apart.
+    cmd_context ctx;
+    world_settings ws = {.warn = quiet};
+    cmd_context_init(&ctx, w1024, &ws, stdout, OROGEN_RESOURCE_DIR);
+    char script[8192];
+    size_t n = (size_t)snprintf(script, sizeof script,
+                                "tool noise target=detail radius=20 strength=1 amount=0.25 "
+                                "scale=4 octaves=3\n");
+    for (int k = 0; k <= 10; k++)
+        n += (size_t)snprintf(script + n, sizeof script - n, "stroke %.0f %.0f %.0f %.0f\n", x0,
+                              z0 + 20 * k, x0 + 200, z0 + 20 * k);
+    og_error err;
+    double t0 = bench_now();
+    check(cmd_run(&ctx, script, n, "bench_render", &err), &err, "sculpting detail");
+    double sculpt_s = bench_now() - t0;
+    // The camera: 3 m up at the square's south edge, looking north across it.
+    camera c;
+    camera_default(&c);
+    c.pos[0] = x0 + 100, c.pos[2] = z0 + 195;
+    c.pos[1] = ground_at(w1024, c.pos[0], c.pos[2]) + 3.0;
+    c.yaw = 0, c.pitch = -15;
+    // What the detail layer now holds in front of the camera (a 40 m square).
+    layer_grid g;
+    check(layer_grid_init(&g, world_get_params(w1024), TILE_LAYER_DETAIL, 0, &err), &err, "grid");
+    grid_rect rect = layer_grid_disc_rect(&g, c.pos[0], c.pos[2] - 25, 20);
+    size_t cells = (size_t)((rect.x1 - rect.x0) * (rect.z1 - rect.z0));
+    float *dh = xmalloc(cells * sizeof *dh);
+    check(layer_grid_read(w1024, &g, rect, dh, &err), &err, "reading the detail layer");
+    float dmin = INFINITY, dmax = -INFINITY;
+    for (size_t i = 0; i < cells; i++)
+        dmin = fminf(dmin, dh[i]), dmax = fmaxf(dmax, dh[i]);
+    free(dh);
+
+    render_settings s;
+    render_settings_default(&s);
+    struct {
+        const char *name;
+        int parallax, steps;
+    } cfg[] = {{"parallax off", 0, 8},
+               {"parallax on, 4 steps", 1, 4},
+               {"parallax on, 8 steps (default)", 1, 8},
+               {"parallax on, 16 steps", 1, 16}};
+    enum { CFG = 4 };
+    double ms[CFG][REPEATS];
+    settle(b, w1024, &c, &s);
+    progress("5. parallax frames");
+    for (int rep = 0; rep < REPEATS; rep++)
+        for (int k = 0; k < CFG; k++) {
+            s.parallax = cfg[k].parallax, s.parallax_steps = cfg[k].steps;
+            if (rep == 0) clip_frame(b, w1024, &c, &s); // the first frame is not timed
+            ms[k][rep] = clip_frame(b, w1024, &c, &s).wall_ms;
+            if (rep == 0 && (k == 0 || k == 2)) {
+                size_t px = (size_t)WIDTH * HEIGHT;
+                unsigned char *rgb = xmalloc(px * 3);
+                read_image(b, rgb);
+                write_image(b, k == 0 ? "render_parallax_off.png" : "render_parallax_on.png", rgb);
+                free(rgb);
+            }
+        }
+    printf("\n5. Parallax detail, shaded view, camera 3 m above noise-sculpted detail "
+           "(11 strokes on the detail layer in %.1f s; detail heights %.2f .. %.2f m in view)\n",
+           sculpt_s, dmin, dmax);
+    printf("   %-34s %10s %12s %14s\n", "setting", "FPS", "frame ms", "vs off");
+    double off = bench_median(ms[0], REPEATS);
+    for (int k = 0; k < CFG; k++) {
+        double med = k == 0 ? off : bench_median(ms[k], REPEATS);
+        printf("   %-34s %10.2f %12.1f %13.2fx\n", cfg[k].name, 1e3 / med, med, med / off);
+    }
+    printf("   images: render_parallax_off.png, render_parallax_on.png\n");
+}
+
+// ---- 6: levels against FPS ------------------------------------------------------------
+
+static void bench_levels(bench *b, world *w1024, world *winf) {
+    (void)w1024;
+    camera c;
+    camera_default(&c);
+    c.pos[0] = 1200, c.pos[2] = -800;
+    c.pos[1] = surface_at(winf, c.pos[0], c.pos[2]) + 150;
+    c.yaw = 30, c.pitch = -8;
+    render_settings s;
+    render_settings_default(&s);
+    enum { NL = 5 };            // 3, 5, 7, 9, 11 as in seed 000's Table 10
+    double ms[NL][REPEATS * 3]; // 3 frames per level count and repeat
+    uint64_t tris[NL];
+    progress("6. levels");
+    for (int rep = 0; rep < REPEATS; rep++)
+        for (int k = 0; k < NL; k++) {
+            s.levels = 3 + 2 * k;
+            settle(b, winf, &c, &s);
+            if (rep == 0) clip_frame(b, winf, &c, &s); // the first frame is not timed
+            for (int f = 0; f < 3; f++) {
+                frame_time t = clip_frame(b, winf, &c, &s);
+                ms[k][rep * 3 + f] = t.wall_ms;
+                tris[k] = t.st.triangles;
+            }
+        }
+    printf("\n6. Clipmap levels against frames per second, shaded view, fixed camera 150 m up "
+           "looking 8 degrees down, unbounded world (seed 000 Table 10)\n");
+    printf("   %-8s %12s %10s %12s %12s %12s\n", "levels", "reach (km)", "FPS", "frame ms",
+           "triangles", "FPS / L3");
+    double base = 0;
+    for (int k = 0; k < NL; k++) {
+        double med = bench_median(ms[k], REPEATS * 3);
+        if (k == 0) base = 1e3 / med;
+        int levels = 3 + 2 * k;
+        double reach =
+            0.5 * 254 * world_get_params(winf)->spacing * (double)(1 << (levels - 1)) / 1e3;
+        printf("   %-8d %12.1f %10.3f %12.0f %12llu %12.2f\n", levels, reach, 1e3 / med, med,
+               (unsigned long long)tris[k], 1e3 / med / base);
+    }
+}
+
+static int wanted(const char *sections, char c) {
+    return strchr(sections, c) != NULL;
+}
+
+int main(int argc, char **argv) {
+    bench b = {0};
+    const char *tmp = getenv("TMPDIR");
+    b.out_dir = argc > 1 ? argv[1] : tmp && *tmp ? tmp : "/tmp";
+    // Optional second argument: the sections to run, e.g. "7" or "356" (default all).
+    const char *sections = argc > 2 ? argv[2] : "1234567";
+    if (mkdir(b.out_dir, 0777) != 0 && errno != EEXIST) {
+        fprintf(stderr, "bench_render: cannot create %s: %s\n", b.out_dir, strerror(errno));
+        return 1;
+    }
+    b.t_start = t_start = bench_now();
+    setvbuf(stdout, NULL, _IOLBF, 0);
+    og_error err;
+    b.ctx = gl_headless_create(&err);
+    if (!b.ctx) check(-1, &err, "headless GL context");
+    check(gl_require_features(&err), &err, "GL features");
+    check(gl_target_create(&b.target, WIDTH, HEIGHT, &err), &err, "offscreen target");
+    b.r = terrain_renderer_create(OROGEN_RESOURCE_DIR, &err);
+    if (!b.r) check(-1, &err, "terrain_renderer_create");
+    printf("bench_render: %s, %dx%d offscreen, images in %s\n",
+           (const char *)glGetString(GL_RENDERER), WIDTH, HEIGHT, b.out_dir);
+
+    world *w4096 = make_world(4096), *w1024 = make_world(1024), *winf = make_world(0);
+    double times[8] = {0};
+    if (wanted(sections, '1') || wanted(sections, '2') || wanted(sections, '7')) {
+        naive_mesh m;
+        double t0 = bench_now();
+        check(naive_mesh_create(&m, w4096, OROGEN_BENCH_SHADER_DIR, OROGEN_RESOURCE_DIR, &err),
+              &err, "naive mesh");
+        printf("naive mesh: %lld^2 vertices, %llu triangles, built and uploaded in %.1f s\n",
+               (long long)m.size, (unsigned long long)m.triangles, bench_now() - t0);
+        t0 = bench_now();
+        if (wanted(sections, '1') || wanted(sections, '2')) bench_vs_naive(&b, w4096, &m);
+        times[1] = bench_now() - t0;
+        t0 = bench_now();
+        if (wanted(sections, '7')) bench_accuracy(&b, w4096, &m);
+        times[7] = bench_now() - t0;
+        naive_mesh_destroy(&m);
+    }
+    struct {
+        char id;
+        void (*run)(bench *, world *, world *);
+    } rest[] = {{'3', bench_cpu}, {'4', bench_uploads}, {'5', bench_parallax}, {'6', bench_levels}};
+    for (int i = 0; i < 4; i++) {
+        if (!wanted(sections, rest[i].id)) continue;
+        double t0 = bench_now();
+        rest[i].run(&b, w1024, winf);
+        times[rest[i].id - '0'] = bench_now() - t0;
+    }
+
+    printf("\nSummary\n");
+    for (int i = 0; i < goal_count; i++)
+        printf("   %s %s\n", goals[i].pass ? "PASS" : "MISS", goals[i].text);
+    printf("time: 1+2 %.0f s, 3 %.0f s, 4 %.0f s, 5 %.0f s, 6 %.0f s, 7 %.0f s; total %.0f s\n",
+           times[1], times[3], times[4], times[5], times[6], times[7], bench_now() - b.t_start);
+
+    terrain_renderer_destroy(b.r);
+    gl_target_destroy(&b.target);
+    world_close(w4096), world_close(w1024), world_close(winf);
+    gl_headless_destroy(b.ctx);
+    return 0;
+}
