@@ -7,5 +7,9 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 for b in "$root"/build/bench/bench_*; do
   [ -x "$b" ] || continue
   echo "== $(basename "$b")"
-  "$b"
+  case "$(basename "$b")" in
+    # Writes its accuracy and parallax images (PNG) into this folder.
+    bench_render) "$b" "$root/build/bench/render-images" ;;
+    *) "$b" ;;
+  esac
 done
