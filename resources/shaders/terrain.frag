@@ -41,14 +41,14 @@ uniform vec4 u_brush;                  // centre relative to the camera (xz), ra
 uniform sampler2D u_falloff;           // the brush's falloff curve over 0..1 of the radius (64x1)
 uniform vec3 u_level_tint[MAX_LEVELS];
 
+// Central differences one source texel apart, clamped to the level's window: past its
+// edge the toroidal texture holds samples from the far side.
 vec2 gradient_at(vec4 src, vec2 p, float spacing_here) {
-    vec2 t = src.xy + p * src.z + 0.5;
-    float l = texture(u_heights, vec3((t - vec2(1.0, 0.0)) / CLIP_SIZE, src.w)).r;
-    float r = texture(u_heights, vec3((t + vec2(1.0, 0.0)) / CLIP_SIZE, src.w)).r;
-    float d = texture(u_heights, vec3((t - vec2(0.0, 1.0)) / CLIP_SIZE, src.w)).r;
-    float u = texture(u_heights, vec3((t + vec2(0.0, 1.0)) / CLIP_SIZE, src.w)).r;
-    float source_spacing = spacing_here / src.z; // metres between the source's texels
-    return vec2(r - l, u - d) / (2.0 * source_spacing);
+    float texel = 1.0 / src.z; // one source texel in local units
+    vec2 lo = max(p - texel, vec2(0.0)), hi = min(p + texel, vec2(CLIP_SIZE - 1.0));
+    float l = sample_height(src, vec2(lo.x, p.y)), r = sample_height(src, vec2(hi.x, p.y));
+    float d = sample_height(src, vec2(p.x, lo.y)), u = sample_height(src, vec2(p.x, hi.y));
+    return vec2(r - l, u - d) / ((hi - lo) * spacing_here);
 }
 
 vec4 unpack4(uint v) {
