@@ -143,31 +143,6 @@ void naive_mesh_destroy(naive_mesh *m) {
     memset(m, 0, sizeof *m);
 }
 
-// The renderer's sky pass (fullscreen.vert + sky.frag with its uniforms).
-static void draw_sky(naive_mesh *m, const camera *cam, const render_settings *s, double aspect,
-                     double fog) {
-    GLuint prog = m->prog_sky;
-    double f[3], rt[3], up[3];
-    camera_forward(cam, f), camera_right(cam, rt), camera_up(cam, up);
-    glProgramUniform3f(prog, glGetUniformLocation(prog, "u_cam_forward"), (float)f[0], (float)f[1],
-                       (float)f[2]);
-    glProgramUniform3f(prog, glGetUniformLocation(prog, "u_cam_right"), (float)rt[0], (float)rt[1],
-                       (float)rt[2]);
-    glProgramUniform3f(prog, glGetUniformLocation(prog, "u_cam_up"), (float)up[0], (float)up[1],
-                       (float)up[2]);
-    double ty = tan(cam->fov_y * M_PI / 360.0);
-    glProgramUniform2f(prog, glGetUniformLocation(prog, "u_tan_half"), (float)(ty * aspect),
-                       (float)ty);
-    render_lighting_uniforms(prog, s, fog);
-    glUseProgram(prog);
-    glBindVertexArray(m->empty_vao);
-    glDepthMask(GL_FALSE);
-    glDisable(GL_DEPTH_TEST);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glEnable(GL_DEPTH_TEST);
-    glDepthMask(GL_TRUE);
-}
-
 int naive_mesh_draw(naive_mesh *m, const camera *cam, const render_settings *s, int width,
                     int height, og_error *err) {
     double aspect = (double)width / (double)(height > 0 ? height : 1);
@@ -182,7 +157,7 @@ int naive_mesh_draw(naive_mesh *m, const camera *cam, const render_settings *s, 
     glClearDepth(0.0);
     glDisable(GL_CULL_FACE);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    draw_sky(m, cam, s, aspect, fog);
+    render_sky(m->prog_sky, m->empty_vao, cam, s, aspect, fog);
 
     GLuint prog = m->prog;
     glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "u_view_proj"), 1, GL_FALSE,

@@ -432,9 +432,8 @@ static double positive_fmod(double a, double b) {
 // texels per local unit, plus the texture layer.
 static void source_uniform(const terrain_renderer *r, int l, int s, float out[4]) {
     double scale = 1.0 / (double)((int64_t)1 << (s - l));
-    double rel = 0;
     for (int a = 0; a < 2; a++) {
-        rel = (double)r->origin[l][a] * scale - (double)r->origin[s][a];
+        double rel = (double)r->origin[l][a] * scale - (double)r->origin[s][a];
         out[a] = (float)((double)(r->origin[s][a] & (CLIP_TEXELS - 1)) + rel);
     }
     out[2] = (float)scale;
@@ -445,8 +444,12 @@ static double reach_metres(const terrain_renderer *r) {
     return 0.5 * (CLIP_N - 1) * r->params.spacing * (double)((int64_t)1 << (r->levels - 1));
 }
 
+static double fog_density(const terrain_renderer *r, const render_settings *s) {
+    return s->fog_density > 0 ? s->fog_density : 2.5 / reach_metres(r);
+}
+
 static void set_lighting(GLuint prog, const terrain_renderer *r, const render_settings *s) {
-    render_lighting_uniforms(prog, s, s->fog_density > 0 ? s->fog_density : 2.5 / reach_metres(r));
+    render_lighting_uniforms(prog, s, fog_density(r, s));
 }
 
 static const float level_tints[RENDER_MAX_LEVELS][3] = {
@@ -613,26 +616,6 @@ static void draw_terrain(terrain_renderer *r, const camera *cam, const render_se
     }
 }
 
-static void draw_sky(terrain_renderer *r, const camera *cam, const render_settings *s, double aspect) {
-    GLuint prog = r->prog_sky;
-    double f[3], rt[3], up[3];
-    camera_forward(cam, f), camera_right(cam, rt), camera_up(cam, up);
-    glProgramUniform3f(prog, glGetUniformLocation(prog, "u_cam_forward"), (float)f[0], (float)f[1], (float)f[2]);
-    glProgramUniform3f(prog, glGetUniformLocation(prog, "u_cam_right"), (float)rt[0], (float)rt[1], (float)rt[2]);
-    glProgramUniform3f(prog, glGetUniformLocation(prog, "u_cam_up"), (float)up[0], (float)up[1], (float)up[2]);
-    double ty = tan(cam->fov_y * M_PI / 360.0);
-    glProgramUniform2f(prog, glGetUniformLocation(prog, "u_tan_half"), (float)(ty * aspect), (float)ty);
-    set_lighting(prog, r, s);
-    glUseProgram(prog);
-    glBindVertexArray(r->empty_vao);
-    glDepthMask(GL_FALSE);
-    glDisable(GL_DEPTH_TEST);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glEnable(GL_DEPTH_TEST);
-    glDepthMask(GL_TRUE);
-    r->stats.draw_calls++;
-}
-
 static void draw_water(terrain_renderer *r, const camera *cam, const render_settings *s,
                        const float view_proj[16]) {
     const world_params *p = &r->params;
@@ -682,7 +665,10 @@ int terrain_renderer_draw(terrain_renderer *r, world *w, const camera *cam,
     int wire = s->view == VIEW_WIREFRAME;
     if (wire) glClearColor(0.06f, 0.07f, 0.09f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    if (!wire) draw_sky(r, cam, s, aspect);
+    if (!wire) {
+        render_sky(r->prog_sky, r->empty_vao, cam, s, aspect, fog_density(r, s));
+        r->stats.draw_calls++;
+    }
     if (r->levels > 0 && r->src[r->levels - 1] >= 0) {
         set_terrain_uniforms(r, cam, s, cursor, view_proj);
         if (wire) glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);

@@ -108,7 +108,6 @@ int cmd_render(cmd_context *ctx, int argc, char **argv, og_error *err) {
     for (int i = 1; i < argc; i++) {
         char buf[256], *key, *value;
         if (cmd_split_setting(argv[i], buf, sizeof buf, &key, &value, err) != 0) return -1;
-        double d;
         int rc;
         if (strcmp(key, "levels") == 0)
             rc = parse_integer(key, value, RENDER_MIN_LEVELS, RENDER_MAX_LEVELS, &s.levels, err);
@@ -134,7 +133,6 @@ int cmd_render(cmd_context *ctx, int argc, char **argv, og_error *err) {
         } else
             return og_error_set(err, "render: unknown setting '%s' (levels parallax quality "
                                      "detail_distance culling morph fog sun)", key);
-        (void)d;
         if (rc != 0) return -1;
     }
     v->settings = s;
@@ -142,8 +140,7 @@ int cmd_render(cmd_context *ctx, int argc, char **argv, og_error *err) {
     return 0;
 }
 
-static int parse_size(cmd_context *ctx, int argc, char **argv, int first, int *w, int *h, og_error *err) {
-    (void)ctx;
+static int parse_size(int argc, char **argv, int first, int *w, int *h, og_error *err) {
     *w = DEFAULT_WIDTH, *h = DEFAULT_HEIGHT;
     if (argc == first) return 0;
     if (argc != first + 2) return og_error_set(err, "give both W and H, or neither");
@@ -157,7 +154,7 @@ int cmd_screenshot(cmd_context *ctx, int argc, char **argv, og_error *err) {
     viewport *v = get_viewport(ctx, err);
     if (!v) return -1;
     int w, h;
-    if (parse_size(ctx, argc, argv, 2, &w, &h, err) != 0) return -1;
+    if (parse_size(argc, argv, 2, &w, &h, err) != 0) return -1;
     if (viewport_screenshot(v, ctx->world, argv[1], w, h, err) != 0) return -1;
     render_stats st;
     terrain_renderer_stats(v->renderer, &st);
@@ -172,7 +169,7 @@ int cmd_pick(cmd_context *ctx, int argc, char **argv, og_error *err) {
     double px, py;
     int w, h;
     if (cmd_parse_number(argv[1], "PX", &px, err) != 0 || cmd_parse_number(argv[2], "PY", &py, err) != 0 ||
-        parse_size(ctx, argc, argv, 3, &w, &h, err) != 0)
+        parse_size(argc, argv, 3, &w, &h, err) != 0)
         return -1;
     if (px < 0 || py < 0 || px > w || py > h)
         return og_error_set(err, "pixel (%g, %g) lies outside the %d x %d image", px, py, w, h);
