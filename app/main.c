@@ -2,9 +2,10 @@
 // command language with no window and no GL; interactive mode opens the editor
 // window on the default world (or the one named), with the console on stdin.
 #include "app/window.h"
+#include "renderer/view_commands.h"
 #include "renderer/viewport.h"
-#include "editor/commands.h"
-#include "editor/world.h"
+#include "editor/cmd/commands.h"
+#include "editor/world/world.h"
 
 #include <errno.h>
 #include <stdio.h>
@@ -182,6 +183,10 @@ int main(int argc, char **argv) {
     }
 
     og_error err = {{0}};
+    if (view_commands_register(&err) != 0) {
+        fprintf(stderr, "orogen: %s\n", err.msg);
+        return 1;
+    }
     char resource_dir[4096];
     find_resource_dir(resource_dir, sizeof resource_dir);
     world *w;
@@ -233,7 +238,7 @@ int main(int argc, char **argv) {
         }
     }
     fflush(stdout);
-    viewport_destroy(ctx.viewport);
+    viewport_destroy(ctx.view_state);
     world_close(ctx.world);
     return status;
 }

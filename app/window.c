@@ -1,9 +1,10 @@
 #include "app/window.h"
 
 #include "app/camera_controls.h"
-#include "editor/stroke.h"
+#include "editor/tools/stroke.h"
 #include "renderer/gl_context.h"
 #include "renderer/pick.h"
+#include "renderer/view_commands.h"
 #include "renderer/viewport.h"
 
 #include <epoxy/gl.h>
@@ -427,14 +428,15 @@ static void draw_view(window_state *st, int width, int height) {
 static viewport *attach_viewport(cmd_context *ctx, og_error *err) {
     viewport *v = viewport_create(ctx->resource_dir);
     if (!v) return og_error_set(err, "out of memory"), NULL;
-    if (ctx->viewport) { // made by a batch command: keep its camera and settings
-        v->cam = ctx->viewport->cam;
-        v->cam_set = ctx->viewport->cam_set;
-        v->settings = ctx->viewport->settings;
-        viewport_destroy(ctx->viewport);
+    viewport *batch_view = ctx->view_state;
+    if (batch_view) { // made by a batch command: keep its camera and settings
+        v->cam = batch_view->cam;
+        v->cam_set = batch_view->cam_set;
+        v->settings = batch_view->settings;
+        viewport_destroy(batch_view);
     }
     v->window_context = 1;
-    ctx->viewport = v;
+    view_commands_set_viewport(ctx, v);
     return v;
 }
 
@@ -461,7 +463,7 @@ int window_run(cmd_context *ctx, og_error *err) {
     if (gl_require_features(&gl_err) != 0 || !(v = attach_viewport(ctx, &gl_err)) ||
         viewport_prepare(v, &gl_err) != 0) {
         og_error_set(err, "the window's OpenGL context cannot run the viewport: %s", gl_err.msg);
-        if (v) viewport_destroy(v), ctx->viewport = NULL;
+        if (v) viewport_destroy(v), view_commands_set_viewport(ctx, NULL);
         glfwDestroyWindow(win);
         glfwTerminate();
         return -1;
@@ -525,7 +527,7 @@ int window_run(cmd_context *ctx, og_error *err) {
     sculpt_end(&st);
     // The renderer's GL objects belong to this context: free them while it is current.
     viewport_destroy(v);
-    ctx->viewport = NULL;
+    view_commands_set_viewport(ctx, NULL);
     glfwDestroyWindow(win);
     glfwTerminate();
     return 0;

@@ -6,12 +6,12 @@
 #ifndef OROGEN_APP_WINDOW_H
 #define OROGEN_APP_WINDOW_H
 
-#include "editor/commands.h"
+#include "editor/cmd/commands.h"
 #include "io/err.h"
 
 // Runs until the window is closed or `exit` is typed. The window's viewport is
-// ctx->viewport while it runs (so `camera`, `view`, `render`, `screenshot` and `pick`
-// use it) and is freed before returning (ctx->viewport = NULL). Returns 0, or -1 with
+// ctx->view_state while it runs (so `camera`, `view`, `render`, `screenshot` and `pick`
+// use it) and is freed before returning (ctx->view_state = NULL). Returns 0, or -1 with
 // err set when no window or no suitable GL context can be had.
 int window_run(cmd_context *ctx, og_error *err);
 

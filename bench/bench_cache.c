@@ -5,8 +5,8 @@
 //  - cold loading of stored tiles through the cache (store read, checksum,
 //    decompression) in decompressed MB/s, against reading the same number of raw
 //    bytes from a plain file on disk, page cache dropped before each.
-#include "editor/gen.h"
-#include "editor/world.h"
+#include "editor/gen/gen.h"
+#include "editor/world/world.h"
 #include "io/tile_cache.h"
 
 #include "bench/bench_timing.h"

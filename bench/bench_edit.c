@@ -12,15 +12,15 @@
 //     grid against a memcpy of the grid.
 // Figures are medians of several runs, ratios medians of the per-run ratios; goals
 // are reported (PASS/MISS), not asserted.
-#include "editor/brush_dab.h"
-#include "editor/edit.h"
-#include "editor/erosion.h"
-#include "editor/gen.h"
-#include "editor/history.h"
-#include "editor/parallel.h"
-#include "editor/stamp.h"
-#include "editor/stroke.h"
-#include "editor/world.h"
+#include "editor/tools/brush_dab.h"
+#include "editor/edit/edit.h"
+#include "editor/tools/erosion.h"
+#include "editor/gen/gen.h"
+#include "editor/world/history.h"
+#include "editor/edit/parallel.h"
+#include "editor/tools/stamp.h"
+#include "editor/tools/stroke.h"
+#include "editor/world/world.h"
 
 #include <dirent.h>
 #include <math.h>

@@ -5,7 +5,7 @@
 //    of starting somewhere random);
 //  - thermal: one iteration and the per-iteration cost of ten, against a 3x3 box
 //    filter over the same grid (a stencil of the same shape that does no physics).
-#include "editor/erosion.h"
+#include "editor/tools/erosion.h"
 
 #include <math.h>
 #include <stdint.h>

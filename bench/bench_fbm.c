@@ -1,7 +1,7 @@
 // 8-octave fBm throughput, single thread: Orogen's 2D grid path (flat worlds) and
 // 3D points path (planets) against libnoise's Perlin module with 8 octaves, in the
 // same run. Each figure is the median of 5 timed runs of a fixed workload.
-#include "editor/gen_noise.h"
+#include "editor/gen/gen_noise.h"
 
 #include <math.h>
 #include <stdio.h>

@@ -23,9 +23,9 @@
 #include "bench/bench_timing.h"
 #include "bench/naive_mesh.h"
 
-#include "editor/commands.h"
-#include "editor/layer_grid.h"
-#include "editor/world.h"
+#include "editor/cmd/commands.h"
+#include "editor/world/layer_grid.h"
+#include "editor/world/world.h"
 #include "io/image_compare.h"
 #include "io/image_read.h"
 #include "renderer/camera.h"

@@ -5,7 +5,7 @@
 #ifndef OROGEN_BENCH_NAIVE_MESH_H
 #define OROGEN_BENCH_NAIVE_MESH_H
 
-#include "editor/world.h"
+#include "editor/world/world.h"
 #include "io/err.h"
 #include "renderer/camera.h"
 #include "renderer/terrain_renderer.h"

@@ -1,6 +1,6 @@
 #include "renderer/clip_window.h"
 
-#include "editor/world_grid.h"
+#include "editor/params/world_grid.h"
 
 #include <stdlib.h>
 #include <string.h>

@@ -6,7 +6,7 @@
 // without a normal map.
 #include "renderer/material_textures.h"
 
-#include "editor/gen_hash.h"
+#include "editor/gen/gen_hash.h"
 #include "renderer/periodic_noise.h"
 
 #include <math.h>

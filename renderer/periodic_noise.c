@@ -3,7 +3,7 @@
 // row functions repeat the point functions' arithmetic exactly, only caching hashes.
 #include "renderer/periodic_noise.h"
 
-#include "editor/gen_hash.h"
+#include "editor/gen/gen_hash.h"
 
 #include <math.h>
 

@@ -1,6 +1,6 @@
 #include "renderer/terrain_renderer.h"
 
-#include "editor/history.h"
+#include "editor/world/history.h"
 #include "renderer/clip_window.h"
 #include "renderer/clipmap_mesh.h"
 #include "renderer/frustum.h"

@@ -5,7 +5,7 @@
 #ifndef OROGEN_RENDERER_TERRAIN_RENDERER_H
 #define OROGEN_RENDERER_TERRAIN_RENDERER_H
 
-#include "editor/world.h"
+#include "editor/world/world.h"
 #include "io/err.h"
 #include "renderer/camera.h"
 

@@ -1,7 +1,6 @@
 #include "renderer/view_commands.h"
 
-#include "editor/edit_commands.h"
-#include "renderer/viewport.h"
+#include "io/parse.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -11,10 +10,17 @@
 #define DEFAULT_HEIGHT 720
 #define MAX_IMAGE_SIDE 8192
 
+viewport *view_commands_viewport(cmd_context *ctx) {
+    if (!ctx->view_state) ctx->view_state = viewport_create(ctx->resource_dir);
+    return ctx->view_state;
+}
+
+void view_commands_set_viewport(cmd_context *ctx, viewport *v) { ctx->view_state = v; }
+
 static viewport *get_viewport(cmd_context *ctx, og_error *err) {
-    if (!ctx->viewport) ctx->viewport = viewport_create(ctx->resource_dir);
-    if (!ctx->viewport) og_error_set(err, "out of memory");
-    return ctx->viewport;
+    viewport *v = view_commands_viewport(ctx);
+    if (!v) og_error_set(err, "out of memory");
+    return v;
 }
 
 static void print_camera(cmd_context *ctx, const camera *c) {
@@ -22,7 +28,7 @@ static void print_camera(cmd_context *ctx, const camera *c) {
             c->yaw, c->pitch, c->fov_y);
 }
 
-int cmd_camera(cmd_context *ctx, int argc, char **argv, og_error *err) {
+static int cmd_camera(cmd_context *ctx, int argc, char **argv, og_error *err) {
     viewport *v = get_viewport(ctx, err);
     if (!v) return -1;
     if (argc == 1) {
@@ -39,13 +45,13 @@ int cmd_camera(cmd_context *ctx, int argc, char **argv, og_error *err) {
     const char *names[6] = {"X", "Y", "Z", "YAW", "PITCH", "FOV"};
     double val[6] = {0, 0, 0, 0, 0, v->cam.fov_y};
     for (int i = 1; i < argc; i++)
-        if (cmd_parse_number(argv[i], names[i - 1], &val[i - 1], err) != 0) return -1;
+        if (parse_number(argv[i], names[i - 1], &val[i - 1], err) != 0) return -1;
     for (int i = 0; i < 3; i++)
         if (fabs(val[i]) > 1e12) return og_error_set(err, "%s: %g m is too far (limit 1e12 m)", names[i], val[i]);
     if (val[4] < -90 || val[4] > 90)
-        return og_error_set(err, "PITCH: %g is outside -90 .. 90 degrees", val[4]);
+        return og_error_set(err, "PITCH: expected degrees in [-90, 90], got '%g'", val[4]);
     if (val[5] < 1 || val[5] > 170)
-        return og_error_set(err, "FOV: %g is outside 1 .. 170 degrees", val[5]);
+        return og_error_set(err, "FOV: expected degrees in [1, 170], got '%g'", val[5]);
     camera c = v->cam;
     c.pos[0] = val[0], c.pos[1] = val[1], c.pos[2] = val[2];
     c.yaw = 0, c.pitch = 0;
@@ -56,7 +62,7 @@ int cmd_camera(cmd_context *ctx, int argc, char **argv, og_error *err) {
     return 0;
 }
 
-int cmd_view(cmd_context *ctx, int argc, char **argv, og_error *err) {
+static int cmd_view(cmd_context *ctx, int argc, char **argv, og_error *err) {
     viewport *v = get_viewport(ctx, err);
     if (!v) return -1;
     if (argc == 1) {
@@ -71,23 +77,11 @@ int cmd_view(cmd_context *ctx, int argc, char **argv, og_error *err) {
     return 0;
 }
 
-static int parse_switch(const char *key, const char *value, int *out, og_error *err) {
-    if (strcmp(value, "on") == 0 || strcmp(value, "1") == 0) return *out = 1, 0;
-    if (strcmp(value, "off") == 0 || strcmp(value, "0") == 0) return *out = 0, 0;
-    return og_error_set(err, "%s: expected on or off, got '%s'", key, value);
-}
-
-static int parse_ranged(const char *key, const char *value, double lo, double hi, double *out,
+// An integer setting in [lo, hi].
+static int parse_int_in(const char *key, const char *value, int lo, int hi, int *out,
                         og_error *err) {
-    if (cmd_parse_number(value, key, out, err) != 0) return -1;
-    if (*out < lo || *out > hi) return og_error_set(err, "%s: %g is outside %g .. %g", key, *out, lo, hi);
-    return 0;
-}
-
-static int parse_integer(const char *key, const char *value, int lo, int hi, int *out, og_error *err) {
     double d;
-    if (parse_ranged(key, value, lo, hi, &d, err) != 0) return -1;
-    if (d != floor(d)) return og_error_set(err, "%s: expected a whole number, got '%s'", key, value);
+    if (parse_integer_in(value, key, lo, hi, &d, err) != 0) return -1;
     *out = (int)d;
     return 0;
 }
@@ -101,32 +95,33 @@ static void print_settings(cmd_context *ctx, const render_settings *s) {
             s->fog_density, view_mode_name(s->view));
 }
 
-int cmd_render(cmd_context *ctx, int argc, char **argv, og_error *err) {
+static int cmd_render(cmd_context *ctx, int argc, char **argv, og_error *err) {
     viewport *v = get_viewport(ctx, err);
     if (!v) return -1;
     render_settings s = v->settings; // applied only if every argument is good
     for (int i = 1; i < argc; i++) {
         char buf[256], *key, *value;
-        if (cmd_split_setting(argv[i], buf, sizeof buf, &key, &value, err) != 0) return -1;
+        if (parse_setting(argv[i], buf, sizeof buf, &key, &value, err) != 0) return -1;
         int rc;
         if (strcmp(key, "levels") == 0)
-            rc = parse_integer(key, value, RENDER_MIN_LEVELS, RENDER_MAX_LEVELS, &s.levels, err);
+            rc = parse_int_in(key, value, RENDER_MIN_LEVELS, RENDER_MAX_LEVELS, &s.levels, err);
         else if (strcmp(key, "parallax") == 0)
-            rc = parse_switch(key, value, &s.parallax, err);
+            rc = parse_switch(value, key, &s.parallax, err);
         else if (strcmp(key, "quality") == 0)
-            rc = parse_integer(key, value, 1, 32, &s.parallax_steps, err);
+            rc = parse_int_in(key, value, 1, 32, &s.parallax_steps, err);
         else if (strcmp(key, "detail_distance") == 0)
-            rc = parse_ranged(key, value, 1, 100000, &s.detail_distance, err);
+            rc = parse_number_in(value, key, 1, 100000, &s.detail_distance, err);
         else if (strcmp(key, "culling") == 0)
-            rc = parse_switch(key, value, &s.culling, err);
+            rc = parse_switch(value, key, &s.culling, err);
         else if (strcmp(key, "morph") == 0)
-            rc = parse_switch(key, value, &s.morph, err);
+            rc = parse_switch(value, key, &s.morph, err);
         else if (strcmp(key, "fog") == 0)
-            rc = parse_ranged(key, value, 0, 1, &s.fog_density, err);
+            rc = parse_number_in(value, key, 0, 1, &s.fog_density, err);
         else if (strcmp(key, "sun") == 0) {
             double yaw, pitch;
-            char tail;
-            if (sscanf(value, "%lf,%lf%c", &yaw, &pitch, &tail) != 2 || !isfinite(yaw) ||
+            const char *comma, *end;
+            if (parse_scan_f64(value, &yaw, &comma) != 0 || *comma != ',' ||
+                parse_scan_f64(comma + 1, &pitch, &end) != 0 || *end || !isfinite(yaw) ||
                 !isfinite(pitch) || pitch < -90 || pitch > 90)
                 return og_error_set(err, "sun: expected YAW,PITCH in degrees (pitch -90 .. 90), got '%s'", value);
             s.sun_yaw = yaw, s.sun_pitch = pitch, rc = 0;
@@ -144,13 +139,13 @@ static int parse_size(int argc, char **argv, int first, int *w, int *h, og_error
     *w = DEFAULT_WIDTH, *h = DEFAULT_HEIGHT;
     if (argc == first) return 0;
     if (argc != first + 2) return og_error_set(err, "give both W and H, or neither");
-    if (parse_integer("W", argv[first], 16, MAX_IMAGE_SIDE, w, err) != 0 ||
-        parse_integer("H", argv[first + 1], 16, MAX_IMAGE_SIDE, h, err) != 0)
+    if (parse_int_in("W", argv[first], 16, MAX_IMAGE_SIDE, w, err) != 0 ||
+        parse_int_in("H", argv[first + 1], 16, MAX_IMAGE_SIDE, h, err) != 0)
         return -1;
     return 0;
 }
 
-int cmd_screenshot(cmd_context *ctx, int argc, char **argv, og_error *err) {
+static int cmd_screenshot(cmd_context *ctx, int argc, char **argv, og_error *err) {
     viewport *v = get_viewport(ctx, err);
     if (!v) return -1;
     int w, h;
@@ -163,12 +158,12 @@ int cmd_screenshot(cmd_context *ctx, int argc, char **argv, og_error *err) {
     return 0;
 }
 
-int cmd_pick(cmd_context *ctx, int argc, char **argv, og_error *err) {
+static int cmd_pick(cmd_context *ctx, int argc, char **argv, og_error *err) {
     viewport *v = get_viewport(ctx, err);
     if (!v) return -1;
     double px, py;
     int w, h;
-    if (cmd_parse_number(argv[1], "PX", &px, err) != 0 || cmd_parse_number(argv[2], "PY", &py, err) != 0 ||
+    if (parse_number(argv[1], "PX", &px, err) != 0 || parse_number(argv[2], "PY", &py, err) != 0 ||
         parse_size(argc, argv, 3, &w, &h, err) != 0)
         return -1;
     if (px < 0 || py < 0 || px > w || py > h)
@@ -176,5 +171,22 @@ int cmd_pick(cmd_context *ctx, int argc, char **argv, og_error *err) {
     double hit[3];
     if (viewport_pick(v, ctx->world, px, py, w, h, hit, err) != 0) return -1;
     fprintf(ctx->out, "pick %.3f %.3f %.3f\n", hit[0], hit[1], hit[2]);
+    return 0;
+}
+
+static const cmd_def view_commands[] = {
+    {"camera", "camera [X Y Z YAW PITCH [FOV] | default]", "Places the viewport camera: position in metres, yaw (0 looks toward -Z, 90 toward +X) and pitch in degrees, vertical field of view (60). Without arguments, prints it.", 0, 6, cmd_camera},
+    {"view", "view [MODE]", "Picks what the viewport shows: shaded, wireframe, levels (clipmap level colours), height or slope colours.", 0, 1, cmd_view},
+    {"render", "render [KEY=VALUE ...]", "Viewport settings: levels (3-12 clipmap levels), parallax (on/off), quality (parallax steps 1-32), detail_distance (m), culling, morph (on/off), fog (per metre, 0 = automatic), sun=YAW,PITCH. Without arguments, prints them.", 0, 9, cmd_render},
+    {"screenshot", "screenshot FILE [W H]", "Renders the viewport offscreen (no display needed) to an RGB PNG, W x H pixels (1280 x 720), once every visible tile is loaded.", 1, 3, cmd_screenshot},
+    {"pick", "pick PX PY [W H]", "Prints the terrain point (x y z metres) under pixel PX, PY of a W x H (1280 x 720) view.", 2, 4, cmd_pick},
+};
+
+int view_commands_register(og_error *err) {
+    static int registered;
+    if (registered) return 0;
+    if (cmd_register(view_commands, sizeof view_commands / sizeof view_commands[0], err) != 0)
+        return -1;
+    registered = 1;
     return 0;
 }

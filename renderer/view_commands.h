@@ -1,15 +1,18 @@
 // The viewport's commands in the command language: camera, view, render, screenshot,
 // pick. They work with no display: the first render makes a headless EGL context.
-// Registered in editor/commands.c.
+// The command language knows no renderer: app/ registers these at start-up.
 #ifndef OROGEN_RENDERER_VIEW_COMMANDS_H
 #define OROGEN_RENDERER_VIEW_COMMANDS_H
 
-#include "editor/commands.h"
+#include "editor/cmd/commands.h"
+#include "renderer/viewport.h"
 
-int cmd_camera(cmd_context *ctx, int argc, char **argv, og_error *err);
-int cmd_view(cmd_context *ctx, int argc, char **argv, og_error *err);
-int cmd_render(cmd_context *ctx, int argc, char **argv, og_error *err);
-int cmd_screenshot(cmd_context *ctx, int argc, char **argv, og_error *err);
-int cmd_pick(cmd_context *ctx, int argc, char **argv, og_error *err);
+// Adds camera, view, render, screenshot and pick to the command language (once).
+int view_commands_register(og_error *err);
+
+// The viewport the view commands use (ctx->view_state), made on first use; NULL
+// when out of memory. The window sets its own with view_commands_set_viewport.
+viewport *view_commands_viewport(cmd_context *ctx);
+void view_commands_set_viewport(cmd_context *ctx, viewport *v);
 
 #endif

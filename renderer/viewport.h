@@ -4,7 +4,7 @@
 #ifndef OROGEN_RENDERER_VIEWPORT_H
 #define OROGEN_RENDERER_VIEWPORT_H
 
-#include "editor/world.h"
+#include "editor/world/world.h"
 #include "io/err.h"
 #include "renderer/camera.h"
 #include "renderer/gl_context.h"

@@ -48,19 +48,19 @@ scenes() {
     run "screenshot $d/default.png $size; view wireframe; screenshot $d/wireframe.png $size;
          view levels; screenshot $d/levels.png $size; view height; screenshot $d/height.png $size;
          view slope; screenshot $d/slope.png $size"
-    check "default and debug views render ($(cat "$work/err"))" $?
+    rc=$?; check "default and debug views render ($(cat "$work/err"))" $rc
 
     run "$crater_cam; screenshot $d/before.png $size; stamp crater $spot_x $spot_z scale=2 intensity=150;
          screenshot $d/crater.png $size; undo; screenshot $d/undone.png $size"
-    check "a crater is stamped and undone in view ($(cat "$work/err"))" $?
+    rc=$?; check "a crater is stamped and undone in view ($(cat "$work/err"))" $rc
 
     run "$near_cam; screenshot $d/no_detail.png $size; $detail; render parallax=on;
          screenshot $d/parallax_on.png $size; render parallax=off; screenshot $d/parallax_off.png $size"
-    check "detail sculpted and rendered with parallax on and off ($(cat "$work/err"))" $?
+    rc=$?; check "detail sculpted and rendered with parallax on and off ($(cat "$work/err"))" $rc
 
     run "camera 10000000 300 0 30 -18; screenshot $d/far.png $size; camera 10000000.001 300 0 30 -18;
          screenshot $d/far_1mm.png $size; camera 10000000.01 300 0 30 -18; screenshot $d/far_1cm.png $size"
-    check "a camera 10,000 km from the origin renders ($(cat "$work/err"))" $?
+    rc=$?; check "a camera 10,000 km from the origin renders ($(cat "$work/err"))" $rc
 }
 scenes "$work/a"
 scenes "$work/b"
@@ -112,19 +112,19 @@ r=$(rmse "$work/far.png" "$work/far_1cm.png"); less "$r" 1; check "10,000 km out
 # number of both texture periods, 6 m and 97 m): no precision is lost far away.
 run "set generator flat; set base_height 10; generate; camera 0 40 0 30 -20; screenshot $work/flat0.png $size;
      camera 9999924 40 0 30 -20; screenshot $work/flatfar.png $size"
-check "flat world renders near and far ($(cat "$work/err"))" $?
+rc=$?; check "flat world renders near and far ($(cat "$work/err"))" $rc
 r=$(rmse "$work/flat0.png" "$work/flatfar.png"); less "$r" 1; check "flat terrain 10,000 km out matches the origin (RMSE $r)" $?
 
 # Picking: the point under the centre pixel lies on the terrain, within one coarse
 # sample's height step there (the largest change to a neighbouring sample).
 run "camera $spot_x 200 300 0 -30; pick $((W / 2)) $((H / 2)) $size"
-check "pick answers ($(cat "$work/err"))" $?
+rc=$?; check "pick answers ($(cat "$work/err"))" $rc
 read -r _ px py pz <"$work/out"
 run "params"
 spacing=$(sed -n 's/^spacing = \(.*\);$/\1/p' "$work/out")
 # (sample wants plain numbers, so awk works the neighbours out)
 run "$(awk -v x="$px" -v z="$pz" -v s="$spacing" 'BEGIN { printf "sample %.3f %.3f; sample %.3f %.3f; sample %.3f %.3f; sample %.3f %.3f; sample %.3f %.3f", x, z, x + s, z, x - s, z, x, z + s, x, z - s }')"
-check "sample answers around the hit ($(cat "$work/err"))" $?
+rc=$?; check "sample answers around the hit ($(cat "$work/err"))" $rc
 ground=$(sed -n 1p "$work/out")
 step=$(awk 'NR == 1 { c = $1 } NR > 1 { d = $1 - c; if (d < 0) d = -d; if (d > m) m = d } END { print m + 0.01 }' "$work/out")
 awk -v a="$py" -v b="$ground" -v t="$step" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(d <= t) }'
@@ -133,23 +133,23 @@ awk -v z="$pz" 'BEGIN { exit !(z < 300 && z > -400) }'
 check "pick hit lies ahead of the camera (z $pz)" $?
 
 run "render levels=3; screenshot $work/l3.png $size; render levels=12; screenshot $work/l12.png $size"
-check "3 and 12 clipmap levels render ($(cat "$work/err"))" $?
+rc=$?; check "3 and 12 clipmap levels render ($(cat "$work/err"))" $rc
 
 # Bad input: clear errors, status 1, nothing written.
 expect_error() { # label, commands, text the error must contain
     "$orogen" -c "$2" >"$work/out" 2>"$work/err"
     status=$?
     [ $status = 1 ] && grep -q -- "$3" "$work/err"
-    check "$1 fails clearly (status $status: $(head -c 300 "$work/err"))" $?
+    rc=$?; check "$1 fails clearly (status $status: $(head -c 300 "$work/err"))" $rc
 }
 expect_error "an unwritable folder" "screenshot $work/missing/dir/shot.png 64 64" "$work/missing/dir"
-expect_error "a too small image" "screenshot $work/x.png 8 8" "W: 8 is outside"
+expect_error "a too small image" "screenshot $work/x.png 8 8" "W: expected an integer in \[16, 8192\], got '8'"
 expect_error "W without H" "screenshot $work/x.png 64" "give both W and H"
 expect_error "an unknown view" "view bogus" "unknown mode 'bogus'"
-expect_error "too few levels" "render levels=2" "levels: 2 is outside 3 .. 12"
+expect_error "too few levels" "render levels=2" "levels: expected an integer in \[3, 12\], got '2'"
 expect_error "an unknown render setting" "render shadows=on" "unknown setting 'shadows'"
-expect_error "a camera with a bad number" "camera 1 2 3 abc 0" "YAW: 'abc' is not a finite number"
-expect_error "a camera looking past straight up" "camera 0 0 0 0 120" "PITCH: 120 is outside"
+expect_error "a camera with a bad number" "camera 1 2 3 abc 0" "YAW: expected a finite number, got 'abc'"
+expect_error "a camera looking past straight up" "camera 0 0 0 0 120" "PITCH: expected degrees in \[-90, 90\], got '120'"
 expect_error "a planet" "new planet; screenshot $work/planet.png 64 64" "planet"
 [ ! -e "$work/x.png" ] && [ ! -e "$work/planet.png" ]; check "failed screenshots write no file" $?
 

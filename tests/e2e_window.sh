@@ -74,7 +74,7 @@ near() { awk -v a="$1" -v b="$2" -v t="$3" 'BEGIN { d = a - b; exit !(d <= t && 
 xdotool windowsize --sync "$wid" 400 300
 xdotool windowfocus --sync "$wid" 2>/dev/null
 home() { echo "camera 0 -100 0 30 -40" >&3; wait_title "cam (0.0, -100.0, 0.0) yaw 30.0 pitch -40.0" && settle; }
-settle; check "every tile of the first view arrives (title says pending 0): $(title)" $?
+settle; rc=$?; check "every tile of the first view arrives (title says pending 0): $(title)" $rc
 home; check "console 'camera' places the camera (title shows it)" $?
 hash_box() { ask "hash $(awk -v x="$1" -v z="$2" 'BEGIN { print x - 150, z - 150, x + 150, z + 150 }')" '^[0-9a-f]\{16\}$'; }
 
@@ -170,7 +170,7 @@ wait_title "saved.world \* - "; check "a new stroke marks the saved world modifi
 saves=$(grep -c '^saved ' "$work/out")
 xdotool key ctrl+s
 wait_title "saved.world - " && [ "$(grep -c '^saved ' "$work/out")" -gt "$saves" ]
-check "Ctrl+S saves again ($(title))" $?
+rc=$?; check "Ctrl+S saves again ($(title))" $rc
 
 # Bad commands are reported; the window stays.
 echo "frobnicate" >&3

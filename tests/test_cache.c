@@ -1,8 +1,8 @@
 // Tile cache: the budget holds over an area far larger than it, requests never
 // block and offer coarser levels, dirty tiles survive eviction, corrupt stored
 // tiles fall back to the generated terrain.
-#include "editor/gen.h"
-#include "editor/world.h"
+#include "editor/gen/gen.h"
+#include "editor/world/world.h"
 #include "io/tile_cache.h"
 #include "support/test_support.h"
 

@@ -2,7 +2,7 @@
 // conserves mass within the stated tolerance, smooths the surface and is
 // deterministic; neither touches a zero-weight cell; both scale exactly with the
 // grid; parameters are validated by name; tiny and unweighted grids are no-ops.
-#include "editor/erosion.h"
+#include "editor/tools/erosion.h"
 
 #include <math.h>
 #include <stdarg.h>

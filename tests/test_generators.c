@@ -1,8 +1,8 @@
 // Generators: determinism across thread counts and request orders, seamless tile
 // borders, fractional octaves, and mip levels close to the filtered finer level.
-#include "editor/gen.h"
-#include "editor/world.h"
-#include "editor/world_grid.h"
+#include "editor/gen/gen.h"
+#include "editor/world/world.h"
+#include "editor/params/world_grid.h"
 
 #include <math.h>
 #include <stdarg.h>

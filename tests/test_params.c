@@ -1,6 +1,6 @@
 // Parameter files: the tolerant reader, the atomic writer, and world parameters
 // (defaults, keys, diagnostics, exact round trip, tile store path resolution).
-#include "editor/world_params.h"
+#include "editor/params/world_params.h"
 #include "io/param_file.h"
 #include "support/test_support.h"
 

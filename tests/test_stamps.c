@@ -2,8 +2,8 @@
 // continuous and C1 there and everywhere, finite for any input, named) and the
 // built-in library (committed files equal a fresh run of the generator, every stamp
 // loads, peaks at 1 and is 0 on its border).
-#include "editor/stamp_library.h"
-#include "editor/stamp_shapes.h"
+#include "editor/tools/stamp_library.h"
+#include "editor/tools/stamp_shapes.h"
 #include "io/image_read.h"
 
 #include "support/test_support.h"

@@ -1,5 +1,5 @@
 // Writes the built-in stamp library: make_stamps FOLDER (resources/stamps in the repo).
-#include "editor/stamp_library.h"
+#include "editor/tools/stamp_library.h"
 
 #include <stdio.h>
 

@@ -1,0 +1,382 @@
+#include "editor/cmd/commands.h"
+
+#include "editor/edit/edit.h"
+#include "editor/cmd/edit_commands.h"
+#include "editor/gen/gen.h"
+#include "io/parse.h"
+
+#include <errno.h>
+#include <inttypes.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define CMD_MAX_ARGS 32
+#define CMD_MAX_TOKEN 4096
+
+
+// ---- argument parsing ----------------------------------------------------------
+
+static int parse_face(int argc, char **argv, int index, int *face, og_error *err) {
+    *face = 0;
+    if (argc <= index) return 0;
+    int64_t f = 0;
+    if (parse_integer(argv[index], "face", &f, err) != 0) return -1;
+    *face = (int)(f < -1 ? -1 : (f > 6 ? 6 : f));
+    return 0;
+}
+
+// ---- parameter printing ----------------------------------------------------------
+
+static void print_params(FILE *out, const world_params *p) {
+    char value[1100];
+    for (size_t i = 0; i < world_params_key_count(); i++) {
+        const char *key = world_params_key(i);
+        if (world_params_get(p, key, value, sizeof value) == 0)
+            fprintf(out, "%s = %s;\n", key, value);
+    }
+}
+
+// ---- commands --------------------------------------------------------------------
+
+static int replace_world(cmd_context *ctx, world *w) {
+    world_close(ctx->world);
+    ctx->world = w;
+    ctx->next = *world_get_params(w);
+    return 0;
+}
+
+static int c_new(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    (void)argc;
+    world_kind kind;
+    if (strcmp(argv[1], "flat") == 0)
+        kind = WORLD_FLAT;
+    else if (strcmp(argv[1], "planet") == 0)
+        kind = WORLD_PLANET;
+    else
+        return og_error_set(err, "new: expected 'flat' or 'planet', got '%s'", argv[1]);
+    world_params p;
+    world_params_default(&p, kind);
+    world *w = world_create(&p, &ctx->settings, err);
+    if (!w) return -1;
+    return replace_world(ctx, w);
+}
+
+static int c_load(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    (void)argc;
+    int errors = 0;
+    world *w = world_load(argv[1], &ctx->settings, &errors, err);
+    if (!w) return -1;
+    replace_world(ctx, w);
+    fprintf(ctx->out, "loaded %s%s\n", argv[1],
+            errors ? " (with errors: those keys keep their defaults)" : "");
+    return 0;
+}
+
+static int c_save(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    if (world_save(ctx->world, argc > 1 ? argv[1] : NULL, err) != 0) return -1;
+    fprintf(ctx->out, "saved %s\n", world_path(ctx->world));
+    return 0;
+}
+
+static int c_generate(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    (void)argc, (void)argv;
+    return edit_generate(ctx->world, &ctx->next, err);
+}
+
+static int c_generator(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    if (argc == 1) {
+        for (int g = 0; g < GEN_COUNT; g++)
+            fprintf(ctx->out, "%d %s%s\n", g, gen_kind_name((gen_kind)g),
+                    ctx->next.generator == (gen_kind)g ? " *" : "");
+        return 0;
+    }
+    return world_params_set(&ctx->next, "generator", argv[1], err) == 0 ? 0 : -1;
+}
+
+// seed, octaves, w_factor, ...: set the next world's parameter, or print it.
+static int c_param(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    if (argc == 1) {
+        char value[1100];
+        world_params_get(&ctx->next, argv[0], value, sizeof value);
+        fprintf(ctx->out, "%s\n", value);
+        return 0;
+    }
+    return world_params_set(&ctx->next, argv[0], argv[1], err) == 0 ? 0 : -1;
+}
+
+static int c_set(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    (void)argc;
+    int rc = world_params_set(&ctx->next, argv[1], argv[2], err);
+    if (rc == 1) return og_error_set(err, "set: unknown key '%s' (see 'nparams')", argv[1]);
+    return rc;
+}
+
+static int c_params(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    (void)argc, (void)argv, (void)err;
+    print_params(ctx->out, world_get_params(ctx->world));
+    return 0;
+}
+
+static int c_nparams(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    (void)argc, (void)argv, (void)err;
+    print_params(ctx->out, &ctx->next);
+    return 0;
+}
+
+static int c_info(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    (void)argc, (void)argv, (void)err;
+    const world_params *p = world_get_params(ctx->world);
+    tile_cache_stats s;
+    tile_cache_stats_get(world_cache(ctx->world), &s);
+    FILE *o = ctx->out;
+    fprintf(o, "path=%s\n", world_path(ctx->world));
+    fprintf(o, "kind=%s\n", p->kind == WORLD_PLANET ? "planet" : "flat");
+    fprintf(o, "generator=%s\n", gen_kind_name(p->generator));
+    fprintf(o, "size=%" PRId64 "\n", p->size);
+    fprintf(o, "spacing=%.17g\n", p->spacing);
+    fprintf(o, "tile_size=%d\n", TILE_SIZE);
+    tile_store *store = world_store(ctx->world);
+    fprintf(o, "tile_store=%s\n", store ? tile_store_path(store) : "");
+    fprintf(o, "tiles_stored=%" PRId64 "\n", store ? tile_store_count(store, -1) : 0);
+    fprintf(o, "tiles_unsaved=%" PRId64 "\n", tile_store_count(world_journal(ctx->world), -1));
+    fprintf(o, "unsaved_changes=%d\n", world_is_modified(ctx->world));
+    fprintf(o, "cache_budget_bytes=%zu\n", s.budget_bytes);
+    fprintf(o, "cache_resident_bytes=%zu\n", s.resident_bytes);
+    fprintf(o, "cache_resident_tiles=%zu\n", s.resident_tiles);
+    fprintf(o, "cache_overhead_bytes=%zu\n", s.overhead_bytes);
+    fprintf(o, "cache_hits=%" PRIu64 "\n", s.hits);
+    fprintf(o, "cache_misses=%" PRIu64 "\n", s.misses);
+    fprintf(o, "cache_queue_depth=%zu\n", s.queue_depth);
+    fprintf(o, "cache_generated=%" PRIu64 "\n", s.generated);
+    fprintf(o, "cache_loaded=%" PRIu64 "\n", s.loaded);
+    fprintf(o, "cache_written=%" PRIu64 "\n", s.written);
+    fprintf(o, "cache_evicted=%" PRIu64 "\n", s.evicted);
+    fprintf(o, "cache_corrupt=%" PRIu64 "\n", s.corrupt);
+    fprintf(o, "cache_workers=%d\n", s.workers);
+    return 0;
+}
+
+static int c_sample(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    double x = 0, z = 0, h = 0;
+    int face;
+    if (parse_number(argv[1], "X", &x, err) || parse_number(argv[2], "Z", &z, err) ||
+        parse_face(argc, argv, 3, &face, err))
+        return -1;
+    if (world_sample(ctx->world, face, x, z, &h, err) != 0) return -1;
+    fprintf(ctx->out, "%.6f\n", h);
+    return 0;
+}
+
+static int c_hash(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    double r[4];
+    const char *names[4] = {"X0", "Z0", "X1", "Z1"};
+    for (int i = 0; i < 4; i++)
+        if (parse_number(argv[1 + i], names[i], &r[i], err) != 0) return -1;
+    int face;
+    if (parse_face(argc, argv, 5, &face, err) != 0) return -1;
+    uint64_t digest, count;
+    if (world_hash(ctx->world, face, r[0], r[1], r[2], r[3], &digest, &count, err) != 0) return -1;
+    fprintf(ctx->out, "%016" PRIx64 "\n", digest);
+    return 0;
+}
+
+static int c_exit(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    (void)argc, (void)argv, (void)err;
+    ctx->exit_requested = 1;
+    return 0;
+}
+
+static int c_help(cmd_context *ctx, int argc, char **argv, og_error *err);
+static int c_cmdlist(cmd_context *ctx, int argc, char **argv, og_error *err);
+
+#define PARAM_CMD(key, arg, text) {key, key " [" arg "]", text " Without a value, prints it.", 0, 1, c_param}
+
+static const cmd_def commands[] = {
+    {"new", "new flat|planet", "Replaces the current world with a new one of that kind, with default parameters.", 1, 1, c_new},
+    {"load", "load FILE", "Loads a world (.world) or planet (.planet) parameter file and its tile store.", 1, 1, c_load},
+    {"save", "save [FILE]", "Saves the world's parameter file and tile store (to FILE, or where it was loaded from).", 0, 1, c_save},
+    {"generate", "generate", "Regenerates the world from the next parameters (see nparams). Edited tiles stay.", 0, 0, c_generate},
+    {"generator", "generator [G]", "Lists the generators, or picks one (name or number) for the next generate.", 0, 1, c_generator},
+    PARAM_CMD("seed", "N", "Sets the random seed (an integer) for the next generate."),
+    PARAM_CMD("octaves", "F", "Sets the fBm octave count (fractional allowed) for the next generate."),
+    PARAM_CMD("w_factor", "F", "Sets the fBm weight factor (gain per octave) for the next generate."),
+    PARAM_CMD("exponent", "F", "Sets the fBm exponent (lacunarity) for the next generate."),
+    PARAM_CMD("radius", "F", "Sets the planet radius in metres for the next generate."),
+    PARAM_CMD("max_height", "F", "Sets the maximal terrain height in metres for the next generate."),
+    PARAM_CMD("ocean_level", "F", "Sets the ocean level in metres for the next generate."),
+    PARAM_CMD("omega", "F", "Sets the planet's angular velocity for the next generate."),
+    PARAM_CMD("spacing", "F", "Sets the metres between coarse samples for the next generate."),
+    PARAM_CMD("size", "N", "Sets the samples per side of a flat world (0 = unbounded) for the next generate."),
+    {"set", "set KEY VALUE", "Sets any world parameter (see nparams for the keys) for the next generate.", 2, 2, c_set},
+    {"params", "params", "Prints the current world's parameters.", 0, 0, c_params},
+    {"nparams", "nparams", "Prints the parameters the next generate will use.", 0, 0, c_nparams},
+    {"info", "info", "Prints key=value facts about the world, its tile store and the tile cache.", 0, 0, c_info},
+    {"sample", "sample X Z [FACE]", "Prints the height in metres at world position X, Z (metres).", 2, 3, c_sample},
+    {"hash", "hash X0 Z0 X1 Z1 [FACE]", "Prints a hex digest of the coarse heights in that rectangle (metres).", 4, 5, c_hash},
+    {"tool", "tool [NAME] [KEY=VALUE ...]", "Picks and sets up the brush: raise lower smooth flatten set ramp noise terrace thermal hydraulic paint. Keys: radius (m) strength (0-1) falloff (smooth linear spherical constant curve) curve=t:v,... spacing (x radius) invert target (coarse detail) face amount height mode (both raise lower) scale octaves seed step sharpness talus iterations droplets erosion deposition evaporation capacity inertia material. Without arguments, prints the brush.", 0, 24, cmd_tool},
+    {"dab", "dab X Z [PRESSURE]", "One dab of the brush at X, Z (metres); one undo step.", 2, 3, cmd_dab},
+    {"stroke", "stroke X0 Z0 X1 Z1 [X2 Z2 ...]", "Drags the brush along the points (metres), dabbing every spacing x radius; one undo step.", 2, 30, cmd_stroke},
+    {"stamp", "stamp NAME X Z [scale= rot= mirror= intensity= mode= layer= face=]", "Places a stamp centred at X, Z (metres): a functional shape, a library or user stamp (see stamps) or an image file. scale multiplies its natural size (128 samples, or one sample per pixel), rot is degrees, mirror none|x|z|xz, intensity metres at value 1 (50; 0.5 on detail), mode add|subtract|max|min|blend, layer coarse|detail. One undo step.", 3, 10, cmd_stamp},
+    {"stamps", "stamps", "Lists the stamps: functional shapes, the built-in library and the user's stamp folder.", 0, 0, cmd_stamps},
+    {"undo", "undo", "Undoes the last change (stroke, stamp, generate).", 0, 0, cmd_undo},
+    {"redo", "redo", "Redoes the last undone change.", 0, 0, cmd_redo},
+    {"history", "history [budget=MIB]", "Lists the undo steps (* = applied) and their memory; sets the history memory budget.", 0, 1, cmd_history},
+    {"help", "help [COMMAND]", "Prints help on all commands or one.", 0, 1, c_help},
+    {"cmdlist", "cmdlist", "Lists the command names.", 0, 0, c_cmdlist},
+    {"exit", "exit", "Stops (the rest of the script is not run).", 0, 0, c_exit},
+};
+#define BUILTIN_COUNT (sizeof commands / sizeof commands[0])
+
+// Commands registered from outside (cmd_register), after the built-in ones.
+#define REGISTERED_MAX 64
+static const cmd_def *registered[REGISTERED_MAX];
+static size_t registered_count;
+
+void cmd_context_init(cmd_context *ctx, world *w, const world_settings *settings, FILE *out,
+                      const char *resource_dir) {
+    memset(ctx, 0, sizeof *ctx);
+    snprintf(ctx->resource_dir, sizeof ctx->resource_dir, "%s", resource_dir ? resource_dir : "");
+    const char *env = getenv("OROGEN_STAMP_DIR"), *xdg = getenv("XDG_DATA_HOME"), *home = getenv("HOME");
+    if (env && *env)
+        snprintf(ctx->stamp_dir, sizeof ctx->stamp_dir, "%s", env);
+    else if (xdg && *xdg)
+        snprintf(ctx->stamp_dir, sizeof ctx->stamp_dir, "%s/orogen/stamps", xdg);
+    else if (home && *home)
+        snprintf(ctx->stamp_dir, sizeof ctx->stamp_dir, "%s/.local/share/orogen/stamps", home);
+    ctx->world = w;
+    ctx->next = *world_get_params(w);
+    if (settings) ctx->settings = *settings;
+    ctx->out = out;
+    brush_defaults(&ctx->brush, BRUSH_RAISE);
+}
+
+size_t cmd_count(void) { return BUILTIN_COUNT + registered_count; }
+
+static const cmd_def *command_at(size_t i) {
+    if (i < BUILTIN_COUNT) return &commands[i];
+    return i - BUILTIN_COUNT < registered_count ? registered[i - BUILTIN_COUNT] : NULL;
+}
+
+const char *cmd_name(size_t i) {
+    const cmd_def *c = command_at(i);
+    return c ? c->name : NULL;
+}
+
+static const cmd_def *find_command(const char *name) {
+    for (size_t i = 0; i < cmd_count(); i++)
+        if (strcmp(command_at(i)->name, name) == 0) return command_at(i);
+    return NULL;
+}
+
+int cmd_register(const cmd_def *defs, size_t count, og_error *err) {
+    if (registered_count + count > REGISTERED_MAX)
+        return og_error_set(err, "cmd_register: more than %d registered commands", REGISTERED_MAX);
+    for (size_t i = 0; i < count; i++) {
+        int taken = find_command(defs[i].name) != NULL;
+        for (size_t k = 0; k < i && !taken; k++) taken = strcmp(defs[k].name, defs[i].name) == 0;
+        if (taken) return og_error_set(err, "cmd_register: '%s' is already a command", defs[i].name);
+    }
+    for (size_t i = 0; i < count; i++) registered[registered_count++] = &defs[i];
+    return 0;
+}
+
+static int c_help(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    if (argc > 1) {
+        const cmd_def *c = find_command(argv[1]);
+        if (!c) return og_error_set(err, "help: unknown command '%s' (try 'cmdlist')", argv[1]);
+        fprintf(ctx->out, "%s\n  %s\n", c->usage, c->help);
+        return 0;
+    }
+    fprintf(ctx->out, "Commands are separated by ';' or new lines; '#' starts a comment.\n");
+    for (size_t i = 0; i < cmd_count(); i++)
+        fprintf(ctx->out, "  %-26s %s\n", command_at(i)->usage, command_at(i)->help);
+    return 0;
+}
+
+static int c_cmdlist(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    (void)argc, (void)argv, (void)err;
+    for (size_t i = 0; i < cmd_count(); i++) fprintf(ctx->out, "%s\n", command_at(i)->name);
+    return 0;
+}
+
+// ---- tokenizer and driver ----------------------------------------------------------
+
+static int execute(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    const cmd_def *c = find_command(argv[0]);
+    if (!c) return og_error_set(err, "unknown command '%s' (try 'cmdlist' or 'help')", argv[0]);
+    int n = argc - 1;
+    if (n < c->min_args || n > c->max_args)
+        return og_error_set(err, "%s: wrong number of arguments; usage: %s", c->name, c->usage);
+    return c->run(ctx, argc, argv, err);
+}
+
+int cmd_run(cmd_context *ctx, const char *text, size_t len, const char *label, og_error *err) {
+    char *argv[CMD_MAX_ARGS + 1];
+    char tokens[CMD_MAX_ARGS][CMD_MAX_TOKEN];
+    int argc = 0, line = 1, cmd_line = 1;
+    size_t i = 0;
+    og_error inner = {{0}};
+    for (;;) {
+        // Skip blanks; a newline, `;` or the end closes the command so far.
+        while (i < len && (text[i] == ' ' || text[i] == '\t' || text[i] == '\r')) i++;
+        int end_of_command = i >= len || text[i] == '\n' || text[i] == ';' || text[i] == '#';
+        if (end_of_command) {
+            if (i < len && text[i] == '#')
+                while (i < len && text[i] != '\n') i++;
+            if (argc > 0) {
+                for (int k = 0; k < argc; k++) argv[k] = tokens[k];
+                argv[argc] = NULL;
+                if (execute(ctx, argc, argv, &inner) != 0) {
+                    og_error_set(err, "%s:%d: error: %s", label, cmd_line, inner.msg);
+                    return -1;
+                }
+                argc = 0;
+                if (ctx->exit_requested) return 0;
+            }
+            if (i >= len) return 0;
+            if (text[i] == '\n') line++;
+            i++;
+            continue;
+        }
+        if (argc == CMD_MAX_ARGS) {
+            og_error_set(err, "%s:%d: error: too many arguments (at most %d)", label, line,
+                         CMD_MAX_ARGS);
+            return -1;
+        }
+        if (argc == 0) cmd_line = line;
+        char *tok = tokens[argc];
+        size_t n = 0;
+        int quoted = 0;
+        while (i < len) {
+            char ch = text[i];
+            if (!quoted && (ch == ' ' || ch == '\t' || ch == '\r' || ch == '\n' || ch == ';'))
+                break;
+            if (ch == '"') {
+                quoted = !quoted;
+                i++;
+                continue;
+            }
+            if (ch == '\0') {
+                og_error_set(err, "%s:%d: error: NUL byte in command text", label, line);
+                return -1;
+            }
+            if (quoted && ch == '\\' && i + 1 < len && (text[i + 1] == '"' || text[i + 1] == '\\'))
+                ch = text[++i];
+            if (ch == '\n') line++;
+            if (n + 1 >= CMD_MAX_TOKEN) {
+                og_error_set(err, "%s:%d: error: argument longer than %d bytes", label, line,
+                             CMD_MAX_TOKEN - 1);
+                return -1;
+            }
+            tok[n++] = ch;
+            i++;
+        }
+        if (quoted) {
+            og_error_set(err, "%s:%d: error: unterminated \"quote\"", label, line);
+            return -1;
+        }
+        tok[n] = 0;
+        argc++;
+    }
+}

@@ -1,0 +1,164 @@
+#include "editor/cmd/edit_commands.h"
+
+#include "editor/edit/edit.h"
+#include "editor/world/history.h"
+#include "editor/tools/stamp.h"
+#include "editor/tools/stroke.h"
+#include "io/parse.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+int cmd_tool(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    if (argc == 1) {
+        brush_print(&ctx->brush, ctx->out);
+        return 0;
+    }
+    int t = brush_tool_parse(argv[1]);
+    if (t < 0) {
+        og_error_set(err, "unknown tool '%s' (tools:", argv[1]);
+        for (int i = 0; i < BRUSH_TOOL_COUNT; i++) {
+            size_t n = strlen(err->msg);
+            snprintf(err->msg + n, sizeof err->msg - n, " %s", brush_tool_name((brush_tool)i));
+        }
+        size_t n = strlen(err->msg);
+        snprintf(err->msg + n, sizeof err->msg - n, " lower)");
+        return -1;
+    }
+    // Switching tools keeps the shared settings (size, strength, falloff, layer).
+    brush b = ctx->brush;
+    if (b.tool != (brush_tool)t || strcmp(argv[1], "lower") == 0) {
+        brush fresh;
+        brush_defaults(&fresh, (brush_tool)t);
+        fresh.radius = b.radius;
+        fresh.strength = b.strength;
+        fresh.falloff = b.falloff;
+        fresh.curve_count = b.curve_count;
+        memcpy(fresh.curve_t, b.curve_t, sizeof b.curve_t);
+        memcpy(fresh.curve_v, b.curve_v, sizeof b.curve_v);
+        fresh.spacing = b.spacing;
+        fresh.face = b.face;
+        if (t != BRUSH_PAINT && b.target != TILE_LAYER_MATERIAL) fresh.target = b.target;
+        fresh.invert = strcmp(argv[1], "lower") == 0;
+        b = fresh;
+    }
+    for (int i = 2; i < argc; i++) {
+        char buf[512], *key = NULL, *value = NULL;
+        if (parse_setting(argv[i], buf, sizeof buf, &key, &value, err) != 0 ||
+            brush_set(&b, key, value, err) != 0)
+            return -1;
+    }
+    ctx->brush = b;
+    return 0;
+}
+
+static int parse_point(char **argv, int i, double *x, double *z, og_error *err) {
+    return parse_number(argv[i], "X", x, err) || parse_number(argv[i + 1], "Z", z, err) ? -1 : 0;
+}
+
+int cmd_dab(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    double x = 0, z = 0, pressure = 1.0;
+    if (parse_point(argv, 1, &x, &z, err) != 0) return -1;
+    if (argc > 3 && parse_number(argv[3], "pressure", &pressure, err) != 0) return -1;
+    stroke *s = stroke_begin(ctx->world, &ctx->brush, err);
+    if (!s) return -1;
+    if (stroke_to(s, x, z, pressure, err) != 0) {
+        stroke_cancel(s);
+        return -1;
+    }
+    return stroke_end(s, err);
+}
+
+int cmd_stroke(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    if ((argc - 1) % 2 != 0)
+        return og_error_set(err, "stroke: expected X Z pairs (got %d numbers)", argc - 1);
+    // Check every point before touching the world.
+    for (int i = 1; i < argc; i += 2) {
+        double x = 0, z = 0;
+        if (parse_point(argv, i, &x, &z, err) != 0) return -1;
+    }
+    stroke *s = stroke_begin(ctx->world, &ctx->brush, err);
+    if (!s) return -1;
+    for (int i = 1; i < argc; i += 2) {
+        double x = 0, z = 0;
+        parse_point(argv, i, &x, &z, err);
+        if (stroke_to(s, x, z, 1.0, err) != 0) {
+            stroke_cancel(s);
+            return -1;
+        }
+    }
+    return stroke_end(s, err);
+}
+
+int cmd_undo(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    (void)argc, (void)argv;
+    int rc = edit_undo(ctx->world, err);
+    if (rc < 0) return -1;
+    if (rc == 0) return og_error_set(err, "undo: nothing to undo");
+    return 0;
+}
+
+int cmd_redo(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    (void)argc, (void)argv;
+    int rc = edit_redo(ctx->world, err);
+    if (rc < 0) return -1;
+    if (rc == 0) return og_error_set(err, "redo: nothing to redo");
+    return 0;
+}
+
+int cmd_history(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    history *h = world_history(ctx->world);
+    for (int i = 1; i < argc; i++) {
+        char buf[128], *key = NULL, *value = NULL;
+        double mb = 0;
+        if (parse_setting(argv[i], buf, sizeof buf, &key, &value, err) != 0) return -1;
+        if (strcmp(key, "budget") != 0)
+            return og_error_set(err, "history: unknown setting '%s' (budget=MiB)", key);
+        if (parse_number(value, "budget", &mb, err) != 0) return -1;
+        if (!(mb >= 1 && mb <= 1048576))
+            return og_error_set(err, "budget: expected MiB in [1, 1048576], got '%g'", mb);
+        size_t dropped = history_set_budget(h, (size_t)(mb * 1048576.0));
+        ctx->settings.history_budget_bytes = (size_t)(mb * 1048576.0);
+        if (dropped)
+            fprintf(ctx->out, "dropped the %zu oldest step%s to fit the budget\n", dropped,
+                    dropped == 1 ? "" : "s");
+    }
+    size_t n = history_count(h), pos = history_position(h);
+    for (size_t i = 0; i < n; i++) {
+        const history_step *s = history_at(h, i);
+        fprintf(ctx->out, "%c %zu %s tiles=%zu bytes=%zu raw_bytes=%zu\n", i < pos ? '*' : ' ',
+                i + 1, s->label, s->tile_count, s->bytes, s->raw_bytes);
+    }
+    fprintf(ctx->out, "steps=%zu undoable=%zu redoable=%zu bytes=%zu budget=%zu dropped=%llu modified=%d\n",
+            n, pos, n - pos, history_bytes(h), history_budget(h),
+            (unsigned long long)history_dropped_total(h), world_is_modified(ctx->world));
+    return 0;
+}
+
+int cmd_stamp(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    stamp_placement p;
+    stamp_placement_defaults(&p);
+    if (parse_number(argv[2], "X", &p.x, err) != 0 || parse_number(argv[3], "Z", &p.z, err) != 0)
+        return -1;
+    int intensity_given = 0;
+    for (int i = 4; i < argc; i++) {
+        char buf[512], *key = NULL, *value = NULL;
+        if (parse_setting(argv[i], buf, sizeof buf, &key, &value, err) != 0 ||
+            stamp_placement_set(&p, key, value, err) != 0)
+            return -1;
+        intensity_given |= strcmp(key, "intensity") == 0;
+    }
+    if (!intensity_given && p.layer == TILE_LAYER_DETAIL) p.intensity = 0.5; // detail is fine relief
+    stamp_source s;
+    if (stamp_find(argv[1], ctx->resource_dir, ctx->stamp_dir, &s, err) != 0) return -1;
+    int rc = stamp_apply(ctx->world, &s, &p, err);
+    stamp_source_free(&s);
+    return rc;
+}
+
+int cmd_stamps(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    (void)argc, (void)argv, (void)err;
+    stamp_list(ctx->resource_dir, ctx->stamp_dir, ctx->out);
+    return 0;
+}

@@ -1,0 +1,17 @@
+// The editing commands of the command language: tool, dab, stroke, undo, redo,
+// history, stamp, stamps. Registered in commands.c.
+#ifndef OROGEN_EDITOR_EDIT_COMMANDS_H
+#define OROGEN_EDITOR_EDIT_COMMANDS_H
+
+#include "editor/cmd/commands.h"
+
+int cmd_tool(cmd_context *ctx, int argc, char **argv, og_error *err);
+int cmd_dab(cmd_context *ctx, int argc, char **argv, og_error *err);
+int cmd_stroke(cmd_context *ctx, int argc, char **argv, og_error *err);
+int cmd_undo(cmd_context *ctx, int argc, char **argv, og_error *err);
+int cmd_redo(cmd_context *ctx, int argc, char **argv, og_error *err);
+int cmd_history(cmd_context *ctx, int argc, char **argv, og_error *err);
+int cmd_stamp(cmd_context *ctx, int argc, char **argv, og_error *err);
+int cmd_stamps(cmd_context *ctx, int argc, char **argv, og_error *err);
+
+#endif

@@ -1,0 +1,322 @@
+#include "editor/edit/edit.h"
+
+#include "editor/edit/detail_pd.h"
+#include "editor/edit/edit_mips.h"
+#include "editor/edit/parallel.h"
+
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct snapshot {
+    tile_key key;
+    int pristine; // the tile had never been edited (it was generated)
+    void *before;
+} snapshot;
+
+struct edit {
+    world *world;
+    char label[128];
+    pthread_mutex_t lock;
+    snapshot *snaps;
+    size_t count, cap;
+    size_t *index; // open addressing into snaps (+1; 0 = empty), power-of-two size
+    size_t index_size;
+    dirty_rect *dirty;
+    size_t dirty_count, dirty_cap;
+};
+
+static snapshot *find_snap(edit *e, tile_key key) {
+    if (!e->index_size) return NULL;
+    for (size_t i = tile_key_hash(key) & (e->index_size - 1);; i = (i + 1) & (e->index_size - 1)) {
+        if (!e->index[i]) return NULL;
+        snapshot *s = &e->snaps[e->index[i] - 1];
+        if (tile_key_equal(s->key, key)) return s;
+    }
+}
+
+static int reindex(edit *e, size_t size) {
+    size_t *index = calloc(size, sizeof *index);
+    if (!index) return -1;
+    free(e->index);
+    e->index = index;
+    e->index_size = size;
+    for (size_t n = 0; n < e->count; n++) {
+        size_t i = tile_key_hash(e->snaps[n].key) & (size - 1);
+        while (index[i]) i = (i + 1) & (size - 1);
+        index[i] = n + 1;
+    }
+    return 0;
+}
+
+static snapshot *add_snap(edit *e, tile_key key, int pristine, void *before) {
+    if (e->count == e->cap) {
+        size_t cap = e->cap ? e->cap * 2 : 64;
+        snapshot *s = realloc(e->snaps, cap * sizeof *s);
+        if (!s) return NULL;
+        e->snaps = s;
+        e->cap = cap;
+    }
+    e->snaps[e->count++] = (snapshot){key, pristine, before};
+    if (e->count * 2 > e->index_size) { // grow: reindex places the new one too
+        if (reindex(e, e->index_size ? e->index_size * 2 : 256) != 0) {
+            e->count--;
+            return NULL;
+        }
+    } else {
+        size_t i = tile_key_hash(key) & (e->index_size - 1);
+        while (e->index[i]) i = (i + 1) & (e->index_size - 1);
+        e->index[i] = e->count;
+    }
+    return &e->snaps[e->count - 1];
+}
+
+edit *edit_begin(world *w, const char *label, og_error *err) {
+    edit *e = calloc(1, sizeof *e);
+    if (!e) {
+        og_error_set(err, "out of memory");
+        return NULL;
+    }
+    e->world = w;
+    snprintf(e->label, sizeof e->label, "%s", label);
+    pthread_mutex_init(&e->lock, NULL);
+    return e;
+}
+
+world *edit_world(edit *e) { return e->world; }
+
+const void *edit_snapshot(edit *e, tile_key key) {
+    pthread_mutex_lock(&e->lock);
+    snapshot *s = find_snap(e, key);
+    const void *before = s ? s->before : NULL;
+    pthread_mutex_unlock(&e->lock);
+    return before;
+}
+
+int edit_tile_acquire(edit *e, tile_key key, tile_view *view, og_error *err) {
+    if (tile_cache_acquire_write(world_cache(e->world), key, view, err) != 0) return -1;
+    pthread_mutex_lock(&e->lock);
+    int rc = 0;
+    if (!find_snap(e, key)) {
+        size_t bytes = tile_layer_bytes((tile_layer)key.layer);
+        void *copy = malloc(bytes);
+        if (copy) memcpy(copy, view->data, bytes);
+        if (!copy || !add_snap(e, key, !view->edited, copy)) {
+            free(copy);
+            rc = og_error_set(err, "out of memory keeping the undo copy of a tile");
+        }
+    }
+    pthread_mutex_unlock(&e->lock);
+    if (rc != 0) tile_cache_release(world_cache(e->world), view);
+    return rc;
+}
+
+void edit_tile_release(edit *e, tile_view *view) { tile_cache_release(world_cache(e->world), view); }
+
+void edit_dirty(edit *e, tile_layer layer, int face, grid_rect r) {
+    if (grid_rect_empty(r)) return;
+    dirty_rect d = {layer, face, r};
+    pthread_mutex_lock(&e->lock);
+    // Coalesce with the previous rect of the same layer when they touch (a stroke's dabs).
+    dirty_rect *last = e->dirty_count ? &e->dirty[e->dirty_count - 1] : NULL;
+    if (last && last->layer == layer && last->face == face && last->rect.x0 <= r.x1 &&
+        r.x0 <= last->rect.x1 && last->rect.z0 <= r.z1 && r.z0 <= last->rect.z1) {
+        last->rect = grid_rect_union(last->rect, r);
+    } else {
+        if (e->dirty_count == e->dirty_cap) {
+            size_t cap = e->dirty_cap ? e->dirty_cap * 2 : 16;
+            dirty_rect *grown = realloc(e->dirty, cap * sizeof *grown);
+            if (grown) {
+                e->dirty = grown;
+                e->dirty_cap = cap;
+            }
+        }
+        // Out of memory: the area is still reported live below, only not kept for the step.
+        if (e->dirty_count < e->dirty_cap) e->dirty[e->dirty_count++] = d;
+    }
+    pthread_mutex_unlock(&e->lock);
+    history_dirty_add(world_history(e->world), d); // live: the renderer shows the stroke
+}
+
+size_t edit_dirty_rects(edit *e, const dirty_rect **rects) {
+    *rects = e->dirty;
+    return e->dirty_count;
+}
+
+static void free_edit(edit *e) {
+    for (size_t i = 0; i < e->count; i++) free(e->snaps[i].before);
+    free(e->snaps);
+    free(e->index);
+    free(e->dirty);
+    pthread_mutex_destroy(&e->lock);
+    free(e);
+}
+
+// Puts every snapshot back (writing the tiles' bytes as they were).
+static void restore(edit *e) {
+    tile_cache *cache = world_cache(e->world);
+    for (size_t i = 0; i < e->count; i++) {
+        tile_view v;
+        og_error err;
+        if (tile_cache_acquire_write(cache, e->snaps[i].key, &v, &err) != 0) {
+            world_warn(e->world, err.msg);
+            continue;
+        }
+        memcpy(v.data, e->snaps[i].before, tile_layer_bytes((tile_layer)e->snaps[i].key.layer));
+        tile_cache_release(cache, &v);
+    }
+    for (size_t i = 0; i < e->dirty_count; i++) history_dirty_add(world_history(e->world), e->dirty[i]);
+}
+
+void edit_abort(edit *e) {
+    if (!e) return;
+    restore(e);
+    free_edit(e);
+}
+
+typedef struct encode_job {
+    edit *e;
+    void **deltas;
+    size_t *sizes;
+    int failed;
+} encode_job;
+
+static void encode_task(void *user, int task) {
+    encode_job *j = user;
+    snapshot *s = &j->e->snaps[task];
+    tile_view v;
+    og_error err;
+    if (tile_cache_acquire(world_cache(j->e->world), s->key, &v, &err) != 0 ||
+        history_delta_encode((tile_layer)s->key.layer, s->before, v.data, &j->deltas[task],
+                             &j->sizes[task]) != 0)
+        j->failed = 1;
+    tile_cache_release(world_cache(j->e->world), &v);
+}
+
+static void report_dropped(world *w, size_t dropped) {
+    if (!dropped) return;
+    history *h = world_history(w);
+    char msg[256];
+    snprintf(msg, sizeof msg,
+             "history: dropped the %zu oldest undo step%s to stay within the %zu MiB history "
+             "budget (%zu steps left)",
+             dropped, dropped == 1 ? "" : "s", history_budget(h) >> 20, history_count(h));
+    world_warn(w, msg);
+}
+
+int edit_commit(edit *e, og_error *err) {
+    if (edit_mips_update(e, err) != 0 || detail_pd_update(e->world, e->dirty, e->dirty_count, err) != 0) {
+        edit_abort(e);
+        return -1;
+    }
+    history_step *step = history_step_new(e->label);
+    void **deltas = calloc(e->count ? e->count : 1, sizeof *deltas);
+    size_t *sizes = calloc(e->count ? e->count : 1, sizeof *sizes);
+    encode_job job = {e, deltas, sizes, !step || !deltas || !sizes};
+    if (!job.failed) parallel_run((int)e->count, encode_task, &job);
+    for (size_t i = 0; i < e->count && !job.failed; i++)
+        if (deltas[i] &&
+            history_step_add_delta(step, e->snaps[i].key, e->snaps[i].pristine, deltas[i], sizes[i]) != 0)
+            job.failed = 1;
+        else
+            deltas[i] = NULL;
+    for (size_t i = 0; i < e->dirty_count && !job.failed; i++)
+        if (history_step_add_dirty(step, e->dirty[i]) != 0) job.failed = 1;
+    if (job.failed) {
+        for (size_t i = 0; i < e->count; i++) free(deltas ? deltas[i] : NULL);
+        free(deltas);
+        free(sizes);
+        history_step_free(step);
+        edit_abort(e);
+        return og_error_set(err, "out of memory recording the undo step");
+    }
+    free(deltas);
+    free(sizes);
+    for (size_t i = 0; i < e->dirty_count; i++) history_dirty_add(world_history(e->world), e->dirty[i]);
+    world *w = e->world;
+    free_edit(e);
+    if (step->tile_count == 0 && !step->has_params) { // nothing changed: no step
+        history_step_free(step);
+        return 0;
+    }
+    report_dropped(w, history_push(world_history(w), step));
+    return 0;
+}
+
+// ---- replay ----------------------------------------------------------------------
+
+typedef struct replay_job {
+    world *world;
+    const history_step *step;
+    int undo;
+    int failed;
+    char message[sizeof(((og_error *)0)->msg)];
+} replay_job;
+
+static void replay_task(void *user, int task) {
+    replay_job *j = user;
+    const history_tile *t = &j->step->tiles[task];
+    tile_cache *cache = world_cache(j->world);
+    tile_view v;
+    og_error err;
+    if (tile_cache_acquire_write(cache, t->key, &v, &err) != 0) {
+        j->failed = 1;
+        snprintf(j->message, sizeof j->message, "%s", err.msg);
+        return;
+    }
+    if (history_tile_apply(t, v.data) != 0) {
+        j->failed = 1;
+        snprintf(j->message, sizeof j->message, "undo data of a tile is damaged (out of memory?)");
+    }
+    tile_cache_release(cache, &v);
+    // Back to never-edited terrain: forget the copy so it regenerates (a later
+    // `generate` must change it like any untouched tile).
+    // A tile saved since then is not pristine any more: the saved store holds it.
+    tile_store *saved = world_store(j->world);
+    if (j->undo && t->was_pristine && !(saved && tile_store_has(saved, t->key)) &&
+        tile_cache_discard(cache, t->key) == 0)
+        tile_store_put(world_journal(j->world), t->key, NULL, &err);
+}
+
+static int replay(world *w, const history_step *s, int undo, og_error *err) {
+    if (s->has_params &&
+        world_regenerate(w, undo ? &s->params_before : &s->params_after, err) != 0)
+        return -1;
+    replay_job job = {w, s, undo, 0, ""};
+    parallel_run((int)s->tile_count, replay_task, &job);
+    if (job.failed) return og_error_set(err, "%s", job.message);
+    if (detail_pd_update(w, s->dirty, s->dirty_count, err) != 0) return -1;
+    for (size_t i = 0; i < s->dirty_count; i++) history_dirty_add(world_history(w), s->dirty[i]);
+    return 0;
+}
+
+int edit_undo(world *w, og_error *err) {
+    history *h = world_history(w);
+    history_step *s = history_undo_peek(h);
+    if (!s) return 0;
+    if (replay(w, s, 1, err) != 0) return -1;
+    history_undo_done(h);
+    return 1;
+}
+
+int edit_redo(world *w, og_error *err) {
+    history *h = world_history(w);
+    history_step *s = history_redo_peek(h);
+    if (!s) return 0;
+    if (replay(w, s, 0, err) != 0) return -1;
+    history_redo_done(h);
+    return 1;
+}
+
+int edit_generate(world *w, const world_params *params, og_error *err) {
+    world_params before = *world_get_params(w);
+    if (world_regenerate(w, params, err) != 0) return -1;
+    history_step *s = history_step_new("generate");
+    if (!s) return og_error_set(err, "out of memory recording the undo step");
+    s->has_params = 1;
+    s->params_before = before;
+    s->params_after = *world_get_params(w);
+    report_dropped(w, history_push(world_history(w), s));
+    return 0;
+}

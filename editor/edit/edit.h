@@ -1,0 +1,46 @@
+// Changing a world: every change is an edit (one undo step). An edit snapshots each
+// tile the first time it touches it; committing turns the snapshots into the step's
+// compressed deltas, rebuilds the coarse mip levels and the detail PD map over the
+// changed area, and reports dirty rectangles. Undo and redo replay steps exactly.
+#ifndef OROGEN_EDITOR_EDIT_H
+#define OROGEN_EDITOR_EDIT_H
+
+#include "editor/world/history.h"
+#include "editor/world/layer_grid.h"
+#include "editor/world/world.h"
+#include "io/err.h"
+
+typedef struct edit edit;
+
+edit *edit_begin(world *w, const char *label, og_error *err);
+world *edit_world(edit *e);
+
+// Pins a level-0 tile for writing (loading or generating it if needed), snapshotting
+// it on the edit's first touch. Thread-safe: parallel dab tasks call it.
+int edit_tile_acquire(edit *e, tile_key key, tile_view *view, og_error *err);
+void edit_tile_release(edit *e, tile_view *view);
+// Records a changed area (level-0 samples of that layer). Thread-safe.
+void edit_dirty(edit *e, tile_layer layer, int face, grid_rect r);
+
+// For mip and PD maintenance: a touched tile's bytes before the edit (NULL if
+// untouched), and the changed areas so far.
+const void *edit_snapshot(edit *e, tile_key key);
+size_t edit_dirty_rects(edit *e, const dirty_rect **rects);
+
+// Ends the edit as one undo step. On failure the world is restored to its state
+// before the edit. Frees e either way.
+int edit_commit(edit *e, og_error *err);
+// Restores every touched tile and frees e.
+void edit_abort(edit *e);
+
+// Undo / redo one step: 1 if a step was replayed, 0 if there was none, -1 on error.
+int edit_undo(world *w, og_error *err);
+int edit_redo(world *w, og_error *err);
+// `generate` as an undoable step: the world switches to new parameters.
+int edit_generate(world *w, const world_params *params, og_error *err);
+
+// Mip levels kept in step with level-0 edits on unbounded worlds (bounded worlds and
+// planet faces: up to the level where one tile covers everything).
+#define EDIT_MIP_LEVELS_UNBOUNDED 12
+
+#endif

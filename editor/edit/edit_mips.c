@@ -1,0 +1,167 @@
+#include "editor/edit/edit_mips.h"
+
+#include "editor/edit/parallel.h"
+#include "editor/params/world_grid.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+static int64_t floor_div(int64_t a, int64_t b) { return world_grid_floor_div(a, b); }
+
+int edit_mips_top_level(const world_params *p) {
+    int64_t extent = p->kind == WORLD_PLANET ? world_grid_face_samples(p) : p->size;
+    if (extent <= 0) return EDIT_MIP_LEVELS_UNBOUNDED;
+    int top = 1;
+    while (top < TILE_MAX_LEVEL && ((extent - 1) >> top) >= TILE_SIZE) top++;
+    return top;
+}
+
+typedef struct level_job {
+    edit *e;
+    int64_t child_extent; // children per side at the child level (bounded); 0 = unbounded
+    int face, level, planet; // level: the parent level being written
+    grid_rect parents;       // parent samples to update
+    int64_t ptx0, ptz0, ptw; // parent tiles covering them
+    int failed;
+    og_error err;
+} level_job;
+
+// Fills win (w x h, origin cx0, cz0 in child samples) with after - before of every
+// child tile the edit changed; zero elsewhere.
+static int child_changes(level_job *j, int64_t cx0, int64_t cz0, int64_t w, int64_t h, float *win) {
+    memset(win, 0, (size_t)(w * h) * sizeof *win);
+    tile_cache *cache = world_cache(edit_world(j->e));
+    int any = 0;
+    for (int64_t ty = floor_div(cz0, TILE_SIZE); ty <= floor_div(cz0 + h - 1, TILE_SIZE); ty++)
+        for (int64_t tx = floor_div(cx0, TILE_SIZE); tx <= floor_div(cx0 + w - 1, TILE_SIZE); tx++) {
+            tile_key key = {TILE_LAYER_COARSE, j->face, j->level - 1, (int32_t)tx, (int32_t)ty};
+            const float *before = edit_snapshot(j->e, key);
+            if (!before) continue;
+            tile_view v;
+            og_error err;
+            if (tile_cache_acquire(cache, key, &v, &err) != 0) continue; // outside the world
+            const float *after = v.data;
+            int64_t x0 = tx * TILE_SIZE > cx0 ? tx * TILE_SIZE : cx0;
+            int64_t x1 = (tx + 1) * TILE_SIZE < cx0 + w ? (tx + 1) * TILE_SIZE : cx0 + w;
+            int64_t z0 = ty * TILE_SIZE > cz0 ? ty * TILE_SIZE : cz0;
+            int64_t z1 = (ty + 1) * TILE_SIZE < cz0 + h ? (ty + 1) * TILE_SIZE : cz0 + h;
+            for (int64_t z = z0; z < z1; z++) {
+                size_t t = (size_t)((z - ty * TILE_SIZE) * TILE_SIZE - tx * TILE_SIZE);
+                float *row = win + (z - cz0) * w - cx0;
+                for (int64_t x = x0; x < x1; x++) {
+                    row[x] = after[t + x] - before[t + x];
+                    any |= row[x] != 0.0f;
+                }
+            }
+            tile_cache_release(cache, &v);
+        }
+    // Beyond a bounded world's edge the terrain reads as its edge sample (as brushes
+    // see it), so the change there is the edge's change.
+    int64_t n = j->child_extent;
+    if (any && n > 0 && (cx0 < 0 || cz0 < 0 || cx0 + w > n || cz0 + h > n)) {
+        for (int64_t z = 0; z < h; z++) {
+            int64_t gz = cz0 + z, sz = gz < 0 ? 0 : gz >= n ? n - 1 : gz;
+            for (int64_t x = 0; x < w; x++) {
+                int64_t gx = cx0 + x, sx = gx < 0 ? 0 : gx >= n ? n - 1 : gx;
+                if ((sx != gx || sz != gz) && sx - cx0 >= 0 && sx - cx0 < w && sz - cz0 >= 0 &&
+                    sz - cz0 < h)
+                    win[z * w + x] = win[(sz - cz0) * w + (sx - cx0)];
+            }
+        }
+    }
+    return any;
+}
+
+static void parent_tile_task(void *user, int task) {
+    level_job *j = user;
+    int64_t tx = j->ptx0 + task % j->ptw, tz = j->ptz0 + task / j->ptw;
+    grid_rect sub = grid_rect_intersect(
+        j->parents, (grid_rect){tx * TILE_SIZE, tz * TILE_SIZE, (tx + 1) * TILE_SIZE, (tz + 1) * TILE_SIZE});
+    if (grid_rect_empty(sub)) return;
+    int64_t pw = sub.x1 - sub.x0, ph = sub.z1 - sub.z0;
+    // Flat: parent p averages children 2p-1..2p+1; planet: children 2p, 2p+1.
+    int64_t lo = j->planet ? 0 : -1;
+    int64_t cw = 2 * pw + (j->planet ? 0 : 1), ch = 2 * ph + (j->planet ? 0 : 1);
+    int64_t cx0 = 2 * sub.x0 + lo, cz0 = 2 * sub.z0 + lo;
+    float *win = malloc((size_t)(cw * ch) * sizeof *win);
+    if (!win) {
+        j->failed = 1;
+        og_error_set(&j->err, "out of memory updating mip levels");
+        return;
+    }
+    if (child_changes(j, cx0, cz0, cw, ch, win)) {
+        tile_key key = {TILE_LAYER_COARSE, j->face, j->level, (int32_t)tx, (int32_t)tz};
+        tile_view v;
+        og_error err;
+        if (edit_tile_acquire(j->e, key, &v, &err) != 0) {
+            j->failed = 1;
+            j->err = err;
+        } else {
+            float *t = v.data;
+            for (int64_t z = 0; z < ph; z++) {
+                float *dst = t + (sub.z0 + z - tz * TILE_SIZE) * TILE_SIZE + (sub.x0 - tx * TILE_SIZE);
+                for (int64_t x = 0; x < pw; x++) {
+                    const float *c = win + (2 * z) * cw + 2 * x;
+                    float d;
+                    if (j->planet) {
+                        d = 0.25f * (c[0] + c[1] + c[cw] + c[cw + 1]);
+                    } else {
+                        const float *r0 = c, *r1 = c + cw, *r2 = c + 2 * cw;
+                        float a = 0.25f * r0[0] + 0.5f * r0[1] + 0.25f * r0[2];
+                        float b = 0.25f * r1[0] + 0.5f * r1[1] + 0.25f * r1[2];
+                        float g = 0.25f * r2[0] + 0.5f * r2[1] + 0.25f * r2[2];
+                        d = 0.25f * a + 0.5f * b + 0.25f * g;
+                    }
+                    dst[x] += d;
+                }
+            }
+            edit_tile_release(j->e, &v);
+        }
+    }
+    free(win);
+}
+
+int edit_mips_update(edit *e, og_error *err) {
+    const world_params *p = world_get_params(edit_world(e));
+    int planet = p->kind == WORLD_PLANET, faces = planet ? 6 : 1;
+    int64_t extent = planet ? world_grid_face_samples(p) : p->size;
+    int top = edit_mips_top_level(p);
+    const dirty_rect *d;
+    size_t n = edit_dirty_rects(e, &d);
+    for (int face = 0; face < faces; face++) {
+        grid_rect r = {0, 0, 0, 0};
+        int have = 0;
+        for (size_t i = 0; i < n; i++) {
+            if (d[i].layer != TILE_LAYER_COARSE || d[i].face != face) continue;
+            r = have ? grid_rect_union(r, d[i].rect) : d[i].rect;
+            have = 1;
+        }
+        if (!have) continue;
+        for (int level = 1; level <= top; level++) {
+            grid_rect pr = planet ? (grid_rect){floor_div(r.x0, 2), floor_div(r.z0, 2),
+                                                floor_div(r.x1 - 1, 2) + 1, floor_div(r.z1 - 1, 2) + 1}
+                                  : (grid_rect){-floor_div(-(r.x0 - 1), 2), -floor_div(-(r.z0 - 1), 2),
+                                                floor_div(r.x1, 2) + 1, floor_div(r.z1, 2) + 1};
+            if (extent > 0) {
+                int64_t ext = planet ? extent >> level : ((extent - 1) >> level) + 1;
+                if (ext < 1) break;
+                pr = grid_rect_intersect(pr, (grid_rect){0, 0, ext, ext});
+            }
+            if (grid_rect_empty(pr)) break;
+            level_job job = {.e = e, .face = face, .level = level, .planet = planet, .parents = pr};
+            if (extent > 0)
+                job.child_extent = planet ? extent >> (level - 1) : ((extent - 1) >> (level - 1)) + 1;
+            job.ptx0 = floor_div(pr.x0, TILE_SIZE);
+            job.ptz0 = floor_div(pr.z0, TILE_SIZE);
+            job.ptw = floor_div(pr.x1 - 1, TILE_SIZE) - job.ptx0 + 1;
+            int64_t pth = floor_div(pr.z1 - 1, TILE_SIZE) - job.ptz0 + 1;
+            parallel_run((int)(job.ptw * pth), parent_tile_task, &job);
+            if (job.failed) {
+                *err = job.err;
+                return -1;
+            }
+            r = pr;
+        }
+    }
+    return 0;
+}

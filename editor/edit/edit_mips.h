@@ -1,0 +1,18 @@
+// Keeps the coarse layer's mip levels in step with level-0 edits: each level's
+// change is the previous level's change, filtered down (a tent on flat worlds, whose
+// mip samples coincide with even samples; a 2x2 box on planets, whose mip samples
+// are block centres). Adding the filtered change, rather than refiltering, keeps
+// the generator's own band-limited detail where nothing was edited.
+#ifndef OROGEN_EDITOR_EDIT_MIPS_H
+#define OROGEN_EDITOR_EDIT_MIPS_H
+
+#include "editor/edit/edit.h"
+
+// Updates every mip level over the edit's coarse dirty areas; the parent tiles it
+// changes become part of the edit (and so of its undo step).
+int edit_mips_update(edit *e, og_error *err);
+
+// The deepest mip level edits reach on a world.
+int edit_mips_top_level(const world_params *p);
+
+#endif

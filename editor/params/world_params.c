@@ -1,0 +1,519 @@
+#include "editor/params/world_params.h"
+
+#include "io/param_file.h"
+#include "io/parse.h"
+
+#include <errno.h>
+#include <inttypes.h>
+#include <limits.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+// Largest flat world: 2^31 tiles of 256 samples per side, what int32 tile ids
+// address from the origin outwards.
+#define WORLD_SIZE_MAX (INT64_C(1) << 39)
+
+typedef enum value_type { V_KIND, V_GEN, V_I64, V_I32, V_F64, V_STR } value_type;
+
+// Range flags: whether lo / hi are themselves allowed.
+enum { LO_OPEN = 1, HI_OPEN = 2, NO_LO = 4, NO_HI = 8 };
+
+typedef struct key_def {
+    const char *name;
+    value_type type;
+    size_t offset;
+    double lo, hi;
+    int range;
+    const char *help;
+} key_def;
+
+#define F(field) offsetof(world_params, field)
+
+// Canonical order: the order of `params` and of saved files.
+static const key_def KEYS[] = {
+    {"kind", V_KIND, F(kind), 0, 0, 0, "what the world is: flat or planet"},
+    {"generator", V_GEN, F(generator), 0, 0, 0,
+     "terrain generator: fbm (0), fbm_advanced (1), ridged (2), diamond_square (3), faults (4), "
+     "flat (5)"},
+    {"seed", V_I64, F(seed), 0, 0, NO_LO | NO_HI,
+     "random seed, any integer (the generators use it modulo 2^32)"},
+    {"octaves", V_F64, F(octaves), 0, 30, LO_OPEN,
+     "fBm octave count, 0 < octaves <= 30; a fractional part fades in the last octave"},
+    {"w_factor", V_F64, F(w_factor), 0, 1.5, LO_OPEN | HI_OPEN,
+     "fBm gain: amplitude multiplier per octave, 0 < w_factor < 1.5"},
+    {"exponent", V_F64, F(exponent), 1, 8, LO_OPEN,
+     "fBm lacunarity: frequency multiplier per octave, 1 < exponent <= 8"},
+    {"max_height", V_F64, F(max_height), 0, 1e6, LO_OPEN,
+     "metres: generated heights lie within +-max_height, 0 < max_height <= 1e6"},
+    {"ocean_level", V_F64, F(ocean_level), 0, 0, NO_LO | NO_HI,
+     "metres: height of the water plane above the datum"},
+    {"radius", V_F64, F(radius), 0, 1e9, LO_OPEN,
+     "planets: metres from the centre to the datum, 0 < radius <= 1e9"},
+    {"omega", V_F64, F(omega), 0, 0, NO_LO | NO_HI,
+     "planets: angular velocity in radians per second (turns the light)"},
+    {"spacing", V_F64, F(spacing), 0, 1e5, LO_OPEN,
+     "metres between coarse height samples, 0 < spacing <= 1e5"},
+    {"size", V_I64, F(size), 0, (double)WORLD_SIZE_MAX, 0,
+     "flat worlds: coarse samples per side, 0 = unbounded, else 2 .. 2^39"},
+    {"detail_ratio", V_I32, F(detail_ratio), 1, 64, 0,
+     "detail samples per coarse sample, per side, 1 .. 64"},
+    {"feature_size", V_F64, F(feature_size), 0, 1e9, 0,
+     "metres: wavelength of the lowest octave, 0 = automatic"},
+    {"base_height", V_F64, F(base_height), 0, 0, NO_LO | NO_HI,
+     "metres added to every generated height (the flat generator's height)"},
+    {"roughness", V_F64, F(roughness), 0, 2, 0,
+     "diamond-square: first displacement as a fraction of max_height, 0 .. 2"},
+    {"smoothing", V_F64, F(smoothing), 0, 1, 0,
+     "diamond-square: roughness multiplier per subdivision, 0 .. 1"},
+    {"ridge_offset", V_F64, F(ridge_offset), 0, 2, 0,
+     "ridged multifractal: offset subtracted from |noise|, 0 .. 2"},
+    {"fault_count", V_I32, F(fault_count), 0, 10000, 0,
+     "faults: fault lines per 64 km x 64 km cell, 0 .. 10000"},
+    {"tiles", V_STR, F(tiles), 0, 0, 0,
+     "tile store (sculpted and painted data), relative to this file; empty = <name>.tiles"},
+};
+
+#undef F
+
+#define KEY_COUNT (sizeof KEYS / sizeof KEYS[0])
+
+static const char *const GEN_NAMES[GEN_COUNT] = {
+    "fbm", "fbm_advanced", "ridged", "diamond_square", "faults", "flat"};
+
+static const char *const KIND_NAMES[] = {"flat", "planet"};
+
+void world_params_default(world_params *p, world_kind kind) {
+    *p = (world_params){
+        .kind = kind,
+        .generator = GEN_FBM,
+        .seed = 1337,
+        .octaves = 8,
+        .w_factor = 0.5,
+        .exponent = 2.0,
+        .max_height = 1200,
+        // Below most of the land: water only fills the low basins.
+        .ocean_level = -400,
+        .radius = 6371000,
+        .omega = 0, // a still sun: an editor wants steady light
+        .spacing = 2,
+        .size = 0,
+        .detail_ratio = 4,
+        .feature_size = 0,
+        .base_height = 0,
+        .roughness = 0.4, // seed 003
+        .smoothing = 0.5, // seed 003
+        .ridge_offset = 1.0,
+        .fault_count = 100,
+        .tiles = "",
+    };
+    if (kind == WORLD_PLANET) {
+        // Earth-sized, with seed 004's advanced generator, gain and lacunarity.
+        p->generator = GEN_FBM_ADVANCED;
+        p->octaves = 12.5;
+        p->max_height = 8848;
+        p->ocean_level = 0;
+        p->omega = 7.2921e-5;
+        p->spacing = 100;
+    }
+}
+
+const char *gen_kind_name(gen_kind g) {
+    return (unsigned)g < GEN_COUNT ? GEN_NAMES[g] : NULL;
+}
+
+int gen_kind_parse(const char *text) {
+    if (!text) return -1;
+    for (int i = 0; i < GEN_COUNT; i++)
+        if (!strcasecmp(text, GEN_NAMES[i])) return i;
+    if (text[0] >= '0' && text[0] <= '9' && text[1] == 0 && text[0] - '0' < GEN_COUNT)
+        return text[0] - '0';
+    return -1;
+}
+
+static const key_def *find_def(const char *key) {
+    for (size_t i = 0; i < KEY_COUNT; i++)
+        if (!strcmp(KEYS[i].name, key)) return &KEYS[i];
+    return NULL;
+}
+
+size_t world_params_key_count(void) {
+    return KEY_COUNT;
+}
+
+const char *world_params_key(size_t i) {
+    return i < KEY_COUNT ? KEYS[i].name : NULL;
+}
+
+const char *world_params_key_help(const char *key) {
+    const key_def *d = key ? find_def(key) : NULL;
+    return d ? d->help : NULL;
+}
+
+static int bad_value(og_error *err, const key_def *d, const char *expected, const char *value) {
+    char q[64];
+    parse_quote(q, sizeof q, value);
+    return og_error_set(err, "%s: expected %s, got %s", d->name, expected, q);
+}
+
+static int in_range(const key_def *d, double v) {
+    if (!(d->range & NO_LO) && ((d->range & LO_OPEN) ? !(v > d->lo) : !(v >= d->lo))) return 0;
+    if (!(d->range & NO_HI) && ((d->range & HI_OPEN) ? !(v < d->hi) : !(v <= d->hi))) return 0;
+    return 1;
+}
+
+// "a number with 0 < x <= 30" etc., for messages.
+static void describe_range(char *buf, size_t len, const key_def *d, const char *what) {
+    char lo[32], hi[32];
+    parse_format_f64(lo, sizeof lo, d->lo);
+    parse_format_f64(hi, sizeof hi, d->hi);
+    if ((d->range & (NO_LO | NO_HI)) == (NO_LO | NO_HI))
+        snprintf(buf, len, "%s", what);
+    else if (d->range & NO_HI)
+        snprintf(buf, len, "%s %s %s", what, (d->range & LO_OPEN) ? ">" : ">=", lo);
+    else
+        snprintf(buf, len, "%s with %s %s %s %s %s", what, lo,
+                 (d->range & LO_OPEN) ? "<" : "<=", d->name, (d->range & HI_OPEN) ? "<" : "<=", hi);
+}
+
+// A tiles value must survive a save: no characters the file syntax gives a meaning to.
+static int tiles_value_ok(const char *v) {
+    size_t n = strlen(v);
+    if (n >= sizeof(((world_params *)0)->tiles)) return 0;
+    if (n && (v[0] == ' ' || v[0] == '\t' || v[n - 1] == ' ' || v[n - 1] == '\t')) return 0;
+    for (const unsigned char *c = (const unsigned char *)v; *c; c++)
+        if (*c < 0x20 || *c == 0x7f || *c == ';' || *c == '#') return 0;
+    return 1;
+}
+
+int world_params_set(world_params *p, const char *key, const char *value, og_error *err) {
+    const key_def *d = key ? find_def(key) : NULL;
+    if (!d) {
+        og_error_set(err, "unknown key '%s'", key ? key : "(null)");
+        return 1;
+    }
+    if (!value) value = "";
+    void *field = (char *)p + d->offset;
+    char what[128];
+    switch (d->type) {
+    case V_KIND:
+        for (int k = 0; k < 2; k++) {
+            if (!strcasecmp(value, KIND_NAMES[k])) {
+                p->kind = (world_kind)k;
+                return 0;
+            }
+        }
+        return bad_value(err, d, "flat or planet", value);
+    case V_GEN: {
+        int g = gen_kind_parse(value);
+        if (g < 0)
+            return bad_value(err, d,
+                             "a generator name (fbm, fbm_advanced, ridged, diamond_square, "
+                             "faults, flat) or index 0..5",
+                             value);
+        p->generator = (gen_kind)g;
+        return 0;
+    }
+    case V_I64:
+    case V_I32: {
+        int64_t v;
+        describe_range(what, sizeof what, d, "an integer");
+        if (parse_i64(value, &v) != 0 || !in_range(d, (double)v))
+            return bad_value(err, d, what, value);
+        if (d->type == V_I64)
+            memcpy(field, &v, sizeof v);
+        else
+            *(int32_t *)field = (int32_t)v;
+        return 0;
+    }
+    case V_F64: {
+        double v;
+        describe_range(what, sizeof what, d, "a finite number");
+        if (parse_f64(value, &v) != 0 || !in_range(d, v)) return bad_value(err, d, what, value);
+        memcpy(field, &v, sizeof v);
+        return 0;
+    }
+    case V_STR:
+        if (!tiles_value_ok(value))
+            return bad_value(err, d,
+                             "a relative path under 1024 bytes without ';', '#', control "
+                             "characters or surrounding blanks",
+                             value);
+        memcpy(p->tiles, value, strlen(value) + 1);
+        return 0;
+    }
+    return -1;
+}
+
+int world_params_get(const world_params *p, const char *key, char *buf, size_t len) {
+    const key_def *d = key ? find_def(key) : NULL;
+    if (!d || !buf || !len) return -1;
+    const void *field = (const char *)p + d->offset;
+    char tmp[64];
+    const char *text = tmp;
+    switch (d->type) {
+    case V_KIND:
+        text = (unsigned)p->kind < 2 ? KIND_NAMES[p->kind] : "?";
+        break;
+    case V_GEN:
+        text = gen_kind_name(p->generator);
+        if (!text) text = "?";
+        break;
+    case V_I64: {
+        int64_t v;
+        memcpy(&v, field, sizeof v);
+        snprintf(tmp, sizeof tmp, "%" PRId64, v);
+        break;
+    }
+    case V_I32:
+        snprintf(tmp, sizeof tmp, "%" PRId32, *(const int32_t *)field);
+        break;
+    case V_F64: {
+        double v;
+        memcpy(&v, field, sizeof v);
+        parse_format_f64(tmp, sizeof tmp, v);
+        break;
+    }
+    case V_STR:
+        text = p->tiles;
+        break;
+    }
+    size_t n = strnlen(text, len);
+    if (n >= len) return -1;
+    memcpy(buf, text, n + 1);
+    return 0;
+}
+
+int world_params_validate(const world_params *p, og_error *err) {
+    char buf[1100];
+    // Every field must also be a value `set` would accept (structs can be filled directly).
+    for (size_t i = 0; i < KEY_COUNT; i++) {
+        if (world_params_get(p, KEYS[i].name, buf, sizeof buf) != 0)
+            return og_error_set(err, "%s: invalid value", KEYS[i].name);
+        world_params probe = *p;
+        if (world_params_set(&probe, KEYS[i].name, buf, err) != 0) return -1;
+    }
+    if (p->kind == WORLD_PLANET) {
+        if (!(p->max_height < p->radius))
+            return og_error_set(err, "max_height: must be below radius (%g m), got %g m", p->radius,
+                                p->max_height);
+        // Loose on purpose: seed 004's files give ocean_level near the radius.
+        if (!(fabs(p->ocean_level) <= p->radius + p->max_height))
+            return og_error_set(err, "ocean_level: must lie within +-(radius + max_height), got %g",
+                                p->ocean_level);
+    } else if (p->size == 1) {
+        return og_error_set(err, "size: a flat world needs 0 (unbounded) or at least 2 samples "
+                                 "per side, got 1");
+    }
+    return 0;
+}
+
+static const char *path_ext(const char *path) {
+    const char *slash = strrchr(path, '/');
+    const char *base = slash ? slash + 1 : path;
+    const char *dot = strrchr(base, '.');
+    return dot && dot != base ? dot : NULL;
+}
+
+static void emit(void (*report)(void *, const char *), void *user, const char *path,
+                 const param_diag *d) {
+    if (!report) return;
+    char msg[4096 + 512];
+    const char *sev = d->severity == PARAM_ERROR ? "error" : "warning";
+    if (d->line > 0)
+        snprintf(msg, sizeof msg, "%s:%d: %s: %s", path, d->line, sev, d->message);
+    else
+        snprintf(msg, sizeof msg, "%s: %s: %s", path, sev, d->message);
+    report(user, msg);
+}
+
+// Stable sort by line; whole-file messages (line 0) go after the line-by-line ones.
+static void sort_diags(param_diag *d, size_t n) {
+    for (size_t i = 1; i < n; i++) {
+        param_diag x = d[i];
+        long lx = x.line > 0 ? x.line : INT_MAX;
+        size_t j = i;
+        for (; j > 0 && (d[j - 1].line > 0 ? d[j - 1].line : INT_MAX) > lx; j--)
+            d[j] = d[j - 1];
+        d[j] = x;
+    }
+}
+
+int world_params_load(const char *path, world_params *p, int *errors,
+                      void (*report)(void *user, const char *message), void *user, og_error *err) {
+    if (errors) *errors = 0;
+    param_file pf;
+    if (param_file_read(path, &pf, err) != 0) return -1;
+
+    const char *ext = path_ext(path);
+    world_kind kind = ext && !strcasecmp(ext, ".planet") ? WORLD_PLANET : WORLD_FLAT;
+    // A `kind` in the file picks the defaults the other keys then override.
+    for (size_t i = 0; i < pf.count; i++) {
+        if (strcmp(pf.entries[i].key, "kind")) continue;
+        world_params probe;
+        world_params_default(&probe, kind);
+        if (world_params_set(&probe, "kind", pf.entries[i].value, NULL) == 0) kind = probe.kind;
+    }
+    world_params_default(p, kind);
+
+    for (size_t i = 0; i < pf.count; i++) {
+        const param_entry *e = &pf.entries[i];
+        og_error e_err;
+        int rc = world_params_set(p, e->key, e->value, &e_err);
+        if (rc < 0)
+            param_file_diag(&pf, PARAM_ERROR, e->line, "%s", e_err.msg);
+        else if (rc > 0)
+            param_file_diag(&pf, PARAM_WARNING, e->line, "unknown key '%s'", e->key);
+    }
+    og_error v_err;
+    if (pf.count && world_params_validate(p, &v_err) != 0)
+        param_file_diag(&pf, PARAM_ERROR, 0, "%s", v_err.msg);
+
+    sort_diags(pf.diags, pf.diag_count);
+    for (size_t i = 0; i < pf.diag_count; i++) {
+        if (pf.diags[i].severity == PARAM_ERROR && errors) ++*errors;
+        emit(report, user, path, &pf.diags[i]);
+    }
+    param_file_free(&pf);
+    return 0;
+}
+
+char *world_params_format(const world_params *p) {
+    size_t cap = 8192, len = 0;
+    char *out = malloc(cap);
+    if (!out) return NULL;
+    char value[1100];
+    world_params_get(p, "kind", value, sizeof value);
+    len += (size_t)snprintf(out, cap,
+                            "# Orogen world parameters (kind %s). Syntax: key = value; '#' "
+                            "starts a comment.\n",
+                            value);
+    for (size_t i = 0; i < KEY_COUNT; i++) {
+        if (world_params_get(p, KEYS[i].name, value, sizeof value) != 0) value[0] = 0;
+        size_t need = strlen(KEYS[i].help) + strlen(KEYS[i].name) + strlen(value) + 16;
+        if (len + need >= cap) {
+            cap = (len + need) * 2;
+            char *grown = realloc(out, cap);
+            if (!grown) {
+                free(out);
+                return NULL;
+            }
+            out = grown;
+        }
+        len += (size_t)snprintf(out + len, cap - len, "\n# %s\n%s = %s;\n", KEYS[i].help,
+                                KEYS[i].name, value);
+    }
+    return out;
+}
+
+int world_params_save(const char *path, const world_params *p, og_error *err) {
+    char *text = world_params_format(p);
+    if (!text) return og_error_set(err, "%s: out of memory", path);
+    int rc = param_file_write_atomic(path, text, strlen(text), err);
+    free(text);
+    return rc;
+}
+
+// Appends "/name" (or "name" when dst is empty) to dst; -1 when it does not fit.
+static int path_join(char *dst, size_t len, const char *name, size_t name_len) {
+    size_t n = strlen(dst);
+    size_t sep = n && dst[n - 1] != '/';
+    if (n + sep + name_len + 1 > len) return -1;
+    if (sep) dst[n++] = '/';
+    memcpy(dst + n, name, name_len);
+    dst[n + name_len] = 0;
+    return 0;
+}
+
+// Whether `path` (inside a folder, possibly not existing yet) resolves inside `root`
+// (already resolved): the deepest existing ancestor is resolved, so a symlinked
+// folder or file pointing out of the folder is caught.
+static int stays_inside(const char *root, const char *path) {
+    char probe[PATH_MAX], real[PATH_MAX];
+    if (strlen(path) >= sizeof probe) return 0;
+    strcpy(probe, path);
+    for (;;) {
+        if (realpath(probe, real)) break;
+        char *slash = strrchr(probe, '/');
+        if (!slash || slash == probe) return 1; // nothing exists to follow
+        *slash = 0;
+    }
+    size_t n = strlen(root);
+    if (!strcmp(root, "/")) return 1;
+    return !strncmp(real, root, n) && (real[n] == 0 || real[n] == '/');
+}
+
+int world_params_tiles_path(const world_params *p, const char *param_path, char *out, size_t len,
+                            og_error *err) {
+    const char *slash = strrchr(param_path, '/');
+    const char *base = slash ? slash + 1 : param_path;
+    char rel[1100] = "";
+    const char *value = p->tiles;
+    char q[64];
+    parse_quote(q, sizeof q, value);
+    if (!value[0]) {
+        // Default: the parameter file's name with .tiles for its extension.
+        const char *ext = path_ext(param_path);
+        size_t stem = ext ? (size_t)(ext - base) : strlen(base);
+        if (!stem) return og_error_set(err, "%s: not a file name", param_path);
+        if (stem + 7 > sizeof rel) return og_error_set(err, "%s: path too long", param_path);
+        snprintf(rel, sizeof rel, "%.*s.tiles", (int)stem, base);
+    } else {
+        if (value[0] == '/')
+            return og_error_set(err,
+                                "tiles: %s is an absolute path; it must be relative to the "
+                                "parameter file's folder",
+                                q);
+        // Normalise lexically, refusing any `..` that climbs above the folder.
+        int depth = 0;
+        for (const char *s = value; *s;) {
+            const char *e = strchr(s, '/');
+            size_t n = e ? (size_t)(e - s) : strlen(s);
+            if (n == 2 && s[0] == '.' && s[1] == '.') {
+                if (--depth < 0)
+                    return og_error_set(err, "tiles: %s leaves the parameter file's folder", q);
+                char *cut = strrchr(rel, '/');
+                if (cut)
+                    *cut = 0;
+                else
+                    rel[0] = 0;
+            } else if (n && !(n == 1 && s[0] == '.')) {
+                depth++;
+                if (path_join(rel, sizeof rel, s, n) != 0)
+                    return og_error_set(err, "tiles: %s is too long", q);
+            }
+            s += n;
+            if (*s == '/') s++;
+        }
+        const char *last = strrchr(value, '/');
+        last = last ? last + 1 : value;
+        if (!rel[0] || !*last || !strcmp(last, ".") || !strcmp(last, ".."))
+            return og_error_set(err, "tiles: %s does not name a file", q);
+    }
+
+    char dir[PATH_MAX];
+    size_t dir_len = slash ? (size_t)(slash - param_path) : 0;
+    if (slash && dir_len == 0) dir_len = 1; // the file lives in "/"
+    if (dir_len >= sizeof dir) return og_error_set(err, "%s: path too long", param_path);
+    memcpy(dir, param_path, dir_len);
+    dir[dir_len] = 0;
+
+    char full[PATH_MAX];
+    snprintf(full, sizeof full, "%s", dir);
+    if (path_join(full, sizeof full, rel, strlen(rel)) != 0)
+        return og_error_set(err, "tiles: %s gives a path too long", q);
+
+    char root[PATH_MAX];
+    if (realpath(dir_len ? dir : ".", root) && !stays_inside(root, full))
+        return og_error_set(err,
+                            "tiles: %s leads out of the parameter file's folder through a "
+                            "symbolic link",
+                            q);
+
+    if (strlen(full) + 1 > len)
+        return og_error_set(err, "tiles: resolved path for %s does not fit", q);
+    memcpy(out, full, strlen(full) + 1);
+    return 0;
+}

@@ -1,0 +1,406 @@
+#include "editor/tools/brush_dab.h"
+
+#include "editor/edit/edit_rows.h"
+#include "editor/gen/gen_noise.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+// ---- shared per-sample pieces ---------------------------------------------------------
+
+// Selects rather than branches, so loops using it vectorise.
+static inline float keep_finite(float v, float old) {
+    v = v == v ? v : old;
+    v = v > (float)BRUSH_HEIGHT_LIMIT ? (float)BRUSH_HEIGHT_LIMIT : v;
+    return v < (float)-BRUSH_HEIGHT_LIMIT ? (float)-BRUSH_HEIGHT_LIMIT : v;
+}
+
+// The hot loops get an AVX2 clone picked at run time (same results: no FMA, and
+// sqrt is exact in both).
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define HOT_LOOP __attribute__((target_clones("avx2", "default")))
+#else
+#define HOT_LOOP
+#endif
+
+// dx of sample k of a row is fdx0 + k, k counted from the dab's own first column:
+// the same float whatever span (tile) the sample is computed in.
+HOT_LOOP static void smooth_weights(float fdx0, int k0, float dz2, float inv_r, float strength,
+                                    int n, float *w) {
+    for (int i = 0; i < n; i++) { // int: int64 to float conversion does not vectorise
+        float dx = fdx0 + (float)(k0 + i);
+        float t = sqrtf(dx * dx + dz2) * inv_r;
+        t = t < 1.0f ? t : 1.0f;
+        w[i] = (1.0f - t * t * (3.0f - 2.0f * t)) * strength;
+    }
+}
+
+HOT_LOOP static void add_weighted(float *row, const float *w, float a, int64_t n) {
+    for (int64_t i = 0; i < n; i++) row[i] = keep_finite(row[i] + w[i] * a, row[i]);
+}
+
+static int is_ramp(const brush_dab *d) { return d->brush->tool == BRUSH_RAMP; }
+
+// Distance (samples) from the ramp's segment, and where along it (0-1) x, z projects.
+static double ramp_distance(const brush_dab *d, double x, double z, double *along) {
+    double ux = d->bx - d->ax, uz = d->bz - d->az, len2 = ux * ux + uz * uz;
+    double t = len2 > 0 ? ((x - d->ax) * ux + (z - d->az) * uz) / len2 : 0.0;
+    t = t < 0 ? 0 : t > 1 ? 1 : t;
+    *along = t;
+    double px = d->ax + t * ux - x, pz = d->az + t * uz - z;
+    return sqrt(px * px + pz * pz);
+}
+
+grid_rect brush_dab_rect(const brush_dab *d) {
+    double r = d->radius;
+    if (is_ramp(d)) {
+        return (grid_rect){(int64_t)ceil(fmin(d->ax, d->bx) - r), (int64_t)ceil(fmin(d->az, d->bz) - r),
+                           (int64_t)floor(fmax(d->ax, d->bx) + r) + 1,
+                           (int64_t)floor(fmax(d->az, d->bz) + r) + 1};
+    }
+    return (grid_rect){(int64_t)ceil(d->cx - r), (int64_t)ceil(d->cz - r),
+                       (int64_t)floor(d->cx + r) + 1, (int64_t)floor(d->cz + r) + 1};
+}
+
+// Weight of every sample of one row span [x0, x1) at row z: falloff x strength.
+static void row_weights(const brush_dab *d, int64_t z, int64_t x0, int64_t x1, float *w) {
+    const brush *b = d->brush;
+    float inv_r = (float)(1.0 / d->radius);
+    if (is_ramp(d)) {
+        for (int64_t x = x0; x < x1; x++) {
+            double along;
+            float t = (float)ramp_distance(d, (double)x, (double)z, &along) * inv_r;
+            w[x - x0] = brush_falloff_weight(b, t) * d->strength;
+        }
+        return;
+    }
+    float dz = (float)((double)z - d->cz), dz2 = dz * dz;
+    int64_t first = brush_dab_rect(d).x0;
+    float fdx0 = (float)((double)first - d->cx);
+    int k0 = (int)(x0 - first);
+    if (b->falloff == FALLOFF_SMOOTH) { // the common case, vectorised
+        smooth_weights(fdx0, k0, dz2, inv_r, d->strength, (int)(x1 - x0), w);
+        return;
+    }
+    for (int64_t i = 0; i < x1 - x0; i++) {
+        float dx = fdx0 + (float)(k0 + i);
+        w[i] = brush_falloff_weight(b, sqrtf(dx * dx + dz2) * inv_r) * d->strength;
+    }
+}
+
+static float terrace(const brush *b, float h) {
+    double step = b->terrace_step, k = floor(h / step), f = h / step - k;
+    // f^p: flat treads and steep risers as sharpness goes to 1.
+    double p = 1.0 + 15.0 * b->terrace_sharpness * b->terrace_sharpness;
+    return (float)((k + pow(f, p)) * step);
+}
+
+// Pointwise tools on one row span of heights.
+static void height_row(const brush_dab *d, float *row, int64_t z, int64_t x0, int64_t x1, float *w) {
+    const brush *b = d->brush;
+    row_weights(d, z, x0, x1, w);
+    int64_t n = x1 - x0;
+    switch (b->tool) {
+    case BRUSH_RAISE: {
+        add_weighted(row, w, (float)(b->invert ? -b->amount : b->amount), n);
+        break;
+    }
+    case BRUSH_FLATTEN:
+    case BRUSH_SET: {
+        float t = d->target;
+        for (int64_t i = 0; i < n; i++) {
+            float h = row[i];
+            if (b->tool == BRUSH_FLATTEN && ((b->flatten == FLATTEN_RAISE && h >= t) ||
+                                             (b->flatten == FLATTEN_LOWER && h <= t)))
+                continue;
+            row[i] = keep_finite(h + w[i] * (t - h), h);
+        }
+        break;
+    }
+    case BRUSH_RAMP:
+        for (int64_t i = 0; i < n; i++) {
+            if (w[i] <= 0.0f) continue;
+            double along;
+            ramp_distance(d, (double)(x0 + i), (double)z, &along);
+            float t = (float)(d->ha + along * (d->hb - d->ha));
+            row[i] = keep_finite(row[i] + w[i] * (t - row[i]), row[i]);
+        }
+        break;
+    case BRUSH_NOISE: {
+        gen_fractal f = {GEN_FRACTAL_FBM, b->seed, b->noise_octaves, 0.5, 2.0, 1.0};
+        double k = d->spacing / b->noise_scale, zz = (double)z * k;
+        float a = (float)(b->invert ? -b->amount : b->amount);
+        for (int64_t i = 0; i < n; i++) {
+            if (w[i] <= 0.0f) continue;
+            float v = gen_fractal2(&f, (double)(x0 + i) * k, zz);
+            row[i] = keep_finite(row[i] + w[i] * a * v, row[i]);
+        }
+        break;
+    }
+    case BRUSH_TERRACE:
+        for (int64_t i = 0; i < n; i++) {
+            if (w[i] <= 0.0f) continue;
+            float h = row[i];
+            row[i] = keep_finite(h + w[i] * (terrace(b, h) - h), h);
+        }
+        break;
+    default: break;
+    }
+}
+
+// Material weights of one sample: move toward (or away from) material m by w,
+// keeping the 8 weights summing to exactly 255 (largest remainder rounding).
+static void paint_sample(uint8_t *m8, int m, float w, int invert) {
+    int sum = 0;
+    for (int c = 0; c < TILE_MATERIALS; c++) sum += m8[c];
+    double want[TILE_MATERIALS];
+    double old_m = sum ? m8[m] * 255.0 / sum : 0.0;
+    double new_m = invert ? old_m * (1.0 - w) : old_m + w * (255.0 - old_m);
+    double rest_old = (sum ? 255.0 : 0.0) - old_m, rest_new = 255.0 - new_m;
+    for (int c = 0; c < TILE_MATERIALS; c++) {
+        if (c == m) want[c] = new_m;
+        else if (rest_old > 0) want[c] = (sum ? m8[c] * 255.0 / sum : 0) * rest_new / rest_old;
+        else want[c] = 0;
+    }
+    if (rest_old <= 0 && rest_new > 0) want[m == 0 ? 1 : 0] += rest_new; // removed from a pure sample
+    int total = 0;
+    double frac[TILE_MATERIALS];
+    int out[TILE_MATERIALS];
+    for (int c = 0; c < TILE_MATERIALS; c++) {
+        out[c] = (int)floor(want[c]);
+        frac[c] = want[c] - out[c];
+        total += out[c];
+    }
+    while (total < 255) { // hand out the remaining units by largest remainder
+        int best = 0;
+        for (int c = 1; c < TILE_MATERIALS; c++)
+            if (frac[c] > frac[best]) best = c;
+        out[best]++;
+        frac[best] = -1;
+        total++;
+    }
+    for (int c = 0; c < TILE_MATERIALS; c++) m8[c] = (uint8_t)out[c];
+}
+
+static void paint_row(const brush_dab *d, uint8_t *row, int64_t z, int64_t x0, int64_t x1, float *w) {
+    row_weights(d, z, x0, x1, w);
+    for (int64_t i = 0; i < x1 - x0; i++)
+        if (w[i] > 0.0f) paint_sample(row + i * TILE_MATERIALS, d->brush->material, w[i], d->brush->invert);
+}
+
+static int is_pointwise(const brush *b) {
+    return b->tool != BRUSH_SMOOTH && b->tool != BRUSH_THERMAL && b->tool != BRUSH_HYDRAULIC;
+}
+
+// ---- neighbourhood tools on a gathered area ---------------------------------------
+
+static int halo_of(const brush_dab *d) {
+    switch (d->brush->tool) {
+    case BRUSH_SMOOTH: return 2 * (int)fmax(1.0, floor(d->radius / 8.0)); // two box passes
+    case BRUSH_THERMAL: return 1;
+    case BRUSH_HYDRAULIC: return (int)ceil(d->brush->hydraulic.radius_cells) + 2;
+    default: return 0;
+    }
+}
+
+// Box blur of radius k along columns, edges clamped: a running sum per column,
+// updated row by row, so the inner loops run across independent columns and
+// vectorise. Rows are blurred the same way on a transposed copy.
+static void transpose(const float *src, float *dst, int64_t w, int64_t h) {
+    for (int64_t z = 0; z < h; z++)
+        for (int64_t x = 0; x < w; x++) dst[x * h + z] = src[z * w + x];
+}
+
+HOT_LOOP static void box_columns(const float *src, float *dst, int64_t w, int64_t h, int k,
+                                 double *sum) {
+    double inv = 1.0 / (2 * k + 1);
+    for (int64_t x = 0; x < w; x++) sum[x] = 0.0;
+    for (int64_t i = -k; i <= k; i++) {
+        const float *s = src + (i < 0 ? 0 : i >= h ? h - 1 : i) * w;
+        for (int64_t x = 0; x < w; x++) sum[x] += s[x];
+    }
+    for (int64_t i = 0; i < h; i++) {
+        float *o = dst + i * w;
+        for (int64_t x = 0; x < w; x++) o[x] = (float)(sum[x] * inv);
+        int64_t add = i + k + 1, sub = i - k;
+        const float *a = src + (add >= h ? h - 1 : add) * w, *r = src + (sub < 0 ? 0 : sub) * w;
+        for (int64_t x = 0; x < w; x++) sum[x] += (double)a[x] - (double)r[x];
+    }
+}
+
+// Runs a neighbourhood tool on heights (w x h, covering `area`), changing only
+// samples whose weight > 0. weight gets the per-sample weights.
+static int neighbourhood(const brush_dab *d, float *heights, float *weight, grid_rect area,
+                         og_error *err) {
+    int64_t w = area.x1 - area.x0, h = area.z1 - area.z0;
+    int halo = halo_of(d);
+    grid_rect inner = {area.x0 + halo, area.z0 + halo, area.x1 - halo, area.z1 - halo};
+    memset(weight, 0, (size_t)(w * h) * sizeof *weight);
+    for (int64_t z = inner.z0; z < inner.z1; z++)
+        row_weights(d, z, inner.x0, inner.x1, weight + (z - area.z0) * w + halo);
+    const brush *b = d->brush;
+    if (b->tool == BRUSH_SMOOTH) {
+        int k = halo / 2;
+        float *a = malloc((size_t)(w * h) * sizeof *a), *c = malloc((size_t)(w * h) * sizeof *c);
+        double *scratch = malloc((size_t)(w > h ? w : h) * sizeof *scratch);
+        if (!a || !c || !scratch) {
+            free(a);
+            free(c);
+            free(scratch);
+            return og_error_set(err, "out of memory smoothing (%lld x %lld samples)", (long long)w,
+                                (long long)h);
+        }
+        transpose(heights, a, w, h);
+        box_columns(a, c, h, w, k, scratch);
+        box_columns(c, a, h, w, k, scratch);
+        transpose(a, c, h, w);
+        box_columns(c, a, w, h, k, scratch);
+        box_columns(a, c, w, h, k, scratch);
+        free(scratch);
+        for (int64_t i = 0; i < w * h; i++) {
+            if (weight[i] <= 0.0f) continue;
+            float old = heights[i], delta = c[i] - old;
+            heights[i] = keep_finite(old + (b->invert ? -weight[i] : weight[i]) * delta, old);
+        }
+        free(a);
+        free(c);
+        return 0;
+    }
+    if (w > INT32_MAX / (h ? h : 1)) return og_error_set(err, "brush area too large");
+    erosion_grid g = {heights, weight, (int)w, (int)h, (float)d->spacing};
+    if (b->tool == BRUSH_THERMAL) {
+        erosion_thermal(&g, &b->thermal);
+    } else {
+        hydraulic_params p = b->hydraulic;
+        p.seed = d->seed;
+        erosion_hydraulic(&g, &p, NULL);
+    }
+    for (int64_t i = 0; i < w * h; i++) heights[i] = keep_finite(heights[i], 0.0f);
+    return 0;
+}
+
+// ---- row functions shared by both paths ------------------------------------------------
+
+typedef struct dab_rows {
+    const brush_dab *d;
+    // neighbourhood tools: the computed area and its weights
+    const float *heights, *weight;
+    grid_rect area;
+} dab_rows;
+
+static void dab_row(void *user, void *row, int64_t z, int64_t x0, int64_t x1) {
+    dab_rows *j = user;
+    float w[TILE_SIZE];
+    for (int64_t s = x0; s < x1; s += TILE_SIZE) { // array rows can be longer than a tile
+        int64_t e = s + TILE_SIZE < x1 ? s + TILE_SIZE : x1;
+        if (!j->heights && j->d->brush->tool == BRUSH_PAINT) {
+            paint_row(j->d, (uint8_t *)row + (s - x0) * TILE_MATERIALS, z, s, e, w);
+        } else if (!j->heights) {
+            height_row(j->d, (float *)row + (s - x0), z, s, e, w);
+        } else {
+            int64_t aw = j->area.x1 - j->area.x0;
+            const float *src = j->heights + (z - j->area.z0) * aw - j->area.x0;
+            const float *wt = j->weight + (z - j->area.z0) * aw - j->area.x0;
+            float *dst = (float *)row - x0;
+            for (int64_t x = s; x < e; x++)
+                if (wt[x] > 0.0f) dst[x] = src[x];
+        }
+    }
+}
+
+// Neighbourhood tools only write where the weight is > 0: skip tiles a disc grazes.
+static int dab_wanted(void *user, grid_rect part) {
+    dab_rows *j = user;
+    if (!j->heights) return 1;
+    int64_t aw = j->area.x1 - j->area.x0;
+    for (int64_t z = part.z0; z < part.z1; z++)
+        for (int64_t x = part.x0; x < part.x1; x++)
+            if (j->weight[(z - j->area.z0) * aw + (x - j->area.x0)] > 0.0f) return 1;
+    return 0;
+}
+
+// Gathers the area around r (r + halo) and runs the neighbourhood tool on it.
+typedef int (*area_reader)(void *src, grid_rect area, float *out, og_error *err);
+
+static int prepare(const brush_dab *d, tile_layer layer, grid_rect r, area_reader read, void *src,
+                   dab_rows *rows, og_error *err) {
+    *rows = (dab_rows){.d = d};
+    if (layer == TILE_LAYER_MATERIAL || is_pointwise(d->brush)) return 0;
+    int halo = halo_of(d);
+    grid_rect area = {r.x0 - halo, r.z0 - halo, r.x1 + halo, r.z1 + halo};
+    size_t n = (size_t)((area.x1 - area.x0) * (area.z1 - area.z0));
+    float *heights = malloc(n * sizeof *heights), *weight = malloc(n * sizeof *weight);
+    if (!heights || !weight || read(src, area, heights, err) != 0 ||
+        neighbourhood(d, heights, weight, area, err) != 0) {
+        if (!heights || !weight) og_error_set(err, "out of memory for a brush of %zu samples", n);
+        free(heights);
+        free(weight);
+        return -1;
+    }
+    rows->heights = heights;
+    rows->weight = weight;
+    rows->area = area;
+    return 0;
+}
+
+static void release(dab_rows *rows) {
+    free((void *)rows->heights);
+    free((void *)rows->weight);
+}
+
+// ---- the plain-array path ---------------------------------------------------------------
+
+typedef struct array_source {
+    const float *data;
+    grid_rect area;
+} array_source;
+
+static int read_array(void *src, grid_rect r, float *out, og_error *err) {
+    (void)err;
+    array_source *a = src;
+    int64_t aw = a->area.x1 - a->area.x0, w = r.x1 - r.x0;
+    for (int64_t z = r.z0; z < r.z1; z++) {
+        int64_t cz = z < a->area.z0 ? a->area.z0 : z >= a->area.z1 ? a->area.z1 - 1 : z;
+        for (int64_t x = r.x0; x < r.x1; x++) {
+            int64_t cx = x < a->area.x0 ? a->area.x0 : x >= a->area.x1 ? a->area.x1 - 1 : x;
+            out[(z - r.z0) * w + (x - r.x0)] = a->data[(cz - a->area.z0) * aw + (cx - a->area.x0)];
+        }
+    }
+    return 0;
+}
+
+int brush_dab_apply_array(const brush_dab *d, tile_layer layer, void *data, grid_rect area,
+                          og_error *err) {
+    grid_rect r = grid_rect_intersect(brush_dab_rect(d), area);
+    if (grid_rect_empty(r)) return 0;
+    array_source src = {data, area};
+    dab_rows rows;
+    if (prepare(d, layer, r, read_array, &src, &rows, err) != 0) return -1;
+    edit_rows_apply_array(layer, data, area, r, dab_row, &rows);
+    release(&rows);
+    return 0;
+}
+
+// ---- the tiled path ---------------------------------------------------------------------
+
+typedef struct world_source {
+    world *w;
+    const layer_grid *g;
+} world_source;
+
+static int read_world(void *src, grid_rect r, float *out, og_error *err) {
+    world_source *s = src;
+    return layer_grid_read(s->w, s->g, r, out, err);
+}
+
+int brush_dab_apply(edit *e, const layer_grid *g, const brush_dab *d, og_error *err) {
+    grid_rect r = layer_grid_clip(g, brush_dab_rect(d));
+    if (grid_rect_empty(r)) return 0;
+    world_source src = {edit_world(e), g};
+    dab_rows rows;
+    if (prepare(d, g->layer, r, read_world, &src, &rows, err) != 0) return -1;
+    int rc = edit_rows_apply(e, g, r, dab_row, dab_wanted, &rows, err);
+    release(&rows);
+    return rc;
+}

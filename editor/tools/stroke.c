@@ -1,0 +1,168 @@
+#include "editor/tools/stroke.h"
+
+#include "editor/tools/brush_dab.h"
+#include "editor/edit/edit.h"
+#include "editor/world/layer_grid.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+// More dabs than this in one segment is a mistake (a typo'd coordinate), not a stroke.
+#define STROKE_MAX_DABS_PER_SEGMENT 1000000
+
+struct stroke {
+    world *world;
+    brush brush;
+    layer_grid grid;
+    edit *edit;
+    int started;
+    double last_x, last_z, last_p; // metres
+    double first_x, first_z;
+    double carry;                  // distance walked since the last dab
+    float target;                  // flatten / set height
+    long dabs;
+};
+
+// Height of the edited layer at (x, z) metres, bilinear.
+static int layer_height(stroke *s, double x, double z, float *out, og_error *err) {
+    double fx = x / s->grid.spacing, fz = z / s->grid.spacing;
+    int64_t ix = (int64_t)floor(fx), iz = (int64_t)floor(fz);
+    float q[4];
+    if (layer_grid_read(s->world, &s->grid, (grid_rect){ix, iz, ix + 2, iz + 2}, q, err) != 0)
+        return -1;
+    double ax = fx - ix, az = fz - iz;
+    *out = (float)((q[0] * (1 - ax) + q[1] * ax) * (1 - az) + (q[2] * (1 - ax) + q[3] * ax) * az);
+    return 0;
+}
+
+stroke *stroke_begin(world *w, const brush *b, og_error *err) {
+    stroke *s = calloc(1, sizeof *s);
+    if (!s) {
+        og_error_set(err, "out of memory");
+        return NULL;
+    }
+    s->world = w;
+    s->brush = *b;
+    tile_layer layer = b->tool == BRUSH_PAINT ? TILE_LAYER_MATERIAL : b->target;
+    if (layer_grid_init(&s->grid, world_get_params(w), layer, b->face, err) != 0) goto fail;
+    if (b->radius / s->grid.spacing > BRUSH_MAX_RADIUS_SAMPLES) {
+        og_error_set(err, "radius: %g m is %g samples of the %s layer; the limit is %g samples",
+                     b->radius, b->radius / s->grid.spacing, tile_layer_name(layer),
+                     BRUSH_MAX_RADIUS_SAMPLES);
+        goto fail;
+    }
+    if (b->tool == BRUSH_SET && !b->has_height) {
+        og_error_set(err, "set: give the height first (tool set height=METRES)");
+        goto fail;
+    }
+    if (b->invert && b->tool != BRUSH_RAISE && b->tool != BRUSH_SMOOTH && b->tool != BRUSH_NOISE &&
+        b->tool != BRUSH_PAINT) {
+        og_error_set(err, "invert: has no meaning for %s (it works with raise, smooth, noise and paint)",
+                     brush_tool_name(b->tool));
+        goto fail;
+    }
+    char label[128];
+    snprintf(label, sizeof label, "%s stroke", brush_tool_name(b->tool));
+    if (!(s->edit = edit_begin(w, label, err))) goto fail;
+    s->target = (float)b->height;
+    return s;
+fail:
+    free(s);
+    return NULL;
+}
+
+static int dab_at(stroke *s, double x, double z, double pressure, og_error *err) {
+    brush_dab d = {
+        .brush = &s->brush,
+        .cx = x / s->grid.spacing,
+        .cz = z / s->grid.spacing,
+        .radius = s->brush.radius / s->grid.spacing,
+        .strength = (float)(s->brush.strength * pressure),
+        .spacing = s->grid.spacing,
+        .target = s->target,
+        // Each dab's droplets differ, reproducibly.
+        .seed = s->brush.hydraulic.seed + 0x9E3779B97F4A7C15ULL * (uint64_t)(s->dabs + 1),
+    };
+    s->dabs++;
+    return brush_dab_apply(s->edit, &s->grid, &d, err);
+}
+
+static int check_point(stroke *s, double x, double z, double pressure, og_error *err) {
+    if (layer_grid_check_position(&s->grid, x, z, err) != 0) return -1;
+    if (!(pressure >= 0.0 && pressure <= 1.0))
+        return og_error_set(err, "pressure: expected a number in [0, 1], got '%g'", pressure);
+    return 0;
+}
+
+int stroke_to(stroke *s, double x, double z, double pressure, og_error *err) {
+    if (check_point(s, x, z, pressure, err) != 0) return -1;
+    if (!s->started) {
+        s->started = 1;
+        s->first_x = s->last_x = x;
+        s->first_z = s->last_z = z;
+        s->last_p = pressure;
+        if (s->brush.tool == BRUSH_FLATTEN && !s->brush.has_height &&
+            layer_height(s, x, z, &s->target, err) != 0)
+            return -1;
+        if (s->brush.tool == BRUSH_RAMP) return 0;
+        return dab_at(s, x, z, pressure, err);
+    }
+    double dx = x - s->last_x, dz = z - s->last_z, len = sqrt(dx * dx + dz * dz);
+    double step = fmax(s->brush.spacing * s->brush.radius, 0.25 * s->grid.spacing);
+    if (s->brush.tool != BRUSH_RAMP) {
+        if ((len + s->carry) / step > STROKE_MAX_DABS_PER_SEGMENT)
+            return og_error_set(err, "stroke: a segment of %g m would need more than %d dabs", len,
+                                STROKE_MAX_DABS_PER_SEGMENT);
+        // Dabs every `step` along the path, continuing the spacing across segments.
+        double at = step - s->carry;
+        for (; at <= len; at += step) {
+            double a = at / len;
+            if (dab_at(s, s->last_x + a * dx, s->last_z + a * dz,
+                       s->last_p + a * (pressure - s->last_p), err) != 0)
+                return -1;
+        }
+        s->carry = len - (at - step);
+    }
+    s->last_x = x;
+    s->last_z = z;
+    s->last_p = pressure;
+    return 0;
+}
+
+static int apply_ramp(stroke *s, og_error *err) {
+    float ha, hb;
+    if (layer_height(s, s->first_x, s->first_z, &ha, err) != 0 ||
+        layer_height(s, s->last_x, s->last_z, &hb, err) != 0)
+        return -1;
+    double k = 1.0 / s->grid.spacing;
+    brush_dab d = {.brush = &s->brush,
+                   .radius = s->brush.radius * k,
+                   .strength = (float)s->brush.strength,
+                   .spacing = s->grid.spacing,
+                   .ax = s->first_x * k, .az = s->first_z * k,
+                   .bx = s->last_x * k, .bz = s->last_z * k,
+                   .ha = ha, .hb = hb};
+    s->dabs++;
+    return brush_dab_apply(s->edit, &s->grid, &d, err);
+}
+
+int stroke_end(stroke *s, og_error *err) {
+    int rc = 0;
+    if (s->started && s->brush.tool == BRUSH_RAMP) rc = apply_ramp(s, err);
+    if (rc != 0) {
+        edit_abort(s->edit);
+    } else {
+        rc = edit_commit(s->edit, err);
+    }
+    free(s);
+    return rc;
+}
+
+void stroke_cancel(stroke *s) {
+    if (!s) return;
+    edit_abort(s->edit);
+    free(s);
+}
+
+long stroke_dab_count(const stroke *s) { return s->dabs; }

@@ -1,0 +1,26 @@
+// A stroke: press, drag, release. Dabs are laid along the path every
+// spacing x radius; the whole stroke is one edit (one undo step). Flatten picks its
+// height under the first point when none is set; ramp applies once at release,
+// from the first point to the last.
+#ifndef OROGEN_EDITOR_STROKE_H
+#define OROGEN_EDITOR_STROKE_H
+
+#include "editor/tools/brush.h"
+#include "editor/world/world.h"
+
+typedef struct stroke stroke;
+
+// Checks the brush against the world (radius in samples, face, set's height).
+stroke *stroke_begin(world *w, const brush *b, og_error *err);
+// Moves the brush to (x, z) metres (face-local on planets) with pressure 0-1: the first
+// call lays one dab there, later calls lay dabs along the segment from the last point.
+int stroke_to(stroke *s, double x, double z, double pressure, og_error *err);
+// Commits the stroke as one undo step and frees it.
+int stroke_end(stroke *s, og_error *err);
+// Undoes what the stroke did so far and frees it.
+void stroke_cancel(stroke *s);
+
+// Dabs laid so far (for benchmarks and tests).
+long stroke_dab_count(const stroke *s);
+
+#endif

@@ -1,0 +1,82 @@
+// The undo history: a list of steps, each holding per touched tile the XOR of the
+// tile's bytes before and after the step, compressed. XOR makes undo and redo the
+// same exact operation (bits ^= delta) and compresses to almost nothing where the
+// step left the tile unchanged. A memory budget drops the oldest steps.
+//
+// Pure bookkeeping: applying a step to a world is edit.c's job.
+#ifndef OROGEN_EDITOR_HISTORY_H
+#define OROGEN_EDITOR_HISTORY_H
+
+#include "editor/params/world_grid.h"
+#include "editor/params/world_params.h"
+#include "io/tile.h"
+
+#include <stddef.h>
+#include <stdint.h>
+
+typedef struct history_tile {
+    tile_key key;
+    int was_pristine; // never edited before the step: undo may forget it (regenerate)
+    size_t bytes;     // compressed delta size
+    void *delta;
+} history_tile;
+
+typedef struct history_step {
+    uint64_t id;
+    char label[128];
+    history_tile *tiles;
+    size_t tile_count;
+    int has_params; // a `generate`: the world's parameters before and after
+    world_params params_before, params_after;
+    dirty_rect *dirty;
+    size_t dirty_count;
+    size_t raw_bytes; // bytes of the tiles it covers, uncompressed (for reports)
+    size_t bytes;     // memory the step holds
+} history_step;
+
+typedef struct history history;
+
+history *history_create(size_t budget_bytes); // 0 = 512 MiB
+void history_destroy(history *h);
+
+// A new empty step (owned by the caller until pushed).
+history_step *history_step_new(const char *label);
+void history_step_free(history_step *s);
+// The compressed XOR of before and after (tile_layer_bytes(layer) each): *delta is
+// malloc'd, or NULL when the tile did not change. Returns -1 when out of memory.
+// Thread-safe (pure).
+int history_delta_encode(tile_layer layer, const void *before, const void *after, void **delta,
+                         size_t *bytes);
+// Adds an encoded delta to a step (takes ownership of delta).
+int history_step_add_delta(history_step *s, tile_key key, int was_pristine, void *delta,
+                           size_t bytes);
+int history_step_add_dirty(history_step *s, dirty_rect r);
+// Applies a stored delta to a tile's bytes in place (undo and redo alike).
+int history_tile_apply(const history_tile *t, void *data);
+
+// Takes ownership of s: drops every redo step, appends s, then drops the oldest
+// steps while over budget (never s itself). Returns how many old steps were dropped.
+size_t history_push(history *h, history_step *s);
+// The step undo would revert / redo would reapply, or NULL; *_done moves past it.
+history_step *history_undo_peek(history *h);
+void history_undo_done(history *h);
+history_step *history_redo_peek(history *h);
+void history_redo_done(history *h);
+
+size_t history_count(const history *h);    // steps held
+size_t history_position(const history *h); // steps applied (the rest can be redone)
+const history_step *history_at(const history *h, size_t i);
+size_t history_bytes(const history *h);
+size_t history_budget(const history *h);
+size_t history_set_budget(history *h, size_t budget_bytes); // returns steps dropped
+uint64_t history_dropped_total(const history *h);
+
+// Unsaved-changes tracking: the state when mark_saved was last called vs now.
+void history_mark_saved(history *h);
+int history_modified(const history *h);
+
+// Changed areas since the last take, for the renderer (merged per layer and face).
+void history_dirty_add(history *h, dirty_rect r);
+size_t history_dirty_take(history *h, dirty_rect *out, size_t max);
+
+#endif

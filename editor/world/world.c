@@ -1,0 +1,383 @@
+#include "editor/world/world.h"
+
+#include "editor/gen/gen.h"
+#include "editor/world/history.h"
+#include "editor/params/world_grid.h"
+
+#include <errno.h>
+#include <ftw.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+// What the cache's workers generate from: a private copy of the parameters, so a
+// `generate` never changes them under a running worker.
+typedef struct world_generation {
+    world_params params;
+} world_generation;
+
+struct world {
+    world_params params;
+    world_settings settings;
+    char path[4096];       // parameter file; "" until saved
+    char scratch_dir[4096]; // the journal's folder in $TMPDIR
+    // Edits go to the journal (a scratch store) until saved; the world's own store,
+    // when it has one, is only read until `save` merges the journal into it. So a
+    // world closed without saving leaves its files exactly as they were.
+    tile_store *journal;
+    tile_store *store; // NULL until the world has been saved (or loaded with its tiles)
+    tile_cache *cache;
+    world_generation *gen;
+    history *history;
+    uint64_t serial; // unique per world in this process (a new world may reuse an address)
+};
+
+static int generation_source(void *user, tile_key key, void *out) {
+    const world_generation *g = user;
+    return gen_tile(&g->params, key, out);
+}
+
+static void default_warn(void *user, const char *message) {
+    (void)user;
+    fprintf(stderr, "%s\n", message);
+}
+
+static int check_params(const world_params *p, og_error *err) {
+    if (world_params_validate(p, err) != 0) return -1;
+    if (p->kind == WORLD_PLANET && p->generator == GEN_DIAMOND_SQUARE)
+        return og_error_set(err, "generator: diamond_square works on flat worlds only; planets "
+                                 "use fbm, fbm_advanced, ridged, faults or flat");
+    return 0;
+}
+
+static int start_cache(world *w, og_error *err) {
+    world_generation *g = malloc(sizeof *g);
+    if (!g) return og_error_set(err, "out of memory");
+    g->params = w->params;
+    tile_cache_desc d = {
+        .budget_bytes = w->settings.cache_budget_bytes,
+        .workers = w->settings.workers,
+        .source = generation_source,
+        .source_user = g,
+        .store = w->journal,
+        .base_store = w->store,
+        .warn = w->settings.warn,
+        .warn_user = w->settings.warn_user,
+    };
+    tile_cache *c = tile_cache_create(&d, err);
+    if (!c) {
+        free(g);
+        return -1;
+    }
+    w->cache = c;
+    w->gen = g;
+    return 0;
+}
+
+static int stop_cache(world *w, og_error *err) {
+    int rc = tile_cache_destroy(w->cache, err);
+    free(w->gen);
+    w->cache = NULL;
+    w->gen = NULL;
+    return rc;
+}
+
+static int remove_entry(const char *path, const struct stat *st, int flag, struct FTW *ftw) {
+    (void)st, (void)flag, (void)ftw;
+    return remove(path);
+}
+
+static void close_stores(world *w) {
+    tile_store_close(w->store);
+    w->store = NULL;
+    tile_store_close(w->journal);
+    w->journal = NULL;
+    if (w->scratch_dir[0]) {
+        nftw(w->scratch_dir, remove_entry, 8, FTW_DEPTH | FTW_PHYS);
+        w->scratch_dir[0] = 0;
+    }
+}
+
+static int open_journal(world *w, og_error *err) {
+    const char *tmp = getenv("TMPDIR");
+    snprintf(w->scratch_dir, sizeof w->scratch_dir, "%s/orogen-scratch-XXXXXX",
+             tmp && *tmp ? tmp : "/tmp");
+    if (!mkdtemp(w->scratch_dir)) {
+        int e = errno;
+        w->scratch_dir[0] = 0;
+        return og_error_set(err, "cannot create a scratch folder for unsaved edits in %s: %s",
+                            tmp && *tmp ? tmp : "/tmp", strerror(e));
+    }
+    char path[4200];
+    snprintf(path, sizeof path, "%s/unsaved.tiles", w->scratch_dir);
+    w->journal = tile_store_open(path, err);
+    if (!w->journal) {
+        close_stores(w);
+        return -1;
+    }
+    return 0;
+}
+
+static world *world_alloc(const world_params *params, const world_settings *settings) {
+    world *w = calloc(1, sizeof *w);
+    if (!w) return NULL;
+    static _Atomic uint64_t next_serial = 1;
+    w->serial = next_serial++;
+    w->params = *params;
+    if (settings) w->settings = *settings;
+    if (!w->settings.warn) w->settings.warn = default_warn;
+    w->history = history_create(w->settings.history_budget_bytes);
+    if (!w->history) {
+        free(w);
+        return NULL;
+    }
+    return w;
+}
+
+world *world_create(const world_params *params, const world_settings *settings, og_error *err) {
+    if (check_params(params, err) != 0) return NULL;
+    world *w = world_alloc(params, settings);
+    if (!w) {
+        og_error_set(err, "out of memory");
+        return NULL;
+    }
+    if (open_journal(w, err) != 0 || start_cache(w, err) != 0) {
+        world_close(w);
+        return NULL;
+    }
+    return w;
+}
+
+static void forward_report(void *user, const char *message) {
+    const world_settings *s = user;
+    if (s && s->warn)
+        s->warn(s->warn_user, message);
+    else
+        default_warn(NULL, message);
+}
+
+world *world_load(const char *path, const world_settings *settings, int *errors, og_error *err) {
+    world_params p;
+    int errs = 0;
+    if (world_params_load(path, &p, &errs, forward_report, (void *)settings, err) != 0) return NULL;
+    if (errors) *errors = errs;
+    if (check_params(&p, err) != 0) {
+        char msg[sizeof err->msg + 4200];
+        snprintf(msg, sizeof msg, "%s: error: %s", path, err->msg);
+        size_t n = strlen(msg) < sizeof err->msg - 1 ? strlen(msg) : sizeof err->msg - 1;
+        memcpy(err->msg, msg, n);
+        err->msg[n] = 0;
+        return NULL;
+    }
+    char tiles[4096];
+    if (world_params_tiles_path(&p, path, tiles, sizeof tiles, err) != 0) return NULL;
+    world *w = world_alloc(&p, settings);
+    if (!w) {
+        og_error_set(err, "out of memory");
+        return NULL;
+    }
+    snprintf(w->path, sizeof w->path, "%s", path);
+    // Loading never creates files: a world with no tile store yet has only its journal.
+    int failed = open_journal(w, err) != 0;
+    if (!failed && access(tiles, F_OK) == 0) failed = !(w->store = tile_store_open(tiles, err));
+    if (failed || start_cache(w, err) != 0) {
+        world_close(w);
+        return NULL;
+    }
+    return w;
+}
+
+void world_close(world *w) {
+    if (!w) return;
+    if (w->cache) {
+        og_error err = {{0}};
+        if (stop_cache(w, &err) != 0)
+            w->settings.warn(w->settings.warn_user, err.msg);
+    }
+    close_stores(w);
+    history_destroy(w->history);
+    free(w);
+}
+
+int world_save(world *w, const char *path, og_error *err) {
+    if (!path || !*path) path = w->path;
+    if (!*path) return og_error_set(err, "save: this world has no file yet; give a file name");
+    world_params p = w->params;
+    char tiles[4096];
+    if (strcmp(path, w->path) != 0) p.tiles[0] = 0; // a new file gets its own NAME.tiles
+    if (world_params_tiles_path(&p, path, tiles, sizeof tiles, err) != 0) return -1;
+    if (tile_cache_flush(w->cache, err) != 0) return -1;
+
+    int same_store = w->store && strcmp(tiles, tile_store_path(w->store)) == 0;
+    tile_store *target = same_store ? w->store : tile_store_open(tiles, err);
+    if (!target) return -1;
+    // A new place first gets the saved tiles (and loses those of whatever was saved
+    // there before); then the journal's edits go in, in one transaction.
+    int rc = 0;
+    if (!same_store) {
+        rc = tile_store_clear(target, err);
+        if (rc == 0 && w->store) rc = tile_store_merge_from(target, tile_store_path(w->store), err);
+    }
+    if (rc == 0) rc = tile_store_merge_from(target, tile_store_path(w->journal), err);
+    if (rc == 0) rc = world_params_save(path, &p, err);
+    if (rc != 0) {
+        if (!same_store) tile_store_close(target);
+        return -1;
+    }
+    // Everything is in the saved files now; a failure to empty the journal only
+    // costs space (its tiles equal the saved ones).
+    og_error ignored;
+    tile_store_clear(w->journal, &ignored);
+    history_mark_saved(w->history);
+    w->params = p;
+    snprintf(w->path, sizeof w->path, "%s", path);
+    if (same_store) return 0;
+    // Switch the cache over to the new store.
+    stop_cache(w, NULL);
+    tile_store_close(w->store);
+    w->store = target;
+    return start_cache(w, err);
+}
+
+int world_regenerate(world *w, const world_params *params, og_error *err) {
+    if (check_params(params, err) != 0) return -1;
+    world_params keep = w->params;
+    if (stop_cache(w, err) != 0) return -1;
+    w->params = *params;
+    // The file-level settings that are not generation parameters stay the world's own.
+    snprintf(w->params.tiles, sizeof w->params.tiles, "%s", keep.tiles);
+    return start_cache(w, err);
+}
+
+const world_params *world_get_params(const world *w) { return &w->params; }
+uint64_t world_serial(const world *w) { return w->serial; }
+
+const char *world_path(const world *w) { return w->path; }
+tile_cache *world_cache(world *w) { return w->cache; }
+tile_store *world_store(world *w) { return w->store; }
+tile_store *world_journal(world *w) { return w->journal; }
+history *world_history(world *w) { return w->history; }
+int world_is_modified(const world *w) { return history_modified(w->history); }
+void world_warn(const world *w, const char *message) {
+    w->settings.warn(w->settings.warn_user, message);
+}
+
+// Level-0 samples per side, or 0 when unbounded.
+static int64_t world_extent(const world *w) {
+    if (w->params.kind == WORLD_PLANET) return world_grid_face_samples(&w->params);
+    return w->params.size;
+}
+
+static int check_face(const world *w, int face, og_error *err) {
+    int faces = w->params.kind == WORLD_PLANET ? 6 : 1;
+    if (face < 0 || face >= faces)
+        return og_error_set(err, "face %d does not exist (this world has %s)", face,
+                            faces == 6 ? "faces 0-5" : "only face 0");
+    return 0;
+}
+
+static int read_sample(world *w, int face, int64_t gx, int64_t gz, float *out, og_error *err) {
+    tile_key key = {TILE_LAYER_COARSE, face, 0, (int32_t)world_grid_floor_div(gx, TILE_SIZE),
+                    (int32_t)world_grid_floor_div(gz, TILE_SIZE)};
+    tile_view v;
+    if (tile_cache_acquire(w->cache, key, &v, err) != 0) return -1;
+    int64_t i = gx - (int64_t)key.tx * TILE_SIZE, j = gz - (int64_t)key.ty * TILE_SIZE;
+    *out = ((const float *)v.data)[j * TILE_SIZE + i];
+    tile_cache_release(w->cache, &v);
+    return 0;
+}
+
+// Samples addressable at all: int32 tile coordinates.
+static int in_tile_range(double index) {
+    return fabs(index) < (double)INT32_MAX * TILE_SIZE - 2.0;
+}
+
+int world_sample(world *w, int face, double x, double z, double *height, og_error *err) {
+    if (check_face(w, face, err) != 0) return -1;
+    if (!isfinite(x) || !isfinite(z)) return og_error_set(err, "position must be finite numbers");
+    double fx = x / w->params.spacing, fz = z / w->params.spacing;
+    int64_t n = world_extent(w);
+    if (n > 0 && (fx < 0 || fz < 0 || fx > (double)(n - 1) || fz > (double)(n - 1)))
+        return og_error_set(err, "position (%g, %g) m lies outside the world (0 to %g m)", x, z,
+                            (double)(n - 1) * w->params.spacing);
+    if (!in_tile_range(fx) || !in_tile_range(fz))
+        return og_error_set(err, "position (%g, %g) m lies beyond the int32 tile range", x, z);
+    int64_t i0 = (int64_t)floor(fx), j0 = (int64_t)floor(fz);
+    double tx = fx - (double)i0, tz = fz - (double)j0;
+    // Neighbours are read only when they carry weight, so the last row and column
+    // of a bounded world need nothing beyond it.
+    float h00, h10 = 0, h01 = 0, h11 = 0;
+    if (read_sample(w, face, i0, j0, &h00, err) != 0) return -1;
+    if (tx > 0 && read_sample(w, face, i0 + 1, j0, &h10, err) != 0) return -1;
+    if (tz > 0 && read_sample(w, face, i0, j0 + 1, &h01, err) != 0) return -1;
+    if (tx > 0 && tz > 0 && read_sample(w, face, i0 + 1, j0 + 1, &h11, err) != 0) return -1;
+    double top = h00 + (h10 - h00) * tx, bottom = h01 + (h11 - h01) * tx;
+    *height = tz > 0 ? top + (bottom - top) * tz : top;
+    return 0;
+}
+
+#define HASH_PREFETCH 6 // tiles queued ahead so both workers stay busy
+
+int world_hash(world *w, int face, double x0, double z0, double x1, double z1, uint64_t *digest,
+               uint64_t *count, og_error *err) {
+    if (check_face(w, face, err) != 0) return -1;
+    if (!isfinite(x0) || !isfinite(z0) || !isfinite(x1) || !isfinite(z1))
+        return og_error_set(err, "rectangle corners must be finite numbers");
+    if (x1 < x0 || z1 < z0) return og_error_set(err, "rectangle is empty: need X0 <= X1 and Z0 <= Z1");
+    double sp = w->params.spacing;
+    double fx0 = ceil(x0 / sp), fz0 = ceil(z0 / sp), fx1 = floor(x1 / sp), fz1 = floor(z1 / sp);
+    int64_t n = world_extent(w);
+    if (n > 0 && (fx0 < 0 || fz0 < 0 || fx1 > (double)(n - 1) || fz1 > (double)(n - 1)))
+        return og_error_set(err, "rectangle extends outside the world (0 to %g m)",
+                            (double)(n - 1) * sp);
+    if (!in_tile_range(fx0) || !in_tile_range(fz0) || !in_tile_range(fx1) || !in_tile_range(fz1))
+        return og_error_set(err, "rectangle lies beyond the int32 tile range");
+    int64_t gx0 = (int64_t)fx0, gz0 = (int64_t)fz0, gx1 = (int64_t)fx1, gz1 = (int64_t)fz1;
+    uint64_t h = 0xcbf29ce484222325ULL, samples = 0;
+    if (gx1 < gx0 || gz1 < gz0) {
+        *digest = h;
+        *count = 0;
+        return 0;
+    }
+    // A typo in a corner should not start an hour-long walk: 2^32 samples (65536^2,
+    // 16 GiB of heights) is far beyond any interactive check.
+    double area = ((double)gx1 - (double)gx0 + 1) * ((double)gz1 - (double)gz0 + 1);
+    if (area > 4294967296.0)
+        return og_error_set(err, "rectangle holds %.4g samples; at most 2^32 (65536 x 65536) "
+                                 "are hashed at once", area);
+    int64_t tx0 = world_grid_floor_div(gx0, TILE_SIZE), tx1 = world_grid_floor_div(gx1, TILE_SIZE);
+    int64_t tz0 = world_grid_floor_div(gz0, TILE_SIZE), tz1 = world_grid_floor_div(gz1, TILE_SIZE);
+    int64_t across = tx1 - tx0 + 1, total = across * (tz1 - tz0 + 1);
+    for (int64_t t = 0; t < total; t++) {
+        // Queue the next few tiles so the workers generate them while we hash this one.
+        for (int64_t a = t + HASH_PREFETCH; a > t; a--) {
+            if (a >= total) continue;
+            tile_key ahead = {TILE_LAYER_COARSE, face, 0, (int32_t)(tx0 + a % across),
+                              (int32_t)(tz0 + a / across)};
+            tile_view v;
+            tile_cache_request(w->cache, ahead, &v);
+            tile_cache_release(w->cache, &v);
+        }
+        tile_key key = {TILE_LAYER_COARSE, face, 0, (int32_t)(tx0 + t % across),
+                        (int32_t)(tz0 + t / across)};
+        tile_view v;
+        if (tile_cache_acquire(w->cache, key, &v, err) != 0) return -1;
+        const uint32_t *bits = v.data;
+        int64_t bx = (int64_t)key.tx * TILE_SIZE, bz = (int64_t)key.ty * TILE_SIZE;
+        int i0 = (int)(gx0 > bx ? gx0 - bx : 0), i1 = (int)(gx1 < bx + TILE_SIZE - 1 ? gx1 - bx : TILE_SIZE - 1);
+        int j0 = (int)(gz0 > bz ? gz0 - bz : 0), j1 = (int)(gz1 < bz + TILE_SIZE - 1 ? gz1 - bz : TILE_SIZE - 1);
+        for (int j = j0; j <= j1; j++)
+            for (int i = i0; i <= i1; i++) {
+                // FNV-1a over 32-bit words: the float bit patterns, as stored.
+                h ^= bits[j * TILE_SIZE + i];
+                h *= 0x100000001b3ULL;
+            }
+        samples += (uint64_t)(i1 - i0 + 1) * (uint64_t)(j1 - j0 + 1);
+        tile_cache_release(w->cache, &v);
+    }
+    *digest = h;
+    *count = samples;
+    return 0;
+}

@@ -1,0 +1,69 @@
+// The document: a world's parameters, its tile store and the tile cache over
+// them. Everything that reads or changes terrain goes through a world.
+#ifndef OROGEN_EDITOR_WORLD_H
+#define OROGEN_EDITOR_WORLD_H
+
+#include "editor/params/world_params.h"
+#include "io/err.h"
+#include "io/tile_cache.h"
+#include "io/tile_store.h"
+
+#include <stdint.h>
+
+typedef struct world_settings {
+    size_t cache_budget_bytes; // 0 = 1 GiB
+    size_t history_budget_bytes; // undo memory; 0 = 512 MiB
+    int workers;               // 0 = 2
+    // Warnings (corrupt tiles, unknown keys while loading); NULL = stderr.
+    void (*warn)(void *user, const char *message);
+    void *warn_user;
+} world_settings;
+
+typedef struct world world;
+typedef struct history history;
+
+// A new, unsaved world. Its edits live in a scratch tile store in $TMPDIR until
+// the first save moves them beside the parameter file.
+world *world_create(const world_params *params, const world_settings *settings, og_error *err);
+// Loads NAME.world / NAME.planet and opens its tile store. Diagnostics (bad values,
+// unknown keys) go to settings->warn; *errors counts the errors among them.
+// Returns NULL (err set) only when the file cannot be read or the store cannot be opened.
+world *world_load(const char *path, const world_settings *settings, int *errors, og_error *err);
+// Frees the world. Unsaved edits are discarded: the world's files stay as last saved.
+void world_close(world *w);
+
+// Saves the parameter file to path (NULL: the current path) and the tile store
+// beside it, copying stored tiles when saving somewhere new. Atomic per file.
+int world_save(world *w, const char *path, og_error *err);
+
+// Replaces the generation parameters (the `generate` command): cached generated
+// tiles are dropped, edited (stored) tiles stay.
+int world_regenerate(world *w, const world_params *params, og_error *err);
+
+const world_params *world_get_params(const world *w);
+// Unique per world opened in this process (views use it to tell worlds apart).
+uint64_t world_serial(const world *w);
+const char *world_path(const world *w); // "" for a never-saved world
+tile_cache *world_cache(world *w);
+// The world's own tile store (NULL until saved), and the journal of unsaved edits
+// (where the cache writes dirty tiles; merged into the store by world_save).
+tile_store *world_store(world *w);
+tile_store *world_journal(world *w);
+// The undo history (editor/history.h; applied by editor/edit.h).
+history *world_history(world *w);
+// Whether the world differs from its last save (or from how it was created or loaded).
+int world_is_modified(const world *w);
+// Reports something the user should know that is not an error (settings->warn).
+void world_warn(const world *w, const char *message);
+
+// Coarse height in metres at face-local metres (x, z): bilinear between level-0 samples.
+// Fails for positions outside a bounded world or a non-existent face.
+int world_sample(world *w, int face, double x, double z, double *height, og_error *err);
+
+// A 64-bit digest of the level-0 coarse heights of every sample whose position lies in
+// [x0, x1] x [z0, z1] metres (face-local), visited tile by tile in row-major tile
+// order, each tile's covered samples row-major. *count gets the number of samples.
+int world_hash(world *w, int face, double x0, double z0, double x1, double z1, uint64_t *digest,
+               uint64_t *count, og_error *err);
+
+#endif
