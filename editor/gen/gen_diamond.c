@@ -13,9 +13,11 @@
 // neighbouring tiles agree exactly on every shared parent and there are no seams.
 // Mip level L is the same field stopped at spacing 2^L: coarser levels are exact
 // subsamples of finer ones.
-#include "editor/gen/gen.h"
+#include "editor/gen/gen_diamond.h"
 
+#include "editor/gen/gen_hash.h"
 #include "editor/gen/gen_noise.h"
+#include "editor/gen/gen_scale.h"
 #include "editor/params/world_grid.h"
 
 #include <math.h>

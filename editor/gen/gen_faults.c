@@ -6,8 +6,9 @@
 // plane through the centre lifting one hemisphere and lowering the other.
 // The step's width is never narrower than two samples of the mip level, which
 // band-limits coarse levels.
-#include "editor/gen/gen.h"
+#include "editor/gen/gen_faults.h"
 
+#include "editor/gen/gen_hash.h"
 #include "editor/params/world_grid.h"
 
 #include <math.h>
