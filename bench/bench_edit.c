@@ -14,6 +14,7 @@
 // are reported (PASS/MISS), not asserted.
 #include "editor/tools/brush_dab.h"
 #include "editor/edit/edit.h"
+#include "editor/edit/edit_commit.h"
 #include "editor/tools/erosion.h"
 #include "editor/gen/gen.h"
 #include "editor/world/history.h"

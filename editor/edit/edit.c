@@ -1,7 +1,6 @@
 #include "editor/edit/edit.h"
 
 #include "editor/edit/detail_pd.h"
-#include "editor/edit/edit_mips.h"
 #include "editor/edit/parallel.h"
 
 #include <pthread.h>
@@ -136,7 +135,7 @@ void edit_dirty(edit *e, tile_layer layer, int face, grid_rect r) {
         if (e->dirty_count < e->dirty_cap) e->dirty[e->dirty_count++] = d;
     }
     pthread_mutex_unlock(&e->lock);
-    history_dirty_add(world_history(e->world), d); // live: the renderer shows the stroke
+    world_publish_area(e->world, layer, face, r); // live: the viewport shows the stroke
 }
 
 size_t edit_dirty_rects(edit *e, const dirty_rect **rects) {
@@ -153,6 +152,10 @@ static void free_edit(edit *e) {
     free(e);
 }
 
+static void publish_areas(world *w, const dirty_rect *rects, size_t count) {
+    for (size_t i = 0; i < count; i++) world_publish_area(w, rects[i].layer, rects[i].face, rects[i].rect);
+}
+
 // Puts every snapshot back (writing the tiles' bytes as they were).
 static void restore(edit *e) {
     tile_cache *cache = world_cache(e->world);
@@ -166,7 +169,7 @@ static void restore(edit *e) {
         memcpy(v.data, e->snaps[i].before, tile_layer_bytes((tile_layer)e->snaps[i].key.layer));
         tile_cache_release(cache, &v);
     }
-    for (size_t i = 0; i < e->dirty_count; i++) history_dirty_add(world_history(e->world), e->dirty[i]);
+    publish_areas(e->world, e->dirty, e->dirty_count);
 }
 
 void edit_abort(edit *e) {
@@ -179,19 +182,17 @@ typedef struct encode_job {
     edit *e;
     void **deltas;
     size_t *sizes;
-    int failed;
 } encode_job;
 
-static void encode_task(void *user, int task) {
+static int encode_task(void *user, int task, og_error *err) {
     encode_job *j = user;
     snapshot *s = &j->e->snaps[task];
     tile_view v;
-    og_error err;
-    if (tile_cache_acquire(world_cache(j->e->world), s->key, &v, &err) != 0 ||
-        history_delta_encode((tile_layer)s->key.layer, s->before, v.data, &j->deltas[task],
-                             &j->sizes[task]) != 0)
-        j->failed = 1;
+    if (tile_cache_acquire(world_cache(j->e->world), s->key, &v, err) != 0) return -1;
+    int rc = history_delta_encode((tile_layer)s->key.layer, s->before, v.data, &j->deltas[task],
+                                  &j->sizes[task]);
     tile_cache_release(world_cache(j->e->world), &v);
+    return rc != 0 ? og_error_set(err, "out of memory recording the undo step") : 0;
 }
 
 static void report_dropped(world *w, size_t dropped) {
@@ -205,35 +206,34 @@ static void report_dropped(world *w, size_t dropped) {
     world_warn(w, msg);
 }
 
-int edit_commit(edit *e, og_error *err) {
-    if (edit_mips_update(e, err) != 0 || detail_pd_update(e->world, e->dirty, e->dirty_count, err) != 0) {
-        edit_abort(e);
-        return -1;
-    }
+int edit_record(edit *e, og_error *err) {
     history_step *step = history_step_new(e->label);
     void **deltas = calloc(e->count ? e->count : 1, sizeof *deltas);
     size_t *sizes = calloc(e->count ? e->count : 1, sizeof *sizes);
-    encode_job job = {e, deltas, sizes, !step || !deltas || !sizes};
-    if (!job.failed) parallel_run((int)e->count, encode_task, &job);
-    for (size_t i = 0; i < e->count && !job.failed; i++)
+    encode_job job = {e, deltas, sizes};
+    int failed = !step || !deltas || !sizes;
+    if (failed) og_error_set(err, "out of memory recording the undo step");
+    if (!failed) failed = parallel_run((int)e->count, encode_task, &job, err) != 0;
+    for (size_t i = 0; i < e->count && !failed; i++)
         if (deltas[i] &&
             history_step_add_delta(step, e->snaps[i].key, e->snaps[i].pristine, deltas[i], sizes[i]) != 0)
-            job.failed = 1;
+            failed = og_error_set(err, "out of memory recording the undo step");
         else
             deltas[i] = NULL;
-    for (size_t i = 0; i < e->dirty_count && !job.failed; i++)
-        if (history_step_add_dirty(step, e->dirty[i]) != 0) job.failed = 1;
-    if (job.failed) {
+    for (size_t i = 0; i < e->dirty_count && !failed; i++)
+        if (history_step_add_dirty(step, e->dirty[i]) != 0)
+            failed = og_error_set(err, "out of memory recording the undo step");
+    if (failed) {
         for (size_t i = 0; i < e->count; i++) free(deltas ? deltas[i] : NULL);
         free(deltas);
         free(sizes);
         history_step_free(step);
         edit_abort(e);
-        return og_error_set(err, "out of memory recording the undo step");
+        return -1;
     }
     free(deltas);
     free(sizes);
-    for (size_t i = 0; i < e->dirty_count; i++) history_dirty_add(world_history(e->world), e->dirty[i]);
+    publish_areas(e->world, e->dirty, e->dirty_count);
     world *w = e->world;
     free_edit(e);
     if (step->tile_count == 0 && !step->has_params) { // nothing changed: no step
@@ -241,6 +241,7 @@ int edit_commit(edit *e, og_error *err) {
         return 0;
     }
     report_dropped(w, history_push(world_history(w), step));
+    world_publish(w, &(world_event){.kind = WORLD_EVENT_HISTORY});
     return 0;
 }
 
@@ -250,44 +251,37 @@ typedef struct replay_job {
     world *world;
     const history_step *step;
     int undo;
-    int failed;
-    char message[sizeof(((og_error *)0)->msg)];
 } replay_job;
 
-static void replay_task(void *user, int task) {
+static int replay_task(void *user, int task, og_error *err) {
     replay_job *j = user;
     const history_tile *t = &j->step->tiles[task];
     tile_cache *cache = world_cache(j->world);
     tile_view v;
-    og_error err;
-    if (tile_cache_acquire_write(cache, t->key, &v, &err) != 0) {
-        j->failed = 1;
-        snprintf(j->message, sizeof j->message, "%s", err.msg);
-        return;
-    }
-    if (history_tile_apply(t, v.data) != 0) {
-        j->failed = 1;
-        snprintf(j->message, sizeof j->message, "undo data of a tile is damaged (out of memory?)");
-    }
+    if (tile_cache_acquire_write(cache, t->key, &v, err) != 0) return -1;
+    int rc = 0;
+    if (history_tile_apply(t, v.data) != 0)
+        rc = og_error_set(err, "undo data of a tile is damaged (out of memory?)");
     tile_cache_release(cache, &v);
     // Back to never-edited terrain: forget the copy so it regenerates (a later
     // `generate` must change it like any untouched tile).
     // A tile saved since then is not pristine any more: the saved store holds it.
     tile_store *saved = world_store(j->world);
+    og_error ignored;
     if (j->undo && t->was_pristine && !(saved && tile_store_has(saved, t->key)) &&
         tile_cache_discard(cache, t->key) == 0)
-        tile_store_put(world_journal(j->world), t->key, NULL, &err);
+        tile_store_put(world_journal(j->world), t->key, NULL, &ignored);
+    return rc;
 }
 
 static int replay(world *w, const history_step *s, int undo, og_error *err) {
     if (s->has_params &&
         world_regenerate(w, undo ? &s->params_before : &s->params_after, err) != 0)
         return -1;
-    replay_job job = {w, s, undo, 0, ""};
-    parallel_run((int)s->tile_count, replay_task, &job);
-    if (job.failed) return og_error_set(err, "%s", job.message);
+    replay_job job = {w, s, undo};
+    if (parallel_run((int)s->tile_count, replay_task, &job, err) != 0) return -1;
     if (detail_pd_update(w, s->dirty, s->dirty_count, err) != 0) return -1;
-    for (size_t i = 0; i < s->dirty_count; i++) history_dirty_add(world_history(w), s->dirty[i]);
+    publish_areas(w, s->dirty, s->dirty_count);
     return 0;
 }
 
@@ -297,6 +291,7 @@ int edit_undo(world *w, og_error *err) {
     if (!s) return 0;
     if (replay(w, s, 1, err) != 0) return -1;
     history_undo_done(h);
+    world_publish(w, &(world_event){.kind = WORLD_EVENT_HISTORY});
     return 1;
 }
 
@@ -306,6 +301,7 @@ int edit_redo(world *w, og_error *err) {
     if (!s) return 0;
     if (replay(w, s, 0, err) != 0) return -1;
     history_redo_done(h);
+    world_publish(w, &(world_event){.kind = WORLD_EVENT_HISTORY});
     return 1;
 }
 
@@ -318,5 +314,6 @@ int edit_generate(world *w, const world_params *params, og_error *err) {
     s->params_before = before;
     s->params_after = *world_get_params(w);
     report_dropped(w, history_push(world_history(w), s));
+    world_publish(w, &(world_event){.kind = WORLD_EVENT_HISTORY});
     return 0;
 }

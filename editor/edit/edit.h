@@ -1,7 +1,7 @@
 // Changing a world: every change is an edit (one undo step). An edit snapshots each
-// tile the first time it touches it; committing turns the snapshots into the step's
-// compressed deltas, rebuilds the coarse mip levels and the detail PD map over the
-// changed area, and reports dirty rectangles. Undo and redo replay steps exactly.
+// tile the first time it touches it; recording turns the snapshots into the step's
+// compressed deltas and publishes the changed areas (world_events.h). Undo and redo
+// replay steps exactly.
 #ifndef OROGEN_EDITOR_EDIT_H
 #define OROGEN_EDITOR_EDIT_H
 
@@ -27,9 +27,10 @@ void edit_dirty(edit *e, tile_layer layer, int face, grid_rect r);
 const void *edit_snapshot(edit *e, tile_key key);
 size_t edit_dirty_rects(edit *e, const dirty_rect **rects);
 
-// Ends the edit as one undo step. On failure the world is restored to its state
-// before the edit. Frees e either way.
-int edit_commit(edit *e, og_error *err);
+// Ends the edit as one undo step holding the touched tiles' deltas as they are now
+// (edit_commit in edit_commit.h first brings mips and PD maps up to date: use that).
+// On failure the world is restored to its state before the edit. Frees e either way.
+int edit_record(edit *e, og_error *err);
 // Restores every touched tile and frees e.
 void edit_abort(edit *e);
 

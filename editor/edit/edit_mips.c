@@ -22,8 +22,6 @@ typedef struct level_job {
     int face, level, planet; // level: the parent level being written
     grid_rect parents;       // parent samples to update
     int64_t ptx0, ptz0, ptw; // parent tiles covering them
-    int failed;
-    og_error err;
 } level_job;
 
 // Fills win (w x h, origin cx0, cz0 in child samples) with after - before of every
@@ -72,30 +70,25 @@ static int child_changes(level_job *j, int64_t cx0, int64_t cz0, int64_t w, int6
     return any;
 }
 
-static void parent_tile_task(void *user, int task) {
+static int parent_tile_task(void *user, int task, og_error *err) {
     level_job *j = user;
     int64_t tx = j->ptx0 + task % j->ptw, tz = j->ptz0 + task / j->ptw;
     grid_rect sub = grid_rect_intersect(
         j->parents, (grid_rect){tx * TILE_SIZE, tz * TILE_SIZE, (tx + 1) * TILE_SIZE, (tz + 1) * TILE_SIZE});
-    if (grid_rect_empty(sub)) return;
+    if (grid_rect_empty(sub)) return 0;
     int64_t pw = sub.x1 - sub.x0, ph = sub.z1 - sub.z0;
     // Flat: parent p averages children 2p-1..2p+1; planet: children 2p, 2p+1.
     int64_t lo = j->planet ? 0 : -1;
     int64_t cw = 2 * pw + (j->planet ? 0 : 1), ch = 2 * ph + (j->planet ? 0 : 1);
     int64_t cx0 = 2 * sub.x0 + lo, cz0 = 2 * sub.z0 + lo;
     float *win = malloc((size_t)(cw * ch) * sizeof *win);
-    if (!win) {
-        j->failed = 1;
-        og_error_set(&j->err, "out of memory updating mip levels");
-        return;
-    }
+    if (!win) return og_error_set(err, "out of memory updating mip levels");
+    int rc = 0;
     if (child_changes(j, cx0, cz0, cw, ch, win)) {
         tile_key key = {TILE_LAYER_COARSE, j->face, j->level, (int32_t)tx, (int32_t)tz};
         tile_view v;
-        og_error err;
-        if (edit_tile_acquire(j->e, key, &v, &err) != 0) {
-            j->failed = 1;
-            j->err = err;
+        if (edit_tile_acquire(j->e, key, &v, err) != 0) {
+            rc = -1;
         } else {
             float *t = v.data;
             for (int64_t z = 0; z < ph; z++) {
@@ -119,6 +112,7 @@ static void parent_tile_task(void *user, int task) {
         }
     }
     free(win);
+    return rc;
 }
 
 int edit_mips_update(edit *e, og_error *err) {
@@ -155,11 +149,7 @@ int edit_mips_update(edit *e, og_error *err) {
             job.ptz0 = floor_div(pr.z0, TILE_SIZE);
             job.ptw = floor_div(pr.x1 - 1, TILE_SIZE) - job.ptx0 + 1;
             int64_t pth = floor_div(pr.z1 - 1, TILE_SIZE) - job.ptz0 + 1;
-            parallel_run((int)(job.ptw * pth), parent_tile_task, &job);
-            if (job.failed) {
-                *err = job.err;
-                return -1;
-            }
+            if (parallel_run((int)(job.ptw * pth), parent_tile_task, &job, err) != 0) return -1;
             r = pr;
         }
     }

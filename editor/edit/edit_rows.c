@@ -15,30 +15,24 @@ typedef struct rows_job {
     edit_row_fn fn;
     edit_rows_wanted_fn wanted;
     void *user;
-    int failed;
-    og_error err;
 } rows_job;
 
-static void rows_task(void *user, int task) {
+static int rows_task(void *user, int task, og_error *err) {
     rows_job *j = user;
     int64_t tx = j->tx0 + task % j->tw, tz = j->tz0 + task / j->tw;
     grid_rect t = grid_rect_intersect(
         j->r, (grid_rect){tx * TILE_SIZE, tz * TILE_SIZE, (tx + 1) * TILE_SIZE, (tz + 1) * TILE_SIZE});
-    if (grid_rect_empty(t) || (j->wanted && !j->wanted(j->user, t))) return;
+    if (grid_rect_empty(t) || (j->wanted && !j->wanted(j->user, t))) return 0;
     tile_key key = {j->g->layer, j->g->face, 0, (int32_t)tx, (int32_t)tz};
     tile_view v;
-    og_error err;
-    if (edit_tile_acquire(j->e, key, &v, &err) != 0) {
-        j->failed = 1;
-        j->err = err;
-        return;
-    }
+    if (edit_tile_acquire(j->e, key, &v, err) != 0) return -1;
     size_t bytes = sample_bytes(j->g->layer);
     for (int64_t z = t.z0; z < t.z1; z++) {
         size_t at = (size_t)((z - tz * TILE_SIZE) * TILE_SIZE + (t.x0 - tx * TILE_SIZE));
         j->fn(j->user, (uint8_t *)v.data + at * bytes, z, t.x0, t.x1);
     }
     edit_tile_release(j->e, &v);
+    return 0;
 }
 
 int edit_rows_apply(edit *e, const layer_grid *g, grid_rect r, edit_row_fn fn,
@@ -49,11 +43,7 @@ int edit_rows_apply(edit *e, const layer_grid *g, grid_rect r, edit_row_fn fn,
     job.tz0 = world_grid_floor_div(r.z0, TILE_SIZE);
     job.tw = world_grid_floor_div(r.x1 - 1, TILE_SIZE) - job.tx0 + 1;
     int64_t th = world_grid_floor_div(r.z1 - 1, TILE_SIZE) - job.tz0 + 1;
-    parallel_run((int)(job.tw * th), rows_task, &job);
-    if (job.failed) {
-        *err = job.err;
-        return -1;
-    }
+    if (parallel_run((int)(job.tw * th), rows_task, &job, err) != 0) return -1;
     edit_dirty(e, g->layer, g->face, r);
     return 0;
 }

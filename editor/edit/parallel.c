@@ -13,20 +13,33 @@ static struct {
     int threads;     // including the caller
     unsigned generation;
     int busy;        // workers still inside the current job
-    void (*fn)(void *, int);
+    parallel_task_fn fn;
     void *user;
     int tasks;
     atomic_int next;
+    int failed;      // under lock: a task of the current job failed
+    og_error *first; // where the first failure's message goes
 } pool = {.once = PTHREAD_ONCE_INIT,
           .lock = PTHREAD_MUTEX_INITIALIZER,
           .start = PTHREAD_COND_INITIALIZER,
           .done = PTHREAD_COND_INITIALIZER};
 
+// Keeps the first failure's message; any later one is dropped.
+static void record_failure(const og_error *e) {
+    pthread_mutex_lock(&pool.lock);
+    if (!pool.failed) {
+        pool.failed = 1;
+        if (pool.first) *pool.first = *e;
+    }
+    pthread_mutex_unlock(&pool.lock);
+}
+
 static void drain(void) {
     for (;;) {
         int t = atomic_fetch_add(&pool.next, 1);
         if (t >= pool.tasks) return;
-        pool.fn(pool.user, t);
+        og_error e = {{0}};
+        if (pool.fn(pool.user, t, &e) != 0) record_failure(&e);
     }
 }
 
@@ -67,17 +80,23 @@ int parallel_threads(void) {
     return pool.threads;
 }
 
-void parallel_run(int tasks, void (*fn)(void *user, int task), void *user) {
-    if (tasks <= 0) return;
+int parallel_run(int tasks, parallel_task_fn fn, void *user, og_error *err) {
+    if (tasks <= 0) return 0;
     pthread_once(&pool.once, start_pool);
     if (tasks == 1 || pool.threads == 1) {
-        for (int t = 0; t < tasks; t++) fn(user, t);
-        return;
+        int failed = 0;
+        for (int t = 0; t < tasks; t++) {
+            og_error e = {{0}};
+            if (fn(user, t, &e) != 0 && !failed++ && err) *err = e;
+        }
+        return failed ? -1 : 0;
     }
     pthread_mutex_lock(&pool.lock);
     pool.fn = fn;
     pool.user = user;
     pool.tasks = tasks;
+    pool.failed = 0;
+    pool.first = err;
     atomic_store(&pool.next, 0);
     pool.busy = pool.threads - 1;
     pool.generation++;
@@ -86,5 +105,8 @@ void parallel_run(int tasks, void (*fn)(void *user, int task), void *user) {
     drain();
     pthread_mutex_lock(&pool.lock);
     while (pool.busy > 0) pthread_cond_wait(&pool.done, &pool.lock);
+    int failed = pool.failed;
+    pool.first = NULL;
     pthread_mutex_unlock(&pool.lock);
+    return failed ? -1 : 0;
 }

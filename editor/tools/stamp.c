@@ -2,6 +2,7 @@
 
 #include "editor/tools/brush.h"
 #include "editor/edit/edit.h"
+#include "editor/edit/edit_commit.h"
 #include "editor/edit/edit_rows.h"
 #include "editor/world/layer_grid.h"
 #include "editor/tools/stamp_library.h"

@@ -2,6 +2,7 @@
 
 #include "editor/tools/brush_dab.h"
 #include "editor/edit/edit.h"
+#include "editor/edit/edit_commit.h"
 #include "editor/world/layer_grid.h"
 
 #include <math.h>
