@@ -1,6 +1,6 @@
 #include "renderer/terrain_renderer.h"
 
-#include "editor/world/history.h"
+#include "editor/world/world_events.h"
 #include "renderer/clip_window.h"
 #include "renderer/clipmap_mesh.h"
 #include "renderer/frustum.h"
@@ -32,10 +32,11 @@ struct terrain_renderer {
     clip_window material, detail, detail_pd;
     float hmin[RENDER_MAX_LEVELS], hmax[RENDER_MAX_LEVELS];
 
-    // What the levels show: the world and parameters they were filled from.
+    // What the levels show: the world they were filled from, and its change
+    // notifications (edits, new parameters, another world).
     world *world;
-    uint64_t world_serial;
-    world_params params;
+    world_subscription *changes;
+    world_params params; // the world's, as of this frame's update
 
     // This frame's layout (terrain_renderer_update).
     int levels, finest;
@@ -194,6 +195,7 @@ fail:
 
 void terrain_renderer_destroy(terrain_renderer *r) {
     if (!r) return;
+    world_events_unsubscribe(r->changes);
     glDeleteProgram(r->prog_terrain);
     glDeleteProgram(r->prog_sky);
     glDeleteProgram(r->prog_water);
@@ -288,37 +290,55 @@ static void invalidate_all(terrain_renderer *r) {
     clip_window_invalidate(&r->detail_pd);
 }
 
-// Edits since the last frame: re-read just the changed samples of every window.
-static void apply_dirty(terrain_renderer *r, world *w) {
-    history *h = world_history(w);
+// Re-reads just the changed samples of every window.
+static void refresh_area(terrain_renderer *r, tile_cache *cache, const world_event *e) {
+    grid_rect g = e->rect;
+    if (e->face != 0 || e->level != 0) return;
+    switch (e->layer) {
+    case TILE_LAYER_COARSE:
+        // Mips are tent-filtered: a change reaches one sample further per level.
+        for (int l = 0; l < RENDER_MAX_LEVELS; l++)
+            clip_window_refresh(&r->heights[l], cache, (g.x0 >> l) - 1, (g.z0 >> l) - 1,
+                                ((g.x1 - 1) >> l) + 2, ((g.z1 - 1) >> l) + 2);
+        break;
+    case TILE_LAYER_MATERIAL:
+        clip_window_refresh(&r->material, cache, g.x0, g.z0, g.x1, g.z1);
+        break;
+    case TILE_LAYER_DETAIL:
+    case TILE_LAYER_DETAIL_PD: // slopes change one sample around the change
+        clip_window_refresh(&r->detail, cache, g.x0 - 1, g.z0 - 1, g.x1 + 1, g.z1 + 1);
+        clip_window_refresh(&r->detail_pd, cache, g.x0 - 1, g.z0 - 1, g.x1 + 1, g.z1 + 1);
+        break;
+    default: break;
+    }
+}
+
+// What changed since the last frame, from the world's change notifications: edited
+// areas are re-read, new parameters or another world refill everything.
+static int apply_changes(terrain_renderer *r, world *w, og_error *err) {
+    world_events *hub = world_event_hub(w);
+    int fresh = r->world != w;
+    if (!r->changes || world_subscription_hub(r->changes) != hub) {
+        world_events_unsubscribe(r->changes);
+        r->changes = world_events_subscribe(hub, NULL, NULL);
+        if (!r->changes) return og_error_set(err, "out of memory");
+        fresh = 1;
+    }
+    r->world = w;
+    if (fresh) invalidate_all(r);
     tile_cache *cache = world_cache(w);
-    if (!h) return;
-    dirty_rect rects[64];
+    world_event events[64];
     size_t n;
-    while ((n = history_dirty_take(h, rects, 64)) > 0) {
+    while ((n = world_subscription_take(r->changes, events, 64)) > 0) {
         for (size_t i = 0; i < n; i++) {
-            grid_rect g = rects[i].rect;
-            if (rects[i].face != 0) continue;
-            switch (rects[i].layer) {
-            case TILE_LAYER_COARSE:
-                // Mips are tent-filtered: a change reaches one sample further per level.
-                for (int l = 0; l < RENDER_MAX_LEVELS; l++)
-                    clip_window_refresh(&r->heights[l], cache, (g.x0 >> l) - 1, (g.z0 >> l) - 1,
-                                        ((g.x1 - 1) >> l) + 2, ((g.z1 - 1) >> l) + 2);
-                break;
-            case TILE_LAYER_MATERIAL:
-                clip_window_refresh(&r->material, cache, g.x0, g.z0, g.x1, g.z1);
-                break;
-            case TILE_LAYER_DETAIL:
-            case TILE_LAYER_DETAIL_PD: // slopes change one sample around the change
-                clip_window_refresh(&r->detail, cache, g.x0 - 1, g.z0 - 1, g.x1 + 1, g.z1 + 1);
-                clip_window_refresh(&r->detail_pd, cache, g.x0 - 1, g.z0 - 1, g.x1 + 1, g.z1 + 1);
-                break;
-            default: break;
-            }
+            if (events[i].kind == WORLD_EVENT_PARAMS || events[i].kind == WORLD_EVENT_REPLACED)
+                invalidate_all(r);
+            else if (events[i].kind == WORLD_EVENT_AREA)
+                refresh_area(r, cache, &events[i]);
         }
         if (n < 64) break;
     }
+    return 0;
 }
 
 int terrain_renderer_update(terrain_renderer *r, world *w, const camera *cam,
@@ -334,15 +354,9 @@ int terrain_renderer_update(terrain_renderer *r, world *w, const camera *cam,
         return og_error_set(err, "the camera (%g, %g, %g) m is outside the world's addressable "
                                  "range (|x|, |z| < %g m at %g m spacing)",
                             cam->pos[0], cam->pos[1], cam->pos[2], limit, p->spacing);
-    if (r->world != w || r->world_serial != world_serial(w) ||
-        memcmp(&r->params, p, sizeof *p) != 0) {
-        invalidate_all(r);
-        r->world = w;
-        r->world_serial = world_serial(w);
-        r->params = *p;
-    }
     r->frame_texels = 0;
-    apply_dirty(r, w);
+    if (apply_changes(r, w, err) != 0) return -1;
+    r->params = *p;
     layout_levels(r, p, cam, s);
     tile_cache *cache = world_cache(w);
     int all = 1;

@@ -7,6 +7,7 @@
 #include "editor/cmd/commands.h"
 #include "editor/edit/detail_pd.h"
 #include "editor/edit/edit.h"
+#include "editor/edit/edit_commit.h"
 #include "editor/edit/edit_mips.h"
 #include "editor/world/history.h"
 #include "editor/world/layer_grid.h"
@@ -1663,10 +1664,27 @@ static void test_undo_after_save(void **state) {
 // 11. Dirty rectangles
 // ---------------------------------------------------------------------------
 
+// The changed areas a subscriber to the world's change notifications hears (the
+// renderer's view); other kinds of events (history changed) are skipped.
+static world_subscription *changes;
+
+static size_t take_dirty(world *w, dirty_rect *out, size_t max) {
+    (void)w;
+    world_event e[64];
+    size_t n = 0, got;
+    while (n < max && (got = world_subscription_take(changes, e, 1)) > 0)
+        for (size_t i = 0; i < got; i++)
+            if (e[i].kind == WORLD_EVENT_AREA) {
+                assert_int_equal(e[i].level, 0);
+                out[n++] = (dirty_rect){e[i].layer, e[i].face, e[i].rect};
+            }
+    return n;
+}
+
 static void drain_dirty(world *w) {
-    dirty_rect d[64];
-    while (history_dirty_take(world_history(w), d, 64) == 64) {
-    }
+    world_events_unsubscribe(changes);
+    changes = world_events_subscribe(world_event_hub(w), NULL, NULL);
+    assert_non_null(changes);
 }
 
 static int covers(grid_rect outer, grid_rect inner) {
@@ -1676,7 +1694,7 @@ static int covers(grid_rect outer, grid_rect inner) {
 
 static void expect_dirty(world *w, tile_layer layer, grid_rect want) {
     dirty_rect d[64];
-    size_t n = history_dirty_take(world_history(w), d, 64);
+    size_t n = take_dirty(w, d, 64);
     int found = 0;
     for (size_t i = 0; i < n; i++) {
         if (d[i].layer == layer && d[i].face == 0 && covers(d[i].rect, want)) found = 1;
@@ -1686,7 +1704,7 @@ static void expect_dirty(world *w, tile_layer layer, grid_rect want) {
         fail_msg("no dirty rect of the %s layer covers [%lld, %lld) x [%lld, %lld)",
                  tile_layer_name(layer), (long long)want.x0, (long long)want.x1, (long long)want.z0,
                  (long long)want.z1);
-    assert_int_equal(history_dirty_take(world_history(w), d, 64), 0);
+    assert_int_equal(take_dirty(w, d, 64), 0);
 }
 
 static void test_dirty_rects(void **state) {
@@ -1719,10 +1737,12 @@ static void test_dirty_rects(void **state) {
     b.radius = 40;
     dab_at(w, &b, 699, 0);
     dirty_rect d[64];
-    assert_int_equal(history_dirty_take(world_history(w), d, 64), 1);
+    assert_int_equal(take_dirty(w, d, 64), 1);
     assert_true(d[0].rect.x0 == 659 && d[0].rect.x1 == 700 && d[0].rect.z0 == 0 &&
                 d[0].rect.z1 == 41);
     world_close(w);
+    world_events_unsubscribe(changes); // outlives its world: the hub stays until now
+    changes = NULL;
 }
 
 // ---------------------------------------------------------------------------

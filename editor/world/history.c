@@ -1,6 +1,5 @@
 #include "editor/world/history.h"
 
-#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 #include <zstd.h>
@@ -8,7 +7,6 @@
 // zstd level 1: deltas are mostly zero bytes; higher levels gain little here and
 // the encode sits on the release of every stroke.
 #define DELTA_ZSTD_LEVEL 1
-#define DIRTY_MAX 64
 
 struct history {
     history_step **steps;
@@ -18,9 +16,6 @@ struct history {
     uint64_t floor_id;   // the state reached by the dropped steps (0: the loaded state)
     uint64_t saved_id;   // the state that was saved last
     uint64_t dropped_total;
-    pthread_mutex_t dirty_lock;
-    dirty_rect dirty[DIRTY_MAX];
-    size_t dirty_count;
 };
 
 history *history_create(size_t budget_bytes) {
@@ -28,7 +23,6 @@ history *history_create(size_t budget_bytes) {
     if (!h) return NULL;
     h->budget = budget_bytes ? budget_bytes : (size_t)512 << 20;
     h->next_id = 1;
-    pthread_mutex_init(&h->dirty_lock, NULL);
     return h;
 }
 
@@ -36,7 +30,6 @@ void history_destroy(history *h) {
     if (!h) return;
     for (size_t i = 0; i < h->count; i++) history_step_free(h->steps[i]);
     free(h->steps);
-    pthread_mutex_destroy(&h->dirty_lock);
     free(h);
 }
 
@@ -215,49 +208,3 @@ size_t history_set_budget(history *h, size_t budget_bytes) {
 
 void history_mark_saved(history *h) { h->saved_id = state_id(h); }
 int history_modified(const history *h) { return state_id(h) != h->saved_id; }
-
-static int touches(grid_rect a, grid_rect b) {
-    return a.x0 <= b.x1 && b.x0 <= a.x1 && a.z0 <= b.z1 && b.z0 <= a.z1;
-}
-
-void history_dirty_add(history *h, dirty_rect r) {
-    if (grid_rect_empty(r.rect)) return;
-    pthread_mutex_lock(&h->dirty_lock);
-    // Merge with every touching rect of the same layer and face until none is left.
-    for (size_t i = 0; i < h->dirty_count;) {
-        dirty_rect *d = &h->dirty[i];
-        if (d->layer == r.layer && d->face == r.face && touches(d->rect, r.rect)) {
-            r.rect = grid_rect_union(r.rect, d->rect);
-            h->dirty[i] = h->dirty[--h->dirty_count];
-            i = 0;
-        } else {
-            i++;
-        }
-    }
-    if (h->dirty_count == DIRTY_MAX) { // full: one bounding rect per layer and face
-        size_t n = 0;
-        for (size_t i = 0; i < h->dirty_count; i++) {
-            size_t k = 0;
-            while (k < n && !(h->dirty[k].layer == h->dirty[i].layer &&
-                              h->dirty[k].face == h->dirty[i].face))
-                k++;
-            if (k < n)
-                h->dirty[k].rect = grid_rect_union(h->dirty[k].rect, h->dirty[i].rect);
-            else
-                h->dirty[n++] = h->dirty[i];
-        }
-        h->dirty_count = n;
-    }
-    h->dirty[h->dirty_count++] = r;
-    pthread_mutex_unlock(&h->dirty_lock);
-}
-
-size_t history_dirty_take(history *h, dirty_rect *out, size_t max) {
-    pthread_mutex_lock(&h->dirty_lock);
-    size_t n = h->dirty_count < max ? h->dirty_count : max;
-    memcpy(out, h->dirty, n * sizeof *out);
-    memmove(h->dirty, h->dirty + n, (h->dirty_count - n) * sizeof *out);
-    h->dirty_count -= n;
-    pthread_mutex_unlock(&h->dirty_lock);
-    return n;
-}

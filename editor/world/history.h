@@ -3,7 +3,8 @@
 // same exact operation (bits ^= delta) and compresses to almost nothing where the
 // step left the tile unchanged. A memory budget drops the oldest steps.
 //
-// Pure bookkeeping: applying a step to a world is edit.c's job.
+// Pure bookkeeping: applying a step to a world is editor/edit/edit.c's job, and
+// telling others what changed is the world's change notifications' (world_events.h).
 #ifndef OROGEN_EDITOR_HISTORY_H
 #define OROGEN_EDITOR_HISTORY_H
 
@@ -74,9 +75,5 @@ uint64_t history_dropped_total(const history *h);
 // Unsaved-changes tracking: the state when mark_saved was last called vs now.
 void history_mark_saved(history *h);
 int history_modified(const history *h);
-
-// Changed areas since the last take, for the renderer (merged per layer and face).
-void history_dirty_add(history *h, dirty_rect r);
-size_t history_dirty_take(history *h, dirty_rect *out, size_t max);
 
 #endif

@@ -31,6 +31,7 @@ struct world {
     tile_cache *cache;
     world_generation *gen;
     history *history;
+    world_events *own_events; // the private hub when settings.events is NULL
     uint64_t serial; // unique per world in this process (a new world may reuse an address)
 };
 
@@ -52,17 +53,20 @@ static int check_params(const world_params *p, og_error *err) {
     return 0;
 }
 
-static int start_cache(world *w, og_error *err) {
+// A cache over the world's journal and base store generating from params. The old
+// cache (if any) keeps running until the caller swaps the new one in.
+static int make_cache(world *w, const world_params *params, tile_store *base, tile_cache **cache,
+                      world_generation **gen, og_error *err) {
     world_generation *g = malloc(sizeof *g);
     if (!g) return og_error_set(err, "out of memory");
-    g->params = w->params;
+    g->params = *params;
     tile_cache_desc d = {
         .budget_bytes = w->settings.cache_budget_bytes,
         .workers = w->settings.workers,
         .source = generation_source,
         .source_user = g,
         .store = w->journal,
-        .base_store = w->store,
+        .base_store = base,
         .warn = w->settings.warn,
         .warn_user = w->settings.warn_user,
     };
@@ -71,9 +75,13 @@ static int start_cache(world *w, og_error *err) {
         free(g);
         return -1;
     }
-    w->cache = c;
-    w->gen = g;
+    *cache = c;
+    *gen = g;
     return 0;
+}
+
+static int start_cache(world *w, og_error *err) {
+    return make_cache(w, &w->params, w->store, &w->cache, &w->gen, err);
 }
 
 static int stop_cache(world *w, og_error *err) {
@@ -82,6 +90,15 @@ static int stop_cache(world *w, og_error *err) {
     w->cache = NULL;
     w->gen = NULL;
     return rc;
+}
+
+// Replaces the running cache with a new one (already running); the old one's dirty
+// tiles were flushed by the caller.
+static void swap_cache(world *w, tile_cache *cache, world_generation *gen) {
+    og_error err = {{0}};
+    if (stop_cache(w, &err) != 0) w->settings.warn(w->settings.warn_user, err.msg);
+    w->cache = cache;
+    w->gen = gen;
 }
 
 static int remove_entry(const char *path, const struct stat *st, int flag, struct FTW *ftw) {
@@ -128,8 +145,11 @@ static world *world_alloc(const world_params *params, const world_settings *sett
     w->params = *params;
     if (settings) w->settings = *settings;
     if (!w->settings.warn) w->settings.warn = default_warn;
+    if (!w->settings.events) w->settings.events = w->own_events = world_events_create();
     w->history = history_create(w->settings.history_budget_bytes);
-    if (!w->history) {
+    if (!w->history || !w->settings.events) {
+        history_destroy(w->history);
+        world_events_release(w->own_events);
         free(w);
         return NULL;
     }
@@ -198,6 +218,7 @@ void world_close(world *w) {
     }
     close_stores(w);
     history_destroy(w->history);
+    world_events_release(w->own_events);
     free(w);
 }
 
@@ -226,6 +247,15 @@ int world_save(world *w, const char *path, og_error *err) {
         if (!same_store) tile_store_close(target);
         return -1;
     }
+    // A new store: the cache that reads it must run before the old one stops, so a
+    // failure here leaves the world as it was (the files are written; saving again
+    // is harmless).
+    tile_cache *cache = NULL;
+    world_generation *gen = NULL;
+    if (!same_store && make_cache(w, &w->params, target, &cache, &gen, err) != 0) {
+        tile_store_close(target);
+        return -1;
+    }
     // Everything is in the saved files now; a failure to empty the journal only
     // costs space (its tiles equal the saved ones).
     og_error ignored;
@@ -233,22 +263,31 @@ int world_save(world *w, const char *path, og_error *err) {
     history_mark_saved(w->history);
     w->params = p;
     snprintf(w->path, sizeof w->path, "%s", path);
-    if (same_store) return 0;
-    // Switch the cache over to the new store.
-    stop_cache(w, NULL);
-    tile_store_close(w->store);
-    w->store = target;
-    return start_cache(w, err);
+    if (!same_store) {
+        swap_cache(w, cache, gen);
+        tile_store_close(w->store);
+        w->store = target;
+    }
+    world_publish(w, &(world_event){.kind = WORLD_EVENT_SAVED});
+    return 0;
 }
 
 int world_regenerate(world *w, const world_params *params, og_error *err) {
     if (check_params(params, err) != 0) return -1;
-    world_params keep = w->params;
-    if (stop_cache(w, err) != 0) return -1;
-    w->params = *params;
+    world_params next = *params;
     // The file-level settings that are not generation parameters stay the world's own.
-    snprintf(w->params.tiles, sizeof w->params.tiles, "%s", keep.tiles);
-    return start_cache(w, err);
+    snprintf(next.tiles, sizeof next.tiles, "%s", w->params.tiles);
+    // Edited tiles must reach the journal before a new cache reads it; the old cache
+    // keeps running until the new one does.
+    tile_cache *cache = NULL;
+    world_generation *gen = NULL;
+    if (tile_cache_flush(w->cache, err) != 0 ||
+        make_cache(w, &next, w->store, &cache, &gen, err) != 0)
+        return -1;
+    swap_cache(w, cache, gen);
+    w->params = next;
+    world_publish(w, &(world_event){.kind = WORLD_EVENT_PARAMS});
+    return 0;
 }
 
 const world_params *world_get_params(const world *w) { return &w->params; }
@@ -259,6 +298,11 @@ tile_cache *world_cache(world *w) { return w->cache; }
 tile_store *world_store(world *w) { return w->store; }
 tile_store *world_journal(world *w) { return w->journal; }
 history *world_history(world *w) { return w->history; }
+world_events *world_event_hub(world *w) { return w->settings.events; }
+void world_publish(world *w, const world_event *e) { world_events_publish(w->settings.events, e); }
+void world_publish_area(world *w, tile_layer layer, int face, grid_rect r) {
+    world_publish(w, &(world_event){.kind = WORLD_EVENT_AREA, .layer = layer, .face = face, .rect = r});
+}
 int world_is_modified(const world *w) { return history_modified(w->history); }
 void world_warn(const world *w, const char *message) {
     w->settings.warn(w->settings.warn_user, message);

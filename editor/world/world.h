@@ -4,6 +4,7 @@
 #define OROGEN_EDITOR_WORLD_H
 
 #include "editor/params/world_params.h"
+#include "editor/world/world_events.h"
 #include "io/err.h"
 #include "io/tile_cache.h"
 #include "io/tile_store.h"
@@ -17,6 +18,10 @@ typedef struct world_settings {
     // Warnings (corrupt tiles, unknown keys while loading); NULL = stderr.
     void (*warn)(void *user, const char *message);
     void *warn_user;
+    // Where the world publishes its changes. Shared by every world the program opens
+    // (so a subscriber hears WORLD_EVENT_REPLACED and keeps its subscription); NULL =
+    // the world makes a private hub, freed with it.
+    world_events *events;
 } world_settings;
 
 typedef struct world world;
@@ -33,16 +38,25 @@ world *world_load(const char *path, const world_settings *settings, int *errors,
 void world_close(world *w);
 
 // Saves the parameter file to path (NULL: the current path) and the tile store
-// beside it, copying stored tiles when saving somewhere new. Atomic per file.
+// beside it, copying stored tiles when saving somewhere new. Atomic per file. On
+// failure the world keeps working as before (its cache is replaced only once the
+// new one runs). Publishes WORLD_EVENT_SAVED.
 int world_save(world *w, const char *path, og_error *err);
 
 // Replaces the generation parameters (the `generate` command): cached generated
-// tiles are dropped, edited (stored) tiles stay.
+// tiles are dropped, edited (stored) tiles stay. On failure nothing changes (the old
+// cache runs until the new one does). Publishes WORLD_EVENT_PARAMS.
 int world_regenerate(world *w, const world_params *params, og_error *err);
 
 const world_params *world_get_params(const world *w);
-// Unique per world opened in this process (views use it to tell worlds apart).
+// Unique per world opened in this process.
 uint64_t world_serial(const world *w);
+// The hub the world publishes its changes to (world_settings.events, or its own).
+world_events *world_event_hub(world *w);
+// Publishes e on the world's hub (editor/world/world_events.h says who may call it when).
+void world_publish(world *w, const world_event *e);
+// Publishes that level-0 samples r of a layer on a face changed.
+void world_publish_area(world *w, tile_layer layer, int face, grid_rect r);
 const char *world_path(const world *w); // "" for a never-saved world
 tile_cache *world_cache(world *w);
 // The world's own tile store (NULL until saved), and the journal of unsaved edits
