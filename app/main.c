@@ -27,6 +27,9 @@ static void usage(FILE *out) {
             "                      (--batch and -c may be repeated; they run in order)\n"
             "  --cache-mb N        tile cache budget in MiB (default 1024)\n"
             "  --workers N         tile loader/generator threads (default 2)\n"
+            "  --record FILE       append every command that runs (typed, scripted or a UI\n"
+            "                      action such as a sculpting drag) to FILE; orogen --batch\n"
+            "                      FILE replays the session\n"
             "  --help, --version\n"
             "Batch errors are reported as FILE:LINE: error: MESSAGE with exit status 1.\n"
             "Type 'help' in the console or run `orogen -c help` for the command list.\n");
@@ -125,7 +128,7 @@ typedef struct script {
 int main(int argc, char **argv) {
     script scripts[64];
     int script_count = 0;
-    const char *world_file = NULL;
+    const char *world_file = NULL, *record_path = NULL;
     world_settings settings = {0};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -143,6 +146,8 @@ int main(int argc, char **argv) {
             }
             scripts[script_count++] = a[1] == 'c' ? (script){argv[++i], NULL}
                                                   : (script){NULL, argv[++i]};
+        } else if (strcmp(a, "--record") == 0 && has_value) {
+            record_path = argv[++i];
         } else if ((strcmp(a, "--cache-mb") == 0 || strcmp(a, "--workers") == 0) && has_value) {
             char *end;
             long v = strtol(argv[++i], &end, 10);
@@ -187,6 +192,18 @@ int main(int argc, char **argv) {
         fprintf(stderr, "orogen: %s\n", err.msg);
         return 1;
     }
+    FILE *recording = NULL;
+    if (record_path && !(recording = fopen(record_path, "a"))) {
+        fprintf(stderr, "orogen: --record: cannot open %s: %s\n", record_path, strerror(errno));
+        return 1;
+    }
+    // One change-notification hub for every world this run opens, so the window and
+    // the viewport keep their subscriptions across new and load.
+    settings.events = world_events_create();
+    if (!settings.events) {
+        fprintf(stderr, "orogen: out of memory\n");
+        return 1;
+    }
     char resource_dir[4096];
     find_resource_dir(resource_dir, sizeof resource_dir);
     world *w;
@@ -198,10 +215,13 @@ int main(int argc, char **argv) {
     }
     if (!w) {
         fprintf(stderr, "orogen: %s\n", err.msg);
+        world_events_release(settings.events);
+        if (recording) fclose(recording);
         return 1;
     }
     cmd_context ctx;
     cmd_context_init(&ctx, w, &settings, stdout, resource_dir);
+    ctx.record = recording;
 
     int status = 0;
     if (script_count == 0) {
@@ -237,8 +257,15 @@ int main(int argc, char **argv) {
             }
         }
     }
+    // A script that left a stroke open: it is one undo step like any other.
+    if (cmd_end_stroke(&ctx, &err) != 0) {
+        fprintf(stderr, "orogen: %s\n", err.msg);
+        status = 1;
+    }
     fflush(stdout);
     viewport_destroy(ctx.view_state);
     world_close(ctx.world);
+    world_events_release(settings.events);
+    if (recording) fclose(recording);
     return status;
 }

@@ -1,7 +1,6 @@
 #include "app/window.h"
 
 #include "app/camera_controls.h"
-#include "editor/tools/stroke.h"
 #include "renderer/gl_context.h"
 #include "renderer/pick.h"
 #include "renderer/view_commands.h"
@@ -33,7 +32,7 @@ typedef struct window_state {
     cmd_context *ctx;
     viewport *v;
     GLFWwindow *win;
-    uint64_t shown; // serial of the world the camera belongs to (new/load replace it)
+    world_subscription *changes; // the world's change notifications (another world: new camera)
     camera_controls cc;
     double mouse_x, mouse_y; // window coordinates of the last motion event
     int mouse_in;
@@ -42,7 +41,6 @@ typedef struct window_state {
     double pivot[3]; // orbit pivot of the current drag
     int key_down[MOVE_KEY_COUNT];
     double key_since[MOVE_KEY_COUNT], key_held[MOVE_KEY_COUNT]; // seconds, see bank_keys
-    stroke *stroke;    // the sculpting drag's stroke (NULL: none, or ended early)
     int dirty;         // something changed: draw a frame
     int settled;       // frames in a row with every level current
     int pending;       // levels (or layers) still waiting for tiles
@@ -82,47 +80,39 @@ static void point_along_ray(window_state *st, double x, double y, double dist, d
 
 // --- sculpting ---------------------------------------------------------------------
 
+// A drag sculpts through the command language like any other action (stroke_begin,
+// stroke_to per mouse move, stroke_end), so it is echoed to a recording and replays
+// to the same terrain. Positions are written with 17 digits: the replay is exact.
+static int run_action(window_state *st, const char *text, const char *label) {
+    og_error err = {{0}};
+    st->dirty = 1;
+    if (cmd_run(st->ctx, text, strlen(text), label, &err) == 0) return 0;
+    fprintf(stderr, "%s\n", err.msg);
+    return -1;
+}
+
 static void sculpt_to(window_state *st, double x, double y) {
     double hit[3];
-    if (!st->stroke || pick_at(st, x, y, hit) != 0) return; // off the terrain: skip
-    og_error err = {{0}};
-    if (stroke_to(st->stroke, hit[0], hit[2], 1.0, &err) != 0) {
-        report("sculpt", &err);
-        stroke_cancel(st->stroke);
-        st->stroke = NULL;
-    }
-    st->dirty = 1;
+    // No stroke (it failed, or a console command ended it), or off the terrain: skip.
+    if (!st->ctx->stroke || pick_at(st, x, y, hit) != 0) return;
+    char text[128];
+    snprintf(text, sizeof text, "stroke_to %.17g %.17g", hit[0], hit[2]);
+    run_action(st, text, "sculpt");
 }
 
 static void sculpt_begin(window_state *st) {
-    og_error err = {{0}};
-    st->stroke = stroke_begin(st->ctx->world, &st->ctx->brush, &err);
-    if (!st->stroke) {
-        report("sculpt", &err);
-        return;
-    }
-    sculpt_to(st, st->mouse_x, st->mouse_y);
+    if (run_action(st, "stroke_begin", "sculpt") == 0) sculpt_to(st, st->mouse_x, st->mouse_y);
 }
 
 // Commits the drag's stroke (one undo step); a stroke that laid no dab leaves no step.
 static void sculpt_end(window_state *st) {
-    if (!st->stroke) return;
-    stroke *s = st->stroke;
-    st->stroke = NULL;
-    if (stroke_dab_count(s) == 0) {
-        stroke_cancel(s);
-        return;
-    }
-    og_error err = {{0}};
-    if (stroke_end(s, &err) != 0) report("sculpt", &err);
-    st->dirty = 1;
+    if (st->ctx->stroke) run_action(st, "stroke_end", "sculpt");
 }
 
 // --- the camera --------------------------------------------------------------------
 
 static void reset_camera(window_state *st) {
     og_error err = {{0}};
-    st->shown = world_serial(st->ctx->world);
     st->cc.walk = 0;
     st->render_failed = 0;
     if (viewport_default_camera(st->v, st->ctx->world, &err) != 0) report("camera", &err);
@@ -171,13 +161,11 @@ static int keys_held(const window_state *st) {
 // --- the command language ----------------------------------------------------------
 
 static void run_commands(window_state *st, const char *text, const char *label) {
-    sculpt_end(st); // a drag's stroke is committed before anything else changes the world
     camera before = st->v->cam;
     og_error err = {{0}};
     if (cmd_run(st->ctx, text, strlen(text), label, &err) != 0) fprintf(stderr, "%s\n", err.msg);
     fflush(stdout);
     if (memcmp(&before, &st->v->cam, sizeof before) != 0) st->cc.walk = 0; // `camera` placed it
-    if (world_serial(st->ctx->world) != st->shown) reset_camera(st);
     st->dirty = 1;
 }
 
@@ -340,6 +328,26 @@ static void on_refresh(GLFWwindow *win) {
     st->dirty = 1;
 }
 
+// --- changes ------------------------------------------------------------------------
+
+// Edits made by another thread's publish (none today) must not wait for input.
+static void wake_window(void *user) {
+    (void)user;
+    glfwPostEmptyEvent();
+}
+
+// Any change redraws; another world (new, load) gets its default camera.
+static void take_changes(window_state *st) {
+    world_event e[32];
+    size_t n;
+    while ((n = world_subscription_take(st->changes, e, 32)) > 0) {
+        st->dirty = 1;
+        for (size_t i = 0; i < n; i++)
+            if (e[i].kind == WORLD_EVENT_REPLACED) reset_camera(st);
+        if (n < 32) break;
+    }
+}
+
 // --- the frame ---------------------------------------------------------------------
 
 static void update_title(window_state *st) {
@@ -471,10 +479,16 @@ int window_run(cmd_context *ctx, og_error *err) {
 
     window_state st = {.ctx = ctx, .v = v, .win = win, .stdin_open = 1, .dirty = 1};
     camera_controls_init(&st.cc);
-    if (v->cam_set)
-        st.shown = world_serial(ctx->world);
-    else
-        reset_camera(&st);
+    st.changes = world_events_subscribe(world_event_hub(ctx->world), wake_window, NULL);
+    if (!st.changes) {
+        og_error_set(err, "out of memory");
+        viewport_destroy(v);
+        view_commands_set_viewport(ctx, NULL);
+        glfwDestroyWindow(win);
+        glfwTerminate();
+        return -1;
+    }
+    if (!v->cam_set) reset_camera(&st);
     glfwGetCursorPos(win, &st.mouse_x, &st.mouse_y);
     glfwSetWindowUserPointer(win, &st);
     glfwSetMouseButtonCallback(win, on_mouse_button);
@@ -498,13 +512,13 @@ int window_run(cmd_context *ctx, og_error *err) {
     GLenum last_gl_error = GL_NO_ERROR;
     while (!glfwWindowShouldClose(win) && !ctx->exit_requested) {
         // Input first; wake often while tiles arrive or keys fly the camera, rarely when idle.
-        int busy = st.pending || st.settled < 2 || keys_held(&st) || st.stroke;
+        int busy = st.pending || st.settled < 2 || keys_held(&st) || ctx->stroke;
         glfwWaitEventsTimeout(busy ? 0.01 : 0.1);
         move_keys keys = take_keys(&st);
         if (camera_controls_move(&st.cc, &v->cam, &keys, ground_height, &st)) st.dirty = 1;
         poll_stdin(&st);
         if (ctx->exit_requested) break;
-        if (world_serial(ctx->world) != st.shown) reset_camera(&st);
+        take_changes(&st);
 
         // Tiles are requested every wake-up while some are missing; a frame is drawn
         // when input or commands changed something or new texels arrived.
@@ -525,6 +539,7 @@ int window_run(cmd_context *ctx, og_error *err) {
         update_title(&st);
     }
     sculpt_end(&st);
+    world_events_unsubscribe(st.changes);
     // The renderer's GL objects belong to this context: free them while it is current.
     viewport_destroy(v);
     view_commands_set_viewport(ctx, NULL);

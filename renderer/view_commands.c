@@ -175,11 +175,11 @@ static int cmd_pick(cmd_context *ctx, int argc, char **argv, og_error *err) {
 }
 
 static const cmd_def view_commands[] = {
-    {"camera", "camera [X Y Z YAW PITCH [FOV] | default]", "Places the viewport camera: position in metres, yaw (0 looks toward -Z, 90 toward +X) and pitch in degrees, vertical field of view (60). Without arguments, prints it.", 0, 6, cmd_camera},
-    {"view", "view [MODE]", "Picks what the viewport shows: shaded, wireframe, levels (clipmap level colours), height or slope colours.", 0, 1, cmd_view},
-    {"render", "render [KEY=VALUE ...]", "Viewport settings: levels (3-12 clipmap levels), parallax (on/off), quality (parallax steps 1-32), detail_distance (m), culling, morph (on/off), fog (per metre, 0 = automatic), sun=YAW,PITCH. Without arguments, prints them.", 0, 9, cmd_render},
-    {"screenshot", "screenshot FILE [W H]", "Renders the viewport offscreen (no display needed) to an RGB PNG, W x H pixels (1280 x 720), once every visible tile is loaded.", 1, 3, cmd_screenshot},
-    {"pick", "pick PX PY [W H]", "Prints the terrain point (x y z metres) under pixel PX, PY of a W x H (1280 x 720) view.", 2, 4, cmd_pick},
+    {"camera", "camera [X Y Z YAW PITCH [FOV] | default]", "Places the viewport camera: position in metres, yaw (0 looks toward -Z, 90 toward +X) and pitch in degrees, vertical field of view (60). Without arguments, prints it.", 0, 6, cmd_camera, 0},
+    {"view", "view [MODE]", "Picks what the viewport shows: shaded, wireframe, levels (clipmap level colours), height or slope colours.", 0, 1, cmd_view, 0},
+    {"render", "render [KEY=VALUE ...]", "Viewport settings: levels (3-12 clipmap levels), parallax (on/off), quality (parallax steps 1-32), detail_distance (m), culling, morph (on/off), fog (per metre, 0 = automatic), sun=YAW,PITCH. Without arguments, prints them.", 0, 9, cmd_render, 0},
+    {"screenshot", "screenshot FILE [W H]", "Renders the viewport offscreen (no display needed) to an RGB PNG, W x H pixels (1280 x 720), once every visible tile is loaded.", 1, 3, cmd_screenshot, 0},
+    {"pick", "pick PX PY [W H]", "Prints the terrain point (x y z metres) under pixel PX, PY of a W x H (1280 x 720) view.", 2, 4, cmd_pick, 0},
 };
 
 int view_commands_register(og_error *err) {

@@ -2,6 +2,7 @@
 
 #include "editor/edit/edit.h"
 #include "editor/cmd/edit_commands.h"
+#include "editor/cmd/tokenize.h"
 #include "editor/gen/gen.h"
 #include "io/parse.h"
 
@@ -11,8 +12,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define CMD_MAX_ARGS 32
-#define CMD_MAX_TOKEN 4096
 
 
 // ---- argument parsing ----------------------------------------------------------
@@ -43,6 +42,7 @@ static int replace_world(cmd_context *ctx, world *w) {
     world_close(ctx->world);
     ctx->world = w;
     ctx->next = *world_get_params(w);
+    world_publish(w, &(world_event){.kind = WORLD_EVENT_REPLACED});
     return 0;
 }
 
@@ -190,14 +190,14 @@ static int c_exit(cmd_context *ctx, int argc, char **argv, og_error *err) {
 static int c_help(cmd_context *ctx, int argc, char **argv, og_error *err);
 static int c_cmdlist(cmd_context *ctx, int argc, char **argv, og_error *err);
 
-#define PARAM_CMD(key, arg, text) {key, key " [" arg "]", text " Without a value, prints it.", 0, 1, c_param}
+#define PARAM_CMD(key, arg, text) {key, key " [" arg "]", text " Without a value, prints it.", 0, 1, c_param, 0}
 
 static const cmd_def commands[] = {
-    {"new", "new flat|planet", "Replaces the current world with a new one of that kind, with default parameters.", 1, 1, c_new},
-    {"load", "load FILE", "Loads a world (.world) or planet (.planet) parameter file and its tile store.", 1, 1, c_load},
-    {"save", "save [FILE]", "Saves the world's parameter file and tile store (to FILE, or where it was loaded from).", 0, 1, c_save},
-    {"generate", "generate", "Regenerates the world from the next parameters (see nparams). Edited tiles stay.", 0, 0, c_generate},
-    {"generator", "generator [G]", "Lists the generators, or picks one (name or number) for the next generate.", 0, 1, c_generator},
+    {"new", "new flat|planet", "Replaces the current world with a new one of that kind, with default parameters.", 1, 1, c_new, 1},
+    {"load", "load FILE", "Loads a world (.world) or planet (.planet) parameter file and its tile store.", 1, 1, c_load, 1},
+    {"save", "save [FILE]", "Saves the world's parameter file and tile store (to FILE, or where it was loaded from).", 0, 1, c_save, 1},
+    {"generate", "generate", "Regenerates the world from the next parameters (see nparams). Edited tiles stay.", 0, 0, c_generate, 1},
+    {"generator", "generator [G]", "Lists the generators, or picks one (name or number) for the next generate.", 0, 1, c_generator, 0},
     PARAM_CMD("seed", "N", "Sets the random seed (an integer) for the next generate."),
     PARAM_CMD("octaves", "F", "Sets the fBm octave count (fractional allowed) for the next generate."),
     PARAM_CMD("w_factor", "F", "Sets the fBm weight factor (gain per octave) for the next generate."),
@@ -208,23 +208,27 @@ static const cmd_def commands[] = {
     PARAM_CMD("omega", "F", "Sets the planet's angular velocity for the next generate."),
     PARAM_CMD("spacing", "F", "Sets the metres between coarse samples for the next generate."),
     PARAM_CMD("size", "N", "Sets the samples per side of a flat world (0 = unbounded) for the next generate."),
-    {"set", "set KEY VALUE", "Sets any world parameter (see nparams for the keys) for the next generate.", 2, 2, c_set},
-    {"params", "params", "Prints the current world's parameters.", 0, 0, c_params},
-    {"nparams", "nparams", "Prints the parameters the next generate will use.", 0, 0, c_nparams},
-    {"info", "info", "Prints key=value facts about the world, its tile store and the tile cache.", 0, 0, c_info},
-    {"sample", "sample X Z [FACE]", "Prints the height in metres at world position X, Z (metres).", 2, 3, c_sample},
-    {"hash", "hash X0 Z0 X1 Z1 [FACE]", "Prints a hex digest of the coarse heights in that rectangle (metres).", 4, 5, c_hash},
-    {"tool", "tool [NAME] [KEY=VALUE ...]", "Picks and sets up the brush: raise lower smooth flatten set ramp noise terrace thermal hydraulic paint. Keys: radius (m) strength (0-1) falloff (smooth linear spherical constant curve) curve=t:v,... spacing (x radius) invert target (coarse detail) face amount height mode (both raise lower) scale octaves seed step sharpness talus iterations droplets erosion deposition evaporation capacity inertia material. Without arguments, prints the brush.", 0, 24, cmd_tool},
-    {"dab", "dab X Z [PRESSURE]", "One dab of the brush at X, Z (metres); one undo step.", 2, 3, cmd_dab},
-    {"stroke", "stroke X0 Z0 X1 Z1 [X2 Z2 ...]", "Drags the brush along the points (metres), dabbing every spacing x radius; one undo step.", 2, 30, cmd_stroke},
-    {"stamp", "stamp NAME X Z [scale= rot= mirror= intensity= mode= layer= face=]", "Places a stamp centred at X, Z (metres): a functional shape, a library or user stamp (see stamps) or an image file. scale multiplies its natural size (128 samples, or one sample per pixel), rot is degrees, mirror none|x|z|xz, intensity metres at value 1 (50; 0.5 on detail), mode add|subtract|max|min|blend, layer coarse|detail. One undo step.", 3, 10, cmd_stamp},
-    {"stamps", "stamps", "Lists the stamps: functional shapes, the built-in library and the user's stamp folder.", 0, 0, cmd_stamps},
-    {"undo", "undo", "Undoes the last change (stroke, stamp, generate).", 0, 0, cmd_undo},
-    {"redo", "redo", "Redoes the last undone change.", 0, 0, cmd_redo},
-    {"history", "history [budget=MIB]", "Lists the undo steps (* = applied) and their memory; sets the history memory budget.", 0, 1, cmd_history},
-    {"help", "help [COMMAND]", "Prints help on all commands or one.", 0, 1, c_help},
-    {"cmdlist", "cmdlist", "Lists the command names.", 0, 0, c_cmdlist},
-    {"exit", "exit", "Stops (the rest of the script is not run).", 0, 0, c_exit},
+    {"set", "set KEY VALUE", "Sets any world parameter (see nparams for the keys) for the next generate.", 2, 2, c_set, 0},
+    {"params", "params", "Prints the current world's parameters.", 0, 0, c_params, 0},
+    {"nparams", "nparams", "Prints the parameters the next generate will use.", 0, 0, c_nparams, 0},
+    {"info", "info", "Prints key=value facts about the world, its tile store and the tile cache.", 0, 0, c_info, 0},
+    {"sample", "sample X Z [FACE]", "Prints the height in metres at world position X, Z (metres).", 2, 3, c_sample, 0},
+    {"hash", "hash X0 Z0 X1 Z1 [FACE]", "Prints a hex digest of the coarse heights in that rectangle (metres).", 4, 5, c_hash, 0},
+    {"tool", "tool [NAME] [KEY=VALUE ...]", "Picks and sets up the brush: raise lower smooth flatten set ramp noise terrace thermal hydraulic paint. Keys: radius (m) strength (0-1) falloff (smooth linear spherical constant curve) curve=t:v,... spacing (x radius) invert target (coarse detail) face amount height mode (both raise lower) scale octaves seed step sharpness talus iterations droplets erosion deposition evaporation capacity inertia material. Without arguments, prints the brush.", 0, 24, cmd_tool, 0},
+    {"dab", "dab X Z [PRESSURE]", "One dab of the brush at X, Z (metres); one undo step.", 2, 3, cmd_dab, 1},
+    {"stroke", "stroke X0 Z0 X1 Z1 [X2 Z2 ...]", "Drags the brush along the points (metres), dabbing every spacing x radius; one undo step.", 2, CMD_MAX_ARGS, cmd_stroke, 1},
+    {"stroke_begin", "stroke_begin", "Starts a stroke with the current tool (as a drag in the viewport does); stroke_to extends it, stroke_end makes it one undo step. Commands that change the world (dab, stamp, undo, save, load, ...) end it first.", 0, 0, cmd_stroke_begin, 1},
+    {"stroke_to", "stroke_to X Z [PRESSURE]", "Drags the open stroke to X, Z (metres), dabbing every spacing x radius; PRESSURE 0-1 (1).", 2, 3, cmd_stroke_to, 0},
+    {"stroke_end", "stroke_end", "Ends the open stroke as one undo step (a stroke that laid no dab leaves none).", 0, 0, cmd_stroke_end, 0},
+    {"stroke_cancel", "stroke_cancel", "Abandons the open stroke: the terrain returns to how it was before it.", 0, 0, cmd_stroke_cancel, 0},
+    {"stamp", "stamp NAME X Z [scale= rot= mirror= intensity= mode= layer= face=]", "Places a stamp centred at X, Z (metres): a functional shape, a library or user stamp (see stamps) or an image file. scale multiplies its natural size (128 samples, or one sample per pixel), rot is degrees, mirror none|x|z|xz, intensity metres at value 1 (50; 0.5 on detail), mode add|subtract|max|min|blend, layer coarse|detail. One undo step.", 3, 10, cmd_stamp, 1},
+    {"stamps", "stamps", "Lists the stamps: functional shapes, the built-in library and the user's stamp folder.", 0, 0, cmd_stamps, 0},
+    {"undo", "undo", "Undoes the last change (stroke, stamp, generate).", 0, 0, cmd_undo, 1},
+    {"redo", "redo", "Redoes the last undone change.", 0, 0, cmd_redo, 1},
+    {"history", "history [budget=MIB]", "Lists the undo steps (* = applied) and their memory; sets the history memory budget.", 0, 1, cmd_history, 1},
+    {"help", "help [COMMAND]", "Prints help on all commands or one.", 0, 1, c_help, 0},
+    {"cmdlist", "cmdlist", "Lists the command names.", 0, 0, c_cmdlist, 0},
+    {"exit", "exit", "Stops (the rest of the script is not run).", 0, 0, c_exit, 1},
 };
 #define BUILTIN_COUNT (sizeof commands / sizeof commands[0])
 
@@ -300,7 +304,32 @@ static int c_cmdlist(cmd_context *ctx, int argc, char **argv, og_error *err) {
     return 0;
 }
 
-// ---- tokenizer and driver ----------------------------------------------------------
+// ---- driver ----------------------------------------------------------------------
+
+
+// Writes the command to the recording, quoted so that running the file repeats it.
+static void record(cmd_context *ctx, int argc, char **argv) {
+    for (int k = 0; k < argc; k++) {
+        const char *a = argv[k];
+        int plain = *a != 0;
+        for (const char *c = a; *c && plain; c++)
+            plain = !(*c == ' ' || *c == '\t' || *c == '\r' || *c == '\n' || *c == ';' ||
+                      *c == '#' || *c == '"' || *c == '\\');
+        fputs(k ? " " : "", ctx->record);
+        if (plain) {
+            fputs(a, ctx->record);
+            continue;
+        }
+        fputc('"', ctx->record);
+        for (const char *c = a; *c; c++) {
+            if (*c == '"' || *c == '\\') fputc('\\', ctx->record);
+            fputc(*c, ctx->record);
+        }
+        fputc('"', ctx->record);
+    }
+    fputc('\n', ctx->record);
+    fflush(ctx->record); // a crash keeps every command that ran
+}
 
 static int execute(cmd_context *ctx, int argc, char **argv, og_error *err) {
     const cmd_def *c = find_command(argv[0]);
@@ -308,75 +337,27 @@ static int execute(cmd_context *ctx, int argc, char **argv, og_error *err) {
     int n = argc - 1;
     if (n < c->min_args || n > c->max_args)
         return og_error_set(err, "%s: wrong number of arguments; usage: %s", c->name, c->usage);
-    return c->run(ctx, argc, argv, err);
+    // A stroke is one undo step: nothing else changes the world in its middle.
+    if (ctx->stroke && c->ends_stroke && cmd_end_stroke(ctx, err) != 0) return -1;
+    if (c->run(ctx, argc, argv, err) != 0) return -1;
+    if (ctx->record) record(ctx, argc, argv);
+    return 0;
 }
 
 int cmd_run(cmd_context *ctx, const char *text, size_t len, const char *label, og_error *err) {
-    char *argv[CMD_MAX_ARGS + 1];
-    char tokens[CMD_MAX_ARGS][CMD_MAX_TOKEN];
-    int argc = 0, line = 1, cmd_line = 1;
-    size_t i = 0;
+    cmd_tokenizer t;
+    cmd_tokenizer_init(&t, text, len, label);
+    int argc, line, rc;
+    char **argv;
     og_error inner = {{0}};
-    for (;;) {
-        // Skip blanks; a newline, `;` or the end closes the command so far.
-        while (i < len && (text[i] == ' ' || text[i] == '\t' || text[i] == '\r')) i++;
-        int end_of_command = i >= len || text[i] == '\n' || text[i] == ';' || text[i] == '#';
-        if (end_of_command) {
-            if (i < len && text[i] == '#')
-                while (i < len && text[i] != '\n') i++;
-            if (argc > 0) {
-                for (int k = 0; k < argc; k++) argv[k] = tokens[k];
-                argv[argc] = NULL;
-                if (execute(ctx, argc, argv, &inner) != 0) {
-                    og_error_set(err, "%s:%d: error: %s", label, cmd_line, inner.msg);
-                    return -1;
-                }
-                argc = 0;
-                if (ctx->exit_requested) return 0;
-            }
-            if (i >= len) return 0;
-            if (text[i] == '\n') line++;
-            i++;
-            continue;
+    while ((rc = cmd_tokenizer_next(&t, &argc, &argv, &line, err)) == 1) {
+        if (execute(ctx, argc, argv, &inner) != 0) {
+            og_error_set(err, "%s:%d: error: %s", label, line, inner.msg);
+            rc = -1;
+            break;
         }
-        if (argc == CMD_MAX_ARGS) {
-            og_error_set(err, "%s:%d: error: too many arguments (at most %d)", label, line,
-                         CMD_MAX_ARGS);
-            return -1;
-        }
-        if (argc == 0) cmd_line = line;
-        char *tok = tokens[argc];
-        size_t n = 0;
-        int quoted = 0;
-        while (i < len) {
-            char ch = text[i];
-            if (!quoted && (ch == ' ' || ch == '\t' || ch == '\r' || ch == '\n' || ch == ';'))
-                break;
-            if (ch == '"') {
-                quoted = !quoted;
-                i++;
-                continue;
-            }
-            if (ch == '\0') {
-                og_error_set(err, "%s:%d: error: NUL byte in command text", label, line);
-                return -1;
-            }
-            if (quoted && ch == '\\' && i + 1 < len && (text[i + 1] == '"' || text[i + 1] == '\\'))
-                ch = text[++i];
-            if (ch == '\n') line++;
-            if (n + 1 >= CMD_MAX_TOKEN) {
-                og_error_set(err, "%s:%d: error: argument longer than %d bytes", label, line,
-                             CMD_MAX_TOKEN - 1);
-                return -1;
-            }
-            tok[n++] = ch;
-            i++;
-        }
-        if (quoted) {
-            og_error_set(err, "%s:%d: error: unterminated \"quote\"", label, line);
-            return -1;
-        }
-        tok[n] = 0;
-        argc++;
+        if (ctx->exit_requested) break;
     }
+    cmd_tokenizer_free(&t);
+    return rc < 0 ? -1 : 0;
 }

@@ -18,6 +18,8 @@ typedef struct cmd_context {
     FILE *out;                // where commands print results
     int exit_requested;       // set by `exit`
     brush brush;              // the current tool (`tool`), used by dab and stroke
+    struct stroke *stroke;    // the stroke stroke_begin opened (NULL: none)
+    FILE *record;             // when set, every command that succeeded is written here
     char resource_dir[4096];  // built-in resources (stamp library in resource_dir/stamps)
     char stamp_dir[4096];     // the user's stamp folder
     // State of commands registered from outside (the renderer's view commands keep
@@ -36,6 +38,9 @@ typedef struct cmd_def {
     const char *help;
     int min_args, max_args;
     cmd_fn run;
+    // Changes the world or the undo history: an open stroke is ended (committed) first,
+    // so it stays one undo step. Read-only commands leave it open.
+    int ends_stroke;
 } cmd_def;
 
 // Adds commands defined outside the command language (the renderer's camera, view,
@@ -49,6 +54,10 @@ int cmd_register(const cmd_def *defs, size_t count, og_error *err);
 // $OROGEN_STAMP_DIR, else $XDG_DATA_HOME/orogen/stamps, else ~/.local/share/orogen/stamps.
 void cmd_context_init(cmd_context *ctx, world *w, const world_settings *settings, FILE *out,
                       const char *resource_dir);
+
+// Ends the open stroke, if any, as one undo step (the end of a batch run, a window
+// closing). Returns -1 (err set) when committing it fails.
+int cmd_end_stroke(cmd_context *ctx, og_error *err);
 
 // Runs every command in text. Stops at the first failing command and returns -1 with
 // err->msg = "label:line: error: message". label names the script ("-c" for -c).

@@ -91,6 +91,57 @@ int cmd_stroke(cmd_context *ctx, int argc, char **argv, og_error *err) {
     return stroke_end(s, err);
 }
 
+int cmd_stroke_begin(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    (void)argc, (void)argv;
+    stroke *s = stroke_begin(ctx->world, &ctx->brush, err);
+    if (!s) return -1;
+    ctx->stroke = s;
+    return 0;
+}
+
+static int no_stroke(const char *name, og_error *err) {
+    return og_error_set(err, "%s: no stroke in progress (stroke_begin starts one)", name);
+}
+
+int cmd_stroke_to(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    if (!ctx->stroke) return no_stroke(argv[0], err);
+    double x = 0, z = 0, pressure = 1.0;
+    if (parse_point(argv, 1, &x, &z, err) != 0) return -1;
+    if (argc > 3 && parse_number(argv[3], "pressure", &pressure, err) != 0) return -1;
+    if (stroke_to(ctx->stroke, x, z, pressure, err) != 0) {
+        // A failed dab leaves the stroke half-applied: abandon it whole.
+        stroke_cancel(ctx->stroke);
+        ctx->stroke = NULL;
+        return -1;
+    }
+    return 0;
+}
+
+int cmd_end_stroke(cmd_context *ctx, og_error *err) {
+    stroke *s = ctx->stroke;
+    if (!s) return 0;
+    ctx->stroke = NULL;
+    if (stroke_dab_count(s) == 0) { // a click that laid no dab leaves no step
+        stroke_cancel(s);
+        return 0;
+    }
+    return stroke_end(s, err);
+}
+
+int cmd_stroke_end(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    (void)argc;
+    if (!ctx->stroke) return no_stroke(argv[0], err);
+    return cmd_end_stroke(ctx, err);
+}
+
+int cmd_stroke_cancel(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    (void)argc;
+    if (!ctx->stroke) return no_stroke(argv[0], err);
+    stroke_cancel(ctx->stroke);
+    ctx->stroke = NULL;
+    return 0;
+}
+
 int cmd_undo(cmd_context *ctx, int argc, char **argv, og_error *err) {
     (void)argc, (void)argv;
     int rc = edit_undo(ctx->world, err);

@@ -1,5 +1,6 @@
 // The editing commands of the command language: tool, dab, stroke, undo, redo,
-// history, stamp, stamps. Registered in commands.c.
+// history, stamp, stamps, and the interactive stroke_begin / stroke_to / stroke_end /
+// stroke_cancel the viewport's drags run. Registered in commands.c.
 #ifndef OROGEN_EDITOR_EDIT_COMMANDS_H
 #define OROGEN_EDITOR_EDIT_COMMANDS_H
 
@@ -8,6 +9,10 @@
 int cmd_tool(cmd_context *ctx, int argc, char **argv, og_error *err);
 int cmd_dab(cmd_context *ctx, int argc, char **argv, og_error *err);
 int cmd_stroke(cmd_context *ctx, int argc, char **argv, og_error *err);
+int cmd_stroke_begin(cmd_context *ctx, int argc, char **argv, og_error *err);
+int cmd_stroke_to(cmd_context *ctx, int argc, char **argv, og_error *err);
+int cmd_stroke_end(cmd_context *ctx, int argc, char **argv, og_error *err);
+int cmd_stroke_cancel(cmd_context *ctx, int argc, char **argv, og_error *err);
 int cmd_undo(cmd_context *ctx, int argc, char **argv, og_error *err);
 int cmd_redo(cmd_context *ctx, int argc, char **argv, og_error *err);
 int cmd_history(cmd_context *ctx, int argc, char **argv, og_error *err);
