@@ -27,9 +27,9 @@ static void usage(FILE *out) {
             "                      (--batch and -c may be repeated; they run in order)\n"
             "  --cache-mb N        tile cache budget in MiB (default 1024)\n"
             "  --workers N         tile loader/generator threads (default 2)\n"
-            "  --record FILE       append every command that runs (typed, scripted or a UI\n"
-            "                      action such as a sculpting drag) to FILE; orogen --batch\n"
-            "                      FILE replays the session\n"
+            "  --record FILE       append every command that succeeds (typed, scripted or a\n"
+            "                      UI action such as a sculpting drag; not exit) to FILE;\n"
+            "                      orogen --batch FILE replays the session\n"
             "  --help, --version\n"
             "Batch errors are reported as FILE:LINE: error: MESSAGE with exit status 1.\n"
             "Type 'help' in the console or run `orogen -c help` for the command list.\n");

@@ -26,7 +26,7 @@ export DISPLAY=":$(head -n 1 "$work/display")"
 if [ -n "${ASAN_OPTIONS:-}" ]; then export ASAN_OPTIONS="$ASAN_OPTIONS:detect_leaks=0"; fi
 
 mkfifo "$work/stdin"
-"$orogen" <"$work/stdin" >"$work/out" 2>"$work/err" &
+"$orogen" --record "$work/session.og" <"$work/stdin" >"$work/out" 2>"$work/err" &
 app=$!
 exec 3>"$work/stdin" # keep the console's input open
 
@@ -172,6 +172,12 @@ xdotool key ctrl+s
 wait_title "saved.world - " && [ "$(grep -c '^saved ' "$work/out")" -gt "$saves" ]
 rc=$?; check "Ctrl+S saves again ($(title))" $rc
 
+# The drags ran as commands: the recorded session replays, in batch mode, to the same terrain.
+hf=$(hash_box "$px" "$pz")
+grep -q '^stroke_begin$' "$work/session.og" && grep -q '^stroke_to ' "$work/session.og" &&
+    grep -q '^stroke_end$' "$work/session.og"
+check "sculpting drags are recorded as stroke_begin / stroke_to / stroke_end commands" $?
+
 # Bad commands are reported; the window stays.
 echo "frobnicate" >&3
 for _ in $(seq 100); do grep -q "console:1: error: unknown command 'frobnicate'" "$work/err" && break; sleep 0.1; done
@@ -185,6 +191,12 @@ status=1
 for _ in $(seq 200); do kill -0 $app 2>/dev/null || break; sleep 0.1; done
 if ! kill -0 $app 2>/dev/null; then wait $app; status=$?; fi
 [ $status = 0 ]; check "exit closes the editor with status 0" $?
+cp "$work/session.og" "$work/replay.og"
+echo "hash $(awk -v x="$px" -v z="$pz" 'BEGIN { print x - 150, z - 150, x + 150, z + 150 }')" >>"$work/replay.og"
+"$orogen" --batch "$work/replay.og" >"$work/replay.out" 2>"$work/replay.err"
+rc=$?
+[ $rc = 0 ] && [ -n "$hf" ] && [ "$(tail -n 1 "$work/replay.out")" = "$hf" ]
+rc2=$?; check "the recorded session replays to the same hash (status $rc, $hf vs $(tail -n 1 "$work/replay.out"))" $rc2
 [ $status = 0 ] && [ $failures = 0 ] || tail -n 30 "$work/err"
 
 echo "$passes passed, $failures failed"

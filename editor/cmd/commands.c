@@ -340,7 +340,8 @@ static int execute(cmd_context *ctx, int argc, char **argv, og_error *err) {
     // A stroke is one undo step: nothing else changes the world in its middle.
     if (ctx->stroke && c->ends_stroke && cmd_end_stroke(ctx, err) != 0) return -1;
     if (c->run(ctx, argc, argv, err) != 0) return -1;
-    if (ctx->record) record(ctx, argc, argv);
+    // `exit` is left out: a replay goes on to whatever follows it.
+    if (ctx->record && c->run != c_exit) record(ctx, argc, argv);
     return 0;
 }
 
