@@ -11,8 +11,8 @@
 //     per second of simulated time), against the full level textures (levels x 256^2);
 //  5. parallax detail off and on (4, 8 and 16 steps) a few metres above sculpted
 //     detail (a noise brush on the detail layer, through the command language);
-//  6. clipmap levels 3, 5, 7, 9, 11 against frames per second (seed 000's Table 10);
-//  7. visual accuracy: seed 002's RMSE between the clipmap and the naive mesh in the
+//  6. clipmap levels 3, 5, 7, 9, 11 against frames per second (Crause 2010's Table 10);
+//  7. visual accuracy: Tabakovic 2024's RMSE between the clipmap and the naive mesh in the
 //     height view (same camera, projection, sun, sky and fog), goal <= 3, from three
 //     cameras; both images and an amplified difference are written as PNGs.
 // Usage: bench_render [OUT_DIR [SECTIONS]]: images go to OUT_DIR (default $TMPDIR, else
@@ -371,7 +371,7 @@ static void accuracy_view(bench *b, world *w, naive_mesh *m, const camera *c, co
 
 static void bench_accuracy(bench *b, world *w4096, naive_mesh *m) {
     const world_params *p = world_get_params(w4096);
-    printf("\n7. Visual accuracy: RMSE (seed 002, 8-bit RGB) of the clipmap against the naive "
+    printf("\n7. Visual accuracy: RMSE (Tabakovic 2024, 8-bit RGB) of the clipmap against the naive "
            "full-resolution mesh,\n   height view, fog 1/12000 per metre, %dx%d; images in %s\n",
            WIDTH, HEIGHT, b->out_dir);
     printf("   %-10s %8s %8s %10s %23s\n", "view", "above m", "finest", "RMSE",
@@ -597,7 +597,7 @@ static void bench_levels(bench *b, world *w1024, world *winf) {
     c.yaw = 30, c.pitch = -8;
     render_settings s;
     render_settings_default(&s);
-    enum { NL = 5 };            // 3, 5, 7, 9, 11 as in seed 000's Table 10
+    enum { NL = 5 };            // 3, 5, 7, 9, 11 as in Crause 2010's Table 10
     double ms[NL][REPEATS * 3]; // 3 frames per level count and repeat
     uint64_t tris[NL];
     progress("6. levels");
@@ -613,7 +613,7 @@ static void bench_levels(bench *b, world *w1024, world *winf) {
             }
         }
     printf("\n6. Clipmap levels against frames per second, shaded view, fixed camera 150 m up "
-           "looking 8 degrees down, unbounded world (seed 000 Table 10)\n");
+           "looking 8 degrees down, unbounded world (Crause 2010 Table 10)\n");
     printf("   %-8s %12s %10s %12s %12s %12s\n", "levels", "reach (km)", "FPS", "frame ms",
            "triangles", "FPS / L3");
     double base = 0;

@@ -1,6 +1,6 @@
 // The benchmark's reference renderer: the whole bounded world at full resolution as
 // one static mesh (one vertex per level-0 coarse sample), drawn with one
-// glDrawElements. What the clipmap is measured against for speed (seed 002's "no LOD")
+// glDrawElements. What the clipmap is measured against for speed (Tabakovic 2024's "no LOD")
 // and for visual accuracy (it shades like the clipmap's height view). Bench-only code.
 #ifndef OROGEN_BENCH_NAIVE_MESH_H
 #define OROGEN_BENCH_NAIVE_MESH_H

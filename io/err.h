@@ -1,5 +1,5 @@
 // A fixed-size error message that library code fills instead of printing or exiting.
-// Messages name the file, line or field and what was expected (see STYLE.md).
+// Messages name the file, line or field and what was expected (the habit of SQLite's errors).
 #ifndef OROGEN_IO_ERR_H
 #define OROGEN_IO_ERR_H
 

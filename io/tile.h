@@ -1,5 +1,5 @@
 // The unit of everything Orogen stores, caches and renders: a fixed square of
-// samples addressed by (layer, face, level, tx, ty). See ARCHITECTURE.md "The world".
+// samples addressed by (layer, face, level, tx, ty). README.md, "How it fits together", says how tiles make a world.
 #ifndef OROGEN_IO_TILE_H
 #define OROGEN_IO_TILE_H
 
@@ -21,7 +21,7 @@ typedef enum tile_layer {
     TILE_LAYER_DETAIL = 1,   // float32 metres offset, detail_ratio samples per coarse sample
     TILE_LAYER_MATERIAL = 2, // TILE_MATERIALS x uint8 weights per sample
     TILE_LAYER_VOLUME = 3,   // reserved for volume edits (overhangs, caves)
-    // Partial derivatives of the detail layer (seed 000's PD map): int16 d/dx, d/dz per
+    // Partial derivatives of the detail layer (Crause 2010's PD map): int16 d/dx, d/dz per
     // detail sample, slope x DETAIL_PD_SCALE. Derived data the editor keeps current.
     TILE_LAYER_DETAIL_PD = 4,
     TILE_LAYER_COUNT

@@ -1,5 +1,5 @@
 // The fixed geometry of a geometry clipmap level (Losasso & Hoppe 2004, in the GPU
-// form of Asirvatham & Hoppe 2005; seed 000 section 3.6.2): one n x n grid of vertex
+// form of Asirvatham & Hoppe 2005; Crause 2010 section 3.6.2): one n x n grid of vertex
 // positions shared by every level, and index ranges ("pieces") that select the parts a
 // level draws. Built once on the CPU; the renderer uploads it and never changes it.
 //

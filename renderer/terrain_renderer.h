@@ -1,4 +1,4 @@
-// The 3D viewport's renderer: GPU geometry clipmaps over the tile cache (seed 000),
+// The 3D viewport's renderer: GPU geometry clipmaps over the tile cache (Crause 2010),
 // with material splatting, parallax detail, sky, water, fog, the brush cursor and the
 // debug views. Needs a current OpenGL 4.5 core context (the window's or a headless
 // one); everything it holds is the same size whatever the world's size.

@@ -1,4 +1,4 @@
-// The detail layer's partial-derivative (PD) map (seed 000): d/dx and d/dz of the
+// The detail layer's partial-derivative (PD) map (Crause 2010): d/dx and d/dz of the
 // detail offsets by 4th-order central differences,
 //   f'(x) = (f(x-2) - 8 f(x-1) + 8 f(x+1) - f(x+2)) / (12 h),
 // stored as int16 x DETAIL_PD_SCALE in TILE_LAYER_DETAIL_PD tiles for the renderer.

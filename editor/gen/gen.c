@@ -20,7 +20,7 @@ static gen_fractal fractal_for(const world_params *p, int level) {
     return f;
 }
 
-// The low-frequency field that picks seed 004's "random exponents" for land.
+// The low-frequency field that picks Kahoun 2010's "random exponents" for land.
 static gen_fractal shaping_fractal(const world_params *p) {
     gen_fractal f = {.kind = GEN_FRACTAL_FBM,
                      .seed = gen_hash32((uint32_t)p->seed ^ 0x5eed0004U),

@@ -46,7 +46,7 @@ static uint32_t point_hash(uint32_t seed, int64_t x, int64_t z) {
     return gen_hash_3(hx, hz, seed);
 }
 
-// Top-grid heights: seed 003's super blocks, as a smooth fBm over top cells.
+// Top-grid heights: Harris 2011's super blocks, as a smooth fBm over top cells.
 static void fill_top(const world_params *p, ds_grid *g) {
     gen_fractal f = {.kind = GEN_FRACTAL_FBM,
                      .seed = gen_hash32((uint32_t)p->seed ^ 0xd1a3050dU),

@@ -1,5 +1,5 @@
 // Gradient (Perlin) noise and its fractal sums: fBm with fractional octaves
-// (seed 004) and Musgrave's ridged multifractal. The grid and point entry points
+// (Kahoun 2010) and Musgrave's ridged multifractal. The grid and point entry points
 // are the fast paths the generators use; the single-sample functions are the
 // reference they must match bit for bit.
 //
@@ -20,7 +20,7 @@ typedef enum gen_fractal_kind { GEN_FRACTAL_FBM = 0, GEN_FRACTAL_RIDGED = 1 } ge
 typedef struct gen_fractal {
     gen_fractal_kind kind;
     uint32_t seed;
-    double octaves;      // > 0; a fractional part weights the last octave (seed 004)
+    double octaves;      // > 0; a fractional part weights the last octave (Kahoun 2010)
     double gain;         // w_factor: amplitude multiplier per octave
     double lacunarity;   // exponent: frequency multiplier per octave
     double ridge_offset; // ridged only (Musgrave's "offset", typically 1.0)

@@ -7,7 +7,7 @@
 double gen_feature_size(const world_params *p) {
     if (p->feature_size > 0) return p->feature_size;
     // Flat: features a couple of thousand samples across look like landscape at any
-    // spacing. Planets: seed 004 samples noise on the unit sphere, i.e. one radius.
+    // spacing. Planets: Kahoun 2010 samples noise on the unit sphere, i.e. one radius.
     return p->kind == WORLD_PLANET ? p->radius : 2048.0 * p->spacing;
 }
 

@@ -103,14 +103,14 @@ void world_params_default(world_params *p, world_kind kind) {
         .detail_ratio = 4,
         .feature_size = 0,
         .base_height = 0,
-        .roughness = 0.4, // seed 003
-        .smoothing = 0.5, // seed 003
+        .roughness = 0.4, // Harris 2011
+        .smoothing = 0.5, // Harris 2011
         .ridge_offset = 1.0,
         .fault_count = 100,
         .tiles = "",
     };
     if (kind == WORLD_PLANET) {
-        // Earth-sized, with seed 004's advanced generator, gain and lacunarity.
+        // Earth-sized, with Kahoun 2010's advanced generator, gain and lacunarity.
         p->generator = GEN_FBM_ADVANCED;
         p->octaves = 12.5;
         p->max_height = 8848;
@@ -299,7 +299,7 @@ int world_params_validate(const world_params *p, og_error *err) {
         if (!(p->max_height < p->radius))
             return og_error_set(err, "max_height: must be below radius (%g m), got %g m", p->radius,
                                 p->max_height);
-        // Loose on purpose: seed 004's files give ocean_level near the radius.
+        // Loose on purpose: Kahoun 2010's files give ocean_level near the radius.
         if (!(fabs(p->ocean_level) <= p->radius + p->max_height))
             return og_error_set(err, "ocean_level: must lie within +-(radius + max_height), got %g",
                                 p->ocean_level);

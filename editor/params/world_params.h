@@ -1,6 +1,6 @@
 // The parameters that fully describe a world's unedited terrain, and their
 // parameter-file form (`name.world` / `name.planet`). Planet files written with
-// seed 004's keys (generator, radius, max_height, ocean_level, omega, seed,
+// Kahoun 2010's keys (generator, radius, max_height, ocean_level, omega, seed,
 // w_factor, exponent) load unchanged.
 #ifndef OROGEN_EDITOR_WORLD_PARAMS_H
 #define OROGEN_EDITOR_WORLD_PARAMS_H
@@ -13,12 +13,12 @@
 typedef enum world_kind { WORLD_FLAT = 0, WORLD_PLANET = 1 } world_kind;
 
 // Generator indices are what `generator N` and `generator = N;` accept. 0 and 1 are
-// seed 004's two generators (simple and advanced fBm), so its files keep their meaning.
+// Kahoun 2010's two generators (simple and advanced fBm), so its files keep their meaning.
 typedef enum gen_kind {
     GEN_FBM = 0,            // fBm over Perlin gradient noise (fractional octaves)
-    GEN_FBM_ADVANCED = 1,   // fBm + seed 004's ocean-floor root and exponent shaping
+    GEN_FBM_ADVANCED = 1,   // fBm + Kahoun 2010's ocean-floor root and exponent shaping
     GEN_RIDGED = 2,         // Musgrave's ridged multifractal
-    GEN_DIAMOND_SQUARE = 3, // seed 003's diamond-square, seamless over int32 tiles
+    GEN_DIAMOND_SQUARE = 3, // Harris 2011's diamond-square, seamless over int32 tiles
     GEN_FAULTS = 4,         // random fault lines
     GEN_FLAT = 5,           // constant height (base_height)
     GEN_COUNT
@@ -28,13 +28,13 @@ typedef struct world_params {
     world_kind kind;
     gen_kind generator;
     int64_t seed;        // any integer; the generators use it modulo 2^32
-    double octaves;      // fBm octave count, fractional allowed (seed 004)
+    double octaves;      // fBm octave count, fractional allowed (Kahoun 2010)
     double w_factor;     // fBm gain: weight multiplier per octave
     double exponent;     // fBm lacunarity: frequency multiplier per octave
     double max_height;   // metres: generated heights lie in (-max_height, max_height)
     double ocean_level;  // metres above the datum where the water plane sits
     double radius;       // planets: metres from the centre to the datum
-    double omega;        // planets: angular velocity, radians per second (seed 004)
+    double omega;        // planets: angular velocity, radians per second (Kahoun 2010)
     double spacing;      // metres between coarse samples
     int64_t size;        // flat worlds: coarse samples per side; 0 = unbounded
     int32_t detail_ratio; // detail samples per coarse sample, per side

@@ -63,7 +63,7 @@ static float smoothstep(float e0, float e1, float x) {
 }
 
 // exp(-k s) minus its first-order Taylor expansion at s = 1 (s = r^2), scaled to 1
-// at the centre: seed 000's Gaussian with value and slope 0 at the footprint edge.
+// at the centre: Crause 2010's Gaussian with value and slope 0 at the footprint edge.
 static float gaussian(float s) {
     const float k = 4.0f, e = expf(-k);
     float g = (expf(-k * s) - e * (1.0f + k * (1.0f - s))) / (1.0f - e * (1.0f + k));

@@ -1,4 +1,4 @@
-// Functional stamps (seed 000): heights as pure functions of stamp-local position,
+// Functional stamps (Crause 2010): heights as pure functions of stamp-local position,
 // for the stamp engine to scale, rotate, mirror and add onto tiles.
 //
 // The footprint is the unit disc (the unit square [-1, 1]^2 for the ridge). Every
@@ -6,7 +6,7 @@
 // at its edge, so a placed stamp never leaves a step or a crease at its border.
 // Values are in units of intensity, within [-1, 1]; all but the crater are >= 0.
 //
-// The cone is a mountain (seed 003's lake is a cone-shaped depression): the engine
+// The cone is a mountain (Harris 2011's lake is a cone-shaped depression): the engine
 // makes lakes by subtracting it (negative intensity).
 #ifndef OROGEN_EDITOR_STAMP_SHAPES_H
 #define OROGEN_EDITOR_STAMP_SHAPES_H

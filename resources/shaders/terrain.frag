@@ -1,7 +1,7 @@
 #version 450 core
-// Terrain shading: normals from the heights' partial derivatives (seed 000's PD
+// Terrain shading: normals from the heights' partial derivatives (Crause 2010's PD
 // normals), 8-layer material splatting over automatic sand/grass/rock/snow rules
-// (seed 003), parallax-mapped detail near the camera, sun, fog, the brush cursor and
+// (Harris 2011), parallax-mapped detail near the camera, sun, fog, the brush cursor and
 // the debug views.
 #include "terrain_common.glsl"
 #include "lighting.glsl"
@@ -86,7 +86,7 @@ vec3 blend2(vec4 a, vec4 b, float t) {
     return (a.rgb * wa + b.rgb * wb) / (wa + wb);
 }
 
-// seed 003's four materials by height and slope: sand by the water, grass, rock on
+// Harris 2011's four materials by height and slope: sand by the water, grass, rock on
 // steep ground, snow up high; cliff rock where it is steeper still.
 vec3 automatic(float h, float slope, vec2 uv, vec2 uv_far) {
     vec4 sand = albedo(0, uv, uv_far), grass = albedo(1, uv, uv_far);
@@ -118,7 +118,7 @@ void main() {
         return;
     }
 
-    // Detail: iterative parallax with offset limiting (seed 000 4.4.3) over the detail
+    // Detail: iterative parallax with offset limiting (Crause 2010 4.4.3) over the detail
     // window, faded out with distance.
     vec2 detail_slope = vec2(0.0);
     vec2 shift_m = vec2(0.0); // parallax shift of the texture lookups, metres

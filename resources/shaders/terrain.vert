@@ -1,6 +1,6 @@
 #version 450 core
 // Geometry clipmap vertex: a fixed grid position, displaced by the level's height
-// texture (seed 000's vertex displacement), morphed toward the coarser level at the edge.
+// texture (Crause 2010's vertex displacement), morphed toward the coarser level at the edge.
 #include "terrain_common.glsl"
 
 layout(location = 0) in uvec2 a_grid; // local vertex, 0 .. n-1
