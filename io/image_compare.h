@@ -1,4 +1,4 @@
-// Comparing 8-bit RGB images: the RMSE that seed 002 uses for visual accuracy (LOD vs
+// Comparing 8-bit RGB images: the RMSE that Tabakovic 2024 uses for visual accuracy (LOD vs
 // full-resolution screenshots) and for Orogen's golden-image tests, and a visible
 // difference image for when such a test fails.
 #ifndef OROGEN_IO_IMAGE_COMPARE_H
@@ -9,7 +9,7 @@
 #include <stddef.h>
 
 // Root mean square error between two 8-bit RGB images of the same size (pixels
-// pixels, 3 bytes each), over every channel of every pixel: seed 002's
+// pixels, 3 bytes each), over every channel of every pixel: Tabakovic 2024's
 // sqrt(1/(m n) sum (A-B)^2) with the sum over the 3 channels divided by 3 as well, so
 // a uniform difference of d gives d. In 0..255; 0 for no pixels.
 double image_rmse_rgb8(const unsigned char *a, const unsigned char *b, size_t pixels);

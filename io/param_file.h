@@ -1,7 +1,7 @@
-// Reader and writer for Orogen's parameter files: the syntax of seed 004's planet
+// Reader and writer for Orogen's parameter files: the syntax of Kahoun 2010's planet
 // and configuration files. One `key = value;` per line, `#` starts a comment
 // (whole line or after the `;`), blank lines are ignored. The reader is tolerant
-// in the way seed 004 asks: a bad line is reported with its line number and
+// in the way Kahoun 2010 asks: a bad line is reported with its line number and
 // reading goes on.
 #ifndef OROGEN_IO_PARAM_FILE_H
 #define OROGEN_IO_PARAM_FILE_H
