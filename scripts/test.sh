@@ -2,16 +2,37 @@
 # Installs, builds with warnings as errors and runs the whole test suite.
 #   scripts/test.sh              Release build
 #   scripts/test.sh --sanitize   the same suite under ASan + UBSan
+#   scripts/test.sh --thread     the threaded engine's tests (edits, the parallel pool,
+#                                the tile cache, change notifications) under TSan
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-if [ "${1:-}" = "--sanitize" ]; then
+case "${1:-}" in
+--sanitize)
   "$root/scripts/build.sh" --sanitize -DOROGEN_WERROR=ON
   dir="$root/build-sanitize"
   export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
   export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-else
+  ;;
+--thread)
+  "$root/scripts/install-deps.sh"
+  dir="$root/build-tsan"
+  tsan_tests=(test_edit test_cache test_parallel test_world_events)
+  cmake -S "$root" -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DOROGEN_TSAN=ON \
+    -DOROGEN_WERROR=ON >/dev/null
+  targets=()
+  for t in "${tsan_tests[@]}"; do
+    [ -f "$root/tests/$t.c" ] && targets+=(--target "$t")
+  done
+  cmake --build "$dir" -j "$(nproc)" "${targets[@]}"
+  export TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1
+  cd "$dir"
+  ctest --output-on-failure -j 2 -R "^($(IFS='|'; echo "${tsan_tests[*]}"))\$"
+  exit
+  ;;
+*)
   "$root/scripts/build.sh" -DOROGEN_WERROR=ON
   dir="$root/build"
-fi
+  ;;
+esac
 cd "$dir"
 ctest --output-on-failure -j 2
