@@ -6,6 +6,7 @@
 #include "renderer/viewport.h"
 #include "editor/cmd/commands.h"
 #include "editor/world/world.h"
+#include "io/parse.h"
 
 #include <errno.h>
 #include <stdio.h>
@@ -149,10 +150,9 @@ int main(int argc, char **argv) {
         } else if (strcmp(a, "--record") == 0 && has_value) {
             record_path = argv[++i];
         } else if ((strcmp(a, "--cache-mb") == 0 || strcmp(a, "--workers") == 0) && has_value) {
-            char *end;
-            long v = strtol(argv[++i], &end, 10);
+            int64_t v = 0;
             long max = a[2] == 'c' ? 1L << 20 : 64;
-            if (*end || v < 1 || v > max) {
+            if (parse_i64(argv[++i], &v) != 0 || v < 1 || v > max) {
                 fprintf(stderr, "orogen: %s expects an integer from 1 to %ld, got '%s'\n", a, max,
                         argv[i]);
                 return 2;

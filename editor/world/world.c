@@ -32,7 +32,6 @@ struct world {
     world_generation *gen;
     history *history;
     world_events *own_events; // the private hub when settings.events is NULL
-    uint64_t serial; // unique per world in this process (a new world may reuse an address)
 };
 
 static int generation_source(void *user, tile_key key, void *out) {
@@ -140,8 +139,6 @@ static int open_journal(world *w, og_error *err) {
 static world *world_alloc(const world_params *params, const world_settings *settings) {
     world *w = calloc(1, sizeof *w);
     if (!w) return NULL;
-    static _Atomic uint64_t next_serial = 1;
-    w->serial = next_serial++;
     w->params = *params;
     if (settings) w->settings = *settings;
     if (!w->settings.warn) w->settings.warn = default_warn;
@@ -291,7 +288,6 @@ int world_regenerate(world *w, const world_params *params, og_error *err) {
 }
 
 const world_params *world_get_params(const world *w) { return &w->params; }
-uint64_t world_serial(const world *w) { return w->serial; }
 
 const char *world_path(const world *w) { return w->path; }
 tile_cache *world_cache(world *w) { return w->cache; }

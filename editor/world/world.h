@@ -49,8 +49,6 @@ int world_save(world *w, const char *path, og_error *err);
 int world_regenerate(world *w, const world_params *params, og_error *err);
 
 const world_params *world_get_params(const world *w);
-// Unique per world opened in this process.
-uint64_t world_serial(const world *w);
 // The hub the world publishes its changes to (world_settings.events, or its own).
 world_events *world_event_hub(world *w);
 // Publishes e on the world's hub (editor/world/world_events.h says who may call it when).
