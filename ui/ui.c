@@ -1,0 +1,1137 @@
+#include "ui/ui.h"
+
+#include <locale.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define SCOPE_MAX 32
+#define LAYOUT_MAX 16
+#define COLUMNS_MAX 16
+#define WIDGETS_MAX 1024
+#define SLOTS_MAX 512
+#define EDIT_MAX 1024
+#define UNDO_MAX 16
+#define FOCUSABLE_MAX 256
+#define TOOLTIP_DELAY 0.5
+
+typedef struct layout {
+    ui_rect body;      // the region widgets flow in (screen pixels, scrolled)
+    float y;           // top of the next row
+    float content_top; // body.y at scroll 0, for measuring the content's height
+    int columns, col;
+    float widths[COLUMNS_MAX];
+    float row_height;
+    ui_rect cells[COLUMNS_MAX];
+} layout;
+
+// What survives frames per widget id: scroll offsets, open sections, sizes.
+typedef struct slot {
+    ui_id id;
+    float scroll, content, size_w, size_h;
+    int open, initialised, at_bottom;
+    uint64_t frame; // last frame it was used
+} slot;
+
+struct ui_context {
+    const ui_font *font;
+    ui_theme theme;
+    ui_draw_list dl, overlay, *target;
+    ui_input in;
+    float width, height;
+    uint64_t frame;
+
+    ui_id hot, active, focus, hot_next;
+    ui_id focus_request;
+
+    ui_id scope_ids[SCOPE_MAX];
+    char scope_names[SCOPE_MAX][64];
+    int scope_depth;
+    layout layouts[LAYOUT_MAX];
+    int layout_depth;
+
+    ui_widget_info widgets[2][WIDGETS_MAX];
+    size_t widget_count[2];
+    int cur; // widgets[cur] is being written; the other is the last frame's
+
+    ui_rect last_rect;
+    ui_id last_id;
+    int last_hovered;
+
+    ui_id tip_id;
+    double tip_since;
+
+    // Text editing (text boxes, and sliders being typed into).
+    ui_id edit_id;
+    char edit_restore[EDIT_MAX];
+    size_t cursor, anchor;
+    char undo[UNDO_MAX][EDIT_MAX];
+    int undo_count, typing_run;
+    double caret_time;
+    ui_id focusables[FOCUSABLE_MAX];
+    int focusable_count;
+    int tab_pending;  // Tab was pressed with a field focused
+    ui_id tab_from;   // the field Tab leaves: the next field drawn takes the focus
+    int tab_to_first; // Tab on the last field: the first field next frame
+
+    // Sliders.
+    ui_id typing_id; // a slider in typing mode
+    char typing_buf[64];
+    double drag_start_value;
+    float drag_start_x;
+    int drag_fine;
+
+    // Menus and combos: one popup open at a time.
+    ui_id open_popup;
+    ui_rect popup_rect, popup_rect_prev;
+    float popup_y, popup_w_needed;
+    int in_popup;
+    ui_rect menubar;
+    float menubar_x;
+    int popup_just_opened;
+
+    ui_rect panel_rects[2][64];
+    int panel_count[2];
+
+    slot slots[SLOTS_MAX];
+    ui_clipboard clipboard;
+    int wants_mouse, wants_keyboard, needs_frame;
+    locale_t c_locale;
+};
+
+// ---- small helpers ---------------------------------------------------------------
+
+static ui_id hash_bytes(ui_id h, const void *data, size_t n) {
+    const unsigned char *p = data;
+    for (size_t i = 0; i < n; i++)
+        h = (h ^ p[i]) * 16777619u;
+    return h;
+}
+
+// The shown part of a label: up to "##".
+static size_t label_len(const char *label) {
+    const char *hash = strstr(label, "##");
+    return hash ? (size_t)(hash - label) : strlen(label);
+}
+
+static slot *get_slot(ui_context *ui, ui_id id) {
+    size_t i = id % SLOTS_MAX, oldest = i;
+    for (size_t k = 0; k < 16; k++) {
+        slot *s = &ui->slots[(i + k) % SLOTS_MAX];
+        if (s->id == id) {
+            s->frame = ui->frame;
+            return s;
+        }
+        if (s->frame < ui->slots[oldest].frame) oldest = (i + k) % SLOTS_MAX;
+        if (!s->id) {
+            oldest = (i + k) % SLOTS_MAX;
+            break;
+        }
+    }
+    slot *s = &ui->slots[oldest]; // reuse the least recently used nearby slot
+    memset(s, 0, sizeof *s);
+    s->id = id;
+    s->frame = ui->frame;
+    return s;
+}
+
+static int mouse_pressed(const ui_context *ui) {
+    return ui->in.mouse_pressed[0];
+}
+
+// The pointer is over r and nothing covers it (an open popup over a base widget).
+static int over(const ui_context *ui, ui_rect r) {
+    if (!ui_rect_contains(ui_rect_intersect(r, ui_draw_clip(ui->target)), ui->in.mouse_x,
+                          ui->in.mouse_y))
+        return 0;
+    if (!ui->in_popup && ui->open_popup &&
+        ui_rect_contains(ui->popup_rect_prev, ui->in.mouse_x, ui->in.mouse_y))
+        return 0;
+    return 1;
+}
+
+static void record_widget(ui_context *ui, const char *label, ui_rect r) {
+    if (ui->widget_count[ui->cur] == WIDGETS_MAX) return;
+    ui_widget_info *w = &ui->widgets[ui->cur][ui->widget_count[ui->cur]++];
+    size_t n = 0;
+    w->name[0] = 0;
+    for (int i = 0; i < ui->scope_depth; i++)
+        n += (size_t)snprintf(w->name + n, n < sizeof w->name ? sizeof w->name - n : 0, "%s/",
+                              ui->scope_names[i]);
+    if (n < sizeof w->name)
+        snprintf(w->name + n, sizeof w->name - n, "%.*s", (int)label_len(label), label);
+    w->rect = r;
+}
+
+// Hover and press handling shared by clickable widgets; returns 1 on a click
+// (press and release over it).
+static int behave(ui_context *ui, ui_id id, ui_rect r) {
+    int hovered = over(ui, r);
+    if (hovered) ui->hot_next = id;
+    int clicked = 0;
+    if (hovered && mouse_pressed(ui)) {
+        ui->active = id;
+        if (ui->focus && ui->focus != id) ui->focus = 0;
+    }
+    if (ui->active == id && ui->in.mouse_released[0]) {
+        clicked = hovered;
+        ui->active = 0;
+    }
+    ui->last_id = id;
+    ui->last_rect = r;
+    ui->last_hovered = hovered;
+    return clicked;
+}
+
+static float text_width(const ui_context *ui, const char *s, size_t n) {
+    return ui_font_text_width(ui->font, UI_FACE_SANS, s, n);
+}
+
+static void text_in(ui_context *ui, ui_rect r, const char *s, size_t n, ui_color c, int centred) {
+    float w = text_width(ui, s, n);
+    float x = centred ? r.x + (r.w - w) * 0.5f : r.x + ui_em(ui, 0.3f);
+    float y = r.y + (r.h - ui_font_line_height(ui->font)) * 0.5f;
+    ui_draw_push_clip(ui->target, r);
+    ui_draw_text(ui->target, UI_FACE_SANS, x, y, s, n, c);
+    ui_draw_pop_clip(ui->target);
+}
+
+// ---- context ---------------------------------------------------------------------
+
+ui_context *ui_create(const ui_font *font) {
+    ui_context *ui = calloc(1, sizeof *ui);
+    if (!ui) return NULL;
+    ui->font = font;
+    ui->c_locale = newlocale(LC_ALL_MASK, "C", (locale_t)0);
+    // A dark theme in the manner of Blender's and Unreal's editors.
+    ui->theme = (ui_theme){
+        .bg = UI_RGBA(30, 30, 33, 255),
+        .panel = UI_RGBA(43, 43, 47, 245),
+        .panel_alt = UI_RGBA(52, 52, 57, 255),
+        .border = UI_RGBA(20, 20, 22, 255),
+        .text = UI_RGBA(222, 222, 222, 255),
+        .text_dim = UI_RGBA(140, 140, 145, 255),
+        .text_error = UI_RGBA(255, 110, 100, 255),
+        .accent = UI_RGBA(72, 118, 196, 255),
+        .accent_hot = UI_RGBA(92, 140, 220, 255),
+        .widget = UI_RGBA(64, 64, 70, 255),
+        .widget_hot = UI_RGBA(80, 80, 88, 255),
+        .widget_active = UI_RGBA(98, 98, 108, 255),
+        .selection = UI_RGBA(60, 100, 170, 255),
+    };
+    return ui;
+}
+
+void ui_destroy(ui_context *ui) {
+    if (!ui) return;
+    ui_draw_free(&ui->dl);
+    ui_draw_free(&ui->overlay);
+    if (ui->c_locale) freelocale(ui->c_locale);
+    free(ui);
+}
+
+void ui_set_clipboard(ui_context *ui, ui_clipboard cb) {
+    ui->clipboard = cb;
+}
+const ui_theme *ui_get_theme(const ui_context *ui) {
+    return &ui->theme;
+}
+const ui_font *ui_get_font(const ui_context *ui) {
+    return ui->font;
+}
+float ui_em(const ui_context *ui, float n) {
+    return roundf(n * ui_font_line_height(ui->font));
+}
+
+void ui_begin(ui_context *ui, const ui_input *in, float width, float height) {
+    ui->in = *in;
+    ui->width = width;
+    ui->height = height;
+    ui->frame++;
+    ui->hot = ui->hot_next;
+    ui->hot_next = 0;
+    ui->cur ^= 1;
+    ui->widget_count[ui->cur] = 0;
+    ui->panel_count[ui->cur] = 0;
+    ui->scope_depth = 0;
+    ui->layout_depth = 0;
+    ui->needs_frame = 0;
+    ui->popup_rect_prev = ui->popup_rect;
+    ui->popup_rect = (ui_rect){0, 0, 0, 0};
+    ui->in_popup = 0;
+    ui->focusable_count = 0;
+    ui->last_id = 0;
+    ui->last_hovered = 0;
+    ui_draw_reset(&ui->dl, ui->font, width, height);
+    ui_draw_reset(&ui->overlay, ui->font, width, height);
+    ui->target = &ui->dl;
+    // A click that lands on no widget drops the keyboard focus (checked in ui_end).
+    if (in->key_pressed[UI_KEY_ESCAPE] && ui->open_popup && !ui->edit_id) ui->open_popup = 0;
+    ui->tab_pending = in->key_pressed[UI_KEY_TAB] && ui->focus;
+}
+
+// Popups and tooltips are drawn into their own list and appended last: on top.
+static void append_overlay(ui_context *ui) {
+    ui_draw_list *d = &ui->dl, *o = &ui->overlay;
+    uint32_t base = d->vtx_count;
+    // Raw copy: vertices appended, indices offset, commands appended.
+    if (!o->cmd_count) return;
+    uint32_t nv = d->vtx_count + o->vtx_count, ni = d->idx_count + o->idx_count,
+             nc = d->cmd_count + o->cmd_count;
+    ui_vertex *vtx = realloc(d->vtx, (size_t)(nv ? nv : 1) * sizeof *vtx);
+    if (!vtx) return (void)(d->out_of_memory = 1);
+    d->vtx = vtx, d->vtx_cap = nv;
+    uint32_t *idx = realloc(d->idx, (size_t)(ni ? ni : 1) * sizeof *idx);
+    if (!idx) return (void)(d->out_of_memory = 1);
+    d->idx = idx, d->idx_cap = ni;
+    ui_draw_cmd *cmds = realloc(d->cmds, (size_t)nc * sizeof *cmds);
+    if (!cmds) return (void)(d->out_of_memory = 1);
+    d->cmds = cmds, d->cmd_cap = nc;
+    memcpy(d->vtx + d->vtx_count, o->vtx, o->vtx_count * sizeof *vtx);
+    for (uint32_t i = 0; i < o->idx_count; i++)
+        d->idx[d->idx_count + i] = o->idx[i] + base;
+    for (uint32_t c = 0; c < o->cmd_count; c++) {
+        ui_draw_cmd cmd = o->cmds[c];
+        cmd.first_index += d->idx_count;
+        d->cmds[d->cmd_count + c] = cmd;
+    }
+    d->vtx_count = nv, d->idx_count = ni, d->cmd_count = nc;
+}
+
+const ui_draw_list *ui_end(ui_context *ui) {
+    // Tooltip delay and caret blink keep frames coming.
+    if (ui->tip_id) ui->needs_frame = 1;
+    if (ui->focus) ui->needs_frame = 1;
+    // A press outside the open popup (and not on what opened it) closes it.
+    if (ui->open_popup && mouse_pressed(ui) && !ui->popup_just_opened &&
+        !ui_rect_contains(ui->popup_rect, ui->in.mouse_x, ui->in.mouse_y) &&
+        ui->hot_next != ui->open_popup)
+        ui->open_popup = 0;
+    ui->popup_just_opened = 0;
+    if (ui->tab_from) { // Tab on the last field wraps to the first
+        ui->tab_from = 0;
+        ui->tab_to_first = 1;
+    }
+    // A press on nothing focusable drops the focus.
+    if (mouse_pressed(ui) && ui->focus && ui->hot_next != ui->focus) {
+        ui->focus = 0;
+        ui->edit_id = 0;
+        ui->typing_id = 0;
+    }
+    if (ui->in.mouse_released[0] && ui->active && ui->active != ui->focus) ui->active = 0;
+    int over_panel = 0;
+    for (int i = 0; i < ui->panel_count[ui->cur]; i++)
+        over_panel |= ui_rect_contains(ui->panel_rects[ui->cur][i], ui->in.mouse_x, ui->in.mouse_y);
+    over_panel |=
+        ui->open_popup && ui_rect_contains(ui->popup_rect, ui->in.mouse_x, ui->in.mouse_y);
+    ui->wants_mouse = over_panel || ui->active != 0;
+    ui->wants_keyboard = ui->focus != 0;
+    append_overlay(ui);
+    return &ui->dl;
+}
+
+int ui_wants_mouse(const ui_context *ui) {
+    return ui->wants_mouse;
+}
+int ui_wants_keyboard(const ui_context *ui) {
+    return ui->wants_keyboard;
+}
+int ui_needs_frame(const ui_context *ui) {
+    return ui->needs_frame;
+}
+
+// ---- ids, scopes, named widgets -------------------------------------------------------
+
+ui_id ui_get_id(ui_context *ui, const char *label) {
+    ui_id h = ui->scope_depth ? ui->scope_ids[ui->scope_depth - 1] : 2166136261u;
+    h = hash_bytes(h, label, strlen(label));
+    return h ? h : 1;
+}
+
+void ui_push_scope(ui_context *ui, const char *name) {
+    if (ui->scope_depth == SCOPE_MAX) return;
+    ui->scope_ids[ui->scope_depth] = ui_get_id(ui, name);
+    snprintf(ui->scope_names[ui->scope_depth], sizeof ui->scope_names[0], "%.*s",
+             (int)label_len(name), name);
+    ui->scope_depth++;
+}
+
+void ui_pop_scope(ui_context *ui) {
+    if (ui->scope_depth > 0) ui->scope_depth--;
+}
+
+size_t ui_widget_count(const ui_context *ui) {
+    return ui->widget_count[ui->cur ^ 1];
+}
+const ui_widget_info *ui_widget_at(const ui_context *ui, size_t i) {
+    return i < ui_widget_count(ui) ? &ui->widgets[ui->cur ^ 1][i] : NULL;
+}
+const ui_widget_info *ui_widget_find(const ui_context *ui, const char *name) {
+    for (size_t i = 0; i < ui_widget_count(ui); i++)
+        if (strcmp(ui->widgets[ui->cur ^ 1][i].name, name) == 0)
+            return &ui->widgets[ui->cur ^ 1][i];
+    return NULL;
+}
+
+// ---- layout ----------------------------------------------------------------------
+
+void ui_split(const ui_context *ui, ui_rect r, int horizontal, int n, const float *sizes,
+              ui_rect *out) {
+    (void)ui;
+    float total = horizontal ? r.w : r.h, fixed = 0;
+    int fills = 0;
+    for (int i = 0; i < n; i++) {
+        float s = sizes ? sizes[i] : 0;
+        if (s > 0)
+            fixed += s;
+        else if (s < 0)
+            fixed += -s * total;
+        else
+            fills++;
+    }
+    float fill = fills ? fmaxf(0.0f, (total - fixed) / fills) : 0, at = horizontal ? r.x : r.y;
+    for (int i = 0; i < n; i++) {
+        float s = sizes ? sizes[i] : 0;
+        float len = s > 0 ? s : s < 0 ? -s * total : fill;
+        len = roundf(len);
+        out[i] = horizontal ? (ui_rect){at, r.y, len, r.h} : (ui_rect){r.x, at, r.w, len};
+        at += len;
+    }
+}
+
+static layout *top_layout(ui_context *ui) {
+    if (ui->layout_depth == 0) { // no panel: the whole window
+        ui->layouts[0] = (layout){.body = {0, 0, ui->width, ui->height}};
+        ui->layout_depth = 1;
+    }
+    return &ui->layouts[ui->layout_depth - 1];
+}
+
+void ui_row(ui_context *ui, int columns, const float *widths, float height) {
+    layout *l = top_layout(ui);
+    if (columns < 1) columns = 1;
+    if (columns > COLUMNS_MAX) columns = COLUMNS_MAX;
+    l->columns = columns;
+    for (int i = 0; i < columns; i++)
+        l->widths[i] = widths ? widths[i] : 0;
+    l->row_height = height > 0 ? height : ui_em(ui, 1.4f);
+    l->col = columns; // the next cell starts a row
+}
+
+ui_rect ui_next_cell(ui_context *ui) {
+    layout *l = top_layout(ui);
+    if (l->columns == 0) ui_row(ui, 1, NULL, 0);
+    if (l->col >= l->columns) {
+        float gap = ui_em(ui, 0.2f);
+        ui_rect row = {l->body.x, l->y, l->body.w, l->row_height};
+        ui_split(ui, row, 1, l->columns, l->widths, l->cells);
+        for (int i = 0; i < l->columns; i++) { // a small gap between cells
+            if (i + 1 < l->columns) l->cells[i].w -= gap;
+        }
+        l->y += l->row_height + gap;
+        l->col = 0;
+    }
+    return l->cells[l->col++];
+}
+
+void ui_panel_begin(ui_context *ui, const char *name, ui_rect r) {
+    ui_push_scope(ui, name);
+    ui_id id = ui->scope_ids[ui->scope_depth - 1];
+    slot *s = get_slot(ui, id);
+    if (ui->panel_count[ui->cur] < 64) ui->panel_rects[ui->cur][ui->panel_count[ui->cur]++] = r;
+    ui_draw_rect(ui->target, r, ui->theme.panel);
+    // Wheel over the panel scrolls it.
+    float pad = ui_em(ui, 0.3f), bar = ui_em(ui, 0.45f);
+    float max_scroll = fmaxf(0.0f, s->content - (r.h - 2 * pad));
+    if (ui->in.wheel != 0 && over(ui, r)) s->scroll -= ui->in.wheel * ui_em(ui, 3);
+    s->scroll = fminf(fmaxf(s->scroll, 0.0f), max_scroll);
+    ui_draw_push_clip(ui->target, r);
+    if (ui->layout_depth < LAYOUT_MAX) {
+        layout *l = &ui->layouts[ui->layout_depth++];
+        memset(l, 0, sizeof *l);
+        l->body = (ui_rect){r.x + pad, r.y + pad - s->scroll,
+                            r.w - 2 * pad - (max_scroll > 0 ? bar : 0), r.h - 2 * pad};
+        l->y = l->body.y;
+        l->content_top = l->body.y;
+    }
+    record_widget(ui, "", r);
+}
+
+void ui_panel_end(ui_context *ui) {
+    if (ui->scope_depth == 0) return;
+    ui_id id = ui->scope_ids[ui->scope_depth - 1];
+    slot *s = get_slot(ui, id);
+    ui_rect clip = ui_draw_clip(ui->target);
+    if (ui->layout_depth > 0) {
+        layout *l = &ui->layouts[--ui->layout_depth];
+        s->content = l->y - l->content_top;
+        float pad = ui_em(ui, 0.3f), bar = ui_em(ui, 0.45f), view = clip.h - 2 * pad;
+        if (s->content > view && view > 0) { // a scroll bar with a draggable thumb
+            ui_rect track = {clip.x + clip.w - bar, clip.y, bar, clip.h};
+            float th = fmaxf(ui_em(ui, 1), track.h * view / s->content);
+            float max_scroll = s->content - view;
+            ui_rect thumb = {track.x, track.y + (track.h - th) * (s->scroll / max_scroll), bar, th};
+            ui_id tid = id ^ 0x5c5c5c5cu;
+            behave(ui, tid, track);
+            if (ui->active == tid && ui->in.mouse_down[0])
+                s->scroll = fminf(
+                    fmaxf((ui->in.mouse_y - track.y - th * 0.5f) / (track.h - th) * max_scroll,
+                          0.0f),
+                    max_scroll);
+            ui_draw_rect(ui->target, track, ui->theme.panel_alt);
+            ui_draw_rect(ui->target, thumb,
+                         ui->hot == tid || ui->active == tid ? ui->theme.widget_active
+                                                             : ui->theme.widget_hot);
+        }
+    }
+    ui_draw_pop_clip(ui->target);
+    ui_pop_scope(ui);
+}
+
+// ---- widgets -----------------------------------------------------------------------
+
+void ui_label_colored(ui_context *ui, const char *text, ui_color c) {
+    ui_rect r = ui_next_cell(ui);
+    text_in(ui, r, text, label_len(text), c, 0);
+    record_widget(ui, text, r);
+    ui->last_rect = r;
+    ui->last_id = ui_get_id(ui, text);
+    ui->last_hovered = over(ui, r);
+}
+
+void ui_label(ui_context *ui, const char *text) {
+    ui_label_colored(ui, text, ui->theme.text);
+}
+
+static ui_color widget_colour(const ui_context *ui, ui_id id) {
+    if (ui->active == id) return ui->theme.widget_active;
+    if (ui->hot == id) return ui->theme.widget_hot;
+    return ui->theme.widget;
+}
+
+int ui_toggle_button(ui_context *ui, const char *label, int on) {
+    ui_id id = ui_get_id(ui, label);
+    ui_rect r = ui_next_cell(ui);
+    int clicked = behave(ui, id, r);
+    ui_color bg =
+        on ? (ui->hot == id ? ui->theme.accent_hot : ui->theme.accent) : widget_colour(ui, id);
+    ui_draw_rect(ui->target, r, bg);
+    text_in(ui, r, label, label_len(label), ui->theme.text, 1);
+    record_widget(ui, label, r);
+    return clicked;
+}
+
+int ui_button(ui_context *ui, const char *label) {
+    return ui_toggle_button(ui, label, 0);
+}
+
+int ui_checkbox(ui_context *ui, const char *label, int *value) {
+    ui_id id = ui_get_id(ui, label);
+    ui_rect r = ui_next_cell(ui);
+    int clicked = behave(ui, id, r);
+    float box = fminf(r.h, ui_em(ui, 0.9f));
+    ui_rect b = {r.x, r.y + (r.h - box) * 0.5f, box, box};
+    ui_draw_rect(ui->target, b, widget_colour(ui, id));
+    if (*value) {
+        float m = box * 0.22f;
+        ui_draw_rect(ui->target, (ui_rect){b.x + m, b.y + m, box - 2 * m, box - 2 * m},
+                     ui->theme.accent_hot);
+    }
+    text_in(ui, (ui_rect){r.x + box, r.y, r.w - box, r.h}, label, label_len(label), ui->theme.text,
+            0);
+    record_widget(ui, label, r);
+    if (clicked) *value = !*value;
+    return clicked;
+}
+
+int ui_radio(ui_context *ui, const char *label, int *value, int option) {
+    int on = *value == option;
+    if (ui_toggle_button(ui, label, on) && !on) {
+        *value = option;
+        return 1;
+    }
+    return 0;
+}
+
+void ui_separator(ui_context *ui) {
+    layout *l = top_layout(ui);
+    float gap = ui_em(ui, 0.3f);
+    if (l->col < l->columns) l->col = l->columns; // finish the row
+    ui_draw_rect(ui->target, (ui_rect){l->body.x, l->y + gap, l->body.w, 1}, ui->theme.border);
+    l->y += 2 * gap + 1;
+}
+
+void ui_progress(ui_context *ui, double fraction, const char *text) {
+    ui_rect r = ui_next_cell(ui);
+    double f = fraction < 0 ? 0 : fraction > 1 ? 1 : fraction;
+    ui_draw_rect(ui->target, r, ui->theme.widget);
+    ui_draw_rect(ui->target, (ui_rect){r.x, r.y, roundf(r.w * (float)f), r.h}, ui->theme.accent);
+    if (text) text_in(ui, r, text, strlen(text), ui->theme.text, 1);
+    record_widget(ui, text ? text : "progress", r);
+}
+
+int ui_section(ui_context *ui, const char *label, int default_open) {
+    ui_id id = ui_get_id(ui, label);
+    slot *s = get_slot(ui, id);
+    if (!s->initialised) s->open = default_open, s->initialised = 1;
+    layout *l = top_layout(ui);
+    if (l->col < l->columns) l->col = l->columns;
+    int cols = l->columns;
+    float widths[COLUMNS_MAX], height = l->row_height;
+    memcpy(widths, l->widths, sizeof widths);
+    ui_row(ui, 1, NULL, ui_em(ui, 1.3f));
+    ui_rect r = ui_next_cell(ui);
+    if (behave(ui, id, r)) s->open = !s->open;
+    ui_draw_rect(ui->target, r, ui->hot == id ? ui->theme.widget_hot : ui->theme.panel_alt);
+    char head[256];
+    snprintf(head, sizeof head, "%s %.*s", s->open ? "\xe2\x96\xbc" : "\xe2\x96\xb6",
+             (int)label_len(label), label);
+    text_in(ui, r, head, strlen(head), ui->theme.text, 0);
+    record_widget(ui, label, r);
+    if (cols > 0) ui_row(ui, cols, widths, height);
+    return s->open;
+}
+
+ui_rect ui_last_rect(const ui_context *ui) {
+    return ui->last_rect;
+}
+int ui_last_hovered(const ui_context *ui) {
+    return ui->last_hovered;
+}
+
+static void tooltip_box(ui_context *ui, const char *text) {
+    ui_draw_list *keep = ui->target;
+    ui->target = &ui->overlay;
+    float pad = ui_em(ui, 0.3f), w = text_width(ui, text, strlen(text)) + 2 * pad,
+          h = ui_font_line_height(ui->font) + 2 * pad;
+    float x = fminf(ui->in.mouse_x + ui_em(ui, 0.8f), ui->width - w);
+    float y = ui->in.mouse_y + ui_em(ui, 1.0f);
+    if (y + h > ui->height) y = ui->in.mouse_y - h - pad;
+    ui_rect r = {fmaxf(0, x), fmaxf(0, y), w, h};
+    ui_draw_rect(ui->target, r, ui->theme.panel_alt);
+    ui_draw_rect_outline(ui->target, r, ui->theme.border, 1);
+    ui_draw_text(ui->target, UI_FACE_SANS, r.x + pad, r.y + pad, text, strlen(text),
+                 ui->theme.text);
+    ui->target = keep;
+}
+
+void ui_tooltip(ui_context *ui, const char *text) {
+    if (!ui->last_hovered || ui->active) {
+        if (ui->tip_id == ui->last_id) ui->tip_id = 0;
+        return;
+    }
+    if (ui->tip_id != ui->last_id) {
+        ui->tip_id = ui->last_id;
+        ui->tip_since = ui->in.time;
+    }
+    if (ui->in.time - ui->tip_since >= TOOLTIP_DELAY) tooltip_box(ui, text);
+}
+
+// ---- sliders ------------------------------------------------------------------------
+
+static int parse_double_c(ui_context *ui, const char *s, double *out) {
+    char *end;
+    double v = strtod_l(s, &end, ui->c_locale);
+    while (*end == ' ')
+        end++;
+    if (end == s || !isfinite(v)) return -1;
+    *out = v;
+    return 0;
+}
+
+static int text_edit(ui_context *ui, ui_id id, ui_rect r, char *buf, size_t size);
+
+int ui_slider(ui_context *ui, const char *label, double *value, double lo, double hi,
+              const char *fmt) {
+    ui_id id = ui_get_id(ui, label);
+    ui_rect r = ui_next_cell(ui);
+    record_widget(ui, label, r);
+    if (ui->typing_id == id) { // typing a value
+        int rc = text_edit(ui, id, r, ui->typing_buf, sizeof ui->typing_buf);
+        if (rc & UI_TEXT_SUBMIT) {
+            ui->typing_id = 0;
+            double v;
+            if (parse_double_c(ui, ui->typing_buf, &v) == 0) {
+                v = v < lo ? lo : v > hi ? hi : v;
+                if (v != *value) return *value = v, 1;
+            }
+            return 0;
+        }
+        if (ui->focus != id) ui->typing_id = 0; // Esc or a click elsewhere
+        return 0;
+    }
+    int hovered = over(ui, r);
+    if (hovered) ui->hot_next = id;
+    int changed = 0;
+    if (hovered && mouse_pressed(ui)) {
+        if ((ui->in.mods & UI_MOD_CTRL) || ui->in.double_click) { // type a value
+            ui->typing_id = id;
+            snprintf(ui->typing_buf, sizeof ui->typing_buf, "%.10g", *value);
+            ui->focus = id;
+            ui->edit_id = 0; // text_edit starts editing next frame
+        } else {
+            ui->active = id;
+            ui->drag_start_value = *value;
+            ui->drag_start_x = ui->in.mouse_x;
+            ui->drag_fine = ui->in.mods & UI_MOD_SHIFT;
+            // A click without a drag jumps to the position (as Blender's sliders do not:
+            // here a press sets the value where the pointer is, then drags from there).
+            double t = (ui->in.mouse_x - r.x) / (r.w > 1 ? r.w : 1);
+            double v = lo + (hi - lo) * (t < 0 ? 0 : t > 1 ? 1 : t);
+            if (!ui->drag_fine && v != *value) *value = v, changed = 1;
+            ui->drag_start_value = *value;
+        }
+    }
+    if (ui->active == id) {
+        if (ui->in.mouse_down[0]) {
+            int fine = ui->in.mods & UI_MOD_SHIFT;
+            if (fine != ui->drag_fine) { // re-base when Shift changes mid-drag
+                ui->drag_start_value = *value;
+                ui->drag_start_x = ui->in.mouse_x;
+                ui->drag_fine = fine;
+            }
+            double per_px = (hi - lo) / (r.w > 1 ? r.w : 1) * (fine ? 0.1 : 1.0);
+            double v = ui->drag_start_value + (ui->in.mouse_x - ui->drag_start_x) * per_px;
+            v = v < lo ? lo : v > hi ? hi : v;
+            if (v != *value) *value = v, changed = 1;
+        } else {
+            ui->active = 0;
+        }
+    }
+    ui->last_id = id, ui->last_rect = r, ui->last_hovered = hovered;
+    ui_draw_rect(ui->target, r, widget_colour(ui, id));
+    double t = hi > lo ? (*value - lo) / (hi - lo) : 0;
+    t = t < 0 ? 0 : t > 1 ? 1 : t;
+    ui_draw_rect(ui->target, (ui_rect){r.x, r.y, roundf(r.w * (float)t), r.h},
+                 ui->hot == id || ui->active == id ? ui->theme.accent_hot : ui->theme.accent);
+    char text[192], num[64];
+    snprintf(num, sizeof num, fmt ? fmt : "%.3g", *value);
+    snprintf(text, sizeof text, "%.*s: %s", (int)label_len(label), label, num);
+    text_in(ui, r, text, strlen(text), ui->theme.text, 1);
+    return changed;
+}
+
+// ---- combos and menus (popups) ---------------------------------------------------------
+
+static void popup_begin(ui_context *ui, ui_id id, float x, float y, float min_w) {
+    slot *s = get_slot(ui, id);
+    float w = fmaxf(min_w, s->size_w), h = s->size_h;
+    if (x + w > ui->width) x = fmaxf(0, ui->width - w);
+    ui->target = &ui->overlay;
+    ui->in_popup = 1;
+    ui->popup_rect = (ui_rect){x, y, w, h};
+    ui->popup_y = y + ui_em(ui, 0.2f);
+    ui->popup_w_needed = min_w;
+    ui_draw_rect(ui->target, ui->popup_rect, ui->theme.panel_alt);
+    ui_draw_rect_outline(ui->target, ui->popup_rect, ui->theme.border, 1);
+    if (h == 0) ui->needs_frame = 1; // sized from this frame's items on the next
+}
+
+static void popup_end(ui_context *ui, ui_id id) {
+    slot *s = get_slot(ui, id);
+    float h = ui->popup_y + ui_em(ui, 0.2f) - ui->popup_rect.y;
+    if (s->size_h != h || s->size_w != ui->popup_w_needed) ui->needs_frame = 1;
+    s->size_h = h;
+    s->size_w = ui->popup_w_needed;
+    ui->popup_rect.h = h;
+    ui->popup_rect.w = fmaxf(ui->popup_rect.w, ui->popup_w_needed);
+    ui->target = &ui->dl;
+    ui->in_popup = 0;
+}
+
+// One line of a popup; returns 1 when picked.
+static int popup_item(ui_context *ui, const char *label, const char *right, int enabled,
+                      int checked) {
+    ui_id id = ui_get_id(ui, label);
+    float h = ui_em(ui, 1.3f), pad = ui_em(ui, 0.6f);
+    float need = text_width(ui, label, label_len(label)) + 3 * pad +
+                 (right ? text_width(ui, right, strlen(right)) + 2 * pad : 0);
+    ui->popup_w_needed = fmaxf(ui->popup_w_needed, need);
+    ui_rect r = {ui->popup_rect.x + 1, ui->popup_y, ui->popup_rect.w - 2, h};
+    ui->popup_y += h;
+    int clicked = enabled && behave(ui, id, r);
+    if (enabled && ui->hot == id) ui_draw_rect(ui->target, r, ui->theme.selection);
+    ui_color c = enabled ? ui->theme.text : ui->theme.text_dim;
+    if (checked)
+        ui_draw_text(ui->target, UI_FACE_SANS, r.x + pad * 0.3f,
+                     r.y + (h - ui_font_line_height(ui->font)) * 0.5f, "\xe2\x9c\x93", 3, c);
+    ui_draw_text(ui->target, UI_FACE_SANS, r.x + pad,
+                 r.y + (h - ui_font_line_height(ui->font)) * 0.5f, label, label_len(label), c);
+    if (right) {
+        float rw = text_width(ui, right, strlen(right));
+        ui_draw_text(ui->target, UI_FACE_SANS, r.x + r.w - rw - pad,
+                     r.y + (h - ui_font_line_height(ui->font)) * 0.5f, right, strlen(right),
+                     ui->theme.text_dim);
+    }
+    record_widget(ui, label, r);
+    return clicked;
+}
+
+int ui_combo(ui_context *ui, const char *label, int *index, const char *const *items, int count) {
+    ui_id id = ui_get_id(ui, label);
+    ui_rect r = ui_next_cell(ui);
+    record_widget(ui, label, r);
+    if (behave(ui, id, r)) {
+        ui->open_popup = ui->open_popup == id ? 0 : id;
+        ui->popup_just_opened = 1;
+    }
+    ui_draw_rect(ui->target, r, widget_colour(ui, id));
+    char text[256];
+    snprintf(text, sizeof text, "%.*s: %s", (int)label_len(label), label,
+             *index >= 0 && *index < count ? items[*index] : "");
+    text_in(ui, (ui_rect){r.x, r.y, r.w - ui_em(ui, 0.8f), r.h}, text, strlen(text), ui->theme.text,
+            0);
+    ui_draw_text(ui->target, UI_FACE_SANS, r.x + r.w - ui_em(ui, 0.8f),
+                 r.y + (r.h - ui_font_line_height(ui->font)) * 0.5f, "\xe2\x96\xbc", 3,
+                 ui->theme.text_dim);
+    if (ui->open_popup != id) return 0;
+    int changed = 0;
+    ui_push_scope(ui, label);
+    popup_begin(ui, id, r.x, r.y + r.h, r.w);
+    for (int i = 0; i < count; i++)
+        if (popup_item(ui, items[i], NULL, 1, i == *index)) {
+            changed = i != *index;
+            *index = i;
+            ui->open_popup = 0;
+        }
+    popup_end(ui, id);
+    ui_pop_scope(ui);
+    return changed;
+}
+
+void ui_menubar_begin(ui_context *ui, ui_rect r) {
+    ui->menubar = r;
+    ui->menubar_x = r.x + ui_em(ui, 0.3f);
+    ui_draw_rect(ui->target, r, ui->theme.panel);
+    if (ui->panel_count[ui->cur] < 64) ui->panel_rects[ui->cur][ui->panel_count[ui->cur]++] = r;
+    ui_push_scope(ui, "Menu");
+}
+
+void ui_menubar_end(ui_context *ui) {
+    ui_pop_scope(ui);
+}
+
+int ui_menu_begin(ui_context *ui, const char *label) {
+    ui_id id = ui_get_id(ui, label);
+    float w = text_width(ui, label, label_len(label)) + ui_em(ui, 1.0f);
+    ui_rect r = {ui->menubar_x, ui->menubar.y, w, ui->menubar.h};
+    ui->menubar_x += w;
+    int hovered = over(ui, r);
+    if (hovered) ui->hot_next = id;
+    if (hovered && mouse_pressed(ui)) {
+        ui->open_popup = ui->open_popup == id ? 0 : id;
+        ui->popup_just_opened = 1;
+    }
+    // Moving along the bar while a menu is open opens the one under the pointer.
+    if (hovered && ui->open_popup && ui->open_popup != id && !mouse_pressed(ui))
+        ui->open_popup = id;
+    int open = ui->open_popup == id;
+    if (open || ui->hot == id)
+        ui_draw_rect(ui->target, r, open ? ui->theme.selection : ui->theme.widget_hot);
+    text_in(ui, r, label, label_len(label), ui->theme.text, 1);
+    record_widget(ui, label, r);
+    ui->last_id = id, ui->last_rect = r, ui->last_hovered = hovered;
+    if (!open) return 0;
+    ui_push_scope(ui, label);
+    popup_begin(ui, id, r.x, r.y + r.h, ui_em(ui, 8));
+    return 1;
+}
+
+void ui_menu_end(ui_context *ui) {
+    popup_end(ui, ui->open_popup);
+    ui_pop_scope(ui);
+}
+
+int ui_menu_item(ui_context *ui, const char *label, const char *shortcut, int enabled) {
+    if (popup_item(ui, label, shortcut, enabled, 0)) {
+        ui->open_popup = 0;
+        return 1;
+    }
+    return 0;
+}
+
+void ui_menu_separator(ui_context *ui) {
+    float y = ui->popup_y + ui_em(ui, 0.2f);
+    ui_draw_rect(ui->target, (ui_rect){ui->popup_rect.x + 4, y, ui->popup_rect.w - 8, 1},
+                 ui->theme.border);
+    ui->popup_y += ui_em(ui, 0.4f) + 1;
+}
+
+// ---- text editing ----------------------------------------------------------------------
+
+static int is_word(char c) {
+    return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_' ||
+           (unsigned char)c >= 0x80;
+}
+
+static size_t prev_char(const char *s, size_t i) {
+    if (i == 0) return 0;
+    i--;
+    while (i > 0 && ((unsigned char)s[i] & 0xC0) == 0x80)
+        i--;
+    return i;
+}
+
+static size_t next_char(const char *s, size_t n, size_t i) {
+    if (i >= n) return n;
+    i++;
+    while (i < n && ((unsigned char)s[i] & 0xC0) == 0x80)
+        i++;
+    return i;
+}
+
+static size_t word_left(const char *s, size_t i) {
+    while (i > 0 && !is_word(s[i - 1]))
+        i--;
+    while (i > 0 && is_word(s[i - 1]))
+        i--;
+    return i;
+}
+
+static size_t word_right(const char *s, size_t n, size_t i) {
+    while (i < n && !is_word(s[i]))
+        i++;
+    while (i < n && is_word(s[i]))
+        i++;
+    return i;
+}
+
+static void push_undo(ui_context *ui, const char *buf) {
+    if (ui->undo_count == UNDO_MAX) {
+        memmove(ui->undo[0], ui->undo[1], (UNDO_MAX - 1) * sizeof ui->undo[0]);
+        ui->undo_count--;
+    }
+    snprintf(ui->undo[ui->undo_count++], EDIT_MAX, "%s", buf);
+}
+
+// Deletes the selection; returns whether there was one.
+static int delete_selection(ui_context *ui, char *buf) {
+    if (ui->cursor == ui->anchor) return 0;
+    size_t a = ui->cursor < ui->anchor ? ui->cursor : ui->anchor;
+    size_t b = ui->cursor < ui->anchor ? ui->anchor : ui->cursor;
+    memmove(buf + a, buf + b, strlen(buf + b) + 1);
+    ui->cursor = ui->anchor = a;
+    return 1;
+}
+
+static void insert_text(ui_context *ui, char *buf, size_t size, const char *text) {
+    delete_selection(ui, buf);
+    size_t n = strlen(buf), add = 0;
+    for (const char *t = text; *t && *t != '\n' && *t != '\r'; t++)
+        add++;
+    if (n + add + 1 > size) add = size - 1 - n;
+    while (add > 0 && ((unsigned char)text[add] & 0xC0) == 0x80)
+        add--; // whole code points
+    memmove(buf + ui->cursor + add, buf + ui->cursor, n - ui->cursor + 1);
+    memcpy(buf + ui->cursor, text, add);
+    ui->cursor += add;
+    ui->anchor = ui->cursor;
+}
+
+// The editing behaviour of a focused text field; draws the field. Returns UI_TEXT_*.
+static int text_edit(ui_context *ui, ui_id id, ui_rect r, char *buf, size_t size) {
+    int hovered = over(ui, r), rc = 0;
+    if (hovered) ui->hot_next = id;
+    if (ui->focusable_count < FOCUSABLE_MAX) ui->focusables[ui->focusable_count++] = id;
+    float pad = ui_em(ui, 0.3f);
+    size_t n = strlen(buf);
+    if (hovered && mouse_pressed(ui)) {
+        if (ui->focus != id) {
+            ui->focus = id;
+            ui->edit_id = 0;
+        }
+        ui->active = id;
+    }
+    if (ui->focus == id && ui->edit_id != id) { // gaining focus
+        ui->edit_id = id;
+        snprintf(ui->edit_restore, sizeof ui->edit_restore, "%s", buf);
+        ui->undo_count = 0;
+        ui->typing_run = 0;
+        ui->cursor = n;
+        ui->anchor = 0; // all selected, as most editors do on focus
+        ui->caret_time = ui->in.time;
+        if (hovered && mouse_pressed(ui))
+            ui->cursor = ui->anchor =
+                ui_font_offset_at(ui->font, UI_FACE_SANS, buf, n, ui->in.mouse_x - r.x - pad);
+    } else if (ui->focus == id && ui->active == id && ui->in.mouse_down[0]) { // click/drag selects
+        size_t at = ui_font_offset_at(ui->font, UI_FACE_SANS, buf, n, ui->in.mouse_x - r.x - pad);
+        if (mouse_pressed(ui) && !(ui->in.mods & UI_MOD_SHIFT)) ui->anchor = at;
+        ui->cursor = at;
+    }
+    if (ui->focus == id) {
+        const ui_input *in = &ui->in;
+        int shift = in->mods & UI_MOD_SHIFT, ctrl = in->mods & UI_MOD_CTRL;
+        if (ui->cursor > n) ui->cursor = n;
+        if (ui->anchor > n) ui->anchor = n;
+        size_t before = ui->cursor;
+        if (in->key_pressed[UI_KEY_LEFT])
+            ui->cursor = ctrl ? word_left(buf, ui->cursor) : prev_char(buf, ui->cursor);
+        if (in->key_pressed[UI_KEY_RIGHT])
+            ui->cursor = ctrl ? word_right(buf, n, ui->cursor) : next_char(buf, n, ui->cursor);
+        if (in->key_pressed[UI_KEY_HOME]) ui->cursor = 0;
+        if (in->key_pressed[UI_KEY_END]) ui->cursor = n;
+        if (ui->cursor != before && !shift) ui->anchor = ui->cursor;
+        if (ui->cursor != before) ui->typing_run = 0;
+        if (ctrl && in->key_pressed[UI_KEY_A]) ui->anchor = 0, ui->cursor = n;
+        if (ctrl && (in->key_pressed[UI_KEY_C] || in->key_pressed[UI_KEY_X]) &&
+            ui->cursor != ui->anchor && ui->clipboard.set) {
+            size_t a = ui->cursor < ui->anchor ? ui->cursor : ui->anchor;
+            size_t b = ui->cursor < ui->anchor ? ui->anchor : ui->cursor;
+            char tmp[EDIT_MAX];
+            snprintf(tmp, sizeof tmp, "%.*s", (int)(b - a), buf + a);
+            ui->clipboard.set(ui->clipboard.user, tmp);
+            if (in->key_pressed[UI_KEY_X]) {
+                push_undo(ui, buf);
+                delete_selection(ui, buf);
+                rc |= UI_TEXT_CHANGED;
+            }
+        }
+        if (ctrl && in->key_pressed[UI_KEY_V] && ui->clipboard.get) {
+            const char *clip = ui->clipboard.get(ui->clipboard.user);
+            if (clip && *clip) {
+                push_undo(ui, buf);
+                insert_text(ui, buf, size, clip);
+                rc |= UI_TEXT_CHANGED;
+                ui->typing_run = 0;
+            }
+        }
+        if (ctrl && in->key_pressed[UI_KEY_Z] && ui->undo_count > 0) {
+            snprintf(buf, size, "%s", ui->undo[--ui->undo_count]);
+            ui->cursor = ui->anchor = strlen(buf);
+            ui->typing_run = 0;
+            rc |= UI_TEXT_CHANGED;
+        }
+        if (in->text[0] && !ctrl) {
+            if (!ui->typing_run) push_undo(ui, buf); // one undo step per run of typing
+            ui->typing_run = 1;
+            insert_text(ui, buf, size, in->text);
+            rc |= UI_TEXT_CHANGED;
+        }
+        if (in->key_pressed[UI_KEY_BACKSPACE] || in->key_pressed[UI_KEY_DELETE]) {
+            size_t len = strlen(buf);
+            if (ui->cursor == ui->anchor) {
+                if (in->key_pressed[UI_KEY_BACKSPACE])
+                    ui->anchor = ctrl ? word_left(buf, ui->cursor) : prev_char(buf, ui->cursor);
+                else
+                    ui->anchor =
+                        ctrl ? word_right(buf, len, ui->cursor) : next_char(buf, len, ui->cursor);
+            }
+            if (ui->cursor != ui->anchor) {
+                push_undo(ui, buf);
+                delete_selection(ui, buf);
+                ui->typing_run = 0;
+                rc |= UI_TEXT_CHANGED;
+            }
+        }
+        if (in->key_pressed[UI_KEY_ENTER]) rc |= UI_TEXT_SUBMIT;
+        if (in->key_pressed[UI_KEY_ESCAPE]) { // cancel: back to the text it had on focus
+            if (strcmp(buf, ui->edit_restore) != 0) rc |= UI_TEXT_CHANGED;
+            snprintf(buf, size, "%s", ui->edit_restore);
+            ui->focus = 0;
+            ui->edit_id = 0;
+        }
+        if (ui->tab_pending) { // Tab: the next field in drawing order (Shift+Tab: previous)
+            ui->tab_pending = 0;
+            if (shift) {
+                if (ui->focusable_count >= 2) {
+                    ui->focus = ui->focusables[ui->focusable_count - 2];
+                    ui->edit_id = 0;
+                }
+            } else {
+                ui->tab_from = id;
+            }
+        }
+        if (rc & UI_TEXT_CHANGED) ui->caret_time = in->time;
+    }
+    ui->last_id = id, ui->last_rect = r, ui->last_hovered = hovered;
+    // Draw: field, selection, text scrolled so the caret shows, caret.
+    n = strlen(buf);
+    ui_draw_rect(ui->target, r, ui->focus == id ? ui->theme.panel_alt : widget_colour(ui, id));
+    if (ui->focus == id) ui_draw_rect_outline(ui->target, r, ui->theme.accent, 1);
+    ui_draw_push_clip(ui->target, r);
+    float caret_x =
+        ui_font_text_width(ui->font, UI_FACE_SANS, buf, ui->focus == id ? ui->cursor : 0);
+    float shift_x = fmaxf(0.0f, caret_x - (r.w - 3 * pad));
+    float tx = r.x + pad - shift_x, ty = r.y + (r.h - ui_font_line_height(ui->font)) * 0.5f;
+    if (ui->focus == id && ui->cursor != ui->anchor) {
+        size_t a = ui->cursor < ui->anchor ? ui->cursor : ui->anchor;
+        size_t b = ui->cursor < ui->anchor ? ui->anchor : ui->cursor;
+        float xa = ui_font_text_width(ui->font, UI_FACE_SANS, buf, a);
+        float xb = ui_font_text_width(ui->font, UI_FACE_SANS, buf, b);
+        ui_draw_rect(ui->target, (ui_rect){tx + xa, ty, xb - xa, ui_font_line_height(ui->font)},
+                     ui->theme.selection);
+    }
+    ui_draw_text(ui->target, UI_FACE_SANS, tx, ty, buf, n, ui->theme.text);
+    if (ui->focus == id && fmod(ui->in.time - ui->caret_time, 1.0) < 0.6)
+        ui_draw_rect(ui->target, (ui_rect){tx + caret_x, ty, 1, ui_font_line_height(ui->font)},
+                     ui->theme.text);
+    ui_draw_pop_clip(ui->target);
+    return rc;
+}
+
+int ui_textbox(ui_context *ui, const char *label, char *buf, size_t size) {
+    ui_id id = ui_get_id(ui, label);
+    if (ui->focus_request == id) {
+        ui->focus = id;
+        ui->edit_id = 0;
+        ui->focus_request = 0;
+    }
+    // Tab from the previous field lands here; after the last, on the first.
+    if ((ui->tab_from && ui->tab_from != id) || (ui->tab_to_first && ui->focusable_count == 0)) {
+        ui->focus = id;
+        ui->edit_id = 0;
+        ui->tab_from = 0;
+        ui->tab_to_first = 0;
+    }
+    ui_rect r = ui_next_cell(ui);
+    record_widget(ui, label, r);
+    return text_edit(ui, id, r, buf, size);
+}
+
+void ui_focus(ui_context *ui, const char *label) {
+    ui->focus_request = ui_get_id(ui, label);
+}
+
+// ---- log view ---------------------------------------------------------------------------
+
+void ui_log(ui_context *ui, const char *name, size_t count,
+            ui_log_line (*line)(void *user, size_t i), void *user, float height) {
+    ui_id id = ui_get_id(ui, name);
+    slot *s = get_slot(ui, id);
+    layout *l = top_layout(ui);
+    if (l->col < l->columns) l->col = l->columns;
+    ui_rect r = {l->body.x, l->y, l->body.w, height};
+    l->y += height + ui_em(ui, 0.2f);
+    record_widget(ui, name, r);
+    float lh = ui_font_line_height(ui->font), pad = ui_em(ui, 0.3f);
+    float content = (float)count * lh, view = r.h - 2 * pad,
+          max_scroll = fmaxf(0.0f, content - view);
+    if (!s->initialised) s->initialised = 1, s->at_bottom = 1;
+    if (ui->in.wheel != 0 && over(ui, r)) {
+        s->scroll -= ui->in.wheel * 3 * lh;
+        s->at_bottom = 0;
+    }
+    if (s->at_bottom) s->scroll = max_scroll;
+    s->scroll = fminf(fmaxf(s->scroll, 0.0f), max_scroll);
+    if (s->scroll >= max_scroll - 0.5f) s->at_bottom = 1;
+    ui_draw_rect(ui->target, r, ui->theme.bg);
+    ui_draw_push_clip(ui->target, r);
+    size_t first = (size_t)(s->scroll / lh);
+    for (size_t i = first; i < count; i++) {
+        float y = r.y + pad + (float)i * lh - s->scroll;
+        if (y > r.y + r.h) break;
+        ui_log_line ln = line(user, i);
+        ui_draw_text(ui->target, UI_FACE_MONO, r.x + pad, y, ln.text, strlen(ln.text), ln.color);
+    }
+    if (max_scroll > 0) {
+        float bar = ui_em(ui, 0.3f), th = fmaxf(ui_em(ui, 1), r.h * view / content);
+        ui_draw_rect(
+            ui->target,
+            (ui_rect){r.x + r.w - bar, r.y + (r.h - th) * (s->scroll / max_scroll), bar, th},
+            ui->theme.widget_hot);
+    }
+    ui_draw_pop_clip(ui->target);
+    ui->last_id = id, ui->last_rect = r, ui->last_hovered = over(ui, r);
+}

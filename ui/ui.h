@@ -1,0 +1,171 @@
+// Orogen's immediate-mode UI (after microui and Dear ImGui): the UI is a function of
+// the editor's state, called every frame. Widgets are identified by ids hashed from
+// their label and the enclosing scopes ("Label##suffix" disambiguates; only "Label"
+// is shown). The library keeps only what must survive a frame: the hot, active and
+// focused widgets, drag and text-edit state, scroll offsets, open menus and sections.
+// It produces a draw list (ui_draw.h) and knows nothing of OpenGL, windows or terrain.
+//
+// Sizes in layouts: > 0 pixels (use ui_em for sizes that follow the font and the UI
+// scale), < 0 a fraction of the row (-0.5 = half), 0 fills what is left (shared).
+#ifndef OROGEN_UI_H
+#define OROGEN_UI_H
+
+#include "ui/ui_draw.h"
+#include "ui/ui_font.h"
+
+#include <stddef.h>
+#include <stdint.h>
+
+typedef uint32_t ui_id;
+
+typedef enum ui_key {
+    UI_KEY_TAB,
+    UI_KEY_ENTER,
+    UI_KEY_ESCAPE,
+    UI_KEY_BACKSPACE,
+    UI_KEY_DELETE,
+    UI_KEY_LEFT,
+    UI_KEY_RIGHT,
+    UI_KEY_UP,
+    UI_KEY_DOWN,
+    UI_KEY_HOME,
+    UI_KEY_END,
+    UI_KEY_A,
+    UI_KEY_C,
+    UI_KEY_V,
+    UI_KEY_X,
+    UI_KEY_Z,
+    UI_KEY_COUNT
+} ui_key;
+
+enum { UI_MOD_SHIFT = 1, UI_MOD_CTRL = 2, UI_MOD_ALT = 4 };
+
+// One frame's input, filled by the window (pixels, origin top left).
+typedef struct ui_input {
+    float mouse_x, mouse_y;
+    int mouse_down[3];             // left, right, middle held now
+    int mouse_pressed[3];          // went down this frame
+    int mouse_released[3];         // went up this frame
+    int double_click;              // the left press this frame was a double click
+    float wheel;                   // notches, + away from the user
+    int key_pressed[UI_KEY_COUNT]; // pressed or repeated this frame
+    int mods;                      // UI_MOD_* held
+    char text[64];                 // UTF-8 typed this frame
+    double time;                   // seconds
+} ui_input;
+
+typedef struct ui_theme {
+    ui_color bg, panel, panel_alt, border, text, text_dim, text_error, accent, accent_hot, widget,
+        widget_hot, widget_active, selection;
+} ui_theme;
+
+// Clipboard through the window system (GLFW's); tests inject their own.
+typedef struct ui_clipboard {
+    const char *(*get)(void *user);
+    void (*set)(void *user, const char *text);
+    void *user;
+} ui_clipboard;
+
+typedef struct ui_context ui_context;
+
+// font: made by the caller at the UI's pixel size (owned by the caller).
+ui_context *ui_create(const ui_font *font);
+void ui_destroy(ui_context *ui);
+void ui_set_clipboard(ui_context *ui, ui_clipboard cb);
+const ui_theme *ui_get_theme(const ui_context *ui);
+const ui_font *ui_get_font(const ui_context *ui);
+
+// A frame: begin with the input and the window's size, build widgets, end.
+void ui_begin(ui_context *ui, const ui_input *in, float width, float height);
+// The frame's draw list, valid until the next ui_begin.
+const ui_draw_list *ui_end(ui_context *ui);
+
+// Whether the UI wants the mouse (the pointer is over a widget or panel, or a widget
+// is being dragged) or the keyboard (a text field has focus): the viewport must not
+// take those events then. Valid after ui_end, for the next frame's events.
+int ui_wants_mouse(const ui_context *ui);
+int ui_wants_keyboard(const ui_context *ui);
+// Something animates or waits (a tooltip delay, a caret blink): draw another frame.
+int ui_needs_frame(const ui_context *ui);
+
+// Pixels for n lines of the font (the unit editor code sizes things in).
+float ui_em(const ui_context *ui, float n);
+
+// --- ids and scopes ---------------------------------------------------------------
+ui_id ui_get_id(ui_context *ui, const char *label);
+void ui_push_scope(ui_context *ui, const char *name);
+void ui_pop_scope(ui_context *ui);
+
+// Named widgets: every widget's rectangle of the last frame under its path of scope
+// names and label ("Tools/Raise"), for tests that click widgets by name.
+typedef struct ui_widget_info {
+    char name[128];
+    ui_rect rect;
+} ui_widget_info;
+size_t ui_widget_count(const ui_context *ui);
+const ui_widget_info *ui_widget_at(const ui_context *ui, size_t i);
+const ui_widget_info *ui_widget_find(const ui_context *ui, const char *name);
+
+// --- layout -----------------------------------------------------------------------
+// A region (a panel's inside): widgets flow top to bottom in rows.
+void ui_row(ui_context *ui, int columns, const float *widths, float height);
+// The next cell of the current row (starting a new row like the last when full).
+ui_rect ui_next_cell(ui_context *ui);
+// Splits r into n cells along x (or y) with the same size rules; returns cells in out.
+void ui_split(const ui_context *ui, ui_rect r, int horizontal, int n, const float *sizes,
+              ui_rect *out);
+
+// A panel: a rectangle with a background, its own scope and a vertical scroll bar
+// when the content is taller than it.
+void ui_panel_begin(ui_context *ui, const char *name, ui_rect r);
+void ui_panel_end(ui_context *ui);
+
+// --- widgets (each takes the next layout cell) -------------------------------------
+void ui_label(ui_context *ui, const char *text);
+void ui_label_colored(ui_context *ui, const char *text, ui_color c);
+int ui_button(ui_context *ui, const char *label);                // 1 when clicked
+int ui_toggle_button(ui_context *ui, const char *label, int on); // a button shown pressed when on
+int ui_checkbox(ui_context *ui, const char *label, int *value);  // 1 when changed
+int ui_radio(ui_context *ui, const char *label, int *value, int option);
+// A slider over [lo, hi]: drag (Shift: 10x finer), Ctrl+click or double click to type a
+// value (Enter sets, Esc cancels). fmt formats the value ("%.1f m"). 1 when changed.
+int ui_slider(ui_context *ui, const char *label, double *value, double lo, double hi,
+              const char *fmt);
+// A combo box: items[0..count); 1 when *index changed.
+int ui_combo(ui_context *ui, const char *label, int *index, const char *const *items, int count);
+// Single-line text input in buf (size bytes, NUL-terminated). Returns UI_TEXT_CHANGED
+// and/or UI_TEXT_SUBMIT (Enter); Esc while editing restores the text it had on focus.
+enum { UI_TEXT_CHANGED = 1, UI_TEXT_SUBMIT = 2 };
+int ui_textbox(ui_context *ui, const char *label, char *buf, size_t size);
+// Gives keyboard focus to the text box with this label in the current scope next frame.
+void ui_focus(ui_context *ui, const char *label);
+void ui_separator(ui_context *ui);
+void ui_progress(ui_context *ui, double fraction, const char *text);
+// A collapsible section header; returns 1 while open (starts open when default_open).
+int ui_section(ui_context *ui, const char *label, int default_open);
+// Shows text near the pointer after a short hover over the last widget.
+void ui_tooltip(ui_context *ui, const char *text);
+// The last widget's rectangle and whether the pointer is over it.
+ui_rect ui_last_rect(const ui_context *ui);
+int ui_last_hovered(const ui_context *ui);
+
+// Read-only multi-line text (a log) of count lines from line(user, i), scrolled to the
+// bottom while it was at the bottom; height in pixels.
+typedef struct ui_log_line {
+    const char *text;
+    ui_color color;
+} ui_log_line;
+void ui_log(ui_context *ui, const char *name, size_t count,
+            ui_log_line (*line)(void *user, size_t i), void *user, float height);
+
+// --- menus --------------------------------------------------------------------------
+// A menu bar across r; menus open on click and close on a pick, Esc or a click outside.
+void ui_menubar_begin(ui_context *ui, ui_rect r);
+void ui_menubar_end(ui_context *ui);
+int ui_menu_begin(ui_context *ui, const char *label); // 1 while open: add items
+void ui_menu_end(ui_context *ui);
+// An item with an optional shortcut text; disabled items are shown dim and return 0.
+int ui_menu_item(ui_context *ui, const char *label, const char *shortcut, int enabled);
+void ui_menu_separator(ui_context *ui);
+
+#endif
