@@ -188,7 +188,7 @@ int main(int argc, char **argv) {
     }
 
     og_error err = {{0}};
-    if (view_commands_register(&err) != 0) {
+    if (view_commands_register(&err) != 0 || window_commands_register(&err) != 0) {
         fprintf(stderr, "orogen: %s\n", err.msg);
         return 1;
     }

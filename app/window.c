@@ -1,10 +1,14 @@
 #include "app/window.h"
 
 #include "app/camera_controls.h"
+#include "app/editor_ui.h"
 #include "renderer/gl_context.h"
+#include "renderer/gl_target.h"
 #include "renderer/pick.h"
+#include "renderer/ui_renderer.h"
 #include "renderer/view_commands.h"
 #include "renderer/viewport.h"
+#include "ui/ui.h"
 
 #include <epoxy/gl.h>
 #include <GLFW/glfw3.h>
@@ -49,7 +53,34 @@ typedef struct window_state {
     char stdin_buf[8192];
     size_t stdin_len;
     int stdin_open;
+
+    // The editor's UI over the viewport.
+    ui_font *font;
+    ui_context *ui;
+    ui_renderer *uir;
+    editor_ui ed;
+    ui_input in;       // input gathered since the last UI frame
+    int ui_dirty;      // input or state changed: build and draw the UI again
+    ui_rect view_rect; // the viewport's part of the window (window coordinates)
+    const char *gl_renderer;
+
+    // The terrain image, reused while only the UI changes; rendered at a lower
+    // resolution while the camera moves or a stroke is drawn (dynamic resolution).
+    gl_target terrain;
+    int terrain_valid;
+    float res_scale;
+    double terrain_ms;       // wall time of the last terrain frame
+    double target_ms;        // frame-time goal while moving
+    camera drawn_cam;        // what the terrain image shows
+    render_settings drawn_settings;
+    brush_cursor drawn_cursor;
+    float drawn_scale;
+    int drawn_w, drawn_h;
+    int world_changed;       // change notifications since the terrain image
 } window_state;
+
+// The window whose UI the ui_widgets command reports (one window per process).
+static window_state *current_window;
 
 static void report(const char *what, const og_error *err) {
     fprintf(stderr, "orogen: %s: %s\n", what, err->msg);
@@ -60,20 +91,22 @@ static void report(const char *what, const og_error *err) {
 // The terrain point under window position (x, y): the ray through that pixel marched
 // against the heights the renderer holds (what is on screen), one coarse sample steps.
 static int pick_at(window_state *st, double x, double y, double hit[3]) {
-    if (!st->v->renderer) return -1;
-    int ww, wh;
-    glfwGetWindowSize(st->win, &ww, &wh);
-    if (ww <= 0 || wh <= 0) return -1;
-    return viewport_pick_loaded(st->v, st->ctx->world, x / ww, y / wh, (double)ww / wh, hit);
+    ui_rect r = st->view_rect;
+    if (!st->v->renderer || r.w <= 0 || r.h <= 0) return -1;
+    return viewport_pick_loaded(st->v, st->ctx->world, (x - r.x) / r.w, (y - r.y) / r.h,
+                                (double)r.w / r.h, hit);
+}
+
+static int in_view(const window_state *st, double x, double y) {
+    return ui_rect_contains(st->view_rect, (float)x, (float)y);
 }
 
 // A point along the ray under (x, y) when no terrain is there: `dist` metres out.
 static void point_along_ray(window_state *st, double x, double y, double dist, double out[3]) {
-    int ww, wh;
-    glfwGetWindowSize(st->win, &ww, &wh);
+    ui_rect r = st->view_rect;
     double dir[3];
-    camera_ray(&st->v->cam, ww > 0 && wh > 0 ? (double)ww / wh : 1.0, ww > 0 ? x / ww : 0.5,
-               wh > 0 ? y / wh : 0.5, dir);
+    camera_ray(&st->v->cam, r.w > 0 && r.h > 0 ? (double)r.w / r.h : 1.0,
+               r.w > 0 ? (x - r.x) / r.w : 0.5, r.h > 0 ? (y - r.y) / r.h : 0.5, dir);
     for (int i = 0; i < 3; i++)
         out[i] = st->v->cam.pos[i] + dir[i] * dist;
 }
@@ -86,8 +119,10 @@ static void point_along_ray(window_state *st, double x, double y, double dist, d
 static int run_action(window_state *st, const char *text, const char *label) {
     og_error err = {{0}};
     st->dirty = 1;
+    st->ui_dirty = 1;
     if (cmd_run(st->ctx, text, strlen(text), label, &err) == 0) return 0;
     fprintf(stderr, "%s\n", err.msg);
+    console_add(&st->ed.console, CONSOLE_ERROR, err.msg);
     return -1;
 }
 
@@ -162,9 +197,9 @@ static int keys_held(const window_state *st) {
 
 static void run_commands(window_state *st, const char *text, const char *label) {
     camera before = st->v->cam;
-    og_error err = {{0}};
-    if (cmd_run(st->ctx, text, strlen(text), label, &err) != 0) fprintf(stderr, "%s\n", err.msg);
+    console_run(&st->ed.console, st->ctx, text, label);
     fflush(stdout);
+    st->ui_dirty = 1;
     if (memcmp(&before, &st->v->cam, sizeof before) != 0) st->cc.walk = 0; // `camera` placed it
     st->dirty = 1;
 }
@@ -200,8 +235,37 @@ static void poll_stdin(window_state *st) {
 
 // --- GLFW input --------------------------------------------------------------------
 
+// Window coordinates to the UI's (framebuffer) pixels.
+static float ui_px(const window_state *st, double v) {
+    int ww, fw, h;
+    glfwGetWindowSize(st->win, &ww, &h);
+    glfwGetFramebufferSize(st->win, &fw, &h);
+    return (float)(ww > 0 ? v * fw / ww : v);
+}
+
 static void on_mouse_button(GLFWwindow *win, int button, int action, int mods) {
     window_state *st = glfwGetWindowUserPointer(win);
+    st->ui_dirty = 1;
+    int b = button == GLFW_MOUSE_BUTTON_LEFT ? 0 : button == GLFW_MOUSE_BUTTON_RIGHT ? 1
+            : button == GLFW_MOUSE_BUTTON_MIDDLE ? 2 : -1;
+    if (b >= 0) {
+        if (action == GLFW_PRESS) {
+            st->in.mouse_pressed[b] = 1;
+            double now = glfwGetTime();
+            static double last_left;
+            if (b == 0) {
+                st->in.double_click = now - last_left < 0.35;
+                last_left = now;
+            }
+        } else {
+            st->in.mouse_released[b] = 1;
+        }
+        st->in.mouse_down[b] = action == GLFW_PRESS;
+    }
+    // Presses over the UI (or outside the viewport) are the UI's; releases always end
+    // the viewport's drags.
+    int ui_owns = ui_wants_mouse(st->ui) || !in_view(st, st->mouse_x, st->mouse_y);
+    if (action == GLFW_PRESS && ui_owns) return;
     st->dirty = 1;
     // Drags start where the last motion event left the cursor (not where the pointer
     // is now: events queue up, and querying would skip the moves between).
@@ -210,6 +274,7 @@ static void on_mouse_button(GLFWwindow *win, int button, int action, int mods) {
         st->looking = action == GLFW_PRESS;
         return;
     }
+    if (action == GLFW_PRESS) (void)mods;
     if (button != GLFW_MOUSE_BUTTON_LEFT && button != GLFW_MOUSE_BUTTON_MIDDLE) return;
     if (action == GLFW_RELEASE) {
         if (st->drag == DRAG_SCULPT && button == GLFW_MOUSE_BUTTON_LEFT) sculpt_end(st);
@@ -236,7 +301,11 @@ static void on_cursor(GLFWwindow *win, double x, double y) {
     window_state *st = glfwGetWindowUserPointer(win);
     double dx = x - st->mouse_x, dy = y - st->mouse_y;
     st->mouse_x = x, st->mouse_y = y;
-    st->dirty = 1;
+    st->in.mouse_x = ui_px(st, x);
+    st->in.mouse_y = ui_px(st, y);
+    st->ui_dirty = 1;
+    // The brush cursor moves with the pointer over the viewport.
+    if (st->drag != DRAG_NONE || st->looking || in_view(st, x, y)) st->dirty = 1;
     if (st->drag == DRAG_ORBIT)
         camera_controls_orbit(&st->cc, &st->v->cam, st->pivot, dx, dy);
     else if (st->drag == DRAG_SCULPT)
@@ -253,6 +322,11 @@ static void on_cursor_enter(GLFWwindow *win, int entered) {
 static void on_scroll(GLFWwindow *win, double dx, double dy) {
     (void)dx;
     window_state *st = glfwGetWindowUserPointer(win);
+    st->ui_dirty = 1;
+    if (ui_wants_mouse(st->ui) || !in_view(st, st->mouse_x, st->mouse_y)) {
+        st->in.wheel += (float)dy;
+        return;
+    }
     st->dirty = 1;
     if (st->looking) {
         camera_controls_speed_wheel(&st->cc, dy);
@@ -268,15 +342,75 @@ static void on_scroll(GLFWwindow *win, double dx, double dy) {
 static void save_shortcut(window_state *st) {
     if (!world_path(st->ctx->world)[0]) {
         fprintf(stderr, "orogen: this world has never been saved: type save FILE in the console "
-                        "(after that, Ctrl+S saves it there)\n");
+                        "or use File > Save as (after that, Ctrl+S saves it there)\n");
         return;
     }
     run_commands(st, "save", "Ctrl+S");
 }
 
+// GLFW keys the UI uses.
+static int ui_key_of(int key) {
+    switch (key) {
+    case GLFW_KEY_TAB: return UI_KEY_TAB;
+    case GLFW_KEY_ENTER:
+    case GLFW_KEY_KP_ENTER: return UI_KEY_ENTER;
+    case GLFW_KEY_ESCAPE: return UI_KEY_ESCAPE;
+    case GLFW_KEY_BACKSPACE: return UI_KEY_BACKSPACE;
+    case GLFW_KEY_DELETE: return UI_KEY_DELETE;
+    case GLFW_KEY_LEFT: return UI_KEY_LEFT;
+    case GLFW_KEY_RIGHT: return UI_KEY_RIGHT;
+    case GLFW_KEY_UP: return UI_KEY_UP;
+    case GLFW_KEY_DOWN: return UI_KEY_DOWN;
+    case GLFW_KEY_HOME: return UI_KEY_HOME;
+    case GLFW_KEY_END: return UI_KEY_END;
+    case GLFW_KEY_A: return UI_KEY_A;
+    case GLFW_KEY_C: return UI_KEY_C;
+    case GLFW_KEY_V: return UI_KEY_V;
+    case GLFW_KEY_X: return UI_KEY_X;
+    case GLFW_KEY_Z: return UI_KEY_Z;
+    default: return -1;
+    }
+}
+
+static void on_char(GLFWwindow *win, unsigned int codepoint) {
+    window_state *st = glfwGetWindowUserPointer(win);
+    st->ui_dirty = 1;
+    if (!ui_wants_keyboard(st->ui)) return; // typed into the viewport: shortcuts
+    char u[5] = {0};
+    if (codepoint < 0x80) u[0] = (char)codepoint;
+    else if (codepoint < 0x800) u[0] = (char)(0xC0 | codepoint >> 6), u[1] = (char)(0x80 | (codepoint & 0x3F));
+    else if (codepoint < 0x10000)
+        u[0] = (char)(0xE0 | codepoint >> 12), u[1] = (char)(0x80 | ((codepoint >> 6) & 0x3F)),
+        u[2] = (char)(0x80 | (codepoint & 0x3F));
+    else
+        u[0] = (char)(0xF0 | codepoint >> 18), u[1] = (char)(0x80 | ((codepoint >> 12) & 0x3F)),
+        u[2] = (char)(0x80 | ((codepoint >> 6) & 0x3F)), u[3] = (char)(0x80 | (codepoint & 0x3F));
+    size_t n = strlen(st->in.text);
+    if (n + strlen(u) < sizeof st->in.text) memcpy(st->in.text + n, u, strlen(u) + 1);
+}
+
+static void toggle_console(window_state *st) {
+    st->ed.console.open = !st->ed.console.open;
+    st->ed.console.focus_input = st->ed.console.open;
+}
+
 static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods) {
     (void)scancode;
     window_state *st = glfwGetWindowUserPointer(win);
+    st->ui_dirty = 1;
+    st->in.mods = ((mods & GLFW_MOD_SHIFT) ? UI_MOD_SHIFT : 0) |
+                  ((mods & GLFW_MOD_CONTROL) ? UI_MOD_CTRL : 0) | ((mods & GLFW_MOD_ALT) ? UI_MOD_ALT : 0);
+    int k = ui_key_of(key);
+    if (k >= 0 && action != GLFW_RELEASE) st->in.key_pressed[k] = 1;
+    // A focused text field takes every key; ~ still closes the console.
+    if (ui_wants_keyboard(st->ui)) {
+        if (action == GLFW_PRESS && key == GLFW_KEY_GRAVE_ACCENT && st->ed.console.open) {
+            toggle_console(st);
+            st->in.text[0] = 0;
+        }
+        return;
+    }
+    if (action == GLFW_PRESS && key == GLFW_KEY_ESCAPE) return; // the UI closes menus, dialogs
     st->dirty = 1;
     for (int i = 0; i < MOVE_KEY_COUNT; i++) {
         if (key != move_key_codes[i] || action == GLFW_REPEAT) continue;
@@ -286,8 +420,15 @@ static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
     }
     if (action != GLFW_PRESS) return;
     if (mods & GLFW_MOD_CONTROL) {
-        if (key == GLFW_KEY_S)
+        if (key == GLFW_KEY_S && (mods & GLFW_MOD_SHIFT)) {
+            st->ed.show_save_as = 1;
+            snprintf(st->ed.save_as_path, sizeof st->ed.save_as_path, "%s", world_path(st->ctx->world));
+        } else if (key == GLFW_KEY_S)
             save_shortcut(st);
+        else if (key == GLFW_KEY_N)
+            editor_ui_request(&st->ed, st->ctx, PENDING_NEW_FLAT);
+        else if (key == GLFW_KEY_Q)
+            editor_ui_request(&st->ed, st->ctx, PENDING_QUIT);
         else if (key == GLFW_KEY_Z && (mods & GLFW_MOD_SHIFT))
             run_commands(st, "redo", "Ctrl+Shift+Z");
         else if (key == GLFW_KEY_Z)
@@ -298,6 +439,12 @@ static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
     }
     double hit[3];
     switch (key) {
+    case GLFW_KEY_GRAVE_ACCENT:
+        toggle_console(st);
+        break;
+    case GLFW_KEY_F1:
+        st->ed.show_help = 1;
+        break;
     case GLFW_KEY_F:
         if (pick_at(st, st->mouse_x, st->mouse_y, hit) == 0)
             camera_controls_focus(&st->cc, &st->v->cam, hit, st->ctx->brush.radius);
@@ -326,6 +473,17 @@ static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
 static void on_refresh(GLFWwindow *win) {
     window_state *st = glfwGetWindowUserPointer(win);
     st->dirty = 1;
+    st->ui_dirty = 1;
+}
+
+// The close button asks first when there are unsaved changes.
+static void on_close(GLFWwindow *win) {
+    window_state *st = glfwGetWindowUserPointer(win);
+    if (world_is_modified(st->ctx->world)) {
+        glfwSetWindowShouldClose(win, GLFW_FALSE);
+        editor_ui_request(&st->ed, st->ctx, PENDING_QUIT);
+        st->ui_dirty = 1;
+    }
 }
 
 // --- changes ------------------------------------------------------------------------
@@ -416,20 +574,163 @@ static int update_view(window_state *st) {
     return rs.texels_uploaded > 0;
 }
 
-static void draw_view(window_state *st, int width, int height) {
-    og_error err = {{0}};
+// --- the UI and the terrain image ------------------------------------------------------
+
+static const char *clipboard_get(void *user) { return glfwGetClipboardString(user); }
+static void clipboard_set(void *user, const char *text) { glfwSetClipboardString(user, text); }
+
+static void clear_frame_input(ui_input *in) {
+    memset(in->mouse_pressed, 0, sizeof in->mouse_pressed);
+    memset(in->mouse_released, 0, sizeof in->mouse_released);
+    memset(in->key_pressed, 0, sizeof in->key_pressed);
+    in->double_click = 0;
+    in->wheel = 0;
+    in->text[0] = 0;
+}
+
+// Builds this frame's UI (running the commands its widgets ask for); sets the
+// viewport's rectangle. fw, fh: the framebuffer's size.
+static const ui_draw_list *build_ui(window_state *st, int fw, int fh) {
+    editor_frame_info info = {.frame_ms = st->terrain_ms,
+                              .resolution_scale = st->drawn_scale,
+                              .pending = st->pending,
+                              .gl_renderer = st->gl_renderer};
+    double hit[3];
+    if (st->mouse_in && pick_at(st, st->mouse_x, st->mouse_y, hit) == 0) {
+        info.cursor_valid = 1;
+        memcpy(info.cursor, hit, sizeof hit);
+    }
+    st->in.time = glfwGetTime();
+    ui_begin(st->ui, &st->in, (float)fw, (float)fh);
+    ui_rect vr = editor_ui_build(&st->ed, st->ui, st->ctx, st->v, &info, (float)fw, (float)fh);
+    const ui_draw_list *dl = ui_end(st->ui);
+    clear_frame_input(&st->in);
+    float k = ui_px(st, 1.0); // framebuffer pixels per window unit
+    st->view_rect = (ui_rect){vr.x / k, vr.y / k, vr.w / k, vr.h / k};
+    if (st->ed.quit_requested) glfwSetWindowShouldClose(st->win, GLFW_TRUE);
+    st->ui_dirty = 0;
+    return dl;
+}
+
+static double now_ms(void) { return glfwGetTime() * 1e3; }
+
+// Renders the terrain into its own image when something it shows changed: the camera,
+// the world, the view settings, the brush cursor, the viewport's size, or newly
+// arrived tiles. While the camera moves or a stroke is drawn the image is rendered
+// smaller, sized to keep the frame near target_ms. Returns 1 when it rendered.
+static int render_terrain(window_state *st, int vw, int vh, int arrived) {
     viewport *v = st->v;
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    if (vw <= 0 || vh <= 0) return 0;
+    update_cursor(st);
+    int moving = memcmp(&v->cam, &st->drawn_cam, sizeof v->cam) != 0 || st->ctx->stroke ||
+                 st->drag == DRAG_ORBIT || keys_held(st);
+    float scale = moving ? st->res_scale : 1.0f;
+    int w = (int)fmaxf(1.0f, roundf(vw * scale)), h = (int)fmaxf(1.0f, roundf(vh * scale));
+    int changed = !st->terrain_valid || arrived || st->world_changed ||
+                  memcmp(&v->cam, &st->drawn_cam, sizeof v->cam) != 0 ||
+                  memcmp(&v->settings, &st->drawn_settings, sizeof v->settings) != 0 ||
+                  memcmp(&v->cursor, &st->drawn_cursor, sizeof v->cursor) != 0 ||
+                  w != st->drawn_w || h != st->drawn_h;
+    if (!changed) return 0;
+    og_error err = {{0}};
+    if (st->terrain.width != w || st->terrain.height != h) {
+        gl_target_destroy(&st->terrain);
+        if (gl_target_create(&st->terrain, w, h, &err) != 0) {
+            report("viewport", &err);
+            return 0;
+        }
+    }
+    double t0 = now_ms();
+    glBindFramebuffer(GL_FRAMEBUFFER, st->terrain.fbo);
     if (st->render_failed) {
-        glViewport(0, 0, width, height);
+        glViewport(0, 0, w, h);
         glClearColor(0.1f, 0.1f, 0.12f, 1.0f);
         glClear(GL_COLOR_BUFFER_BIT);
-        return;
-    }
-    update_cursor(st);
-    if (terrain_renderer_draw(v->renderer, st->ctx->world, &v->cam, &v->settings, &v->cursor, width,
-                              height, &err) != 0)
+    } else if (terrain_renderer_draw(v->renderer, st->ctx->world, &v->cam, &v->settings, &v->cursor,
+                                     w, h, &err) != 0) {
         report("viewport", &err);
+    }
+    glFinish(); // the frame's real cost, for the resolution controller
+    st->terrain_ms = now_ms() - t0;
+    if (moving) { // aim at target_ms: pixels scale with the square of the side
+        float next = st->res_scale * sqrtf((float)(st->target_ms / fmax(st->terrain_ms, 1.0)));
+        st->res_scale = fminf(1.0f, fmaxf(0.25f, 0.5f * (st->res_scale + next)));
+    }
+    st->drawn_cam = v->cam;
+    st->drawn_settings = v->settings;
+    st->drawn_cursor = v->cursor;
+    st->drawn_scale = scale;
+    st->drawn_w = w, st->drawn_h = h;
+    st->world_changed = 0;
+    st->terrain_valid = 1;
+    return 1;
+}
+
+// The window's picture: the terrain image in the viewport's rectangle, the UI over it.
+static void compose(window_state *st, const ui_draw_list *dl, int fw, int fh) {
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, fw, fh);
+    const ui_theme *t = ui_get_theme(st->ui);
+    glClearColor((t->bg & 255) / 255.0f, ((t->bg >> 8) & 255) / 255.0f, ((t->bg >> 16) & 255) / 255.0f, 1);
+    glClear(GL_COLOR_BUFFER_BIT);
+    float k = ui_px(st, 1.0);
+    int vx = (int)roundf(st->view_rect.x * k), vy = (int)roundf(st->view_rect.y * k);
+    int vw = (int)roundf(st->view_rect.w * k), vh = (int)roundf(st->view_rect.h * k);
+    if (st->terrain_valid && vw > 0 && vh > 0)
+        glBlitNamedFramebuffer(st->terrain.fbo, 0, 0, 0, st->terrain.width, st->terrain.height, vx,
+                               fh - (vy + vh), vx + vw, fh - vy, GL_COLOR_BUFFER_BIT, GL_LINEAR);
+    og_error err = {{0}};
+    if (dl && ui_renderer_draw(st->uir, dl, st->font, fw, fh, &err) != 0) report("ui", &err);
+}
+
+// The UI's fonts: DejaVu from fonts-dejavu-core ($OROGEN_FONT_DIR overrides the folder),
+// at 15 px times the monitor's content scale times $OROGEN_UI_SCALE.
+static ui_font *load_font(GLFWwindow *win, og_error *err) {
+    const char *dir = getenv("OROGEN_FONT_DIR");
+    if (!dir || !*dir) dir = "/usr/share/fonts/truetype/dejavu";
+    char sans[4200], mono[4200], why[512];
+    snprintf(sans, sizeof sans, "%s/DejaVuSans.ttf", dir);
+    snprintf(mono, sizeof mono, "%s/DejaVuSansMono.ttf", dir);
+    float xs = 1, ys = 1, user = 1;
+    glfwGetWindowContentScale(win, &xs, &ys);
+    const char *env = getenv("OROGEN_UI_SCALE");
+    if (env && *env) {
+        char *end;
+        double u = strtod(env, &end);
+        if (*end || !(u >= 0.5 && u <= 4)) {
+            og_error_set(err, "OROGEN_UI_SCALE: expected a number in [0.5, 4], got '%s'", env);
+            return NULL;
+        }
+        user = (float)u;
+    }
+    ui_font *f = ui_font_create(sans, mono, roundf(15.0f * fmaxf(xs, 1.0f) * user), why, sizeof why);
+    if (!f) og_error_set(err, "the UI's font: %s (install fonts-dejavu-core)", why);
+    return f;
+}
+
+// ui_widgets: the named widgets of the last UI frame, for tests that click by name.
+static int cmd_ui_widgets(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    window_state *st = current_window;
+    if (!st) return og_error_set(err, "ui_widgets: no editor window is open");
+    float k = ui_px(st, 1.0);
+    const char *filter = argc > 1 ? argv[1] : NULL;
+    fprintf(ctx->out, "Viewport %.0f %.0f %.0f %.0f\n", st->view_rect.x, st->view_rect.y,
+            st->view_rect.w, st->view_rect.h);
+    for (size_t i = 0; i < ui_widget_count(st->ui); i++) {
+        const ui_widget_info *w = ui_widget_at(st->ui, i);
+        if (!w->name[0] || (filter && !strstr(w->name, filter))) continue;
+        fprintf(ctx->out, "%s %.0f %.0f %.0f %.0f\n", w->name, w->rect.x / k, w->rect.y / k,
+                w->rect.w / k, w->rect.h / k);
+    }
+    return 0;
+}
+
+static const cmd_def window_commands[] = {
+    {"ui_widgets", "ui_widgets [FILTER]", "Lists the editor window's named widgets of the last frame as NAME X Y W H (window pixels; names containing FILTER), and the Viewport's rectangle first.", 0, 1, cmd_ui_widgets, CMD_NOT_RECORDED},
+};
+
+int window_commands_register(og_error *err) {
+    return cmd_register(window_commands, 1, err);
 }
 
 // Makes the viewport the console's view commands use: this window's context, its renderer.
@@ -488,6 +789,33 @@ int window_run(cmd_context *ctx, og_error *err) {
         glfwTerminate();
         return -1;
     }
+    editor_ui_init(&st.ed);
+    st.res_scale = 1.0f;
+    st.target_ms = 50.0;
+    st.drawn_scale = 1.0f;
+    st.gl_renderer = (const char *)glGetString(GL_RENDERER);
+    og_error ui_err = {{0}};
+    if (!(st.font = load_font(win, &ui_err)) || !(st.ui = ui_create(st.font)) ||
+        !(st.uir = ui_renderer_create(ctx->resource_dir, &ui_err))) {
+        og_error_set(err, "the editor's UI cannot start: %s", ui_err.msg[0] ? ui_err.msg : "out of memory");
+        ui_destroy(st.ui);
+        ui_font_destroy(st.font);
+        editor_ui_free(&st.ed);
+        world_events_unsubscribe(st.changes);
+        viewport_destroy(v);
+        view_commands_set_viewport(ctx, NULL);
+        glfwDestroyWindow(win);
+        glfwTerminate();
+        return -1;
+    }
+    ui_set_clipboard(st.ui, (ui_clipboard){clipboard_get, clipboard_set, win});
+    current_window = &st;
+    // The first frame lays out the UI, so the viewport's rectangle is known for the camera.
+    {
+        int w, h;
+        glfwGetFramebufferSize(win, &w, &h);
+        build_ui(&st, w > 0 ? w : 1, h > 0 ? h : 1);
+    }
     if (!v->cam_set) reset_camera(&st);
     glfwGetCursorPos(win, &st.mouse_x, &st.mouse_y);
     glfwSetWindowUserPointer(win, &st);
@@ -497,6 +825,8 @@ int window_run(cmd_context *ctx, og_error *err) {
     glfwSetScrollCallback(win, on_scroll);
     glfwSetKeyCallback(win, on_key);
     glfwSetWindowRefreshCallback(win, on_refresh);
+    glfwSetCharCallback(win, on_char);
+    glfwSetWindowCloseCallback(win, on_close);
     printf("Orogen viewport:\n"
            "  left-drag sculpts with the current tool (console: tool NAME key=value ...)\n"
            "  Alt+left-drag or middle-drag orbits, wheel dollies to the point under the cursor\n"
@@ -510,9 +840,11 @@ int window_run(cmd_context *ctx, og_error *err) {
     fflush(stdout);
 
     GLenum last_gl_error = GL_NO_ERROR;
+    const ui_draw_list *dl = NULL;
     while (!glfwWindowShouldClose(win) && !ctx->exit_requested) {
         // Input first; wake often while tiles arrive or keys fly the camera, rarely when idle.
-        int busy = st.pending || st.settled < 2 || keys_held(&st) || ctx->stroke;
+        int busy = st.pending || st.settled < 2 || keys_held(&st) || ctx->stroke ||
+                   ui_needs_frame(st.ui);
         glfwWaitEventsTimeout(busy ? 0.01 : 0.1);
         move_keys keys = take_keys(&st);
         if (camera_controls_move(&st.cc, &v->cam, &keys, ground_height, &st)) st.dirty = 1;
@@ -520,26 +852,44 @@ int window_run(cmd_context *ctx, og_error *err) {
         if (ctx->exit_requested) break;
         take_changes(&st);
 
-        // Tiles are requested every wake-up while some are missing; a frame is drawn
-        // when input or commands changed something or new texels arrived.
         int w, h;
         glfwGetFramebufferSize(win, &w, &h);
-        if (w > 0 && h > 0 && (st.dirty || st.pending || st.settled < 2)) {
-            int arrived = update_view(&st);
-            if (st.dirty || arrived) {
-                st.dirty = 0;
-                draw_view(&st, w, h);
-                glfwSwapBuffers(win);
-                GLenum e = glGetError();
-                if (e != GL_NO_ERROR && e != last_gl_error)
-                    fprintf(stderr, "orogen: OpenGL error 0x%x in the viewport\n", e);
-                last_gl_error = e;
+        if (w <= 0 || h <= 0) continue;
+        // The UI is rebuilt after input or changes; the terrain image only when what
+        // it shows changed (a hover or a keystroke in a text field never re-renders it).
+        int drawn = 0;
+        if (st.ui_dirty || st.dirty || ui_needs_frame(st.ui) || !dl) {
+            dl = build_ui(&st, w, h);
+            drawn = 1;
+        }
+        if (st.dirty || st.pending || st.settled < 2) {
+            int arrived = update_view(&st) > 0;
+            float k = ui_px(&st, 1.0);
+            if (render_terrain(&st, (int)roundf(st.view_rect.w * k), (int)roundf(st.view_rect.h * k),
+                               arrived)) {
+                drawn = 1;
+                st.ui_dirty = 1; // the status bar shows the new frame's figures
             }
+            st.dirty = 0;
+        }
+        if (drawn) {
+            compose(&st, dl, w, h);
+            glfwSwapBuffers(win);
+            GLenum e = glGetError();
+            if (e != GL_NO_ERROR && e != last_gl_error)
+                fprintf(stderr, "orogen: OpenGL error 0x%x in the viewport\n", e);
+            last_gl_error = e;
         }
         update_title(&st);
     }
     sculpt_end(&st);
     world_events_unsubscribe(st.changes);
+    current_window = NULL;
+    gl_target_destroy(&st.terrain);
+    ui_renderer_destroy(st.uir);
+    ui_destroy(st.ui);
+    ui_font_destroy(st.font);
+    editor_ui_free(&st.ed);
     // The renderer's GL objects belong to this context: free them while it is current.
     viewport_destroy(v);
     view_commands_set_viewport(ctx, NULL);

@@ -15,4 +15,7 @@
 // err set when no window or no suitable GL context can be had.
 int window_run(cmd_context *ctx, og_error *err);
 
+// Adds the window's own commands (ui_widgets) to the command language.
+int window_commands_register(og_error *err);
+
 #endif

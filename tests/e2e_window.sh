@@ -69,9 +69,16 @@ cam() { sleep 0.2; ask camera '^camera ' | awk '{ print $2, $3, $4, $5, $6 }'; }
 settle() { wait_title "pending 0$"; }
 near() { awk -v a="$1" -v b="$2" -v t="$3" 'BEGIN { d = a - b; exit !(d <= t && -d <= t) }'; }
 
-# A small window keeps software rendering (llvmpipe) fast; the view looks down on the
-# terrain from ~440 m.
-xdotool windowsize --sync "$wid" 400 300
+# A small viewport keeps software rendering (llvmpipe) fast: the window is sized so the
+# 3D viewport (between the editor's panels, found by name with ui_widgets) is exactly
+# 400 x 300; every position below is relative to the viewport's top-left (VX, VY).
+viewport_rect() { ask "ui_widgets Viewport" '^Viewport ' | awk '{ print $2, $3, $4, $5 }'; }
+read -r VX VY VW VH <<<"$(viewport_rect)"
+read -r _ _ WW WH <<<"$(xdotool getwindowgeometry --shell "$wid" | awk -F= '/WIDTH|HEIGHT/ { printf "%s ", $2 }' | awk '{ print 0, 0, $1, $2 }')"
+xdotool windowsize --sync "$wid" $((WW - VW + 400)) $((WH - VH + 300))
+sleep 0.5
+read -r VX VY VW VH <<<"$(viewport_rect)"
+[ "$VW" = 400 ] && [ "$VH" = 300 ]; check "the viewport is found by name and sized 400 x 300 (at $VX $VY, $VW x $VH)" $?
 xdotool windowfocus --sync "$wid" 2>/dev/null
 home() { echo "camera 0 -100 0 30 -40" >&3; wait_title "cam (0.0, -100.0, 0.0) yaw 30.0 pitch -40.0" && settle; }
 settle; rc=$?; check "every tile of the first view arrives (title says pending 0): $(title)" $rc
@@ -80,7 +87,7 @@ hash_box() { ask "hash $(awk -v x="$1" -v z="$2" 'BEGIN { print x - 150, z - 150
 
 # Fly: right button held, W held for about a second: forward along the view (yaw 30,
 # pitch -40: east, down and north).
-xdotool mousemove --window "$wid" 200 150 mousedown 3
+xdotool mousemove --window "$wid" $((VX + 200)) $((VY + 150)) mousedown 3
 xdotool keydown w; sleep 1; xdotool keyup w
 xdotool mouseup 3
 read -r x y z yaw pitch <<<"$(cam)"
@@ -90,7 +97,7 @@ home
 
 # Wheel: one notch toward the point under the cursor brings the camera to 0.8 of the distance.
 p0=$(ask "pick 200 150 400 300" '^pick ')
-xdotool mousemove --window "$wid" 200 150 click 4
+xdotool mousemove --window "$wid" $((VX + 200)) $((VY + 150)) click 4
 read -r x y z yaw pitch <<<"$(cam)"
 ratio=$(echo "$p0" | awk -v x="$x" -v y="$y" -v z="$z" '{
     d0 = sqrt($2 * $2 + ($3 + 100) * ($3 + 100) + $4 * $4)
@@ -103,12 +110,12 @@ home
 pick=$(ask "pick 200 150 400 300" '^pick ')
 read -r _ px py pz <<<"$pick"
 h0=$(hash_box "$px" "$pz")
-xdotool mousemove --window "$wid" 200 150 mousedown 2 mousemove --window "$wid" 250 150 \
-    mousemove --window "$wid" 300 150 mouseup 2
+xdotool mousemove --window "$wid" $((VX + 200)) $((VY + 150)) mousedown 2 mousemove --window "$wid" $((VX + 250)) $((VY + 150)) \
+    mousemove --window "$wid" $((VX + 300)) $((VY + 150)) mouseup 2
 read -r x y z yaw pitch <<<"$(cam)"
 near "$yaw" 60 0.5; check "middle drag 100 px orbits 30 degrees (yaw $yaw)" $?
-xdotool mousemove --window "$wid" 200 150 keydown alt mousedown 1 mousemove --window "$wid" 200 120 \
-    mousemove --window "$wid" 200 100 mouseup 1 keyup alt
+xdotool mousemove --window "$wid" $((VX + 200)) $((VY + 150)) keydown alt mousedown 1 mousemove --window "$wid" $((VX + 200)) $((VY + 120)) \
+    mousemove --window "$wid" $((VX + 200)) $((VY + 100)) mouseup 1 keyup alt
 read -r x2 y2 z2 yaw2 pitch2 <<<"$(cam)"
 near "$pitch2" -55 0.5 && awk -v a="$y2" -v b="$y" 'BEGIN { exit !(a > b) }'
 check "Alt + drag up orbits up over the pivot (pitch $pitch2, height $y -> $y2)" $?
@@ -143,9 +150,9 @@ grep -q "type save FILE" "$work/err"; check "Ctrl+S on a never-saved world says 
 
 # Sculpting: a left drag raises the terrain as one undo step.
 h0=$(hash_box "$px" "$pz")
-xdotool mousemove --window "$wid" 170 150 mousedown 1 mousemove --window "$wid" 185 150 \
-    mousemove --window "$wid" 200 150 mousemove --window "$wid" 215 150 \
-    mousemove --window "$wid" 230 150 mouseup 1
+xdotool mousemove --window "$wid" $((VX + 170)) $((VY + 150)) mousedown 1 mousemove --window "$wid" $((VX + 185)) $((VY + 150)) \
+    mousemove --window "$wid" $((VX + 200)) $((VY + 150)) mousemove --window "$wid" $((VX + 215)) $((VY + 150)) \
+    mousemove --window "$wid" $((VX + 230)) $((VY + 150)) mouseup 1
 sleep 0.5
 h1=$(hash_box "$px" "$pz")
 [ -n "$h1" ] && [ "$h1" != "$h0" ]; check "left drag sculpts ($h0 -> $h1)" $?
@@ -165,7 +172,7 @@ check "console screenshot writes a PNG while the window runs ($line)" $?
 # Saving: from the console once, then Ctrl+S after another stroke.
 line=$(ask "save $work/saved.world" '^saved ')
 [ -s "$work/saved.world" ] && wait_title "saved.world - "; check "save from the console ($line)" $?
-xdotool mousemove --window "$wid" 200 130 mousedown 1 mousemove --window "$wid" 200 170 mouseup 1
+xdotool mousemove --window "$wid" $((VX + 200)) $((VY + 130)) mousedown 1 mousemove --window "$wid" $((VX + 200)) $((VY + 170)) mouseup 1
 wait_title "saved.world \* - "; check "a new stroke marks the saved world modified" $?
 saves=$(grep -c '^saved ' "$work/out")
 xdotool key ctrl+s

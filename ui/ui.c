@@ -92,6 +92,7 @@ struct ui_context {
     float menubar_x;
     int popup_just_opened;
 
+    ui_rect modal; // w > 0: only widgets inside it take the pointer this frame
     ui_rect panel_rects[2][64];
     int panel_count[2];
 
@@ -148,6 +149,10 @@ static int over(const ui_context *ui, ui_rect r) {
         return 0;
     if (!ui->in_popup && ui->open_popup &&
         ui_rect_contains(ui->popup_rect_prev, ui->in.mouse_x, ui->in.mouse_y))
+        return 0;
+    if (ui->modal.w > 0 &&
+        !(r.x >= ui->modal.x && r.y >= ui->modal.y && r.x + r.w <= ui->modal.x + ui->modal.w &&
+          r.y + r.h <= ui->modal.y + ui->modal.h))
         return 0;
     return 1;
 }
@@ -262,6 +267,7 @@ void ui_begin(ui_context *ui, const ui_input *in, float width, float height) {
     ui->popup_rect = (ui_rect){0, 0, 0, 0};
     ui->in_popup = 0;
     ui->focusable_count = 0;
+    ui->modal = (ui_rect){0, 0, 0, 0};
     ui->last_id = 0;
     ui->last_hovered = 0;
     ui_draw_reset(&ui->dl, ui->font, width, height);
@@ -340,6 +346,15 @@ int ui_wants_keyboard(const ui_context *ui) {
 }
 int ui_needs_frame(const ui_context *ui) {
     return ui->needs_frame;
+}
+
+void ui_modal(ui_context *ui, ui_rect r) {
+    ui->modal = r;
+    ui->open_popup = 0;
+}
+
+void ui_dim(ui_context *ui) {
+    ui_draw_rect(ui->target, (ui_rect){0, 0, ui->width, ui->height}, UI_RGBA(0, 0, 0, 110));
 }
 
 // ---- ids, scopes, named widgets -------------------------------------------------------
@@ -466,7 +481,7 @@ void ui_panel_end(ui_context *ui) {
     ui_rect clip = ui_draw_clip(ui->target);
     if (ui->layout_depth > 0) {
         layout *l = &ui->layouts[--ui->layout_depth];
-        s->content = l->y - l->content_top;
+        s->content = fmaxf(0.0f, l->y - l->content_top - ui_em(ui, 0.2f)); // less the last gap
         float pad = ui_em(ui, 0.3f), bar = ui_em(ui, 0.45f), view = clip.h - 2 * pad;
         if (s->content > view && view > 0) { // a scroll bar with a draggable thumb
             ui_rect track = {clip.x + clip.w - bar, clip.y, bar, clip.h};
@@ -641,7 +656,7 @@ static int parse_double_c(ui_context *ui, const char *s, double *out) {
     return 0;
 }
 
-static int text_edit(ui_context *ui, ui_id id, ui_rect r, char *buf, size_t size);
+static int text_edit(ui_context *ui, ui_id id, ui_rect r, char *buf, size_t size, int flags);
 
 int ui_slider(ui_context *ui, const char *label, double *value, double lo, double hi,
               const char *fmt) {
@@ -649,7 +664,7 @@ int ui_slider(ui_context *ui, const char *label, double *value, double lo, doubl
     ui_rect r = ui_next_cell(ui);
     record_widget(ui, label, r);
     if (ui->typing_id == id) { // typing a value
-        int rc = text_edit(ui, id, r, ui->typing_buf, sizeof ui->typing_buf);
+        int rc = text_edit(ui, id, r, ui->typing_buf, sizeof ui->typing_buf, 0);
         if (rc & UI_TEXT_SUBMIT) {
             ui->typing_id = 0;
             double v;
@@ -931,7 +946,7 @@ static void insert_text(ui_context *ui, char *buf, size_t size, const char *text
 }
 
 // The editing behaviour of a focused text field; draws the field. Returns UI_TEXT_*.
-static int text_edit(ui_context *ui, ui_id id, ui_rect r, char *buf, size_t size) {
+static int text_edit(ui_context *ui, ui_id id, ui_rect r, char *buf, size_t size, int flags) {
     int hovered = over(ui, r), rc = 0;
     if (hovered) ui->hot_next = id;
     if (ui->focusable_count < FOCUSABLE_MAX) ui->focusables[ui->focusable_count++] = id;
@@ -1032,7 +1047,9 @@ static int text_edit(ui_context *ui, ui_id id, ui_rect r, char *buf, size_t size
             ui->focus = 0;
             ui->edit_id = 0;
         }
-        if (ui->tab_pending) { // Tab: the next field in drawing order (Shift+Tab: previous)
+        if (ui->tab_pending &&
+            !(flags &
+              UI_TEXTBOX_OWN_TAB)) { // Tab: the next field in drawing order (Shift+Tab: previous)
             ui->tab_pending = 0;
             if (shift) {
                 if (ui->focusable_count >= 2) {
@@ -1072,6 +1089,17 @@ static int text_edit(ui_context *ui, ui_id id, ui_rect r, char *buf, size_t size
 }
 
 int ui_textbox(ui_context *ui, const char *label, char *buf, size_t size) {
+    return ui_textbox_flags(ui, label, buf, size, 0);
+}
+
+int ui_last_focused(const ui_context *ui) {
+    return ui->last_id && ui->focus == ui->last_id;
+}
+const ui_input *ui_get_input(const ui_context *ui) {
+    return &ui->in;
+}
+
+int ui_textbox_flags(ui_context *ui, const char *label, char *buf, size_t size, int flags) {
     ui_id id = ui_get_id(ui, label);
     if (ui->focus_request == id) {
         ui->focus = id;
@@ -1087,7 +1115,7 @@ int ui_textbox(ui_context *ui, const char *label, char *buf, size_t size) {
     }
     ui_rect r = ui_next_cell(ui);
     record_widget(ui, label, r);
-    return text_edit(ui, id, r, buf, size);
+    return text_edit(ui, id, r, buf, size, flags);
 }
 
 void ui_focus(ui_context *ui, const char *label) {

@@ -137,6 +137,14 @@ int ui_combo(ui_context *ui, const char *label, int *index, const char *const *i
 // and/or UI_TEXT_SUBMIT (Enter); Esc while editing restores the text it had on focus.
 enum { UI_TEXT_CHANGED = 1, UI_TEXT_SUBMIT = 2 };
 int ui_textbox(ui_context *ui, const char *label, char *buf, size_t size);
+// The same; with UI_TEXTBOX_OWN_TAB, Tab does not move the focus (the caller uses it,
+// e.g. for completion).
+enum { UI_TEXTBOX_OWN_TAB = 1 };
+int ui_textbox_flags(ui_context *ui, const char *label, char *buf, size_t size, int flags);
+// Whether the last widget has the keyboard focus.
+int ui_last_focused(const ui_context *ui);
+// This frame's input (for widgets built on top of the library).
+const ui_input *ui_get_input(const ui_context *ui);
 // Gives keyboard focus to the text box with this label in the current scope next frame.
 void ui_focus(ui_context *ui, const char *label);
 void ui_separator(ui_context *ui);
@@ -157,6 +165,12 @@ typedef struct ui_log_line {
 } ui_log_line;
 void ui_log(ui_context *ui, const char *name, size_t count,
             ui_log_line (*line)(void *user, size_t i), void *user, float height);
+
+// A modal dialog over r for the rest of this frame: widgets outside r ignore the
+// pointer. Call before building anything (the dialog's rectangle is known up front).
+void ui_modal(ui_context *ui, ui_rect r);
+// Darkens everything drawn so far (behind a modal dialog).
+void ui_dim(ui_context *ui);
 
 // --- menus --------------------------------------------------------------------------
 // A menu bar across r; menus open on click and close on a pick, Esc or a click outside.

@@ -193,10 +193,10 @@ static int c_cmdlist(cmd_context *ctx, int argc, char **argv, og_error *err);
 #define PARAM_CMD(key, arg, text) {key, key " [" arg "]", text " Without a value, prints it.", 0, 1, c_param, 0}
 
 static const cmd_def commands[] = {
-    {"new", "new flat|planet", "Replaces the current world with a new one of that kind, with default parameters.", 1, 1, c_new, 1},
-    {"load", "load FILE", "Loads a world (.world) or planet (.planet) parameter file and its tile store.", 1, 1, c_load, 1},
-    {"save", "save [FILE]", "Saves the world's parameter file and tile store (to FILE, or where it was loaded from).", 0, 1, c_save, 1},
-    {"generate", "generate", "Regenerates the world from the next parameters (see nparams). Edited tiles stay.", 0, 0, c_generate, 1},
+    {"new", "new flat|planet", "Replaces the current world with a new one of that kind, with default parameters.", 1, 1, c_new, CMD_ENDS_STROKE},
+    {"load", "load FILE", "Loads a world (.world) or planet (.planet) parameter file and its tile store.", 1, 1, c_load, CMD_ENDS_STROKE},
+    {"save", "save [FILE]", "Saves the world's parameter file and tile store (to FILE, or where it was loaded from).", 0, 1, c_save, CMD_ENDS_STROKE},
+    {"generate", "generate", "Regenerates the world from the next parameters (see nparams). Edited tiles stay.", 0, 0, c_generate, CMD_ENDS_STROKE},
     {"generator", "generator [G]", "Lists the generators, or picks one (name or number) for the next generate.", 0, 1, c_generator, 0},
     PARAM_CMD("seed", "N", "Sets the random seed (an integer) for the next generate."),
     PARAM_CMD("octaves", "F", "Sets the fBm octave count (fractional allowed) for the next generate."),
@@ -215,20 +215,20 @@ static const cmd_def commands[] = {
     {"sample", "sample X Z [FACE]", "Prints the height in metres at world position X, Z (metres).", 2, 3, c_sample, 0},
     {"hash", "hash X0 Z0 X1 Z1 [FACE]", "Prints a hex digest of the coarse heights in that rectangle (metres).", 4, 5, c_hash, 0},
     {"tool", "tool [NAME] [KEY=VALUE ...]", "Picks and sets up the brush: raise lower smooth flatten set ramp noise terrace thermal hydraulic paint. Keys: radius (m) strength (0-1) falloff (smooth linear spherical constant curve) curve=t:v,... spacing (x radius) invert target (coarse detail) face amount height mode (both raise lower) scale octaves seed step sharpness talus iterations droplets erosion deposition evaporation capacity inertia material. Without arguments, prints the brush.", 0, 24, cmd_tool, 0},
-    {"dab", "dab X Z [PRESSURE]", "One dab of the brush at X, Z (metres); one undo step.", 2, 3, cmd_dab, 1},
-    {"stroke", "stroke X0 Z0 X1 Z1 [X2 Z2 ...]", "Drags the brush along the points (metres), dabbing every spacing x radius; one undo step.", 2, CMD_MAX_ARGS, cmd_stroke, 1},
-    {"stroke_begin", "stroke_begin", "Starts a stroke with the current tool (as a drag in the viewport does); stroke_to extends it, stroke_end makes it one undo step. Commands that change the world (dab, stamp, undo, save, load, ...) end it first.", 0, 0, cmd_stroke_begin, 1},
+    {"dab", "dab X Z [PRESSURE]", "One dab of the brush at X, Z (metres); one undo step.", 2, 3, cmd_dab, CMD_ENDS_STROKE},
+    {"stroke", "stroke X0 Z0 X1 Z1 [X2 Z2 ...]", "Drags the brush along the points (metres), dabbing every spacing x radius; one undo step.", 2, CMD_MAX_ARGS, cmd_stroke, CMD_ENDS_STROKE},
+    {"stroke_begin", "stroke_begin", "Starts a stroke with the current tool (as a drag in the viewport does); stroke_to extends it, stroke_end makes it one undo step. Commands that change the world (dab, stamp, undo, save, load, ...) end it first.", 0, 0, cmd_stroke_begin, CMD_ENDS_STROKE},
     {"stroke_to", "stroke_to X Z [PRESSURE]", "Drags the open stroke to X, Z (metres), dabbing every spacing x radius; PRESSURE 0-1 (1).", 2, 3, cmd_stroke_to, 0},
     {"stroke_end", "stroke_end", "Ends the open stroke as one undo step (a stroke that laid no dab leaves none).", 0, 0, cmd_stroke_end, 0},
     {"stroke_cancel", "stroke_cancel", "Abandons the open stroke: the terrain returns to how it was before it.", 0, 0, cmd_stroke_cancel, 0},
-    {"stamp", "stamp NAME X Z [scale= rot= mirror= intensity= mode= layer= face=]", "Places a stamp centred at X, Z (metres): a functional shape, a library or user stamp (see stamps) or an image file. scale multiplies its natural size (128 samples, or one sample per pixel), rot is degrees, mirror none|x|z|xz, intensity metres at value 1 (50; 0.5 on detail), mode add|subtract|max|min|blend, layer coarse|detail. One undo step.", 3, 10, cmd_stamp, 1},
+    {"stamp", "stamp NAME X Z [scale= rot= mirror= intensity= mode= layer= face=]", "Places a stamp centred at X, Z (metres): a functional shape, a library or user stamp (see stamps) or an image file. scale multiplies its natural size (128 samples, or one sample per pixel), rot is degrees, mirror none|x|z|xz, intensity metres at value 1 (50; 0.5 on detail), mode add|subtract|max|min|blend, layer coarse|detail. One undo step.", 3, 10, cmd_stamp, CMD_ENDS_STROKE},
     {"stamps", "stamps", "Lists the stamps: functional shapes, the built-in library and the user's stamp folder.", 0, 0, cmd_stamps, 0},
-    {"undo", "undo", "Undoes the last change (stroke, stamp, generate).", 0, 0, cmd_undo, 1},
-    {"redo", "redo", "Redoes the last undone change.", 0, 0, cmd_redo, 1},
-    {"history", "history [budget=MIB]", "Lists the undo steps (* = applied) and their memory; sets the history memory budget.", 0, 1, cmd_history, 1},
+    {"undo", "undo", "Undoes the last change (stroke, stamp, generate).", 0, 0, cmd_undo, CMD_ENDS_STROKE},
+    {"redo", "redo", "Redoes the last undone change.", 0, 0, cmd_redo, CMD_ENDS_STROKE},
+    {"history", "history [budget=MIB]", "Lists the undo steps (* = applied) and their memory; sets the history memory budget.", 0, 1, cmd_history, CMD_ENDS_STROKE},
     {"help", "help [COMMAND]", "Prints help on all commands or one.", 0, 1, c_help, 0},
     {"cmdlist", "cmdlist", "Lists the command names.", 0, 0, c_cmdlist, 0},
-    {"exit", "exit", "Stops (the rest of the script is not run).", 0, 0, c_exit, 1},
+    {"exit", "exit", "Stops (the rest of the script is not run).", 0, 0, c_exit, CMD_ENDS_STROKE},
 };
 #define BUILTIN_COUNT (sizeof commands / sizeof commands[0])
 
@@ -338,10 +338,10 @@ static int execute(cmd_context *ctx, int argc, char **argv, og_error *err) {
     if (n < c->min_args || n > c->max_args)
         return og_error_set(err, "%s: wrong number of arguments; usage: %s", c->name, c->usage);
     // A stroke is one undo step: nothing else changes the world in its middle.
-    if (ctx->stroke && c->ends_stroke && cmd_end_stroke(ctx, err) != 0) return -1;
+    if (ctx->stroke && (c->flags & CMD_ENDS_STROKE) && cmd_end_stroke(ctx, err) != 0) return -1;
     if (c->run(ctx, argc, argv, err) != 0) return -1;
     // `exit` is left out: a replay goes on to whatever follows it.
-    if (ctx->record && c->run != c_exit) record(ctx, argc, argv);
+    if (ctx->record && c->run != c_exit && !(c->flags & CMD_NOT_RECORDED)) record(ctx, argc, argv);
     return 0;
 }
 

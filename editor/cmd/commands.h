@@ -38,10 +38,17 @@ typedef struct cmd_def {
     const char *help;
     int min_args, max_args;
     cmd_fn run;
+    int flags; // CMD_* below
+} cmd_def;
+
+enum {
     // Changes the world or the undo history: an open stroke is ended (committed) first,
     // so it stays one undo step. Read-only commands leave it open.
-    int ends_stroke;
-} cmd_def;
+    CMD_ENDS_STROKE = 1,
+    // A query of the editor window's own state, left out of recordings (--record): a
+    // replay has no window to ask.
+    CMD_NOT_RECORDED = 2,
+};
 
 // Adds commands defined outside the command language (the renderer's camera, view,
 // render, screenshot and pick register themselves from renderer/view_commands.c, so

@@ -1,0 +1,40 @@
+// The in-app console: scrollback of commands, their output and errors, and an input
+// line with history (Up/Down, kept between runs by the settings) and Tab completion of
+// command names. Drawn with the UI library; commands run through the command language.
+#ifndef OROGEN_APP_CONSOLE_H
+#define OROGEN_APP_CONSOLE_H
+
+#include "editor/cmd/commands.h"
+#include "ui/ui.h"
+
+#include <stddef.h>
+
+#define CONSOLE_LINES 2000
+#define CONSOLE_HISTORY 200
+#define CONSOLE_INPUT 1024
+
+typedef enum console_kind { CONSOLE_ECHO, CONSOLE_OUTPUT, CONSOLE_ERROR } console_kind;
+
+typedef struct console {
+    char *lines[CONSOLE_LINES]; // a ring
+    console_kind kinds[CONSOLE_LINES];
+    size_t first, count;
+    char input[CONSOLE_INPUT];
+    char *history[CONSOLE_HISTORY];
+    size_t history_count;
+    int history_at; // -1: editing a new line
+    int open;
+    int focus_input; // give the input line focus on the next frame
+} console;
+
+void console_init(console *c);
+void console_free(console *c);
+// Appends text (split at new lines) as lines of that kind.
+void console_add(console *c, console_kind kind, const char *text);
+// Runs a command line: echoes it, runs it, adds its output and errors. The output also
+// goes to standard output and errors to standard error, as in batch mode.
+int console_run(console *c, cmd_context *ctx, const char *text, const char *label);
+// Draws the console over r (scrollback above the input line). Enter runs the line.
+void console_draw(console *c, ui_context *ui, cmd_context *ctx, ui_rect r);
+
+#endif

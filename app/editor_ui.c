@@ -1,0 +1,505 @@
+#include "app/editor_ui.h"
+
+#include "editor/gen/gen.h"
+#include "editor/world/history.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+void editor_ui_init(editor_ui *e) {
+    memset(e, 0, sizeof *e);
+    console_init(&e->console);
+}
+
+void editor_ui_free(editor_ui *e) {
+    console_free(&e->console);
+}
+
+int editor_ui_run(editor_ui *e, cmd_context *ctx, const char *text) {
+    return console_run(&e->console, ctx, text, "ui");
+}
+
+static int runf(editor_ui *e, cmd_context *ctx, const char *fmt, ...) {
+    char text[1024];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(text, sizeof text, fmt, ap);
+    va_end(ap);
+    return editor_ui_run(e, ctx, text);
+}
+
+static void do_action(editor_ui *e, cmd_context *ctx, editor_pending action) {
+    if (action == PENDING_NEW_FLAT) editor_ui_run(e, ctx, "new flat");
+    if (action == PENDING_QUIT) e->quit_requested = 1;
+}
+
+void editor_ui_request(editor_ui *e, cmd_context *ctx, editor_pending action) {
+    if (world_is_modified(ctx->world))
+        e->pending = action;
+    else
+        do_action(e, ctx, action);
+}
+
+static const char *file_name(const char *path) {
+    const char *slash = strrchr(path, '/');
+    return path[0] ? (slash ? slash + 1 : path) : "unsaved world";
+}
+
+// ---- menus --------------------------------------------------------------------------
+
+static void menus(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v, ui_rect bar) {
+    ui_menubar_begin(ui, bar);
+    int saved_before = world_path(ctx->world)[0] != 0;
+    if (ui_menu_begin(ui, "File")) {
+        if (ui_menu_item(ui, "New flat world", "Ctrl+N", 1))
+            editor_ui_request(e, ctx, PENDING_NEW_FLAT);
+        if (ui_menu_item(ui, "Save", "Ctrl+S", saved_before)) editor_ui_run(e, ctx, "save");
+        if (ui_menu_item(ui, "Save as...", "Ctrl+Shift+S", 1)) {
+            e->show_save_as = 1;
+            snprintf(e->save_as_path, sizeof e->save_as_path, "%s", world_path(ctx->world));
+        }
+        ui_menu_separator(ui);
+        if (ui_menu_item(ui, "Quit", "Ctrl+Q", 1)) editor_ui_request(e, ctx, PENDING_QUIT);
+        ui_menu_end(ui);
+    }
+    if (ui_menu_begin(ui, "Edit")) {
+        history *h = world_history(ctx->world);
+        size_t pos = history_position(h), n = history_count(h);
+        char undo[160] = "Undo", redo[160] = "Redo";
+        if (pos > 0) snprintf(undo, sizeof undo, "Undo %s", history_at(h, pos - 1)->label);
+        if (pos < n) snprintf(redo, sizeof redo, "Redo %s", history_at(h, pos)->label);
+        // Ids by the fixed part of the label, so tests find "Edit/Undo" whatever it says.
+        char undo_id[200], redo_id[200];
+        snprintf(undo_id, sizeof undo_id, "%s##Undo", undo);
+        snprintf(redo_id, sizeof redo_id, "%s##Redo", redo);
+        if (ui_menu_item(ui, undo_id, "Ctrl+Z", pos > 0)) editor_ui_run(e, ctx, "undo");
+        if (ui_menu_item(ui, redo_id, "Ctrl+Shift+Z", pos < n)) editor_ui_run(e, ctx, "redo");
+        ui_menu_end(ui);
+    }
+    if (ui_menu_begin(ui, "View")) {
+        static const char *const modes[] = {"shaded", "wireframe", "levels", "height", "slope"};
+        static const char *const labels[] = {"Shaded", "Wireframe", "Clipmap levels",
+                                             "Height colours", "Slope colours"};
+        static const char *const keys[] = {"1", "2", "3", "4", "5"};
+        for (int i = 0; i < 5; i++)
+            if (ui_menu_item(ui, labels[i], keys[i], (int)v->settings.view != i))
+                runf(e, ctx, "view %s", modes[i]);
+        ui_menu_separator(ui);
+        if (ui_menu_item(ui,
+                         v->settings.parallax ? "Parallax detail: on##Parallax"
+                                              : "Parallax detail: off##Parallax",
+                         NULL, 1))
+            runf(e, ctx, "render parallax=%s", v->settings.parallax ? "off" : "on");
+        if (ui_menu_item(ui, "Reset view", "Home", 1)) editor_ui_run(e, ctx, "camera default");
+        if (ui_menu_item(ui, "Console", "~", 1)) {
+            e->console.open = !e->console.open;
+            e->console.focus_input = e->console.open;
+        }
+        ui_menu_end(ui);
+    }
+    if (ui_menu_begin(ui, "Help")) {
+        if (ui_menu_item(ui, "Keyboard shortcuts", "F1", 1)) e->show_help = 1;
+        if (ui_menu_item(ui, "About Orogen", NULL, 1)) e->show_about = 1;
+        ui_menu_end(ui);
+    }
+    ui_menubar_end(ui);
+}
+
+// ---- tools ---------------------------------------------------------------------------
+
+typedef struct tool_entry {
+    const char *name;  // as `tool` takes it
+    const char *label; // on the button
+    const char *tip;
+} tool_entry;
+
+static const tool_entry tools[] = {
+    {"raise", "Raise", "Raise the terrain by amount metres per dab"},
+    {"lower", "Lower", "Lower the terrain by amount metres per dab"},
+    {"smooth", "Smooth", "Blend toward a blur that widens with the radius (invert sharpens)"},
+    {"flatten", "Flatten", "Blend toward a height, or the height under the stroke's start"},
+    {"set", "Set height", "Blend toward the height you give"},
+    {"ramp", "Ramp", "A ramp from the stroke's first point to its last"},
+    {"noise", "Noise", "Add fractal noise"},
+    {"terrace", "Terrace", "Blend toward terraces of a step height"},
+    {"thermal", "Thermal", "Thermal erosion down to the talus angle"},
+    {"hydraulic", "Hydraulic", "Droplet erosion: water carves and deposits"},
+    {"paint", "Paint", "Paint a material (invert removes it)"},
+};
+#define TOOL_COUNT (sizeof tools / sizeof tools[0])
+
+static int tool_is_current(const brush *b, const char *name) {
+    if (strcmp(name, "lower") == 0) return b->tool == BRUSH_RAISE && b->invert;
+    if (strcmp(name, "raise") == 0) return b->tool == BRUSH_RAISE && !b->invert;
+    return strcmp(brush_tool_name(b->tool), name) == 0;
+}
+
+static void palette(editor_ui *e, ui_context *ui, cmd_context *ctx, ui_rect r) {
+    ui_panel_begin(ui, "Tools", r);
+    ui_row(ui, 1, NULL, ui_em(ui, 1.6f));
+    for (size_t i = 0; i < TOOL_COUNT; i++) {
+        if (ui_toggle_button(ui, tools[i].label, tool_is_current(&ctx->brush, tools[i].name)))
+            runf(e, ctx, "tool %s", tools[i].name);
+        ui_tooltip(ui, tools[i].tip);
+    }
+    ui_panel_end(ui);
+}
+
+// The current tool's name as `tool` takes it.
+static const char *current_tool(const brush *b) {
+    return b->tool == BRUSH_RAISE && b->invert ? "lower" : brush_tool_name(b->tool);
+}
+
+static void slider_key(editor_ui *e, ui_context *ui, cmd_context *ctx, const char *label,
+                       const char *key, double value, double lo, double hi, const char *fmt,
+                       const char *tip) {
+    double v = value;
+    if (ui_slider(ui, label, &v, lo, hi, fmt)) {
+        // Whole numbers for integer keys, else enough digits to keep the value.
+        if (strcmp(fmt, "%.0f") == 0)
+            runf(e, ctx, "tool %s %s=%.0f", current_tool(&ctx->brush), key, v);
+        else
+            runf(e, ctx, "tool %s %s=%.6g", current_tool(&ctx->brush), key, v);
+    }
+    ui_tooltip(ui, tip);
+}
+
+static void tool_options(editor_ui *e, ui_context *ui, cmd_context *ctx) {
+    const brush *b = &ctx->brush;
+    const char *t = current_tool(b);
+    ui_row(ui, 1, NULL, 0);
+    slider_key(e, ui, ctx, "Radius", "radius", b->radius, 0.5, 500, "%.1f m",
+               "Brush radius in metres ([ and ] change it)");
+    slider_key(e, ui, ctx, "Strength", "strength", b->strength, 0, 1, "%.2f",
+               "How much of the tool's effect one dab applies");
+    slider_key(e, ui, ctx, "Spacing", "spacing", b->spacing, 0.05, 2, "%.2f x radius",
+               "Distance between dabs along a stroke, as a fraction of the radius");
+    static const char *const falloffs[] = {"smooth", "linear", "spherical", "constant", "curve"};
+    int f = (int)b->falloff, count = b->curve_count >= 2 ? 5 : 4;
+    if (ui_combo(ui, "Falloff", &f, falloffs, count))
+        runf(e, ctx, "tool %s falloff=%s", t, falloffs[f]);
+    ui_tooltip(ui, "How the effect fades from the centre to the edge");
+    if (b->tool != BRUSH_RAISE) { // raise/lower is the invert pair
+        int inv = b->invert;
+        if (ui_checkbox(ui, "Invert", &inv)) runf(e, ctx, "tool %s invert=%d", t, inv);
+        ui_tooltip(ui, "The opposite effect (lower, sharpen, subtract, remove the material)");
+    }
+    if (b->tool != BRUSH_PAINT) {
+        static const char *const targets[] = {"coarse", "detail"};
+        int target = b->target == TILE_LAYER_DETAIL;
+        if (ui_combo(ui, "Layer", &target, targets, 2))
+            runf(e, ctx, "tool %s target=%s", t, targets[target]);
+        ui_tooltip(ui, "coarse: the terrain's shape; detail: fine relief drawn with parallax");
+    }
+    switch (b->tool) {
+    case BRUSH_RAISE:
+    case BRUSH_NOISE:
+        slider_key(e, ui, ctx, "Amount", "amount", b->amount, 0, 50, "%.2f m",
+                   "Metres per dab at full strength");
+        if (b->tool == BRUSH_NOISE) {
+            slider_key(e, ui, ctx, "Noise scale", "scale", b->noise_scale, 1, 2000, "%.0f m",
+                       "Metres per noise feature");
+            slider_key(e, ui, ctx, "Octaves", "octaves", b->noise_octaves, 1, 12, "%.1f",
+                       "Layers of finer noise");
+        }
+        break;
+    case BRUSH_FLATTEN:
+    case BRUSH_SET:
+        slider_key(e, ui, ctx, "Height", "height", b->height, -1000, 5000, "%.1f m",
+                   "The height to blend toward, in metres");
+        break;
+    case BRUSH_TERRACE:
+        slider_key(e, ui, ctx, "Step", "step", b->terrace_step, 0.5, 200, "%.1f m",
+                   "Height of one terrace");
+        slider_key(e, ui, ctx, "Sharpness", "sharpness", b->terrace_sharpness, 0, 1, "%.2f",
+                   "0: ramps, 1: flat treads and vertical risers");
+        break;
+    case BRUSH_THERMAL:
+        slider_key(e, ui, ctx, "Talus", "talus", b->thermal.talus_deg, 0.1, 89, "%.1f deg",
+                   "Slopes steeper than this angle crumble");
+        slider_key(e, ui, ctx, "Iterations", "iterations", b->thermal.iterations, 1, 200, "%.0f",
+                   "Passes per dab");
+        break;
+    case BRUSH_HYDRAULIC:
+        slider_key(e, ui, ctx, "Droplets", "droplets", b->hydraulic.droplets, 1, 20000, "%.0f",
+                   "Water droplets per dab");
+        break;
+    case BRUSH_PAINT: {
+        static const char *const materials[] = {"automatic", "sand", "grass",  "rock",
+                                                "snow",      "dirt", "gravel", "moss"};
+        int m = b->material;
+        if (ui_combo(ui, "Material", &m, materials, 8)) runf(e, ctx, "tool paint material=%d", m);
+        ui_tooltip(ui, "The material to paint (automatic follows height and slope)");
+        break;
+    }
+    default:
+        break;
+    }
+}
+
+// ---- world and history ------------------------------------------------------------------
+
+static void world_panel(editor_ui *e, ui_context *ui, cmd_context *ctx) {
+    const world_params *next = &ctx->next;
+    char line[512];
+    ui_row(ui, 1, NULL, 0);
+    snprintf(line, sizeof line, "%s%s", file_name(world_path(ctx->world)),
+             world_is_modified(ctx->world) ? " (unsaved changes)" : "");
+    ui_label(ui, line);
+    ui_tooltip(ui, "The world's parameter file; its edits are kept in NAME.tiles beside it");
+    const char *names[GEN_COUNT];
+    for (int g = 0; g < GEN_COUNT; g++)
+        names[g] = gen_kind_name((gen_kind)g);
+    int g = (int)next->generator;
+    if (ui_combo(ui, "Generator", &g, names, GEN_COUNT)) runf(e, ctx, "generator %s", names[g]);
+    ui_tooltip(ui, "How the unedited terrain is made (applied by Generate)");
+    float half[2] = {-0.7f, 0};
+    ui_row(ui, 2, half, 0);
+    snprintf(line, sizeof line, "Seed: %lld", (long long)next->seed);
+    ui_label(ui, line);
+    ui_tooltip(ui, "The random seed of the generator");
+    if (ui_button(ui, "Random##seed"))
+        runf(e, ctx, "seed %u", (unsigned)(next->seed * 2654435761u + 12345u) % 1000000u);
+    ui_tooltip(ui, "Pick another seed (applied by Generate)");
+    ui_row(ui, 1, NULL, 0);
+    double v = next->max_height;
+    if (ui_slider(ui, "Max height", &v, 10, 9000, "%.0f m")) runf(e, ctx, "max_height %.6g", v);
+    ui_tooltip(ui, "The highest the generated terrain reaches, in metres");
+    v = next->ocean_level;
+    if (ui_slider(ui, "Ocean level", &v, -1000, 3000, "%.0f m"))
+        runf(e, ctx, "ocean_level %.6g", v);
+    ui_tooltip(ui, "Height of the water plane, in metres");
+    v = next->octaves;
+    if (ui_slider(ui, "Octaves", &v, 1, 16, "%.1f")) runf(e, ctx, "octaves %.3g", v);
+    ui_tooltip(ui, "fBm octaves: more adds finer detail");
+    if (ui_button(ui, "Generate")) editor_ui_run(e, ctx, "generate");
+    ui_tooltip(ui, "Regenerate the terrain from these parameters (one undo step; edits stay)");
+}
+
+static void history_panel(editor_ui *e, ui_context *ui, cmd_context *ctx) {
+    history *h = world_history(ctx->world);
+    size_t n = history_count(h), pos = history_position(h);
+    char line[256];
+    ui_row(ui, 1, NULL, 0);
+    snprintf(line, sizeof line, "%zu steps, %.1f of %.0f MiB", n, history_bytes(h) / 1048576.0,
+             history_budget(h) / 1048576.0);
+    ui_label_colored(ui, line, ui_get_theme(ui)->text_dim);
+    ui_push_scope(ui, "Steps");
+    for (size_t i = 0; i < n; i++) {
+        const history_step *s = history_at(h, i);
+        snprintf(line, sizeof line, "%zu %s##%zu", i + 1, s->label, i + 1);
+        if (ui_toggle_button(ui, line, i < pos)) {
+            // Clicking a step makes it the last one applied.
+            char cmds[1024] = "";
+            size_t target = i + 1;
+            for (size_t k = pos; k > target && strlen(cmds) + 8 < sizeof cmds; k--)
+                strcat(cmds, "undo;");
+            for (size_t k = pos; k < target && strlen(cmds) + 8 < sizeof cmds; k++)
+                strcat(cmds, "redo;");
+            if (cmds[0]) editor_ui_run(e, ctx, cmds);
+        }
+        ui_tooltip(ui, i < pos ? "Applied: click to undo the steps after it"
+                               : "Undone: click to redo up to here");
+    }
+    ui_pop_scope(ui);
+}
+
+// ---- status bar and dialogs -------------------------------------------------------------
+
+static void status_bar(ui_context *ui, cmd_context *ctx, viewport *v, const editor_frame_info *info,
+                       ui_rect r) {
+    ui_panel_begin(ui, "Status", r);
+    char cursor[128] = "", cam[128], tool[96], frame[96], cache[128];
+    if (info->cursor_valid)
+        snprintf(cursor, sizeof cursor, "x %.1f  z %.1f  height %.2f m", info->cursor[0],
+                 info->cursor[2], info->cursor[1]);
+    else
+        snprintf(cursor, sizeof cursor, "no terrain under the pointer");
+    snprintf(cam, sizeof cam, "camera %.0f, %.0f, %.0f", v->cam.pos[0], v->cam.pos[1],
+             v->cam.pos[2]);
+    snprintf(tool, sizeof tool, "%s r %.1f m", current_tool(&ctx->brush), ctx->brush.radius);
+    snprintf(frame, sizeof frame, "%.0f ms (%.0f%%)%s", info->frame_ms,
+             info->resolution_scale * 100, info->pending ? "  loading" : "");
+    tile_cache_stats s;
+    tile_cache_stats_get(world_cache(ctx->world), &s);
+    snprintf(cache, sizeof cache, "cache %.0f / %.0f MiB", s.resident_bytes / 1048576.0,
+             s.budget_bytes / 1048576.0);
+    float cols[5] = {-0.3f, -0.2f, -0.15f, -0.15f, 0};
+    ui_row(ui, 5, cols, r.h - ui_em(ui, 0.6f));
+    ui_label(ui, cursor);
+    ui_tooltip(ui, "The terrain point under the pointer");
+    ui_label(ui, cam);
+    ui_tooltip(ui, "The camera's position in metres");
+    ui_label(ui, tool);
+    ui_tooltip(ui, "The current tool and its radius");
+    ui_label(ui, frame);
+    ui_tooltip(ui, "The last terrain frame's time and its resolution (lowered while moving)");
+    ui_label(ui, cache);
+    ui_tooltip(ui, "Tile cache memory in use against its budget");
+    ui_panel_end(ui);
+}
+
+static ui_rect centred(float width, float height, float w, float h) {
+    return (ui_rect){roundf((width - w) * 0.5f), roundf((height - h) * 0.4f), w, h};
+}
+
+static void unsaved_prompt(editor_ui *e, ui_context *ui, cmd_context *ctx, float width,
+                           float height) {
+    ui_rect r = centred(width, height, ui_em(ui, 22), ui_em(ui, 6));
+    ui_panel_begin(ui, "Unsaved changes", r);
+    char text[512];
+    snprintf(text, sizeof text, "%s has unsaved changes.", file_name(world_path(ctx->world)));
+    ui_row(ui, 1, NULL, 0);
+    ui_label(ui, text);
+    ui_label_colored(ui,
+                     e->pending == PENDING_QUIT ? "Save them before quitting?"
+                                                : "Save them before the new world?",
+                     ui_get_theme(ui)->text_dim);
+    float thirds[3] = {-0.333f, -0.333f, 0};
+    ui_row(ui, 3, thirds, ui_em(ui, 1.5f));
+    int can_save = world_path(ctx->world)[0] != 0;
+    if (can_save ? ui_button(ui, "Save") : ui_button(ui, "Save as...##Save")) {
+        if (can_save) {
+            if (editor_ui_run(e, ctx, "save") == 0) {
+                editor_pending a = e->pending;
+                e->pending = PENDING_NONE;
+                do_action(e, ctx, a);
+            }
+        } else {
+            e->show_save_as = 1;
+        }
+    }
+    ui_tooltip(ui, "Save the world, then go on");
+    if (ui_button(ui, "Discard")) {
+        editor_pending a = e->pending;
+        e->pending = PENDING_NONE;
+        do_action(e, ctx, a);
+    }
+    ui_tooltip(ui, "Go on without saving: the changes are lost");
+    if (ui_button(ui, "Cancel")) e->pending = PENDING_NONE;
+    ui_tooltip(ui, "Keep working");
+    ui_panel_end(ui);
+}
+
+static void save_as_dialog(editor_ui *e, ui_context *ui, cmd_context *ctx, float width,
+                           float height) {
+    ui_rect r = centred(width, height, ui_em(ui, 26), ui_em(ui, 5.5f));
+    ui_panel_begin(ui, "Save as", r);
+    ui_row(ui, 1, NULL, 0);
+    ui_label(ui, "Save the world as (a .world file; its tiles go beside it):");
+    int rc = ui_textbox(ui, "Path", e->save_as_path, sizeof e->save_as_path);
+    float halves[2] = {-0.5f, 0};
+    ui_row(ui, 2, halves, ui_em(ui, 1.5f));
+    int go = ui_button(ui, "Save") || (rc & UI_TEXT_SUBMIT);
+    ui_tooltip(ui, "Write the parameter file and its tile store");
+    if (ui_button(ui, "Cancel")) e->show_save_as = 0;
+    ui_tooltip(ui, "Close without saving");
+    ui_panel_end(ui);
+    if (go && e->save_as_path[0]) {
+        char quoted[1100];
+        size_t n = 0;
+        for (const char *p = e->save_as_path; *p && n + 3 < sizeof quoted; p++) {
+            if (*p == '"' || *p == '\\') quoted[n++] = '\\';
+            quoted[n++] = *p;
+        }
+        quoted[n] = 0;
+        if (runf(e, ctx, "save \"%s\"", quoted) == 0) {
+            e->show_save_as = 0;
+            if (e->pending != PENDING_NONE) {
+                editor_pending a = e->pending;
+                e->pending = PENDING_NONE;
+                do_action(e, ctx, a);
+            }
+        }
+    }
+}
+
+static void text_dialog(ui_context *ui, const char *name, const char *const *lines, int n,
+                        int *show, float width, float height) {
+    ui_rect r = centred(width, height, ui_em(ui, 28), ui_em(ui, 1.45f * (n + 2.5f)));
+    ui_panel_begin(ui, name, r);
+    ui_row(ui, 1, NULL, 0);
+    for (int i = 0; i < n; i++)
+        ui_label(ui, lines[i]);
+    if (ui_button(ui, "Close")) *show = 0;
+    ui_tooltip(ui, "Close this window (Esc)");
+    ui_panel_end(ui);
+}
+
+// The open dialog's rectangle (they are centred and sized from the font).
+static ui_rect dialog_rect(const editor_ui *e, const ui_context *ui, float width, float height) {
+    if (e->show_save_as) return centred(width, height, ui_em(ui, 26), ui_em(ui, 5.5f));
+    if (e->pending != PENDING_NONE) return centred(width, height, ui_em(ui, 22), ui_em(ui, 6));
+    if (e->show_help) return centred(width, height, ui_em(ui, 28), ui_em(ui, 1.45f * (9 + 2.5f)));
+    if (e->show_about) return centred(width, height, ui_em(ui, 28), ui_em(ui, 1.45f * (3 + 2.5f)));
+    return (ui_rect){0, 0, 0, 0};
+}
+
+ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v,
+                        const editor_frame_info *info, float width, float height) {
+    ui_rect modal = dialog_rect(e, ui, width, height);
+    if (modal.w > 0) ui_modal(ui, modal);
+    float bar = ui_em(ui, 1.5f), status = ui_em(ui, 1.6f);
+    float left = ui_em(ui, 6.5f), right = ui_em(ui, 17);
+    ui_rect top = {0, 0, width, bar};
+    ui_rect body = {0, bar, width, height - bar - status};
+    ui_rect cols[3];
+    float sizes[3] = {left, 0, right};
+    ui_split(ui, body, 1, 3, sizes, cols);
+
+    palette(e, ui, ctx, cols[0]);
+    ui_panel_begin(ui, "Dock", cols[2]);
+    ui_row(ui, 1, NULL, 0);
+    char tool_title[64];
+    snprintf(tool_title, sizeof tool_title, "Tool: %s##Tool", current_tool(&ctx->brush));
+    if (ui_section(ui, tool_title, 1)) tool_options(e, ui, ctx);
+    if (ui_section(ui, "World", 1)) world_panel(e, ui, ctx);
+    if (ui_section(ui, "History", 1)) history_panel(e, ui, ctx);
+    ui_panel_end(ui);
+    status_bar(ui, ctx, v, info, (ui_rect){0, height - status, width, status});
+
+    ui_rect view = cols[1];
+    if (e->console.open) {
+        ui_rect c = {view.x, view.y, view.w, roundf(view.h * 0.45f)};
+        console_draw(&e->console, ui, ctx, c);
+    }
+    if (modal.w > 0) ui_dim(ui); // the dialog stands out; the rest waits
+    if (e->show_help) {
+        static const char *const help[] = {
+            "Left drag: sculpt or paint with the current tool",
+            "Alt + left drag, middle drag: orbit around the point under the pointer",
+            "Right drag: look; with it held W A S D fly, Q E down/up, Shift faster",
+            "Wheel: dolly toward the pointer (with right drag: fly speed)",
+            "G walk mode, F focus on the pointer, Home reset the view",
+            "1-5 shaded, wireframe, levels, height, slope views",
+            "Ctrl+Z undo, Ctrl+Shift+Z or Ctrl+Y redo",
+            "Ctrl+S save, Ctrl+Shift+S save as, Ctrl+N new, Ctrl+Q quit",
+            "~ console, F1 this help, Esc close menus and dialogs",
+        };
+        text_dialog(ui, "Keyboard shortcuts", help, (int)(sizeof help / sizeof help[0]),
+                    &e->show_help, width, height);
+    }
+    if (e->show_about) {
+        char gl[256];
+        snprintf(gl, sizeof gl, "Renderer: %s", info->gl_renderer ? info->gl_renderer : "?");
+        const char *about[] = {"Orogen 0.1: a terrain editor", gl,
+                               "OpenGL 4.5 core, GLFW, SQLite, zstd, OpenImageIO, stb_truetype"};
+        text_dialog(ui, "About", about, 3, &e->show_about, width, height);
+    }
+    if (e->show_save_as)
+        save_as_dialog(e, ui, ctx, width, height);
+    else if (e->pending != PENDING_NONE)
+        unsaved_prompt(e, ui, ctx, width, height);
+    // The menu bar last: its menus open over everything.
+    menus(e, ui, ctx, v, top);
+    if (ui_get_input(ui)->key_pressed[UI_KEY_ESCAPE] && !ui_wants_keyboard(ui)) {
+        e->show_help = e->show_about = 0;
+        if (e->show_save_as)
+            e->show_save_as = 0;
+        else if (e->pending != PENDING_NONE)
+            e->pending = PENDING_NONE;
+    }
+    return view;
+}

@@ -1,0 +1,52 @@
+// The editor's panels, built every frame with the UI library: the menu bar, the tool
+// palette, the tool options, the world and history panels, the status bar, the
+// console and the unsaved-changes prompt. Every action runs a command of the command
+// language (echoed in the console); nothing here writes world data.
+#ifndef OROGEN_APP_EDITOR_UI_H
+#define OROGEN_APP_EDITOR_UI_H
+
+#include "app/console.h"
+#include "editor/cmd/commands.h"
+#include "renderer/viewport.h"
+#include "ui/ui.h"
+
+// What the window measured this frame, for the status bar.
+typedef struct editor_frame_info {
+    int cursor_valid;
+    double cursor[3]; // the terrain point under the pointer
+    double frame_ms;  // the last terrain frame's time
+    float resolution_scale;
+    int pending;
+    const char *gl_renderer;
+} editor_frame_info;
+
+typedef enum editor_pending {
+    PENDING_NONE,
+    PENDING_NEW_FLAT,
+    PENDING_QUIT,
+} editor_pending;
+
+typedef struct editor_ui {
+    console console;
+    int show_help, show_about, show_save_as;
+    editor_pending pending; // an action waiting on the unsaved-changes prompt
+    char save_as_path[1024];
+    int quit_requested; // the window should close
+} editor_ui;
+
+void editor_ui_init(editor_ui *e);
+void editor_ui_free(editor_ui *e);
+
+// Builds the whole editor for a width x height window; returns the rectangle left for
+// the 3D viewport.
+ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v,
+                        const editor_frame_info *info, float width, float height);
+
+// Runs a command as a UI action: echoed in the console, output and errors there too.
+int editor_ui_run(editor_ui *e, cmd_context *ctx, const char *text);
+
+// Asks before an action that would lose unsaved changes (New, Quit, the window's
+// close button); runs it at once when there are none.
+void editor_ui_request(editor_ui *e, cmd_context *ctx, editor_pending action);
+
+#endif
