@@ -69,6 +69,7 @@ struct ui_context {
     size_t cursor, anchor;
     char undo[UNDO_MAX][EDIT_MAX];
     int undo_count, typing_run;
+    size_t edit_len; // the text's length after the last edit: a different one was set by the caller
     double caret_time;
     ui_id focusables[FOCUSABLE_MAX];
     int focusable_count;
@@ -961,6 +962,7 @@ static int text_edit(ui_context *ui, ui_id id, ui_rect r, char *buf, size_t size
     }
     if (ui->focus == id && ui->edit_id != id) { // gaining focus
         ui->edit_id = id;
+        ui->edit_len = n;
         snprintf(ui->edit_restore, sizeof ui->edit_restore, "%s", buf);
         ui->undo_count = 0;
         ui->typing_run = 0;
@@ -975,6 +977,8 @@ static int text_edit(ui_context *ui, ui_id id, ui_rect r, char *buf, size_t size
         if (mouse_pressed(ui) && !(ui->in.mods & UI_MOD_SHIFT)) ui->anchor = at;
         ui->cursor = at;
     }
+    if (ui->focus == id && ui->edit_id == id && n != ui->edit_len) // replaced from outside
+        ui->cursor = ui->anchor = n;
     if (ui->focus == id) {
         const ui_input *in = &ui->in;
         int shift = in->mods & UI_MOD_SHIFT, ctrl = in->mods & UI_MOD_CTRL;
@@ -1065,6 +1069,7 @@ static int text_edit(ui_context *ui, ui_id id, ui_rect r, char *buf, size_t size
     ui->last_id = id, ui->last_rect = r, ui->last_hovered = hovered;
     // Draw: field, selection, text scrolled so the caret shows, caret.
     n = strlen(buf);
+    if (ui->focus == id) ui->edit_len = n;
     ui_draw_rect(ui->target, r, ui->focus == id ? ui->theme.panel_alt : widget_colour(ui, id));
     if (ui->focus == id) ui_draw_rect_outline(ui->target, r, ui->theme.accent, 1);
     ui_draw_push_clip(ui->target, r);
