@@ -474,7 +474,7 @@ ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport
             "Wheel: dolly toward the pointer (with right drag: fly speed)",
             "G walk mode, F focus on the pointer, Home reset the view",
             "1-5 shaded, wireframe, levels, height, slope views",
-            "Ctrl+Z undo, Ctrl+Shift+Z or Ctrl+Y redo",
+            "Ctrl+Z undo, Ctrl+Shift+Z or Ctrl+Y redo; [ ] brush radius, - = strength",
             "Ctrl+S save, Ctrl+Shift+S save as, Ctrl+N new, Ctrl+Q quit",
             "~ console, F1 this help, Esc close menus and dialogs",
         };

@@ -445,6 +445,23 @@ static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
     case GLFW_KEY_F1:
         st->ed.show_help = 1;
         break;
+    case GLFW_KEY_LEFT_BRACKET: // brush size and strength, as in Terrain3D
+    case GLFW_KEY_RIGHT_BRACKET:
+    case GLFW_KEY_MINUS:
+    case GLFW_KEY_EQUAL: {
+        const brush *b = &st->ctx->brush;
+        const char *name = b->tool == BRUSH_RAISE && b->invert ? "lower" : brush_tool_name(b->tool);
+        char cmd[128];
+        if (key == GLFW_KEY_LEFT_BRACKET || key == GLFW_KEY_RIGHT_BRACKET) {
+            double r = b->radius * (key == GLFW_KEY_RIGHT_BRACKET ? 1.15 : 1 / 1.15);
+            snprintf(cmd, sizeof cmd, "tool %s radius=%.4g", name, fmin(fmax(r, 0.5), 5000));
+        } else {
+            double k = b->strength + (key == GLFW_KEY_EQUAL ? 0.05 : -0.05);
+            snprintf(cmd, sizeof cmd, "tool %s strength=%.3g", name, fmin(fmax(k, 0), 1));
+        }
+        console_run(&st->ed.console, st->ctx, cmd, "key");
+        break;
+    }
     case GLFW_KEY_F:
         if (pick_at(st, st->mouse_x, st->mouse_y, hit) == 0)
             camera_controls_focus(&st->cc, &st->v->cam, hit, st->ctx->brush.radius);
