@@ -5,6 +5,7 @@
 #include "renderer/view_commands.h"
 #include "renderer/viewport.h"
 #include "editor/cmd/commands.h"
+#include "editor/cmd/edit_commands.h"
 #include "editor/world/world.h"
 #include "io/parse.h"
 

@@ -4,7 +4,7 @@
 #define OROGEN_RENDERER_LIGHTING_H
 
 #include "renderer/camera.h"
-#include "renderer/terrain_renderer.h"
+#include "renderer/render_settings.h"
 
 #include <epoxy/gl.h>
 

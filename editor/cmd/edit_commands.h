@@ -4,7 +4,7 @@
 #ifndef OROGEN_EDITOR_EDIT_COMMANDS_H
 #define OROGEN_EDITOR_EDIT_COMMANDS_H
 
-#include "editor/cmd/commands.h"
+#include "editor/cmd/context.h"
 
 int cmd_tool(cmd_context *ctx, int argc, char **argv, og_error *err);
 int cmd_dab(cmd_context *ctx, int argc, char **argv, og_error *err);
@@ -18,5 +18,9 @@ int cmd_redo(cmd_context *ctx, int argc, char **argv, og_error *err);
 int cmd_history(cmd_context *ctx, int argc, char **argv, og_error *err);
 int cmd_stamp(cmd_context *ctx, int argc, char **argv, og_error *err);
 int cmd_stamps(cmd_context *ctx, int argc, char **argv, og_error *err);
+
+// Ends the open stroke, if any, as one undo step (the end of a batch run, a window
+// closing). Returns -1 (err set) when committing it fails.
+int cmd_end_stroke(cmd_context *ctx, og_error *err);
 
 #endif

@@ -1,0 +1,56 @@
+// What every command works on: the command context (the world, the next parameters,
+// the brush, an open stroke, where output goes) and the shape of a command.
+#ifndef OROGEN_EDITOR_CMD_CONTEXT_H
+#define OROGEN_EDITOR_CMD_CONTEXT_H
+
+#include "editor/tools/brush.h"
+#include "editor/world/world.h"
+#include "io/err.h"
+
+#include <stdio.h>
+
+typedef struct cmd_context {
+    world *world;             // the current world (replaced by new/load)
+    world_params next;        // parameters for the next `generate` (nparams)
+    world_settings settings;  // used for worlds created by new/load
+    FILE *out;                // where commands print results
+    int exit_requested;       // set by `exit`
+    brush brush;              // the current tool (`tool`), used by dab and stroke
+    struct stroke *stroke;    // the stroke stroke_begin opened (NULL: none)
+    FILE *record;             // when set, every command that succeeded is written here
+    char resource_dir[4096];  // built-in resources (stamp library in resource_dir/stamps)
+    char stamp_dir[4096];     // the user's stamp folder
+    // State of commands registered from outside (the renderer's view commands keep
+    // their viewport here: made by the first view command, or set by the window).
+    // The command language never looks inside; app/ frees it.
+    void *view_state;
+} cmd_context;
+
+typedef int (*cmd_fn)(cmd_context *ctx, int argc, char **argv, og_error *err);
+
+// One command: its name, a usage line, a help text, the argument count it accepts
+// (not counting the name) and the function that runs it.
+typedef struct cmd_def {
+    const char *name;
+    const char *usage;
+    const char *help;
+    int min_args, max_args;
+    cmd_fn run;
+    int flags; // CMD_* below
+} cmd_def;
+
+enum {
+    // Changes the world or the undo history: an open stroke is ended (committed) first,
+    // so it stays one undo step. Read-only commands leave it open.
+    CMD_ENDS_STROKE = 1,
+    // A query of the editor window's own state, left out of recordings (--record): a
+    // replay has no window to ask.
+    CMD_NOT_RECORDED = 2,
+};
+
+// A context on world w with the default tool (raise). The user's stamp folder is
+// $OROGEN_STAMP_DIR, else $XDG_DATA_HOME/orogen/stamps, else ~/.local/share/orogen/stamps.
+void cmd_context_init(cmd_context *ctx, world *w, const world_settings *settings, FILE *out,
+                      const char *resource_dir);
+
+#endif

@@ -1,0 +1,43 @@
+// What the viewport shows and how: the view mode, the render settings the `render`
+// and `view` commands change, and the brush cursor drawn on the terrain.
+#ifndef OROGEN_RENDERER_RENDER_SETTINGS_H
+#define OROGEN_RENDERER_RENDER_SETTINGS_H
+
+#define RENDER_MIN_LEVELS 3
+#define RENDER_MAX_LEVELS 12
+#define BRUSH_FALLOFF_SAMPLES 64
+
+typedef enum view_mode {
+    VIEW_SHADED = 0,
+    VIEW_WIREFRAME = 1,
+    VIEW_LEVELS = 2, // clipmap level colours
+    VIEW_HEIGHT = 3,
+    VIEW_SLOPE = 4,
+    VIEW_MODE_COUNT
+} view_mode;
+
+const char *view_mode_name(view_mode m);
+int view_mode_parse(const char *text); // -1 if unknown
+
+typedef struct render_settings {
+    int levels;             // clipmap levels, RENDER_MIN_LEVELS .. RENDER_MAX_LEVELS (8)
+    int parallax;           // parallax-mapped detail near the camera (1)
+    int parallax_steps;     // parallax iterations: the quality setting, 1 .. 32 (8)
+    double detail_distance; // metres: the detail fades out by this distance (150)
+    view_mode view;
+    double sun_yaw, sun_pitch; // degrees (135, 35)
+    double fog_density;     // per metre (0: automatic from the clipmap's reach)
+    int culling;            // per-block frustum culling (1)
+    int morph;              // transition morphing between levels (1)
+} render_settings;
+
+void render_settings_default(render_settings *s);
+
+typedef struct brush_cursor {
+    int visible;
+    double x, z;        // world metres
+    double radius;      // metres
+    float falloff[BRUSH_FALLOFF_SAMPLES]; // weight at distance i/(N-1) of the radius
+} brush_cursor;
+
+#endif
