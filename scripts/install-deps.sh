@@ -12,7 +12,8 @@ packages=(
   libsqlite3-dev sqlite3 libzstd-dev zstd
   libcglm-dev libstb-dev fonts-dejavu-core
   libmeshoptimizer-dev libcmocka-dev
-  xvfb xdotool xauth assimp-utils
+  xvfb xdotool xauth assimp-utils imagemagick
+  python3 clang-format
   libnoise-dev
 )
 
