@@ -20,21 +20,20 @@
 #endif
 
 static void usage(FILE *out) {
-    fprintf(out,
-            "usage: orogen [options] [WORLD_FILE]\n"
-            "  WORLD_FILE          a .world or .planet parameter file to open (default: the\n"
-            "                      built-in default world)\n"
-            "  --batch FILE        run the commands in FILE with no window, then exit\n"
-            "  -c 'CMD; CMD'       run these commands with no window, then exit\n"
-            "                      (--batch and -c may be repeated; they run in order)\n"
-            "  --cache-mb N        tile cache budget in MiB (default 1024)\n"
-            "  --workers N         tile loader/generator threads (default 2)\n"
-            "  --record FILE       append every command that succeeds (typed, scripted or a\n"
-            "                      UI action such as a sculpting drag; not exit) to FILE;\n"
-            "                      orogen --batch FILE replays the session\n"
-            "  --help, --version\n"
-            "Batch errors are reported as FILE:LINE: error: MESSAGE with exit status 1.\n"
-            "Type 'help' in the console or run `orogen -c help` for the command list.\n");
+    fprintf(out, "usage: orogen [options] [WORLD_FILE]\n"
+                 "  WORLD_FILE          a .world or .planet parameter file to open (default: the\n"
+                 "                      built-in default world)\n"
+                 "  --batch FILE        run the commands in FILE with no window, then exit\n"
+                 "  -c 'CMD; CMD'       run these commands with no window, then exit\n"
+                 "                      (--batch and -c may be repeated; they run in order)\n"
+                 "  --cache-mb N        tile cache budget in MiB (default 1024)\n"
+                 "  --workers N         tile loader/generator threads (default 2)\n"
+                 "  --record FILE       append every command that succeeds (typed, scripted or a\n"
+                 "                      UI action such as a sculpting drag; not exit) to FILE;\n"
+                 "                      orogen --batch FILE replays the session\n"
+                 "  --help, --version\n"
+                 "Batch errors are reported as FILE:LINE: error: MESSAGE with exit status 1.\n"
+                 "Type 'help' in the console or run `orogen -c help` for the command list.\n");
 }
 
 static char *read_file(const char *path, size_t *len, char *why, size_t why_len) {
@@ -71,7 +70,9 @@ static char *read_file(const char *path, size_t *len, char *why, size_t why_len)
     return buf;
 }
 
-static int file_exists(const char *path) { return access(path, R_OK) == 0; }
+static int file_exists(const char *path) {
+    return access(path, R_OK) == 0;
+}
 
 // The resources folder: $OROGEN_RESOURCES, the installed share/orogen/resources
 // beside the binary, or the source tree's. "" when none has default.world.
@@ -146,8 +147,8 @@ int main(int argc, char **argv) {
                 fprintf(stderr, "orogen: at most 64 --batch/-c options\n");
                 return 2;
             }
-            scripts[script_count++] = a[1] == 'c' ? (script){argv[++i], NULL}
-                                                  : (script){NULL, argv[++i]};
+            scripts[script_count++] =
+                a[1] == 'c' ? (script){argv[++i], NULL} : (script){NULL, argv[++i]};
         } else if (strcmp(a, "--record") == 0 && has_value) {
             record_path = argv[++i];
         } else if ((strcmp(a, "--cache-mb") == 0 || strcmp(a, "--workers") == 0) && has_value) {
@@ -227,8 +228,10 @@ int main(int argc, char **argv) {
     int status = 0;
     if (script_count == 0) {
         if (window_run(&ctx, &err) != 0) {
-            fprintf(stderr, "orogen: %s\nBatch mode needs no window: orogen --batch SCRIPT or "
-                            "orogen -c 'CMD; CMD'\n", err.msg);
+            fprintf(stderr,
+                    "orogen: %s\nBatch mode needs no window: orogen --batch SCRIPT or "
+                    "orogen -c 'CMD; CMD'\n",
+                    err.msg);
             status = 1;
         }
     } else {
@@ -241,7 +244,8 @@ int main(int argc, char **argv) {
                 label = scripts[s].path;
                 text = read_file(scripts[s].path, &len, why, sizeof why);
                 if (!text) {
-                    fprintf(stderr, "orogen: cannot read batch file %s: %s\n", scripts[s].path, why);
+                    fprintf(stderr, "orogen: cannot read batch file %s: %s\n", scripts[s].path,
+                            why);
                     status = 1;
                     break;
                 }

@@ -45,7 +45,7 @@ typedef struct window_state {
     double pivot[3]; // orbit pivot of the current drag
     int key_down[MOVE_KEY_COUNT];
     double key_since[MOVE_KEY_COUNT], key_held[MOVE_KEY_COUNT]; // seconds, see bank_keys
-    int dirty;         // something changed: draw a frame
+    int dirty;                                                  // something changed: draw a frame
     int settled;       // frames in a row with every level current
     int pending;       // levels (or layers) still waiting for tiles
     int render_failed; // the renderer refused this world (a planet): said once
@@ -69,14 +69,14 @@ typedef struct window_state {
     gl_target terrain;
     int terrain_valid;
     float res_scale;
-    double terrain_ms;       // wall time of the last terrain frame
-    double target_ms;        // frame-time goal while moving
-    camera drawn_cam;        // what the terrain image shows
+    double terrain_ms; // wall time of the last terrain frame
+    double target_ms;  // frame-time goal while moving
+    camera drawn_cam;  // what the terrain image shows
     render_settings drawn_settings;
     brush_cursor drawn_cursor;
     float drawn_scale;
     int drawn_w, drawn_h;
-    int world_changed;       // change notifications since the terrain image
+    int world_changed; // change notifications since the terrain image
 } window_state;
 
 // The window whose UI the ui_widgets command reports (one window per process).
@@ -246,8 +246,10 @@ static float ui_px(const window_state *st, double v) {
 static void on_mouse_button(GLFWwindow *win, int button, int action, int mods) {
     window_state *st = glfwGetWindowUserPointer(win);
     st->ui_dirty = 1;
-    int b = button == GLFW_MOUSE_BUTTON_LEFT ? 0 : button == GLFW_MOUSE_BUTTON_RIGHT ? 1
-            : button == GLFW_MOUSE_BUTTON_MIDDLE ? 2 : -1;
+    int b = button == GLFW_MOUSE_BUTTON_LEFT     ? 0
+            : button == GLFW_MOUSE_BUTTON_RIGHT  ? 1
+            : button == GLFW_MOUSE_BUTTON_MIDDLE ? 2
+                                                 : -1;
     if (b >= 0) {
         if (action == GLFW_PRESS) {
             st->in.mouse_pressed[b] = 1;
@@ -351,24 +353,41 @@ static void save_shortcut(window_state *st) {
 // GLFW keys the UI uses.
 static int ui_key_of(int key) {
     switch (key) {
-    case GLFW_KEY_TAB: return UI_KEY_TAB;
+    case GLFW_KEY_TAB:
+        return UI_KEY_TAB;
     case GLFW_KEY_ENTER:
-    case GLFW_KEY_KP_ENTER: return UI_KEY_ENTER;
-    case GLFW_KEY_ESCAPE: return UI_KEY_ESCAPE;
-    case GLFW_KEY_BACKSPACE: return UI_KEY_BACKSPACE;
-    case GLFW_KEY_DELETE: return UI_KEY_DELETE;
-    case GLFW_KEY_LEFT: return UI_KEY_LEFT;
-    case GLFW_KEY_RIGHT: return UI_KEY_RIGHT;
-    case GLFW_KEY_UP: return UI_KEY_UP;
-    case GLFW_KEY_DOWN: return UI_KEY_DOWN;
-    case GLFW_KEY_HOME: return UI_KEY_HOME;
-    case GLFW_KEY_END: return UI_KEY_END;
-    case GLFW_KEY_A: return UI_KEY_A;
-    case GLFW_KEY_C: return UI_KEY_C;
-    case GLFW_KEY_V: return UI_KEY_V;
-    case GLFW_KEY_X: return UI_KEY_X;
-    case GLFW_KEY_Z: return UI_KEY_Z;
-    default: return -1;
+    case GLFW_KEY_KP_ENTER:
+        return UI_KEY_ENTER;
+    case GLFW_KEY_ESCAPE:
+        return UI_KEY_ESCAPE;
+    case GLFW_KEY_BACKSPACE:
+        return UI_KEY_BACKSPACE;
+    case GLFW_KEY_DELETE:
+        return UI_KEY_DELETE;
+    case GLFW_KEY_LEFT:
+        return UI_KEY_LEFT;
+    case GLFW_KEY_RIGHT:
+        return UI_KEY_RIGHT;
+    case GLFW_KEY_UP:
+        return UI_KEY_UP;
+    case GLFW_KEY_DOWN:
+        return UI_KEY_DOWN;
+    case GLFW_KEY_HOME:
+        return UI_KEY_HOME;
+    case GLFW_KEY_END:
+        return UI_KEY_END;
+    case GLFW_KEY_A:
+        return UI_KEY_A;
+    case GLFW_KEY_C:
+        return UI_KEY_C;
+    case GLFW_KEY_V:
+        return UI_KEY_V;
+    case GLFW_KEY_X:
+        return UI_KEY_X;
+    case GLFW_KEY_Z:
+        return UI_KEY_Z;
+    default:
+        return -1;
     }
 }
 
@@ -377,8 +396,10 @@ static void on_char(GLFWwindow *win, unsigned int codepoint) {
     st->ui_dirty = 1;
     if (!ui_wants_keyboard(st->ui)) return; // typed into the viewport: shortcuts
     char u[5] = {0};
-    if (codepoint < 0x80) u[0] = (char)codepoint;
-    else if (codepoint < 0x800) u[0] = (char)(0xC0 | codepoint >> 6), u[1] = (char)(0x80 | (codepoint & 0x3F));
+    if (codepoint < 0x80)
+        u[0] = (char)codepoint;
+    else if (codepoint < 0x800)
+        u[0] = (char)(0xC0 | codepoint >> 6), u[1] = (char)(0x80 | (codepoint & 0x3F));
     else if (codepoint < 0x10000)
         u[0] = (char)(0xE0 | codepoint >> 12), u[1] = (char)(0x80 | ((codepoint >> 6) & 0x3F)),
         u[2] = (char)(0x80 | (codepoint & 0x3F));
@@ -399,7 +420,8 @@ static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
     window_state *st = glfwGetWindowUserPointer(win);
     st->ui_dirty = 1;
     st->in.mods = ((mods & GLFW_MOD_SHIFT) ? UI_MOD_SHIFT : 0) |
-                  ((mods & GLFW_MOD_CONTROL) ? UI_MOD_CTRL : 0) | ((mods & GLFW_MOD_ALT) ? UI_MOD_ALT : 0);
+                  ((mods & GLFW_MOD_CONTROL) ? UI_MOD_CTRL : 0) |
+                  ((mods & GLFW_MOD_ALT) ? UI_MOD_ALT : 0);
     int k = ui_key_of(key);
     if (k >= 0 && action != GLFW_RELEASE) st->in.key_pressed[k] = 1;
     // A focused text field takes every key; ~ still closes the console.
@@ -422,7 +444,8 @@ static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
     if (mods & GLFW_MOD_CONTROL) {
         if (key == GLFW_KEY_S && (mods & GLFW_MOD_SHIFT)) {
             st->ed.show_save_as = 1;
-            snprintf(st->ed.save_as_path, sizeof st->ed.save_as_path, "%s", world_path(st->ctx->world));
+            snprintf(st->ed.save_as_path, sizeof st->ed.save_as_path, "%s",
+                     world_path(st->ctx->world));
         } else if (key == GLFW_KEY_S)
             save_shortcut(st);
         else if (key == GLFW_KEY_N)
@@ -593,8 +616,12 @@ static int update_view(window_state *st) {
 
 // --- the UI and the terrain image ------------------------------------------------------
 
-static const char *clipboard_get(void *user) { return glfwGetClipboardString(user); }
-static void clipboard_set(void *user, const char *text) { glfwSetClipboardString(user, text); }
+static const char *clipboard_get(void *user) {
+    return glfwGetClipboardString(user);
+}
+static void clipboard_set(void *user, const char *text) {
+    glfwSetClipboardString(user, text);
+}
 
 static void clear_frame_input(ui_input *in) {
     memset(in->mouse_pressed, 0, sizeof in->mouse_pressed);
@@ -629,7 +656,9 @@ static const ui_draw_list *build_ui(window_state *st, int fw, int fh) {
     return dl;
 }
 
-static double now_ms(void) { return glfwGetTime() * 1e3; }
+static double now_ms(void) {
+    return glfwGetTime() * 1e3;
+}
 
 // Renders the terrain into its own image when something it shows changed: the camera,
 // the world, the view settings, the brush cursor, the viewport's size, or newly
@@ -688,7 +717,8 @@ static void compose(window_state *st, const ui_draw_list *dl, int fw, int fh) {
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(0, 0, fw, fh);
     const ui_theme *t = ui_get_theme(st->ui);
-    glClearColor((t->bg & 255) / 255.0f, ((t->bg >> 8) & 255) / 255.0f, ((t->bg >> 16) & 255) / 255.0f, 1);
+    glClearColor((t->bg & 255) / 255.0f, ((t->bg >> 8) & 255) / 255.0f,
+                 ((t->bg >> 16) & 255) / 255.0f, 1);
     glClear(GL_COLOR_BUFFER_BIT);
     float k = ui_px(st, 1.0);
     int vx = (int)roundf(st->view_rect.x * k), vy = (int)roundf(st->view_rect.y * k);
@@ -720,7 +750,8 @@ static ui_font *load_font(GLFWwindow *win, og_error *err) {
         }
         user = (float)u;
     }
-    ui_font *f = ui_font_create(sans, mono, roundf(15.0f * fmaxf(xs, 1.0f) * user), why, sizeof why);
+    ui_font *f =
+        ui_font_create(sans, mono, roundf(15.0f * fmaxf(xs, 1.0f) * user), why, sizeof why);
     if (!f) og_error_set(err, "the UI's font: %s (install fonts-dejavu-core)", why);
     return f;
 }
@@ -743,7 +774,10 @@ static int cmd_ui_widgets(cmd_context *ctx, int argc, char **argv, og_error *err
 }
 
 static const cmd_def window_commands[] = {
-    {"ui_widgets", "ui_widgets [FILTER]", "Lists the editor window's named widgets of the last frame as NAME X Y W H (window pixels; names containing FILTER), and the Viewport's rectangle first.", 0, 1, cmd_ui_widgets, CMD_NOT_RECORDED},
+    {"ui_widgets", "ui_widgets [FILTER]",
+     "Lists the editor window's named widgets of the last frame as NAME X Y W H (window pixels; "
+     "names containing FILTER), and the Viewport's rectangle first.",
+     0, 1, cmd_ui_widgets, CMD_NOT_RECORDED},
 };
 
 int window_commands_register(og_error *err) {
@@ -814,7 +848,8 @@ int window_run(cmd_context *ctx, og_error *err) {
     og_error ui_err = {{0}};
     if (!(st.font = load_font(win, &ui_err)) || !(st.ui = ui_create(st.font)) ||
         !(st.uir = ui_renderer_create(ctx->resource_dir, &ui_err))) {
-        og_error_set(err, "the editor's UI cannot start: %s", ui_err.msg[0] ? ui_err.msg : "out of memory");
+        og_error_set(err, "the editor's UI cannot start: %s",
+                     ui_err.msg[0] ? ui_err.msg : "out of memory");
         ui_destroy(st.ui);
         ui_font_destroy(st.font);
         editor_ui_free(&st.ed);
@@ -860,8 +895,8 @@ int window_run(cmd_context *ctx, og_error *err) {
     const ui_draw_list *dl = NULL;
     while (!glfwWindowShouldClose(win) && !ctx->exit_requested) {
         // Input first; wake often while tiles arrive or keys fly the camera, rarely when idle.
-        int busy = st.pending || st.settled < 2 || keys_held(&st) || ctx->stroke ||
-                   ui_needs_frame(st.ui);
+        int busy =
+            st.pending || st.settled < 2 || keys_held(&st) || ctx->stroke || ui_needs_frame(st.ui);
         glfwWaitEventsTimeout(busy ? 0.01 : 0.1);
         move_keys keys = take_keys(&st);
         if (camera_controls_move(&st.cc, &v->cam, &keys, ground_height, &st)) st.dirty = 1;
@@ -882,8 +917,8 @@ int window_run(cmd_context *ctx, og_error *err) {
         if (st.dirty || st.pending || st.settled < 2) {
             int arrived = update_view(&st) > 0;
             float k = ui_px(&st, 1.0);
-            if (render_terrain(&st, (int)roundf(st.view_rect.w * k), (int)roundf(st.view_rect.h * k),
-                               arrived)) {
+            if (render_terrain(&st, (int)roundf(st.view_rect.w * k),
+                               (int)roundf(st.view_rect.h * k), arrived)) {
                 drawn = 1;
                 st.ui_dirty = 1; // the status bar shows the new frame's figures
             }

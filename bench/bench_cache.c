@@ -17,7 +17,9 @@
 #include <time.h>
 #include <unistd.h>
 
-static void quiet(void *u, const char *m) { (void)u, (void)m; }
+static void quiet(void *u, const char *m) {
+    (void)u, (void)m;
+}
 
 static int drop_page_cache(void) {
     sync();
@@ -58,7 +60,8 @@ static void bench_warm_lookup(void) {
             tile_cache_request(c, keys[i & 63], &v);
             const float *h = v.data;
             float acc = 0;
-            for (size_t k = 0; k < TILE_SAMPLES; k++) acc += h[k];
+            for (size_t k = 0; k < TILE_SAMPLES; k++)
+                acc += h[k];
             sink += acc;
             tile_cache_release(c, &v);
         }
@@ -66,8 +69,8 @@ static void bench_warm_lookup(void) {
     }
     printf("cache warm lookup (request + release of a resident tile): %.0f ns; "
            "one pass over the tile's %zu KiB: %.0f ns; lookup = %.3f%% of the pass\n",
-           bench_median(lookup, 5), tile_layer_bytes(TILE_LAYER_COARSE) >> 10, bench_median(touch, 5),
-           100.0 * bench_median(lookup, 5) / bench_median(touch, 5));
+           bench_median(lookup, 5), tile_layer_bytes(TILE_LAYER_COARSE) >> 10,
+           bench_median(touch, 5), 100.0 * bench_median(lookup, 5) / bench_median(touch, 5));
     world_close(w);
 }
 
@@ -142,10 +145,8 @@ static void bench_cold_load(void) {
     for (int r = 0; r < 5; r++) {
         dropped &= drop_page_cache();
         tile_cache *c = tile_cache_create(
-            &(tile_cache_desc){.workers = 2,
-                               .source = generated_source,
-                               .source_user = &p,
-                               .store = store},
+            &(tile_cache_desc){
+                .workers = 2, .source = generated_source, .source_user = &p, .store = store},
             &err);
         double t0 = bench_now();
         // Walk the tiles in order with a few queued ahead, as `hash` and a moving
@@ -164,21 +165,24 @@ static void bench_cold_load(void) {
         store_mbs[r] = mb / (bench_now() - t0);
         tile_cache_stats st;
         tile_cache_stats_get(c, &st);
-        if (st.loaded != (uint64_t)count) printf("  (warning: %llu of %d tiles loaded from the store)\n",
-                                                (unsigned long long)st.loaded, count);
+        if (st.loaded != (uint64_t)count)
+            printf("  (warning: %llu of %d tiles loaded from the store)\n",
+                   (unsigned long long)st.loaded, count);
         tile_cache_destroy(c, &err);
 
         dropped &= drop_page_cache();
         t0 = bench_now();
         rf = fopen(raw, "rb");
         size_t total = 0, got;
-        while ((got = fread(buf, 1, tile_layer_bytes(TILE_LAYER_COARSE), rf)) > 0) total += got;
+        while ((got = fread(buf, 1, tile_layer_bytes(TILE_LAYER_COARSE), rf)) > 0)
+            total += got;
         fclose(rf);
         raw_mbs[r] = total / 1e6 / (bench_now() - t0);
     }
     printf("cold load through the cache (2 workers): %.0f MB/s decompressed; raw file read of the "
            "same bytes: %.0f MB/s; ratio %.2f%s\n",
-           bench_median(store_mbs, 5), bench_median(raw_mbs, 5), bench_median(store_mbs, 5) / bench_median(raw_mbs, 5),
+           bench_median(store_mbs, 5), bench_median(raw_mbs, 5),
+           bench_median(store_mbs, 5) / bench_median(raw_mbs, 5),
            dropped ? "" : " (page cache could not be dropped: not root? both sides warm)");
     tile_store_close(store);
     free(buf);

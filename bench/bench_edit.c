@@ -199,7 +199,8 @@ static void bench_dab64(brush_tool tool, double goal_ratio) {
     for (int r = 0; r < RUNS; r++)
         full[r] = dab_edit_seconds(w, &g, &d, edit_n, &commit[r]);
 
-    double s = bench_median(steady, RUNS), c = bench_median(copy, RUNS), f = bench_median(full, RUNS);
+    double s = bench_median(steady, RUNS), c = bench_median(copy, RUNS),
+           f = bench_median(full, RUNS);
     double k = bench_median(commit, RUNS), q = bench_median(ratio, RUNS);
     const char *name = brush_tool_name(tool);
     printf("%s dab, radius 64 samples, resident tiles: %ld samples in the disc (%ld in the rect)\n",
@@ -491,14 +492,16 @@ static void bench_stamp(void) {
         check(stamp_apply(w, &src, &p, &err), &err, "stamp_apply");
         t[r] = bench_now() - t0;
         t0 = bench_now();
-        check(stamp_apply_array(world_get_params(w), &src, &p, plain, 1024 - side / 2, 1024 - side / 2,
-                                side, side, &err), &err, "stamp_apply_array");
+        check(stamp_apply_array(world_get_params(w), &src, &p, plain, 1024 - side / 2,
+                                1024 - side / 2, side, side, &err),
+              &err, "stamp_apply_array");
         a[r] = bench_now() - t0;
         c[r] = memcpy_seconds(dst, buf, bytes, 20);
     }
     printf("stamp: 512x512 library stamp at 37 degrees, scale 1 (%zu footprint samples)\n",
            bytes / sizeof(float));
-    printf("  as its own undo step (rows on 2 threads + commit): %.2f ms; plain array, 1 thread: %.2f ms; "
+    printf("  as its own undo step (rows on 2 threads + commit): %.2f ms; plain array, 1 thread: "
+           "%.2f ms; "
            "memcpy of the footprint: %.3f ms (%.0fx)\n",
            bench_median(t, RUNS) * 1e3, bench_median(a, RUNS) * 1e3, bench_median(c, RUNS) * 1e3,
            bench_median(t, RUNS) / bench_median(c, RUNS));

@@ -371,9 +371,10 @@ static void accuracy_view(bench *b, world *w, naive_mesh *m, const camera *c, co
 
 static void bench_accuracy(bench *b, world *w4096, naive_mesh *m) {
     const world_params *p = world_get_params(w4096);
-    printf("\n7. Visual accuracy: RMSE (Tabakovic 2024, 8-bit RGB) of the clipmap against the naive "
-           "full-resolution mesh,\n   height view, fog 1/12000 per metre, %dx%d; images in %s\n",
-           WIDTH, HEIGHT, b->out_dir);
+    printf(
+        "\n7. Visual accuracy: RMSE (Tabakovic 2024, 8-bit RGB) of the clipmap against the naive "
+        "full-resolution mesh,\n   height view, fog 1/12000 per metre, %dx%d; images in %s\n",
+        WIDTH, HEIGHT, b->out_dir);
     printf("   %-10s %8s %8s %10s %23s\n", "view", "above m", "finest", "RMSE",
            "channels off by > 8");
     // The viewport's default camera (renderer/viewport.c viewport_default_camera).

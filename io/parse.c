@@ -12,7 +12,9 @@
 // application's locale (a decimal comma) never changes how numbers read or print.
 static pthread_once_t c_locale_once = PTHREAD_ONCE_INIT;
 static locale_t c_locale_obj;
-static void c_locale_init(void) { c_locale_obj = newlocale(LC_ALL_MASK, "C", (locale_t)0); }
+static void c_locale_init(void) {
+    c_locale_obj = newlocale(LC_ALL_MASK, "C", (locale_t)0);
+}
 static locale_t c_locale(void) {
     pthread_once(&c_locale_once, c_locale_init);
     return c_locale_obj;

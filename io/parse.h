@@ -37,8 +37,7 @@ int parse_switch(const char *text, const char *what, int *out, og_error *err);
 // Splits "key=value" into key and value, pointers into a copy held in buf:
 // "expected key=value, got 'arg'" when there is no '=' or no key, and an error when
 // arg does not fit in buf.
-int parse_setting(const char *arg, char *buf, size_t size, char **key, char **value,
-                  og_error *err);
+int parse_setting(const char *arg, char *buf, size_t size, char **key, char **value, og_error *err);
 
 // The value as it appears in messages: quoted, cut short when long.
 void parse_quote(char *buf, size_t size, const char *value);

@@ -5,10 +5,14 @@
 size_t tile_layer_bytes(tile_layer layer) {
     switch (layer) {
     case TILE_LAYER_COARSE:
-    case TILE_LAYER_DETAIL: return (size_t)TILE_SAMPLES * sizeof(float);
-    case TILE_LAYER_MATERIAL: return (size_t)TILE_SAMPLES * TILE_MATERIALS;
-    case TILE_LAYER_DETAIL_PD: return (size_t)TILE_SAMPLES * 2 * sizeof(int16_t);
-    default: return 0;
+    case TILE_LAYER_DETAIL:
+        return (size_t)TILE_SAMPLES * sizeof(float);
+    case TILE_LAYER_MATERIAL:
+        return (size_t)TILE_SAMPLES * TILE_MATERIALS;
+    case TILE_LAYER_DETAIL_PD:
+        return (size_t)TILE_SAMPLES * 2 * sizeof(int16_t);
+    default:
+        return 0;
     }
 }
 

@@ -1,5 +1,6 @@
 // The unit of everything Orogen stores, caches and renders: a fixed square of
-// samples addressed by (layer, face, level, tx, ty). README.md, "How it fits together", says how tiles make a world.
+// samples addressed by (layer, face, level, tx, ty). README.md, "How it fits together", says how
+// tiles make a world.
 #ifndef OROGEN_IO_TILE_H
 #define OROGEN_IO_TILE_H
 
@@ -36,7 +37,7 @@ typedef struct tile_key {
 
 // How a tile's bytes are laid out; the store picks its compression transform from it.
 typedef enum tile_format {
-    TILE_FORMAT_F32 = 1, // TILE_SAMPLES float32
+    TILE_FORMAT_F32 = 1,  // TILE_SAMPLES float32
     TILE_FORMAT_U8X8 = 2, // TILE_SAMPLES x TILE_MATERIALS uint8, interleaved per sample
     TILE_FORMAT_S16X2 = 3 // TILE_SAMPLES x 2 int16, interleaved per sample
 } tile_format;

@@ -13,10 +13,10 @@ typedef struct entry {
     tile_key key;
     uint32_t hash;
     entry_state state;
-    int pins;     // views, waiters and write-backs holding it resident
-    int dirty;    // changed since last written to the store
-    int edited;   // loaded from a store, or written since it was generated
-    int invalid;  // the source said the key lies outside the world
+    int pins;    // views, waiters and write-backs holding it resident
+    int dirty;   // changed since last written to the store
+    int edited;  // loaded from a store, or written since it was generated
+    int invalid; // the source said the key lies outside the world
     void *data;
     struct entry *hnext;         // hash chain
     struct entry *lprev, *lnext; // LRU list of READY entries, most recent first
@@ -87,7 +87,8 @@ static entry *insert(tile_cache *c, tile_key key, uint32_t h) {
 
 static void unlink_hash(tile_cache *c, entry *e) {
     entry **p = &c->buckets[e->hash & (c->bucket_count - 1)];
-    while (*p != e) p = &(*p)->hnext;
+    while (*p != e)
+        p = &(*p)->hnext;
     *p = e->hnext;
     c->entry_count--;
 }
@@ -95,21 +96,36 @@ static void unlink_hash(tile_cache *c, entry *e) {
 // ---- LRU list and queue --------------------------------------------------------
 
 static void lru_unlink(tile_cache *c, entry *e) {
-    if (e->lprev) e->lprev->lnext = e->lnext; else c->lru_head = e->lnext;
-    if (e->lnext) e->lnext->lprev = e->lprev; else c->lru_tail = e->lprev;
+    if (e->lprev)
+        e->lprev->lnext = e->lnext;
+    else
+        c->lru_head = e->lnext;
+    if (e->lnext)
+        e->lnext->lprev = e->lprev;
+    else
+        c->lru_tail = e->lprev;
     e->lprev = e->lnext = NULL;
 }
 
 static void lru_push_front(tile_cache *c, entry *e) {
     e->lprev = NULL;
     e->lnext = c->lru_head;
-    if (c->lru_head) c->lru_head->lprev = e; else c->lru_tail = e;
+    if (c->lru_head)
+        c->lru_head->lprev = e;
+    else
+        c->lru_tail = e;
     c->lru_head = e;
 }
 
 static void queue_unlink(tile_cache *c, entry *e) {
-    if (e->qprev) e->qprev->qnext = e->qnext; else c->queue_head = e->qnext;
-    if (e->qnext) e->qnext->qprev = e->qprev; else c->queue_tail = e->qprev;
+    if (e->qprev)
+        e->qprev->qnext = e->qnext;
+    else
+        c->queue_head = e->qnext;
+    if (e->qnext)
+        e->qnext->qprev = e->qprev;
+    else
+        c->queue_tail = e->qprev;
     e->qprev = e->qnext = NULL;
     c->queue_depth--;
 }
@@ -119,7 +135,10 @@ static void queue_unlink(tile_cache *c, entry *e) {
 static void queue_push_front(tile_cache *c, entry *e) {
     e->qprev = NULL;
     e->qnext = c->queue_head;
-    if (c->queue_head) c->queue_head->qprev = e; else c->queue_tail = e;
+    if (c->queue_head)
+        c->queue_head->qprev = e;
+    else
+        c->queue_tail = e;
     c->queue_head = e;
     c->queue_depth++;
     pthread_cond_signal(&c->work);
@@ -170,8 +189,9 @@ static void make_room(tile_cache *c, size_t need) {
                 if (!c->desc.store) {
                     if (!c->warned_no_store) {
                         c->warned_no_store = 1;
-                        warnf(c, "tile cache: edited tiles exceed the budget and there is no "
-                                 "tile store to write them to; keeping them in memory%s%s",
+                        warnf(c,
+                              "tile cache: edited tiles exceed the budget and there is no "
+                              "tile store to write them to; keeping them in memory%s%s",
                               "", "");
                     }
                 } else {
@@ -218,7 +238,8 @@ static void *worker_main(void *arg) {
     tile_cache *c = arg;
     pthread_mutex_lock(&c->lock);
     for (;;) {
-        while (!c->stopping && !c->queue_head) pthread_cond_wait(&c->work, &c->lock);
+        while (!c->stopping && !c->queue_head)
+            pthread_cond_wait(&c->work, &c->lock);
         if (c->stopping) break;
         entry *e = c->queue_head;
         queue_unlink(c, e);
@@ -244,7 +265,10 @@ static void *worker_main(void *arg) {
         } else {
             e->data = buf;
             e->edited = how == 1;
-            if (how == 1) c->counters.loaded++; else c->counters.generated++;
+            if (how == 1)
+                c->counters.loaded++;
+            else
+                c->counters.generated++;
         }
         e->state = ENTRY_READY;
         lru_push_front(c, e);
@@ -298,7 +322,8 @@ int tile_cache_destroy(tile_cache *c, og_error *err) {
     c->stopping = 1;
     pthread_cond_broadcast(&c->work);
     pthread_mutex_unlock(&c->lock);
-    for (int i = 0; i < c->thread_count; i++) pthread_join(c->threads[i], NULL);
+    for (int i = 0; i < c->thread_count; i++)
+        pthread_join(c->threads[i], NULL);
     int rc = c->desc.store ? tile_cache_flush(c, err) : 0;
     for (size_t i = 0; i < c->bucket_count; i++) {
         entry *e = c->buckets[i];
@@ -398,12 +423,14 @@ static int acquire(tile_cache *c, tile_key key, tile_view *view, int write, og_e
         return og_error_set(err, "tile cache: out of memory");
     }
     e->pins++; // a waiter: it must not be evicted between READY and our wake-up
-    while (e->state != ENTRY_READY) pthread_cond_wait(&c->done, &c->lock);
+    while (e->state != ENTRY_READY)
+        pthread_cond_wait(&c->done, &c->lock);
     e->pins--;
     int rc = 0;
     if (e->invalid) {
         char what[128];
-        rc = og_error_set(err, "%s lies outside the world", tile_key_describe(key, what, sizeof what));
+        rc = og_error_set(err, "%s lies outside the world",
+                          tile_key_describe(key, what, sizeof what));
     } else {
         pin_into(e, view);
         if (write) e->dirty = e->edited = 1;
@@ -448,7 +475,8 @@ int tile_cache_flush(tile_cache *c, og_error *err) {
     if (!c->desc.store) return 0;
     pthread_mutex_lock(&c->lock);
     size_t n = 0;
-    for (entry *e = c->lru_head; e; e = e->lnext) n += e->dirty != 0;
+    for (entry *e = c->lru_head; e; e = e->lnext)
+        n += e->dirty != 0;
     if (n == 0) {
         pthread_mutex_unlock(&c->lock);
         return 0;
@@ -485,7 +513,8 @@ int tile_cache_flush(tile_cache *c, og_error *err) {
 int tile_cache_has_dirty(tile_cache *c) {
     pthread_mutex_lock(&c->lock);
     int any = 0;
-    for (entry *e = c->lru_head; e && !any; e = e->lnext) any = e->dirty;
+    for (entry *e = c->lru_head; e && !any; e = e->lnext)
+        any = e->dirty;
     pthread_mutex_unlock(&c->lock);
     return any;
 }

@@ -21,13 +21,13 @@ typedef struct tile_cache tile_cache;
 typedef int (*tile_source_fn)(void *user, tile_key key, void *out);
 
 typedef struct tile_cache_desc {
-    size_t budget_bytes;     // resident tile payload limit; 0 = 1 GiB
-    int workers;             // loader/generator threads; 0 = 2
-    tile_source_fn source;   // required
+    size_t budget_bytes;   // resident tile payload limit; 0 = 1 GiB
+    int workers;           // loader/generator threads; 0 = 2
+    tile_source_fn source; // required
     void *source_user;
-    tile_store *store;       // optional; read first, and where dirty tiles go
-    tile_store *base_store;  // optional; read (never written) when store lacks a tile:
-                             // the saved world under a journal of unsaved edits
+    tile_store *store;      // optional; read first, and where dirty tiles go
+    tile_store *base_store; // optional; read (never written) when store lacks a tile:
+                            // the saved world under a journal of unsaved edits
     // Warnings that are not errors of the caller (a corrupt stored tile that fell
     // back to generated terrain, a failed write-back). Called from any thread.
     void (*warn)(void *user, const char *message);
@@ -42,21 +42,21 @@ typedef enum tile_status {
 
 // A pinned tile: stays resident until released. Read-only unless from acquire_write.
 typedef struct tile_view {
-    tile_key key;     // the tile actually provided (coarser than asked for a fallback)
-    void *data;       // NULL when nothing is provided
-    int edited;       // the tile came from a store or was written since generated
-                      // (as it was when pinned)
-    void *handle_;    // internal
+    tile_key key;  // the tile actually provided (coarser than asked for a fallback)
+    void *data;    // NULL when nothing is provided
+    int edited;    // the tile came from a store or was written since generated
+                   // (as it was when pinned)
+    void *handle_; // internal
 } tile_view;
 
 typedef struct tile_cache_stats {
-    uint64_t hits, misses;     // requests answered from RAM / not
+    uint64_t hits, misses; // requests answered from RAM / not
     uint64_t generated, loaded, written, evicted, corrupt;
-    size_t resident_bytes;     // tile payloads in RAM (the budgeted quantity)
+    size_t resident_bytes; // tile payloads in RAM (the budgeted quantity)
     size_t resident_tiles;
     size_t budget_bytes;
-    size_t queue_depth;        // tiles waiting for a worker
-    size_t overhead_bytes;     // bookkeeping outside the budget: entries and hash buckets
+    size_t queue_depth;    // tiles waiting for a worker
+    size_t overhead_bytes; // bookkeeping outside the budget: entries and hash buckets
     int workers;
 } tile_cache_stats;
 

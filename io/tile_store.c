@@ -311,9 +311,12 @@ static void s16x2_inverse(const uint8_t *planes, void *dst) {
 
 static int layer_transform(tile_layer layer) {
     switch (tile_layer_format(layer)) {
-    case TILE_FORMAT_U8X8: return BLOB_TRANSFORM_U8X8_PLANES_DELTA;
-    case TILE_FORMAT_S16X2: return BLOB_TRANSFORM_S16X2_PLANES_DELTA;
-    default: return BLOB_TRANSFORM_F32_LORENZO_PLANES;
+    case TILE_FORMAT_U8X8:
+        return BLOB_TRANSFORM_U8X8_PLANES_DELTA;
+    case TILE_FORMAT_S16X2:
+        return BLOB_TRANSFORM_S16X2_PLANES_DELTA;
+    default:
+        return BLOB_TRANSFORM_F32_LORENZO_PLANES;
     }
 }
 
@@ -819,7 +822,8 @@ int tile_store_merge_from(tile_store *store, const char *source_path, og_error *
         rc = db_fail(store, err, "cannot prepare attaching the unsaved edits");
     } else {
         sqlite3_bind_text(st, 1, source_path, -1, SQLITE_TRANSIENT);
-        if (sqlite3_step(st) != SQLITE_DONE) rc = db_fail(store, err, "cannot attach the unsaved edits");
+        if (sqlite3_step(st) != SQLITE_DONE)
+            rc = db_fail(store, err, "cannot attach the unsaved edits");
     }
     sqlite3_finalize(st);
     if (rc == 0) {

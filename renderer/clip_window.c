@@ -27,7 +27,9 @@ void clip_window_free(clip_window *w) {
     w->mirror = NULL;
 }
 
-void clip_window_invalidate(clip_window *w) { w->has_data = 0; }
+void clip_window_invalidate(clip_window *w) {
+    w->has_data = 0;
+}
 
 int clip_window_current(const clip_window *w, const int64_t want[2]) {
     return w->has_data && w->have[0] == want[0] && w->have[1] == want[1];
@@ -51,7 +53,8 @@ static void queue_upload(clip_window *w, sample_rect r) {
     if (xs[0] + xw[0] > w->size) xs[1] = 0, xw[1] = xs[0] + xw[0] - w->size, xw[0] -= xw[1], nx = 2;
     if (zs[0] + zh[0] > w->size) zs[1] = 0, zh[1] = zs[0] + zh[0] - w->size, zh[0] -= zh[1], nz = 2;
     for (int j = 0; j < nz; j++)
-        for (int i = 0; i < nx; i++) add_upload(w, xs[i], zs[j], xw[i], zh[j]);
+        for (int i = 0; i < nx; i++)
+            add_upload(w, xs[i], zs[j], xw[i], zh[j]);
 }
 
 typedef struct tile_pins {
@@ -72,7 +75,8 @@ static int collect_keys(const clip_window *w, const sample_rect *rects, int n, t
                  tx <= world_grid_floor_div(r.x1 - 1, TILE_SIZE); tx++) {
                 tile_key key = {w->layer, w->face, w->level, (int32_t)tx, (int32_t)ty};
                 int seen = 0;
-                for (int i = 0; i < pins->count && !seen; i++) seen = tile_key_equal(pins->keys[i], key);
+                for (int i = 0; i < pins->count && !seen; i++)
+                    seen = tile_key_equal(pins->keys[i], key);
                 if (seen) continue;
                 if (pins->count == MAX_TILES) return -1;
                 pins->keys[pins->count++] = key;
@@ -154,9 +158,11 @@ int clip_window_update(clip_window *w, tile_cache *cache, const int64_t want[2])
         rects[count++] = (sample_rect){want[0], want[1], want[0] + n, want[1] + n};
     } else {
         // Columns that entered (full height), then rows that entered (full width).
-        if (dx > 0) rects[count++] = (sample_rect){w->have[0] + n, want[1], want[0] + n, want[1] + n};
+        if (dx > 0)
+            rects[count++] = (sample_rect){w->have[0] + n, want[1], want[0] + n, want[1] + n};
         if (dx < 0) rects[count++] = (sample_rect){want[0], want[1], w->have[0], want[1] + n};
-        if (dz > 0) rects[count++] = (sample_rect){want[0], w->have[1] + n, want[0] + n, want[1] + n};
+        if (dz > 0)
+            rects[count++] = (sample_rect){want[0], w->have[1] + n, want[0] + n, want[1] + n};
         if (dz < 0) rects[count++] = (sample_rect){want[0], want[1], want[0] + n, w->have[1]};
     }
     tile_pins pins;
@@ -164,8 +170,10 @@ int clip_window_update(clip_window *w, tile_cache *cache, const int64_t want[2])
     if (ok <= 0) return ok;
     for (int i = 0; i < count; i++) {
         copy_rect(w, &pins, rects[i]);
-        if (full) w->upload_all = 1;
-        else queue_upload(w, rects[i]);
+        if (full)
+            w->upload_all = 1;
+        else
+            queue_upload(w, rects[i]);
     }
     release_pins(cache, &pins);
     w->have[0] = want[0], w->have[1] = want[1];

@@ -25,16 +25,16 @@ typedef struct texel_rect {
 typedef struct clip_window {
     tile_layer layer;
     int face, level;
-    int size;                 // texels per side, a power of two
+    int size; // texels per side, a power of two
     size_t texel_bytes;
-    unsigned char *mirror;    // size * size * texel_bytes
-    int64_t have[2];          // origin (sample indices at this level) the mirror holds
-    int has_data;             // the mirror holds the whole window at `have`
+    unsigned char *mirror; // size * size * texel_bytes
+    int64_t have[2];       // origin (sample indices at this level) the mirror holds
+    int has_data;          // the mirror holds the whole window at `have`
     // Texels changed since the owner last uploaded (cleared by the owner).
     texel_rect uploads[CLIP_WINDOW_MAX_RECTS];
     int upload_count;
-    int upload_all;           // the whole texture must be uploaded
-    uint64_t texels_copied;   // running total (benchmarks: texels uploaded while flying)
+    int upload_all;         // the whole texture must be uploaded
+    uint64_t texels_copied; // running total (benchmarks: texels uploaded while flying)
 } clip_window;
 
 int clip_window_init(clip_window *w, tile_layer layer, int face, int level, int size);

@@ -40,8 +40,9 @@ static clip_piece *begin_piece(mesh_builder *b, clip_piece_kind kind, int trim, 
         b->piece_cap = cap;
     }
     clip_piece *p = &m->pieces[m->piece_count++];
-    *p = (clip_piece){kind, trim, (uint32_t)m->index_count, 0,
-                      (uint16_t)x0, (uint16_t)z0, (uint16_t)x1, (uint16_t)z1};
+    *p = (clip_piece){
+        kind,         trim,        (uint32_t)m->index_count, 0, (uint16_t)x0, (uint16_t)z0,
+        (uint16_t)x1, (uint16_t)z1};
     return p;
 }
 

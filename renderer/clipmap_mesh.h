@@ -40,14 +40,14 @@ typedef enum clip_trim {
 
 typedef struct clip_piece {
     clip_piece_kind kind;
-    int trim;                 // clip_trim for CLIP_PIECE_TRIM, else -1
-    uint32_t first, count;    // range in the index array (GL_TRIANGLES)
-    uint16_t x0, z0, x1, z1;  // vertex bounds (inclusive), for culling
+    int trim;                // clip_trim for CLIP_PIECE_TRIM, else -1
+    uint32_t first, count;   // range in the index array (GL_TRIANGLES)
+    uint16_t x0, z0, x1, z1; // vertex bounds (inclusive), for culling
 } clip_piece;
 
 typedef struct clipmap_mesh {
     int n, m;
-    uint16_t *vertices;       // n*n (x, z) pairs: vertex v = z*n + x
+    uint16_t *vertices; // n*n (x, z) pairs: vertex v = z*n + x
     size_t vertex_count;
     uint16_t *indices;
     size_t index_count;

@@ -16,7 +16,6 @@ struct gl_headless {
     EGLContext context;
 };
 
-
 // Whole-word search in a space-separated extension list (a plain strstr would
 // take EGL_KHR_foo for EGL_KHR_foo_bar).
 static bool has_word(const char *list, const char *word) {
@@ -71,7 +70,6 @@ static int egl_fail(og_error *err, const char *what) {
     return og_error_set(err, "headless GL: %s (%s, 0x%x)", what, egl_error_name(code),
                         (unsigned)code);
 }
-
 
 // Initialises the surfaceless display and checks what a configless, surfaceless
 // 4.5 core context needs. Returns the display or EGL_NO_DISPLAY with err set.

@@ -2,8 +2,8 @@
 
 #include <string.h>
 
-static const char *const view_names[VIEW_MODE_COUNT] = {"shaded", "wireframe", "levels",
-                                                        "height", "slope"};
+static const char *const view_names[VIEW_MODE_COUNT] = {"shaded", "wireframe", "levels", "height",
+                                                        "slope"};
 
 const char *view_mode_name(view_mode m) {
     return m >= 0 && m < VIEW_MODE_COUNT ? view_names[m] : "?";

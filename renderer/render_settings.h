@@ -26,17 +26,17 @@ typedef struct render_settings {
     double detail_distance; // metres: the detail fades out by this distance (150)
     view_mode view;
     double sun_yaw, sun_pitch; // degrees (135, 35)
-    double fog_density;     // per metre (0: automatic from the clipmap's reach)
-    int culling;            // per-block frustum culling (1)
-    int morph;              // transition morphing between levels (1)
+    double fog_density;        // per metre (0: automatic from the clipmap's reach)
+    int culling;               // per-block frustum culling (1)
+    int morph;                 // transition morphing between levels (1)
 } render_settings;
 
 void render_settings_default(render_settings *s);
 
 typedef struct brush_cursor {
     int visible;
-    double x, z;        // world metres
-    double radius;      // metres
+    double x, z;                          // world metres
+    double radius;                        // metres
     float falloff[BRUSH_FALLOFF_SAMPLES]; // weight at distance i/(N-1) of the radius
 } brush_cursor;
 

@@ -15,12 +15,12 @@
 #include <string.h>
 #include <time.h>
 
-#define CLIP_N 255            // vertices per level side (2^8 - 1)
-#define CLIP_TEXELS 256       // level texture side: the window plus one spare column
-#define DETAIL_TEXELS 512     // detail window side, detail samples
-#define DETAIL_SNAP 16        // the detail window moves in steps of this many samples
-#define TEX_PERIOD_NEAR 6.0   // metres per repeat of the material textures
-#define TEX_PERIOD_FAR 97.0   // metres per repeat of the variation layer
+#define CLIP_N 255          // vertices per level side (2^8 - 1)
+#define CLIP_TEXELS 256     // level texture side: the window plus one spare column
+#define DETAIL_TEXELS 512   // detail window side, detail samples
+#define DETAIL_SNAP 16      // the detail window moves in steps of this many samples
+#define TEX_PERIOD_NEAR 6.0 // metres per repeat of the material textures
+#define TEX_PERIOD_FAR 97.0 // metres per repeat of the variation layer
 #define UNBOUNDED 1e9f
 
 struct terrain_renderer {
@@ -64,7 +64,8 @@ static GLuint make_texture(GLenum target) {
 
 static void set_filter_wrap(GLuint t, GLenum filter, GLenum wrap) {
     glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, filter);
-    glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, filter == GL_LINEAR_MIPMAP_LINEAR ? GL_LINEAR : filter);
+    glTextureParameteri(t, GL_TEXTURE_MAG_FILTER,
+                        filter == GL_LINEAR_MIPMAP_LINEAR ? GL_LINEAR : filter);
     glTextureParameteri(t, GL_TEXTURE_WRAP_S, wrap);
     glTextureParameteri(t, GL_TEXTURE_WRAP_T, wrap);
 }
@@ -91,7 +92,8 @@ static int create_textures(terrain_renderer *r, og_error *err) {
 
     // The material textures the program makes itself (renderer/material_textures.c).
     int mips = 1;
-    while ((MATERIAL_TEXTURE_SIZE >> mips) > 0) mips++;
+    while ((MATERIAL_TEXTURE_SIZE >> mips) > 0)
+        mips++;
     r->tex_albedo = make_texture(GL_TEXTURE_2D_ARRAY);
     glTextureStorage3D(r->tex_albedo, mips, GL_RGBA8, MATERIAL_TEXTURE_SIZE, MATERIAL_TEXTURE_SIZE,
                        MATERIAL_TEXTURE_COUNT);
@@ -108,7 +110,8 @@ static int create_textures(terrain_renderer *r, og_error *err) {
     // Anisotropic filtering sharpens grazing views on GPUs; on llvmpipe (Mesa 22.3) it
     // made a 320x180 frame take minutes instead of a second, so software renderers skip it.
     const char *renderer_name = (const char *)glGetString(GL_RENDERER);
-    int software = renderer_name && (strstr(renderer_name, "llvmpipe") || strstr(renderer_name, "softpipe"));
+    int software =
+        renderer_name && (strstr(renderer_name, "llvmpipe") || strstr(renderer_name, "softpipe"));
     if (!software && (epoxy_has_gl_extension("GL_EXT_texture_filter_anisotropic") ||
                       epoxy_has_gl_extension("GL_ARB_texture_filter_anisotropic")))
         glTextureParameterf(r->tex_albedo, GL_TEXTURE_MAX_ANISOTROPY_EXT, 8.0f);
@@ -177,18 +180,21 @@ void terrain_renderer_destroy(terrain_renderer *r) {
     glDeleteVertexArrays(1, &r->empty_vao);
     glDeleteBuffers(1, &r->vbo);
     glDeleteBuffers(1, &r->ebo);
-    GLuint tex[] = {r->tex_heights, r->tex_material, r->tex_albedo, r->tex_detail, r->tex_detail_pd,
-                    r->tex_falloff};
+    GLuint tex[] = {r->tex_heights, r->tex_material,  r->tex_albedo,
+                    r->tex_detail,  r->tex_detail_pd, r->tex_falloff};
     glDeleteTextures(6, tex);
     clipmap_mesh_free(&r->mesh);
-    for (int l = 0; l < RENDER_MAX_LEVELS; l++) clip_window_free(&r->heights[l]);
+    for (int l = 0; l < RENDER_MAX_LEVELS; l++)
+        clip_window_free(&r->heights[l]);
     clip_window_free(&r->material);
     clip_window_free(&r->detail);
     clip_window_free(&r->detail_pd);
     free(r);
 }
 
-static int64_t floor_to_i64(double v) { return (int64_t)floor(v); }
+static int64_t floor_to_i64(double v) {
+    return (int64_t)floor(v);
+}
 
 // The level layout for this camera (Asirvatham & Hoppe's nesting): level l's local
 // vertex (0,0) sits at an even sample index so the next coarser level's samples land
@@ -196,12 +202,14 @@ static int64_t floor_to_i64(double v) { return (int64_t)floor(v); }
 static void layout_levels(terrain_renderer *r, const world_params *p, const camera *cam,
                           const render_settings *s) {
     int m = (CLIP_N + 1) / 4;
-    r->levels = s->levels < RENDER_MIN_LEVELS ? RENDER_MIN_LEVELS
-              : s->levels > RENDER_MAX_LEVELS ? RENDER_MAX_LEVELS : s->levels;
+    r->levels = s->levels < RENDER_MIN_LEVELS   ? RENDER_MIN_LEVELS
+                : s->levels > RENDER_MAX_LEVELS ? RENDER_MAX_LEVELS
+                                                : s->levels;
     // Skip levels too fine to matter from high up (their whole extent is far below).
     double ground;
     double above = terrain_renderer_height_at(r, cam->pos[0], cam->pos[2], &ground) == 0
-                       ? fabs(cam->pos[1] - ground) : 0.0;
+                       ? fabs(cam->pos[1] - ground)
+                       : 0.0;
     r->finest = 0;
     // A level is drawn while its extent exceeds the camera's height above the ground
     // (Hoppe uses 2.5x the height; that dropped 2 m samples still 3-5 pixels wide at
@@ -234,8 +242,8 @@ static void scan_bounds(terrain_renderer *r, int l, const texel_rect *rects, int
 }
 
 // Sends what changed in a window's mirror to its texture (layer for array textures).
-static void upload_window(terrain_renderer *r, clip_window *w, GLuint tex, int layer,
-                          GLenum format, GLenum type) {
+static void upload_window(terrain_renderer *r, clip_window *w, GLuint tex, int layer, GLenum format,
+                          GLenum type) {
     if (!w->upload_all && w->upload_count == 0) return;
     texel_rect whole = {0, 0, w->size, w->size};
     const texel_rect *rects = w->upload_all ? &whole : w->uploads;
@@ -252,13 +260,15 @@ static void upload_window(terrain_renderer *r, clip_window *w, GLuint tex, int l
         r->frame_texels += (uint64_t)t->w * t->h;
     }
     glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
-    if (layer >= 0 && w->layer == TILE_LAYER_COARSE) scan_bounds(r, layer, rects, count, w->upload_all);
+    if (layer >= 0 && w->layer == TILE_LAYER_COARSE)
+        scan_bounds(r, layer, rects, count, w->upload_all);
     w->upload_all = 0;
     w->upload_count = 0;
 }
 
 static void invalidate_all(terrain_renderer *r) {
-    for (int l = 0; l < RENDER_MAX_LEVELS; l++) clip_window_invalidate(&r->heights[l]);
+    for (int l = 0; l < RENDER_MAX_LEVELS; l++)
+        clip_window_invalidate(&r->heights[l]);
     clip_window_invalidate(&r->material);
     clip_window_invalidate(&r->detail);
     clip_window_invalidate(&r->detail_pd);
@@ -283,7 +293,8 @@ static void refresh_area(terrain_renderer *r, tile_cache *cache, const world_eve
         clip_window_refresh(&r->detail, cache, g.x0 - 1, g.z0 - 1, g.x1 + 1, g.z1 + 1);
         clip_window_refresh(&r->detail_pd, cache, g.x0 - 1, g.z0 - 1, g.x1 + 1, g.z1 + 1);
         break;
-    default: break;
+    default:
+        break;
     }
 }
 
@@ -325,8 +336,9 @@ int terrain_renderer_update(terrain_renderer *r, world *w, const camera *cam,
     // Tile coordinates are int32: keep the window's samples addressable (with margin).
     double limit = 0.25 * 2147483647.0 * TILE_SIZE * p->spacing;
     if (!(fabs(cam->pos[0]) < limit && fabs(cam->pos[2]) < limit && fabs(cam->pos[1]) < 1e12))
-        return og_error_set(err, "the camera (%g, %g, %g) m is outside the world's addressable "
-                                 "range (|x|, |z| < %g m at %g m spacing)",
+        return og_error_set(err,
+                            "the camera (%g, %g, %g) m is outside the world's addressable "
+                            "range (|x|, |z| < %g m at %g m spacing)",
                             cam->pos[0], cam->pos[1], cam->pos[2], limit, p->spacing);
     r->frame_texels = 0;
     if (apply_changes(r, w, err) != 0) return -1;
@@ -378,7 +390,8 @@ int terrain_renderer_update(terrain_renderer *r, world *w, const camera *cam,
     r->texels_total += r->frame_texels;
     r->stats.texels_uploaded = r->frame_texels;
     r->stats.levels_ready = 0;
-    for (int l = r->finest; l < r->levels; l++) r->stats.levels_ready += r->src[l] == l;
+    for (int l = r->finest; l < r->levels; l++)
+        r->stats.levels_ready += r->src[l] == l;
     r->stats.finest_level = r->finest;
     r->stats.cpu_ms = now_ms() - t0;
     return all;
@@ -400,7 +413,8 @@ int terrain_renderer_height_at(void *renderer, double x, double z, double *h) {
         int mask = w->size - 1;
         int64_t gx = w->have[0] + ix, gz = w->have[1] + iz;
 #define AT(dx, dz) m[(size_t)((gz + (dz)) & mask) * w->size + (size_t)((gx + (dx)) & mask)]
-        *h = (AT(0, 0) * (1 - ax) + AT(1, 0) * ax) * (1 - az) + (AT(0, 1) * (1 - ax) + AT(1, 1) * ax) * az;
+        *h = (AT(0, 0) * (1 - ax) + AT(1, 0) * ax) * (1 - az) +
+             (AT(0, 1) * (1 - ax) + AT(1, 1) * ax) * az;
 #undef AT
         return 0;
     }
@@ -488,17 +502,21 @@ static void set_terrain_uniforms(terrain_renderer *r, const camera *cam, const r
             mat[l][3] = 1;
         }
         if (r->detail_current && l <= 3) {
-            detail[l][0] = (float)((double)r->origin[l][0] * mult * ratio - (double)r->detail_origin[0]);
-            detail[l][1] = (float)((double)r->origin[l][1] * mult * ratio - (double)r->detail_origin[1]);
+            detail[l][0] =
+                (float)((double)r->origin[l][0] * mult * ratio - (double)r->detail_origin[0]);
+            detail[l][1] =
+                (float)((double)r->origin[l][1] * mult * ratio - (double)r->detail_origin[1]);
             detail[l][2] = (float)(mult * ratio);
             detail[l][3] = 1;
         }
     }
-    glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "u_view_proj"), 1, GL_FALSE, view_proj);
+    glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "u_view_proj"), 1, GL_FALSE,
+                              view_proj);
     glProgramUniform1f(prog, glGetUniformLocation(prog, "u_cam_y"), (float)cam->pos[1]);
     // Hoppe's transition band: w = n/10 level units, ending one unit inside the edge.
     float band = (float)(CLIP_N / 10);
-    glProgramUniform2f(prog, glGetUniformLocation(prog, "u_morph"), (CLIP_N - 1) / 2.0f - band - 1.0f, band);
+    glProgramUniform2f(prog, glGetUniformLocation(prog, "u_morph"),
+                       (CLIP_N - 1) / 2.0f - band - 1.0f, band);
     uniform_vec4s(prog, "u_lvl_offset", offset, RENDER_MAX_LEVELS);
     uniform_vec4s(prog, "u_lvl_view", view, RENDER_MAX_LEVELS);
     uniform_vec4s(prog, "u_lvl_src_a", src_a, RENDER_MAX_LEVELS);
@@ -507,21 +525,26 @@ static void set_terrain_uniforms(terrain_renderer *r, const camera *cam, const r
     uniform_vec4s(prog, "u_lvl_uv", uv, RENDER_MAX_LEVELS);
     uniform_vec4s(prog, "u_lvl_mat", mat, RENDER_MAX_LEVELS);
     uniform_vec4s(prog, "u_lvl_detail", detail, RENDER_MAX_LEVELS);
-    glProgramUniform3fv(prog, glGetUniformLocation(prog, "u_level_tint"), RENDER_MAX_LEVELS, &level_tints[0][0]);
+    glProgramUniform3fv(prog, glGetUniformLocation(prog, "u_level_tint"), RENDER_MAX_LEVELS,
+                        &level_tints[0][0]);
     glProgramUniform1i(prog, glGetUniformLocation(prog, "u_view_mode"), s->view);
     glProgramUniform1f(prog, glGetUniformLocation(prog, "u_ocean_level"), (float)p->ocean_level);
     glProgramUniform1f(prog, glGetUniformLocation(prog, "u_max_height"), (float)p->max_height);
-    glProgramUniform2f(prog, glGetUniformLocation(prog, "u_tex_period"), (float)TEX_PERIOD_NEAR, (float)TEX_PERIOD_FAR);
-    glProgramUniform2i(prog, glGetUniformLocation(prog, "u_mat_wrap"), (int)(r->origin[0][0] & (CLIP_TEXELS - 1)),
+    glProgramUniform2f(prog, glGetUniformLocation(prog, "u_tex_period"), (float)TEX_PERIOD_NEAR,
+                       (float)TEX_PERIOD_FAR);
+    glProgramUniform2i(prog, glGetUniformLocation(prog, "u_mat_wrap"),
+                       (int)(r->origin[0][0] & (CLIP_TEXELS - 1)),
                        (int)(r->origin[0][1] & (CLIP_TEXELS - 1)));
     glProgramUniform2f(prog, glGetUniformLocation(prog, "u_detail_wrap"),
                        (float)(r->detail_origin[0] & (DETAIL_TEXELS - 1)),
                        (float)(r->detail_origin[1] & (DETAIL_TEXELS - 1)));
-    glProgramUniform1f(prog, glGetUniformLocation(prog, "u_detail_spacing"), (float)(p->spacing / ratio));
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "u_detail_spacing"),
+                       (float)(p->spacing / ratio));
     glProgramUniform1i(prog, glGetUniformLocation(prog, "u_detail_size"), DETAIL_TEXELS);
     glProgramUniform1i(prog, glGetUniformLocation(prog, "u_parallax"), s->parallax);
     glProgramUniform1i(prog, glGetUniformLocation(prog, "u_parallax_steps"), s->parallax_steps);
-    glProgramUniform1f(prog, glGetUniformLocation(prog, "u_parallax_fade"), (float)s->detail_distance);
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "u_parallax_fade"),
+                       (float)s->detail_distance);
     float brush[4] = {0, 0, 1, 0};
     if (cursor && cursor->visible && cursor->radius > 0) {
         brush[0] = (float)(cursor->x - cam->pos[0]);
@@ -533,10 +556,12 @@ static void set_terrain_uniforms(terrain_renderer *r, const camera *cam, const r
     }
     glProgramUniform4fv(prog, glGetUniformLocation(prog, "u_brush"), 1, brush);
     set_lighting(prog, r, s);
-    const char *samplers[] = {"u_heights", "u_material", "u_albedo", "u_detail", "u_detail_pd", "u_falloff"};
-    for (int i = 0; i < 6; i++) glProgramUniform1i(prog, glGetUniformLocation(prog, samplers[i]), i);
-    GLuint tex[] = {r->tex_heights, r->tex_material, r->tex_albedo, r->tex_detail, r->tex_detail_pd,
-                    r->tex_falloff};
+    const char *samplers[] = {"u_heights", "u_material",  "u_albedo",
+                              "u_detail",  "u_detail_pd", "u_falloff"};
+    for (int i = 0; i < 6; i++)
+        glProgramUniform1i(prog, glGetUniformLocation(prog, samplers[i]), i);
+    GLuint tex[] = {r->tex_heights, r->tex_material,  r->tex_albedo,
+                    r->tex_detail,  r->tex_detail_pd, r->tex_falloff};
     glBindTextures(0, 6, tex);
 }
 
@@ -544,7 +569,8 @@ static void set_terrain_uniforms(terrain_renderer *r, const camera *cam, const r
 static void piece_box(const terrain_renderer *r, int l, const clip_piece *pc, const camera *cam,
                       float mn[3], float mx[3]) {
     double ls = r->params.spacing * (double)((int64_t)1 << l);
-    double x0 = (double)r->origin[l][0] * ls - cam->pos[0], z0 = (double)r->origin[l][1] * ls - cam->pos[2];
+    double x0 = (double)r->origin[l][0] * ls - cam->pos[0],
+           z0 = (double)r->origin[l][1] * ls - cam->pos[2];
     int s = r->src[l], c = l + 1 < r->levels && r->src[l + 1] >= 0 ? r->src[l + 1] : s;
     float lo = fminf(r->hmin[s], r->hmin[c]), hi = fmaxf(r->hmax[s], r->hmax[c]);
     mn[0] = (float)(x0 + pc->x0 * ls), mx[0] = (float)(x0 + pc->x1 * ls);
@@ -575,15 +601,16 @@ static void draw_terrain(terrain_renderer *r, const camera *cam, const render_se
         double lo[2] = {-1e18, -1e18}, hi[2] = {1e18, 1e18};
         if (r->params.size > 0) {
             double last = (double)(r->params.size - 1) / (double)((int64_t)1 << l);
-            for (int a = 0; a < 2; a++) lo[a] = -(double)r->origin[l][a], hi[a] = last - (double)r->origin[l][a];
+            for (int a = 0; a < 2; a++)
+                lo[a] = -(double)r->origin[l][a], hi[a] = last - (double)r->origin[l][a];
         }
         int n = 0;
         for (size_t i = 0; i < r->mesh.piece_count && n < 64; i++) {
             const clip_piece *pc = &r->mesh.pieces[i];
             if (pc->x1 < lo[0] || pc->x0 > hi[0] || pc->z1 < lo[1] || pc->z0 > hi[1]) continue;
             if (pc->kind == CLIP_PIECE_INTERIOR && l != r->finest) continue;
-            if (pc->kind == CLIP_PIECE_TRIM && (l == r->finest || (pc->trim != (int)trims[0] &&
-                                                                    pc->trim != (int)trims[1])))
+            if (pc->kind == CLIP_PIECE_TRIM &&
+                (l == r->finest || (pc->trim != (int)trims[0] && pc->trim != (int)trims[1])))
                 continue;
             if (s->culling && (pc->kind == CLIP_PIECE_BLOCK || pc->kind == CLIP_PIECE_FIXUP ||
                                pc->kind == CLIP_PIECE_INTERIOR)) {
@@ -616,10 +643,13 @@ static void draw_water(terrain_renderer *r, const camera *cam, const render_sett
         if (x0 >= x1 || z0 >= z1) return;
     }
     GLuint prog = r->prog_water;
-    glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "u_view_proj"), 1, GL_FALSE, view_proj);
+    glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "u_view_proj"), 1, GL_FALSE,
+                              view_proj);
     glProgramUniform4f(prog, glGetUniformLocation(prog, "u_water_rect"), (float)(x0 - cam->pos[0]),
-                       (float)(z0 - cam->pos[2]), (float)(x1 - cam->pos[0]), (float)(z1 - cam->pos[2]));
-    glProgramUniform1f(prog, glGetUniformLocation(prog, "u_water_y"), (float)(p->ocean_level - cam->pos[1]));
+                       (float)(z0 - cam->pos[2]), (float)(x1 - cam->pos[0]),
+                       (float)(z1 - cam->pos[2]));
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "u_water_y"),
+                       (float)(p->ocean_level - cam->pos[1]));
     set_lighting(prog, r, s);
     glUseProgram(prog);
     glBindVertexArray(r->empty_vao);
@@ -672,6 +702,10 @@ int terrain_renderer_draw(terrain_renderer *r, world *w, const camera *cam,
     return 0;
 }
 
-void terrain_renderer_stats(const terrain_renderer *r, render_stats *out) { *out = r->stats; }
+void terrain_renderer_stats(const terrain_renderer *r, render_stats *out) {
+    *out = r->stats;
+}
 
-uint64_t terrain_renderer_texels_total(const terrain_renderer *r) { return r->texels_total; }
+uint64_t terrain_renderer_texels_total(const terrain_renderer *r) {
+    return r->texels_total;
+}

@@ -13,7 +13,7 @@
 #include <stdint.h>
 
 typedef struct render_stats {
-    uint64_t triangles;      // drawn this frame (terrain)
+    uint64_t triangles; // drawn this frame (terrain)
     int draw_calls;
     int levels_drawn, levels_ready, finest_level;
     uint64_t texels_uploaded; // this frame

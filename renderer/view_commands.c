@@ -15,7 +15,9 @@ viewport *view_commands_viewport(cmd_context *ctx) {
     return ctx->view_state;
 }
 
-void view_commands_set_viewport(cmd_context *ctx, viewport *v) { ctx->view_state = v; }
+void view_commands_set_viewport(cmd_context *ctx, viewport *v) {
+    ctx->view_state = v;
+}
 
 static viewport *get_viewport(cmd_context *ctx, og_error *err) {
     viewport *v = view_commands_viewport(ctx);
@@ -41,13 +43,15 @@ static int cmd_camera(cmd_context *ctx, int argc, char **argv, og_error *err) {
         print_camera(ctx, &v->cam);
         return 0;
     }
-    if (argc < 6) return og_error_set(err, "usage: camera X Y Z YAW PITCH [FOV] (or camera default)");
+    if (argc < 6)
+        return og_error_set(err, "usage: camera X Y Z YAW PITCH [FOV] (or camera default)");
     const char *names[6] = {"X", "Y", "Z", "YAW", "PITCH", "FOV"};
     double val[6] = {0, 0, 0, 0, 0, v->cam.fov_y};
     for (int i = 1; i < argc; i++)
         if (parse_number(argv[i], names[i - 1], &val[i - 1], err) != 0) return -1;
     for (int i = 0; i < 3; i++)
-        if (fabs(val[i]) > 1e12) return og_error_set(err, "%s: %g m is too far (limit 1e12 m)", names[i], val[i]);
+        if (fabs(val[i]) > 1e12)
+            return og_error_set(err, "%s: %g m is too far (limit 1e12 m)", names[i], val[i]);
     if (val[4] < -90 || val[4] > 90)
         return og_error_set(err, "PITCH: expected degrees in [-90, 90], got '%g'", val[4]);
     if (val[5] < 1 || val[5] > 170)
@@ -71,8 +75,8 @@ static int cmd_view(cmd_context *ctx, int argc, char **argv, og_error *err) {
     }
     int m = view_mode_parse(argv[1]);
     if (m < 0)
-        return og_error_set(err, "view: unknown mode '%s' (shaded, wireframe, levels, height, slope)",
-                            argv[1]);
+        return og_error_set(
+            err, "view: unknown mode '%s' (shaded, wireframe, levels, height, slope)", argv[1]);
     v->settings.view = (view_mode)m;
     return 0;
 }
@@ -123,11 +127,14 @@ static int cmd_render(cmd_context *ctx, int argc, char **argv, og_error *err) {
             if (parse_scan_f64(value, &yaw, &comma) != 0 || *comma != ',' ||
                 parse_scan_f64(comma + 1, &pitch, &end) != 0 || *end || !isfinite(yaw) ||
                 !isfinite(pitch) || pitch < -90 || pitch > 90)
-                return og_error_set(err, "sun: expected YAW,PITCH in degrees (pitch -90 .. 90), got '%s'", value);
+                return og_error_set(
+                    err, "sun: expected YAW,PITCH in degrees (pitch -90 .. 90), got '%s'", value);
             s.sun_yaw = yaw, s.sun_pitch = pitch, rc = 0;
         } else
-            return og_error_set(err, "render: unknown setting '%s' (levels parallax quality "
-                                     "detail_distance culling morph fog sun)", key);
+            return og_error_set(err,
+                                "render: unknown setting '%s' (levels parallax quality "
+                                "detail_distance culling morph fog sun)",
+                                key);
         if (rc != 0) return -1;
     }
     v->settings = s;
@@ -175,11 +182,26 @@ static int cmd_pick(cmd_context *ctx, int argc, char **argv, og_error *err) {
 }
 
 static const cmd_def view_commands[] = {
-    {"camera", "camera [X Y Z YAW PITCH [FOV] | default]", "Places the viewport camera: position in metres, yaw (0 looks toward -Z, 90 toward +X) and pitch in degrees, vertical field of view (60). Without arguments, prints it.", 0, 6, cmd_camera, 0},
-    {"view", "view [MODE]", "Picks what the viewport shows: shaded, wireframe, levels (clipmap level colours), height or slope colours.", 0, 1, cmd_view, 0},
-    {"render", "render [KEY=VALUE ...]", "Viewport settings: levels (3-12 clipmap levels), parallax (on/off), quality (parallax steps 1-32), detail_distance (m), culling, morph (on/off), fog (per metre, 0 = automatic), sun=YAW,PITCH. Without arguments, prints them.", 0, 9, cmd_render, 0},
-    {"screenshot", "screenshot FILE [W H]", "Renders the viewport offscreen (no display needed) to an RGB PNG, W x H pixels (1280 x 720), once every visible tile is loaded.", 1, 3, cmd_screenshot, 0},
-    {"pick", "pick PX PY [W H]", "Prints the terrain point (x y z metres) under pixel PX, PY of a W x H (1280 x 720) view.", 2, 4, cmd_pick, 0},
+    {"camera", "camera [X Y Z YAW PITCH [FOV] | default]",
+     "Places the viewport camera: position in metres, yaw (0 looks toward -Z, 90 toward +X) and "
+     "pitch in degrees, vertical field of view (60). Without arguments, prints it.",
+     0, 6, cmd_camera, 0},
+    {"view", "view [MODE]",
+     "Picks what the viewport shows: shaded, wireframe, levels (clipmap level colours), height or "
+     "slope colours.",
+     0, 1, cmd_view, 0},
+    {"render", "render [KEY=VALUE ...]",
+     "Viewport settings: levels (3-12 clipmap levels), parallax (on/off), quality (parallax steps "
+     "1-32), detail_distance (m), culling, morph (on/off), fog (per metre, 0 = automatic), "
+     "sun=YAW,PITCH. Without arguments, prints them.",
+     0, 9, cmd_render, 0},
+    {"screenshot", "screenshot FILE [W H]",
+     "Renders the viewport offscreen (no display needed) to an RGB PNG, W x H pixels (1280 x 720), "
+     "once every visible tile is loaded.",
+     1, 3, cmd_screenshot, 0},
+    {"pick", "pick PX PY [W H]",
+     "Prints the terrain point (x y z metres) under pixel PX, PY of a W x H (1280 x 720) view.", 2,
+     4, cmd_pick, 0},
 };
 
 int view_commands_register(og_error *err) {

@@ -117,8 +117,8 @@ int viewport_pick_loaded(viewport *v, world *w, double sx, double sy, double asp
                     hit);
 }
 
-int viewport_pick(viewport *v, world *w, double px, double py, int width, int height,
-                  double hit[3], og_error *err) {
+int viewport_pick(viewport *v, world *w, double px, double py, int width, int height, double hit[3],
+                  og_error *err) {
     if (viewport_settle(v, w, err) != 0) return -1;
     if (viewport_pick_loaded(v, w, px / width, py / height, (double)width / height, hit) != 0)
         return og_error_set(err, "no terrain under pixel (%g, %g)", px, py);

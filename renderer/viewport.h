@@ -12,14 +12,14 @@
 
 typedef struct viewport {
     camera cam;
-    int cam_set;               // the camera was placed (else the first render places it)
+    int cam_set; // the camera was placed (else the first render places it)
     render_settings settings;
     brush_cursor cursor;
-    gl_headless *headless;     // owned; NULL when a window's context is used
-    int window_context;        // a window made its context current: never make a headless one
+    gl_headless *headless; // owned; NULL when a window's context is used
+    int window_context;    // a window made its context current: never make a headless one
     terrain_renderer *renderer;
     char resource_dir[4096];
-    double wait_seconds;       // how long a screenshot waits for tiles (default 600)
+    double wait_seconds; // how long a screenshot waits for tiles (default 600)
 } viewport;
 
 viewport *viewport_create(const char *resource_dir);
@@ -44,9 +44,8 @@ int viewport_screenshot(viewport *v, world *w, const char *path, int width, int 
 // meets no terrain.
 // The same without waiting, against whatever the levels hold now (the window's
 // brushes): sx, sy in [0, 1] from the top-left. 0 and hit, or -1 on no terrain.
-int viewport_pick_loaded(viewport *v, world *w, double sx, double sy, double aspect,
-                         double hit[3]);
-int viewport_pick(viewport *v, world *w, double px, double py, int width, int height,
-                  double hit[3], og_error *err);
+int viewport_pick_loaded(viewport *v, world *w, double sx, double sy, double aspect, double hit[3]);
+int viewport_pick(viewport *v, world *w, double px, double py, int width, int height, double hit[3],
+                  og_error *err);
 
 #endif

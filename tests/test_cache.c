@@ -17,7 +17,9 @@
 #include <unistd.h>
 #include <cmocka.h>
 
-static void silent(void *user, const char *m) { (void)user, (void)m; }
+static void silent(void *user, const char *m) {
+    (void)user, (void)m;
+}
 
 // 16384 x 16384 samples = 64 x 64 tiles of 256 KiB (1 GiB) through a 64 MiB cache.
 static void test_budget_holds_over_large_area(void **state) {
@@ -88,10 +90,12 @@ static int gated_source(void *user, tile_key key, void *out) {
     gate *g = user;
     pthread_mutex_lock(&g->lock);
     g->calls++;
-    while (!g->open) pthread_cond_wait(&g->cond, &g->lock);
+    while (!g->open)
+        pthread_cond_wait(&g->cond, &g->lock);
     pthread_mutex_unlock(&g->lock);
     float *h = out;
-    for (size_t k = 0; k < TILE_SAMPLES; k++) h[k] = (float)key.level;
+    for (size_t k = 0; k < TILE_SAMPLES; k++)
+        h[k] = (float)key.level;
     return key.face == 0 ? 0 : -1;
 }
 
@@ -107,8 +111,8 @@ static void test_request_never_blocks_and_falls_back(void **state) {
     gate g = {PTHREAD_MUTEX_INITIALIZER, PTHREAD_COND_INITIALIZER, 0, 0};
     og_error err;
     tile_cache *c = tile_cache_create(
-        &(tile_cache_desc){.budget_bytes = 16u << 20, .workers = 2, .source = gated_source,
-                           .source_user = &g},
+        &(tile_cache_desc){
+            .budget_bytes = 16u << 20, .workers = 2, .source = gated_source, .source_user = &g},
         &err);
     assert_non_null(c);
     alarm(60); // if request blocked while the gate is shut, this kills the test
@@ -136,7 +140,8 @@ static void test_request_never_blocks_and_falls_back(void **state) {
         tile_cache_release(c, &v); // the workers were quicker; still a valid answer
     }
     // Eventually the fine tile is there.
-    for (int i = 0; i < 2000 && tile_cache_request(c, fine, &v) != TILE_READY; i++) usleep(5000);
+    for (int i = 0; i < 2000 && tile_cache_request(c, fine, &v) != TILE_READY; i++)
+        usleep(5000);
     assert_non_null(v.data);
     assert_true(tile_key_equal(v.key, fine));
     tile_cache_release(c, &v);
@@ -152,7 +157,8 @@ static void test_request_never_blocks_and_falls_back(void **state) {
 static int plain_source(void *user, tile_key key, void *out) {
     (void)user;
     float *h = out;
-    for (size_t k = 0; k < TILE_SAMPLES; k++) h[k] = (float)(key.tx * 1000 + key.ty);
+    for (size_t k = 0; k < TILE_SAMPLES; k++)
+        h[k] = (float)(key.tx * 1000 + key.ty);
     return 0;
 }
 
@@ -167,7 +173,9 @@ static void test_dirty_tiles_written_back_before_eviction(void **state) {
     // Room for two tiles only.
     tile_cache *c = tile_cache_create(
         &(tile_cache_desc){.budget_bytes = 2 * tile_layer_bytes(TILE_LAYER_COARSE),
-                           .workers = 2, .source = plain_source, .store = store},
+                           .workers = 2,
+                           .source = plain_source,
+                           .store = store},
         &err);
     tile_key edited = {TILE_LAYER_COARSE, 0, 0, 1, 1};
     tile_view v;
@@ -213,22 +221,23 @@ static void test_corrupt_stored_tile_falls_back(void **state) {
     og_error err;
     tile_store *store = tile_store_open(path, &err);
     float *data = malloc(tile_layer_bytes(TILE_LAYER_COARSE));
-    for (size_t k = 0; k < TILE_SAMPLES; k++) data[k] = 7.0f;
+    for (size_t k = 0; k < TILE_SAMPLES; k++)
+        data[k] = 7.0f;
     tile_key key = {TILE_LAYER_COARSE, 0, 0, 3, -4};
     assert_int_equal(tile_store_put(store, key, data, &err), 0);
     tile_store_close(store);
     sqlite3 *db;
     assert_int_equal(sqlite3_open(path, &db), SQLITE_OK);
-    assert_int_equal(sqlite3_exec(db, "UPDATE tiles SET data = randomblob(length(data))", NULL,
-                                  NULL, NULL),
-                     SQLITE_OK);
+    assert_int_equal(
+        sqlite3_exec(db, "UPDATE tiles SET data = randomblob(length(data))", NULL, NULL, NULL),
+        SQLITE_OK);
     sqlite3_close(db);
     store = tile_store_open(path, &err);
     assert_non_null(store);
     warnings warn = {{0}, 0};
     tile_cache *c = tile_cache_create(
-        &(tile_cache_desc){.source = plain_source, .store = store, .warn = collect,
-                           .warn_user = &warn},
+        &(tile_cache_desc){
+            .source = plain_source, .store = store, .warn = collect, .warn_user = &warn},
         &err);
     tile_view v;
     assert_int_equal(tile_cache_acquire(c, key, &v, &err), 0);

@@ -47,7 +47,8 @@ static void check_level(const clipmap_mesh *m, int finest, int off_x, int off_z)
     for (size_t i = 0; i < m->piece_count; i++) {
         const clip_piece *p = &m->pieces[i];
         if (p->kind == CLIP_PIECE_INTERIOR && !finest) continue;
-        if (p->kind == CLIP_PIECE_TRIM && (finest || (p->trim != (int)trims[0] && p->trim != (int)trims[1])))
+        if (p->kind == CLIP_PIECE_TRIM &&
+            (finest || (p->trim != (int)trims[0] && p->trim != (int)trims[1])))
             continue;
         int degenerate = cover(m, p, cells);
         assert_int_equal(degenerate, p->kind == CLIP_PIECE_DEGENERATE ? (int)p->count / 3 : 0);
@@ -56,7 +57,8 @@ static void check_level(const clipmap_mesh *m, int finest, int off_x, int off_z)
     int fine = 2 * m->m - 1;
     for (int z = 0; z < q; z++)
         for (int x = 0; x < q; x++) {
-            int inside = !finest && x >= off_x && x < off_x + fine && z >= off_z && z < off_z + fine;
+            int inside =
+                !finest && x >= off_x && x < off_x + fine && z >= off_z && z < off_z + fine;
             assert_int_equal(cells[z * q + x], inside ? 0 : 2);
         }
     free(cells);
@@ -70,7 +72,8 @@ static void test_pieces_tile_each_level_once(void **state) {
         assert_int_equal(clipmap_mesh_build(&m, sizes[s]), 0);
         assert_int_equal(m.m, (sizes[s] + 1) / 4);
         int kinds[5] = {0};
-        for (size_t i = 0; i < m.piece_count; i++) kinds[m.pieces[i].kind]++;
+        for (size_t i = 0; i < m.piece_count; i++)
+            kinds[m.pieces[i].kind]++;
         assert_int_equal(kinds[CLIP_PIECE_BLOCK], 12);
         assert_int_equal(kinds[CLIP_PIECE_FIXUP], 4);
         assert_int_equal(kinds[CLIP_PIECE_TRIM], CLIP_TRIM_COUNT);
@@ -81,7 +84,8 @@ static void test_pieces_tile_each_level_once(void **state) {
                 assert_int_equal(m.pieces[i].x1 - m.pieces[i].x0 + 1, m.m);
         check_level(&m, 1, 0, 0);
         for (int ox = m.m - 1; ox <= m.m; ox++)
-            for (int oz = m.m - 1; oz <= m.m; oz++) check_level(&m, 0, ox, oz);
+            for (int oz = m.m - 1; oz <= m.m; oz++)
+                check_level(&m, 0, ox, oz);
         clipmap_mesh_free(&m);
     }
 }
@@ -90,7 +94,8 @@ static void test_bad_sizes_are_refused(void **state) {
     (void)state;
     clipmap_mesh m;
     int bad[5] = {0, 7, 100, 256, 511};
-    for (int i = 0; i < 5; i++) assert_int_equal(clipmap_mesh_build(&m, bad[i]), -1);
+    for (int i = 0; i < 5; i++)
+        assert_int_equal(clipmap_mesh_build(&m, bad[i]), -1);
 }
 
 // Sample (x, z) of level L holds a value that names it.
@@ -146,7 +151,8 @@ static void test_window_moves_toroidally(void **state) {
     slow_source g = {PTHREAD_MUTEX_INITIALIZER, 0};
     og_error err;
     tile_cache *c = tile_cache_create(
-        &(tile_cache_desc){.budget_bytes = 64u << 20, .workers = 2, .source = named_source, .source_user = &g},
+        &(tile_cache_desc){
+            .budget_bytes = 64u << 20, .workers = 2, .source = named_source, .source_user = &g},
         &err);
     assert_non_null(c);
     clip_window w;
@@ -165,7 +171,9 @@ static void test_window_moves_toroidally(void **state) {
     w.upload_all = 0, w.upload_count = 0;
 
     // Small moves copy only the entering columns and rows (and say which texels).
-    struct { int dx, dz; } moves[] = {{37, 0}, {0, -5}, {-64, 130}, {255, -255}, {1, 1}};
+    struct {
+        int dx, dz;
+    } moves[] = {{37, 0}, {0, -5}, {-64, 130}, {255, -255}, {1, 1}};
     for (size_t i = 0; i < sizeof moves / sizeof moves[0]; i++) {
         uint64_t before = w.texels_copied;
         int64_t x = w.have[0] + moves[i].dx, z = w.have[1] + moves[i].dz;
@@ -191,7 +199,8 @@ static void test_window_moves_toroidally(void **state) {
     // An edit: change a resident tile, refresh the rectangle, see exactly that change.
     tile_view v;
     int64_t ex = w.have[0] + 10, ez = w.have[1] + 20; // a sample inside the window
-    tile_key k2 = {TILE_LAYER_COARSE, 0, 2, (int32_t)(ex >> 8), (int32_t)(ez >> 8)}; // floor division
+    tile_key k2 = {TILE_LAYER_COARSE, 0, 2, (int32_t)(ex >> 8),
+                   (int32_t)(ez >> 8)}; // floor division
     assert_int_equal(tile_cache_acquire_write(c, k2, &v, &err), 0);
     ((float *)v.data)[(ez & 255) * 256 + (ex & 255)] = -7.0f;
     tile_cache_release(c, &v);

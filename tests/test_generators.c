@@ -12,8 +12,8 @@
 #include <string.h>
 #include <cmocka.h>
 
-static const gen_kind all_generators[] = {GEN_FBM, GEN_FBM_ADVANCED, GEN_RIDGED,
-                                          GEN_DIAMOND_SQUARE, GEN_FAULTS};
+static const gen_kind all_generators[] = {GEN_FBM, GEN_FBM_ADVANCED, GEN_RIDGED, GEN_DIAMOND_SQUARE,
+                                          GEN_FAULTS};
 #define GENERATOR_COUNT (sizeof all_generators / sizeof all_generators[0])
 
 static world_params flat_params(gen_kind g) {
@@ -33,7 +33,9 @@ static float *tile(const world_params *p, int face, int level, int tx, int ty) {
     return t;
 }
 
-static void silent(void *user, const char *m) { (void)user, (void)m; }
+static void silent(void *user, const char *m) {
+    (void)user, (void)m;
+}
 
 static uint64_t area_hash(const world_params *p, int workers, int reverse_prefetch) {
     world_settings s = {.cache_budget_bytes = 64u << 20, .workers = workers, .warn = silent};
@@ -179,7 +181,7 @@ static void test_fractional_octaves(void **state) {
         worst = fmax(worst, fabs(o35[k] - expect));
         diff = fmax(diff, fabs((double)o4[k] - o3[k]));
     }
-    assert_true(diff > 1.0);             // the fourth octave is visible
+    assert_true(diff > 1.0);                  // the fourth octave is visible
     assert_true(worst < 1e-3 * p.max_height); // 3.5 lies halfway
     free(o3), free(o4), free(o35);
 }
@@ -198,8 +200,9 @@ static void test_mip_levels(void **state) {
                     fine[dy][dx] = tile(&p, 0, level, 2 + dx - 1, 2 + dy - 1);
             float *coarse = tile(&p, 0, level + 1, 1, 1);
             // Fine sample (x, z) relative to the 3x3 block of tiles centred on tile (2, 2).
-#define FINE(x, z) fine[((z) + TILE_SIZE) / TILE_SIZE][((x) + TILE_SIZE) / TILE_SIZE] \
-    [(((z) + TILE_SIZE) % TILE_SIZE) * TILE_SIZE + ((x) + TILE_SIZE) % TILE_SIZE]
+#define FINE(x, z)                                                                                 \
+    fine[((z) + TILE_SIZE) / TILE_SIZE][((x) + TILE_SIZE) / TILE_SIZE]                             \
+        [(((z) + TILE_SIZE) % TILE_SIZE) * TILE_SIZE + ((x) + TILE_SIZE) % TILE_SIZE]
             double se = 0, mean = 0, var = 0;
             int n = 0;
             for (int j = 0; j < TILE_SIZE; j++) {
@@ -212,7 +215,8 @@ static void test_mip_levels(void **state) {
                     double f = 0;
                     const double w[3] = {0.25, 0.5, 0.25};
                     for (int b = -1; b <= 1; b++)
-                        for (int a = -1; a <= 1; a++) f += w[a + 1] * w[b + 1] * FINE(x + a, z + b);
+                        for (int a = -1; a <= 1; a++)
+                            f += w[a + 1] * w[b + 1] * FINE(x + a, z + b);
                     double c = coarse[j * TILE_SIZE + i];
                     se += (c - f) * (c - f);
                     mean += f;
@@ -226,10 +230,13 @@ static void test_mip_levels(void **state) {
             double rmse = sqrt(se / n), sd = sqrt(var);
             assert_true(n > 10000);
             assert_true(sd > 0.0);
-            if (!(rmse < 0.1 * sd)) print_message("gen %d level %d rmse %g sd %g\n", (int)all_generators[g], level, rmse, sd);
+            if (!(rmse < 0.1 * sd))
+                print_message("gen %d level %d rmse %g sd %g\n", (int)all_generators[g], level,
+                              rmse, sd);
             assert_true(rmse < 0.1 * sd);
             for (int dy = 0; dy < 3; dy++)
-                for (int dx = 0; dx < 3; dx++) free(fine[dy][dx]);
+                for (int dx = 0; dx < 3; dx++)
+                    free(fine[dy][dx]);
             free(coarse);
         }
     }
@@ -249,15 +256,18 @@ static void test_diamond_square_one_array(void **state) {
             gen_diamond_square_region(&p, level, x0, z0, N, N, region);
             float *t[2][2];
             for (int b = 0; b < 2; b++)
-                for (int a = 0; a < 2; a++) t[b][a] = tile(&p, 0, level, (int)tx[c] + a, (int)ty[c] + b);
+                for (int a = 0; a < 2; a++)
+                    t[b][a] = tile(&p, 0, level, (int)tx[c] + a, (int)ty[c] + b);
             for (int j = 0; j < N; j++)
                 for (int i = 0; i < N; i++) {
                     int gi = 100 + i, gj = 77 + j;
-                    float v = t[gj / TILE_SIZE][gi / TILE_SIZE][(gj % TILE_SIZE) * TILE_SIZE + gi % TILE_SIZE];
+                    float v = t[gj / TILE_SIZE][gi / TILE_SIZE]
+                               [(gj % TILE_SIZE) * TILE_SIZE + gi % TILE_SIZE];
                     assert_true(v == region[j * N + i]);
                 }
             for (int b = 0; b < 2; b++)
-                for (int a = 0; a < 2; a++) free(t[b][a]);
+                for (int a = 0; a < 2; a++)
+                    free(t[b][a]);
             free(region);
         }
     }

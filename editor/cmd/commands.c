@@ -12,8 +12,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-
-
 // ---- argument parsing ----------------------------------------------------------
 
 static int parse_face(int argc, char **argv, int index, int *face, og_error *err) {
@@ -190,42 +188,90 @@ static int c_exit(cmd_context *ctx, int argc, char **argv, og_error *err) {
 static int c_help(cmd_context *ctx, int argc, char **argv, og_error *err);
 static int c_cmdlist(cmd_context *ctx, int argc, char **argv, og_error *err);
 
-#define PARAM_CMD(key, arg, text) {key, key " [" arg "]", text " Without a value, prints it.", 0, 1, c_param, 0}
+#define PARAM_CMD(key, arg, text)                                                                  \
+    { key, key " [" arg "]", text " Without a value, prints it.", 0, 1, c_param, 0 }
 
 static const cmd_def commands[] = {
-    {"new", "new flat|planet", "Replaces the current world with a new one of that kind, with default parameters.", 1, 1, c_new, CMD_ENDS_STROKE},
-    {"load", "load FILE", "Loads a world (.world) or planet (.planet) parameter file and its tile store.", 1, 1, c_load, CMD_ENDS_STROKE},
-    {"save", "save [FILE]", "Saves the world's parameter file and tile store (to FILE, or where it was loaded from).", 0, 1, c_save, CMD_ENDS_STROKE},
-    {"generate", "generate", "Regenerates the world from the next parameters (see nparams). Edited tiles stay.", 0, 0, c_generate, CMD_ENDS_STROKE},
-    {"generator", "generator [G]", "Lists the generators, or picks one (name or number) for the next generate.", 0, 1, c_generator, 0},
+    {"new", "new flat|planet",
+     "Replaces the current world with a new one of that kind, with default parameters.", 1, 1,
+     c_new, CMD_ENDS_STROKE},
+    {"load", "load FILE",
+     "Loads a world (.world) or planet (.planet) parameter file and its tile store.", 1, 1, c_load,
+     CMD_ENDS_STROKE},
+    {"save", "save [FILE]",
+     "Saves the world's parameter file and tile store (to FILE, or where it was loaded from).", 0,
+     1, c_save, CMD_ENDS_STROKE},
+    {"generate", "generate",
+     "Regenerates the world from the next parameters (see nparams). Edited tiles stay.", 0, 0,
+     c_generate, CMD_ENDS_STROKE},
+    {"generator", "generator [G]",
+     "Lists the generators, or picks one (name or number) for the next generate.", 0, 1,
+     c_generator, 0},
     PARAM_CMD("seed", "N", "Sets the random seed (an integer) for the next generate."),
-    PARAM_CMD("octaves", "F", "Sets the fBm octave count (fractional allowed) for the next generate."),
-    PARAM_CMD("w_factor", "F", "Sets the fBm weight factor (gain per octave) for the next generate."),
+    PARAM_CMD("octaves", "F",
+              "Sets the fBm octave count (fractional allowed) for the next generate."),
+    PARAM_CMD("w_factor", "F",
+              "Sets the fBm weight factor (gain per octave) for the next generate."),
     PARAM_CMD("exponent", "F", "Sets the fBm exponent (lacunarity) for the next generate."),
     PARAM_CMD("radius", "F", "Sets the planet radius in metres for the next generate."),
-    PARAM_CMD("max_height", "F", "Sets the maximal terrain height in metres for the next generate."),
+    PARAM_CMD("max_height", "F",
+              "Sets the maximal terrain height in metres for the next generate."),
     PARAM_CMD("ocean_level", "F", "Sets the ocean level in metres for the next generate."),
     PARAM_CMD("omega", "F", "Sets the planet's angular velocity for the next generate."),
     PARAM_CMD("spacing", "F", "Sets the metres between coarse samples for the next generate."),
-    PARAM_CMD("size", "N", "Sets the samples per side of a flat world (0 = unbounded) for the next generate."),
-    {"set", "set KEY VALUE", "Sets any world parameter (see nparams for the keys) for the next generate.", 2, 2, c_set, 0},
+    PARAM_CMD("size", "N",
+              "Sets the samples per side of a flat world (0 = unbounded) for the next generate."),
+    {"set", "set KEY VALUE",
+     "Sets any world parameter (see nparams for the keys) for the next generate.", 2, 2, c_set, 0},
     {"params", "params", "Prints the current world's parameters.", 0, 0, c_params, 0},
     {"nparams", "nparams", "Prints the parameters the next generate will use.", 0, 0, c_nparams, 0},
-    {"info", "info", "Prints key=value facts about the world, its tile store and the tile cache.", 0, 0, c_info, 0},
-    {"sample", "sample X Z [FACE]", "Prints the height in metres at world position X, Z (metres).", 2, 3, c_sample, 0},
-    {"hash", "hash X0 Z0 X1 Z1 [FACE]", "Prints a hex digest of the coarse heights in that rectangle (metres).", 4, 5, c_hash, 0},
-    {"tool", "tool [NAME] [KEY=VALUE ...]", "Picks and sets up the brush: raise lower smooth flatten set ramp noise terrace thermal hydraulic paint. Keys: radius (m) strength (0-1) falloff (smooth linear spherical constant curve) curve=t:v,... spacing (x radius) invert target (coarse detail) face amount height mode (both raise lower) scale octaves seed step sharpness talus iterations droplets erosion deposition evaporation capacity inertia material. Without arguments, prints the brush.", 0, 24, cmd_tool, 0},
-    {"dab", "dab X Z [PRESSURE]", "One dab of the brush at X, Z (metres); one undo step.", 2, 3, cmd_dab, CMD_ENDS_STROKE},
-    {"stroke", "stroke X0 Z0 X1 Z1 [X2 Z2 ...]", "Drags the brush along the points (metres), dabbing every spacing x radius; one undo step.", 2, CMD_MAX_ARGS, cmd_stroke, CMD_ENDS_STROKE},
-    {"stroke_begin", "stroke_begin", "Starts a stroke with the current tool (as a drag in the viewport does); stroke_to extends it, stroke_end makes it one undo step. Commands that change the world (dab, stamp, undo, save, load, ...) end it first.", 0, 0, cmd_stroke_begin, CMD_ENDS_STROKE},
-    {"stroke_to", "stroke_to X Z [PRESSURE]", "Drags the open stroke to X, Z (metres), dabbing every spacing x radius; PRESSURE 0-1 (1).", 2, 3, cmd_stroke_to, 0},
-    {"stroke_end", "stroke_end", "Ends the open stroke as one undo step (a stroke that laid no dab leaves none).", 0, 0, cmd_stroke_end, 0},
-    {"stroke_cancel", "stroke_cancel", "Abandons the open stroke: the terrain returns to how it was before it.", 0, 0, cmd_stroke_cancel, 0},
-    {"stamp", "stamp NAME X Z [scale= rot= mirror= intensity= mode= layer= face=]", "Places a stamp centred at X, Z (metres): a functional shape, a library or user stamp (see stamps) or an image file. scale multiplies its natural size (128 samples, or one sample per pixel), rot is degrees, mirror none|x|z|xz, intensity metres at value 1 (50; 0.5 on detail), mode add|subtract|max|min|blend, layer coarse|detail. One undo step.", 3, 10, cmd_stamp, CMD_ENDS_STROKE},
-    {"stamps", "stamps", "Lists the stamps: functional shapes, the built-in library and the user's stamp folder.", 0, 0, cmd_stamps, 0},
-    {"undo", "undo", "Undoes the last change (stroke, stamp, generate).", 0, 0, cmd_undo, CMD_ENDS_STROKE},
+    {"info", "info", "Prints key=value facts about the world, its tile store and the tile cache.",
+     0, 0, c_info, 0},
+    {"sample", "sample X Z [FACE]", "Prints the height in metres at world position X, Z (metres).",
+     2, 3, c_sample, 0},
+    {"hash", "hash X0 Z0 X1 Z1 [FACE]",
+     "Prints a hex digest of the coarse heights in that rectangle (metres).", 4, 5, c_hash, 0},
+    {"tool", "tool [NAME] [KEY=VALUE ...]",
+     "Picks and sets up the brush: raise lower smooth flatten set ramp noise terrace thermal "
+     "hydraulic paint. Keys: radius (m) strength (0-1) falloff (smooth linear spherical constant "
+     "curve) curve=t:v,... spacing (x radius) invert target (coarse detail) face amount height "
+     "mode (both raise lower) scale octaves seed step sharpness talus iterations droplets erosion "
+     "deposition evaporation capacity inertia material. Without arguments, prints the brush.",
+     0, 24, cmd_tool, 0},
+    {"dab", "dab X Z [PRESSURE]", "One dab of the brush at X, Z (metres); one undo step.", 2, 3,
+     cmd_dab, CMD_ENDS_STROKE},
+    {"stroke", "stroke X0 Z0 X1 Z1 [X2 Z2 ...]",
+     "Drags the brush along the points (metres), dabbing every spacing x radius; one undo step.", 2,
+     CMD_MAX_ARGS, cmd_stroke, CMD_ENDS_STROKE},
+    {"stroke_begin", "stroke_begin",
+     "Starts a stroke with the current tool (as a drag in the viewport does); stroke_to extends "
+     "it, stroke_end makes it one undo step. Commands that change the world (dab, stamp, undo, "
+     "save, load, ...) end it first.",
+     0, 0, cmd_stroke_begin, CMD_ENDS_STROKE},
+    {"stroke_to", "stroke_to X Z [PRESSURE]",
+     "Drags the open stroke to X, Z (metres), dabbing every spacing x radius; PRESSURE 0-1 (1).", 2,
+     3, cmd_stroke_to, 0},
+    {"stroke_end", "stroke_end",
+     "Ends the open stroke as one undo step (a stroke that laid no dab leaves none).", 0, 0,
+     cmd_stroke_end, 0},
+    {"stroke_cancel", "stroke_cancel",
+     "Abandons the open stroke: the terrain returns to how it was before it.", 0, 0,
+     cmd_stroke_cancel, 0},
+    {"stamp", "stamp NAME X Z [scale= rot= mirror= intensity= mode= layer= face=]",
+     "Places a stamp centred at X, Z (metres): a functional shape, a library or user stamp (see "
+     "stamps) or an image file. scale multiplies its natural size (128 samples, or one sample per "
+     "pixel), rot is degrees, mirror none|x|z|xz, intensity metres at value 1 (50; 0.5 on detail), "
+     "mode add|subtract|max|min|blend, layer coarse|detail. One undo step.",
+     3, 10, cmd_stamp, CMD_ENDS_STROKE},
+    {"stamps", "stamps",
+     "Lists the stamps: functional shapes, the built-in library and the user's stamp folder.", 0, 0,
+     cmd_stamps, 0},
+    {"undo", "undo", "Undoes the last change (stroke, stamp, generate).", 0, 0, cmd_undo,
+     CMD_ENDS_STROKE},
     {"redo", "redo", "Redoes the last undone change.", 0, 0, cmd_redo, CMD_ENDS_STROKE},
-    {"history", "history [budget=MIB]", "Lists the undo steps (* = applied) and their memory; sets the history memory budget.", 0, 1, cmd_history, CMD_ENDS_STROKE},
+    {"history", "history [budget=MIB]",
+     "Lists the undo steps (* = applied) and their memory; sets the history memory budget.", 0, 1,
+     cmd_history, CMD_ENDS_STROKE},
     {"help", "help [COMMAND]", "Prints help on all commands or one.", 0, 1, c_help, 0},
     {"cmdlist", "cmdlist", "Lists the command names.", 0, 0, c_cmdlist, 0},
     {"exit", "exit", "Stops (the rest of the script is not run).", 0, 0, c_exit, CMD_ENDS_STROKE},
@@ -237,7 +283,9 @@ static const cmd_def commands[] = {
 static const cmd_def *registered[REGISTERED_MAX];
 static size_t registered_count;
 
-size_t cmd_count(void) { return BUILTIN_COUNT + registered_count; }
+size_t cmd_count(void) {
+    return BUILTIN_COUNT + registered_count;
+}
 
 static const cmd_def *command_at(size_t i) {
     if (i < BUILTIN_COUNT) return &commands[i];
@@ -260,10 +308,13 @@ int cmd_register(const cmd_def *defs, size_t count, og_error *err) {
         return og_error_set(err, "cmd_register: more than %d registered commands", REGISTERED_MAX);
     for (size_t i = 0; i < count; i++) {
         int taken = find_command(defs[i].name) != NULL;
-        for (size_t k = 0; k < i && !taken; k++) taken = strcmp(defs[k].name, defs[i].name) == 0;
-        if (taken) return og_error_set(err, "cmd_register: '%s' is already a command", defs[i].name);
+        for (size_t k = 0; k < i && !taken; k++)
+            taken = strcmp(defs[k].name, defs[i].name) == 0;
+        if (taken)
+            return og_error_set(err, "cmd_register: '%s' is already a command", defs[i].name);
     }
-    for (size_t i = 0; i < count; i++) registered[registered_count++] = &defs[i];
+    for (size_t i = 0; i < count; i++)
+        registered[registered_count++] = &defs[i];
     return 0;
 }
 
@@ -282,12 +333,12 @@ static int c_help(cmd_context *ctx, int argc, char **argv, og_error *err) {
 
 static int c_cmdlist(cmd_context *ctx, int argc, char **argv, og_error *err) {
     (void)argc, (void)argv, (void)err;
-    for (size_t i = 0; i < cmd_count(); i++) fprintf(ctx->out, "%s\n", command_at(i)->name);
+    for (size_t i = 0; i < cmd_count(); i++)
+        fprintf(ctx->out, "%s\n", command_at(i)->name);
     return 0;
 }
 
 // ---- driver ----------------------------------------------------------------------
-
 
 // Writes the command to the recording, quoted so that running the file repeats it.
 static void record(cmd_context *ctx, int argc, char **argv) {

@@ -7,7 +7,8 @@ void cmd_context_init(cmd_context *ctx, world *w, const world_settings *settings
                       const char *resource_dir) {
     memset(ctx, 0, sizeof *ctx);
     snprintf(ctx->resource_dir, sizeof ctx->resource_dir, "%s", resource_dir ? resource_dir : "");
-    const char *env = getenv("OROGEN_STAMP_DIR"), *xdg = getenv("XDG_DATA_HOME"), *home = getenv("HOME");
+    const char *env = getenv("OROGEN_STAMP_DIR"), *xdg = getenv("XDG_DATA_HOME"),
+               *home = getenv("HOME");
     if (env && *env)
         snprintf(ctx->stamp_dir, sizeof ctx->stamp_dir, "%s", env);
     else if (xdg && *xdg)

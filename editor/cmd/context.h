@@ -10,16 +10,16 @@
 #include <stdio.h>
 
 typedef struct cmd_context {
-    world *world;             // the current world (replaced by new/load)
-    world_params next;        // parameters for the next `generate` (nparams)
-    world_settings settings;  // used for worlds created by new/load
-    FILE *out;                // where commands print results
-    int exit_requested;       // set by `exit`
-    brush brush;              // the current tool (`tool`), used by dab and stroke
-    struct stroke *stroke;    // the stroke stroke_begin opened (NULL: none)
-    FILE *record;             // when set, every command that succeeded is written here
-    char resource_dir[4096];  // built-in resources (stamp library in resource_dir/stamps)
-    char stamp_dir[4096];     // the user's stamp folder
+    world *world;            // the current world (replaced by new/load)
+    world_params next;       // parameters for the next `generate` (nparams)
+    world_settings settings; // used for worlds created by new/load
+    FILE *out;               // where commands print results
+    int exit_requested;      // set by `exit`
+    brush brush;             // the current tool (`tool`), used by dab and stroke
+    struct stroke *stroke;   // the stroke stroke_begin opened (NULL: none)
+    FILE *record;            // when set, every command that succeeded is written here
+    char resource_dir[4096]; // built-in resources (stamp library in resource_dir/stamps)
+    char stamp_dir[4096];    // the user's stamp folder
     // State of commands registered from outside (the renderer's view commands keep
     // their viewport here: made by the first view command, or set by the window).
     // The command language never looks inside; app/ frees it.

@@ -181,7 +181,8 @@ int cmd_history(cmd_context *ctx, int argc, char **argv, og_error *err) {
         fprintf(ctx->out, "%c %zu %s tiles=%zu bytes=%zu raw_bytes=%zu\n", i < pos ? '*' : ' ',
                 i + 1, s->label, s->tile_count, s->bytes, s->raw_bytes);
     }
-    fprintf(ctx->out, "steps=%zu undoable=%zu redoable=%zu bytes=%zu budget=%zu dropped=%llu modified=%d\n",
+    fprintf(ctx->out,
+            "steps=%zu undoable=%zu redoable=%zu bytes=%zu budget=%zu dropped=%llu modified=%d\n",
             n, pos, n - pos, history_bytes(h), history_budget(h),
             (unsigned long long)history_dropped_total(h), world_is_modified(ctx->world));
     return 0;
@@ -200,7 +201,8 @@ int cmd_stamp(cmd_context *ctx, int argc, char **argv, og_error *err) {
             return -1;
         intensity_given |= strcmp(key, "intensity") == 0;
     }
-    if (!intensity_given && p.layer == TILE_LAYER_DETAIL) p.intensity = 0.5; // detail is fine relief
+    if (!intensity_given && p.layer == TILE_LAYER_DETAIL)
+        p.intensity = 0.5; // detail is fine relief
     stamp_source s;
     if (stamp_find(argv[1], ctx->resource_dir, ctx->stamp_dir, &s, err) != 0) return -1;
     int rc = stamp_apply(ctx->world, &s, &p, err);

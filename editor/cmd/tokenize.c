@@ -50,7 +50,9 @@ static int push_start(cmd_tokenizer *t, size_t argc, size_t start) {
     return 0;
 }
 
-static int is_blank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
+static int is_blank(char c) {
+    return c == ' ' || c == '\t' || c == '\r';
+}
 
 int cmd_tokenizer_next(cmd_tokenizer *t, int *argc_out, char ***argv_out, int *line_out,
                        og_error *err) {
@@ -58,18 +60,21 @@ int cmd_tokenizer_next(cmd_tokenizer *t, int *argc_out, char ***argv_out, int *l
     size_t argc = 0, used = 0;
     int cmd_line = t->line;
     for (;;) {
-        while (t->pos < t->len && is_blank(text[t->pos])) t->pos++;
-        int end = t->pos >= t->len || text[t->pos] == '\n' || text[t->pos] == ';' ||
-                  text[t->pos] == '#';
+        while (t->pos < t->len && is_blank(text[t->pos]))
+            t->pos++;
+        int end =
+            t->pos >= t->len || text[t->pos] == '\n' || text[t->pos] == ';' || text[t->pos] == '#';
         if (end) {
             if (t->pos < t->len && text[t->pos] == '#')
-                while (t->pos < t->len && text[t->pos] != '\n') t->pos++;
+                while (t->pos < t->len && text[t->pos] != '\n')
+                    t->pos++;
             if (t->pos < t->len) { // the newline or ';' closes the command
                 if (text[t->pos] == '\n') t->line++;
                 t->pos++;
             }
             if (argc > 0) {
-                for (size_t k = 0; k < argc; k++) t->argv[k] = t->buf + t->starts[k];
+                for (size_t k = 0; k < argc; k++)
+                    t->argv[k] = t->buf + t->starts[k];
                 t->argv[argc] = NULL;
                 *argc_out = (int)argc;
                 *argv_out = t->argv;

@@ -30,12 +30,13 @@ static int update_rect(world *w, const layer_grid *g, grid_rect pd, og_error *er
     }
     tile_cache *cache = world_cache(w);
     int rc = 0;
-    for (int64_t tz = world_grid_floor_div(pd.z0, TILE_SIZE);
-         tz * TILE_SIZE < pd.z1 && rc == 0; tz++)
-        for (int64_t tx = world_grid_floor_div(pd.x0, TILE_SIZE);
-             tx * TILE_SIZE < pd.x1 && rc == 0; tx++) {
-            grid_rect r = grid_rect_intersect(
-                pd, (grid_rect){tx * TILE_SIZE, tz * TILE_SIZE, (tx + 1) * TILE_SIZE, (tz + 1) * TILE_SIZE});
+    for (int64_t tz = world_grid_floor_div(pd.z0, TILE_SIZE); tz * TILE_SIZE < pd.z1 && rc == 0;
+         tz++)
+        for (int64_t tx = world_grid_floor_div(pd.x0, TILE_SIZE); tx * TILE_SIZE < pd.x1 && rc == 0;
+             tx++) {
+            grid_rect r =
+                grid_rect_intersect(pd, (grid_rect){tx * TILE_SIZE, tz * TILE_SIZE,
+                                                    (tx + 1) * TILE_SIZE, (tz + 1) * TILE_SIZE});
             if (grid_rect_empty(r)) continue;
             tile_view v;
             tile_key key = {TILE_LAYER_DETAIL_PD, g->face, 0, (int32_t)tx, (int32_t)tz};
@@ -49,8 +50,9 @@ static int update_rect(world *w, const layer_grid *g, grid_rect pd, og_error *er
                     const float *c = h + (z - src.z0) * sw + (x - src.x0);
                     float row[5] = {c[-2], c[-1], c[0], c[1], c[2]};
                     float col[5] = {c[-2 * sw], c[-sw], c[0], c[sw], c[2 * sw]};
-                    detail_pd_encode(row, col, g->spacing,
-                                     t + 2 * ((z - tz * TILE_SIZE) * TILE_SIZE + (x - tx * TILE_SIZE)));
+                    detail_pd_encode(
+                        row, col, g->spacing,
+                        t + 2 * ((z - tz * TILE_SIZE) * TILE_SIZE + (x - tx * TILE_SIZE)));
                 }
             tile_cache_release(cache, &v);
         }

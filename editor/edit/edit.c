@@ -43,7 +43,8 @@ static int reindex(edit *e, size_t size) {
     e->index_size = size;
     for (size_t n = 0; n < e->count; n++) {
         size_t i = tile_key_hash(e->snaps[n].key) & (size - 1);
-        while (index[i]) i = (i + 1) & (size - 1);
+        while (index[i])
+            i = (i + 1) & (size - 1);
         index[i] = n + 1;
     }
     return 0;
@@ -65,7 +66,8 @@ static snapshot *add_snap(edit *e, tile_key key, int pristine, void *before) {
         }
     } else {
         size_t i = tile_key_hash(key) & (e->index_size - 1);
-        while (e->index[i]) i = (i + 1) & (e->index_size - 1);
+        while (e->index[i])
+            i = (i + 1) & (e->index_size - 1);
         e->index[i] = e->count;
     }
     return &e->snaps[e->count - 1];
@@ -83,7 +85,9 @@ edit *edit_begin(world *w, const char *label, og_error *err) {
     return e;
 }
 
-world *edit_world(edit *e) { return e->world; }
+world *edit_world(edit *e) {
+    return e->world;
+}
 
 const void *edit_snapshot(edit *e, tile_key key) {
     pthread_mutex_lock(&e->lock);
@@ -111,7 +115,9 @@ int edit_tile_acquire(edit *e, tile_key key, tile_view *view, og_error *err) {
     return rc;
 }
 
-void edit_tile_release(edit *e, tile_view *view) { tile_cache_release(world_cache(e->world), view); }
+void edit_tile_release(edit *e, tile_view *view) {
+    tile_cache_release(world_cache(e->world), view);
+}
 
 void edit_dirty(edit *e, tile_layer layer, int face, grid_rect r) {
     if (grid_rect_empty(r)) return;
@@ -144,7 +150,8 @@ size_t edit_dirty_rects(edit *e, const dirty_rect **rects) {
 }
 
 static void free_edit(edit *e) {
-    for (size_t i = 0; i < e->count; i++) free(e->snaps[i].before);
+    for (size_t i = 0; i < e->count; i++)
+        free(e->snaps[i].before);
     free(e->snaps);
     free(e->index);
     free(e->dirty);
@@ -153,7 +160,8 @@ static void free_edit(edit *e) {
 }
 
 static void publish_areas(world *w, const dirty_rect *rects, size_t count) {
-    for (size_t i = 0; i < count; i++) world_publish_area(w, rects[i].layer, rects[i].face, rects[i].rect);
+    for (size_t i = 0; i < count; i++)
+        world_publish_area(w, rects[i].layer, rects[i].face, rects[i].rect);
 }
 
 // Puts every snapshot back (writing the tiles' bytes as they were).
@@ -215,8 +223,8 @@ int edit_record(edit *e, og_error *err) {
     if (failed) og_error_set(err, "out of memory recording the undo step");
     if (!failed) failed = parallel_run((int)e->count, encode_task, &job, err) != 0;
     for (size_t i = 0; i < e->count && !failed; i++)
-        if (deltas[i] &&
-            history_step_add_delta(step, e->snaps[i].key, e->snaps[i].pristine, deltas[i], sizes[i]) != 0)
+        if (deltas[i] && history_step_add_delta(step, e->snaps[i].key, e->snaps[i].pristine,
+                                                deltas[i], sizes[i]) != 0)
             failed = og_error_set(err, "out of memory recording the undo step");
         else
             deltas[i] = NULL;
@@ -224,7 +232,8 @@ int edit_record(edit *e, og_error *err) {
         if (history_step_add_dirty(step, e->dirty[i]) != 0)
             failed = og_error_set(err, "out of memory recording the undo step");
     if (failed) {
-        for (size_t i = 0; i < e->count; i++) free(deltas ? deltas[i] : NULL);
+        for (size_t i = 0; i < e->count; i++)
+            free(deltas ? deltas[i] : NULL);
         free(deltas);
         free(sizes);
         history_step_free(step);
@@ -275,8 +284,7 @@ static int replay_task(void *user, int task, og_error *err) {
 }
 
 static int replay(world *w, const history_step *s, int undo, og_error *err) {
-    if (s->has_params &&
-        world_regenerate(w, undo ? &s->params_before : &s->params_after, err) != 0)
+    if (s->has_params && world_regenerate(w, undo ? &s->params_before : &s->params_after, err) != 0)
         return -1;
     replay_job job = {w, s, undo};
     if (parallel_run((int)s->tile_count, replay_task, &job, err) != 0) return -1;

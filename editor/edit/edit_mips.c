@@ -6,19 +6,22 @@
 #include <stdlib.h>
 #include <string.h>
 
-static int64_t floor_div(int64_t a, int64_t b) { return world_grid_floor_div(a, b); }
+static int64_t floor_div(int64_t a, int64_t b) {
+    return world_grid_floor_div(a, b);
+}
 
 int edit_mips_top_level(const world_params *p) {
     int64_t extent = p->kind == WORLD_PLANET ? world_grid_face_samples(p) : p->size;
     if (extent <= 0) return EDIT_MIP_LEVELS_UNBOUNDED;
     int top = 1;
-    while (top < TILE_MAX_LEVEL && ((extent - 1) >> top) >= TILE_SIZE) top++;
+    while (top < TILE_MAX_LEVEL && ((extent - 1) >> top) >= TILE_SIZE)
+        top++;
     return top;
 }
 
 typedef struct level_job {
     edit *e;
-    int64_t child_extent; // children per side at the child level (bounded); 0 = unbounded
+    int64_t child_extent;    // children per side at the child level (bounded); 0 = unbounded
     int face, level, planet; // level: the parent level being written
     grid_rect parents;       // parent samples to update
     int64_t ptx0, ptz0, ptw; // parent tiles covering them
@@ -31,7 +34,8 @@ static int child_changes(level_job *j, int64_t cx0, int64_t cz0, int64_t w, int6
     tile_cache *cache = world_cache(edit_world(j->e));
     int any = 0;
     for (int64_t ty = floor_div(cz0, TILE_SIZE); ty <= floor_div(cz0 + h - 1, TILE_SIZE); ty++)
-        for (int64_t tx = floor_div(cx0, TILE_SIZE); tx <= floor_div(cx0 + w - 1, TILE_SIZE); tx++) {
+        for (int64_t tx = floor_div(cx0, TILE_SIZE); tx <= floor_div(cx0 + w - 1, TILE_SIZE);
+             tx++) {
             tile_key key = {TILE_LAYER_COARSE, j->face, j->level - 1, (int32_t)tx, (int32_t)ty};
             const float *before = edit_snapshot(j->e, key);
             if (!before) continue;
@@ -73,8 +77,9 @@ static int child_changes(level_job *j, int64_t cx0, int64_t cz0, int64_t w, int6
 static int parent_tile_task(void *user, int task, og_error *err) {
     level_job *j = user;
     int64_t tx = j->ptx0 + task % j->ptw, tz = j->ptz0 + task / j->ptw;
-    grid_rect sub = grid_rect_intersect(
-        j->parents, (grid_rect){tx * TILE_SIZE, tz * TILE_SIZE, (tx + 1) * TILE_SIZE, (tz + 1) * TILE_SIZE});
+    grid_rect sub =
+        grid_rect_intersect(j->parents, (grid_rect){tx * TILE_SIZE, tz * TILE_SIZE,
+                                                    (tx + 1) * TILE_SIZE, (tz + 1) * TILE_SIZE});
     if (grid_rect_empty(sub)) return 0;
     int64_t pw = sub.x1 - sub.x0, ph = sub.z1 - sub.z0;
     // Flat: parent p averages children 2p-1..2p+1; planet: children 2p, 2p+1.
@@ -92,7 +97,8 @@ static int parent_tile_task(void *user, int task, og_error *err) {
         } else {
             float *t = v.data;
             for (int64_t z = 0; z < ph; z++) {
-                float *dst = t + (sub.z0 + z - tz * TILE_SIZE) * TILE_SIZE + (sub.x0 - tx * TILE_SIZE);
+                float *dst =
+                    t + (sub.z0 + z - tz * TILE_SIZE) * TILE_SIZE + (sub.x0 - tx * TILE_SIZE);
                 for (int64_t x = 0; x < pw; x++) {
                     const float *c = win + (2 * z) * cw + 2 * x;
                     float d;
@@ -132,10 +138,11 @@ int edit_mips_update(edit *e, og_error *err) {
         }
         if (!have) continue;
         for (int level = 1; level <= top; level++) {
-            grid_rect pr = planet ? (grid_rect){floor_div(r.x0, 2), floor_div(r.z0, 2),
-                                                floor_div(r.x1 - 1, 2) + 1, floor_div(r.z1 - 1, 2) + 1}
-                                  : (grid_rect){-floor_div(-(r.x0 - 1), 2), -floor_div(-(r.z0 - 1), 2),
-                                                floor_div(r.x1, 2) + 1, floor_div(r.z1, 2) + 1};
+            grid_rect pr = planet
+                               ? (grid_rect){floor_div(r.x0, 2), floor_div(r.z0, 2),
+                                             floor_div(r.x1 - 1, 2) + 1, floor_div(r.z1 - 1, 2) + 1}
+                               : (grid_rect){-floor_div(-(r.x0 - 1), 2), -floor_div(-(r.z0 - 1), 2),
+                                             floor_div(r.x1, 2) + 1, floor_div(r.z1, 2) + 1};
             if (extent > 0) {
                 int64_t ext = planet ? extent >> level : ((extent - 1) >> level) + 1;
                 if (ext < 1) break;
@@ -144,7 +151,8 @@ int edit_mips_update(edit *e, og_error *err) {
             if (grid_rect_empty(pr)) break;
             level_job job = {.e = e, .face = face, .level = level, .planet = planet, .parents = pr};
             if (extent > 0)
-                job.child_extent = planet ? extent >> (level - 1) : ((extent - 1) >> (level - 1)) + 1;
+                job.child_extent =
+                    planet ? extent >> (level - 1) : ((extent - 1) >> (level - 1)) + 1;
             job.ptx0 = floor_div(pr.x0, TILE_SIZE);
             job.ptz0 = floor_div(pr.z0, TILE_SIZE);
             job.ptw = floor_div(pr.x1 - 1, TILE_SIZE) - job.ptx0 + 1;

@@ -20,8 +20,9 @@ typedef struct rows_job {
 static int rows_task(void *user, int task, og_error *err) {
     rows_job *j = user;
     int64_t tx = j->tx0 + task % j->tw, tz = j->tz0 + task / j->tw;
-    grid_rect t = grid_rect_intersect(
-        j->r, (grid_rect){tx * TILE_SIZE, tz * TILE_SIZE, (tx + 1) * TILE_SIZE, (tz + 1) * TILE_SIZE});
+    grid_rect t =
+        grid_rect_intersect(j->r, (grid_rect){tx * TILE_SIZE, tz * TILE_SIZE, (tx + 1) * TILE_SIZE,
+                                              (tz + 1) * TILE_SIZE});
     if (grid_rect_empty(t) || (j->wanted && !j->wanted(j->user, t))) return 0;
     tile_key key = {j->g->layer, j->g->face, 0, (int32_t)tx, (int32_t)tz};
     tile_view v;

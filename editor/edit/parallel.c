@@ -10,9 +10,9 @@ static struct {
     pthread_once_t once;
     pthread_mutex_t lock;
     pthread_cond_t start, done;
-    int threads;     // including the caller
+    int threads; // including the caller
     unsigned generation;
-    int busy;        // workers still inside the current job
+    int busy; // workers still inside the current job
     parallel_task_fn fn;
     void *user;
     int tasks;
@@ -48,7 +48,8 @@ static void *worker(void *arg) {
     unsigned seen = 0;
     pthread_mutex_lock(&pool.lock);
     for (;;) {
-        while (pool.generation == seen) pthread_cond_wait(&pool.start, &pool.lock);
+        while (pool.generation == seen)
+            pthread_cond_wait(&pool.start, &pool.lock);
         seen = pool.generation;
         pthread_mutex_unlock(&pool.lock);
         drain();
@@ -104,7 +105,8 @@ int parallel_run(int tasks, parallel_task_fn fn, void *user, og_error *err) {
     pthread_mutex_unlock(&pool.lock);
     drain();
     pthread_mutex_lock(&pool.lock);
-    while (pool.busy > 0) pthread_cond_wait(&pool.done, &pool.lock);
+    while (pool.busy > 0)
+        pthread_cond_wait(&pool.done, &pool.lock);
     int failed = pool.failed;
     pool.first = NULL;
     pthread_mutex_unlock(&pool.lock);

@@ -69,7 +69,8 @@ void gen_fractal_tile(const world_params *p, tile_key key, float *out) {
         }
         gen_fractal_grid2(&f, xs, TILE_SIZE, zs, TILE_SIZE, out);
         if (shape) {
-            for (int i = 0; i < TILE_SIZE; i++) xs[i] *= 0.5, zs[i] *= 0.5;
+            for (int i = 0; i < TILE_SIZE; i++)
+                xs[i] *= 0.5, zs[i] *= 0.5;
             gen_fractal_grid2(&sf, xs, TILE_SIZE, zs, TILE_SIZE, shape);
         }
     } else {
@@ -86,7 +87,8 @@ void gen_fractal_tile(const world_params *p, tile_key key, float *out) {
         }
         gen_fractal_points3(&f, xyz, TILE_SAMPLES, out);
         if (shape) {
-            for (size_t k = 0; k < 3 * (size_t)TILE_SAMPLES; k++) xyz[k] *= 0.5;
+            for (size_t k = 0; k < 3 * (size_t)TILE_SAMPLES; k++)
+                xyz[k] *= 0.5;
             gen_fractal_points3(&sf, xyz, TILE_SAMPLES, shape);
         }
         free(xyz);
@@ -100,29 +102,40 @@ void gen_fractal_tile(const world_params *p, tile_key key, float *out) {
 
 int gen_tile(const world_params *p, tile_key key, void *out) {
     int faces = p->kind == WORLD_PLANET ? 6 : 1;
-    if (key.face < 0 || key.face >= faces || key.level < 0 || key.level > TILE_MAX_LEVEL)
-        return -1;
+    if (key.face < 0 || key.face >= faces || key.level < 0 || key.level > TILE_MAX_LEVEL) return -1;
     switch (key.layer) {
     case TILE_LAYER_DETAIL: // offsets and their slopes are zero until edited
-    case TILE_LAYER_DETAIL_PD: memset(out, 0, tile_layer_bytes((tile_layer)key.layer)); return 0;
+    case TILE_LAYER_DETAIL_PD:
+        memset(out, 0, tile_layer_bytes((tile_layer)key.layer));
+        return 0;
     case TILE_LAYER_MATERIAL: {
         uint8_t *w = out;
         memset(w, 0, tile_layer_bytes(TILE_LAYER_MATERIAL));
-        for (size_t k = 0; k < TILE_SAMPLES; k++) w[k * TILE_MATERIALS] = 255;
+        for (size_t k = 0; k < TILE_SAMPLES; k++)
+            w[k * TILE_MATERIALS] = 255;
         return 0;
     }
-    case TILE_LAYER_COARSE: break;
-    default: return -1;
+    case TILE_LAYER_COARSE:
+        break;
+    default:
+        return -1;
     }
     float *h = out;
     switch (p->generator) {
     case GEN_FBM:
     case GEN_FBM_ADVANCED:
-    case GEN_RIDGED: gen_fractal_tile(p, key, h); break;
-    case GEN_DIAMOND_SQUARE: gen_diamond_square_tile(p, key, h); break;
-    case GEN_FAULTS: gen_faults_tile(p, key, h); break;
+    case GEN_RIDGED:
+        gen_fractal_tile(p, key, h);
+        break;
+    case GEN_DIAMOND_SQUARE:
+        gen_diamond_square_tile(p, key, h);
+        break;
+    case GEN_FAULTS:
+        gen_faults_tile(p, key, h);
+        break;
     default:
-        for (size_t k = 0; k < TILE_SAMPLES; k++) h[k] = (float)p->base_height;
+        for (size_t k = 0; k < TILE_SAMPLES; k++)
+            h[k] = (float)p->base_height;
         break;
     }
     return 0;

@@ -33,7 +33,9 @@ typedef struct ds_grid {
     float *v;
 } ds_grid;
 
-static int64_t ceil_div2(int64_t a) { return -world_grid_floor_div(-a, 2); }
+static int64_t ceil_div2(int64_t a) {
+    return -world_grid_floor_div(-a, 2);
+}
 
 static int top_level(const world_params *p) {
     int k = (int)lround(log2(gen_feature_size(p) / p->spacing));
@@ -56,11 +58,14 @@ static void fill_top(const world_params *p, ds_grid *g) {
     double *xs = malloc(sizeof(double) * (size_t)g->nx);
     double *zs = malloc(sizeof(double) * (size_t)g->nz);
     // One noise cell every four top cells: features larger than a single block.
-    for (int64_t i = 0; i < g->nx; i++) xs[i] = (double)(g->x0 + i) * 0.25;
-    for (int64_t j = 0; j < g->nz; j++) zs[j] = (double)(g->z0 + j) * 0.25;
+    for (int64_t i = 0; i < g->nx; i++)
+        xs[i] = (double)(g->x0 + i) * 0.25;
+    for (int64_t j = 0; j < g->nz; j++)
+        zs[j] = (double)(g->z0 + j) * 0.25;
     gen_fractal_grid2(&f, xs, (int)g->nx, zs, (int)g->nz, g->v);
     float amp = (float)(p->max_height * 0.8);
-    for (int64_t k = 0; k < g->nx * g->nz; k++) g->v[k] *= amp;
+    for (int64_t k = 0; k < g->nx * g->nz; k++)
+        g->v[k] *= amp;
     free(xs);
     free(zs);
 }

@@ -17,13 +17,15 @@
 #define FAULT_CELL_METRES 65536.0
 
 typedef struct fault {
-    double cx, cz;   // a point on the line, metres
-    double nx, nz;   // unit normal of the line
-    double reach;    // metres: the fault fades out beyond this distance from (cx, cz)
-    double amp;      // metres, signed
+    double cx, cz; // a point on the line, metres
+    double nx, nz; // unit normal of the line
+    double reach;  // metres: the fault fades out beyond this distance from (cx, cz)
+    double amp;    // metres, signed
 } fault;
 
-static double unit(uint32_t h) { return (double)h * (1.0 / 4294967296.0); } // [0, 1)
+static double unit(uint32_t h) {
+    return (double)h * (1.0 / 4294967296.0);
+} // [0, 1)
 
 static double fault_amplitude(const world_params *p, uint32_t h) {
     int n = p->fault_count > 0 ? p->fault_count : 1;
@@ -69,10 +71,12 @@ static void flat_faults(const world_params *p, tile_key key, float *out) {
     double step = p->spacing * ldexp(1.0, key.level);
     // Faults are cell-sized features: they fade out as the sample step nears half a
     // cell (below Nyquist), which also keeps the coarsest levels cheap.
-    double band = (FAULT_CELL_METRES / 2.0 - step) / (FAULT_CELL_METRES / 2.0 - FAULT_CELL_METRES / 8.0);
+    double band =
+        (FAULT_CELL_METRES / 2.0 - step) / (FAULT_CELL_METRES / 2.0 - FAULT_CELL_METRES / 8.0);
     band = band < 0.0 ? 0.0 : (band > 1.0 ? 1.0 : band);
     if (band == 0.0) {
-        for (size_t k = 0; k < TILE_SAMPLES; k++) out[k] = 0.0f;
+        for (size_t k = 0; k < TILE_SAMPLES; k++)
+            out[k] = 0.0f;
         return;
     }
     double width = fmax(FAULT_CELL_METRES / 1024.0, 2.0 * step);
@@ -116,7 +120,8 @@ static void flat_faults(const world_params *p, tile_key key, float *out) {
             }
         }
     }
-    for (size_t k = 0; k < TILE_SAMPLES; k++) out[k] = (float)acc[k];
+    for (size_t k = 0; k < TILE_SAMPLES; k++)
+        out[k] = (float)acc[k];
     free(faults);
     free(acc);
 }

@@ -15,15 +15,28 @@ void world_grid_face_direction(int face, double s, double t, double dir[3]) {
     double a = tan(s * (M_PI / 4.0)), b = tan(t * (M_PI / 4.0));
     double v[3];
     switch (face) {
-    case 0: v[0] = 1, v[1] = b, v[2] = -a; break;
-    case 1: v[0] = -1, v[1] = b, v[2] = a; break;
-    case 2: v[0] = a, v[1] = 1, v[2] = -b; break;
-    case 3: v[0] = a, v[1] = -1, v[2] = b; break;
-    case 4: v[0] = a, v[1] = b, v[2] = 1; break;
-    default: v[0] = -a, v[1] = b, v[2] = -1; break;
+    case 0:
+        v[0] = 1, v[1] = b, v[2] = -a;
+        break;
+    case 1:
+        v[0] = -1, v[1] = b, v[2] = a;
+        break;
+    case 2:
+        v[0] = a, v[1] = 1, v[2] = -b;
+        break;
+    case 3:
+        v[0] = a, v[1] = -1, v[2] = b;
+        break;
+    case 4:
+        v[0] = a, v[1] = b, v[2] = 1;
+        break;
+    default:
+        v[0] = -a, v[1] = b, v[2] = -1;
+        break;
     }
     double len = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    for (int k = 0; k < 3; k++) dir[k] = v[k] / len;
+    for (int k = 0; k < 3; k++)
+        dir[k] = v[k] / len;
 }
 
 double world_grid_face_coord(const world_params *p, int level, int64_t i) {
@@ -32,8 +45,12 @@ double world_grid_face_coord(const world_params *p, int level, int64_t i) {
     return ((double)i + 0.5) * cell / n * 2.0 - 1.0;
 }
 
-static int64_t min64(int64_t a, int64_t b) { return a < b ? a : b; }
-static int64_t max64(int64_t a, int64_t b) { return a > b ? a : b; }
+static int64_t min64(int64_t a, int64_t b) {
+    return a < b ? a : b;
+}
+static int64_t max64(int64_t a, int64_t b) {
+    return a > b ? a : b;
+}
 
 grid_rect grid_rect_intersect(grid_rect a, grid_rect b) {
     return (grid_rect){max64(a.x0, b.x0), max64(a.z0, b.z0), min64(a.x1, b.x1), min64(a.z1, b.z1)};
@@ -42,4 +59,3 @@ grid_rect grid_rect_intersect(grid_rect a, grid_rect b) {
 grid_rect grid_rect_union(grid_rect a, grid_rect b) {
     return (grid_rect){min64(a.x0, b.x0), min64(a.z0, b.z0), max64(a.x1, b.x1), max64(a.z1, b.z1)};
 }
-

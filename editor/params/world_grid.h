@@ -1,8 +1,8 @@
 // Where samples are: the mapping from (face, level, tile, sample) to positions.
 //
 // Flat worlds: coarse sample (gx, gz) sits at world (gx * spacing, gz * spacing) metres;
-// a level-L tile's sample (i, j) is coarse sample ((tx*TILE_SIZE + i) << L, (ty*TILE_SIZE + j) << L),
-// so every mip sample coincides with a level-0 sample.
+// a level-L tile's sample (i, j) is coarse sample ((tx*TILE_SIZE + i) << L, (ty*TILE_SIZE + j) <<
+// L), so every mip sample coincides with a level-0 sample.
 //
 // Planets: six cube faces of face_samples x face_samples cells each; a level-L sample
 // is the centre of the 2^L x 2^L block of level-0 cells it covers (box-filter aligned),
@@ -41,7 +41,9 @@ typedef struct grid_rect {
     int64_t x0, z0, x1, z1;
 } grid_rect;
 
-static inline int grid_rect_empty(grid_rect r) { return r.x0 >= r.x1 || r.z0 >= r.z1; }
+static inline int grid_rect_empty(grid_rect r) {
+    return r.x0 >= r.x1 || r.z0 >= r.z1;
+}
 grid_rect grid_rect_intersect(grid_rect a, grid_rect b);
 grid_rect grid_rect_union(grid_rect a, grid_rect b); // of non-empty rects
 

@@ -27,24 +27,24 @@ typedef enum gen_kind {
 typedef struct world_params {
     world_kind kind;
     gen_kind generator;
-    int64_t seed;        // any integer; the generators use it modulo 2^32
-    double octaves;      // fBm octave count, fractional allowed (Kahoun 2010)
-    double w_factor;     // fBm gain: weight multiplier per octave
-    double exponent;     // fBm lacunarity: frequency multiplier per octave
-    double max_height;   // metres: generated heights lie in (-max_height, max_height)
-    double ocean_level;  // metres above the datum where the water plane sits
-    double radius;       // planets: metres from the centre to the datum
-    double omega;        // planets: angular velocity, radians per second (Kahoun 2010)
-    double spacing;      // metres between coarse samples
-    int64_t size;        // flat worlds: coarse samples per side; 0 = unbounded
+    int64_t seed;         // any integer; the generators use it modulo 2^32
+    double octaves;       // fBm octave count, fractional allowed (Kahoun 2010)
+    double w_factor;      // fBm gain: weight multiplier per octave
+    double exponent;      // fBm lacunarity: frequency multiplier per octave
+    double max_height;    // metres: generated heights lie in (-max_height, max_height)
+    double ocean_level;   // metres above the datum where the water plane sits
+    double radius;        // planets: metres from the centre to the datum
+    double omega;         // planets: angular velocity, radians per second (Kahoun 2010)
+    double spacing;       // metres between coarse samples
+    int64_t size;         // flat worlds: coarse samples per side; 0 = unbounded
     int32_t detail_ratio; // detail samples per coarse sample, per side
-    double feature_size; // metres: wavelength of the lowest octave; 0 = automatic
-    double base_height;  // metres added to every generated height (flat generator's height)
-    double roughness;    // diamond-square: first displacement, as a fraction of max_height
-    double smoothing;    // diamond-square: roughness multiplier per subdivision
-    double ridge_offset; // ridged multifractal: offset subtracted from |noise|
-    int32_t fault_count; // faults: number of fault lines per 64 km x 64 km cell
-    char tiles[1024];    // tile store path as written (relative to the file); "" = name.tiles
+    double feature_size;  // metres: wavelength of the lowest octave; 0 = automatic
+    double base_height;   // metres added to every generated height (flat generator's height)
+    double roughness;     // diamond-square: first displacement, as a fraction of max_height
+    double smoothing;     // diamond-square: roughness multiplier per subdivision
+    double ridge_offset;  // ridged multifractal: offset subtracted from |noise|
+    int32_t fault_count;  // faults: number of fault lines per 64 km x 64 km cell
+    char tiles[1024];     // tile store path as written (relative to the file); "" = name.tiles
 } world_params;
 
 // The built-in defaults for a kind (a pleasant landscape or an Earth-like planet).

@@ -6,9 +6,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *tool_names[BRUSH_TOOL_COUNT] = {"raise", "smooth", "flatten", "set", "ramp",
-                                                   "noise", "terrace", "thermal", "hydraulic",
-                                                   "paint"};
+static const char *tool_names[BRUSH_TOOL_COUNT] = {"raise",     "smooth", "flatten", "set",
+                                                   "ramp",      "noise",  "terrace", "thermal",
+                                                   "hydraulic", "paint"};
 static const char *falloff_names[FALLOFF_COUNT] = {"smooth", "linear", "spherical", "constant",
                                                    "curve"};
 static const char *flatten_names[] = {"both", "raise", "lower"};
@@ -53,9 +53,12 @@ float brush_falloff_weight(const brush *b, float t) {
     if (!(t < 1.0f)) return 0.0f;
     if (t < 0.0f) t = 0.0f;
     switch (b->falloff) {
-    case FALLOFF_LINEAR: return 1.0f - t;
-    case FALLOFF_SPHERICAL: return sqrtf(1.0f - t * t);
-    case FALLOFF_CONSTANT: return 1.0f;
+    case FALLOFF_LINEAR:
+        return 1.0f - t;
+    case FALLOFF_SPHERICAL:
+        return sqrtf(1.0f - t * t);
+    case FALLOFF_CONSTANT:
+        return 1.0f;
     case FALLOFF_CURVE: {
         int n = b->curve_count;
         if (t <= b->curve_t[0]) return b->curve_v[0];
@@ -67,11 +70,10 @@ float brush_falloff_weight(const brush *b, float t) {
             }
         return b->curve_v[n - 1];
     }
-    default: return 1.0f - t * t * (3.0f - 2.0f * t);
+    default:
+        return 1.0f - t * t * (3.0f - 2.0f * t);
     }
 }
-
-
 
 static int parse_curve(brush *b, const char *value, og_error *err) {
     // "t:v,t:v,..." with t rising from 0 to 1.
@@ -84,14 +86,18 @@ static int parse_curve(brush *b, const char *value, og_error *err) {
         double t, v;
         const char *end;
         if (parse_scan_f64(p, &t, &end) != 0 || *end != ':')
-            return og_error_set(err, "curve: expected t:value pairs like 0:1,0.5:0.7,1:0, got '%s'", value);
+            return og_error_set(err, "curve: expected t:value pairs like 0:1,0.5:0.7,1:0, got '%s'",
+                                value);
         p = end + 1;
         if (parse_scan_f64(p, &v, &end) != 0 || (*end && *end != ','))
-            return og_error_set(err, "curve: expected t:value pairs like 0:1,0.5:0.7,1:0, got '%s'", value);
+            return og_error_set(err, "curve: expected t:value pairs like 0:1,0.5:0.7,1:0, got '%s'",
+                                value);
         if (!(t >= 0 && t <= 1) || !(v >= 0 && v <= 1))
-            return og_error_set(err, "curve: point %d (%g:%g) must have t and value in [0, 1]", n + 1, t, v);
+            return og_error_set(err, "curve: point %d (%g:%g) must have t and value in [0, 1]",
+                                n + 1, t, v);
         if (n && !(t > ts[n - 1]))
-            return og_error_set(err, "curve: point %d: t must rise (%g after %g)", n + 1, t, ts[n - 1]);
+            return og_error_set(err, "curve: point %d: t must rise (%g after %g)", n + 1, t,
+                                ts[n - 1]);
         ts[n] = (float)t;
         vs[n] = (float)v;
         n++;
@@ -118,7 +124,9 @@ int brush_set(brush *b, const char *key, const char *value, og_error *err) {
         int f = -1;
         for (int i = 0; i < FALLOFF_COUNT; i++)
             if (strcmp(value, falloff_names[i]) == 0) f = i;
-        if (f < 0) return og_error_set(err, "falloff: '%s' is not smooth, linear, spherical, constant or curve", value);
+        if (f < 0)
+            return og_error_set(
+                err, "falloff: '%s' is not smooth, linear, spherical, constant or curve", value);
         if (f == FALLOFF_CURVE && n.curve_count < 2)
             return og_error_set(err, "falloff: give the points first with curve=t:v,t:v,...");
         n.falloff = (brush_falloff)f;
@@ -126,14 +134,19 @@ int brush_set(brush *b, const char *key, const char *value, og_error *err) {
         rc = parse_curve(&n, value, err);
         if (rc == 0) n.falloff = FALLOFF_CURVE;
     } else if (strcmp(key, "invert") == 0) {
-        if (strcmp(value, "1") && strcmp(value, "0") && strcmp(value, "true") && strcmp(value, "false"))
+        if (strcmp(value, "1") && strcmp(value, "0") && strcmp(value, "true") &&
+            strcmp(value, "false"))
             return og_error_set(err, "invert: '%s' is not 0, 1, true or false", value);
         n.invert = strcmp(value, "1") == 0 || strcmp(value, "true") == 0;
     } else if (strcmp(key, "target") == 0 || strcmp(key, "layer") == 0) {
-        if (strcmp(value, "coarse") == 0) n.target = TILE_LAYER_COARSE;
-        else if (strcmp(value, "detail") == 0) n.target = TILE_LAYER_DETAIL;
-        else return og_error_set(err, "%s: '%s' is not coarse or detail", key, value);
-        if (n.tool == BRUSH_PAINT) return og_error_set(err, "%s: paint always edits the material layer", key);
+        if (strcmp(value, "coarse") == 0)
+            n.target = TILE_LAYER_COARSE;
+        else if (strcmp(value, "detail") == 0)
+            n.target = TILE_LAYER_DETAIL;
+        else
+            return og_error_set(err, "%s: '%s' is not coarse or detail", key, value);
+        if (n.tool == BRUSH_PAINT)
+            return og_error_set(err, "%s: paint always edits the material layer", key);
     } else if (strcmp(key, "face") == 0) {
         rc = parse_integer_in(value, key, 0, 5, &v, err);
         n.face = (int)v;
@@ -213,19 +226,25 @@ void brush_print(const brush *b, FILE *o) {
     fprintf(o, "spacing=%.17g\ninvert=%d\ntarget=%s\nface=%d\n", b->spacing, b->invert,
             tile_layer_name(b->target), b->face);
     switch (b->tool) {
-    case BRUSH_RAISE: fprintf(o, "amount=%.17g\n", b->amount); break;
+    case BRUSH_RAISE:
+        fprintf(o, "amount=%.17g\n", b->amount);
+        break;
     case BRUSH_FLATTEN:
         fprintf(o, "mode=%s\n", flatten_names[b->flatten]);
-        if (b->has_height) fprintf(o, "height=%.17g\n", b->height);
-        else fprintf(o, "height=(under the stroke start)\n");
+        if (b->has_height)
+            fprintf(o, "height=%.17g\n", b->height);
+        else
+            fprintf(o, "height=(under the stroke start)\n");
         break;
     case BRUSH_SET:
-        if (b->has_height) fprintf(o, "height=%.17g\n", b->height);
-        else fprintf(o, "height=(not set)\n");
+        if (b->has_height)
+            fprintf(o, "height=%.17g\n", b->height);
+        else
+            fprintf(o, "height=(not set)\n");
         break;
     case BRUSH_NOISE:
-        fprintf(o, "amount=%.17g\nscale=%.17g\noctaves=%.17g\nseed=%u\n", b->amount,
-                b->noise_scale, b->noise_octaves, b->seed);
+        fprintf(o, "amount=%.17g\nscale=%.17g\noctaves=%.17g\nseed=%u\n", b->amount, b->noise_scale,
+                b->noise_octaves, b->seed);
         break;
     case BRUSH_TERRACE:
         fprintf(o, "step=%.17g\nsharpness=%.17g\n", b->terrace_step, b->terrace_sharpness);
@@ -234,11 +253,16 @@ void brush_print(const brush *b, FILE *o) {
         fprintf(o, "talus=%g\niterations=%d\n", b->thermal.talus_deg, b->thermal.iterations);
         break;
     case BRUSH_HYDRAULIC:
-        fprintf(o, "droplets=%d\nerosion=%g\ndeposition=%g\nevaporation=%g\ncapacity=%g\ninertia=%g\nseed=%u\n",
+        fprintf(o,
+                "droplets=%d\nerosion=%g\ndeposition=%g\nevaporation=%g\ncapacity=%g\ninertia=%"
+                "g\nseed=%u\n",
                 b->hydraulic.droplets, b->hydraulic.erosion, b->hydraulic.deposition,
                 b->hydraulic.evaporation, b->hydraulic.capacity, b->hydraulic.inertia, b->seed);
         break;
-    case BRUSH_PAINT: fprintf(o, "material=%d\n", b->material); break;
-    default: break;
+    case BRUSH_PAINT:
+        fprintf(o, "material=%d\n", b->material);
+        break;
+    default:
+        break;
     }
 }

@@ -49,22 +49,22 @@ typedef struct brush {
     brush_falloff falloff;
     int curve_count; // curve: t ascending 0..1, value 0..1
     float curve_t[BRUSH_CURVE_MAX], curve_v[BRUSH_CURVE_MAX];
-    double spacing;  // dab spacing along a stroke, as a fraction of the radius
+    double spacing; // dab spacing along a stroke, as a fraction of the radius
     int invert;
     tile_layer target; // coarse or detail (height tools); paint always edits materials
     int face;          // planet face edited (0 on flat worlds)
     double amount;     // raise, noise: metres per dab at full strength
     int has_height;
-    double height;     // flatten (optional), set (required): target height in metres
+    double height; // flatten (optional), set (required): target height in metres
     flatten_mode flatten;
-    double noise_scale;   // metres per noise cell
+    double noise_scale; // metres per noise cell
     double noise_octaves;
-    uint32_t seed;        // noise and hydraulic
-    double terrace_step;  // metres
+    uint32_t seed;            // noise and hydraulic
+    double terrace_step;      // metres
     double terrace_sharpness; // 0 (ramps) .. 1 (flat treads, vertical risers)
     thermal_params thermal;
     hydraulic_params hydraulic; // droplets = per dab
-    int material;        // paint: 0 .. TILE_MATERIALS-1
+    int material;               // paint: 0 .. TILE_MATERIALS-1
 } brush;
 
 const char *brush_tool_name(brush_tool t);

@@ -38,10 +38,13 @@ HOT_LOOP static void smooth_weights(float fdx0, int k0, float dz2, float inv_r, 
 }
 
 HOT_LOOP static void add_weighted(float *row, const float *w, float a, int64_t n) {
-    for (int64_t i = 0; i < n; i++) row[i] = keep_finite(row[i] + w[i] * a, row[i]);
+    for (int64_t i = 0; i < n; i++)
+        row[i] = keep_finite(row[i] + w[i] * a, row[i]);
 }
 
-static int is_ramp(const brush_dab *d) { return d->brush->tool == BRUSH_RAMP; }
+static int is_ramp(const brush_dab *d) {
+    return d->brush->tool == BRUSH_RAMP;
+}
 
 // Distance (samples) from the ramp's segment, and where along it (0-1) x, z projects.
 static double ramp_distance(const brush_dab *d, double x, double z, double *along) {
@@ -56,9 +59,9 @@ static double ramp_distance(const brush_dab *d, double x, double z, double *alon
 grid_rect brush_dab_rect(const brush_dab *d) {
     double r = d->radius;
     if (is_ramp(d)) {
-        return (grid_rect){(int64_t)ceil(fmin(d->ax, d->bx) - r), (int64_t)ceil(fmin(d->az, d->bz) - r),
-                           (int64_t)floor(fmax(d->ax, d->bx) + r) + 1,
-                           (int64_t)floor(fmax(d->az, d->bz) + r) + 1};
+        return (grid_rect){
+            (int64_t)ceil(fmin(d->ax, d->bx) - r), (int64_t)ceil(fmin(d->az, d->bz) - r),
+            (int64_t)floor(fmax(d->ax, d->bx) + r) + 1, (int64_t)floor(fmax(d->az, d->bz) + r) + 1};
     }
     return (grid_rect){(int64_t)ceil(d->cx - r), (int64_t)ceil(d->cz - r),
                        (int64_t)floor(d->cx + r) + 1, (int64_t)floor(d->cz + r) + 1};
@@ -98,7 +101,8 @@ static float terrace(const brush *b, float h) {
 }
 
 // Pointwise tools on one row span of heights.
-static void height_row(const brush_dab *d, float *row, int64_t z, int64_t x0, int64_t x1, float *w) {
+static void height_row(const brush_dab *d, float *row, int64_t z, int64_t x0, int64_t x1,
+                       float *w) {
     const brush *b = d->brush;
     row_weights(d, z, x0, x1, w);
     int64_t n = x1 - x0;
@@ -146,7 +150,8 @@ static void height_row(const brush_dab *d, float *row, int64_t z, int64_t x0, in
             row[i] = keep_finite(h + w[i] * (terrace(b, h) - h), h);
         }
         break;
-    default: break;
+    default:
+        break;
     }
 }
 
@@ -154,17 +159,22 @@ static void height_row(const brush_dab *d, float *row, int64_t z, int64_t x0, in
 // keeping the 8 weights summing to exactly 255 (largest remainder rounding).
 static void paint_sample(uint8_t *m8, int m, float w, int invert) {
     int sum = 0;
-    for (int c = 0; c < TILE_MATERIALS; c++) sum += m8[c];
+    for (int c = 0; c < TILE_MATERIALS; c++)
+        sum += m8[c];
     double want[TILE_MATERIALS];
     double old_m = sum ? m8[m] * 255.0 / sum : 0.0;
     double new_m = invert ? old_m * (1.0 - w) : old_m + w * (255.0 - old_m);
     double rest_old = (sum ? 255.0 : 0.0) - old_m, rest_new = 255.0 - new_m;
     for (int c = 0; c < TILE_MATERIALS; c++) {
-        if (c == m) want[c] = new_m;
-        else if (rest_old > 0) want[c] = (sum ? m8[c] * 255.0 / sum : 0) * rest_new / rest_old;
-        else want[c] = 0;
+        if (c == m)
+            want[c] = new_m;
+        else if (rest_old > 0)
+            want[c] = (sum ? m8[c] * 255.0 / sum : 0) * rest_new / rest_old;
+        else
+            want[c] = 0;
     }
-    if (rest_old <= 0 && rest_new > 0) want[m == 0 ? 1 : 0] += rest_new; // removed from a pure sample
+    if (rest_old <= 0 && rest_new > 0)
+        want[m == 0 ? 1 : 0] += rest_new; // removed from a pure sample
     int total = 0;
     double frac[TILE_MATERIALS];
     int out[TILE_MATERIALS];
@@ -181,13 +191,16 @@ static void paint_sample(uint8_t *m8, int m, float w, int invert) {
         frac[best] = -1;
         total++;
     }
-    for (int c = 0; c < TILE_MATERIALS; c++) m8[c] = (uint8_t)out[c];
+    for (int c = 0; c < TILE_MATERIALS; c++)
+        m8[c] = (uint8_t)out[c];
 }
 
-static void paint_row(const brush_dab *d, uint8_t *row, int64_t z, int64_t x0, int64_t x1, float *w) {
+static void paint_row(const brush_dab *d, uint8_t *row, int64_t z, int64_t x0, int64_t x1,
+                      float *w) {
     row_weights(d, z, x0, x1, w);
     for (int64_t i = 0; i < x1 - x0; i++)
-        if (w[i] > 0.0f) paint_sample(row + i * TILE_MATERIALS, d->brush->material, w[i], d->brush->invert);
+        if (w[i] > 0.0f)
+            paint_sample(row + i * TILE_MATERIALS, d->brush->material, w[i], d->brush->invert);
 }
 
 static int is_pointwise(const brush *b) {
@@ -198,10 +211,14 @@ static int is_pointwise(const brush *b) {
 
 static int halo_of(const brush_dab *d) {
     switch (d->brush->tool) {
-    case BRUSH_SMOOTH: return 2 * (int)fmax(1.0, floor(d->radius / 8.0)); // two box passes
-    case BRUSH_THERMAL: return 1;
-    case BRUSH_HYDRAULIC: return (int)ceil(d->brush->hydraulic.radius_cells) + 2;
-    default: return 0;
+    case BRUSH_SMOOTH:
+        return 2 * (int)fmax(1.0, floor(d->radius / 8.0)); // two box passes
+    case BRUSH_THERMAL:
+        return 1;
+    case BRUSH_HYDRAULIC:
+        return (int)ceil(d->brush->hydraulic.radius_cells) + 2;
+    default:
+        return 0;
     }
 }
 
@@ -210,23 +227,28 @@ static int halo_of(const brush_dab *d) {
 // vectorise. Rows are blurred the same way on a transposed copy.
 static void transpose(const float *src, float *dst, int64_t w, int64_t h) {
     for (int64_t z = 0; z < h; z++)
-        for (int64_t x = 0; x < w; x++) dst[x * h + z] = src[z * w + x];
+        for (int64_t x = 0; x < w; x++)
+            dst[x * h + z] = src[z * w + x];
 }
 
 HOT_LOOP static void box_columns(const float *src, float *dst, int64_t w, int64_t h, int k,
                                  double *sum) {
     double inv = 1.0 / (2 * k + 1);
-    for (int64_t x = 0; x < w; x++) sum[x] = 0.0;
+    for (int64_t x = 0; x < w; x++)
+        sum[x] = 0.0;
     for (int64_t i = -k; i <= k; i++) {
         const float *s = src + (i < 0 ? 0 : i >= h ? h - 1 : i) * w;
-        for (int64_t x = 0; x < w; x++) sum[x] += s[x];
+        for (int64_t x = 0; x < w; x++)
+            sum[x] += s[x];
     }
     for (int64_t i = 0; i < h; i++) {
         float *o = dst + i * w;
-        for (int64_t x = 0; x < w; x++) o[x] = (float)(sum[x] * inv);
+        for (int64_t x = 0; x < w; x++)
+            o[x] = (float)(sum[x] * inv);
         int64_t add = i + k + 1, sub = i - k;
         const float *a = src + (add >= h ? h - 1 : add) * w, *r = src + (sub < 0 ? 0 : sub) * w;
-        for (int64_t x = 0; x < w; x++) sum[x] += (double)a[x] - (double)r[x];
+        for (int64_t x = 0; x < w; x++)
+            sum[x] += (double)a[x] - (double)r[x];
     }
 }
 
@@ -277,7 +299,8 @@ static int neighbourhood(const brush_dab *d, float *heights, float *weight, grid
         p.seed = d->seed;
         erosion_hydraulic(&g, &p, NULL);
     }
-    for (int64_t i = 0; i < w * h; i++) heights[i] = keep_finite(heights[i], 0.0f);
+    for (int64_t i = 0; i < w * h; i++)
+        heights[i] = keep_finite(heights[i], 0.0f);
     return 0;
 }
 

@@ -10,15 +10,15 @@
 
 typedef struct brush_dab {
     const brush *brush;
-    double cx, cz;   // centre, in samples
-    double radius;   // in samples
-    float strength;  // brush strength x pressure
-    double spacing;  // metres per sample of the edited layer
-    float target;    // flatten / set: height to blend toward
+    double cx, cz;  // centre, in samples
+    double radius;  // in samples
+    float strength; // brush strength x pressure
+    double spacing; // metres per sample of the edited layer
+    float target;   // flatten / set: height to blend toward
     // ramp: from (ax, az) at height ha to (bx, bz) at hb, in samples
     double ax, az, bx, bz;
     float ha, hb;
-    uint64_t seed;   // hydraulic: this dab's droplets
+    uint64_t seed; // hydraulic: this dab's droplets
 } brush_dab;
 
 // The samples a dab can change (before clipping to the world).

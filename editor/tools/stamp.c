@@ -17,7 +17,8 @@
 #include <unistd.h>
 
 static const char *mode_names[STAMP_MODE_COUNT] = {"add", "subtract", "max", "min", "blend"};
-static const char *image_exts[] = {".png", ".tif", ".tiff", ".exr", ".jpg", ".jpeg", ".pgm", ".hdr"};
+static const char *image_exts[] = {".png", ".tif",  ".tiff", ".exr",
+                                   ".jpg", ".jpeg", ".pgm",  ".hdr"};
 #define IMAGE_EXT_COUNT (sizeof image_exts / sizeof image_exts[0])
 
 const char *stamp_mode_name(stamp_mode m) {
@@ -43,16 +44,22 @@ int stamp_placement_set(stamp_placement *p, const char *key, const char *value, 
         return og_error_set(err, "mode: '%s' is not add, subtract, max, min or blend", value);
     }
     if (strcmp(key, "layer") == 0 || strcmp(key, "target") == 0) {
-        if (strcmp(value, "coarse") == 0) p->layer = TILE_LAYER_COARSE;
-        else if (strcmp(value, "detail") == 0) p->layer = TILE_LAYER_DETAIL;
-        else return og_error_set(err, "%s: '%s' is not coarse or detail", key, value);
+        if (strcmp(value, "coarse") == 0)
+            p->layer = TILE_LAYER_COARSE;
+        else if (strcmp(value, "detail") == 0)
+            p->layer = TILE_LAYER_DETAIL;
+        else
+            return og_error_set(err, "%s: '%s' is not coarse or detail", key, value);
         return 0;
     }
     if (strcmp(key, "mirror") == 0) {
         int x = 0, z = 0;
-        if (strcmp(value, "x") == 0) x = 1;
-        else if (strcmp(value, "z") == 0) z = 1;
-        else if (strcmp(value, "xz") == 0 || strcmp(value, "both") == 0) x = z = 1;
+        if (strcmp(value, "x") == 0)
+            x = 1;
+        else if (strcmp(value, "z") == 0)
+            z = 1;
+        else if (strcmp(value, "xz") == 0 || strcmp(value, "both") == 0)
+            x = z = 1;
         else if (strcmp(value, "none") != 0)
             return og_error_set(err, "mirror: '%s' is not none, x, z or xz", value);
         p->mirror_x = x;
@@ -61,19 +68,24 @@ int stamp_placement_set(stamp_placement *p, const char *key, const char *value, 
     }
     if (parse_number(value, key, &v, err) != 0) return -1;
     if (strcmp(key, "scale") == 0) {
-        if (!(v > 0 && v <= 1000)) return og_error_set(err, "scale: expected a number in (0, 1000], got '%g'", v);
+        if (!(v > 0 && v <= 1000))
+            return og_error_set(err, "scale: expected a number in (0, 1000], got '%g'", v);
         p->scale = v;
     } else if (strcmp(key, "rot") == 0 || strcmp(key, "rotation") == 0) {
-        if (!(fabs(v) <= 1e6)) return og_error_set(err, "%s: expected degrees in [-1e6, 1e6], got '%g'", key, v);
+        if (!(fabs(v) <= 1e6))
+            return og_error_set(err, "%s: expected degrees in [-1e6, 1e6], got '%g'", key, v);
         p->rotation = v;
     } else if (strcmp(key, "intensity") == 0) {
-        if (!(fabs(v) <= 1e5)) return og_error_set(err, "intensity: expected metres in [-1e5, 1e5], got '%g'", v);
+        if (!(fabs(v) <= 1e5))
+            return og_error_set(err, "intensity: expected metres in [-1e5, 1e5], got '%g'", v);
         p->intensity = v;
     } else if (strcmp(key, "face") == 0) {
-        if (!(v >= 0 && v <= 5 && v == floor(v))) return og_error_set(err, "face: expected an integer in [0, 5], got '%g'", v);
+        if (!(v >= 0 && v <= 5 && v == floor(v)))
+            return og_error_set(err, "face: expected an integer in [0, 5], got '%g'", v);
         p->face = (int)v;
     } else {
-        return og_error_set(err, "unknown stamp setting '%s' (scale rot mirror intensity mode layer face)", key);
+        return og_error_set(
+            err, "unknown stamp setting '%s' (scale rot mirror intensity mode layer face)", key);
     }
     return 0;
 }
@@ -111,7 +123,8 @@ int stamp_find(const char *name, const char *resource_dir, const char *user_dir,
     if (!strchr(name, '/') && !strchr(name, '.')) {
         if (find_in(dir, name, path, sizeof path) || find_in(user_dir, name, path, sizeof path))
             return load_image(path, name, out, err);
-        return og_error_set(err, "unknown stamp '%s' (see `stamps` for the list, or give an image file)", name);
+        return og_error_set(
+            err, "unknown stamp '%s' (see `stamps` for the list, or give an image file)", name);
     }
     if (access(name, F_OK) != 0) return og_error_set(err, "stamp image '%s' does not exist", name);
     return load_image(name, name, out, err);
@@ -175,10 +188,10 @@ void stamp_list(const char *resource_dir, const char *user_dir, FILE *out) {
 typedef struct stamp_op {
     const stamp_source *s;
     const stamp_placement *p;
-    double spacing;            // metres per sample of the layer
+    double spacing; // metres per sample of the layer
     double cos_r, sin_r;
-    double half_w, half_h;     // metres
-    float base;                // max: lowest, min: highest, blend: centre height
+    double half_w, half_h; // metres
+    float base;            // max: lowest, min: highest, blend: centre height
 } stamp_op;
 
 // Stamp value at sample (x, z), and whether the sample lies inside the footprint.
@@ -198,8 +211,10 @@ static float stamp_value(const stamp_op *o, int64_t x, int64_t z, double *edge) 
     int jx = ix + 1 < o->s->width ? ix + 1 : ix, jy = iy + 1 < o->s->height ? iy + 1 : iy;
     double ax = px - ix, ay = py - iy;
     const float *im = o->s->pixels;
-    double top = im[(size_t)iy * o->s->width + ix] * (1 - ax) + im[(size_t)iy * o->s->width + jx] * ax;
-    double bot = im[(size_t)jy * o->s->width + ix] * (1 - ax) + im[(size_t)jy * o->s->width + jx] * ax;
+    double top =
+        im[(size_t)iy * o->s->width + ix] * (1 - ax) + im[(size_t)iy * o->s->width + jx] * ax;
+    double bot =
+        im[(size_t)jy * o->s->width + ix] * (1 - ax) + im[(size_t)jy * o->s->width + jx] * ax;
     return (float)(top * (1 - ay) + bot * ay);
 }
 
@@ -212,10 +227,18 @@ static void stamp_row(void *user, void *row, int64_t z, int64_t x0, int64_t x1) 
         float a = stamp_value(o, x, z, &edge) * k, old = h[x - x0], v = old;
         if (!(edge < 1.0)) continue;
         switch (o->p->mode) {
-        case STAMP_ADD: v = old + a; break;
-        case STAMP_SUBTRACT: v = old - a; break;
-        case STAMP_MAX: v = fmaxf(old, o->base + a); break;
-        case STAMP_MIN: v = fminf(old, o->base - a); break;
+        case STAMP_ADD:
+            v = old + a;
+            break;
+        case STAMP_SUBTRACT:
+            v = old - a;
+            break;
+        case STAMP_MAX:
+            v = fmaxf(old, o->base + a);
+            break;
+        case STAMP_MIN:
+            v = fminf(old, o->base - a);
+            break;
         default: {
             double t = edge < 0.7 ? 0.0 : (edge - 0.7) / 0.3;
             float m = (float)(1.0 - t * t * (3.0 - 2.0 * t));
@@ -244,8 +267,9 @@ static int make_op(const world_params *params, const stamp_source *s, const stam
     o->half_w = 0.5 * w * p->scale * g->spacing;
     o->half_h = 0.5 * h * p->scale * g->spacing;
     if (fmax(o->half_w, o->half_h) / g->spacing > BRUSH_MAX_RADIUS_SAMPLES)
-        return og_error_set(err, "scale: %g makes the stamp %g samples across; the limit is %g", p->scale,
-                            2 * fmax(o->half_w, o->half_h) / g->spacing, 2 * BRUSH_MAX_RADIUS_SAMPLES);
+        return og_error_set(err, "scale: %g makes the stamp %g samples across; the limit is %g",
+                            p->scale, 2 * fmax(o->half_w, o->half_h) / g->spacing,
+                            2 * BRUSH_MAX_RADIUS_SAMPLES);
     double ex = fabs(o->cos_r) * o->half_w + fabs(o->sin_r) * o->half_h;
     double ez = fabs(o->sin_r) * o->half_w + fabs(o->cos_r) * o->half_h;
     *rect = layer_grid_clip(g, (grid_rect){(int64_t)floor((p->x - ex) / g->spacing),
@@ -275,9 +299,9 @@ static void find_base(stamp_op *o, const float *h, grid_rect r) {
                 centre = v;
             }
         }
-    o->base = o->p->mode == STAMP_MAX ? (isfinite(lo) ? lo : 0)
-            : o->p->mode == STAMP_MIN ? (isfinite(hi) ? hi : 0)
-                                      : centre;
+    o->base = o->p->mode == STAMP_MAX   ? (isfinite(lo) ? lo : 0)
+              : o->p->mode == STAMP_MIN ? (isfinite(hi) ? hi : 0)
+                                        : centre;
 }
 
 int stamp_apply(world *w, const stamp_source *s, const stamp_placement *p, og_error *err) {

@@ -32,13 +32,13 @@ typedef struct stamp_source {
 } stamp_source;
 
 typedef struct stamp_placement {
-    double x, z;        // centre, metres (face-local on planets)
-    double scale;       // times the natural size; > 0
-    double rotation;    // degrees, counter-clockwise seen from above
+    double x, z;     // centre, metres (face-local on planets)
+    double scale;    // times the natural size; > 0
+    double rotation; // degrees, counter-clockwise seen from above
     int mirror_x, mirror_z;
-    double intensity;   // metres of height at stamp value 1
+    double intensity; // metres of height at stamp value 1
     stamp_mode mode;
-    tile_layer layer;   // coarse or detail
+    tile_layer layer; // coarse or detail
     int face;
 } stamp_placement;
 

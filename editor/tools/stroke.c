@@ -20,8 +20,8 @@ struct stroke {
     int started;
     double last_x, last_z, last_p; // metres
     double first_x, first_z;
-    double carry;                  // distance walked since the last dab
-    float target;                  // flatten / set height
+    double carry; // distance walked since the last dab
+    float target; // flatten / set height
     long dabs;
 };
 
@@ -59,7 +59,8 @@ stroke *stroke_begin(world *w, const brush *b, og_error *err) {
     }
     if (b->invert && b->tool != BRUSH_RAISE && b->tool != BRUSH_SMOOTH && b->tool != BRUSH_NOISE &&
         b->tool != BRUSH_PAINT) {
-        og_error_set(err, "invert: has no meaning for %s (it works with raise, smooth, noise and paint)",
+        og_error_set(err,
+                     "invert: has no meaning for %s (it works with raise, smooth, noise and paint)",
                      brush_tool_name(b->tool));
         goto fail;
     }
@@ -141,9 +142,12 @@ static int apply_ramp(stroke *s, og_error *err) {
                    .radius = s->brush.radius * k,
                    .strength = (float)s->brush.strength,
                    .spacing = s->grid.spacing,
-                   .ax = s->first_x * k, .az = s->first_z * k,
-                   .bx = s->last_x * k, .bz = s->last_z * k,
-                   .ha = ha, .hb = hb};
+                   .ax = s->first_x * k,
+                   .az = s->first_z * k,
+                   .bx = s->last_x * k,
+                   .bz = s->last_z * k,
+                   .ha = ha,
+                   .hb = hb};
     s->dabs++;
     return brush_dab_apply(s->edit, &s->grid, &d, err);
 }
@@ -166,4 +170,6 @@ void stroke_cancel(stroke *s) {
     free(s);
 }
 
-long stroke_dab_count(const stroke *s) { return s->dabs; }
+long stroke_dab_count(const stroke *s) {
+    return s->dabs;
+}

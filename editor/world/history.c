@@ -13,8 +13,8 @@ struct history {
     size_t count, cap, position;
     size_t bytes, budget;
     uint64_t next_id;
-    uint64_t floor_id;   // the state reached by the dropped steps (0: the loaded state)
-    uint64_t saved_id;   // the state that was saved last
+    uint64_t floor_id; // the state reached by the dropped steps (0: the loaded state)
+    uint64_t saved_id; // the state that was saved last
     uint64_t dropped_total;
 };
 
@@ -28,7 +28,8 @@ history *history_create(size_t budget_bytes) {
 
 void history_destroy(history *h) {
     if (!h) return;
-    for (size_t i = 0; i < h->count; i++) history_step_free(h->steps[i]);
+    for (size_t i = 0; i < h->count; i++)
+        history_step_free(h->steps[i]);
     free(h->steps);
     free(h);
 }
@@ -45,7 +46,8 @@ history_step *history_step_new(const char *label) {
 
 void history_step_free(history_step *s) {
     if (!s) return;
-    for (size_t i = 0; i < s->tile_count; i++) free(s->tiles[i].delta);
+    for (size_t i = 0; i < s->tile_count; i++)
+        free(s->tiles[i].delta);
     free(s->tiles);
     free(s->dirty);
     free(s);
@@ -55,8 +57,10 @@ void history_step_free(history_step *s) {
 // so the always-equal high bytes of a small change line up for zstd.
 static size_t element_bytes(tile_layer layer) {
     switch (tile_layer_format(layer)) {
-    case TILE_FORMAT_U8X8: return TILE_MATERIALS;
-    default: return 4;
+    case TILE_FORMAT_U8X8:
+        return TILE_MATERIALS;
+    default:
+        return 4;
     }
 }
 
@@ -77,7 +81,8 @@ int history_delta_encode(tile_layer layer, const void *before, const void *after
     }
     const uint8_t *a = before, *b = after;
     for (size_t i = 0; i < n; i++)
-        for (size_t k = 0; k < el; k++) planes[k * n + i] = a[i * el + k] ^ b[i * el + k];
+        for (size_t k = 0; k < el; k++)
+            planes[k * n + i] = a[i * el + k] ^ b[i * el + k];
     size_t comp = ZSTD_compress(out, cap, planes, raw, DELTA_ZSTD_LEVEL);
     free(planes);
     if (ZSTD_isError(comp)) {
@@ -116,7 +121,8 @@ int history_tile_apply(const history_tile *t, void *data) {
     }
     uint8_t *d = data;
     for (size_t i = 0; i < n; i++)
-        for (size_t k = 0; k < el; k++) d[i * el + k] ^= planes[k * n + i];
+        for (size_t k = 0; k < el; k++)
+            d[i * el + k] ^= planes[k * n + i];
     free(planes);
     return 0;
 }
@@ -168,7 +174,8 @@ size_t history_push(history *h, history_step *s) {
         if (!grown) { // keep going without this step's undo rather than fail the edit
             history_step_free(s);
             h->floor_id = h->next_id++;
-            while (h->count) drop_oldest(h);
+            while (h->count)
+                drop_oldest(h);
             return 0;
         }
         h->steps = grown;
@@ -194,17 +201,33 @@ void history_redo_done(history *h) {
     if (h->position < h->count) h->position++;
 }
 
-size_t history_count(const history *h) { return h->count; }
-size_t history_position(const history *h) { return h->position; }
-const history_step *history_at(const history *h, size_t i) { return i < h->count ? h->steps[i] : NULL; }
-size_t history_bytes(const history *h) { return h->bytes; }
-size_t history_budget(const history *h) { return h->budget; }
-uint64_t history_dropped_total(const history *h) { return h->dropped_total; }
+size_t history_count(const history *h) {
+    return h->count;
+}
+size_t history_position(const history *h) {
+    return h->position;
+}
+const history_step *history_at(const history *h, size_t i) {
+    return i < h->count ? h->steps[i] : NULL;
+}
+size_t history_bytes(const history *h) {
+    return h->bytes;
+}
+size_t history_budget(const history *h) {
+    return h->budget;
+}
+uint64_t history_dropped_total(const history *h) {
+    return h->dropped_total;
+}
 
 size_t history_set_budget(history *h, size_t budget_bytes) {
     h->budget = budget_bytes ? budget_bytes : (size_t)512 << 20;
     return enforce_budget(h);
 }
 
-void history_mark_saved(history *h) { h->saved_id = state_id(h); }
-int history_modified(const history *h) { return state_id(h) != h->saved_id; }
+void history_mark_saved(history *h) {
+    h->saved_id = state_id(h);
+}
+int history_modified(const history *h) {
+    return state_id(h) != h->saved_id;
+}

@@ -25,14 +25,14 @@ int layer_grid_init(layer_grid *g, const world_params *p, tile_layer layer, int 
     return 0;
 }
 
-
 grid_rect layer_grid_clip(const layer_grid *g, grid_rect r) {
     if (g->extent <= 0) return r;
     return grid_rect_intersect(r, (grid_rect){0, 0, g->extent, g->extent});
 }
 
 grid_rect layer_grid_disc_rect(const layer_grid *g, double x, double z, double radius) {
-    grid_rect r = {(int64_t)ceil((x - radius) / g->spacing), (int64_t)ceil((z - radius) / g->spacing),
+    grid_rect r = {(int64_t)ceil((x - radius) / g->spacing),
+                   (int64_t)ceil((z - radius) / g->spacing),
                    (int64_t)floor((x + radius) / g->spacing) + 1,
                    (int64_t)floor((z + radius) / g->spacing) + 1};
     return layer_grid_clip(g, r);
@@ -47,8 +47,7 @@ int layer_grid_read(world *w, const layer_grid *g, grid_rect r, float *out, og_e
     int64_t width = r.x1 - r.x0;
     // Read the clipped part tile by tile, then replicate edges outward.
     grid_rect in = layer_grid_clip(g, r);
-    if (grid_rect_empty(in))
-        return og_error_set(err, "the area lies entirely outside the world");
+    if (grid_rect_empty(in)) return og_error_set(err, "the area lies entirely outside the world");
     tile_cache *cache = world_cache(w);
     for (int64_t tz = world_grid_floor_div(in.z0, TILE_SIZE);
          tz <= world_grid_floor_div(in.z1 - 1, TILE_SIZE); tz++) {
@@ -58,9 +57,9 @@ int layer_grid_read(world *w, const layer_grid *g, grid_rect r, float *out, og_e
             tile_view v;
             if (tile_cache_acquire(cache, key, &v, err) != 0) return -1;
             const float *t = v.data;
-            grid_rect tr = grid_rect_intersect(
-                in, (grid_rect){tx * TILE_SIZE, tz * TILE_SIZE, (tx + 1) * TILE_SIZE,
-                                (tz + 1) * TILE_SIZE});
+            grid_rect tr =
+                grid_rect_intersect(in, (grid_rect){tx * TILE_SIZE, tz * TILE_SIZE,
+                                                    (tx + 1) * TILE_SIZE, (tz + 1) * TILE_SIZE});
             for (int64_t z = tr.z0; z < tr.z1; z++)
                 memcpy(out + (z - r.z0) * width + (tr.x0 - r.x0),
                        t + (z - tz * TILE_SIZE) * TILE_SIZE + (tr.x0 - tx * TILE_SIZE),
@@ -71,8 +70,10 @@ int layer_grid_read(world *w, const layer_grid *g, grid_rect r, float *out, og_e
     if (in.x0 == r.x0 && in.x1 == r.x1 && in.z0 == r.z0 && in.z1 == r.z1) return 0;
     for (int64_t z = in.z0; z < in.z1; z++) {
         float *row = out + (z - r.z0) * width;
-        for (int64_t x = r.x0; x < in.x0; x++) row[x - r.x0] = row[in.x0 - r.x0];
-        for (int64_t x = in.x1; x < r.x1; x++) row[x - r.x0] = row[in.x1 - 1 - r.x0];
+        for (int64_t x = r.x0; x < in.x0; x++)
+            row[x - r.x0] = row[in.x0 - r.x0];
+        for (int64_t x = in.x1; x < r.x1; x++)
+            row[x - r.x0] = row[in.x1 - 1 - r.x0];
     }
     for (int64_t z = r.z0; z < r.z1; z++) {
         if (z >= in.z0 && z < in.z1) continue;
@@ -92,8 +93,8 @@ int layer_grid_check_position(const layer_grid *g, double x, double z, og_error 
     if (g->extent > 0) {
         double top = (double)(g->extent - 1) * g->spacing;
         if (x < 0 || z < 0 || x > top || z > top)
-            return og_error_set(err, "position (%g, %g) m lies outside the world (0 to %g m)", x,
-                                z, top);
+            return og_error_set(err, "position (%g, %g) m lies outside the world (0 to %g m)", x, z,
+                                top);
     }
     return 0;
 }

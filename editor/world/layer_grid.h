@@ -15,8 +15,8 @@
 typedef struct layer_grid {
     tile_layer layer; // TILE_LAYER_COARSE, _DETAIL or _MATERIAL
     int face;
-    double spacing;   // metres between samples
-    int64_t extent;   // samples per side of a bounded world or planet face; 0 = unbounded
+    double spacing; // metres between samples
+    int64_t extent; // samples per side of a bounded world or planet face; 0 = unbounded
 } layer_grid;
 
 int layer_grid_init(layer_grid *g, const world_params *p, tile_layer layer, int face,

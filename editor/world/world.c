@@ -21,7 +21,7 @@ typedef struct world_generation {
 struct world {
     world_params params;
     world_settings settings;
-    char path[4096];       // parameter file; "" until saved
+    char path[4096];        // parameter file; "" until saved
     char scratch_dir[4096]; // the journal's folder in $TMPDIR
     // Edits go to the journal (a scratch store) until saved; the world's own store,
     // when it has one, is only read until `save` merges the journal into it. So a
@@ -210,8 +210,7 @@ void world_close(world *w) {
     if (!w) return;
     if (w->cache) {
         og_error err = {{0}};
-        if (stop_cache(w, &err) != 0)
-            w->settings.warn(w->settings.warn_user, err.msg);
+        if (stop_cache(w, &err) != 0) w->settings.warn(w->settings.warn_user, err.msg);
     }
     close_stores(w);
     history_destroy(w->history);
@@ -287,19 +286,38 @@ int world_regenerate(world *w, const world_params *params, og_error *err) {
     return 0;
 }
 
-const world_params *world_get_params(const world *w) { return &w->params; }
-
-const char *world_path(const world *w) { return w->path; }
-tile_cache *world_cache(world *w) { return w->cache; }
-tile_store *world_store(world *w) { return w->store; }
-tile_store *world_journal(world *w) { return w->journal; }
-history *world_history(world *w) { return w->history; }
-world_events *world_event_hub(world *w) { return w->settings.events; }
-void world_publish(world *w, const world_event *e) { world_events_publish(w->settings.events, e); }
-void world_publish_area(world *w, tile_layer layer, int face, grid_rect r) {
-    world_publish(w, &(world_event){.kind = WORLD_EVENT_AREA, .layer = layer, .face = face, .rect = r});
+const world_params *world_get_params(const world *w) {
+    return &w->params;
 }
-int world_is_modified(const world *w) { return history_modified(w->history); }
+
+const char *world_path(const world *w) {
+    return w->path;
+}
+tile_cache *world_cache(world *w) {
+    return w->cache;
+}
+tile_store *world_store(world *w) {
+    return w->store;
+}
+tile_store *world_journal(world *w) {
+    return w->journal;
+}
+history *world_history(world *w) {
+    return w->history;
+}
+world_events *world_event_hub(world *w) {
+    return w->settings.events;
+}
+void world_publish(world *w, const world_event *e) {
+    world_events_publish(w->settings.events, e);
+}
+void world_publish_area(world *w, tile_layer layer, int face, grid_rect r) {
+    world_publish(
+        w, &(world_event){.kind = WORLD_EVENT_AREA, .layer = layer, .face = face, .rect = r});
+}
+int world_is_modified(const world *w) {
+    return history_modified(w->history);
+}
 void world_warn(const world *w, const char *message) {
     w->settings.warn(w->settings.warn_user, message);
 }
@@ -365,7 +383,8 @@ int world_hash(world *w, int face, double x0, double z0, double x1, double z1, u
     if (check_face(w, face, err) != 0) return -1;
     if (!isfinite(x0) || !isfinite(z0) || !isfinite(x1) || !isfinite(z1))
         return og_error_set(err, "rectangle corners must be finite numbers");
-    if (x1 < x0 || z1 < z0) return og_error_set(err, "rectangle is empty: need X0 <= X1 and Z0 <= Z1");
+    if (x1 < x0 || z1 < z0)
+        return og_error_set(err, "rectangle is empty: need X0 <= X1 and Z0 <= Z1");
     double sp = w->params.spacing;
     double fx0 = ceil(x0 / sp), fz0 = ceil(z0 / sp), fx1 = floor(x1 / sp), fz1 = floor(z1 / sp);
     int64_t n = world_extent(w);
@@ -385,8 +404,10 @@ int world_hash(world *w, int face, double x0, double z0, double x1, double z1, u
     // 16 GiB of heights) is far beyond any interactive check.
     double area = ((double)gx1 - (double)gx0 + 1) * ((double)gz1 - (double)gz0 + 1);
     if (area > 4294967296.0)
-        return og_error_set(err, "rectangle holds %.4g samples; at most 2^32 (65536 x 65536) "
-                                 "are hashed at once", area);
+        return og_error_set(err,
+                            "rectangle holds %.4g samples; at most 2^32 (65536 x 65536) "
+                            "are hashed at once",
+                            area);
     int64_t tx0 = world_grid_floor_div(gx0, TILE_SIZE), tx1 = world_grid_floor_div(gx1, TILE_SIZE);
     int64_t tz0 = world_grid_floor_div(gz0, TILE_SIZE), tz1 = world_grid_floor_div(gz1, TILE_SIZE);
     int64_t across = tx1 - tx0 + 1, total = across * (tz1 - tz0 + 1);
@@ -406,8 +427,10 @@ int world_hash(world *w, int face, double x0, double z0, double x1, double z1, u
         if (tile_cache_acquire(w->cache, key, &v, err) != 0) return -1;
         const uint32_t *bits = v.data;
         int64_t bx = (int64_t)key.tx * TILE_SIZE, bz = (int64_t)key.ty * TILE_SIZE;
-        int i0 = (int)(gx0 > bx ? gx0 - bx : 0), i1 = (int)(gx1 < bx + TILE_SIZE - 1 ? gx1 - bx : TILE_SIZE - 1);
-        int j0 = (int)(gz0 > bz ? gz0 - bz : 0), j1 = (int)(gz1 < bz + TILE_SIZE - 1 ? gz1 - bz : TILE_SIZE - 1);
+        int i0 = (int)(gx0 > bx ? gx0 - bx : 0),
+            i1 = (int)(gx1 < bx + TILE_SIZE - 1 ? gx1 - bx : TILE_SIZE - 1);
+        int j0 = (int)(gz0 > bz ? gz0 - bz : 0),
+            j1 = (int)(gz1 < bz + TILE_SIZE - 1 ? gz1 - bz : TILE_SIZE - 1);
         for (int j = j0; j <= j1; j++)
             for (int i = i0; i <= i1; i++) {
                 // FNV-1a over 32-bit words: the float bit patterns, as stored.

@@ -12,9 +12,9 @@
 #include <stdint.h>
 
 typedef struct world_settings {
-    size_t cache_budget_bytes; // 0 = 1 GiB
+    size_t cache_budget_bytes;   // 0 = 1 GiB
     size_t history_budget_bytes; // undo memory; 0 = 512 MiB
-    int workers;               // 0 = 2
+    int workers;                 // 0 = 2
     // Warnings (corrupt tiles, unknown keys while loading); NULL = stderr.
     void (*warn)(void *user, const char *message);
     void *warn_user;

@@ -87,7 +87,8 @@ static void collapse(world_subscription *s) {
         world_event e = s->queue[i];
         size_t k = 0;
         if (e.kind == WORLD_EVENT_AREA)
-            while (k < n && !(s->queue[k].kind == WORLD_EVENT_AREA && same_area_grid(&s->queue[k], &e)))
+            while (k < n &&
+                   !(s->queue[k].kind == WORLD_EVENT_AREA && same_area_grid(&s->queue[k], &e)))
                 k++;
         else
             k = n;
@@ -139,7 +140,8 @@ void world_events_publish(world_events *hub, const world_event *e) {
         if (s->notify && n < NOTIFY_MAX) fns[n] = s->notify, users[n++] = s->user;
     }
     pthread_mutex_unlock(&hub->lock);
-    for (size_t i = 0; i < n; i++) fns[i](users[i]);
+    for (size_t i = 0; i < n; i++)
+        fns[i](users[i]);
 }
 
 size_t world_subscription_take(world_subscription *s, world_event *out, size_t max) {
@@ -152,4 +154,6 @@ size_t world_subscription_take(world_subscription *s, world_event *out, size_t m
     return n;
 }
 
-world_events *world_subscription_hub(const world_subscription *s) { return s->hub; }
+world_events *world_subscription_hub(const world_subscription *s) {
+    return s->hub;
+}
