@@ -153,5 +153,18 @@ expect_error "a camera looking past straight up" "camera 0 0 0 0 120" "PITCH: ex
 expect_error "a planet" "new planet; screenshot $work/planet.png 64 64" "planet"
 [ ! -e "$work/x.png" ] && [ ! -e "$work/planet.png" ]; check "failed screenshots write no file" $?
 
+# --- regression: the level-edge shading seam ------------------------------------------
+# Central differences at a level's low edge once read the far side of the toroidal
+# window: a line of wrong slope along every level edge (fixed in bef06c4; the old
+# shader gives RMSE 2.1 here). The slope view shows gradients alone, at a size where
+# the lines are several pixels long, against its golden with a tight tolerance.
+mkdir -p "$failed_dir"
+run "view slope; screenshot $work/seams.png 640 360"
+if [ -n "${OROGEN_UPDATE_GOLDEN:-}" ]; then
+    cp "$work/seams.png" "$golden/seams.png" && echo "updated $golden/seams.png"
+fi
+"$rmse_tool" "$golden/seams.png" "$work/seams.png" --max 1.0 --diff "$failed_dir/seams-diff.png" >"$work/rmse" 2>&1
+rc=$?; check "no shading seam along the clipmap level edges (slope view vs golden: $(cat "$work/rmse"))" $rc
+
 echo "e2e_render: $passes passed, $failures failed"
 [ $failures = 0 ]
