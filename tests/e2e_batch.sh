@@ -61,7 +61,7 @@ cmp -s "$work/a.world" "$work/b.world"; check "load/save round trip is byte-iden
 run "$work/a.world" -c 'params'
 grep -q '^octaves = 6.5;$' "$work/out"; check "world file given on the command line" $?
 
-# 6. a seed 004 planet file loads unchanged
+# 6. a planet file from Kahoun 2010 (seed 004) loads unchanged
 run -c "load $tests/data/params/seed004.planet; params"
 check "seed 004 planet loads" $status
 grep -q '^kind = planet;$' "$work/out" && grep -q '^radius = 10;$' "$work/out" &&

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # End-to-end: the viewport renders offscreen in batch mode (headless EGL, no display).
-# Golden images with a tolerance (RMSE over 8-bit channels, seed 002's method) and
+# Golden images with a tolerance (RMSE over 8-bit channels, Tabakovic 2024's method) and
 # behaviour: edits and undo show, parallax changes the image, a camera 10,000 km out
 # is as steady as one at the origin, picking agrees with the heights, bad input fails
 # clearly. Usage: e2e_render.sh OROGEN TESTS_DIR

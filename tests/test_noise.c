@@ -1,6 +1,6 @@
 // Gradient noise and fractals: batch paths bit-identical to the reference (with and
 // without AVX2), range, continuity across cells and the 2^32 wrap, fractional
-// octaves (seed 004), decorrelated octaves and seeds, determinism across threads.
+// octaves (Kahoun 2010), decorrelated octaves and seeds, determinism across threads.
 #include "editor/gen/gen_noise.h"
 
 #include <math.h>
