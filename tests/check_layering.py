@@ -51,10 +51,14 @@ def includes(root, path):
                     continue
                 text = text[end + 2:]
                 in_comment = False
-            start = text.find("/*")
-            if start >= 0 and text.find("*/", start) < 0:
+            # Strings and line comments first, so "/*" inside either opens nothing.
+            code = re.sub(r'"(\\.|[^"\\])*"', '""', text)
+            code = code.split("//", 1)[0]
+            code = re.sub(r"/\*.*?\*/", " ", code)
+            start = code.find("/*")
+            if start >= 0:
                 in_comment = True
-                text = text[:start]
+                text = code[:start]
             m = INCLUDE.match(text)
             if m:
                 out.append((number, m.group(1)))

@@ -38,6 +38,10 @@ printf '#include "io/b.h"\n' >"$work/tree/io/a.h"
 printf '#include "io/a.h"\n' >"$work/tree/io/b.h"
 expect "a circle between files is refused" 1 "circle: io/a -> io/b -> io/a"
 clean_tree
+printf 'const char *s = "/*"; // /* neither opens a comment\n#include "renderer/r.h"\n' >>"$work/tree/editor/world/w.c"
+printf '// r\n' >"$work/tree/renderer/r.h"
+expect "\"/*\" in a string or after // hides no include" 1 "folder editor/world may not use renderer"
+clean_tree
 printf '#include "editor/world/w.h"\n' >"$work/tree/io/a.c"
 expect "io may not use the editor" 1 "folder io may not use editor/world"
 echo "check_layering_selftest: $failures failed"
