@@ -80,9 +80,22 @@ int history_delta_encode(tile_layer layer, const void *before, const void *after
         return -1;
     }
     const uint8_t *a = before, *b = after;
-    for (size_t i = 0; i < n; i++)
-        for (size_t k = 0; k < el; k++)
-            planes[k * n + i] = a[i * el + k] ^ b[i * el + k];
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+    if (el == 4) { // float and int16x2 layers: one word per element, split into 4 planes
+        uint8_t *p0 = planes, *p1 = planes + n, *p2 = planes + 2 * n, *p3 = planes + 3 * n;
+        for (size_t i = 0; i < n; i++) {
+            uint32_t x, y;
+            memcpy(&x, a + 4 * i, 4);
+            memcpy(&y, b + 4 * i, 4);
+            x ^= y;
+            p0[i] = (uint8_t)x, p1[i] = (uint8_t)(x >> 8), p2[i] = (uint8_t)(x >> 16);
+            p3[i] = (uint8_t)(x >> 24);
+        }
+    } else
+#endif
+        for (size_t i = 0; i < n; i++)
+            for (size_t k = 0; k < el; k++)
+                planes[k * n + i] = a[i * el + k] ^ b[i * el + k];
     size_t comp = ZSTD_compress(out, cap, planes, raw, DELTA_ZSTD_LEVEL);
     free(planes);
     if (ZSTD_isError(comp)) {
