@@ -77,6 +77,7 @@ typedef struct window_state {
     float drawn_scale;
     int drawn_w, drawn_h;
     int world_changed; // change notifications since the terrain image
+    int stroke_points; // stroke_to commands of the current drag
 } window_state;
 
 // The window whose UI the ui_widgets command reports (one window per process).
@@ -132,16 +133,24 @@ static void sculpt_to(window_state *st, double x, double y) {
     if (!st->ctx->stroke || pick_at(st, x, y, hit) != 0) return;
     char text[128];
     snprintf(text, sizeof text, "stroke_to %.17g %.17g", hit[0], hit[2]);
-    run_action(st, text, "sculpt");
+    if (run_action(st, text, "sculpt") == 0) st->stroke_points++;
 }
 
 static void sculpt_begin(window_state *st) {
+    st->stroke_points = 0;
     if (run_action(st, "stroke_begin", "sculpt") == 0) sculpt_to(st, st->mouse_x, st->mouse_y);
 }
 
 // Commits the drag's stroke (one undo step); a stroke that laid no dab leaves no step.
+// The console shows the drag as one line rather than a line per mouse move.
 static void sculpt_end(window_state *st) {
-    if (st->ctx->stroke) run_action(st, "stroke_end", "sculpt");
+    if (!st->ctx->stroke) return;
+    if (run_action(st, "stroke_end", "sculpt") == 0) {
+        char echo[128];
+        snprintf(echo, sizeof echo, "> stroke_begin; stroke_to ... (%d points); stroke_end",
+                 st->stroke_points);
+        console_add(&st->ed.console, CONSOLE_ECHO, echo);
+    }
 }
 
 // --- the camera --------------------------------------------------------------------
@@ -540,6 +549,10 @@ static void take_changes(window_state *st) {
     size_t n;
     while ((n = world_subscription_take(st->changes, e, 32)) > 0) {
         st->dirty = 1;
+        st->ui_dirty = 1;              // the panels show the world (history, file, unsaved)
+        for (size_t i = 0; i < n; i++) // saves and history steps leave the picture as it is
+            st->world_changed |= e[i].kind == WORLD_EVENT_AREA || e[i].kind == WORLD_EVENT_PARAMS ||
+                                 e[i].kind == WORLD_EVENT_REPLACED;
         for (size_t i = 0; i < n; i++)
             if (e[i].kind == WORLD_EVENT_REPLACED) reset_camera(st);
         if (n < 32) break;
