@@ -365,17 +365,8 @@ static world_event cell(int k) {
 
 static void test_flooded_queue_merges_afterwards(void **state) {
     (void)state;
-    // BUG (editor/world/world_events.c, enqueue(), lines 108-127): a new area is merged
-    // with the touching queued areas *before* a full queue is collapsed, and appended
-    // after the collapse without merging again. So the publish that triggers the
-    // collapse leaves its area queued beside the bounding rectangle of its own grid,
-    // although it lies inside it: two touching areas of one grid, against the header's
-    // "Area events that touch a queued area ... are merged into it" and "collapses its
-    // areas to one bounding rectangle per layer, face and level". Nothing is lost (the
-    // next touching publish merges them); a subscriber that takes right then gets that
-    // part twice. This test fails until enqueue() merges (or re-runs the merge) after
-    // collapse(). It tries every count of published areas up to 600, so it finds the
-    // publish that collapses whatever the queue's bound is.
+    // The publish that fills the queue merges into its grid's bounding rectangle after
+    // the collapse (it was once left beside it).
     for (int count = 1; count <= 600; count++) {
         world_events *hub = world_events_create();
         world_subscription *s = world_events_subscribe(hub, NULL, NULL);

@@ -66,8 +66,10 @@ int cmd_tokenizer_next(cmd_tokenizer *t, int *argc_out, char ***argv_out, int *l
             t->pos >= t->len || text[t->pos] == '\n' || text[t->pos] == ';' || text[t->pos] == '#';
         if (end) {
             if (t->pos < t->len && text[t->pos] == '#')
-                while (t->pos < t->len && text[t->pos] != '\n')
+                while (t->pos < t->len && text[t->pos] != '\n') {
+                    if (text[t->pos] == '\0') return fail(t, err, "NUL byte in command text");
                     t->pos++;
+                }
             if (t->pos < t->len) { // the newline or ';' closes the command
                 if (text[t->pos] == '\n') t->line++;
                 t->pos++;

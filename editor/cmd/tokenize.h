@@ -10,7 +10,7 @@
 
 #include <stddef.h>
 
-#define CMD_MAX_ARGS 65536 // arguments per command, the name included
+#define CMD_MAX_ARGS 65536 // a command has fewer arguments than this, its name included
 #define CMD_MAX_TOKEN 4096 // bytes per argument, the terminating NUL included
 
 typedef struct cmd_tokenizer {

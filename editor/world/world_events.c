@@ -100,25 +100,33 @@ static void collapse(world_subscription *s) {
     s->count = n;
 }
 
+// Merges e with every touching queued area of its grid until none is left.
+static void merge_area(world_subscription *s, world_event *e) {
+    for (size_t i = 0; i < s->count;) {
+        world_event *q = &s->queue[i];
+        if (q->kind == WORLD_EVENT_AREA && same_area_grid(q, e) && touches(q->rect, e->rect)) {
+            e->rect = grid_rect_union(e->rect, q->rect);
+            memmove(q, q + 1, (s->count - i - 1) * sizeof *q); // keep the order
+            s->count--;
+            i = 0;
+        } else {
+            i++;
+        }
+    }
+}
+
 static void enqueue(world_subscription *s, world_event e) {
     if (e.kind != WORLD_EVENT_AREA) {
         for (size_t i = 0; i < s->count; i++)
             if (s->queue[i].kind == e.kind) return;
     } else {
-        // Merge with every touching area of the same grid until none is left.
-        for (size_t i = 0; i < s->count;) {
-            world_event *q = &s->queue[i];
-            if (q->kind == WORLD_EVENT_AREA && same_area_grid(q, &e) && touches(q->rect, e.rect)) {
-                e.rect = grid_rect_union(e.rect, q->rect);
-                memmove(q, q + 1, (s->count - i - 1) * sizeof *q); // keep the order
-                s->count--;
-                i = 0;
-            } else {
-                i++;
-            }
-        }
+        merge_area(s, &e);
     }
-    if (s->count == QUEUE_MAX) collapse(s);
+    if (s->count == QUEUE_MAX) {
+        collapse(s);
+        // The bounding rectangles now touch more: merge the new area into its grid's.
+        if (e.kind == WORLD_EVENT_AREA) merge_area(s, &e);
+    }
     if (s->count == QUEUE_MAX) {
         // Still full (areas on very many grids): "everything may differ" says it all.
         s->count = 0;
