@@ -468,7 +468,7 @@ ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport
     if (modal.w > 0) ui_dim(ui); // the dialog stands out; the rest waits
     if (e->show_help) {
         static const char *const help[] = {
-            "Left drag: sculpt or paint with the current tool",
+            "Left drag: sculpt or paint; with Ctrl inverted, with Shift smoothing",
             "Alt + left drag, middle drag: orbit around the point under the pointer",
             "Right drag: look; with it held W A S D fly, Q E down/up, Shift faster",
             "Wheel: dolly toward the pointer (with right drag: fly speed)",

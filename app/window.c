@@ -136,9 +136,15 @@ static void sculpt_to(window_state *st, double x, double y) {
     if (run_action(st, text, "sculpt") == 0) st->stroke_points++;
 }
 
-static void sculpt_begin(window_state *st) {
+// Ctrl held inverts the tool for the stroke, Shift smooths instead (Unreal, Terrain3D).
+static void sculpt_begin(window_state *st, int mods) {
     st->stroke_points = 0;
-    if (run_action(st, "stroke_begin", "sculpt") == 0) sculpt_to(st, st->mouse_x, st->mouse_y);
+    char cmd[64] = "stroke_begin";
+    if (mods & GLFW_MOD_SHIFT)
+        snprintf(cmd, sizeof cmd, "stroke_begin tool=smooth");
+    else if (mods & GLFW_MOD_CONTROL)
+        snprintf(cmd, sizeof cmd, "stroke_begin invert=%d", !st->ctx->brush.invert);
+    if (run_action(st, cmd, "sculpt") == 0) sculpt_to(st, st->mouse_x, st->mouse_y);
 }
 
 // Commits the drag's stroke (one undo step); a stroke that laid no dab leaves no step.
@@ -285,7 +291,6 @@ static void on_mouse_button(GLFWwindow *win, int button, int action, int mods) {
         st->looking = action == GLFW_PRESS;
         return;
     }
-    if (action == GLFW_PRESS) (void)mods;
     if (button != GLFW_MOUSE_BUTTON_LEFT && button != GLFW_MOUSE_BUTTON_MIDDLE) return;
     if (action == GLFW_RELEASE) {
         if (st->drag == DRAG_SCULPT && button == GLFW_MOUSE_BUTTON_LEFT) sculpt_end(st);
@@ -304,7 +309,7 @@ static void on_mouse_button(GLFWwindow *win, int button, int action, int mods) {
         st->cc.walk = 0;
     } else {
         st->drag = DRAG_SCULPT;
-        sculpt_begin(st);
+        sculpt_begin(st, mods);
     }
 }
 

@@ -243,11 +243,12 @@ static const cmd_def commands[] = {
     {"stroke", "stroke X0 Z0 X1 Z1 [X2 Z2 ...]",
      "Drags the brush along the points (metres), dabbing every spacing x radius; one undo step.", 2,
      CMD_MAX_ARGS, cmd_stroke, CMD_ENDS_STROKE},
-    {"stroke_begin", "stroke_begin",
+    {"stroke_begin", "stroke_begin [invert=0|1] [tool=NAME]",
      "Starts a stroke with the current tool (as a drag in the viewport does); stroke_to extends "
-     "it, stroke_end makes it one undo step. Commands that change the world (dab, stamp, undo, "
-     "save, load, ...) end it first.",
-     0, 0, cmd_stroke_begin, CMD_ENDS_STROKE},
+     "it, stroke_end makes it one undo step. invert= and tool= change this stroke only (the "
+     "viewport's Ctrl and Shift). Commands that change the world (dab, stamp, undo, save, load, "
+     "...) end it first.",
+     0, 2, cmd_stroke_begin, CMD_ENDS_STROKE},
     {"stroke_to", "stroke_to X Z [PRESSURE]",
      "Drags the open stroke to X, Z (metres), dabbing every spacing x radius; PRESSURE 0-1 (1).", 2,
      3, cmd_stroke_to, 0},

@@ -10,6 +10,23 @@
 #include <stdlib.h>
 #include <string.h>
 
+// Another tool with the shared settings of b (size, strength, falloff, spacing, layer).
+static brush switched_tool(const brush *b, brush_tool t, int invert) {
+    brush fresh;
+    brush_defaults(&fresh, t);
+    fresh.radius = b->radius;
+    fresh.strength = b->strength;
+    fresh.falloff = b->falloff;
+    fresh.curve_count = b->curve_count;
+    memcpy(fresh.curve_t, b->curve_t, sizeof b->curve_t);
+    memcpy(fresh.curve_v, b->curve_v, sizeof b->curve_v);
+    fresh.spacing = b->spacing;
+    fresh.face = b->face;
+    if (t != BRUSH_PAINT && b->target != TILE_LAYER_MATERIAL) fresh.target = b->target;
+    fresh.invert = invert;
+    return fresh;
+}
+
 int cmd_tool(cmd_context *ctx, int argc, char **argv, og_error *err) {
     if (argc == 1) {
         brush_print(&ctx->brush, ctx->out);
@@ -26,23 +43,9 @@ int cmd_tool(cmd_context *ctx, int argc, char **argv, og_error *err) {
         snprintf(err->msg + n, sizeof err->msg - n, " lower)");
         return -1;
     }
-    // Switching tools keeps the shared settings (size, strength, falloff, layer).
     brush b = ctx->brush;
-    if (b.tool != (brush_tool)t || strcmp(argv[1], "lower") == 0) {
-        brush fresh;
-        brush_defaults(&fresh, (brush_tool)t);
-        fresh.radius = b.radius;
-        fresh.strength = b.strength;
-        fresh.falloff = b.falloff;
-        fresh.curve_count = b.curve_count;
-        memcpy(fresh.curve_t, b.curve_t, sizeof b.curve_t);
-        memcpy(fresh.curve_v, b.curve_v, sizeof b.curve_v);
-        fresh.spacing = b.spacing;
-        fresh.face = b.face;
-        if (t != BRUSH_PAINT && b.target != TILE_LAYER_MATERIAL) fresh.target = b.target;
-        fresh.invert = strcmp(argv[1], "lower") == 0;
-        b = fresh;
-    }
+    if (b.tool != (brush_tool)t || strcmp(argv[1], "lower") == 0)
+        b = switched_tool(&b, (brush_tool)t, strcmp(argv[1], "lower") == 0);
     for (int i = 2; i < argc; i++) {
         char buf[512], *key = NULL, *value = NULL;
         if (parse_setting(argv[i], buf, sizeof buf, &key, &value, err) != 0 ||
@@ -92,8 +95,24 @@ int cmd_stroke(cmd_context *ctx, int argc, char **argv, og_error *err) {
 }
 
 int cmd_stroke_begin(cmd_context *ctx, int argc, char **argv, og_error *err) {
-    (void)argc, (void)argv;
-    stroke *s = stroke_begin(ctx->world, &ctx->brush, err);
+    // Overrides for this stroke only (the viewport's Ctrl and Shift): the tool stays.
+    brush b = ctx->brush;
+    for (int i = 1; i < argc; i++) {
+        char buf[256], *key = NULL, *value = NULL;
+        if (parse_setting(argv[i], buf, sizeof buf, &key, &value, err) != 0) return -1;
+        if (strcmp(key, "invert") == 0) {
+            int inv;
+            if (parse_switch(value, key, &inv, err) != 0) return -1;
+            b.invert = inv;
+        } else if (strcmp(key, "tool") == 0) {
+            int t = brush_tool_parse(value);
+            if (t < 0) return og_error_set(err, "tool: unknown tool '%s'", value);
+            b = switched_tool(&b, (brush_tool)t, strcmp(value, "lower") == 0);
+        } else {
+            return og_error_set(err, "stroke_begin: unknown setting '%s' (invert, tool)", key);
+        }
+    }
+    stroke *s = stroke_begin(ctx->world, &b, err);
     if (!s) return -1;
     ctx->stroke = s;
     return 0;
