@@ -54,7 +54,8 @@ struct ui_context {
 
     ui_widget_info widgets[2][WIDGETS_MAX];
     size_t widget_count[2];
-    int cur; // widgets[cur] is being written; the other is the last frame's
+    int cur;   // widgets[cur] is being written; the other is the last frame's
+    int shown; // the last finished frame's: ui_end sets it to cur
 
     ui_rect last_rect;
     ui_id last_id;
@@ -335,6 +336,7 @@ const ui_draw_list *ui_end(ui_context *ui) {
         ui->open_popup && ui_rect_contains(ui->popup_rect, ui->in.mouse_x, ui->in.mouse_y);
     ui->wants_mouse = over_panel || ui->active != 0;
     ui->wants_keyboard = ui->focus != 0;
+    ui->shown = ui->cur;
     append_overlay(ui);
     return &ui->dl;
 }
@@ -379,15 +381,14 @@ void ui_pop_scope(ui_context *ui) {
 }
 
 size_t ui_widget_count(const ui_context *ui) {
-    return ui->widget_count[ui->cur ^ 1];
+    return ui->widget_count[ui->shown];
 }
 const ui_widget_info *ui_widget_at(const ui_context *ui, size_t i) {
-    return i < ui_widget_count(ui) ? &ui->widgets[ui->cur ^ 1][i] : NULL;
+    return i < ui_widget_count(ui) ? &ui->widgets[ui->shown][i] : NULL;
 }
 const ui_widget_info *ui_widget_find(const ui_context *ui, const char *name) {
     for (size_t i = 0; i < ui_widget_count(ui); i++)
-        if (strcmp(ui->widgets[ui->cur ^ 1][i].name, name) == 0)
-            return &ui->widgets[ui->cur ^ 1][i];
+        if (strcmp(ui->widgets[ui->shown][i].name, name) == 0) return &ui->widgets[ui->shown][i];
     return NULL;
 }
 

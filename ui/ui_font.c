@@ -63,7 +63,8 @@ static unsigned char *read_all(const char *path, char *why, size_t why_size) {
 static int pack_face(stbtt_pack_context *pc, const unsigned char *ttf, float size, face_data *fd,
                      const char *path, char *why, size_t why_size) {
     stbtt_fontinfo info;
-    if (!stbtt_InitFont(&info, ttf, stbtt_GetFontOffsetForIndex(ttf, 0))) {
+    int offset = stbtt_GetFontOffsetForIndex(ttf, 0); // -1: no font header (stb reads at it)
+    if (offset < 0 || !stbtt_InitFont(&info, ttf, offset)) {
         snprintf(why, why_size, "%s: not a TrueType font", path);
         return -1;
     }
@@ -248,7 +249,8 @@ int ui_utf8_decode(const char *s, size_t n, uint32_t *cp) {
         c = (c << 6) | (u[i] & 0x3F);
     }
     static const uint32_t min[5] = {0, 0, 0x80, 0x800, 0x10000};
-    *cp = (c < min[len] || c > 0x10FFFF || (c >= 0xD800 && c <= 0xDFFF)) ? 0xFFFD : c;
+    if (c < min[len] || c > 0x10FFFF || (c >= 0xD800 && c <= 0xDFFF)) c = 0xFFFD, len = 1;
+    *cp = c;
     return len;
 }
 
