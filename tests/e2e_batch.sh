@@ -125,5 +125,10 @@ grep -q 'hash X0 Z0 X1 Z1' "$work/out"; check "help for one command" $?
 run -c 'exit; frobnicate'
 check "exit stops before later commands" $status
 
+# A bare save keeps the world's file (it once left the world with no path).
+run -c "save $work/again.world; save; info"
+[ $status = 0 ] && [ "$(grep -c "^saved $work/again.world$" "$work/out")" = 2 ] && grep -q "^path=$work/again.world$" "$work/out"
+check "save without a file saves to the world's file again" $?
+
 echo "$passes passed, $failures failed"
 [ $failures = 0 ]

@@ -144,6 +144,12 @@ static int mouse_pressed(const ui_context *ui) {
     return ui->in.mouse_pressed[0];
 }
 
+// A press a widget may take: one outside an open popup only closes it (ui_end), unless
+// it lands on what opened it.
+static int press_for(const ui_context *ui, ui_id id) {
+    return mouse_pressed(ui) && (ui->in_popup || !ui->open_popup || ui->open_popup == id);
+}
+
 // The pointer is over r and nothing covers it (an open popup over a base widget).
 static int over(const ui_context *ui, ui_rect r) {
     if (!ui_rect_contains(ui_rect_intersect(r, ui_draw_clip(ui->target)), ui->in.mouse_x,
@@ -164,9 +170,8 @@ static void record_widget(ui_context *ui, const char *label, ui_rect r) {
     ui_widget_info *w = &ui->widgets[ui->cur][ui->widget_count[ui->cur]++];
     size_t n = 0;
     w->name[0] = 0;
-    for (int i = 0; i < ui->scope_depth; i++)
-        n += (size_t)snprintf(w->name + n, n < sizeof w->name ? sizeof w->name - n : 0, "%s/",
-                              ui->scope_names[i]);
+    for (int i = 0; i < ui->scope_depth && n < sizeof w->name; i++) // a long path is cut
+        n += (size_t)snprintf(w->name + n, sizeof w->name - n, "%s/", ui->scope_names[i]);
     if (n < sizeof w->name)
         snprintf(w->name + n, sizeof w->name - n, "%.*s", (int)label_len(label), label);
     w->rect = r;
@@ -178,9 +183,9 @@ static int behave(ui_context *ui, ui_id id, ui_rect r) {
     int hovered = over(ui, r);
     if (hovered) ui->hot_next = id;
     int clicked = 0;
-    if (hovered && mouse_pressed(ui)) {
+    if (hovered && press_for(ui, id)) {
         ui->active = id;
-        if (ui->focus && ui->focus != id) ui->focus = 0;
+        if (ui->focus && ui->focus != id) ui->focus = ui->edit_id = ui->typing_id = 0;
     }
     if (ui->active == id && ui->in.mouse_released[0]) {
         clicked = hovered;
@@ -241,6 +246,9 @@ void ui_destroy(ui_context *ui) {
 
 void ui_set_clipboard(ui_context *ui, ui_clipboard cb) {
     ui->clipboard = cb;
+}
+void ui_set_font(ui_context *ui, const ui_font *font) {
+    ui->font = font;
 }
 const ui_theme *ui_get_theme(const ui_context *ui) {
     return &ui->theme;
@@ -328,7 +336,7 @@ const ui_draw_list *ui_end(ui_context *ui) {
         ui->edit_id = 0;
         ui->typing_id = 0;
     }
-    if (ui->in.mouse_released[0] && ui->active && ui->active != ui->focus) ui->active = 0;
+    if (ui->in.mouse_released[0] && ui->active) ui->active = 0;
     int over_panel = 0;
     for (int i = 0; i < ui->panel_count[ui->cur]; i++)
         over_panel |= ui_rect_contains(ui->panel_rects[ui->cur][i], ui->in.mouse_x, ui->in.mouse_y);
@@ -370,7 +378,7 @@ ui_id ui_get_id(ui_context *ui, const char *label) {
 
 void ui_push_scope(ui_context *ui, const char *name) {
     if (ui->scope_depth == SCOPE_MAX) return;
-    ui->scope_ids[ui->scope_depth] = ui_get_id(ui, name);
+    ui->scope_ids[ui->scope_depth] = hash_bytes(ui_get_id(ui, name), "", 1); // a NUL after it
     snprintf(ui->scope_names[ui->scope_depth], sizeof ui->scope_names[0], "%.*s",
              (int)label_len(name), name);
     ui->scope_depth++;
@@ -412,8 +420,8 @@ void ui_split(const ui_context *ui, ui_rect r, int horizontal, int n, const floa
     for (int i = 0; i < n; i++) {
         float s = sizes ? sizes[i] : 0;
         float len = s > 0 ? s : s < 0 ? -s * total : fill;
-        len = roundf(len);
-        out[i] = horizontal ? (ui_rect){at, r.y, len, r.h} : (ui_rect){r.x, at, r.w, len};
+        float a0 = i ? roundf(at) : at, a1 = i + 1 < n ? roundf(at + len) : at + len;
+        out[i] = horizontal ? (ui_rect){a0, r.y, a1 - a0, r.h} : (ui_rect){r.x, a0, r.w, a1 - a0};
         at += len;
     }
 }
@@ -653,7 +661,7 @@ static int parse_double_c(ui_context *ui, const char *s, double *out) {
     double v = strtod_l(s, &end, ui->c_locale);
     while (*end == ' ')
         end++;
-    if (end == s || !isfinite(v)) return -1;
+    if (end == s || *end || !isfinite(v)) return -1; // "42abc" is not a number
     *out = v;
     return 0;
 }
@@ -668,7 +676,7 @@ int ui_slider(ui_context *ui, const char *label, double *value, double lo, doubl
     if (ui->typing_id == id) { // typing a value
         int rc = text_edit(ui, id, r, ui->typing_buf, sizeof ui->typing_buf, 0);
         if (rc & UI_TEXT_SUBMIT) {
-            ui->typing_id = 0;
+            ui->typing_id = ui->focus = ui->edit_id = 0;
             double v;
             if (parse_double_c(ui, ui->typing_buf, &v) == 0) {
                 v = v < lo ? lo : v > hi ? hi : v;
@@ -682,7 +690,7 @@ int ui_slider(ui_context *ui, const char *label, double *value, double lo, doubl
     int hovered = over(ui, r);
     if (hovered) ui->hot_next = id;
     int changed = 0;
-    if (hovered && mouse_pressed(ui)) {
+    if (hovered && press_for(ui, id)) {
         if ((ui->in.mods & UI_MOD_CTRL) || ui->in.double_click) { // type a value
             ui->typing_id = id;
             snprintf(ui->typing_buf, sizeof ui->typing_buf, "%.10g", *value);
@@ -954,7 +962,7 @@ static int text_edit(ui_context *ui, ui_id id, ui_rect r, char *buf, size_t size
     if (ui->focusable_count < FOCUSABLE_MAX) ui->focusables[ui->focusable_count++] = id;
     float pad = ui_em(ui, 0.3f);
     size_t n = strlen(buf);
-    if (hovered && mouse_pressed(ui)) {
+    if (hovered && press_for(ui, id)) {
         if (ui->focus != id) {
             ui->focus = id;
             ui->edit_id = 0;
@@ -970,7 +978,7 @@ static int text_edit(ui_context *ui, ui_id id, ui_rect r, char *buf, size_t size
         ui->cursor = n;
         ui->anchor = 0; // all selected, as most editors do on focus
         ui->caret_time = ui->in.time;
-        if (hovered && mouse_pressed(ui))
+        if (hovered && press_for(ui, id))
             ui->cursor = ui->anchor =
                 ui_font_offset_at(ui->font, UI_FACE_SANS, buf, n, ui->in.mouse_x - r.x - pad);
     } else if (ui->focus == id && ui->active == id && ui->in.mouse_down[0]) { // click/drag selects

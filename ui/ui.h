@@ -71,6 +71,8 @@ typedef struct ui_context ui_context;
 // font: made by the caller at the UI's pixel size (owned by the caller).
 ui_context *ui_create(const ui_font *font);
 void ui_destroy(ui_context *ui);
+// Another font (a new UI scale); the caller frees the old one.
+void ui_set_font(ui_context *ui, const ui_font *font);
 void ui_set_clipboard(ui_context *ui, ui_clipboard cb);
 const ui_theme *ui_get_theme(const ui_context *ui);
 const ui_font *ui_get_font(const ui_context *ui);

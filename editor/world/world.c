@@ -219,7 +219,11 @@ void world_close(world *w) {
 }
 
 int world_save(world *w, const char *path, og_error *err) {
-    if (!path || !*path) path = w->path;
+    // A copy: w->path is rewritten below, and snprintf from a buffer into itself is undefined
+    // (a bare `save` left the world with no path).
+    char target_path[sizeof w->path];
+    snprintf(target_path, sizeof target_path, "%s", path && *path ? path : w->path);
+    path = target_path;
     if (!*path) return og_error_set(err, "save: this world has no file yet; give a file name");
     world_params p = w->params;
     char tiles[4096];
