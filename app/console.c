@@ -1,5 +1,7 @@
 #include "app/console.h"
 
+#include "io/param_file.h"
+
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -81,6 +83,31 @@ int console_run(console *c, cmd_context *ctx, const char *text, const char *labe
         fprintf(stderr, "%s\n", err.msg);
         console_add(c, CONSOLE_ERROR, err.msg);
     }
+    return rc;
+}
+
+void console_load_history(console *c, const char *path) {
+    FILE *f = path[0] ? fopen(path, "r") : NULL;
+    if (!f) return;
+    char line[CONSOLE_INPUT];
+    while (fgets(line, sizeof line, f)) {
+        line[strcspn(line, "\r\n")] = 0;
+        if (line[0]) remember(c, line);
+    }
+    fclose(f);
+}
+
+int console_save_history(const console *c, const char *path, og_error *err) {
+    if (!path[0]) return og_error_set(err, "no settings folder (HOME is not set)");
+    char *text = NULL;
+    size_t len = 0;
+    FILE *mem = open_memstream(&text, &len);
+    if (!mem) return og_error_set(err, "out of memory");
+    for (size_t i = 0; i < c->history_count; i++)
+        fprintf(mem, "%s\n", c->history[i]);
+    fclose(mem);
+    int rc = param_file_write_atomic(path, text, len, err);
+    free(text);
     return rc;
 }
 

@@ -34,6 +34,10 @@ void console_add(console *c, console_kind kind, const char *text);
 // Runs a command line: echoes it, runs it, adds its output and errors. The output also
 // goes to standard output and errors to standard error, as in batch mode.
 int console_run(console *c, cmd_context *ctx, const char *text, const char *label);
+// The input history, one command a line (missing file: none). Saving writes it
+// atomically, creating the folder.
+void console_load_history(console *c, const char *path);
+int console_save_history(const console *c, const char *path, og_error *err);
 // Draws the console over r (scrollback above the input line). Enter runs the line.
 void console_draw(console *c, ui_context *ui, cmd_context *ctx, ui_rect r);
 

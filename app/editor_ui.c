@@ -30,8 +30,39 @@ static int runf(editor_ui *e, cmd_context *ctx, const char *fmt, ...) {
     return editor_ui_run(e, ctx, text);
 }
 
+// A path as one argument of the command language.
+static void quote_arg(char *out, size_t size, const char *path) {
+    size_t n = 0;
+    if (size < 3) return;
+    out[n++] = '"';
+    for (const char *p = path; *p && n + 3 < size; p++) {
+        if (*p == '"' || *p == '\\') out[n++] = '\\';
+        out[n++] = *p;
+    }
+    out[n++] = '"';
+    out[n] = 0;
+}
+
+static void remember_recent(editor_ui *e, const char *path) {
+    if (!path[0]) return;
+    int n = 0;
+    char list[EDITOR_RECENT][1024];
+    snprintf(list[n++], sizeof list[0], "%s", path);
+    for (int i = 0; i < e->recent_count && n < EDITOR_RECENT; i++)
+        if (strcmp(e->recent[i], path) != 0)
+            snprintf(list[n++], sizeof list[0], "%s", e->recent[i]);
+    memcpy(e->recent, list, sizeof list);
+    e->recent_count = n;
+}
+
 static void do_action(editor_ui *e, cmd_context *ctx, editor_pending action) {
     if (action == PENDING_NEW_FLAT) editor_ui_run(e, ctx, "new flat");
+    if (action == PENDING_OPEN) {
+        char arg[1100], cmd[1200];
+        quote_arg(arg, sizeof arg, e->open_path);
+        snprintf(cmd, sizeof cmd, "load %s", arg);
+        if (editor_ui_run(e, ctx, cmd) == 0) remember_recent(e, e->open_path);
+    }
     if (action == PENDING_QUIT) e->quit_requested = 1;
 }
 
@@ -55,6 +86,15 @@ static void menus(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v, u
     if (ui_menu_begin(ui, "File")) {
         if (ui_menu_item(ui, "New flat world", "Ctrl+N", 1))
             editor_ui_request(e, ctx, PENDING_NEW_FLAT);
+        for (int i = 0; i < e->recent_count; i++) {
+            char label[1100];
+            snprintf(label, sizeof label, "Open %s##recent%d", file_name(e->recent[i]), i);
+            if (ui_menu_item(ui, label, NULL, strcmp(e->recent[i], world_path(ctx->world)) != 0)) {
+                snprintf(e->open_path, sizeof e->open_path, "%s", e->recent[i]);
+                editor_ui_request(e, ctx, PENDING_OPEN);
+            }
+        }
+        if (e->recent_count) ui_menu_separator(ui);
         if (ui_menu_item(ui, "Save", "Ctrl+S", saved_before)) editor_ui_run(e, ctx, "save");
         if (ui_menu_item(ui, "Save as...", "Ctrl+Shift+S", 1)) {
             e->show_save_as = 1;
@@ -93,6 +133,14 @@ static void menus(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v, u
                          NULL, 1))
             runf(e, ctx, "render parallax=%s", v->settings.parallax ? "off" : "on");
         if (ui_menu_item(ui, "Reset view", "Home", 1)) editor_ui_run(e, ctx, "camera default");
+        ui_menu_separator(ui);
+        static const double scales[] = {1.0, 1.25, 1.5, 2.0};
+        for (int i = 0; i < 4; i++) {
+            char label[64];
+            snprintf(label, sizeof label, "UI scale %.0f%%", scales[i] * 100);
+            if (ui_menu_item(ui, label, NULL, fabs(e->ui_scale - scales[i]) > 1e-6))
+                e->ui_scale_request = scales[i]; // applied between frames (a new font)
+        }
         if (ui_menu_item(ui, "Console", "~", 1)) {
             e->console.open = !e->console.open;
             e->console.focus_input = e->console.open;
@@ -327,7 +375,7 @@ static void status_bar(ui_context *ui, cmd_context *ctx, viewport *v, const edit
     snprintf(cache, sizeof cache, "cache %.0f / %.0f MiB", s.resident_bytes / 1048576.0,
              s.budget_bytes / 1048576.0);
     float cols[5] = {-0.3f, -0.2f, -0.15f, -0.15f, 0};
-    ui_row(ui, 5, cols, r.h - ui_em(ui, 0.6f));
+    ui_row(ui, 5, cols, r.h - 2 * ui_em(ui, 0.3f)); // the panel's padding above and below
     ui_label(ui, cursor);
     ui_tooltip(ui, "The terrain point under the pointer");
     ui_label(ui, cam);
@@ -407,6 +455,7 @@ static void save_as_dialog(editor_ui *e, ui_context *ui, cmd_context *ctx, float
         quoted[n] = 0;
         if (runf(e, ctx, "save \"%s\"", quoted) == 0) {
             e->show_save_as = 0;
+            remember_recent(e, world_path(ctx->world));
             if (e->pending != PENDING_NONE) {
                 editor_pending a = e->pending;
                 e->pending = PENDING_NONE;

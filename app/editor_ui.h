@@ -23,15 +23,22 @@ typedef struct editor_frame_info {
 typedef enum editor_pending {
     PENDING_NONE,
     PENDING_NEW_FLAT,
+    PENDING_OPEN, // open_path
     PENDING_QUIT,
 } editor_pending;
+
+#define EDITOR_RECENT 8
 
 typedef struct editor_ui {
     console console;
     int show_help, show_about, show_save_as;
     editor_pending pending; // an action waiting on the unsaved-changes prompt
     char save_as_path[1024];
-    int quit_requested; // the window should close
+    char open_path[1024];
+    char recent[EDITOR_RECENT][1024]; // worlds opened or saved lately, newest first
+    int recent_count;
+    double ui_scale, ui_scale_request; // the current scale; a new one asked for (0: none)
+    int quit_requested;                // the window should close
 } editor_ui;
 
 void editor_ui_init(editor_ui *e);

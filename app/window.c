@@ -2,12 +2,14 @@
 
 #include "app/camera_controls.h"
 #include "app/editor_ui.h"
+#include "app/settings.h"
 #include "renderer/gl_context.h"
 #include "renderer/gl_target.h"
 #include "renderer/pick.h"
 #include "renderer/ui_renderer.h"
 #include "renderer/view_commands.h"
 #include "renderer/viewport.h"
+#include "io/parse.h"
 #include "ui/ui.h"
 
 #include <epoxy/gl.h>
@@ -78,6 +80,8 @@ typedef struct window_state {
     int drawn_w, drawn_h;
     int world_changed; // change notifications since the terrain image
     int stroke_points; // stroke_to commands of the current drag
+    app_settings settings;
+    char settings_path[4096], history_path[4096];
 } window_state;
 
 // The window whose UI the ui_widgets command reports (one window per process).
@@ -663,6 +667,7 @@ static const ui_draw_list *build_ui(window_state *st, int fw, int fh) {
         memcpy(info.cursor, hit, sizeof hit);
     }
     st->in.time = glfwGetTime();
+    st->ed.ui_scale = st->settings.ui_scale; // the ui_scale command may have changed it
     ui_begin(st->ui, &st->in, (float)fw, (float)fh);
     ui_rect vr = editor_ui_build(&st->ed, st->ui, st->ctx, st->v, &info, (float)fw, (float)fh);
     const ui_draw_list *dl = ui_end(st->ui);
@@ -749,29 +754,44 @@ static void compose(window_state *st, const ui_draw_list *dl, int fw, int fh) {
 }
 
 // The UI's fonts: DejaVu from fonts-dejavu-core ($OROGEN_FONT_DIR overrides the folder),
-// at 15 px times the monitor's content scale times $OROGEN_UI_SCALE.
-static ui_font *load_font(GLFWwindow *win, og_error *err) {
+// at 15 px times the monitor's content scale times the user's UI scale.
+static ui_font *load_font(GLFWwindow *win, double user, og_error *err) {
     const char *dir = getenv("OROGEN_FONT_DIR");
     if (!dir || !*dir) dir = "/usr/share/fonts/truetype/dejavu";
     char sans[4200], mono[4200], why[512];
     snprintf(sans, sizeof sans, "%s/DejaVuSans.ttf", dir);
     snprintf(mono, sizeof mono, "%s/DejaVuSansMono.ttf", dir);
-    float xs = 1, ys = 1, user = 1;
+    float xs = 1, ys = 1;
     glfwGetWindowContentScale(win, &xs, &ys);
-    const char *env = getenv("OROGEN_UI_SCALE");
-    if (env && *env) {
-        char *end;
-        double u = strtod(env, &end);
-        if (*end || !(u >= 0.5 && u <= 4)) {
-            og_error_set(err, "OROGEN_UI_SCALE: expected a number in [0.5, 4], got '%s'", env);
-            return NULL;
-        }
-        user = (float)u;
-    }
     ui_font *f =
-        ui_font_create(sans, mono, roundf(15.0f * fmaxf(xs, 1.0f) * user), why, sizeof why);
+        ui_font_create(sans, mono, roundf(15.0f * fmaxf(xs, 1.0f) * (float)user), why, sizeof why);
     if (!f) og_error_set(err, "the UI's font: %s (install fonts-dejavu-core)", why);
     return f;
+}
+
+// Changes the UI scale: a new font at the new size (the renderer re-uploads its atlas).
+static int set_ui_scale(window_state *st, double scale, og_error *err) {
+    ui_font *f = load_font(st->win, scale, err);
+    if (!f) return -1;
+    ui_set_font(st->ui, f);
+    ui_font_destroy(st->font);
+    st->font = f;
+    st->settings.ui_scale = scale;
+    st->ui_dirty = 1;
+    return 0;
+}
+
+// ui_scale [FACTOR]: the editor's UI scale (times the monitor's content scale).
+static int cmd_ui_scale(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    window_state *st = current_window;
+    if (!st) return og_error_set(err, "ui_scale: no editor window is open");
+    if (argc == 1) {
+        fprintf(ctx->out, "ui_scale %g\n", st->settings.ui_scale);
+        return 0;
+    }
+    double v;
+    if (parse_number_in(argv[1], "FACTOR", 0.5, 4, &v, err) != 0) return -1;
+    return set_ui_scale(st, v, err);
 }
 
 // ui_widgets: the named widgets of the last UI frame, for tests that click by name.
@@ -792,6 +812,10 @@ static int cmd_ui_widgets(cmd_context *ctx, int argc, char **argv, og_error *err
 }
 
 static const cmd_def window_commands[] = {
+    {"ui_scale", "ui_scale [FACTOR]",
+     "Sets the editor's UI scale (0.5-4, times the monitor's content scale; View > UI scale); "
+     "without a value, prints it.",
+     0, 1, cmd_ui_scale, CMD_NOT_RECORDED},
     {"ui_widgets", "ui_widgets [FILTER]",
      "Lists the editor window's named widgets of the last frame as NAME X Y W H (window pixels; "
      "names containing FILTER), and the Viewport's rectangle first.",
@@ -799,7 +823,7 @@ static const cmd_def window_commands[] = {
 };
 
 int window_commands_register(og_error *err) {
-    return cmd_register(window_commands, 1, err);
+    return cmd_register(window_commands, sizeof window_commands / sizeof window_commands[0], err);
 }
 
 // Makes the viewport the console's view commands use: this window's context, its renderer.
@@ -818,6 +842,26 @@ static viewport *attach_viewport(cmd_context *ctx, og_error *err) {
     return v;
 }
 
+// The window's size and place, the UI scale, the recent worlds and the console's
+// history, for the next run. A failure is only reported.
+static void save_settings(window_state *st) {
+    app_settings *s = &st->settings;
+    s->maximized = glfwGetWindowAttrib(st->win, GLFW_MAXIMIZED);
+    if (!s->maximized && !s->fullscreen) {
+        glfwGetWindowSize(st->win, &s->width, &s->height);
+        glfwGetWindowPos(st->win, &s->x, &s->y);
+        s->has_position = 1;
+    }
+    for (int i = st->ed.recent_count - 1; i >= 0; i--)
+        app_settings_add_recent(s, st->ed.recent[i]);
+    app_settings_add_recent(s, world_path(st->ctx->world));
+    og_error err = {{0}};
+    if (app_settings_save(s, st->settings_path, &err) != 0)
+        fprintf(stderr, "orogen: settings not saved: %s\n", err.msg);
+    if (console_save_history(&st->ed.console, st->history_path, &err) != 0)
+        fprintf(stderr, "orogen: console history not saved: %s\n", err.msg);
+}
+
 int window_run(cmd_context *ctx, og_error *err) {
     glfwSetErrorCallback(on_glfw_error);
     if (!glfwInit()) return og_error_set(err, "cannot start the window system: %s", glfw_message);
@@ -826,7 +870,24 @@ int window_run(cmd_context *ctx, og_error *err) {
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-    GLFWwindow *win = glfwCreateWindow(1280, 800, "Orogen", NULL, NULL);
+    app_settings settings;
+    app_settings_default(&settings);
+    char settings_path[4096];
+    app_settings_path(settings_path, sizeof settings_path, "settings");
+    app_settings_load(&settings, settings_path);
+    const char *env_scale = getenv("OROGEN_UI_SCALE"); // overrides the saved scale
+    if (env_scale && *env_scale) {
+        double u;
+        if (parse_number_in(env_scale, "OROGEN_UI_SCALE", 0.5, 4, &u, err) != 0) return -1;
+        settings.ui_scale = u;
+    }
+    GLFWmonitor *monitor = settings.fullscreen ? glfwGetPrimaryMonitor() : NULL;
+    const GLFWvidmode *mode = monitor ? glfwGetVideoMode(monitor) : NULL;
+    if (settings.maximized) glfwWindowHint(GLFW_MAXIMIZED, GLFW_TRUE);
+    GLFWwindow *win =
+        glfwCreateWindow(mode ? mode->width : settings.width, mode ? mode->height : settings.height,
+                         "Orogen", monitor, NULL);
+    if (win && settings.has_position && !monitor) glfwSetWindowPos(win, settings.x, settings.y);
     if (!win) {
         glfwTerminate();
         return og_error_set(err,
@@ -860,11 +921,19 @@ int window_run(cmd_context *ctx, og_error *err) {
     }
     editor_ui_init(&st.ed);
     st.res_scale = 1.0f;
-    st.target_ms = 50.0;
+    st.settings = settings;
+    snprintf(st.settings_path, sizeof st.settings_path, "%s", settings_path);
+    app_settings_path(st.history_path, sizeof st.history_path, "console_history");
+    console_load_history(&st.ed.console, st.history_path);
+    for (int i = 0; i < settings.recent_count; i++)
+        snprintf(st.ed.recent[i], sizeof st.ed.recent[0], "%s", settings.recent[i]);
+    st.ed.recent_count = settings.recent_count;
+    st.target_ms = settings.frame_target_ms;
+    st.ed.ui_scale = settings.ui_scale;
     st.drawn_scale = 1.0f;
     st.gl_renderer = (const char *)glGetString(GL_RENDERER);
     og_error ui_err = {{0}};
-    if (!(st.font = load_font(win, &ui_err)) || !(st.ui = ui_create(st.font)) ||
+    if (!(st.font = load_font(win, settings.ui_scale, &ui_err)) || !(st.ui = ui_create(st.font)) ||
         !(st.uir = ui_renderer_create(ctx->resource_dir, &ui_err))) {
         og_error_set(err, "the editor's UI cannot start: %s",
                      ui_err.msg[0] ? ui_err.msg : "out of memory");
@@ -887,6 +956,7 @@ int window_run(cmd_context *ctx, og_error *err) {
         build_ui(&st, w > 0 ? w : 1, h > 0 ? h : 1);
     }
     if (!v->cam_set) reset_camera(&st);
+    if (!v->cam_set) v->cam.fov_y = settings.field_of_view;
     glfwGetCursorPos(win, &st.mouse_x, &st.mouse_y);
     glfwSetWindowUserPointer(win, &st);
     glfwSetMouseButtonCallback(win, on_mouse_button);
@@ -932,6 +1002,14 @@ int window_run(cmd_context *ctx, og_error *err) {
             dl = build_ui(&st, w, h);
             drawn = 1;
         }
+        if (st.ed.ui_scale_request > 0) { // View > UI scale: a new font between frames
+            char cmd[64];
+            snprintf(cmd, sizeof cmd, "ui_scale %g", st.ed.ui_scale_request);
+            st.ed.ui_scale_request = 0;
+            console_run(&st.ed.console, ctx, cmd, "ui");
+            st.ed.ui_scale = st.settings.ui_scale;
+            dl = build_ui(&st, w, h);
+        }
         if (st.dirty || st.pending || st.settled < 2) {
             int arrived = update_view(&st) > 0;
             float k = ui_px(&st, 1.0);
@@ -953,6 +1031,7 @@ int window_run(cmd_context *ctx, og_error *err) {
         update_title(&st);
     }
     sculpt_end(&st);
+    save_settings(&st);
     world_events_unsubscribe(st.changes);
     current_window = NULL;
     gl_target_destroy(&st.terrain);

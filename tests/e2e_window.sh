@@ -25,6 +25,8 @@ export DISPLAY=":$(head -n 1 "$work/display")"
 # caught by the other tests, which run the same code without a GL driver.
 if [ -n "${ASAN_OPTIONS:-}" ]; then export ASAN_OPTIONS="$ASAN_OPTIONS:detect_leaks=0"; fi
 
+# The editor keeps its settings between runs: keep them inside this test.
+export XDG_CONFIG_HOME="$work/config"
 mkfifo "$work/stdin"
 "$orogen" --record "$work/session.og" <"$work/stdin" >"$work/out" 2>"$work/err" &
 app=$!
@@ -198,6 +200,8 @@ status=1
 for _ in $(seq 200); do kill -0 $app 2>/dev/null || break; sleep 0.1; done
 if ! kill -0 $app 2>/dev/null; then wait $app; status=$?; fi
 [ $status = 0 ]; check "exit closes the editor with status 0" $?
+grep -q "^recent_0 = $work/saved.world;" "$work/config/orogen/settings" && grep -q '^width = ' "$work/config/orogen/settings"
+rc=$?; check "the editor's settings are kept for the next run (window size, recent worlds): $(tr "\n" " " <"$work/config/orogen/settings" 2>&1)" $rc
 cp "$work/session.og" "$work/replay.og"
 echo "hash $(awk -v x="$px" -v z="$pz" 'BEGIN { print x - 150, z - 150, x + 150, z + 150 }')" >>"$work/replay.og"
 "$orogen" --batch "$work/replay.og" >"$work/replay.out" 2>"$work/replay.err"

@@ -1,0 +1,146 @@
+#include "app/settings.h"
+
+#include "io/param_file.h"
+#include "io/parse.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+void app_settings_default(app_settings *s) {
+    memset(s, 0, sizeof *s);
+    s->width = 1280;
+    s->height = 800;
+    s->ui_scale = 1.0;
+    s->field_of_view = 60.0;
+    s->frame_target_ms = 50.0;
+}
+
+void app_settings_path(char *buf, size_t size, const char *file) {
+    const char *xdg = getenv("XDG_CONFIG_HOME"), *home = getenv("HOME");
+    if (xdg && *xdg)
+        snprintf(buf, size, "%s/orogen/%s", xdg, file);
+    else if (home && *home)
+        snprintf(buf, size, "%s/.config/orogen/%s", home, file);
+    else if (size)
+        buf[0] = 0;
+}
+
+static void warn(const char *path, int line, const char *msg) {
+    fprintf(stderr, "%s:%d: warning: %s (the default is kept)\n", path, line, msg);
+}
+
+static void read_int(const char *path, const param_entry *e, int lo, int hi, int *out) {
+    double v;
+    og_error err;
+    if (parse_integer_in(e->value, e->key, lo, hi, &v, &err) != 0)
+        warn(path, e->line, err.msg);
+    else
+        *out = (int)v;
+}
+
+static void read_number(const char *path, const param_entry *e, double lo, double hi, double *out) {
+    double v;
+    og_error err;
+    if (parse_number_in(e->value, e->key, lo, hi, &v, &err) != 0)
+        warn(path, e->line, err.msg);
+    else
+        *out = v;
+}
+
+void app_settings_load(app_settings *s, const char *path) {
+    param_file pf = {0};
+    og_error err;
+    if (!path[0]) return;
+    struct stat st;
+    if (stat(path, &st) != 0 && errno == ENOENT) return; // first run
+    if (param_file_read(path, &pf, &err) != 0) {
+        fprintf(stderr, "%s: warning: %s (defaults used)\n", path, err.msg);
+        return;
+    }
+    for (size_t i = 0; i < pf.diag_count; i++)
+        warn(path, pf.diags[i].line, pf.diags[i].message);
+    for (size_t i = 0; i < pf.count; i++) {
+        const param_entry *e = &pf.entries[i];
+        if (strcmp(e->key, "width") == 0)
+            read_int(path, e, 320, 16384, &s->width);
+        else if (strcmp(e->key, "height") == 0)
+            read_int(path, e, 240, 16384, &s->height);
+        else if (strcmp(e->key, "x") == 0)
+            read_int(path, e, -100000, 100000, &s->x), s->has_position = 1;
+        else if (strcmp(e->key, "y") == 0)
+            read_int(path, e, -100000, 100000, &s->y), s->has_position = 1;
+        else if (strcmp(e->key, "maximized") == 0)
+            read_int(path, e, 0, 1, &s->maximized);
+        else if (strcmp(e->key, "enable_fullscreen") == 0)
+            read_int(path, e, 0, 1, &s->fullscreen);
+        else if (strcmp(e->key, "ui_scale") == 0)
+            read_number(path, e, 0.5, 4, &s->ui_scale);
+        else if (strcmp(e->key, "field_of_view") == 0)
+            read_number(path, e, 1, 170, &s->field_of_view);
+        else if (strcmp(e->key, "frame_target_ms") == 0)
+            read_number(path, e, 5, 1000, &s->frame_target_ms);
+        else if (strncmp(e->key, "recent_", 7) == 0) {
+            if (s->recent_count < SETTINGS_RECENT && e->value[0])
+                snprintf(s->recent[s->recent_count++], sizeof s->recent[0], "%s", e->value);
+        } else {
+            char msg[300];
+            snprintf(msg, sizeof msg, "unknown setting '%s'", e->key);
+            warn(path, e->line, msg);
+        }
+    }
+    param_file_free(&pf);
+}
+
+// Creates every folder of path's parent.
+static int make_folders(const char *path) {
+    char dir[4096];
+    snprintf(dir, sizeof dir, "%s", path);
+    for (char *p = dir + 1; *p; p++) {
+        if (*p != '/') continue;
+        *p = 0;
+        if (mkdir(dir, 0755) != 0 && errno != EEXIST) return -1;
+        *p = '/';
+    }
+    return 0;
+}
+
+int app_settings_save(const app_settings *s, const char *path, og_error *err) {
+    if (!path[0]) return og_error_set(err, "no settings folder (HOME is not set)");
+    if (make_folders(path) != 0)
+        return og_error_set(err, "%s: cannot create its folder: %s", path, strerror(errno));
+    char text[16384], num[64];
+    size_t n = 0;
+#define PUT(...) n += (size_t)snprintf(text + n, n < sizeof text ? sizeof text - n : 0, __VA_ARGS__)
+    PUT("# Orogen's editor settings (written when the editor closes).\n");
+    PUT("width = %d;\nheight = %d;\n", s->width, s->height);
+    if (s->has_position) PUT("x = %d;\ny = %d;\n", s->x, s->y);
+    PUT("maximized = %d;\nenable_fullscreen = %d;\n", s->maximized, s->fullscreen);
+    parse_format_f64(num, sizeof num, s->ui_scale);
+    PUT("ui_scale = %s;\n", num);
+    parse_format_f64(num, sizeof num, s->field_of_view);
+    PUT("field_of_view = %s;\n", num);
+    parse_format_f64(num, sizeof num, s->frame_target_ms);
+    PUT("frame_target_ms = %s;\n", num);
+    for (int i = 0; i < s->recent_count; i++)
+        if (!strpbrk(s->recent[i], ";#\n")) PUT("recent_%d = %s;\n", i, s->recent[i]);
+#undef PUT
+    if (n >= sizeof text) return og_error_set(err, "%s: settings too long", path);
+    return param_file_write_atomic(path, text, n, err);
+}
+
+void app_settings_add_recent(app_settings *s, const char *path) {
+    if (!path || !path[0]) return;
+    char keep[1024];
+    snprintf(keep, sizeof keep, "%s", path);
+    int n = 0;
+    char list[SETTINGS_RECENT][1024];
+    snprintf(list[n++], sizeof list[0], "%s", keep);
+    for (int i = 0; i < s->recent_count && n < SETTINGS_RECENT; i++)
+        if (strcmp(s->recent[i], keep) != 0)
+            snprintf(list[n++], sizeof list[0], "%s", s->recent[i]);
+    memcpy(s->recent, list, sizeof list);
+    s->recent_count = n;
+}

@@ -1,0 +1,38 @@
+// The editor's own settings, kept between runs in $XDG_CONFIG_HOME/orogen/settings
+// (default ~/.config/orogen/settings) in the parameter-file syntax: window size and
+// position, the UI scale, the frame-time goal while moving, recent files, and Kahoun
+// 2010's configuration keys (width, height, field_of_view, enable_fullscreen). The
+// console's history is kept beside it in console_history, one command a line.
+// A broken file gives warnings naming its lines and the defaults, never a failure.
+#ifndef OROGEN_APP_SETTINGS_H
+#define OROGEN_APP_SETTINGS_H
+
+#include "io/err.h"
+
+#include <stddef.h>
+
+#define SETTINGS_RECENT 8
+
+typedef struct app_settings {
+    int width, height;      // window size (1280 x 800)
+    int x, y, has_position; // window position, when known
+    int maximized, fullscreen;
+    double ui_scale;        // the user's UI scale, times the monitor's (1)
+    double field_of_view;   // degrees (60)
+    double frame_target_ms; // dynamic resolution's goal while moving (50)
+    char recent[SETTINGS_RECENT][1024];
+    int recent_count;
+} app_settings;
+
+void app_settings_default(app_settings *s);
+// The settings folder's file (or "" when neither XDG_CONFIG_HOME nor HOME is set).
+void app_settings_path(char *buf, size_t size, const char *file);
+// Reads path; a missing file keeps the defaults silently, bad lines are reported to
+// stderr as path:line warnings and keep their defaults.
+void app_settings_load(app_settings *s, const char *path);
+// Writes path atomically, creating its folder.
+int app_settings_save(const app_settings *s, const char *path, og_error *err);
+// Puts path first in the recent files (once).
+void app_settings_add_recent(app_settings *s, const char *path);
+
+#endif
