@@ -188,10 +188,18 @@ static void palette(editor_ui *e, ui_context *ui, cmd_context *ctx, ui_rect r) {
     ui_panel_begin(ui, "Tools", r);
     ui_row(ui, 1, NULL, ui_em(ui, 1.6f));
     for (size_t i = 0; i < TOOL_COUNT; i++) {
-        if (ui_toggle_button(ui, tools[i].label, tool_is_current(&ctx->brush, tools[i].name)))
+        int on = !e->stamps.active && tool_is_current(&ctx->brush, tools[i].name);
+        if (ui_toggle_button(ui, tools[i].label, on)) {
             runf(e, ctx, "tool %s", tools[i].name);
+            e->stamps.active = 0;
+        }
         ui_tooltip(ui, tools[i].tip);
     }
+    if (ui_toggle_button(ui, "Stamp", e->stamps.active)) {
+        if (e->stamps.selected < 0 && e->stamps.count > 0) e->stamps.selected = 0;
+        e->stamps.active = e->stamps.selected >= 0;
+    }
+    ui_tooltip(ui, "Place a stamp (a shape or heightmap) with a click in the viewport");
     ui_panel_end(ui);
 }
 
@@ -357,7 +365,7 @@ static void history_panel(editor_ui *e, ui_context *ui, cmd_context *ctx) {
 // ---- status bar and dialogs -------------------------------------------------------------
 
 static void status_bar(ui_context *ui, cmd_context *ctx, viewport *v, const editor_frame_info *info,
-                       ui_rect r) {
+                       const stamp_browser *stamps, ui_rect r) {
     ui_panel_begin(ui, "Status", r);
     char cursor[128] = "", cam[128], tool[96], frame[96], cache[128];
     if (info->cursor_valid)
@@ -368,6 +376,9 @@ static void status_bar(ui_context *ui, cmd_context *ctx, viewport *v, const edit
     snprintf(cam, sizeof cam, "camera %.0f, %.0f, %.0f", v->cam.pos[0], v->cam.pos[1],
              v->cam.pos[2]);
     snprintf(tool, sizeof tool, "%s r %.1f m", current_tool(&ctx->brush), ctx->brush.radius);
+    if (stamps->active)
+        snprintf(tool, sizeof tool, "stamp %s x%.2f", stamps->entries[stamps->selected].name,
+                 stamps->scale);
     snprintf(frame, sizeof frame, "%.0f ms (%.0f%%)%s", info->frame_ms,
              info->resolution_scale * 100, info->pending ? "  loading" : "");
     tile_cache_stats s;
@@ -501,13 +512,19 @@ ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport
     palette(e, ui, ctx, cols[0]);
     ui_panel_begin(ui, "Dock", cols[2]);
     ui_row(ui, 1, NULL, 0);
-    char tool_title[64];
-    snprintf(tool_title, sizeof tool_title, "Tool: %s##Tool", current_tool(&ctx->brush));
-    if (ui_section(ui, tool_title, 1)) tool_options(e, ui, ctx);
+    char tool_title[192];
+    if (e->stamps.active)
+        snprintf(tool_title, sizeof tool_title, "Tool: stamp %s##Tool",
+                 e->stamps.entries[e->stamps.selected].name);
+    else
+        snprintf(tool_title, sizeof tool_title, "Tool: %s##Tool", current_tool(&ctx->brush));
+    if (ui_section(ui, tool_title, 1) && !e->stamps.active) tool_options(e, ui, ctx);
+    int picked = 0;
+    if (ui_section(ui, "Stamps", 1)) stamp_browser_draw(&e->stamps, ui, ctx, &picked);
     if (ui_section(ui, "World", 1)) world_panel(e, ui, ctx);
     if (ui_section(ui, "History", 1)) history_panel(e, ui, ctx);
     ui_panel_end(ui);
-    status_bar(ui, ctx, v, info, (ui_rect){0, height - status, width, status});
+    status_bar(ui, ctx, v, info, &e->stamps, (ui_rect){0, height - status, width, status});
 
     ui_rect view = cols[1];
     if (e->console.open) {

@@ -6,6 +6,7 @@
 #define OROGEN_APP_EDITOR_UI_H
 
 #include "app/console.h"
+#include "app/stamp_browser.h"
 #include "editor/cmd/commands.h"
 #include "renderer/viewport.h"
 #include "ui/ui.h"
@@ -38,6 +39,7 @@ typedef struct editor_ui {
     char recent[EDITOR_RECENT][1024]; // worlds opened or saved lately, newest first
     int recent_count;
     double ui_scale, ui_scale_request; // the current scale; a new one asked for (0: none)
+    stamp_browser stamps;              // the stamp tool (stamps.active) and its options
     int quit_requested;                // the window should close
 } editor_ui;
 

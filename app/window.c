@@ -285,7 +285,8 @@ static void on_mouse_button(GLFWwindow *win, int button, int action, int mods) {
     }
     // Presses over the UI (or outside the viewport) are the UI's; releases always end
     // the viewport's drags.
-    int ui_owns = ui_wants_mouse(st->ui) || !in_view(st, st->mouse_x, st->mouse_y);
+    int ui_owns = !in_view(st, st->mouse_x, st->mouse_y) ||
+                  ui_captures_point(st->ui, st->in.mouse_x, st->in.mouse_y);
     if (action == GLFW_PRESS && ui_owns) return;
     st->dirty = 1;
     // Drags start where the last motion event left the cursor (not where the pointer
@@ -311,6 +312,12 @@ static void on_mouse_button(GLFWwindow *win, int button, int action, int mods) {
                 point_along_ray(st, ww * 0.5, wh * 0.5, 100.0, st->pivot);
         }
         st->cc.walk = 0;
+    } else if (st->ed.stamps.active && button == GLFW_MOUSE_BUTTON_LEFT) {
+        double hit[3]; // the stamp tool: one click, one stamp at the picked point
+        char cmd[512];
+        if (pick_at(st, st->mouse_x, st->mouse_y, hit) == 0 &&
+            stamp_browser_command(&st->ed.stamps, hit[0], hit[2], cmd, sizeof cmd) == 0)
+            console_run(&st->ed.console, st->ctx, cmd, "stamp");
     } else {
         st->drag = DRAG_SCULPT;
         sculpt_begin(st, mods);
@@ -343,13 +350,23 @@ static void on_scroll(GLFWwindow *win, double dx, double dy) {
     (void)dx;
     window_state *st = glfwGetWindowUserPointer(win);
     st->ui_dirty = 1;
-    if (ui_wants_mouse(st->ui) || !in_view(st, st->mouse_x, st->mouse_y)) {
+    if (!in_view(st, st->mouse_x, st->mouse_y) ||
+        ui_captures_point(st->ui, st->in.mouse_x, st->in.mouse_y)) {
         st->in.wheel += (float)dy;
         return;
     }
     st->dirty = 1;
     if (st->looking) {
         camera_controls_speed_wheel(&st->cc, dy);
+        return;
+    }
+    int ctrl = glfwGetKey(win, GLFW_KEY_LEFT_CONTROL) || glfwGetKey(win, GLFW_KEY_RIGHT_CONTROL);
+    int shift = glfwGetKey(win, GLFW_KEY_LEFT_SHIFT) || glfwGetKey(win, GLFW_KEY_RIGHT_SHIFT);
+    if (st->ed.stamps.active && (ctrl || shift)) { // the stamp preview: size and turn
+        stamp_browser *b = &st->ed.stamps;
+        if (ctrl) b->scale = fmin(20, fmax(0.1, b->scale * pow(1.1, dy)));
+        if (shift) b->rotation = fmod(b->rotation + 5 * dy + 540, 360) - 180;
+        st->ui_dirty = 1;
         return;
     }
     double pivot[3];
@@ -603,6 +620,13 @@ static void update_cursor(window_state *st) {
                   pick_at(st, st->mouse_x, st->mouse_y, hit) == 0;
     if (!bc->visible) return;
     bc->x = hit[0], bc->z = hit[2];
+    if (st->ed.stamps.active) { // the stamp's footprint: its half size, no falloff
+        bc->radius =
+            stamp_browser_half_size(&st->ed.stamps, world_get_params(st->ctx->world)->spacing);
+        for (int i = 0; i < BRUSH_FALLOFF_SAMPLES; i++)
+            bc->falloff[i] = 1.0f;
+        return;
+    }
     bc->radius = st->ctx->brush.radius;
     for (int i = 0; i < BRUSH_FALLOFF_SAMPLES; i++)
         bc->falloff[i] =
@@ -949,6 +973,10 @@ int window_run(cmd_context *ctx, og_error *err) {
     }
     ui_set_clipboard(st.ui, (ui_clipboard){clipboard_get, clipboard_set, win});
     current_window = &st;
+    stamp_browser_init(&st.ed.stamps, ctx);
+    for (int i = 0; i < st.ed.stamps.count; i++)
+        st.ed.stamps.entries[i].texture =
+            ui_renderer_create_texture(STAMP_THUMB, STAMP_THUMB, st.ed.stamps.entries[i].rgba);
     // The first frame lays out the UI, so the viewport's rectangle is known for the camera.
     {
         int w, h;
@@ -1035,6 +1063,8 @@ int window_run(cmd_context *ctx, og_error *err) {
     world_events_unsubscribe(st.changes);
     current_window = NULL;
     gl_target_destroy(&st.terrain);
+    for (int i = 0; i < st.ed.stamps.count; i++)
+        ui_renderer_delete_texture(st.ed.stamps.entries[i].texture);
     ui_renderer_destroy(st.uir);
     ui_destroy(st.ui);
     ui_font_destroy(st.font);

@@ -122,3 +122,23 @@ int ui_renderer_draw(ui_renderer *r, const ui_draw_list *dl, const ui_font *font
     if (e != GL_NO_ERROR) return og_error_set(err, "OpenGL error 0x%x drawing the UI", e);
     return 0;
 }
+
+uint32_t ui_renderer_create_texture(int width, int height, const uint8_t *rgba) {
+    GLuint t = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &t);
+    if (!t) return 0;
+    glTextureStorage2D(t, 1, GL_RGBA8, width, height);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTextureSubImage2D(t, 0, 0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(t, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(t, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return t;
+}
+
+void ui_renderer_delete_texture(uint32_t texture) {
+    GLuint t = texture;
+    if (t) glDeleteTextures(1, &t);
+}

@@ -19,4 +19,9 @@ void ui_renderer_destroy(ui_renderer *r);
 int ui_renderer_draw(ui_renderer *r, const ui_draw_list *dl, const ui_font *font, int width,
                      int height, og_error *err);
 
+// An RGBA8 texture for the UI's images (thumbnails); 0 on failure. Deleted with
+// ui_renderer_delete_texture.
+uint32_t ui_renderer_create_texture(int width, int height, const uint8_t *rgba);
+void ui_renderer_delete_texture(uint32_t texture);
+
 #endif

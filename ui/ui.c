@@ -202,11 +202,25 @@ static float text_width(const ui_context *ui, const char *s, size_t n) {
 }
 
 static void text_in(ui_context *ui, ui_rect r, const char *s, size_t n, ui_color c, int centred) {
-    float w = text_width(ui, s, n);
-    float x = centred ? r.x + (r.w - w) * 0.5f : r.x + ui_em(ui, 0.3f);
+    float w = text_width(ui, s, n), pad = ui_em(ui, 0.3f);
+    // Text wider than the box starts at its left edge and ends in an ellipsis.
+    int fits = w <= r.w - 2 * pad;
+    float x = centred && fits ? r.x + (r.w - w) * 0.5f : r.x + pad;
     float y = r.y + (r.h - ui_font_line_height(ui->font)) * 0.5f;
     ui_draw_push_clip(ui->target, r);
-    ui_draw_text(ui->target, UI_FACE_SANS, x, y, s, n, c);
+    if (fits) {
+        ui_draw_text(ui->target, UI_FACE_SANS, x, y, s, n, c);
+    } else {
+        static const char dots[] = "\xe2\x80\xa6";
+        float room = r.w - 2 * pad - text_width(ui, dots, 3);
+        size_t cut = ui_font_offset_at(ui->font, UI_FACE_SANS, s, n, room);
+        while (cut > 0 && text_width(ui, s, cut) > room)
+            cut--;
+        while (cut > 0 && ((unsigned char)s[cut] & 0xC0) == 0x80) // whole characters
+            cut--;
+        float drawn = ui_draw_text(ui->target, UI_FACE_SANS, x, y, s, cut, c);
+        ui_draw_text(ui->target, UI_FACE_SANS, x + drawn, y, dots, 3, c);
+    }
     ui_draw_pop_clip(ui->target);
 }
 
@@ -347,6 +361,14 @@ const ui_draw_list *ui_end(ui_context *ui) {
     ui->shown = ui->cur;
     append_overlay(ui);
     return &ui->dl;
+}
+
+int ui_captures_point(const ui_context *ui, float x, float y) {
+    if (ui->active || ui->modal.w > 0) return 1;
+    if (ui->open_popup && ui_rect_contains(ui->popup_rect, x, y)) return 1;
+    for (int i = 0; i < ui->panel_count[ui->cur]; i++)
+        if (ui_rect_contains(ui->panel_rects[ui->cur][i], x, y)) return 1;
+    return 0;
 }
 
 int ui_wants_mouse(const ui_context *ui) {
@@ -544,6 +566,22 @@ int ui_toggle_button(ui_context *ui, const char *label, int on) {
         on ? (ui->hot == id ? ui->theme.accent_hot : ui->theme.accent) : widget_colour(ui, id);
     ui_draw_rect(ui->target, r, bg);
     text_in(ui, r, label, label_len(label), ui->theme.text, 1);
+    record_widget(ui, label, r);
+    return clicked;
+}
+
+int ui_image_button(ui_context *ui, const char *label, uint32_t texture, int on) {
+    ui_id id = ui_get_id(ui, label);
+    ui_rect r = ui_next_cell(ui);
+    int clicked = behave(ui, id, r);
+    ui_draw_rect(ui->target, r, on ? ui->theme.accent : widget_colour(ui, id));
+    float pad = ui_em(ui, 0.15f), lh = ui_font_line_height(ui->font);
+    ui_rect img = {r.x + pad, r.y + pad, r.w - 2 * pad, r.h - 2 * pad};
+    ui_draw_image(ui->target, texture, img, 0, 0, 1, 1,
+                  ui->hot == id ? UI_RGBA(255, 255, 255, 255) : UI_RGBA(225, 225, 225, 255));
+    ui_rect strip = {img.x, img.y + img.h - lh, img.w, lh};
+    ui_draw_rect(ui->target, strip, UI_RGBA(0, 0, 0, 150));
+    text_in(ui, strip, label, label_len(label), ui->theme.text, 1);
     record_widget(ui, label, r);
     return clicked;
 }

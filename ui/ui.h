@@ -86,6 +86,10 @@ const ui_draw_list *ui_end(ui_context *ui);
 // is being dragged) or the keyboard (a text field has focus): the viewport must not
 // take those events then. Valid after ui_end, for the next frame's events.
 int ui_wants_mouse(const ui_context *ui);
+// Whether the UI would take a press at (x, y) now: the point is on a panel, menu bar,
+// open popup or modal dialog of the last frame, or a widget is being dragged. Unlike
+// ui_wants_mouse it uses the given point, not where the pointer was at the last frame.
+int ui_captures_point(const ui_context *ui, float x, float y);
 int ui_wants_keyboard(const ui_context *ui);
 // Something animates or waits (a tooltip delay, a caret blink): draw another frame.
 int ui_needs_frame(const ui_context *ui);
@@ -128,6 +132,9 @@ void ui_label_colored(ui_context *ui, const char *text, ui_color c);
 int ui_button(ui_context *ui, const char *label);                // 1 when clicked
 int ui_toggle_button(ui_context *ui, const char *label, int on); // a button shown pressed when on
 int ui_checkbox(ui_context *ui, const char *label, int *value);  // 1 when changed
+// A button showing a texture of the renderer's (0: none yet) with its label across the
+// bottom; drawn selected when on. 1 when clicked.
+int ui_image_button(ui_context *ui, const char *label, uint32_t texture, int on);
 int ui_radio(ui_context *ui, const char *label, int *value, int option);
 // A slider over [lo, hi]: drag (Shift: 10x finer), Ctrl+click or double click to type a
 // value (Enter sets, Esc cancels). fmt formats the value ("%.1f m"). 1 when changed.

@@ -1,0 +1,42 @@
+// The stamp browser: every stamp (functional shapes, the built-in library, the user's
+// folder) as a thumbnail the program renders itself (the shape as shaded relief),
+// and the placement options of the stamp tool. Picking a stamp selects the stamp
+// tool; a click in the viewport then runs `stamp NAME X Z ...` at the picked point.
+#ifndef OROGEN_APP_STAMP_BROWSER_H
+#define OROGEN_APP_STAMP_BROWSER_H
+
+#include "editor/cmd/context.h"
+#include "ui/ui.h"
+
+#include <stdint.h>
+
+#define STAMP_BROWSER_MAX 64
+#define STAMP_THUMB 64 // thumbnail side, pixels
+
+typedef struct stamp_entry {
+    char name[128];
+    char kind[16];         // functional, library, user
+    double natural_half_m; // half the footprint at scale 1 on the coarse layer, metres
+    uint8_t rgba[STAMP_THUMB * STAMP_THUMB * 4];
+    uint32_t texture; // the renderer's texture (0 until uploaded)
+} stamp_entry;
+
+typedef struct stamp_browser {
+    stamp_entry entries[STAMP_BROWSER_MAX];
+    int count;
+    int selected; // -1: none
+    int active;   // the stamp tool is the viewport's tool
+    double scale, rotation, intensity;
+    int mode, layer, mirror;
+} stamp_browser;
+
+// Lists the stamps and renders their thumbnails (CPU; the window uploads them).
+void stamp_browser_init(stamp_browser *b, const cmd_context *ctx);
+// The dock section: thumbnails and placement options.
+void stamp_browser_draw(stamp_browser *b, ui_context *ui, cmd_context *ctx, int *tool_changed);
+// The command that places the selected stamp at (x, z) metres.
+int stamp_browser_command(const stamp_browser *b, double x, double z, char *out, size_t size);
+// Half the footprint of the selected stamp with the current options, metres.
+double stamp_browser_half_size(const stamp_browser *b, double spacing);
+
+#endif
