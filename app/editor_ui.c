@@ -198,6 +198,7 @@ static void palette(editor_ui *e, ui_context *ui, cmd_context *ctx, ui_rect r) {
     if (ui_toggle_button(ui, "Stamp", e->stamps.active)) {
         if (e->stamps.selected < 0 && e->stamps.count > 0) e->stamps.selected = 0;
         e->stamps.active = e->stamps.selected >= 0;
+        e->stamps.open_request = 1;
     }
     ui_tooltip(ui, "Place a stamp (a shape or heightmap) with a click in the viewport");
     ui_panel_end(ui);
@@ -285,9 +286,18 @@ static void tool_options(editor_ui *e, ui_context *ui, cmd_context *ctx) {
     case BRUSH_PAINT: {
         static const char *const materials[] = {"automatic", "sand", "grass",  "rock",
                                                 "snow",      "dirt", "gravel", "moss"};
-        int m = b->material;
-        if (ui_combo(ui, "Material", &m, materials, 8)) runf(e, ctx, "tool paint material=%d", m);
-        ui_tooltip(ui, "The material to paint (automatic follows height and slope)");
+        float quarters[4] = {0, 0, 0, 0};
+        ui_push_scope(ui, "Materials");
+        for (int m = 0; m < 8; m++) {
+            if (m % 4 == 0) ui_row(ui, 4, quarters, ui_em(ui, 3.4f));
+            if (ui_image_button(ui, materials[m], e->material_textures[m], b->material == m))
+                runf(e, ctx, "tool paint material=%d", m);
+            ui_tooltip(ui, m == 0 ? "automatic: back to the rules (sand by the water, grass, rock "
+                                    "on slopes, snow up high)"
+                                  : "Paint this material (invert removes it)");
+        }
+        ui_pop_scope(ui);
+        ui_row(ui, 1, NULL, 0);
         break;
     }
     default:
@@ -520,7 +530,11 @@ ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport
         snprintf(tool_title, sizeof tool_title, "Tool: %s##Tool", current_tool(&ctx->brush));
     if (ui_section(ui, tool_title, 1) && !e->stamps.active) tool_options(e, ui, ctx);
     int picked = 0;
-    if (ui_section(ui, "Stamps", 1)) stamp_browser_draw(&e->stamps, ui, ctx, &picked);
+    if (e->stamps.open_request) { // the palette's Stamp button shows the browser
+        ui_section_set(ui, "Stamps", 1);
+        e->stamps.open_request = 0;
+    }
+    if (ui_section(ui, "Stamps", 0)) stamp_browser_draw(&e->stamps, ui, ctx, &picked);
     if (ui_section(ui, "World", 1)) world_panel(e, ui, ctx);
     if (ui_section(ui, "History", 1)) history_panel(e, ui, ctx);
     ui_panel_end(ui);

@@ -40,6 +40,7 @@ typedef struct editor_ui {
     int recent_count;
     double ui_scale, ui_scale_request; // the current scale; a new one asked for (0: none)
     stamp_browser stamps;              // the stamp tool (stamps.active) and its options
+    uint32_t material_textures[8];     // swatches of the paint materials (0: automatic)
     int quit_requested;                // the window should close
 } editor_ui;
 

@@ -24,8 +24,9 @@ typedef struct stamp_entry {
 typedef struct stamp_browser {
     stamp_entry entries[STAMP_BROWSER_MAX];
     int count;
-    int selected; // -1: none
-    int active;   // the stamp tool is the viewport's tool
+    int selected;     // -1: none
+    int active;       // the stamp tool is the viewport's tool
+    int open_request; // show the browser's section (the palette's Stamp button)
     double scale, rotation, intensity;
     int mode, layer, mirror;
 } stamp_browser;

@@ -5,6 +5,7 @@
 #include "app/settings.h"
 #include "renderer/gl_context.h"
 #include "renderer/gl_target.h"
+#include "renderer/material_textures.h"
 #include "renderer/pick.h"
 #include "renderer/ui_renderer.h"
 #include "renderer/view_commands.h"
@@ -866,6 +867,29 @@ static viewport *attach_viewport(cmd_context *ctx, og_error *err) {
     return v;
 }
 
+// Swatches of the paint materials from the renderer's own procedural textures (a
+// 64-pixel crop of each); "automatic" shows its rules' grass, rock and snow side by side.
+static void make_material_swatches(uint32_t out[8]) {
+    enum { SWATCH = 64 };
+    static unsigned char full[MATERIAL_TEXTURE_COUNT]
+                             [MATERIAL_TEXTURE_SIZE * MATERIAL_TEXTURE_SIZE * 4];
+    static unsigned char swatch[SWATCH * SWATCH * 4];
+    for (int t = 0; t < MATERIAL_TEXTURE_COUNT; t++)
+        material_texture_generate(t, full[t]);
+    for (int m = 0; m < 8; m++) {
+        for (int y = 0; y < SWATCH; y++)
+            for (int x = 0; x < SWATCH; x++) {
+                // Paint material m is texture m - 1 (sand .. moss); automatic shows three.
+                int t = m > 0 ? m - 1 : (x < SWATCH / 3 ? 1 : x < 2 * SWATCH / 3 ? 2 : 3);
+                const unsigned char *src =
+                    full[t] + ((size_t)(y * 2) * MATERIAL_TEXTURE_SIZE + x * 2) * 4;
+                unsigned char *dst = swatch + ((size_t)y * SWATCH + x) * 4;
+                dst[0] = src[0], dst[1] = src[1], dst[2] = src[2], dst[3] = 255;
+            }
+        out[m] = ui_renderer_create_texture(SWATCH, SWATCH, swatch);
+    }
+}
+
 // The window's size and place, the UI scale, the recent worlds and the console's
 // history, for the next run. A failure is only reported.
 static void save_settings(window_state *st) {
@@ -973,6 +997,7 @@ int window_run(cmd_context *ctx, og_error *err) {
     }
     ui_set_clipboard(st.ui, (ui_clipboard){clipboard_get, clipboard_set, win});
     current_window = &st;
+    make_material_swatches(st.ed.material_textures);
     stamp_browser_init(&st.ed.stamps, ctx);
     for (int i = 0; i < st.ed.stamps.count; i++)
         st.ed.stamps.entries[i].texture =
@@ -1065,6 +1090,8 @@ int window_run(cmd_context *ctx, og_error *err) {
     gl_target_destroy(&st.terrain);
     for (int i = 0; i < st.ed.stamps.count; i++)
         ui_renderer_delete_texture(st.ed.stamps.entries[i].texture);
+    for (int i = 0; i < 8; i++)
+        ui_renderer_delete_texture(st.ed.material_textures[i]);
     ui_renderer_destroy(st.uir);
     ui_destroy(st.ui);
     ui_font_destroy(st.font);

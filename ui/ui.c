@@ -657,6 +657,12 @@ int ui_section(ui_context *ui, const char *label, int default_open) {
     return s->open;
 }
 
+void ui_section_set(ui_context *ui, const char *label, int open) {
+    slot *s = get_slot(ui, ui_get_id(ui, label));
+    s->open = open;
+    s->initialised = 1;
+}
+
 ui_rect ui_last_rect(const ui_context *ui) {
     return ui->last_rect;
 }

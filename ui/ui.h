@@ -160,6 +160,8 @@ void ui_separator(ui_context *ui);
 void ui_progress(ui_context *ui, double fraction, const char *text);
 // A collapsible section header; returns 1 while open (starts open when default_open).
 int ui_section(ui_context *ui, const char *label, int default_open);
+// Opens or closes the section with this label (in the current scope) from the next frame.
+void ui_section_set(ui_context *ui, const char *label, int open);
 // Shows text near the pointer after a short hover over the last widget.
 void ui_tooltip(ui_context *ui, const char *text);
 // The last widget's rectangle and whether the pointer is over it.
