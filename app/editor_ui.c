@@ -86,6 +86,7 @@ static void menus(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v, u
     if (ui_menu_begin(ui, "File")) {
         if (ui_menu_item(ui, "New flat world", "Ctrl+N", 1))
             editor_ui_request(e, ctx, PENDING_NEW_FLAT);
+        if (ui_menu_item(ui, "Open...", "Ctrl+O", 1)) editor_ui_open(e, ctx);
         for (int i = 0; i < e->recent_count; i++) {
             char label[1100];
             snprintf(label, sizeof label, "Open %s##recent%d", file_name(e->recent[i]), i);
@@ -96,10 +97,7 @@ static void menus(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v, u
         }
         if (e->recent_count) ui_menu_separator(ui);
         if (ui_menu_item(ui, "Save", "Ctrl+S", saved_before)) editor_ui_run(e, ctx, "save");
-        if (ui_menu_item(ui, "Save as...", "Ctrl+Shift+S", 1)) {
-            e->show_save_as = 1;
-            snprintf(e->save_as_path, sizeof e->save_as_path, "%s", world_path(ctx->world));
-        }
+        if (ui_menu_item(ui, "Save as...", "Ctrl+Shift+S", 1)) editor_ui_save_as(e, ctx);
         ui_menu_separator(ui);
         if (ui_menu_item(ui, "Quit", "Ctrl+Q", 1)) editor_ui_request(e, ctx, PENDING_QUIT);
         ui_menu_end(ui);
@@ -437,7 +435,7 @@ static void unsaved_prompt(editor_ui *e, ui_context *ui, cmd_context *ctx, float
                 do_action(e, ctx, a);
             }
         } else {
-            e->show_save_as = 1;
+            editor_ui_save_as(e, ctx);
         }
     }
     ui_tooltip(ui, "Save the world, then go on");
@@ -452,37 +450,31 @@ static void unsaved_prompt(editor_ui *e, ui_context *ui, cmd_context *ctx, float
     ui_panel_end(ui);
 }
 
-static void save_as_dialog(editor_ui *e, ui_context *ui, cmd_context *ctx, float width,
-                           float height) {
-    ui_rect r = centred(width, height, ui_em(ui, 26), ui_em(ui, 5.5f));
-    ui_panel_begin(ui, "Save as", r);
-    ui_row(ui, 1, NULL, 0);
-    ui_label(ui, "Save the world as (a .world file; its tiles go beside it):");
-    int rc = ui_textbox(ui, "Path", e->save_as_path, sizeof e->save_as_path);
-    float halves[2] = {-0.5f, 0};
-    ui_row(ui, 2, halves, ui_em(ui, 1.5f));
-    int go = ui_button(ui, "Save") || (rc & UI_TEXT_SUBMIT);
-    ui_tooltip(ui, "Write the parameter file and its tile store");
-    if (ui_button(ui, "Cancel")) e->show_save_as = 0;
-    ui_tooltip(ui, "Close without saving");
-    ui_panel_end(ui);
-    if (go && e->save_as_path[0]) {
-        char quoted[1100];
-        size_t n = 0;
-        for (const char *p = e->save_as_path; *p && n + 3 < sizeof quoted; p++) {
-            if (*p == '"' || *p == '\\') quoted[n++] = '\\';
-            quoted[n++] = *p;
-        }
-        quoted[n] = 0;
-        if (runf(e, ctx, "save \"%s\"", quoted) == 0) {
-            e->show_save_as = 0;
-            remember_recent(e, world_path(ctx->world));
-            if (e->pending != PENDING_NONE) {
-                editor_pending a = e->pending;
-                e->pending = PENDING_NONE;
-                do_action(e, ctx, a);
-            }
-        }
+void editor_ui_save_as(editor_ui *e, cmd_context *ctx) {
+    file_browser_show(&e->files, FILE_BROWSER_SAVE, world_path(ctx->world));
+}
+
+void editor_ui_open(editor_ui *e, cmd_context *ctx) {
+    file_browser_show(&e->files, FILE_BROWSER_OPEN, world_path(ctx->world));
+}
+
+// The file browser for Open and Save as; what it chose runs as load or save.
+static void files_dialog(editor_ui *e, ui_context *ui, cmd_context *ctx, ui_rect r) {
+    if (!file_browser_draw(&e->files, ui, r)) return;
+    if (e->files.mode == FILE_BROWSER_OPEN) {
+        snprintf(e->open_path, sizeof e->open_path, "%.1023s", e->files.path);
+        editor_ui_request(e, ctx, PENDING_OPEN);
+        return;
+    }
+    char arg[4200], cmd[4300];
+    quote_arg(arg, sizeof arg, e->files.path);
+    snprintf(cmd, sizeof cmd, "save %s", arg);
+    if (editor_ui_run(e, ctx, cmd) != 0) return;
+    remember_recent(e, world_path(ctx->world));
+    if (e->pending != PENDING_NONE) { // saved from the unsaved-changes prompt: go on
+        editor_pending a = e->pending;
+        e->pending = PENDING_NONE;
+        do_action(e, ctx, a);
     }
 }
 
@@ -500,7 +492,9 @@ static void text_dialog(ui_context *ui, const char *name, const char *const *lin
 
 // The open dialog's rectangle (they are centred and sized from the font).
 static ui_rect dialog_rect(const editor_ui *e, const ui_context *ui, float width, float height) {
-    if (e->show_save_as) return centred(width, height, ui_em(ui, 26), ui_em(ui, 5.5f));
+    if (e->files.open)
+        return centred(width, height, fminf(width * 0.9f, ui_em(ui, 34)),
+                       fminf(height * 0.85f, ui_em(ui, 24)));
     if (e->pending != PENDING_NONE) return centred(width, height, ui_em(ui, 22), ui_em(ui, 6));
     if (e->show_help) return centred(width, height, ui_em(ui, 28), ui_em(ui, 1.45f * (9 + 2.5f)));
     if (e->show_about) return centred(width, height, ui_em(ui, 28), ui_em(ui, 1.45f * (3 + 2.5f)));
@@ -555,7 +549,7 @@ ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport
             "G walk mode, F focus on the pointer, Home reset the view",
             "1-5 shaded, wireframe, levels, height, slope views",
             "Ctrl+Z undo, Ctrl+Shift+Z or Ctrl+Y redo; [ ] brush radius, - = strength",
-            "Ctrl+S save, Ctrl+Shift+S save as, Ctrl+N new, Ctrl+Q quit",
+            "Ctrl+S save, Ctrl+Shift+S save as, Ctrl+N new, Ctrl+O open, Ctrl+Q quit",
             "~ console, F1 this help, Esc close menus and dialogs",
         };
         text_dialog(ui, "Keyboard shortcuts", help, (int)(sizeof help / sizeof help[0]),
@@ -568,16 +562,16 @@ ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport
                                "OpenGL 4.5 core, GLFW, SQLite, zstd, OpenImageIO, stb_truetype"};
         text_dialog(ui, "About", about, 3, &e->show_about, width, height);
     }
-    if (e->show_save_as)
-        save_as_dialog(e, ui, ctx, width, height);
+    if (e->files.open)
+        files_dialog(e, ui, ctx, modal);
     else if (e->pending != PENDING_NONE)
         unsaved_prompt(e, ui, ctx, width, height);
     // The menu bar last: its menus open over everything.
     menus(e, ui, ctx, v, top);
     if (ui_get_input(ui)->key_pressed[UI_KEY_ESCAPE] && !ui_wants_keyboard(ui)) {
         e->show_help = e->show_about = 0;
-        if (e->show_save_as)
-            e->show_save_as = 0;
+        if (e->files.open)
+            e->files.open = 0;
         else if (e->pending != PENDING_NONE)
             e->pending = PENDING_NONE;
     }

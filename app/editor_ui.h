@@ -6,6 +6,7 @@
 #define OROGEN_APP_EDITOR_UI_H
 
 #include "app/console.h"
+#include "app/file_browser.h"
 #include "app/stamp_browser.h"
 #include "editor/cmd/commands.h"
 #include "renderer/viewport.h"
@@ -32,9 +33,9 @@ typedef enum editor_pending {
 
 typedef struct editor_ui {
     console console;
-    int show_help, show_about, show_save_as;
+    int show_help, show_about;
+    file_browser files;     // Open and Save as
     editor_pending pending; // an action waiting on the unsaved-changes prompt
-    char save_as_path[1024];
     char open_path[1024];
     char recent[EDITOR_RECENT][1024]; // worlds opened or saved lately, newest first
     int recent_count;
@@ -54,6 +55,11 @@ ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport
 
 // Runs a command as a UI action: echoed in the console, output and errors there too.
 int editor_ui_run(editor_ui *e, cmd_context *ctx, const char *text);
+
+// Opens the file browser to save the world somewhere (File > Save as, Ctrl+Shift+S) or
+// to open one (File > Open, Ctrl+O).
+void editor_ui_save_as(editor_ui *e, cmd_context *ctx);
+void editor_ui_open(editor_ui *e, cmd_context *ctx);
 
 // Asks before an action that would lose unsaved changes (New, Quit, the window's
 // close button); runs it at once when there are none.

@@ -478,11 +478,11 @@ static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
     }
     if (action != GLFW_PRESS) return;
     if (mods & GLFW_MOD_CONTROL) {
-        if (key == GLFW_KEY_S && (mods & GLFW_MOD_SHIFT)) {
-            st->ed.show_save_as = 1;
-            snprintf(st->ed.save_as_path, sizeof st->ed.save_as_path, "%s",
-                     world_path(st->ctx->world));
-        } else if (key == GLFW_KEY_S)
+        if (key == GLFW_KEY_S && (mods & GLFW_MOD_SHIFT))
+            editor_ui_save_as(&st->ed, st->ctx);
+        else if (key == GLFW_KEY_O)
+            editor_ui_open(&st->ed, st->ctx);
+        else if (key == GLFW_KEY_S)
             save_shortcut(st);
         else if (key == GLFW_KEY_N)
             editor_ui_request(&st->ed, st->ctx, PENDING_NEW_FLAT);

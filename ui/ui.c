@@ -570,6 +570,17 @@ int ui_toggle_button(ui_context *ui, const char *label, int on) {
     return clicked;
 }
 
+int ui_selectable(ui_context *ui, const char *label, int on) {
+    ui_id id = ui_get_id(ui, label);
+    ui_rect r = ui_next_cell(ui);
+    int clicked = behave(ui, id, r);
+    if (on || ui->hot == id)
+        ui_draw_rect(ui->target, r, on ? ui->theme.selection : ui->theme.widget_hot);
+    text_in(ui, r, label, label_len(label), ui->theme.text, 0);
+    record_widget(ui, label, r);
+    return clicked;
+}
+
 int ui_image_button(ui_context *ui, const char *label, uint32_t texture, int on) {
     ui_id id = ui_get_id(ui, label);
     ui_rect r = ui_next_cell(ui);

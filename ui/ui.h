@@ -136,6 +136,8 @@ int ui_checkbox(ui_context *ui, const char *label, int *value);  // 1 when chang
 // bottom; drawn selected when on. 1 when clicked.
 int ui_image_button(ui_context *ui, const char *label, uint32_t texture, int on);
 int ui_radio(ui_context *ui, const char *label, int *value, int option);
+// A line of a list, left-aligned, highlighted when on. 1 when clicked.
+int ui_selectable(ui_context *ui, const char *label, int on);
 // A slider over [lo, hi]: drag (Shift: 10x finer), Ctrl+click or double click to type a
 // value (Enter sets, Esc cancels). fmt formats the value ("%.1f m"). 1 when changed.
 int ui_slider(ui_context *ui, const char *label, double *value, double lo, double hi,

@@ -1,0 +1,175 @@
+#include "app/file_browser.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+static int world_file(const char *name) {
+    const char *dot = strrchr(name, '.');
+    return dot && (strcmp(dot, ".world") == 0 || strcmp(dot, ".planet") == 0);
+}
+
+static int sort_mode; // qsort has no user pointer
+
+static int compare(const void *pa, const void *pb) {
+    const file_browser_entry *a = pa, *b = pb;
+    if (a->is_dir != b->is_dir) return b->is_dir - a->is_dir; // folders first
+    if (sort_mode == 1 && a->mtime != b->mtime) return a->mtime > b->mtime ? -1 : 1;
+    if (sort_mode == 2 && a->size != b->size) return a->size > b->size ? -1 : 1;
+    return strcmp(a->name, b->name);
+}
+
+void file_browser_refresh(file_browser *b) {
+    b->count = 0;
+    b->error[0] = 0;
+    DIR *d = opendir(b->dir);
+    if (!d) {
+        snprintf(b->error, sizeof b->error, "%.400s: %s", b->dir, strerror(errno));
+        return;
+    }
+    struct dirent *de;
+    while ((de = readdir(d)) && b->count < FILE_BROWSER_MAX) {
+        if (de->d_name[0] == '.') continue; // hidden files and . ..
+        char full[8192];
+        snprintf(full, sizeof full, "%s/%s", b->dir, de->d_name);
+        struct stat st;
+        if (stat(full, &st) != 0) continue;
+        int is_dir = S_ISDIR(st.st_mode);
+        if (!is_dir && !world_file(de->d_name)) continue;
+        file_browser_entry *e = &b->entries[b->count++];
+        snprintf(e->name, sizeof e->name, "%s", de->d_name);
+        e->is_dir = is_dir;
+        e->size = (long long)st.st_size;
+        e->mtime = st.st_mtime;
+    }
+    closedir(d);
+    sort_mode = b->sort;
+    qsort(b->entries, (size_t)b->count, sizeof b->entries[0], compare);
+}
+
+void file_browser_show(file_browser *b, file_browser_mode mode, const char *start) {
+    b->open = 1;
+    b->mode = mode;
+    b->confirm_overwrite = 0;
+    snprintf(b->path, sizeof b->path, "%s", start ? start : "");
+    char dir[4096];
+    if (start && *start) {
+        snprintf(dir, sizeof dir, "%s", start);
+        char *slash = strrchr(dir, '/');
+        if (slash)
+            *slash = 0;
+        else if (!getcwd(dir, sizeof dir))
+            snprintf(dir, sizeof dir, ".");
+        if (!dir[0]) snprintf(dir, sizeof dir, "/");
+    } else if (!getcwd(dir, sizeof dir)) {
+        snprintf(dir, sizeof dir, ".");
+    }
+    snprintf(b->dir, sizeof b->dir, "%.4095s", dir);
+    file_browser_refresh(b);
+}
+
+static void go_to(file_browser *b, const char *dir) {
+    snprintf(b->dir, sizeof b->dir, "%.4095s", dir);
+    file_browser_refresh(b);
+}
+
+int file_browser_draw(file_browser *b, ui_context *ui, ui_rect r) {
+    const ui_theme *t = ui_get_theme(ui);
+    int chosen = 0;
+    ui_panel_begin(ui, b->mode == FILE_BROWSER_OPEN ? "Open" : "Save as", r);
+    float line = ui_em(ui, 1.4f);
+    ui_row(ui, 1, NULL, line);
+    ui_label(ui, b->mode == FILE_BROWSER_OPEN ? "Open a world (.world or .planet)"
+                                              : "Save the world as (a .world file; its tiles go "
+                                                "beside it as NAME.tiles)");
+    float top[4] = {-0.2f, -0.2f, -0.3f, 0};
+    ui_row(ui, 4, top, line);
+    if (ui_button(ui, "Parent")) {
+        char dir[4096];
+        snprintf(dir, sizeof dir, "%s", b->dir);
+        char *slash = strrchr(dir, '/');
+        if (slash && slash != dir)
+            *slash = 0;
+        else
+            snprintf(dir, sizeof dir, "/");
+        go_to(b, dir);
+    }
+    ui_tooltip(ui, "The folder above this one");
+    if (ui_button(ui, "Home")) {
+        const char *home = getenv("HOME");
+        go_to(b, home && *home ? home : "/");
+    }
+    ui_tooltip(ui, "Your home folder");
+    static const char *const sorts[] = {"name", "date", "size"};
+    if (ui_combo(ui, "Sort", &b->sort, sorts, 3)) file_browser_refresh(b);
+    ui_tooltip(ui, "Order of the files (folders come first)");
+    char where[4200];
+    snprintf(where, sizeof where, "%s", b->dir);
+    ui_label_colored(ui, where, t->text_dim);
+    ui_tooltip(ui, "The folder shown");
+    // The list: folders open on a click, files fill the path field.
+    ui_row(ui, 1, NULL, line);
+    ui_rect list = ui_next_cell(ui);
+    float list_h = r.h - 6.8f * line;
+    list.h = list_h > line ? list_h : line;
+    ui_panel_begin(ui, "Files", list);
+    ui_row(ui, 1, NULL, ui_em(ui, 1.2f));
+    if (b->error[0]) ui_label_colored(ui, b->error, t->text_error);
+    for (int i = 0; i < b->count; i++) {
+        file_browser_entry *e = &b->entries[i];
+        char label[400];
+        if (e->is_dir)
+            snprintf(label, sizeof label, "%s/##%d", e->name, i);
+        else
+            snprintf(label, sizeof label, "%s   (%lld KiB)##%d", e->name, e->size / 1024, i);
+        char full[8192];
+        snprintf(full, sizeof full, "%s/%s", strcmp(b->dir, "/") == 0 ? "" : b->dir, e->name);
+        if (ui_selectable(ui, label, strcmp(full, b->path) == 0)) {
+            if (e->is_dir) {
+                go_to(b, full);
+                break;
+            }
+            snprintf(b->path, sizeof b->path, "%.4095s", full);
+            b->confirm_overwrite = 0;
+        }
+        ui_tooltip(ui, e->is_dir ? "Open this folder" : "Choose this file");
+    }
+    ui_panel_end(ui);
+    // Leave room for the list in this panel's layout.
+    ui_row(ui, 1, NULL, list.h - line);
+    ui_next_cell(ui);
+    ui_row(ui, 1, NULL, line);
+    int rc = ui_textbox(ui, "Path", b->path, sizeof b->path);
+    ui_tooltip(ui, "The file: type a path, or pick one above");
+    float bottom[2] = {-0.5f, 0};
+    ui_row(ui, 2, bottom, line);
+    int go = ui_button(ui, b->confirm_overwrite           ? "Overwrite##go"
+                           : b->mode == FILE_BROWSER_OPEN ? "Open##go"
+                                                          : "Save##go") ||
+             (rc & UI_TEXT_SUBMIT);
+    ui_tooltip(ui, b->mode == FILE_BROWSER_OPEN ? "Open the chosen world" : "Save the world there");
+    if (ui_button(ui, "Cancel")) b->open = 0;
+    ui_tooltip(ui, "Close without choosing (Esc)");
+    ui_panel_end(ui);
+    if (go && b->path[0]) {
+        struct stat st;
+        int exists = stat(b->path, &st) == 0;
+        if (b->mode == FILE_BROWSER_OPEN && !exists) {
+            snprintf(b->error, sizeof b->error, "%.400s: no such file", b->path);
+        } else if (exists && S_ISDIR(st.st_mode)) {
+            go_to(b, b->path);
+        } else if (b->mode == FILE_BROWSER_SAVE && exists && !b->confirm_overwrite) {
+            b->confirm_overwrite = 1; // the button asks again: Overwrite
+            snprintf(b->error, sizeof b->error, "%.400s exists: press Overwrite to replace it",
+                     b->path);
+        } else {
+            chosen = 1;
+            b->open = 0;
+        }
+    }
+    return chosen;
+}

@@ -1,0 +1,43 @@
+// The in-app file browser (no native dialogs exist under Xvfb or on every desktop):
+// a folder's sub-folders and world files (.world, .planet), parent and home, a path
+// field, sorting by name, date or size, and for saving an overwrite confirmation.
+#ifndef OROGEN_APP_FILE_BROWSER_H
+#define OROGEN_APP_FILE_BROWSER_H
+
+#include "ui/ui.h"
+
+#include <stddef.h>
+#include <time.h>
+
+#define FILE_BROWSER_MAX 512
+
+typedef enum file_browser_mode { FILE_BROWSER_OPEN, FILE_BROWSER_SAVE } file_browser_mode;
+
+typedef struct file_browser_entry {
+    char name[256];
+    int is_dir;
+    long long size;
+    time_t mtime;
+} file_browser_entry;
+
+typedef struct file_browser {
+    int open;
+    file_browser_mode mode;
+    char dir[4096];
+    char path[4096]; // the path field: the chosen file
+    file_browser_entry entries[FILE_BROWSER_MAX];
+    int count;
+    int sort; // 0 name, 1 date, 2 size
+    int confirm_overwrite;
+    char error[512];
+} file_browser;
+
+// Opens the browser on the folder of start (or the current folder when start is empty).
+void file_browser_show(file_browser *b, file_browser_mode mode, const char *start);
+// Lists b->dir again.
+void file_browser_refresh(file_browser *b);
+// Draws the browser as a modal dialog over r; returns 1 when a file was chosen (in
+// b->path; the browser closes).
+int file_browser_draw(file_browser *b, ui_context *ui, ui_rect r);
+
+#endif
