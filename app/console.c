@@ -1,6 +1,11 @@
 #include "app/console.h"
 
+#include "editor/tools/brush.h"
+#include "editor/tools/stamp.h"
 #include "io/param_file.h"
+
+#include <dirent.h>
+#include <sys/stat.h>
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -119,17 +124,130 @@ static ui_log_line line_at(void *user, size_t i) {
     return (ui_log_line){c->lines[at], colours[c->kinds[at]]};
 }
 
-// Tab: completes the command name being typed (the longest common prefix of the
-// matches); several matches are listed in the scrollback.
-static void complete(console *c) {
+// Candidates for completion, gathered into one buffer.
+typedef struct candidates {
+    char text[8192];
+    size_t used;
+    const char *items[512];
+    size_t count;
+} candidates;
+
+static void add_candidate(candidates *c, const char *word, size_t len) {
+    if (c->count == 512 || c->used + len + 1 > sizeof c->text) return;
+    memcpy(c->text + c->used, word, len);
+    c->text[c->used + len] = 0;
+    c->items[c->count++] = c->text + c->used;
+    c->used += len + 1;
+}
+
+// Adds each blank-separated word of list.
+static void add_words(candidates *c, const char *list, const char *suffix) {
+    for (const char *p = list; *p;) {
+        while (*p == ' ')
+            p++;
+        size_t n = strcspn(p, " \n");
+        if (n) {
+            char word[256];
+            snprintf(word, sizeof word, "%.*s%s", (int)n, p, suffix);
+            add_candidate(c, word, strlen(word));
+        }
+        p += n;
+        while (*p == '\n')
+            p++;
+    }
+}
+
+// Files and folders whose path starts with prefix (folders end in '/').
+static void add_paths(candidates *c, const char *prefix) {
+    char dir[4096];
+    const char *slash = strrchr(prefix, '/');
+    if (slash)
+        snprintf(dir, sizeof dir, "%.*s", (int)(slash - prefix + 1), prefix);
+    else
+        dir[0] = 0;
+    DIR *d = opendir(dir[0] ? dir : ".");
+    if (!d) return;
+    struct dirent *de;
+    while ((de = readdir(d))) {
+        if (de->d_name[0] == '.') continue;
+        char path[4400], full[4400];
+        snprintf(path, sizeof path, "%s%s", dir, de->d_name);
+        snprintf(full, sizeof full, "%s", path);
+        struct stat st;
+        if (stat(full, &st) == 0 && S_ISDIR(st.st_mode))
+            strncat(path, "/", sizeof path - strlen(path) - 1);
+        add_candidate(c, path, strlen(path));
+    }
+    closedir(d);
+}
+
+// Tab completes the word before the caret: a command name first; then tool names after
+// `tool`, key= names after a tool, stamp names after `stamp`, paths after load, save and
+// the file arguments of stamp and screenshot. Several matches are listed in the
+// scrollback and the input gets their common prefix.
+static void complete(console *c, const cmd_context *ctx) {
     size_t n = strlen(c->input);
-    if (strchr(c->input, ' ')) return;
+    size_t start = n;
+    while (start > 0 && c->input[start - 1] != ' ' && c->input[start - 1] != ';')
+        start--;
+    const char *word = c->input + start;
+    size_t wlen = n - start;
+    // The command this word belongs to, and which argument it is.
+    size_t cmd_start = start;
+    while (cmd_start > 0 && c->input[cmd_start - 1] != ';')
+        cmd_start--;
+    while (c->input[cmd_start] == ' ')
+        cmd_start++;
+    char cmd[64] = "";
+    int arg = 0;
+    if (cmd_start < start) {
+        sscanf(c->input + cmd_start, "%63s", cmd);
+        for (size_t k = cmd_start; k < start; k++)
+            if (c->input[k] == ' ' && (k + 1 < start && c->input[k + 1] != ' ')) arg++;
+        arg++;
+    }
+    static candidates cand;
+    cand.used = cand.count = 0;
+    if (!cmd[0]) {
+        for (size_t i = 0; i < cmd_count(); i++)
+            add_words(&cand, cmd_name(i), "");
+    } else if (strcmp(cmd, "tool") == 0 && arg == 1) {
+        for (int t = 0; t < BRUSH_TOOL_COUNT; t++)
+            add_words(&cand, brush_tool_name((brush_tool)t), "");
+        add_words(&cand, "lower", "");
+    } else if (strcmp(cmd, "tool") == 0) {
+        add_words(&cand, brush_keys(), "=");
+    } else if (strcmp(cmd, "stamp") == 0 && arg == 1) {
+        char *list = NULL;
+        size_t len = 0;
+        FILE *mem = open_memstream(&list, &len);
+        if (mem) {
+            stamp_list(ctx->resource_dir, ctx->stamp_dir, mem);
+            fclose(mem);
+            for (char *line = list; line && *line;) { // "NAME KIND ..." lines
+                size_t k = strcspn(line, " \n");
+                add_candidate(&cand, line, k);
+                char *nl = strchr(line, '\n');
+                line = nl ? nl + 1 : NULL;
+            }
+            free(list);
+        }
+        add_paths(&cand, word);
+    } else if (strcmp(cmd, "stamp") == 0) {
+        add_words(&cand, "scale rot mirror intensity mode layer face", "=");
+    } else if (strcmp(cmd, "load") == 0 || strcmp(cmd, "save") == 0 ||
+               strcmp(cmd, "screenshot") == 0) {
+        add_paths(&cand, word);
+    } else if (strcmp(cmd, "help") == 0) {
+        for (size_t i = 0; i < cmd_count(); i++)
+            add_words(&cand, cmd_name(i), "");
+    }
     const char *first = NULL;
     size_t common = 0, matches = 0;
     char list[2048] = "";
-    for (size_t i = 0; i < cmd_count(); i++) {
-        const char *name = cmd_name(i);
-        if (strncmp(name, c->input, n) != 0) continue;
+    for (size_t i = 0; i < cand.count; i++) {
+        const char *name = cand.items[i];
+        if (strncmp(name, word, wlen) != 0) continue;
         if (!first) {
             first = name;
             common = strlen(name);
@@ -145,7 +263,12 @@ static void complete(console *c) {
     }
     if (!first) return;
     if (matches > 1) console_add(c, CONSOLE_OUTPUT, list);
-    snprintf(c->input, sizeof c->input, "%.*s%s", (int)common, first, matches == 1 ? " " : "");
+    // A single match that is a word (not a key= or a folder) gets a blank after it.
+    char done = first[common ? common - 1 : 0];
+    const char *space = matches == 1 && done != '=' && done != '/' ? " " : "";
+    char out[CONSOLE_INPUT];
+    snprintf(out, sizeof out, "%.*s%.*s%s", (int)start, c->input, (int)common, first, space);
+    snprintf(c->input, sizeof c->input, "%s", out);
 }
 
 void console_draw(console *c, ui_context *ui, cmd_context *ctx, ui_rect r) {
@@ -165,7 +288,7 @@ void console_draw(console *c, ui_context *ui, cmd_context *ctx, ui_rect r) {
     ui_panel_end(ui);
     const ui_input *in = ui_get_input(ui);
     if (!focused) return;
-    if (in->key_pressed[UI_KEY_TAB]) complete(c);
+    if (in->key_pressed[UI_KEY_TAB]) complete(c, ctx);
     if (in->key_pressed[UI_KEY_UP] && c->history_count) {
         c->history_at = c->history_at < 0 ? (int)c->history_count - 1
                                           : (c->history_at > 0 ? c->history_at - 1 : 0);
