@@ -319,7 +319,7 @@ static void world_panel(editor_ui *e, ui_context *ui, cmd_context *ctx) {
     int g = (int)next->generator;
     if (ui_combo(ui, "Generator", &g, names, GEN_COUNT)) runf(e, ctx, "generator %s", names[g]);
     ui_tooltip(ui, "How the unedited terrain is made (applied by Generate)");
-    float half[2] = {-0.7f, 0};
+    float half[2] = {0, ui_em(ui, 4.5f)};
     ui_row(ui, 2, half, 0);
     snprintf(line, sizeof line, "Seed: %lld", (long long)next->seed);
     ui_label(ui, line);
@@ -506,7 +506,9 @@ ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport
     ui_rect modal = dialog_rect(e, ui, width, height);
     if (modal.w > 0) ui_modal(ui, modal);
     float bar = ui_em(ui, 1.5f), status = ui_em(ui, 1.6f);
-    float left = ui_em(ui, 6.5f), right = ui_em(ui, 17);
+    // Side panels follow the font, but leave the viewport at least half the window.
+    float left = fminf(ui_em(ui, 6.5f), roundf(width * 0.14f));
+    float right = fminf(ui_em(ui, 17), roundf(width * 0.32f));
     ui_rect top = {0, 0, width, bar};
     ui_rect body = {0, bar, width, height - bar - status};
     ui_rect cols[3];

@@ -8,6 +8,7 @@
 #include "renderer/material_textures.h"
 #include "renderer/pick.h"
 #include "renderer/ui_renderer.h"
+#include "io/image_read.h"
 #include "renderer/view_commands.h"
 #include "renderer/viewport.h"
 #include "io/parse.h"
@@ -20,6 +21,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 static char glfw_message[512];
@@ -836,7 +838,53 @@ static int cmd_ui_widgets(cmd_context *ctx, int argc, char **argv, og_error *err
     return 0;
 }
 
+// window_screenshot FILE: the whole window (UI and viewport) as an RGB PNG, once every
+// tile in view has arrived, with the terrain at full resolution.
+static int cmd_window_screenshot(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    (void)argc;
+    window_state *st = current_window;
+    if (!st) return og_error_set(err, "window_screenshot: no editor window is open");
+    int w, h;
+    glfwGetFramebufferSize(st->win, &w, &h);
+    if (w <= 0 || h <= 0) return og_error_set(err, "window_screenshot: the window has no area");
+    float k = ui_px(st, 1.0);
+    for (int i = 0; i < 60000 && !st->render_failed; i++) { // tiles: at most ~60 s
+        update_view(st);
+        if (st->settled >= 2) break;
+        struct timespec pause = {0, 1000000};
+        nanosleep(&pause, NULL);
+    }
+    const ui_draw_list *dl = build_ui(st, w, h);
+    st->terrain_valid = 0; // full resolution, whatever was drawn while moving
+    float keep = st->res_scale;
+    st->res_scale = 1.0f;
+    render_terrain(st, (int)roundf(st->view_rect.w * k), (int)roundf(st->view_rect.h * k), 1);
+    st->res_scale = keep;
+    compose(st, dl, w, h);
+    unsigned char *rgba = malloc((size_t)w * h * 4), *rgb = malloc((size_t)w * h * 3);
+    if (!rgba || !rgb) {
+        free(rgba), free(rgb);
+        return og_error_set(err, "out of memory");
+    }
+    glReadBuffer(GL_BACK);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+    for (int y = 0; y < h; y++) // GL's rows are bottom first
+        for (int x = 0; x < w; x++)
+            memcpy(rgb + ((size_t)y * w + x) * 3, rgba + ((size_t)(h - 1 - y) * w + x) * 4, 3);
+    int rc = image_write_rgb8(argv[1], rgb, w, h, err);
+    free(rgba), free(rgb);
+    if (rc != 0) return -1;
+    st->dirty = st->ui_dirty = 1; // the next frame is drawn normally again
+    fprintf(ctx->out, "window_screenshot %s %dx%d\n", argv[1], w, h);
+    return 0;
+}
+
 static const cmd_def window_commands[] = {
+    {"window_screenshot", "window_screenshot FILE",
+     "Writes the whole editor window (UI and viewport) to an RGB PNG once every tile in view has "
+     "arrived.",
+     1, 1, cmd_window_screenshot, CMD_NOT_RECORDED},
     {"ui_scale", "ui_scale [FACTOR]",
      "Sets the editor's UI scale (0.5-4, times the monitor's content scale; View > UI scale); "
      "without a value, prints it.",

@@ -75,11 +75,14 @@ near() { awk -v a="$1" -v b="$2" -v t="$3" 'BEGIN { d = a - b; exit !(d <= t && 
 # 3D viewport (between the editor's panels, found by name with ui_widgets) is exactly
 # 400 x 300; every position below is relative to the viewport's top-left (VX, VY).
 viewport_rect() { ask "ui_widgets Viewport" '^Viewport ' | awk '{ print $2, $3, $4, $5 }'; }
-read -r VX VY VW VH <<<"$(viewport_rect)"
-read -r _ _ WW WH <<<"$(xdotool getwindowgeometry --shell "$wid" | awk -F= '/WIDTH|HEIGHT/ { printf "%s ", $2 }' | awk '{ print 0, 0, $1, $2 }')"
-xdotool windowsize --sync "$wid" $((WW - VW + 400)) $((WH - VH + 300))
-sleep 0.5
-read -r VX VY VW VH <<<"$(viewport_rect)"
+# (The side panels may narrow with the window, so the size is corrected a few times.)
+for _ in 1 2 3 4 5 6; do
+    read -r VX VY VW VH <<<"$(viewport_rect)"
+    [ "$VW" = 400 ] && [ "$VH" = 300 ] && break
+    read -r WW WH <<<"$(xdotool getwindowgeometry --shell "$wid" | awk -F= '/WIDTH|HEIGHT/ { printf "%s ", $2 }')"
+    xdotool windowsize --sync "$wid" $((WW + 400 - VW)) $((WH + 300 - VH))
+    sleep 0.5
+done
 [ "$VW" = 400 ] && [ "$VH" = 300 ]; check "the viewport is found by name and sized 400 x 300 (at $VX $VY, $VW x $VH)" $?
 xdotool windowfocus --sync "$wid" 2>/dev/null
 home() { echo "camera 0 -100 0 30 -40" >&3; wait_title "cam (0.0, -100.0, 0.0) yaw 30.0 pitch -40.0" && settle; }

@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# Golden images of the whole editor window (UI and viewport) at two UI scales, with an
+# RMSE tolerance, and the images kept for a reviewer to look at. The window is driven
+# under Xvfb; window_screenshot renders once every tile in view has arrived.
+# Usage: e2e_window_golden.sh OROGEN TESTS_DIR   (OROGEN_UPDATE_GOLDEN=1 rewrites the goldens)
+set -u
+orogen=$1
+tests=$2
+golden="$tests/data/golden"
+rmse_tool="$(dirname "$orogen")/image_rmse"
+shots="${OROGEN_TEST_ARTIFACTS:-$(dirname "$orogen")/test-artifacts}"
+work=$(mktemp -d "${TMPDIR:-/tmp}/orogen-wgolden-XXXXXX")
+failures=0
+passes=0
+check() { if [ "$2" = 0 ]; then passes=$((passes + 1)); else echo "FAIL: $1"; failures=$((failures + 1)); fi; }
+for tool in Xvfb xdotool; do
+    command -v $tool >/dev/null || { echo "FAIL: $tool is not installed (scripts/install-deps.sh installs it)"; exit 1; }
+done
+if [ -n "${ASAN_OPTIONS:-}" ]; then export ASAN_OPTIONS="$ASAN_OPTIONS:detect_leaks=0"; fi
+export XDG_CONFIG_HOME="$work/config"
+mkdir -p "$shots"
+
+exec 5>"$work/display"
+Xvfb -displayfd 5 -screen 0 1280x800x24 -nolisten tcp >"$work/xvfb.log" 2>&1 &
+xvfb=$!
+for _ in $(seq 100); do [ -s "$work/display" ] && break; sleep 0.1; done
+export DISPLAY=":$(head -n 1 "$work/display")"
+trap 'kill $xvfb 2>/dev/null; wait 2>/dev/null; rm -rf "$work"' EXIT
+
+# One window at a UI scale: a fixed camera, the pointer off the window, the picture.
+shoot() { # scale, output png
+    mkfifo "$work/in-$1"
+    OROGEN_UI_SCALE=$1 "$orogen" <"$work/in-$1" >"$work/out-$1" 2>"$work/err-$1" &
+    local app=$!
+    exec 3>"$work/in-$1"
+    local wid
+    wid=$(timeout 30 xdotool search --sync --name '^Orogen' | head -n 1)
+    xdotool windowsize --sync "$wid" 1000 640
+    xdotool mousemove 1279 799 # off the window: no brush cursor, no pointer readout
+    echo "camera 400 -50 600 30 -25" >&3
+    echo "window_screenshot $2" >&3
+    for _ in $(seq 600); do grep -q '^window_screenshot ' "$work/out-$1" && break; sleep 0.1; done
+    echo "exit" >&3
+    exec 3>&-
+    wait $app
+}
+
+for scale in 1 1.5; do
+    name="window_${scale}x.png"
+    shoot "$scale" "$work/$name"
+    [ -s "$work/$name" ]; check "the window at UI scale $scale is captured ($(tail -n 2 "$work/err-$scale" | tr '\n' ' '))" $?
+    cp "$work/$name" "$shots/$name" 2>/dev/null
+    if [ -n "${OROGEN_UPDATE_GOLDEN:-}" ]; then
+        cp "$work/$name" "$golden/$name" && echo "updated $golden/$name"
+    fi
+    # The status bar shows the last frame's time, so a few characters may differ.
+    "$rmse_tool" "$golden/$name" "$work/$name" --max 4.0 --diff "$shots/diff_$name" >"$work/rmse" 2>&1
+    rc=$?; check "the window at UI scale $scale matches its golden ($(cat "$work/rmse"))" $rc
+done
+echo "e2e_window_golden: $passes passed, $failures failed (images in $shots)"
+[ $failures = 0 ]
