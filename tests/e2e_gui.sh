@@ -1,0 +1,317 @@
+#!/usr/bin/env bash
+# End-to-end: the editor's GUI used the way a person uses it, under a private Xvfb:
+# every widget is found by name (the console's ui_widgets lists the last frame's named
+# widgets) and clicked, dragged or typed into with xdotool; what the clicks did is read
+# back through the console on standard input (tool, nparams, params, history, hash).
+# The palette, a dock slider, sculpting with Edit > Undo / Redo, the History panel,
+# the World panel (Random seed, Generate), the in-app console (typing, Tab completion),
+# Save as through its dialog, the unsaved-changes prompt on quit, and screenshots for a
+# reviewer in ${OROGEN_TEST_ARTIFACTS:-the test's folder}.
+# Usage: e2e_gui.sh OROGEN TESTS_DIR
+set -u
+orogen=$1
+work=$(mktemp -d "${TMPDIR:-/tmp}/orogen-gui-XXXXXX")
+art=${OROGEN_TEST_ARTIFACTS:-$work}
+mkdir -p "$art"
+failures=0
+passes=0
+started=$(date +%s)
+check() { if [ "$2" = 0 ]; then passes=$((passes + 1)); else echo "FAIL: $1"; failures=$((failures + 1)); fi; }
+
+for tool in Xvfb xdotool import; do
+    command -v $tool >/dev/null || { echo "FAIL: $tool is not installed (scripts/install-deps.sh installs it)"; exit 1; }
+done
+
+# A private X server on a free display number.
+exec 5>"$work/display"
+Xvfb -displayfd 5 -screen 0 1400x900x24 -nolisten tcp >"$work/xvfb.log" 2>&1 &
+xvfb=$!
+for _ in $(seq 100); do [ -s "$work/display" ] && break; sleep 0.1; done
+export DISPLAY=":$(head -n 1 "$work/display")"
+
+# Mesa's GL driver leaks a few allocations LeakSanitizer cannot name (see e2e_window.sh).
+if [ -n "${ASAN_OPTIONS:-}" ]; then export ASAN_OPTIONS="$ASAN_OPTIONS:detect_leaks=0"; fi
+
+# The editor keeps its settings between runs: keep them inside this test.
+export XDG_CONFIG_HOME="$work/config"
+mkfifo "$work/stdin"
+"$orogen" --record "$work/session.og" <"$work/stdin" >"$work/out" 2>"$work/err" &
+app=$!
+exec 3>"$work/stdin" # keep the console's input open
+trap '' PIPE # should the editor die, writes to its console fail instead of ending this test
+alive() { kill -0 $app 2>/dev/null; }
+
+cleanup() {
+    exec 3>&-
+    kill $app 2>/dev/null
+    kill $xvfb 2>/dev/null
+    wait 2>/dev/null
+    rm -rf "$work"
+}
+trap cleanup EXIT
+
+wid=$(timeout 30 xdotool search --sync --name '^Orogen' | head -n 1)
+[ -n "$wid" ]; check "the editor window opens" $?
+[ -n "$wid" ] || { cat "$work/err"; echo "$passes passed, $failures failed"; exit 1; }
+
+title() { xdotool getwindowname "$wid" 2>/dev/null; }
+wait_title() { # pattern: waits up to 30 s for the title to match
+    for _ in $(seq 300); do title | grep -q -- "$1" && return 0; sleep 0.1; done
+    return 1
+}
+# Runs a console command and prints the first new output line matching pattern
+# (waits up to 30 s); nothing if none came.
+ask() {
+    local before
+    alive || return 1
+    before=$(wc -l <"$work/out")
+    echo "$1" >&3
+    for _ in $(seq 300); do
+        alive || return 1
+        local line
+        line=$(tail -n +$((before + 1)) "$work/out" | grep -m 1 -- "$2")
+        [ -n "$line" ] && { echo "$line"; return 0; }
+        sleep 0.1
+    done
+    return 1
+}
+# Asks until the line matching pattern also matches want (a click acts in the frame
+# after it; up to about 10 s); prints the last line seen.
+ask_until() { # command pattern want
+    local line
+    for _ in $(seq 30); do
+        line=$(ask "$1" "$2")
+        if echo "$line" | grep -q -- "$3"; then echo "$line"; return 0; fi
+        sleep 0.3
+    done
+    echo "$line"
+    return 1
+}
+# ui_widgets, filtered on the name: prints "X Y W H" of the widget called exactly NAME
+# (or, for "NAME*", the first whose name starts with NAME) in the last frame; waits up
+# to about 10 s, or TRIES quarter seconds, for it to appear. Names may hold spaces: the
+# last 4 numbers are the rectangle, everything before them the name.
+widget() { # NAME [TRIES]
+    local name=$1 prefix=0 filter before l
+    case $name in *\*) prefix=1 name=${name%\*} ;; esac
+    filter=$(printf '%s' "$name" | sed 's/[\\"]/\\&/g')
+    for _ in $(seq "${2:-40}"); do
+        alive || return 1
+        before=$(wc -l <"$work/out")
+        echo "ui_widgets \"$filter\"" >&3
+        # The listing is written at once, the Viewport line first.
+        for _ in $(seq 100); do
+            tail -n +$((before + 1)) "$work/out" | grep -q '^Viewport ' && break
+            sleep 0.05
+        done
+        while IFS= read -r l; do
+            [[ $l =~ ^(.*)\ (-?[0-9]+)\ (-?[0-9]+)\ (-?[0-9]+)\ (-?[0-9]+)$ ]] || continue
+            local n=${BASH_REMATCH[1]}
+            if [ "$n" = "$name" ] || { [ $prefix = 1 ] && [ "${n#"$name"}" != "$n" ]; }; then
+                echo "${BASH_REMATCH[2]} ${BASH_REMATCH[3]} ${BASH_REMATCH[4]} ${BASH_REMATCH[5]}"
+                return 0
+            fi
+        done < <(tail -n +$((before + 1)) "$work/out")
+        sleep 0.2
+    done
+    return 1
+}
+# The full name of the first widget starting with PREFIX (as widget "PREFIX*" finds it).
+widget_name() {
+    local before
+    before=$(wc -l <"$work/out")
+    widget "$1*" >/dev/null || return 1
+    tail -n +$((before + 1)) "$work/out" | grep -F -- "$1" | grep -m 1 -E ' -?[0-9]+ -?[0-9]+ -?[0-9]+ -?[0-9]+$' |
+        sed -E 's/ -?[0-9]+ -?[0-9]+ -?[0-9]+ -?[0-9]+$//'
+}
+# Waits up to about 10 s for the widget NAME to be gone from the frame.
+widget_gone() {
+    local filter before
+    filter=$(printf '%s' "$1" | sed 's/[\\"]/\\&/g')
+    for _ in $(seq 40); do
+        before=$(wc -l <"$work/out")
+        ask "ui_widgets \"$filter\"" '^Viewport ' >/dev/null || return 1
+        sleep 0.1 # the listing comes in one write; a margin all the same
+        tail -n +$((before + 1)) "$work/out" | sed -E 's/ -?[0-9]+ -?[0-9]+ -?[0-9]+ -?[0-9]+$//' |
+            grep -q -F -x -- "$1" || return 0
+        sleep 0.25
+    done
+    return 1
+}
+# Clicks the centre of the widget NAME (see widget), then gives the UI a frame to react.
+click() {
+    local x y w h
+    read -r x y w h <<<"$(widget "$1")" || return 1
+    [ -n "$h" ] || { echo "click: no widget '$1' in the window" >&2; return 1; }
+    xdotool mousemove --window "$wid" $((x + w / 2)) $((y + h / 2)) click 1
+    sleep 0.3
+}
+key() { xdotool key "$@"; sleep 0.3; }
+is_png() { [ -s "$1" ] && [ "$(head -c 4 "$1" | od -An -c | tr -d ' ')" = "211PNG" ]; }
+
+# A window with a viewport of a few hundred pixels keeps software rendering (llvmpipe)
+# fast and leaves the dock room for every section.
+xdotool windowsize --sync "$wid" 900 650
+xdotool windowfocus --sync "$wid" 2>/dev/null
+sleep 0.5
+read -r VX VY VW VH <<<"$(widget Viewport)"
+[ -n "${VH:-}" ] && [ "$VW" -ge 200 ] && [ "$VH" -ge 200 ] && [ "$VW" -le 700 ]
+check "the viewport is found by name and a few hundred pixels wide ($VX $VY ${VW:-?} x ${VH:-?})" $?
+wait_title "pending 0$"; rc=$?; check "every tile of the first view arrives: $(title)" $rc
+
+# 9 (first half). Screenshots a reviewer can look at: the first view, and the File menu open.
+import -window "$wid" "$art/gui_start.png" 2>"$work/import.err"
+is_png "$art/gui_start.png"; rc=$?; check "a screenshot of the first view ($art/gui_start.png; $(head -c 200 "$work/import.err"))" $rc
+click "Menu/File" && widget "Menu/File/Save as..." >/dev/null
+check "File opens its menu (Menu/File/Save as... is listed)" $?
+import -window "$wid" "$art/gui_file_menu.png" 2>"$work/import.err"
+is_png "$art/gui_file_menu.png"; check "a screenshot with the File menu open ($art/gui_file_menu.png)" $?
+key Escape
+widget_gone "Menu/File/Save as..."; check "Esc closes the File menu" $?
+
+# 1. The tool palette.
+click "Tools/Smooth"
+line=$(ask_until tool '^tool=' '^tool=smooth$')
+check "Tools/Smooth picks the smooth tool ($line)" $?
+click "Tools/Raise"
+line=$(ask_until tool '^tool=' '^tool=raise$')
+check "Tools/Raise picks the raise tool again ($line)" $?
+
+# 2. A dock slider: a drag from its left quarter to its right quarter sets the radius.
+r0=$(ask tool '^radius=')
+read -r x y w h <<<"$(widget "Dock/Radius")"
+if [ -n "${h:-}" ]; then
+    cy=$((y + h / 2))
+    xdotool mousemove --window "$wid" $((x + w / 4)) $cy mousedown 1
+    sleep 0.15
+    xdotool mousemove --window "$wid" $((x + w / 2)) $cy
+    sleep 0.15
+    xdotool mousemove --window "$wid" $((x + 3 * w / 4)) $cy
+    sleep 0.15
+    xdotool mouseup 1
+    sleep 0.3
+fi
+r1=$r0
+for _ in $(seq 30); do r1=$(ask tool '^radius='); [ "$r1" != "$r0" ] && break; sleep 0.3; done
+[ -n "$r1" ] && [ "$r1" != "$r0" ] && awk -v a="${r0#radius=}" -v b="${r1#radius=}" 'BEGIN { exit !(b > a) }'
+check "dragging Dock/Radius to the right makes the brush wider ($r0 -> $r1)" $?
+echo "tool raise radius=20" >&3 # a small brush keeps the strokes below fast
+ask tool '^radius=' >/dev/null
+
+# 3. Sculpting in the viewport, Edit > Undo and Edit > Redo.
+wait_title "pending 0$"
+read -r _ px py pz <<<"$(ask "pick $((VW / 2)) $((VH / 2)) $VW $VH" '^pick ')"
+hash_box() { ask "hash $(awk -v x="$1" -v z="$2" 'BEGIN { print x - 150, z - 150, x + 150, z + 150 }')" '^[0-9a-f]\{16\}$'; }
+# Waits up to 10 s for the box around the picked point to have hash $1.
+hash_is() { for _ in $(seq 30); do [ "$(hash_box "$px" "$pz")" = "$1" ] && return 0; sleep 0.3; done; return 1; }
+sculpt() { # a left drag across the viewport's centre
+    local cx=$((VX + VW / 2)) cy=$((VY + VH / 2))
+    xdotool mousemove --window "$wid" $((cx - 60)) $cy mousedown 1
+    for dx in -30 0 30 60; do
+        sleep 0.05
+        xdotool mousemove --window "$wid" $((cx + dx)) $cy
+    done
+    xdotool mouseup 1
+    sleep 0.5
+}
+h0=$(hash_box "$px" "$pz")
+sculpt
+h1=$(hash_box "$px" "$pz")
+[ -n "$px" ] && [ -n "$h1" ] && [ "$h1" != "$h0" ]; check "a left drag across the viewport sculpts (at $px $pz: $h0 -> $h1)" $?
+undo_name=$(click "Menu/Edit" && widget_name "Menu/Edit/Undo")
+[ "$undo_name" = "Menu/Edit/Undo raise stroke" ]; check "Edit's Undo item names the step (${undo_name:-none})" $?
+click "Menu/Edit/Undo*"
+hash_is "$h0"; check "Edit > Undo restores the heights exactly" $?
+click "Menu/Edit" && click "Menu/Edit/Redo*"
+hash_is "$h1"; check "Edit > Redo sculpts them again" $?
+
+# 4. The History panel: a click on an undone step redoes up to it.
+widget "Dock/Steps/1 raise stroke" >/dev/null; check "History lists the stroke as Dock/Steps/1 raise stroke" $?
+key ctrl+z
+hash_is "$h0"; check "Ctrl+Z undoes the stroke" $?
+click "Dock/Steps/1 raise stroke"
+hash_is "$h1"; check "clicking the undone step in History redoes it" $?
+
+# 5. The World panel: Random picks another seed for the next Generate; Generate applies it.
+s0=$(ask nparams '^seed = ')
+click "Dock/Random"
+s1=$s0
+for _ in $(seq 30); do s1=$(ask nparams '^seed = '); [ "$s1" != "$s0" ] && break; sleep 0.3; done
+[ -n "$s1" ] && [ "$s1" != "$s0" ]; check "World > Random picks another seed ($s0 -> $s1)" $?
+click "Dock/Generate"
+line=$(ask_until params '^seed = ' "^$s1\$")
+check "World > Generate makes it the world's seed ($line)" $?
+before=$(wc -l <"$work/out")
+ask history '^steps=' >/dev/null
+line=$(tail -n +$((before + 1)) "$work/out" | grep -m 1 -E '^\* [0-9]+ generate ')
+[ -n "$line" ]; check "history lists the generate step ($line)" $?
+wait_title "pending 0$"
+
+# 6. The in-app console: ~ opens it, typed commands run, Tab completes, ~ closes it.
+key grave
+widget "Console/Input" >/dev/null; check "~ opens the console (Console/Input is listed)" $?
+xdotool type --delay 40 "seed 4242"
+key Return
+line=$(ask_until nparams '^seed = ' '^seed = 4242;$')
+check "'seed 4242' typed in the console runs ($line)" $?
+before=$(wc -l <"$work/out")
+xdotool type --delay 40 "hist"
+key Tab
+key Return
+for _ in $(seq 50); do tail -n +$((before + 1)) "$work/out" | grep -q '^steps=' && break; sleep 0.2; done
+tail -n +$((before + 1)) "$work/out" | grep -q '^steps='
+check "Tab completes 'hist' to 'history ' (Return prints its steps= line)" $?
+key grave
+widget_gone "Console/Input"; check "~ closes the console again" $?
+
+# 7. Save as through its dialog.
+key ctrl+shift+s
+# BUG: closing the console with ~ leaves the keyboard focus on its hidden input line
+# (ui_wants_keyboard stays true), so every shortcut (Ctrl+Shift+S, Ctrl+Z, Ctrl+Q, G,
+# 1-5, Esc) is swallowed until a mouse press somewhere; this check fails until it is fixed.
+widget "Save as/Path" 12 >/dev/null; check "after ~ closed the console, Ctrl+Shift+S opens Save as (Save as/Path is listed)" $?
+if ! widget "Save as/Path" 1 >/dev/null; then # work around the bug above: a press on the status bar
+    click "Status/"
+    key ctrl+shift+s
+fi
+widget "Save as/Path" >/dev/null; check "Ctrl+Shift+S opens Save as (Save as/Path is listed)" $?
+click "Save as/Path"
+key ctrl+a
+xdotool type --delay 20 "$work/gui.world"
+sleep 0.3
+click "Save as/Save"
+wait_title "gui.world - " && [ -s "$work/gui.world" ]
+rc=$?; check "Save as > Save writes $work/gui.world and the title names it ($(title))" $rc
+widget_gone "Save as/Path"; check "the Save as dialog closes after saving" $?
+# What was saved: the first stroke's box, and the box under the viewport's centre now
+# (Generate changed the terrain around the edited tiles: the next stroke lands elsewhere).
+wait_title "pending 0$"
+read -r _ qx _ qz <<<"$(ask "pick $((VW / 2)) $((VH / 2)) $VW $VH" '^pick ')"
+saved1=$(hash_box "$px" "$pz")
+saved2=$(hash_box "$qx" "$qz")
+[ "$saved1" = "$h1" ]; check "the saved world keeps the first stroke" $?
+
+# 8. The unsaved-changes prompt: Cancel keeps working, Discard quits without saving.
+sculpt
+wait_title "gui.world \* - "; rc=$?; check "a new stroke marks the world modified ($(title))" $rc
+s2=$(hash_box "$qx" "$qz")
+[ -n "$s2" ] && [ "$s2" != "$saved2" ]; check "the new stroke sculpts (at $qx $qz: $saved2 -> $s2)" $?
+key ctrl+q
+widget "Unsaved changes/Cancel" >/dev/null; check "Ctrl+Q with unsaved changes asks (Unsaved changes/Cancel is listed)" $?
+click "Unsaved changes/Cancel"
+widget_gone "Unsaved changes/Cancel" && sleep 0.5 && alive
+check "Cancel closes the prompt and the window stays" $?
+key ctrl+q
+click "Unsaved changes/Discard"
+for _ in $(seq 100); do alive || break; sleep 0.1; done
+status=running
+if ! alive; then wait $app; status=$?; fi
+[ "$status" = 0 ]; check "Discard quits the editor with status 0 (status $status)" $?
+box() { awk -v x="$1" -v z="$2" 'BEGIN { print x - 150, z - 150, x + 150, z + 150 }'; }
+hb=$("$orogen" "$work/gui.world" -c "hash $(box "$px" "$pz"); hash $(box "$qx" "$qz")" 2>"$work/batch.err" | tr '\n' ' ')
+[ -n "$saved1" ] && [ -n "$saved2" ] && [ "$hb" = "$saved1 $saved2 " ]
+rc=$?; check "orogen gui.world in batch mode has the saved heights, not the discarded stroke ($saved1 $saved2 vs ${hb:-none}; $(head -c 300 "$work/batch.err"))" $rc
+
+[ $failures = 0 ] || { echo "--- stderr:"; tail -n 30 "$work/err"; }
+echo "$passes passed, $failures failed in $(($(date +%s) - started)) s"
+[ $failures = 0 ]
