@@ -350,7 +350,13 @@ static void history_panel(editor_ui *e, ui_context *ui, cmd_context *ctx) {
     snprintf(line, sizeof line, "%zu steps, %.1f of %.0f MiB", n, history_bytes(h) / 1048576.0,
              history_budget(h) / 1048576.0);
     ui_label_colored(ui, line, ui_get_theme(ui)->text_dim);
+    // Where the file on disk stands in the history (a world never saved has none).
+    long saved = world_path(ctx->world)[0] ? history_saved_position(h) : -1;
+    if (saved == 0)
+        ui_label_colored(ui, "(saved before the first step)", ui_get_theme(ui)->text_dim);
     ui_push_scope(ui, "Steps");
+    float cols[2] = {0, ui_em(ui, 5.5f)};
+    ui_row(ui, 2, cols, 0);
     for (size_t i = 0; i < n; i++) {
         const history_step *s = history_at(h, i);
         snprintf(line, sizeof line, "%zu %s##%zu", i + 1, s->label, i + 1);
@@ -366,6 +372,12 @@ static void history_panel(editor_ui *e, ui_context *ui, cmd_context *ctx) {
         }
         ui_tooltip(ui, i < pos ? "Applied: click to undo the steps after it"
                                : "Undone: click to redo up to here");
+        // The step's memory, and the saved state marked.
+        snprintf(line, sizeof line, "%.0f KiB%s##size%zu", s->bytes / 1024.0,
+                 saved == (long)i + 1 ? ", saved" : "", i + 1);
+        ui_label_colored(ui, line, ui_get_theme(ui)->text_dim);
+        ui_tooltip(ui, saved == (long)i + 1 ? "Undo memory of the step; the world was saved here"
+                                            : "Undo memory of the step");
     }
     ui_pop_scope(ui);
 }

@@ -74,6 +74,7 @@ struct ui_context {
     double caret_time;
     ui_id focusables[FOCUSABLE_MAX];
     int focusable_count;
+    int focus_seen;   // the focused widget was drawn this frame
     int tab_pending;  // Tab was pressed with a field focused
     ui_id tab_from;   // the field Tab leaves: the next field drawn takes the focus
     int tab_to_first; // Tab on the last field: the first field next frame
@@ -291,6 +292,7 @@ void ui_begin(ui_context *ui, const ui_input *in, float width, float height) {
     ui->popup_rect = (ui_rect){0, 0, 0, 0};
     ui->in_popup = 0;
     ui->focusable_count = 0;
+    ui->focus_seen = 0;
     ui->modal = (ui_rect){0, 0, 0, 0};
     ui->last_id = 0;
     ui->last_hovered = 0;
@@ -343,6 +345,12 @@ const ui_draw_list *ui_end(ui_context *ui) {
     if (ui->tab_from) { // Tab on the last field wraps to the first
         ui->tab_from = 0;
         ui->tab_to_first = 1;
+    }
+    // A focused field that was not drawn (its panel closed) holds no keys any more.
+    if (ui->focus && !ui->focus_seen && !ui->focus_request) {
+        ui->focus = 0;
+        ui->edit_id = 0;
+        ui->typing_id = 0;
     }
     // A press on nothing focusable drops the focus.
     if (mouse_pressed(ui) && ui->focus && ui->hot_next != ui->focus) {
@@ -748,6 +756,7 @@ int ui_slider(ui_context *ui, const char *label, double *value, double lo, doubl
     if (hovered && press_for(ui, id)) {
         if ((ui->in.mods & UI_MOD_CTRL) || ui->in.double_click) { // type a value
             ui->typing_id = id;
+            ui->focus_seen = 1; // its text field is drawn from the next frame
             snprintf(ui->typing_buf, sizeof ui->typing_buf, "%.10g", *value);
             ui->focus = id;
             ui->edit_id = 0; // text_edit starts editing next frame
@@ -1043,6 +1052,7 @@ static int text_edit(ui_context *ui, ui_id id, ui_rect r, char *buf, size_t size
     }
     if (ui->focus == id && ui->edit_id == id && n != ui->edit_len) // replaced from outside
         ui->cursor = ui->anchor = n;
+    if (ui->focus == id) ui->focus_seen = 1;
     if (ui->focus == id) {
         const ui_input *in = &ui->in;
         int shift = in->mods & UI_MOD_SHIFT, ctrl = in->mods & UI_MOD_CTRL;

@@ -241,6 +241,13 @@ size_t history_set_budget(history *h, size_t budget_bytes) {
 void history_mark_saved(history *h) {
     h->saved_id = state_id(h);
 }
+long history_saved_position(const history *h) {
+    if (h->saved_id == h->floor_id) return 0;
+    for (size_t i = 0; i < h->count; i++)
+        if (h->steps[i]->id == h->saved_id) return (long)i + 1;
+    return -1;
+}
+
 int history_modified(const history *h) {
     return state_id(h) != h->saved_id;
 }

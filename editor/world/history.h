@@ -75,5 +75,8 @@ uint64_t history_dropped_total(const history *h);
 // Unsaved-changes tracking: the state when mark_saved was last called vs now.
 void history_mark_saved(history *h);
 int history_modified(const history *h);
+// The position (steps applied) at which the world was last saved, or -1 when that
+// state is not in the history any more (dropped, or replaced by a new branch).
+long history_saved_position(const history *h);
 
 #endif
