@@ -9,24 +9,10 @@ failures=0
 passes=0
 check() { if [ "$2" = 0 ]; then passes=$((passes + 1)); else echo "FAIL: $1"; failures=$((failures + 1)); fi; }
 
-for tool in Xvfb xdotool; do
-    command -v $tool >/dev/null || { echo "FAIL: $tool is not installed (scripts/install-deps.sh installs it)"; exit 1; }
-done
+. "$2/support/window_session.sh"
+require_tools Xvfb xdotool
 
-# A private X server on a free display number.
-exec 5>"$work/display"
-Xvfb -displayfd 5 -screen 0 1400x900x24 -nolisten tcp >"$work/xvfb.log" 2>&1 &
-xvfb=$!
-for _ in $(seq 100); do [ -s "$work/display" ] && break; sleep 0.1; done
-export DISPLAY=":$(head -n 1 "$work/display")"
-
-# Under the sanitizers: Mesa's GL driver leaks a few allocations that LeakSanitizer
-# cannot even name (the driver is unloaded at exit); leaks in Orogen's own code are
-# caught by the other tests, which run the same code without a GL driver.
-if [ -n "${ASAN_OPTIONS:-}" ]; then export ASAN_OPTIONS="$ASAN_OPTIONS:detect_leaks=0"; fi
-
-# The editor keeps its settings between runs: keep them inside this test.
-export XDG_CONFIG_HOME="$work/config"
+start_xvfb 1400x900
 mkfifo "$work/stdin"
 "$orogen" --record "$work/session.og" <"$work/stdin" >"$work/out" 2>"$work/err" &
 app=$!

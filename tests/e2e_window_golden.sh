@@ -14,18 +14,11 @@ work=$(mktemp -d "${TMPDIR:-/tmp}/orogen-wgolden-XXXXXX")
 failures=0
 passes=0
 check() { if [ "$2" = 0 ]; then passes=$((passes + 1)); else echo "FAIL: $1"; failures=$((failures + 1)); fi; }
-for tool in Xvfb xdotool convert; do
-    command -v $tool >/dev/null || { echo "FAIL: $tool is not installed (scripts/install-deps.sh installs it)"; exit 1; }
-done
-if [ -n "${ASAN_OPTIONS:-}" ]; then export ASAN_OPTIONS="$ASAN_OPTIONS:detect_leaks=0"; fi
-export XDG_CONFIG_HOME="$work/config"
+. "$tests/support/window_session.sh"
+require_tools Xvfb xdotool convert
 mkdir -p "$shots"
 
-exec 5>"$work/display"
-Xvfb -displayfd 5 -screen 0 1280x800x24 -nolisten tcp >"$work/xvfb.log" 2>&1 &
-xvfb=$!
-for _ in $(seq 100); do [ -s "$work/display" ] && break; sleep 0.1; done
-export DISPLAY=":$(head -n 1 "$work/display")"
+start_xvfb 1280x800
 trap 'kill $xvfb 2>/dev/null; wait 2>/dev/null; rm -rf "$work"' EXIT
 
 # One window at a UI scale: a fixed camera, the pointer off the window, the picture.

@@ -1,0 +1,27 @@
+# Sourced by the tests that drive the real editor window (e2e_window, e2e_gui,
+# e2e_window_golden): the tools they need, a private X server, and the editor's
+# environment. Needs $work (the test's folder) set.
+
+# require_tools TOOL...: fails the test at once when one is missing.
+require_tools() {
+    for tool in "$@"; do
+        command -v "$tool" >/dev/null ||
+            { echo "FAIL: $tool is not installed (scripts/install-deps.sh installs it)"; exit 1; }
+    done
+}
+
+# start_xvfb WxH: a private X server on a free display number ($xvfb is its pid).
+start_xvfb() {
+    exec 5>"$work/display"
+    Xvfb -displayfd 5 -screen 0 "$1x24" -nolisten tcp >"$work/xvfb.log" 2>&1 &
+    xvfb=$!
+    for _ in $(seq 100); do [ -s "$work/display" ] && break; sleep 0.1; done
+    export DISPLAY=":$(head -n 1 "$work/display")"
+}
+
+# Under the sanitizers: Mesa's GL driver leaks a few allocations that LeakSanitizer
+# cannot even name (the driver is unloaded at exit); leaks in Orogen's own code are
+# caught by the other tests, which run the same code without a GL driver.
+if [ -n "${ASAN_OPTIONS:-}" ]; then export ASAN_OPTIONS="$ASAN_OPTIONS:detect_leaks=0"; fi
+# The editor keeps its settings between runs: keep them inside the test.
+export XDG_CONFIG_HOME="$work/config"
