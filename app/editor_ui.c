@@ -182,18 +182,92 @@ static int tool_is_current(const brush *b, const char *name) {
     return strcmp(brush_tool_name(b->tool), name) == 0;
 }
 
+// A small icon for each palette entry, drawn with lines and triangles in box r.
+static void tool_icon(ui_context *ui, int tool, ui_rect r, ui_color c) {
+    ui_draw_list *dl = ui_draw_target(ui);
+    float x0 = r.x, y0 = r.y, w = r.w, h = r.h, t = fmaxf(1.5f, w * 0.09f);
+#define P(fx, fy) x0 + (fx)*w, y0 + (fy)*h
+    switch (tool) {
+    case 0: // raise: a mound and an arrow up
+        ui_draw_triangle(dl, P(0.5f, 0.05f), P(0.8f, 0.4f), P(0.2f, 0.4f), c);
+        ui_draw_rect(dl, (ui_rect){P(0.42f, 0.4f), w * 0.16f, h * 0.5f}, c);
+        break;
+    case 1: // lower
+        ui_draw_triangle(dl, P(0.5f, 0.95f), P(0.2f, 0.6f), P(0.8f, 0.6f), c);
+        ui_draw_rect(dl, (ui_rect){P(0.42f, 0.1f), w * 0.16f, h * 0.5f}, c);
+        break;
+    case 2: // smooth: a gentle wave
+        for (int i = 0; i < 8; i++) {
+            float a = i / 8.0f, b = (i + 1) / 8.0f;
+            ui_draw_line(dl, P(a, 0.5f - 0.15f * sinf(a * 6.283f)),
+                         P(b, 0.5f - 0.15f * sinf(b * 6.283f)), c, t);
+        }
+        break;
+    case 3: // flatten: a bar over a bump
+        ui_draw_rect(dl, (ui_rect){P(0.05f, 0.45f), w * 0.9f, t}, c);
+        ui_draw_triangle(dl, P(0.3f, 0.85f), P(0.5f, 0.55f), P(0.7f, 0.85f), c);
+        break;
+    case 4: // set height: a level mark and an arrow to it
+        ui_draw_rect(dl, (ui_rect){P(0.05f, 0.3f), w * 0.9f, t}, c);
+        ui_draw_triangle(dl, P(0.5f, 0.38f), P(0.7f, 0.65f), P(0.3f, 0.65f), c);
+        break;
+    case 5: // ramp
+        ui_draw_triangle(dl, P(0.05f, 0.9f), P(0.95f, 0.15f), P(0.95f, 0.9f), c);
+        break;
+    case 6: // noise: a zigzag
+        for (int i = 0; i < 6; i++)
+            ui_draw_line(dl, P(0.05f + i * 0.15f, i % 2 ? 0.25f : 0.75f),
+                         P(0.2f + i * 0.15f, i % 2 ? 0.75f : 0.25f), c, t);
+        break;
+    case 7: // terrace: steps
+        for (int i = 0; i < 3; i++)
+            ui_draw_rect(dl,
+                         (ui_rect){P(0.1f + i * 0.27f, 0.65f - i * 0.25f), w * 0.27f,
+                                   h * (0.25f + i * 0.25f)},
+                         c);
+        break;
+    case 8: // thermal: a slope and falling grains
+        ui_draw_triangle(dl, P(0.05f, 0.9f), P(0.5f, 0.2f), P(0.5f, 0.9f), c);
+        ui_draw_rect(dl, (ui_rect){P(0.65f, 0.55f), t * 1.5f, t * 1.5f}, c);
+        ui_draw_rect(dl, (ui_rect){P(0.82f, 0.78f), t * 1.5f, t * 1.5f}, c);
+        break;
+    case 9: // hydraulic: a droplet
+        ui_draw_triangle(dl, P(0.5f, 0.05f), P(0.75f, 0.55f), P(0.25f, 0.55f), c);
+        ui_draw_rect(dl, (ui_rect){P(0.27f, 0.5f), w * 0.46f, h * 0.3f}, c);
+        ui_draw_triangle(dl, P(0.27f, 0.8f), P(0.73f, 0.8f), P(0.5f, 0.95f), c);
+        break;
+    case 10: // paint: a brush
+        ui_draw_rect(dl, (ui_rect){P(0.42f, 0.05f), w * 0.16f, h * 0.5f}, c);
+        ui_draw_triangle(dl, P(0.25f, 0.55f), P(0.75f, 0.55f), P(0.5f, 0.95f), c);
+        break;
+    default: // stamp: a block and its print
+        ui_draw_rect(dl, (ui_rect){P(0.25f, 0.1f), w * 0.5f, h * 0.45f}, c);
+        ui_draw_rect(dl, (ui_rect){P(0.1f, 0.75f), w * 0.8f, t * 1.5f}, c);
+        break;
+    }
+#undef P
+}
+
 static void palette(editor_ui *e, ui_context *ui, cmd_context *ctx, ui_rect r) {
     ui_panel_begin(ui, "Tools", r);
     ui_row(ui, 1, NULL, ui_em(ui, 1.6f));
     for (size_t i = 0; i < TOOL_COUNT; i++) {
         int on = !e->stamps.active && tool_is_current(&ctx->brush, tools[i].name);
-        if (ui_toggle_button(ui, tools[i].label, on)) {
+        if (ui_toggle_button_indented(ui, tools[i].label, on, ui_em(ui, 1.3f))) {
             runf(e, ctx, "tool %s", tools[i].name);
             e->stamps.active = 0;
         }
+        ui_rect b = ui_last_rect(ui);
+        float side = b.h * 0.6f;
+        tool_icon(ui, (int)i, (ui_rect){b.x + b.h * 0.2f, b.y + b.h * 0.2f, side, side},
+                  ui_get_theme(ui)->text);
         ui_tooltip(ui, tools[i].tip);
     }
-    if (ui_toggle_button(ui, "Stamp", e->stamps.active)) {
+    int stamp_clicked = ui_toggle_button_indented(ui, "Stamp", e->stamps.active, ui_em(ui, 1.3f));
+    ui_rect sb = ui_last_rect(ui);
+    tool_icon(ui, 11, (ui_rect){sb.x + sb.h * 0.2f, sb.y + sb.h * 0.2f, sb.h * 0.6f, sb.h * 0.6f},
+              ui_get_theme(ui)->text);
+    if (stamp_clicked) {
         if (e->stamps.selected < 0 && e->stamps.count > 0) e->stamps.selected = 0;
         e->stamps.active = e->stamps.selected >= 0;
         e->stamps.open_request = 1;
@@ -519,7 +593,7 @@ ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport
     if (modal.w > 0) ui_modal(ui, modal);
     float bar = ui_em(ui, 1.5f), status = ui_em(ui, 1.6f);
     // Side panels follow the font, but leave the viewport at least half the window.
-    float left = fminf(ui_em(ui, 6.5f), roundf(width * 0.14f));
+    float left = fminf(ui_em(ui, 7.5f), roundf(width * 0.15f));
     float right = fminf(ui_em(ui, 17), roundf(width * 0.32f));
     ui_rect top = {0, 0, width, bar};
     ui_rect body = {0, bar, width, height - bar - status};

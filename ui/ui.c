@@ -605,6 +605,19 @@ int ui_image_button(ui_context *ui, const char *label, uint32_t texture, int on)
     return clicked;
 }
 
+int ui_toggle_button_indented(ui_context *ui, const char *label, int on, float indent) {
+    ui_id id = ui_get_id(ui, label);
+    ui_rect r = ui_next_cell(ui);
+    int clicked = behave(ui, id, r);
+    ui_color bg =
+        on ? (ui->hot == id ? ui->theme.accent_hot : ui->theme.accent) : widget_colour(ui, id);
+    ui_draw_rect(ui->target, r, bg);
+    text_in(ui, (ui_rect){r.x + indent, r.y, r.w - indent, r.h}, label, label_len(label),
+            ui->theme.text, 0);
+    record_widget(ui, label, r);
+    return clicked;
+}
+
 int ui_button(ui_context *ui, const char *label) {
     return ui_toggle_button(ui, label, 0);
 }
@@ -680,6 +693,10 @@ void ui_section_set(ui_context *ui, const char *label, int open) {
     slot *s = get_slot(ui, ui_get_id(ui, label));
     s->open = open;
     s->initialised = 1;
+}
+
+ui_draw_list *ui_draw_target(ui_context *ui) {
+    return ui->target;
 }
 
 ui_rect ui_last_rect(const ui_context *ui) {

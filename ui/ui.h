@@ -129,9 +129,12 @@ void ui_panel_end(ui_context *ui);
 // --- widgets (each takes the next layout cell) -------------------------------------
 void ui_label(ui_context *ui, const char *text);
 void ui_label_colored(ui_context *ui, const char *text, ui_color c);
-int ui_button(ui_context *ui, const char *label);                // 1 when clicked
-int ui_toggle_button(ui_context *ui, const char *label, int on); // a button shown pressed when on
-int ui_checkbox(ui_context *ui, const char *label, int *value);  // 1 when changed
+int ui_button(ui_context *ui, const char *label); // 1 when clicked
+int ui_toggle_button(ui_context *ui, const char *label, int on);
+// The same with its label left-aligned after indent pixels (room for an icon).
+int ui_toggle_button_indented(ui_context *ui, const char *label, int on,
+                              float indent);                    // a button shown pressed when on
+int ui_checkbox(ui_context *ui, const char *label, int *value); // 1 when changed
 // A button showing a texture of the renderer's (0: none yet) with its label across the
 // bottom; drawn selected when on. 1 when clicked.
 int ui_image_button(ui_context *ui, const char *label, uint32_t texture, int on);
@@ -166,6 +169,9 @@ int ui_section(ui_context *ui, const char *label, int default_open);
 void ui_section_set(ui_context *ui, const char *label, int open);
 // Shows text near the pointer after a short hover over the last widget.
 void ui_tooltip(ui_context *ui, const char *text);
+// The list this frame draws into, for custom drawing inside a widget's rectangle
+// (icons); drawing there follows the current clip.
+ui_draw_list *ui_draw_target(ui_context *ui);
 // The last widget's rectangle and whether the pointer is over it.
 ui_rect ui_last_rect(const ui_context *ui);
 int ui_last_hovered(const ui_context *ui);
