@@ -130,6 +130,16 @@ static void menus(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v, u
                                               : "Parallax detail: off##Parallax",
                          NULL, 1))
             runf(e, ctx, "render parallax=%s", v->settings.parallax ? "off" : "on");
+        static const double contours[] = {0, 10, 50, 100};
+        for (int i = 0; i < 4; i++) {
+            char label[64];
+            if (contours[i] == 0)
+                snprintf(label, sizeof label, "Contour lines: off");
+            else
+                snprintf(label, sizeof label, "Contour lines every %.0f m", contours[i]);
+            if (ui_menu_item(ui, label, NULL, v->settings.contours != contours[i]))
+                runf(e, ctx, "render contours=%g", contours[i]);
+        }
         if (ui_menu_item(ui, "Reset view", "Home", 1)) editor_ui_run(e, ctx, "camera default");
         ui_menu_separator(ui);
         static const double scales[] = {1.0, 1.25, 1.5, 2.0};

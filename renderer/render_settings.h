@@ -29,6 +29,7 @@ typedef struct render_settings {
     double fog_density;        // per metre (0: automatic from the clipmap's reach)
     int culling;               // per-block frustum culling (1)
     int morph;                 // transition morphing between levels (1)
+    double contours;           // metres between contour lines drawn over the terrain; 0: none
 } render_settings;
 
 void render_settings_default(render_settings *s);

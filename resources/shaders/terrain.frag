@@ -40,6 +40,18 @@ uniform float u_parallax_fade;         // metres: detail fades out by this dista
 uniform vec4 u_brush;                  // centre relative to the camera (xz), radius, visible
 uniform sampler2D u_falloff;           // the brush's falloff curve over 0..1 of the radius (64x1)
 uniform vec3 u_level_tint[MAX_LEVELS];
+uniform float u_contour;               // metres between contour lines; 0: none
+
+// Contour lines every u_contour metres of height, one pixel or so wide; faded out where
+// they would crowd (a steep slope seen from afar).
+vec3 with_contours(vec3 c, float h) {
+    if (u_contour <= 0.0) return c;
+    float k = h / u_contour;
+    float fw = max(fwidth(k), 1e-5);
+    float line = 1.0 - smoothstep(0.0, 1.2 * fw, abs(fract(k + 0.5) - 0.5));
+    float crowd = 1.0 - smoothstep(0.15, 0.35, fw);
+    return mix(c, vec3(0.06, 0.05, 0.04), 0.65 * line * crowd);
+}
 
 // Central differences one source texel apart, clamped to the level's window: past its
 // edge the toroidal texture holds samples from the far side.
@@ -160,12 +172,12 @@ void main() {
     }
     if (u_view_mode == VIEW_HEIGHT) {
         float t = (h + u_max_height) / (2.0 * u_max_height);
-        o_colour = vec4(ramp(t) * (0.55 + 0.45 * max(dot(n, u_sun_dir), 0.0)), 1.0);
+        o_colour = vec4(with_contours(ramp(t) * (0.55 + 0.45 * max(dot(n, u_sun_dir), 0.0)), h), 1.0);
         return;
     }
     if (u_view_mode == VIEW_SLOPE) {
         float degrees_ = degrees(atan(slope));
-        o_colour = vec4(ramp(degrees_ / 60.0) * (0.55 + 0.45 * max(dot(n, u_sun_dir), 0.0)), 1.0);
+        o_colour = vec4(with_contours(ramp(degrees_ / 60.0) * (0.55 + 0.45 * max(dot(n, u_sun_dir), 0.0)), h), 1.0);
         return;
     }
 
@@ -203,5 +215,5 @@ void main() {
         float centre = 1.0 - smoothstep(0.0, 1.5 * fw, d - 0.02);
         lit = mix(lit, vec3(1.0, 0.9, 0.3), max(ring, centre));
     }
-    o_colour = vec4(apply_fog(lit, v_rel), 1.0);
+    o_colour = vec4(apply_fog(with_contours(lit, h), v_rel), 1.0);
 }
