@@ -471,7 +471,7 @@ static void history_panel(editor_ui *e, ui_context *ui, cmd_context *ctx) {
 static void status_bar(ui_context *ui, cmd_context *ctx, viewport *v, const editor_frame_info *info,
                        const stamp_browser *stamps, ui_rect r) {
     ui_panel_begin(ui, "Status", r);
-    char cursor[128] = "", cam[128], tool[96], frame[96], cache[128];
+    char cursor[128] = "", cam[128], tool[96], frame[128], cache[160];
     if (info->cursor_valid)
         snprintf(cursor, sizeof cursor, "x %.1f  z %.1f  height %.2f m", info->cursor[0],
                  info->cursor[2], info->cursor[1]);
@@ -483,12 +483,15 @@ static void status_bar(ui_context *ui, cmd_context *ctx, viewport *v, const edit
     if (stamps->active)
         snprintf(tool, sizeof tool, "stamp %s x%.2f", stamps->entries[stamps->selected].name,
                  stamps->scale);
-    snprintf(frame, sizeof frame, "%.0f ms (%.0f%%)%s", info->frame_ms,
-             info->resolution_scale * 100, info->pending ? "  loading" : "");
+    render_stats rs = {0};
+    if (v->renderer) terrain_renderer_stats(v->renderer, &rs);
+    snprintf(frame, sizeof frame, "%.0f ms (%.0f%%) %.0fk tris%s", info->frame_ms,
+             info->resolution_scale * 100, rs.triangles / 1000.0, info->pending ? "  loading" : "");
     tile_cache_stats s;
     tile_cache_stats_get(world_cache(ctx->world), &s);
-    snprintf(cache, sizeof cache, "cache %.0f / %.0f MiB", s.resident_bytes / 1048576.0,
-             s.budget_bytes / 1048576.0);
+    snprintf(cache, sizeof cache, "cache %.0f / %.0f MiB, undo %.1f MiB",
+             s.resident_bytes / 1048576.0, s.budget_bytes / 1048576.0,
+             history_bytes(world_history(ctx->world)) / 1048576.0);
     float cols[5] = {-0.3f, -0.2f, -0.15f, -0.15f, 0};
     ui_row(ui, 5, cols, r.h - 2 * ui_em(ui, 0.3f)); // the panel's padding above and below
     ui_label(ui, cursor);
@@ -498,9 +501,10 @@ static void status_bar(ui_context *ui, cmd_context *ctx, viewport *v, const edit
     ui_label(ui, tool);
     ui_tooltip(ui, "The current tool and its radius");
     ui_label(ui, frame);
-    ui_tooltip(ui, "The last terrain frame's time and its resolution (lowered while moving)");
+    ui_tooltip(ui, "The last terrain frame's time, its resolution (lowered while moving) and "
+                   "its triangles");
     ui_label(ui, cache);
-    ui_tooltip(ui, "Tile cache memory in use against its budget");
+    ui_tooltip(ui, "Tile cache memory in use against its budget, and the undo history's");
     ui_panel_end(ui);
 }
 
