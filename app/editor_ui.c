@@ -11,6 +11,7 @@
 void editor_ui_init(editor_ui *e) {
     memset(e, 0, sizeof *e);
     console_init(&e->console);
+    stamp_browser_init(&e->stamps);
 }
 
 void editor_ui_free(editor_ui *e) {
@@ -278,6 +279,7 @@ static void palette(editor_ui *e, ui_context *ui, cmd_context *ctx, ui_rect r) {
     tool_icon(ui, 11, (ui_rect){sb.x + sb.h * 0.2f, sb.y + sb.h * 0.2f, sb.h * 0.6f, sb.h * 0.6f},
               ui_get_theme(ui)->text);
     if (stamp_clicked) {
+        stamp_browser_load(&e->stamps, ctx);
         if (e->stamps.selected < 0 && e->stamps.count > 0) e->stamps.selected = 0;
         e->stamps.active = e->stamps.selected >= 0;
         e->stamps.open_request = 1;

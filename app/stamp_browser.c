@@ -54,11 +54,17 @@ static void relief(const float *h, int size, uint8_t *rgba) {
         }
 }
 
-void stamp_browser_init(stamp_browser *b, const cmd_context *ctx) {
+void stamp_browser_init(stamp_browser *b) {
     memset(b, 0, sizeof *b);
     b->selected = -1;
     b->scale = 1;
     b->intensity = 50;
+}
+
+void stamp_browser_load(stamp_browser *b, const cmd_context *ctx) {
+    if (b->loaded) return;
+    b->loaded = 1;
+    b->needs_upload = 1;
     char *text = NULL;
     size_t len = 0;
     FILE *mem = open_memstream(&text, &len);
@@ -102,7 +108,7 @@ int stamp_browser_command(const stamp_browser *b, double x, double z, char *out,
 }
 
 void stamp_browser_draw(stamp_browser *b, ui_context *ui, cmd_context *ctx, int *tool_changed) {
-    (void)ctx;
+    stamp_browser_load(b, ctx);
     float cols[3] = {0, 0, 0};
     float cell = ui_em(ui, 4.2f);
     ui_push_scope(ui, "Stamps");

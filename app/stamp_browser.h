@@ -27,12 +27,17 @@ typedef struct stamp_browser {
     int selected;     // -1: none
     int active;       // the stamp tool is the viewport's tool
     int open_request; // show the browser's section (the palette's Stamp button)
+    int loaded;       // the stamps are listed and their thumbnails rendered
+    int needs_upload; // thumbnails rendered since the window last made textures of them
     double scale, rotation, intensity;
     int mode, layer, mirror;
 } stamp_browser;
 
-// Lists the stamps and renders their thumbnails (CPU; the window uploads them).
-void stamp_browser_init(stamp_browser *b, const cmd_context *ctx);
+// Placement defaults; no stamps listed yet.
+void stamp_browser_init(stamp_browser *b);
+// Lists the stamps and renders their thumbnails (CPU; the window uploads them when
+// needs_upload is set), once: on first use, as reading the library takes a moment.
+void stamp_browser_load(stamp_browser *b, const cmd_context *ctx);
 // The dock section: thumbnails and placement options.
 void stamp_browser_draw(stamp_browser *b, ui_context *ui, cmd_context *ctx, int *tool_changed);
 // The command that places the selected stamp at (x, z) metres.

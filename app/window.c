@@ -83,6 +83,7 @@ typedef struct window_state {
     int drawn_w, drawn_h;
     int world_changed; // change notifications since the terrain image
     int stroke_points; // stroke_to commands of the current drag
+    double px_scale;   // framebuffer pixels per window unit (HiDPI)
     app_settings settings;
     char settings_path[4096], history_path[4096];
 } window_state;
@@ -259,10 +260,23 @@ static void poll_stdin(window_state *st) {
 
 // Window coordinates to the UI's (framebuffer) pixels.
 static float ui_px(const window_state *st, double v) {
+    return (float)(v * st->px_scale);
+}
+
+// Framebuffer pixels per window unit, kept from the size callbacks: asking the window
+// system on every pointer event would be a round trip to the X server each time.
+static void update_px_scale(window_state *st) {
     int ww, fw, h;
     glfwGetWindowSize(st->win, &ww, &h);
     glfwGetFramebufferSize(st->win, &fw, &h);
-    return (float)(ww > 0 ? v * fw / ww : v);
+    st->px_scale = ww > 0 && fw > 0 ? (double)fw / ww : 1.0;
+}
+
+static void on_framebuffer_size(GLFWwindow *win, int width, int height) {
+    (void)width, (void)height;
+    window_state *st = glfwGetWindowUserPointer(win);
+    update_px_scale(st);
+    st->ui_dirty = st->dirty = 1;
 }
 
 static void on_mouse_button(GLFWwindow *win, int button, int action, int mods) {
@@ -683,6 +697,17 @@ static void clear_frame_input(ui_input *in) {
 
 // Builds this frame's UI (running the commands its widgets ask for); sets the
 // viewport's rectangle. fw, fh: the framebuffer's size.
+// Textures of the stamp thumbnails, once the browser has rendered them.
+static int upload_stamp_thumbnails(stamp_browser *b) {
+    if (!b->needs_upload) return 0;
+    b->needs_upload = 0;
+    for (int i = 0; i < b->count; i++)
+        if (!b->entries[i].texture)
+            b->entries[i].texture =
+                ui_renderer_create_texture(STAMP_THUMB, STAMP_THUMB, b->entries[i].rgba);
+    return 1;
+}
+
 static const ui_draw_list *build_ui(window_state *st, int fw, int fh) {
     editor_frame_info info = {.frame_ms = st->terrain_ms,
                               .resolution_scale = st->drawn_scale,
@@ -702,7 +727,7 @@ static const ui_draw_list *build_ui(window_state *st, int fw, int fh) {
     float k = ui_px(st, 1.0); // framebuffer pixels per window unit
     st->view_rect = (ui_rect){vr.x / k, vr.y / k, vr.w / k, vr.h / k};
     if (st->ed.quit_requested) glfwSetWindowShouldClose(st->win, GLFW_TRUE);
-    st->ui_dirty = 0;
+    st->ui_dirty = upload_stamp_thumbnails(&st->ed.stamps); // shown from the next frame
     return dl;
 }
 
@@ -1017,6 +1042,7 @@ int window_run(cmd_context *ctx, og_error *err) {
     }
     editor_ui_init(&st.ed);
     st.res_scale = 1.0f;
+    update_px_scale(&st);
     st.settings = settings;
     snprintf(st.settings_path, sizeof st.settings_path, "%s", settings_path);
     app_settings_path(st.history_path, sizeof st.history_path, "console_history");
@@ -1046,10 +1072,7 @@ int window_run(cmd_context *ctx, og_error *err) {
     ui_set_clipboard(st.ui, (ui_clipboard){clipboard_get, clipboard_set, win});
     current_window = &st;
     make_material_swatches(st.ed.material_textures);
-    stamp_browser_init(&st.ed.stamps, ctx);
-    for (int i = 0; i < st.ed.stamps.count; i++)
-        st.ed.stamps.entries[i].texture =
-            ui_renderer_create_texture(STAMP_THUMB, STAMP_THUMB, st.ed.stamps.entries[i].rgba);
+
     // The first frame lays out the UI, so the viewport's rectangle is known for the camera.
     {
         int w, h;
@@ -1067,6 +1090,7 @@ int window_run(cmd_context *ctx, og_error *err) {
     glfwSetKeyCallback(win, on_key);
     glfwSetWindowRefreshCallback(win, on_refresh);
     glfwSetCharCallback(win, on_char);
+    glfwSetFramebufferSizeCallback(win, on_framebuffer_size);
     glfwSetWindowCloseCallback(win, on_close);
     printf("Orogen viewport:\n"
            "  left-drag sculpts with the current tool (console: tool NAME key=value ...)\n"

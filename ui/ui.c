@@ -566,16 +566,22 @@ static ui_color widget_colour(const ui_context *ui, ui_id id) {
     return ui->theme.widget;
 }
 
-int ui_toggle_button(ui_context *ui, const char *label, int on) {
+// A button shown pressed when on; its label centred, or left-aligned after indent.
+static int toggle(ui_context *ui, const char *label, int on, float indent, int centred) {
     ui_id id = ui_get_id(ui, label);
     ui_rect r = ui_next_cell(ui);
     int clicked = behave(ui, id, r);
     ui_color bg =
         on ? (ui->hot == id ? ui->theme.accent_hot : ui->theme.accent) : widget_colour(ui, id);
     ui_draw_rect(ui->target, r, bg);
-    text_in(ui, r, label, label_len(label), ui->theme.text, 1);
+    text_in(ui, (ui_rect){r.x + indent, r.y, r.w - indent, r.h}, label, label_len(label),
+            ui->theme.text, centred);
     record_widget(ui, label, r);
     return clicked;
+}
+
+int ui_toggle_button(ui_context *ui, const char *label, int on) {
+    return toggle(ui, label, on, 0, 1);
 }
 
 int ui_selectable(ui_context *ui, const char *label, int on) {
@@ -606,16 +612,7 @@ int ui_image_button(ui_context *ui, const char *label, uint32_t texture, int on)
 }
 
 int ui_toggle_button_indented(ui_context *ui, const char *label, int on, float indent) {
-    ui_id id = ui_get_id(ui, label);
-    ui_rect r = ui_next_cell(ui);
-    int clicked = behave(ui, id, r);
-    ui_color bg =
-        on ? (ui->hot == id ? ui->theme.accent_hot : ui->theme.accent) : widget_colour(ui, id);
-    ui_draw_rect(ui->target, r, bg);
-    text_in(ui, (ui_rect){r.x + indent, r.y, r.w - indent, r.h}, label, label_len(label),
-            ui->theme.text, 0);
-    record_widget(ui, label, r);
-    return clicked;
+    return toggle(ui, label, on, indent, 0);
 }
 
 int ui_button(ui_context *ui, const char *label) {
