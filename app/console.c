@@ -309,6 +309,9 @@ void console_draw(console *c, ui_context *ui, cmd_context *ctx, ui_rect r) {
         remember(c, line);
         c->history_at = -1;
         c->input[0] = 0;
-        console_run(c, ctx, line, "console");
+        if (c->submit)
+            c->submit(c->submit_user, line);
+        else
+            console_run(c, ctx, line, "console");
     }
 }

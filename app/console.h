@@ -25,6 +25,9 @@ typedef struct console {
     int history_at; // -1: editing a new line
     int open;
     int focus_input; // give the input line focus on the next frame
+    // Where a typed line goes (the window's work queue); NULL: console_run at once.
+    int (*submit)(void *user, const char *text);
+    void *submit_user;
 } console;
 
 void console_init(console *c);

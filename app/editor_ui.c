@@ -19,6 +19,13 @@ void editor_ui_free(editor_ui *e) {
 }
 
 int editor_ui_run(editor_ui *e, cmd_context *ctx, const char *text) {
+    if (e->work) return work_queue_add(e->work, text, "ui", WORK_ECHO);
+    return console_run(&e->console, ctx, text, "ui");
+}
+
+// Runs text now, on this thread, for actions that go on only when it succeeded (load,
+// save): quick file work, not long edits.
+static int run_now(editor_ui *e, cmd_context *ctx, const char *text) {
     return console_run(&e->console, ctx, text, "ui");
 }
 
@@ -62,7 +69,7 @@ static void do_action(editor_ui *e, cmd_context *ctx, editor_pending action) {
         char arg[1100], cmd[1200];
         quote_arg(arg, sizeof arg, e->open_path);
         snprintf(cmd, sizeof cmd, "load %s", arg);
-        if (editor_ui_run(e, ctx, cmd) == 0) remember_recent(e, e->open_path);
+        if (run_now(e, ctx, cmd) == 0) remember_recent(e, e->open_path);
     }
     if (action == PENDING_QUIT) e->quit_requested = 1;
 }
@@ -531,7 +538,7 @@ static void unsaved_prompt(editor_ui *e, ui_context *ui, cmd_context *ctx, float
     int can_save = world_path(ctx->world)[0] != 0;
     if (can_save ? ui_button(ui, "Save") : ui_button(ui, "Save as...##Save")) {
         if (can_save) {
-            if (editor_ui_run(e, ctx, "save") == 0) {
+            if (run_now(e, ctx, "save") == 0) {
                 editor_pending a = e->pending;
                 e->pending = PENDING_NONE;
                 do_action(e, ctx, a);
@@ -571,7 +578,7 @@ static void files_dialog(editor_ui *e, ui_context *ui, cmd_context *ctx, ui_rect
     char arg[4200], cmd[4300];
     quote_arg(arg, sizeof arg, e->files.path);
     snprintf(cmd, sizeof cmd, "save %s", arg);
-    if (editor_ui_run(e, ctx, cmd) != 0) return;
+    if (run_now(e, ctx, cmd) != 0) return;
     remember_recent(e, world_path(ctx->world));
     if (e->pending != PENDING_NONE) { // saved from the unsaved-changes prompt: go on
         editor_pending a = e->pending;
@@ -680,4 +687,27 @@ ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport
             e->pending = PENDING_NONE;
     }
     return view;
+}
+
+int editor_ui_build_busy(ui_context *ui, const char *what, double fraction, double elapsed_ms,
+                         float width, float height) {
+    float status = ui_em(ui, 1.6f);
+    ui_rect r = {0, height - status, width, status};
+    ui_modal(ui, r); // only Cancel answers while the work runs
+    ui_panel_begin(ui, "Busy", r);
+    char label[160], bar[64];
+    snprintf(label, sizeof label, "Working: %.120s", what);
+    for (char *c = label; *c; c++) // one line: a script's new lines become separators
+        if (*c == '\n') *c = ';';
+    snprintf(bar, sizeof bar, "%.0f%%  %.1f s##Progress", fraction * 100, elapsed_ms / 1000);
+    float cols[3] = {-0.45f, 0, ui_em(ui, 7)};
+    ui_row(ui, 3, cols, r.h - 2 * ui_em(ui, 0.3f));
+    ui_label(ui, label);
+    ui_tooltip(ui, "Long work runs in the background; the world is back in your hands when it "
+                   "ends");
+    ui_progress(ui, fraction, bar);
+    int cancel = ui_button(ui, "Cancel");
+    ui_tooltip(ui, "Stop the work (Esc): it leaves no trace (no undo step, the terrain as it was)");
+    ui_panel_end(ui);
+    return cancel;
 }

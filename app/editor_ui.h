@@ -8,6 +8,7 @@
 #include "app/console.h"
 #include "app/file_browser.h"
 #include "app/stamp_browser.h"
+#include "app/work_queue.h"
 #include "editor/cmd/commands.h"
 #include "renderer/viewport.h"
 #include "ui/ui.h"
@@ -43,6 +44,7 @@ typedef struct editor_ui {
     stamp_browser stamps;              // the stamp tool (stamps.active) and its options
     uint32_t material_textures[8];     // swatches of the paint materials (0: automatic)
     int quit_requested;                // the window should close
+    work_queue *work;                  // where actions are queued (NULL: run at once)
 } editor_ui;
 
 void editor_ui_init(editor_ui *e);
@@ -54,7 +56,14 @@ ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport
                         const editor_frame_info *info, float width, float height);
 
 // Runs a command as a UI action: echoed in the console, output and errors there too.
+// With a work queue the command is queued (and may run off the UI thread): 0 means queued.
 int editor_ui_run(editor_ui *e, cmd_context *ctx, const char *text);
+
+// While long work runs (work_queue.h) the editor shows only this over its last frame:
+// a bar over the status bar with what runs, its progress and a Cancel button. Reads
+// nothing of the world. Returns 1 when Cancel was clicked.
+int editor_ui_build_busy(ui_context *ui, const char *what, double fraction, double elapsed_ms,
+                         float width, float height);
 
 // Opens the file browser to save the world somewhere (File > Save as, Ctrl+Shift+S) or
 // to open one (File > Open, Ctrl+O).

@@ -3,6 +3,7 @@
 #include "app/camera_controls.h"
 #include "app/editor_ui.h"
 #include "app/settings.h"
+#include "app/work_queue.h"
 #include "renderer/gl_context.h"
 #include "renderer/gl_target.h"
 #include "renderer/material_textures.h"
@@ -86,6 +87,13 @@ typedef struct window_state {
     double px_scale;   // framebuffer pixels per window unit (HiDPI)
     app_settings settings;
     char settings_path[4096], history_path[4096];
+
+    // Every action's command text runs through this queue; long work runs off this
+    // thread, and while it does the window shows its progress over the last frame.
+    work_queue work;
+    ui_context *busy_ui;  // the progress bar and Cancel button of long work
+    double busy_drawn_ms; // when the progress was last drawn
+    int close_after_work; // the close button was pressed while work ran
 } window_state;
 
 // The window whose UI the ui_widgets command reports (one window per process).
@@ -125,23 +133,21 @@ static void point_along_ray(window_state *st, double x, double y, double dist, d
 // A drag sculpts through the command language like any other action (stroke_begin,
 // stroke_to per mouse move, stroke_end), so it is echoed to a recording and replays
 // to the same terrain. Positions are written with 17 digits: the replay is exact.
-static int run_action(window_state *st, const char *text, const char *label) {
-    og_error err = {{0}};
+// The points queue up while earlier ones are still being laid (work_queue.h), so no
+// mouse move is lost however long a dab takes.
+static void sculpt_add(window_state *st, const char *text) {
     st->dirty = 1;
     st->ui_dirty = 1;
-    if (cmd_run(st->ctx, text, strlen(text), label, &err) == 0) return 0;
-    fprintf(stderr, "%s\n", err.msg);
-    console_add(&st->ed.console, CONSOLE_ERROR, err.msg);
-    return -1;
+    work_queue_add(&st->work, text, "sculpt", WORK_STROKE);
 }
 
 static void sculpt_to(window_state *st, double x, double y) {
     double hit[3];
-    // No stroke (it failed, or a console command ended it), or off the terrain: skip.
-    if (!st->ctx->stroke || pick_at(st, x, y, hit) != 0) return;
+    if (st->drag != DRAG_SCULPT || pick_at(st, x, y, hit) != 0) return; // off the terrain
     char text[128];
     snprintf(text, sizeof text, "stroke_to %.17g %.17g", hit[0], hit[2]);
-    if (run_action(st, text, "sculpt") == 0) st->stroke_points++;
+    sculpt_add(st, text);
+    st->stroke_points++;
 }
 
 // Ctrl held inverts the tool for the stroke, Shift smooths instead (Unreal, Terrain3D).
@@ -152,19 +158,20 @@ static void sculpt_begin(window_state *st, int mods) {
         snprintf(cmd, sizeof cmd, "stroke_begin tool=smooth");
     else if (mods & GLFW_MOD_CONTROL)
         snprintf(cmd, sizeof cmd, "stroke_begin invert=%d", !st->ctx->brush.invert);
-    if (run_action(st, cmd, "sculpt") == 0) sculpt_to(st, st->mouse_x, st->mouse_y);
+    sculpt_add(st, cmd);
+    sculpt_to(st, st->mouse_x, st->mouse_y);
 }
 
 // Commits the drag's stroke (one undo step); a stroke that laid no dab leaves no step.
 // The console shows the drag as one line rather than a line per mouse move.
 static void sculpt_end(window_state *st) {
-    if (!st->ctx->stroke) return;
-    if (run_action(st, "stroke_end", "sculpt") == 0) {
-        char echo[128];
-        snprintf(echo, sizeof echo, "> stroke_begin; stroke_to ... (%d points); stroke_end",
-                 st->stroke_points);
-        console_add(&st->ed.console, CONSOLE_ECHO, echo);
-    }
+    if (st->drag != DRAG_SCULPT) return;
+    st->drag = DRAG_NONE;
+    sculpt_add(st, "stroke_end");
+    char echo[128];
+    snprintf(echo, sizeof echo, "> stroke_begin; stroke_to ... (%d points); stroke_end",
+             st->stroke_points);
+    console_add(&st->ed.console, CONSOLE_ECHO, echo);
 }
 
 // --- the camera --------------------------------------------------------------------
@@ -218,13 +225,34 @@ static int keys_held(const window_state *st) {
 
 // --- the command language ----------------------------------------------------------
 
+// Queues text as an action that is echoed in the console.
 static void run_commands(window_state *st, const char *text, const char *label) {
-    camera before = st->v->cam;
-    console_run(&st->ed.console, st->ctx, text, label);
-    fflush(stdout);
+    work_queue_add(&st->work, text, label, WORK_ECHO);
     st->ui_dirty = 1;
-    if (memcmp(&before, &st->v->cam, sizeof before) != 0) st->cc.walk = 0; // `camera` placed it
     st->dirty = 1;
+}
+
+static int submit_console_line(void *user, const char *text) {
+    window_state *st = user;
+    run_commands(st, text, "console");
+    return 0;
+}
+
+// Runs what is queued (waiting up to a frame for work to end); after it the window
+// shows whatever changed.
+static void pump_work(window_state *st) {
+    camera before = st->v->cam;
+    work_queue_pump(&st->work, 30);
+    if (work_queue_busy(&st->work)) return;
+    if (work_queue_take_ran(&st->work)) {
+        fflush(stdout);
+        st->dirty = st->ui_dirty = 1;
+        if (memcmp(&before, &st->v->cam, sizeof before) != 0) st->cc.walk = 0; // `camera`
+    }
+    if (st->work.stroke_cancelled) { // Esc or Cancel ended the stroke: the drag is over
+        st->work.stroke_cancelled = 0;
+        if (st->drag == DRAG_SCULPT) st->drag = DRAG_NONE;
+    }
 }
 
 // Runs every complete line waiting on standard input, without blocking.
@@ -243,11 +271,20 @@ static void poll_stdin(window_state *st) {
         char *nl;
         while ((nl = memchr(st->stdin_buf, '\n', st->stdin_len))) {
             *nl = 0;
-            run_commands(st, st->stdin_buf, "console");
+            if (work_queue_busy(&st->work) &&
+                cmd_text_all_flagged(st->stdin_buf, strlen(st->stdin_buf), CMD_WHILE_BUSY)) {
+                // A question about the window itself, answered while work runs.
+                cmd_context side = {.out = stdout};
+                og_error err = {{0}};
+                if (cmd_run(&side, st->stdin_buf, strlen(st->stdin_buf), "console", &err) != 0)
+                    fprintf(stderr, "%s\n", err.msg);
+                fflush(stdout);
+            } else {
+                run_commands(st, st->stdin_buf, "console");
+            }
             size_t used = (size_t)(nl - st->stdin_buf) + 1;
             memmove(st->stdin_buf, nl + 1, st->stdin_len - used);
             st->stdin_len -= used;
-            if (st->ctx->exit_requested) return;
         }
         if (st->stdin_len == sizeof st->stdin_buf - 1) {
             fprintf(stderr, "console: line longer than %zu bytes ignored\n", sizeof st->stdin_buf);
@@ -300,6 +337,13 @@ static void on_mouse_button(GLFWwindow *win, int button, int action, int mods) {
         }
         st->in.mouse_down[b] = action == GLFW_PRESS;
     }
+    // While long work runs only its Cancel button answers; a stroke's release still
+    // ends the stroke (queued after its points).
+    if (work_queue_busy(&st->work)) {
+        if (action == GLFW_RELEASE && button == GLFW_MOUSE_BUTTON_LEFT) sculpt_end(st);
+        if (action == GLFW_RELEASE) st->drag = DRAG_NONE, st->looking = 0;
+        return;
+    }
     // Presses over the UI (or outside the viewport) are the UI's; releases always end
     // the viewport's drags.
     int ui_owns = !in_view(st, st->mouse_x, st->mouse_y) ||
@@ -334,7 +378,7 @@ static void on_mouse_button(GLFWwindow *win, int button, int action, int mods) {
         char cmd[512];
         if (pick_at(st, st->mouse_x, st->mouse_y, hit) == 0 &&
             stamp_browser_command(&st->ed.stamps, hit[0], hit[2], cmd, sizeof cmd) == 0)
-            console_run(&st->ed.console, st->ctx, cmd, "stamp");
+            run_commands(st, cmd, "stamp");
     } else {
         st->drag = DRAG_SCULPT;
         sculpt_begin(st, mods);
@@ -350,6 +394,10 @@ static void on_cursor(GLFWwindow *win, double x, double y) {
     st->ui_dirty = 1;
     // The brush cursor moves with the pointer over the viewport.
     if (st->drag != DRAG_NONE || st->looking || in_view(st, x, y)) st->dirty = 1;
+    if (work_queue_busy(&st->work)) { // the camera waits; a stroke's points queue up
+        sculpt_to(st, x, y);
+        return;
+    }
     if (st->drag == DRAG_ORBIT)
         camera_controls_orbit(&st->cc, &st->v->cam, st->pivot, dx, dy);
     else if (st->drag == DRAG_SCULPT)
@@ -367,6 +415,7 @@ static void on_scroll(GLFWwindow *win, double dx, double dy) {
     (void)dx;
     window_state *st = glfwGetWindowUserPointer(win);
     st->ui_dirty = 1;
+    if (work_queue_busy(&st->work)) return;
     if (!in_view(st, st->mouse_x, st->mouse_y) ||
         ui_captures_point(st->ui, st->in.mouse_x, st->in.mouse_y)) {
         st->in.wheel += (float)dy;
@@ -446,6 +495,7 @@ static int ui_key_of(int key) {
 static void on_char(GLFWwindow *win, unsigned int codepoint) {
     window_state *st = glfwGetWindowUserPointer(win);
     st->ui_dirty = 1;
+    if (work_queue_busy(&st->work)) return;
     if (!ui_wants_keyboard(st->ui)) return; // typed into the viewport: shortcuts
     char u[5] = {0};
     if (codepoint < 0x80)
@@ -476,6 +526,12 @@ static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
                   ((mods & GLFW_MOD_ALT) ? UI_MOD_ALT : 0);
     int k = ui_key_of(key);
     if (k >= 0 && action != GLFW_RELEASE) st->in.key_pressed[k] = 1;
+    if (work_queue_busy(&st->work)) { // Esc cancels long work; other keys wait for it
+        if (action == GLFW_PRESS && key == GLFW_KEY_ESCAPE) work_queue_cancel(&st->work);
+        for (int i = 0; i < MOVE_KEY_COUNT; i++) // a key let go is never left held
+            if (key == move_key_codes[i] && action == GLFW_RELEASE) st->key_down[i] = 0;
+        return;
+    }
     // A focused text field takes every key; ~ still closes the console.
     if (ui_wants_keyboard(st->ui)) {
         if (action == GLFW_PRESS && key == GLFW_KEY_GRAVE_ACCENT && st->ed.console.open) {
@@ -534,7 +590,7 @@ static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
             double k = b->strength + (key == GLFW_KEY_EQUAL ? 0.05 : -0.05);
             snprintf(cmd, sizeof cmd, "tool %s strength=%.3g", name, fmin(fmax(k, 0), 1));
         }
-        console_run(&st->ed.console, st->ctx, cmd, "key");
+        run_commands(st, cmd, "key");
         break;
     }
     case GLFW_KEY_F:
@@ -571,6 +627,12 @@ static void on_refresh(GLFWwindow *win) {
 // The close button asks first when there are unsaved changes.
 static void on_close(GLFWwindow *win) {
     window_state *st = glfwGetWindowUserPointer(win);
+    if (work_queue_busy(&st->work)) { // stop the work first, then ask as usual
+        glfwSetWindowShouldClose(win, GLFW_FALSE);
+        work_queue_cancel(&st->work);
+        st->close_after_work = 1;
+        return;
+    }
     if (world_is_modified(st->ctx->world)) {
         glfwSetWindowShouldClose(win, GLFW_FALSE);
         editor_ui_request(&st->ed, st->ctx, PENDING_QUIT);
@@ -743,7 +805,7 @@ static int render_terrain(window_state *st, int vw, int vh, int arrived) {
     viewport *v = st->v;
     if (vw <= 0 || vh <= 0) return 0;
     update_cursor(st);
-    int moving = memcmp(&v->cam, &st->drawn_cam, sizeof v->cam) != 0 || st->ctx->stroke ||
+    int moving = memcmp(&v->cam, &st->drawn_cam, sizeof v->cam) != 0 || st->drag == DRAG_SCULPT ||
                  st->drag == DRAG_ORBIT || keys_held(st);
     float scale = moving ? st->res_scale : 1.0f;
     int w = (int)fmaxf(1.0f, roundf(vw * scale)), h = (int)fmaxf(1.0f, roundf(vh * scale));
@@ -805,6 +867,36 @@ static void compose(window_state *st, const ui_draw_list *dl, int fw, int fh) {
     if (dl && ui_renderer_draw(st->uir, dl, st->font, fw, fh, &err) != 0) report("ui", &err);
 }
 
+// While long work runs: the last frame with a progress bar and a Cancel button over
+// its status bar, drawn at most ten times a second (none for work under 150 ms).
+static void draw_busy(window_state *st, const ui_draw_list *dl, int fw, int fh) {
+    cmd_job *job = st->work.job;
+    double elapsed = cmd_job_elapsed_ms(job), t = now_ms();
+    if (elapsed < 150 || (t - st->busy_drawn_ms < 100 && !st->ui_dirty)) return;
+    st->busy_drawn_ms = t;
+    st->ui_dirty = 0;
+    st->in.time = glfwGetTime();
+    ui_begin(st->busy_ui, &st->in, (float)fw, (float)fh);
+    const char *what = (st->work.running.flags & WORK_STROKE) ? "the stroke's dabs along the drag"
+                                                              : cmd_job_text(job);
+    if (editor_ui_build_busy(st->busy_ui, what, cmd_job_progress(job), elapsed, (float)fw,
+                             (float)fh))
+        work_queue_cancel(&st->work);
+    const ui_draw_list *busy = ui_end(st->busy_ui);
+    clear_frame_input(&st->in);
+    compose(st, dl, fw, fh);
+    og_error err = {{0}};
+    if (ui_renderer_draw(st->uir, busy, st->font, fw, fh, &err) != 0) report("ui", &err);
+    glfwSwapBuffers(st->win);
+    char title[sizeof st->title];
+    snprintf(title, sizeof title, "Orogen - working %.0f%% - Esc cancels",
+             cmd_job_progress(job) * 100);
+    if (strcmp(title, st->title) != 0) {
+        snprintf(st->title, sizeof st->title, "%s", title);
+        glfwSetWindowTitle(st->win, title);
+    }
+}
+
 // The UI's fonts: DejaVu from fonts-dejavu-core ($OROGEN_FONT_DIR overrides the folder),
 // at 15 px times the monitor's content scale times the user's UI scale.
 static ui_font *load_font(GLFWwindow *win, double user, og_error *err) {
@@ -826,6 +918,7 @@ static int set_ui_scale(window_state *st, double scale, og_error *err) {
     ui_font *f = load_font(st->win, scale, err);
     if (!f) return -1;
     ui_set_font(st->ui, f);
+    ui_set_font(st->busy_ui, f);
     ui_font_destroy(st->font);
     st->font = f;
     st->settings.ui_scale = scale;
@@ -854,12 +947,15 @@ static int cmd_ui_widgets(cmd_context *ctx, int argc, char **argv, og_error *err
     const char *filter = argc > 1 ? argv[1] : NULL;
     fprintf(ctx->out, "Viewport %.0f %.0f %.0f %.0f\n", st->view_rect.x, st->view_rect.y,
             st->view_rect.w, st->view_rect.h);
-    for (size_t i = 0; i < ui_widget_count(st->ui); i++) {
-        const ui_widget_info *w = ui_widget_at(st->ui, i);
-        if (!w->name[0] || (filter && !strstr(w->name, filter))) continue;
-        fprintf(ctx->out, "%s %.0f %.0f %.0f %.0f\n", w->name, w->rect.x / k, w->rect.y / k,
-                w->rect.w / k, w->rect.h / k);
-    }
+    // While long work runs, its progress bar and Cancel button are listed after the rest.
+    ui_context *uis[2] = {st->ui, work_queue_busy(&st->work) ? st->busy_ui : NULL};
+    for (int u = 0; u < 2 && uis[u]; u++)
+        for (size_t i = 0; i < ui_widget_count(uis[u]); i++) {
+            const ui_widget_info *w = ui_widget_at(uis[u], i);
+            if (!w->name[0] || (filter && !strstr(w->name, filter))) continue;
+            fprintf(ctx->out, "%s %.0f %.0f %.0f %.0f\n", w->name, w->rect.x / k, w->rect.y / k,
+                    w->rect.w / k, w->rect.h / k);
+        }
     return 0;
 }
 
@@ -917,7 +1013,7 @@ static const cmd_def window_commands[] = {
     {"ui_widgets", "ui_widgets [FILTER]",
      "Lists the editor window's named widgets of the last frame as NAME X Y W H (window pixels; "
      "names containing FILTER), and the Viewport's rectangle first.",
-     0, 1, cmd_ui_widgets, CMD_NOT_RECORDED},
+     0, 1, cmd_ui_widgets, CMD_NOT_RECORDED | CMD_WHILE_BUSY},
 };
 
 int window_commands_register(og_error *err) {
@@ -1056,10 +1152,12 @@ int window_run(cmd_context *ctx, og_error *err) {
     st.gl_renderer = (const char *)glGetString(GL_RENDERER);
     og_error ui_err = {{0}};
     if (!(st.font = load_font(win, settings.ui_scale, &ui_err)) || !(st.ui = ui_create(st.font)) ||
+        !(st.busy_ui = ui_create(st.font)) ||
         !(st.uir = ui_renderer_create(ctx->resource_dir, &ui_err))) {
         og_error_set(err, "the editor's UI cannot start: %s",
                      ui_err.msg[0] ? ui_err.msg : "out of memory");
         ui_destroy(st.ui);
+        ui_destroy(st.busy_ui);
         ui_font_destroy(st.font);
         editor_ui_free(&st.ed);
         world_events_unsubscribe(st.changes);
@@ -1070,6 +1168,10 @@ int window_run(cmd_context *ctx, og_error *err) {
         return -1;
     }
     ui_set_clipboard(st.ui, (ui_clipboard){clipboard_get, clipboard_set, win});
+    work_queue_init(&st.work, ctx, &st.ed.console, wake_window, NULL);
+    st.ed.work = &st.work;
+    st.ed.console.submit = submit_console_line;
+    st.ed.console.submit_user = &st;
     current_window = &st;
     make_material_swatches(st.ed.material_textures);
 
@@ -1106,19 +1208,35 @@ int window_run(cmd_context *ctx, og_error *err) {
 
     GLenum last_gl_error = GL_NO_ERROR;
     const ui_draw_list *dl = NULL;
-    while (!glfwWindowShouldClose(win) && !ctx->exit_requested) {
-        // Input first; wake often while tiles arrive or keys fly the camera, rarely when idle.
-        int busy =
-            st.pending || st.settled < 2 || keys_held(&st) || ctx->stroke || ui_needs_frame(st.ui);
-        glfwWaitEventsTimeout(busy ? 0.01 : 0.1);
+    while (!glfwWindowShouldClose(win)) {
+        // Input first; wake often while tiles arrive, keys fly the camera or work runs.
+        int awake = st.pending || st.settled < 2 || keys_held(&st) || st.drag == DRAG_SCULPT ||
+                    !work_queue_idle(&st.work) || ui_needs_frame(st.ui);
+        glfwWaitEventsTimeout(awake ? 0.01 : 0.1);
+        int w, h;
+        glfwGetFramebufferSize(win, &w, &h);
+        if (work_queue_busy(&st.work)) { // the world is the job's: only progress is drawn
+            poll_stdin(&st);
+            pump_work(&st);
+            if (work_queue_busy(&st.work)) {
+                if (w > 0 && h > 0 && dl) draw_busy(&st, dl, w, h);
+                continue;
+            }
+        }
+        if (ctx->exit_requested) break; // `exit` ran (read only when no work runs)
+        if (st.close_after_work) {      // the close button, pressed while work ran
+            st.close_after_work = 0;
+            on_close(win);
+            if (!world_is_modified(ctx->world)) break;
+        }
         move_keys keys = take_keys(&st);
         if (camera_controls_move(&st.cc, &v->cam, &keys, ground_height, &st)) st.dirty = 1;
         poll_stdin(&st);
+        pump_work(&st);
         if (ctx->exit_requested) break;
+        if (work_queue_busy(&st.work)) continue;
         take_changes(&st);
 
-        int w, h;
-        glfwGetFramebufferSize(win, &w, &h);
         if (w <= 0 || h <= 0) continue;
         // The UI is rebuilt after input or changes; the terrain image only when what
         // it shows changed (a hover or a keystroke in a text field never re-renders it).
@@ -1131,7 +1249,14 @@ int window_run(cmd_context *ctx, og_error *err) {
             char cmd[64];
             snprintf(cmd, sizeof cmd, "ui_scale %g", st.ed.ui_scale_request);
             st.ed.ui_scale_request = 0;
-            console_run(&st.ed.console, ctx, cmd, "ui");
+            run_commands(&st, cmd, "ui");
+        }
+        // The actions the UI asked for run before the frame is drawn.
+        if (!work_queue_idle(&st.work)) {
+            pump_work(&st);
+            if (ctx->exit_requested) break;
+            if (work_queue_busy(&st.work)) continue;
+            take_changes(&st);
             st.ed.ui_scale = st.settings.ui_scale;
             dl = build_ui(&st, w, h);
         }
@@ -1155,7 +1280,14 @@ int window_run(cmd_context *ctx, og_error *err) {
         }
         update_title(&st);
     }
+    // A stroke still held is committed, and queued work finishes (or is cancelled by
+    // a second close) before the world is saved or closed by the caller.
     sculpt_end(&st);
+    while (!work_queue_idle(&st.work)) {
+        pump_work(&st);
+        if (work_queue_busy(&st.work)) glfwWaitEventsTimeout(0.05);
+    }
+    work_queue_free(&st.work);
     save_settings(&st);
     world_events_unsubscribe(st.changes);
     current_window = NULL;
@@ -1166,6 +1298,7 @@ int window_run(cmd_context *ctx, og_error *err) {
         ui_renderer_delete_texture(st.ed.material_textures[i]);
     ui_renderer_destroy(st.uir);
     ui_destroy(st.ui);
+    ui_destroy(st.busy_ui);
     ui_font_destroy(st.font);
     editor_ui_free(&st.ed);
     // The renderer's GL objects belong to this context: free them while it is current.

@@ -437,7 +437,7 @@ static void bench_erosion(void) {
     hydraulic_params_default(&hp);
     hp.droplets = 100000;
     thermal_params tp = {.talus_deg = 35.0f, .iterations = 20, .rate = 0.5f}; // brush defaults
-    erosion_grid g = {h, wt, N, N, 1.0f};
+    erosion_grid g = {h, wt, N, N, 1.0f, NULL};
     const int runs = 5;
     double hyd[5], th[5], copy[5];
     hydraulic_report rep = {0};

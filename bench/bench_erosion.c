@@ -59,7 +59,7 @@ int main(void) {
     float *w = malloc(sizeof(float) * N * N), *tmp = malloc(sizeof(float) * N * N);
     if (!h0 || !h || !w || !tmp) return 1;
     terrain(h0, w);
-    erosion_grid g = {h, w, N, N, 1.0f};
+    erosion_grid g = {h, w, N, N, 1.0f, NULL};
 
     hydraulic_params hp;
     hydraulic_params_default(&hp);

@@ -16,7 +16,7 @@ case "${1:-}" in
 --thread)
   "$root/scripts/install-deps.sh"
   dir="$root/build-tsan"
-  tsan_tests=(test_edit test_cache test_parallel test_world_events test_tokenize)
+  tsan_tests=(test_edit test_cache test_parallel test_world_events test_tokenize test_cmd_job)
   cmake -S "$root" -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DOROGEN_TSAN=ON \
     -DOROGEN_WERROR=ON >/dev/null
   targets=()

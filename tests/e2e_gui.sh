@@ -274,6 +274,34 @@ saved1=$(hash_box "$px" "$pz")
 saved2=$(hash_box "$qx" "$qz")
 [ "$saved1" = "$h1" ]; check "the saved world keeps the first stroke" $?
 
+# 7b. Long work runs off the UI thread: a hydraulic stroke of a million droplets a dab
+# shows its progress and a Cancel button, and Cancel (or Esc) leaves no trace.
+hl0=$(hash_box "$px" "$pz")
+steps0=$(ask history '^steps=')
+echo "tool hydraulic radius=150 droplets=1000000" >&3
+ask_until tool '^droplets=' '^droplets=1000000$' >/dev/null
+sculpt
+wait_title "working"; rc=$?; check "a long stroke shows its progress in the title ($(title))" $rc
+widget "Busy/Cancel" >/dev/null; check "while it runs, ui_widgets lists its Cancel button (Busy/Cancel)" $?
+import -window "$wid" "$art/gui_long_work.png" 2>/dev/null
+click "Busy/Cancel"
+wait_title "gui.world - "; rc=$?; check "Cancel ends the work and the window is back ($(title))" $rc
+[ "$(hash_box "$px" "$pz")" = "$hl0" ] && [ "$(ask history '^steps=')" = "$steps0" ]
+check "the cancelled stroke left no trace (hash $hl0, $steps0)" $?
+grep -q "cancelled: the stroke was undone" "$work/err"; check "the console (and stderr) says the stroke was undone" $?
+echo "dab $px $pz" >&3 # the same through the console, and Esc
+wait_title "working"; rc=$?; check "a long dab typed in the console runs in the background ($(title))" $rc
+key Escape
+wait_title "gui.world - " && [ "$(hash_box "$px" "$pz")" = "$hl0" ] &&
+    [ "$(ask history '^steps=')" = "$steps0" ]
+check "Esc cancels it and leaves no trace" $?
+echo "tool hydraulic radius=40 droplets=30000; dab $px $pz" >&3 # short work still lands
+hash_is_not() { for _ in $(seq 30); do [ "$(hash_box "$px" "$pz")" != "$1" ] && return 0; sleep 0.3; done; return 1; }
+hash_is_not "$hl0" && [ "$(ask history '^steps=')" != "$steps0" ]
+check "work that is not cancelled is one undo step" $?
+echo "undo; tool raise radius=20" >&3
+hash_is "$hl0"; check "undo takes it back" $?
+
 # 8. The unsaved-changes prompt: Cancel keeps working, Discard quits without saving.
 sculpt
 wait_title "gui.world \* - "; rc=$?; check "a new stroke marks the world modified ($(title))" $rc

@@ -42,7 +42,7 @@ static grid grid_new(int width, int height, float spacing) {
     t.w = calloc(n ? n : 1, sizeof(float));
     assert_non_null(t.h);
     assert_non_null(t.w);
-    t.g = (erosion_grid){t.h, t.w, width, height, spacing};
+    t.g = (erosion_grid){t.h, t.w, width, height, spacing, NULL};
     return t;
 }
 static void grid_free(grid *t) {

@@ -660,7 +660,7 @@ void ui_progress(ui_context *ui, double fraction, const char *text) {
     double f = fraction < 0 ? 0 : fraction > 1 ? 1 : fraction;
     ui_draw_rect(ui->target, r, ui->theme.widget);
     ui_draw_rect(ui->target, (ui_rect){r.x, r.y, roundf(r.w * (float)f), r.h}, ui->theme.accent);
-    if (text) text_in(ui, r, text, strlen(text), ui->theme.text, 1);
+    if (text) text_in(ui, r, text, label_len(text), ui->theme.text, 1);
     record_widget(ui, text ? text : "progress", r);
 }
 

@@ -379,6 +379,39 @@ static int execute(cmd_context *ctx, int argc, char **argv, og_error *err) {
     return 0;
 }
 
+// 1 when every command of text passes the test (and the text parses).
+static int every_command(const char *text, size_t len, int (*test)(const cmd_def *c, int flags),
+                         int flags) {
+    cmd_tokenizer t;
+    cmd_tokenizer_init(&t, text, len, "");
+    int argc, line, rc, all = 1;
+    char **argv;
+    og_error ignored = {{0}};
+    while (all && (rc = cmd_tokenizer_next(&t, &argc, &argv, &line, &ignored)) == 1) {
+        const cmd_def *c = find_command(argv[0]);
+        all = c && test(c, flags);
+    }
+    cmd_tokenizer_free(&t);
+    return all && rc == 0;
+}
+
+static int is_builtin(const cmd_def *c, int flags) {
+    (void)flags;
+    return c >= commands && c < commands + BUILTIN_COUNT;
+}
+
+static int has_flags(const cmd_def *c, int flags) {
+    return (c->flags & flags) == flags;
+}
+
+int cmd_text_is_builtin(const char *text, size_t len) {
+    return every_command(text, len, is_builtin, 0);
+}
+
+int cmd_text_all_flagged(const char *text, size_t len, int flags) {
+    return every_command(text, len, has_flags, flags);
+}
+
 int cmd_run(cmd_context *ctx, const char *text, size_t len, const char *label, og_error *err) {
     cmd_tokenizer t;
     cmd_tokenizer_init(&t, text, len, label);

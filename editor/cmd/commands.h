@@ -18,6 +18,14 @@ int cmd_register(const cmd_def *defs, size_t count, og_error *err);
 // err->msg = "label:line: error: message". label names the script ("-c" for -c).
 int cmd_run(cmd_context *ctx, const char *text, size_t len, const char *label, og_error *err);
 
+// 1 when every command in text is one of the language's own (and the text parses):
+// such text may run on any thread (cmd_job.h). Registered commands (the renderer's, the
+// window's) hold GL or window state and run on the thread that owns those.
+int cmd_text_is_builtin(const char *text, size_t len);
+
+// 1 when every command in text has all of flags (and the text parses).
+int cmd_text_all_flagged(const char *text, size_t len, int flags);
+
 // Number of commands and their names, for completion and `cmdlist`.
 size_t cmd_count(void);
 const char *cmd_name(size_t i);

@@ -46,6 +46,9 @@ enum {
     // A query of the editor window's own state, left out of recordings (--record): a
     // replay has no window to ask.
     CMD_NOT_RECORDED = 2,
+    // Reads only the editor window's own state, never the world or the context: the
+    // window may run it while long work owns both (cmd_job.h), on a context of its own.
+    CMD_WHILE_BUSY = 4,
 };
 
 // A context on world w with the default tool (raise). The user's stamp folder is

@@ -2,6 +2,9 @@
 
 #include "editor/edit/parallel.h"
 #include "editor/params/world_grid.h"
+#include "io/progress.h"
+
+#include <stdatomic.h>
 
 static size_t sample_bytes(tile_layer layer) {
     return layer == TILE_LAYER_MATERIAL ? TILE_MATERIALS : sizeof(float);
@@ -15,10 +18,14 @@ typedef struct rows_job {
     edit_row_fn fn;
     edit_rows_wanted_fn wanted;
     void *user;
+    og_progress *progress; // the calling thread's (tasks run on the pool's threads)
+    atomic_long tiles_done;
+    long tiles;
 } rows_job;
 
 static int rows_task(void *user, int task, og_error *err) {
     rows_job *j = user;
+    if (og_progress_cancelled(j->progress)) return og_error_set(err, "cancelled");
     int64_t tx = j->tx0 + task % j->tw, tz = j->tz0 + task / j->tw;
     grid_rect t =
         grid_rect_intersect(j->r, (grid_rect){tx * TILE_SIZE, tz * TILE_SIZE, (tx + 1) * TILE_SIZE,
@@ -33,6 +40,9 @@ static int rows_task(void *user, int task, og_error *err) {
         j->fn(j->user, (uint8_t *)v.data + at * bytes, z, t.x0, t.x1);
     }
     edit_tile_release(j->e, &v);
+    long done = atomic_fetch_add(&j->tiles_done, 1) + 1;
+    // The bar is written from whichever thread finished a tile: only its fraction grows.
+    if (j->progress) og_progress_report(j->progress, done, j->tiles);
     return 0;
 }
 
@@ -44,6 +54,9 @@ int edit_rows_apply(edit *e, const layer_grid *g, grid_rect r, edit_row_fn fn,
     job.tz0 = world_grid_floor_div(r.z0, TILE_SIZE);
     job.tw = world_grid_floor_div(r.x1 - 1, TILE_SIZE) - job.tx0 + 1;
     int64_t th = world_grid_floor_div(r.z1 - 1, TILE_SIZE) - job.tz0 + 1;
+    job.progress = og_progress_current();
+    job.tiles = (long)(job.tw * th);
+    atomic_init(&job.tiles_done, 0);
     if (parallel_run((int)(job.tw * th), rows_task, &job, err) != 0) return -1;
     edit_dirty(e, g->layer, g->face, r);
     return 0;

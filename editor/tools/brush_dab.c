@@ -2,6 +2,7 @@
 
 #include "editor/edit/edit_rows.h"
 #include "editor/gen/gen_noise.h"
+#include "io/progress.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -291,7 +292,7 @@ static int neighbourhood(const brush_dab *d, float *heights, float *weight, grid
         return 0;
     }
     if (w > INT32_MAX / (h ? h : 1)) return og_error_set(err, "brush area too large");
-    erosion_grid g = {heights, weight, (int)w, (int)h, (float)d->spacing};
+    erosion_grid g = {heights, weight, (int)w, (int)h, (float)d->spacing, og_progress_current()};
     if (b->tool == BRUSH_THERMAL) {
         erosion_thermal(&g, &b->thermal);
     } else {
@@ -299,6 +300,7 @@ static int neighbourhood(const brush_dab *d, float *heights, float *weight, grid
         p.seed = d->seed;
         erosion_hydraulic(&g, &p, NULL);
     }
+    if (og_progress_cancelled(g.progress)) return og_error_set(err, "cancelled");
     for (int64_t i = 0; i < w * h; i++)
         heights[i] = keep_finite(heights[i], 0.0f);
     return 0;

@@ -1,5 +1,7 @@
 #include "editor/tools/erosion.h"
 
+#include "io/progress.h"
+
 #include <math.h>
 #include <stdatomic.h>
 #include <stddef.h>
@@ -271,7 +273,13 @@ void erosion_thermal(erosion_grid *g, const thermal_params *p) {
     ws.ortho = (float)(tan_talus * g->spacing);
     ws.diag = (float)(tan_talus * g->spacing * 1.4142135623730951);
     ws.half_rate = 0.5f * p->rate;
-    thermal_run(&ws, p->iterations);
+    // In batches, so a cancelled run stops soon (the caller then throws the grid away).
+    for (int done = 0; done < p->iterations;) {
+        int batch = p->iterations - done < 8 ? p->iterations - done : 8;
+        thermal_run(&ws, batch);
+        done += batch;
+        if (og_progress_report(g->progress, done, p->iterations) != 0) break;
+    }
 
     // Write back runs of weighted cells only.
     for (int r = 1; r <= ws.rows; r++) {
@@ -659,6 +667,9 @@ void erosion_hydraulic(erosion_grid *g, const hydraulic_params *p, hydraulic_rep
             const float *xy = ahead[n % SPAWN_AHEAD];
             droplet_run(&c, p, g->spacing, xy[0], xy[1], &walk_rng, &rep);
             rep.droplets++;
+            if ((rep.droplets & 1023) == 0 &&
+                og_progress_report(g->progress, rep.droplets, p->droplets) != 0)
+                break;
         }
         if (n >= p->droplets) continue;
         // The first entry whose running sum exceeds `pick` (the last one if none does):

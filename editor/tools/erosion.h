@@ -31,6 +31,9 @@ typedef struct erosion_grid {
     const float *weight; // same layout; in [0, 1]; 0 = read-only halo
     int width, height;   // >= 1 each, width * height <= 2^31 - 1
     float spacing;       // metres, [1e-4, 1e7]
+    // NULL, or where the kernel reports how far it is; once that is cancelled the
+    // kernel stops early and the grid holds a partial result for the caller to discard.
+    struct og_progress *progress;
 } erosion_grid;
 
 // 0, or -1 with a message naming the bad field.

@@ -4,6 +4,7 @@
 #include "editor/edit/edit.h"
 #include "editor/edit/edit_commit.h"
 #include "editor/world/layer_grid.h"
+#include "io/progress.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -118,11 +119,16 @@ int stroke_to(stroke *s, double x, double z, double pressure, og_error *err) {
                                 STROKE_MAX_DABS_PER_SEGMENT);
         // Dabs every `step` along the path, continuing the spacing across segments.
         double at = step - s->carry;
-        for (; at <= len; at += step) {
+        og_progress *progress = og_progress_current();
+        int64_t dabs = at <= len ? (int64_t)((len - at) / step) + 1 : 0, dab = 0;
+        for (; at <= len; at += step, dab++) {
             double a = at / len;
-            if (dab_at(s, s->last_x + a * dx, s->last_z + a * dz,
-                       s->last_p + a * (pressure - s->last_p), err) != 0)
-                return -1;
+            if (og_progress_report(progress, dab, dabs) != 0) return og_error_set(err, "cancelled");
+            og_progress_part outer = og_progress_enter(progress, dab, dabs);
+            int rc = dab_at(s, s->last_x + a * dx, s->last_z + a * dz,
+                            s->last_p + a * (pressure - s->last_p), err);
+            og_progress_leave(progress, outer);
+            if (rc != 0) return -1;
         }
         s->carry = len - (at - step);
     }
