@@ -106,6 +106,8 @@ static void menus(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v, u
         if (e->recent_count) ui_menu_separator(ui);
         if (ui_menu_item(ui, "Save", "Ctrl+S", saved_before)) editor_ui_run(e, ctx, "save");
         if (ui_menu_item(ui, "Save as...", "Ctrl+Shift+S", 1)) editor_ui_save_as(e, ctx);
+        if (ui_menu_item(ui, "Save session as script...", NULL, ctx->session != NULL))
+            file_browser_show(&e->files, FILE_BROWSER_SCRIPT, "session.og");
         ui_menu_separator(ui);
         if (ui_menu_item(ui, "Quit", "Ctrl+Q", 1)) editor_ui_request(e, ctx, PENDING_QUIT);
         ui_menu_end(ui);
@@ -577,6 +579,11 @@ static void files_dialog(editor_ui *e, ui_context *ui, cmd_context *ctx, ui_rect
     }
     char arg[4200], cmd[4300];
     quote_arg(arg, sizeof arg, e->files.path);
+    if (e->files.mode == FILE_BROWSER_SCRIPT) {
+        snprintf(cmd, sizeof cmd, "history script %s", arg);
+        run_now(e, ctx, cmd);
+        return;
+    }
     snprintf(cmd, sizeof cmd, "save %s", arg);
     if (run_now(e, ctx, cmd) != 0) return;
     remember_recent(e, world_path(ctx->world));

@@ -8,10 +8,19 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-static int world_file(const char *name) {
+// The files a mode lists besides folders (the extension filter).
+static int listed_file(file_browser_mode mode, const char *name) {
     const char *dot = strrchr(name, '.');
-    return dot && (strcmp(dot, ".world") == 0 || strcmp(dot, ".planet") == 0);
+    if (!dot) return 0;
+    if (mode == FILE_BROWSER_SCRIPT) return strcmp(dot, ".og") == 0 || strcmp(dot, ".txt") == 0;
+    return strcmp(dot, ".world") == 0 || strcmp(dot, ".planet") == 0;
 }
+
+static const char *const titles[] = {"Open", "Save as", "Save session script"};
+static const char *const intros[] = {
+    "Open a world (.world or .planet)",
+    "Save the world as (a .world file; its tiles go beside it as NAME.tiles)",
+    "Save this session's commands as a script (.og) that replays it on the starting world"};
 
 static int sort_mode; // qsort has no user pointer
 
@@ -39,7 +48,7 @@ void file_browser_refresh(file_browser *b) {
         struct stat st;
         if (stat(full, &st) != 0) continue;
         int is_dir = S_ISDIR(st.st_mode);
-        if (!is_dir && !world_file(de->d_name)) continue;
+        if (!is_dir && !listed_file(b->mode, de->d_name)) continue;
         file_browser_entry *e = &b->entries[b->count++];
         snprintf(e->name, sizeof e->name, "%s", de->d_name);
         e->is_dir = is_dir;
@@ -80,12 +89,10 @@ static void go_to(file_browser *b, const char *dir) {
 int file_browser_draw(file_browser *b, ui_context *ui, ui_rect r) {
     const ui_theme *t = ui_get_theme(ui);
     int chosen = 0;
-    ui_panel_begin(ui, b->mode == FILE_BROWSER_OPEN ? "Open" : "Save as", r);
+    ui_panel_begin(ui, titles[b->mode], r);
     float line = ui_em(ui, 1.4f);
     ui_row(ui, 1, NULL, line);
-    ui_label(ui, b->mode == FILE_BROWSER_OPEN ? "Open a world (.world or .planet)"
-                                              : "Save the world as (a .world file; its tiles go "
-                                                "beside it as NAME.tiles)");
+    ui_label(ui, intros[b->mode]);
     float top[4] = {-0.2f, -0.2f, -0.3f, 0};
     ui_row(ui, 4, top, line);
     if (ui_button(ui, "Parent")) {
@@ -151,7 +158,9 @@ int file_browser_draw(file_browser *b, ui_context *ui, ui_rect r) {
                            : b->mode == FILE_BROWSER_OPEN ? "Open##go"
                                                           : "Save##go") ||
              (rc & UI_TEXT_SUBMIT);
-    ui_tooltip(ui, b->mode == FILE_BROWSER_OPEN ? "Open the chosen world" : "Save the world there");
+    ui_tooltip(ui, b->mode == FILE_BROWSER_OPEN   ? "Open the chosen world"
+                   : b->mode == FILE_BROWSER_SAVE ? "Save the world there"
+                                                  : "Write the script there");
     if (ui_button(ui, "Cancel")) b->open = 0;
     ui_tooltip(ui, "Close without choosing (Esc)");
     ui_panel_end(ui);
@@ -162,7 +171,7 @@ int file_browser_draw(file_browser *b, ui_context *ui, ui_rect r) {
             snprintf(b->error, sizeof b->error, "%.400s: no such file", b->path);
         } else if (exists && S_ISDIR(st.st_mode)) {
             go_to(b, b->path);
-        } else if (b->mode == FILE_BROWSER_SAVE && exists && !b->confirm_overwrite) {
+        } else if (b->mode != FILE_BROWSER_OPEN && exists && !b->confirm_overwrite) {
             b->confirm_overwrite = 1; // the button asks again: Overwrite
             snprintf(b->error, sizeof b->error, "%.400s exists: press Overwrite to replace it",
                      b->path);

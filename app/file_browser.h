@@ -1,6 +1,7 @@
 // The in-app file browser (no native dialogs exist under Xvfb or on every desktop):
-// a folder's sub-folders and world files (.world, .planet), parent and home, a path
-// field, sorting by name, date or size, and for saving an overwrite confirmation.
+// a folder's sub-folders and the files of the mode's kind (worlds: .world, .planet;
+// scripts: .og, .txt), parent and home, a path field, sorting by name, date or size,
+// and for saving an overwrite confirmation.
 #ifndef OROGEN_APP_FILE_BROWSER_H
 #define OROGEN_APP_FILE_BROWSER_H
 
@@ -11,7 +12,11 @@
 
 #define FILE_BROWSER_MAX 512
 
-typedef enum file_browser_mode { FILE_BROWSER_OPEN, FILE_BROWSER_SAVE } file_browser_mode;
+typedef enum file_browser_mode {
+    FILE_BROWSER_OPEN,   // a world to open
+    FILE_BROWSER_SAVE,   // where to save the world
+    FILE_BROWSER_SCRIPT, // where to save the session as a script (.og)
+} file_browser_mode;
 
 typedef struct file_browser_entry {
     char name[256];

@@ -1168,6 +1168,12 @@ int window_run(cmd_context *ctx, og_error *err) {
         return -1;
     }
     ui_set_clipboard(st.ui, (ui_clipboard){clipboard_get, clipboard_set, win});
+    // The session's commands, kept for `history script FILE` (File > Save session...).
+    char *session_text = NULL;
+    size_t session_len = 0;
+    ctx->session = open_memstream(&session_text, &session_len);
+    ctx->session_text = &session_text;
+    ctx->session_len = &session_len;
     work_queue_init(&st.work, ctx, &st.ed.console, wake_window, NULL);
     st.ed.work = &st.work;
     st.ed.console.submit = submit_console_line;
@@ -1288,6 +1294,9 @@ int window_run(cmd_context *ctx, og_error *err) {
         if (work_queue_busy(&st.work)) glfwWaitEventsTimeout(0.05);
     }
     work_queue_free(&st.work);
+    if (ctx->session) fclose(ctx->session);
+    ctx->session = NULL;
+    free(session_text);
     save_settings(&st);
     world_events_unsubscribe(st.changes);
     current_window = NULL;

@@ -175,6 +175,10 @@ hf=$(hash_box "$px" "$pz")
 grep -q '^stroke_begin$' "$work/session.og" && grep -q '^stroke_to ' "$work/session.og" &&
     grep -q '^stroke_end$' "$work/session.og"
 check "sculpting drags are recorded as stroke_begin / stroke_to / stroke_end commands" $?
+line=$(ask "history script $work/script.og" '^wrote ')
+[ "$line" = "wrote $work/script.og" ] && grep -q '^stroke_to ' "$work/script.og" &&
+    ! grep -q '^history script' "$work/script.og"
+check "history script FILE writes the session's commands, strokes with every point ($line)" $?
 
 # Bad commands are reported; the window stays.
 echo "frobnicate" >&3
@@ -197,6 +201,12 @@ echo "hash $(awk -v x="$px" -v z="$pz" 'BEGIN { print x - 150, z - 150, x + 150,
 rc=$?
 [ $rc = 0 ] && [ -n "$hf" ] && [ "$(tail -n 1 "$work/replay.out")" = "$hf" ]
 rc2=$?; check "the recorded session replays to the same hash (status $rc, $hf vs $(tail -n 1 "$work/replay.out"))" $rc2
+cp "$work/script.og" "$work/replay2.og"
+echo "hash $(awk -v x="$px" -v z="$pz" 'BEGIN { print x - 150, z - 150, x + 150, z + 150 }')" >>"$work/replay2.og"
+"$orogen" --batch "$work/replay2.og" >"$work/replay2.out" 2>"$work/replay2.err"
+rc=$?
+[ $rc = 0 ] && [ -n "$hf" ] && [ "$(tail -n 1 "$work/replay2.out")" = "$hf" ]
+rc2=$?; check "the history script replays to the same hash (status $rc, $hf vs $(tail -n 1 "$work/replay2.out"); $(head -c 300 "$work/replay2.err"))" $rc2
 [ $status = 0 ] && [ $failures = 0 ] || tail -n 30 "$work/err"
 
 echo "$passes passed, $failures failed"

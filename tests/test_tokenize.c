@@ -9,6 +9,7 @@
 #include "editor/cmd/tokenize.h"
 #include "editor/params/world_params.h"
 #include "editor/world/world.h"
+#include "support/test_support.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -551,6 +552,28 @@ static void test_cmd_run(void **state) {
     run_fails(&ctx, "stroke_end", "script:1: error: stroke_end: no stroke in progress");
     run_fails(&ctx, "stroke_cancel", "script:1: error: stroke_cancel: no stroke in progress");
     run_fails(&ctx, "stroke 1 2 3", "script:1: error: stroke: expected X Z pairs (got 3 numbers)");
+    // history script needs a session log (the window keeps one); with one it writes it.
+    run_fails(&ctx, "history script x.og", "script:1: error: history script: no session");
+    run_fails(&ctx, "history script", "script:1: error: history script: expected a FILE");
+    char *log_text = NULL;
+    size_t log_len = 0;
+    ctx.session = open_memstream(&log_text, &log_len);
+    ctx.session_text = &log_text;
+    ctx.session_len = &log_len;
+    char path[4096];
+    snprintf(path, sizeof path, "%s/session.og", test_tmpdir("session"));
+    char cmd[4200];
+    snprintf(cmd, sizeof cmd, "seed 77; \"seed\" 78; history script \"%s\"", path);
+    free(run_ok(&ctx, cmd));
+    len = 0;
+    char *written = test_read_file(path, &len);
+    assert_non_null(written);
+    assert_non_null(strstr(written, "\nseed 77\nseed 78\n"));
+    assert_null(strstr(written, "history script")); // a replay does not write it again
+    free(written);
+    fclose(ctx.session);
+    ctx.session = NULL;
+    free(log_text);
     world_close(ctx.world);
 }
 

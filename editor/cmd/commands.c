@@ -270,9 +270,12 @@ static const cmd_def commands[] = {
     {"undo", "undo", "Undoes the last change (stroke, stamp, generate).", 0, 0, cmd_undo,
      CMD_ENDS_STROKE},
     {"redo", "redo", "Redoes the last undone change.", 0, 0, cmd_redo, CMD_ENDS_STROKE},
-    {"history", "history [budget=MIB]",
-     "Lists the undo steps (* = applied) and their memory; sets the history memory budget.", 0, 1,
-     cmd_history, CMD_ENDS_STROKE},
+    {"history", "history [budget=MIB] | history script FILE",
+     "Lists the undo steps (* = applied) and their memory; sets the history memory budget. "
+     "'history script FILE' writes this session's commands (mouse strokes as stroke_begin, "
+     "stroke_to with every point, stroke_end) as a script that replays it on the world it "
+     "started from (the editor window keeps the session).",
+     0, 2, cmd_history, CMD_ENDS_STROKE},
     {"help", "help [COMMAND]", "Prints help on all commands or one.", 0, 1, c_help, 0},
     {"cmdlist", "cmdlist", "Lists the command names.", 0, 0, c_cmdlist, 0},
     {"exit", "exit", "Stops (the rest of the script is not run).", 0, 0, c_exit, CMD_ENDS_STROKE},
@@ -341,28 +344,33 @@ static int c_cmdlist(cmd_context *ctx, int argc, char **argv, og_error *err) {
 
 // ---- driver ----------------------------------------------------------------------
 
-// Writes the command to the recording, quoted so that running the file repeats it.
-static void record(cmd_context *ctx, int argc, char **argv) {
+// Writes the command to a recording, quoted so that running the file repeats it.
+static void record_to(FILE *f, int argc, char **argv) {
     for (int k = 0; k < argc; k++) {
         const char *a = argv[k];
         int plain = *a != 0;
         for (const char *c = a; *c && plain; c++)
             plain = !(*c == ' ' || *c == '\t' || *c == '\r' || *c == '\n' || *c == ';' ||
                       *c == '#' || *c == '"' || *c == '\\');
-        fputs(k ? " " : "", ctx->record);
+        fputs(k ? " " : "", f);
         if (plain) {
-            fputs(a, ctx->record);
+            fputs(a, f);
             continue;
         }
-        fputc('"', ctx->record);
+        fputc('"', f);
         for (const char *c = a; *c; c++) {
-            if (*c == '"' || *c == '\\') fputc('\\', ctx->record);
-            fputc(*c, ctx->record);
+            if (*c == '"' || *c == '\\') fputc('\\', f);
+            fputc(*c, f);
         }
-        fputc('"', ctx->record);
+        fputc('"', f);
     }
-    fputc('\n', ctx->record);
-    fflush(ctx->record); // a crash keeps every command that ran
+    fputc('\n', f);
+    fflush(f); // a crash keeps every command that ran
+}
+
+static void record(cmd_context *ctx, int argc, char **argv) {
+    if (ctx->record) record_to(ctx->record, argc, argv);
+    if (ctx->session) record_to(ctx->session, argc, argv);
 }
 
 static int execute(cmd_context *ctx, int argc, char **argv, og_error *err) {
@@ -373,9 +381,12 @@ static int execute(cmd_context *ctx, int argc, char **argv, og_error *err) {
         return og_error_set(err, "%s: wrong number of arguments; usage: %s", c->name, c->usage);
     // A stroke is one undo step: nothing else changes the world in its middle.
     if (ctx->stroke && (c->flags & CMD_ENDS_STROKE) && cmd_end_stroke(ctx, err) != 0) return -1;
+    ctx->skip_record = 0;
     if (c->run(ctx, argc, argv, err) != 0) return -1;
     // `exit` is left out: a replay goes on to whatever follows it.
-    if (ctx->record && c->run != c_exit && !(c->flags & CMD_NOT_RECORDED)) record(ctx, argc, argv);
+    if ((ctx->record || ctx->session) && c->run != c_exit && !(c->flags & CMD_NOT_RECORDED) &&
+        !ctx->skip_record)
+        record(ctx, argc, argv);
     return 0;
 }
 

@@ -18,6 +18,12 @@ typedef struct cmd_context {
     brush brush;             // the current tool (`tool`), used by dab and stroke
     struct stroke *stroke;   // the stroke stroke_begin opened (NULL: none)
     FILE *record;            // when set, every command that succeeded is written here
+    // The session's commands for `history script FILE` (the editor window keeps them
+    // in memory: an open_memstream over session_text / session_len); NULL: none.
+    FILE *session;
+    char **session_text;
+    size_t *session_len;
+    int skip_record;         // set by a command that must not be recorded this time
     char resource_dir[4096]; // built-in resources (stamp library in resource_dir/stamps)
     char stamp_dir[4096];    // the user's stamp folder
     // State of commands registered from outside (the renderer's view commands keep

@@ -1,5 +1,7 @@
 #include "editor/cmd/edit_commands.h"
 
+#include "io/param_file.h"
+
 #include "editor/edit/edit.h"
 #include "editor/world/history.h"
 #include "editor/tools/stamp.h"
@@ -177,7 +179,32 @@ int cmd_redo(cmd_context *ctx, int argc, char **argv, og_error *err) {
     return 0;
 }
 
+// history script FILE: the session so far, as a script (written atomically).
+static int write_session_script(cmd_context *ctx, const char *path, og_error *err) {
+    ctx->skip_record = 1; // a replay must not write the file again
+    if (!ctx->session)
+        return og_error_set(err, "history script: no session is kept here (the editor window "
+                                 "keeps one; batch runs can use --record FILE)");
+    fflush(ctx->session);
+    static const char head[] = "# An Orogen session: replay it on the world it started from,\n"
+                               "# e.g. orogen START.world --batch THIS_FILE\n";
+    size_t n = *ctx->session_len;
+    char *text = malloc(sizeof head + n);
+    if (!text) return og_error_set(err, "out of memory");
+    memcpy(text, head, sizeof head - 1);
+    memcpy(text + sizeof head - 1, *ctx->session_text, n);
+    int rc = param_file_write_atomic(path, text, sizeof head - 1 + n, err);
+    free(text);
+    if (rc == 0) fprintf(ctx->out, "wrote %s\n", path);
+    return rc;
+}
+
 int cmd_history(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    if (argc > 1 && strcmp(argv[1], "script") == 0) {
+        if (argc != 3) return og_error_set(err, "history script: expected a FILE");
+        return write_session_script(ctx, argv[2], err);
+    }
+    if (argc > 2) return og_error_set(err, "history: expected budget=MIB or script FILE");
     history *h = world_history(ctx->world);
     for (int i = 1; i < argc; i++) {
         char buf[128], *key = NULL, *value = NULL;

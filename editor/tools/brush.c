@@ -9,8 +9,8 @@
 static const char *tool_names[BRUSH_TOOL_COUNT] = {"raise",     "smooth", "flatten", "set",
                                                    "ramp",      "noise",  "terrace", "thermal",
                                                    "hydraulic", "paint"};
-static const char *falloff_names[FALLOFF_COUNT] = {"smooth", "linear", "spherical", "constant",
-                                                   "curve"};
+static const char *falloff_names[FALLOFF_COUNT] = {"smooth",   "linear", "spherical",
+                                                   "constant", "curve",  "tip"};
 static const char *flatten_names[] = {"both", "raise", "lower"};
 
 const char *brush_tool_name(brush_tool t) {
@@ -59,6 +59,8 @@ float brush_falloff_weight(const brush *b, float t) {
         return sqrtf(1.0f - t * t);
     case FALLOFF_CONSTANT:
         return 1.0f;
+    case FALLOFF_TIP:
+        return 1.0f - sqrtf(1.0f - (1.0f - t) * (1.0f - t));
     case FALLOFF_CURVE: {
         int n = b->curve_count;
         if (t <= b->curve_t[0]) return b->curve_v[0];
@@ -126,7 +128,8 @@ int brush_set(brush *b, const char *key, const char *value, og_error *err) {
             if (strcmp(value, falloff_names[i]) == 0) f = i;
         if (f < 0)
             return og_error_set(
-                err, "falloff: '%s' is not smooth, linear, spherical, constant or curve", value);
+                err, "falloff: '%s' is not smooth, linear, spherical, tip, constant or curve",
+                value);
         if (f == FALLOFF_CURVE && n.curve_count < 2)
             return og_error_set(err, "falloff: give the points first with curve=t:v,t:v,...");
         n.falloff = (brush_falloff)f;

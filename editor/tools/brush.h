@@ -31,6 +31,7 @@ typedef enum brush_falloff {
     FALLOFF_SPHERICAL, // sqrt(1 - t^2)
     FALLOFF_CONSTANT,  // 1
     FALLOFF_CURVE,     // the user's curve= points, piecewise linear
+    FALLOFF_TIP,       // 1 - sqrt(1 - (1 - t)^2): a sharp peak (Unreal's "tip")
     FALLOFF_COUNT
 } brush_falloff;
 
