@@ -316,6 +316,58 @@ static void slider_key(editor_ui *e, ui_context *ui, cmd_context *ctx, const cha
     ui_tooltip(ui, tip);
 }
 
+// Runs `tool T curve=...` for the points (which makes the falloff the curve).
+static void set_curve(editor_ui *e, cmd_context *ctx, const char *tool, const float *ct,
+                      const float *cv, int n) {
+    char pts[BRUSH_CURVE_MAX * 24] = "";
+    for (int i = 0; i < n; i++) {
+        size_t at = strlen(pts);
+        snprintf(pts + at, sizeof pts - at, "%s%.3g:%.3g", i ? "," : "", ct[i], cv[i]);
+    }
+    runf(e, ctx, "tool %s curve=%s", tool, pts);
+}
+
+// The falloff: Unreal's four presets, constant and the user's curve, and a curve
+// editor showing the profile (editing it turns a preset into a curve).
+static void falloff_options(editor_ui *e, ui_context *ui, cmd_context *ctx, const char *tool) {
+    const brush *b = &ctx->brush;
+    static const char *const names[] = {"smooth", "linear",   "spherical",
+                                        "tip",    "constant", "curve"};
+    static const brush_falloff kinds[] = {FALLOFF_SMOOTH, FALLOFF_LINEAR,   FALLOFF_SPHERICAL,
+                                          FALLOFF_TIP,    FALLOFF_CONSTANT, FALLOFF_CURVE};
+    int f = 0;
+    for (int i = 0; i < 6; i++)
+        if (kinds[i] == b->falloff) f = i;
+    // The profile as points: the curve's own, or five samples of the preset.
+    float ct[BRUSH_CURVE_MAX], cv[BRUSH_CURVE_MAX];
+    int n = 5;
+    if (b->falloff == FALLOFF_CURVE) {
+        n = b->curve_count;
+        memcpy(ct, b->curve_t, sizeof ct);
+        memcpy(cv, b->curve_v, sizeof cv);
+    } else {
+        for (int i = 0; i < n; i++) {
+            ct[i] = i / (float)(n - 1);
+            cv[i] = brush_falloff_weight(b, fminf(ct[i], 0.999f)); // the edge's own value
+        }
+    }
+    if (ui_combo(ui, "Falloff", &f, names, 6)) {
+        if (kinds[f] == FALLOFF_CURVE && b->curve_count < 2)
+            set_curve(e, ctx, tool, ct, cv, n); // a curve starts as the preset it replaces
+        else
+            runf(e, ctx, "tool %s falloff=%s", tool, names[f]);
+    }
+    ui_tooltip(ui, "How the effect fades from the centre to the edge: Unreal's smooth, linear, "
+                   "spherical and tip, constant, or your own curve");
+    ui_row(ui, 1, NULL, ui_em(ui, 5.5f));
+    if (ui_curve(ui, "Falloff curve", ct, cv, &n, BRUSH_CURVE_MAX))
+        set_curve(e, ctx, tool, ct, cv, n);
+    ui_tooltip(ui, "The falloff from the centre (left) to the edge (right). Drag a point, "
+                   "double-click to add one, right-click to remove one: the brush then uses "
+                   "this curve");
+    ui_row(ui, 1, NULL, 0);
+}
+
 static void tool_options(editor_ui *e, ui_context *ui, cmd_context *ctx) {
     const brush *b = &ctx->brush;
     const char *t = current_tool(b);
@@ -326,11 +378,7 @@ static void tool_options(editor_ui *e, ui_context *ui, cmd_context *ctx) {
                "How much of the tool's effect one dab applies");
     slider_key(e, ui, ctx, "Spacing", "spacing", b->spacing, 0.05, 2, "%.2f x radius",
                "Distance between dabs along a stroke, as a fraction of the radius");
-    static const char *const falloffs[] = {"smooth", "linear", "spherical", "constant", "curve"};
-    int f = (int)b->falloff, count = b->curve_count >= 2 ? 5 : 4;
-    if (ui_combo(ui, "Falloff", &f, falloffs, count))
-        runf(e, ctx, "tool %s falloff=%s", t, falloffs[f]);
-    ui_tooltip(ui, "How the effect fades from the centre to the edge");
+    falloff_options(e, ui, ctx, t);
     if (b->tool != BRUSH_RAISE) { // raise/lower is the invert pair
         int inv = b->invert;
         if (ui_checkbox(ui, "Invert", &inv)) runf(e, ctx, "tool %s invert=%d", t, inv);

@@ -740,6 +740,96 @@ static void test_checkbox_and_radio(void **state) {
     drv_free(&d);
 }
 
+// ---- the curve editor ---------------------------------------------------------------------
+
+typedef struct curve_state {
+    float t[8], v[8];
+    int n, changes;
+} curve_state;
+
+static void build_curve(drv *d) {
+    curve_state *c = d->user;
+    ui_panel_begin(d->ui, "C", (ui_rect){10, 10, 300, 220});
+    ui_row(d->ui, 1, NULL, 200);
+    if (ui_curve(d->ui, "Curve", c->t, c->v, &c->n, 8)) c->changes++;
+    ui_panel_end(d->ui);
+}
+
+// Where (t, v) is drawn: the widget's unit square sits inside its rectangle.
+static void curve_xy(drv *d, float t, float v, float *x, float *y) {
+    ui_rect r = rect_of(d, "C/Curve");
+    float pad = ui_em(d->ui, 0.45f);
+    *x = r.x + pad + t * (r.w - 2 * pad);
+    *y = r.y + pad + (1 - v) * (r.h - 2 * pad);
+}
+
+static void test_curve_editor(void **state) {
+    (void)state;
+    curve_state c = {.t = {0, 1}, .v = {1, 0}, .n = 2};
+    drv d;
+    drv_init(&d, build_curve, &c);
+    float x, y, x2, y2;
+    // A double click on the square adds a point there, between the ends.
+    curve_xy(&d, 0.5f, 0.8f, &x, &y);
+    d.in.double_click = 1;
+    press(&d, x, y);
+    release(&d, x, y);
+    assert_int_equal(c.n, 3);
+    assert_int_equal(c.changes, 1);
+    assert_true(fabsf(c.t[1] - 0.5f) < 0.01f && fabsf(c.v[1] - 0.8f) < 0.01f);
+    // Dragging it changes nothing until the release; then it is where it was dropped.
+    press(&d, x, y);
+    curve_xy(&d, 0.3f, 0.4f, &x2, &y2);
+    drag_to(&d, x2, y2);
+    assert_true(fabsf(c.t[1] - 0.5f) < 0.01f);
+    assert_int_equal(c.changes, 1);
+    release(&d, x2, y2);
+    assert_int_equal(c.changes, 2);
+    assert_true(fabsf(c.t[1] - 0.3f) < 0.01f && fabsf(c.v[1] - 0.4f) < 0.01f);
+    // An inner point cannot pass its neighbours; values clamp to [0, 1].
+    curve_xy(&d, c.t[1], c.v[1], &x, &y);
+    press(&d, x, y);
+    curve_xy(&d, 1.5f, -0.5f, &x2, &y2);
+    drag_to(&d, x2, y2);
+    release(&d, x2, y2);
+    assert_true(c.t[1] < 1.0f && c.t[1] > 0.99f && c.v[1] == 0.0f);
+    assert_true(c.t[0] == 0.0f && c.t[2] == 1.0f);
+    // An end moves only up and down.
+    curve_xy(&d, 0, 1, &x, &y);
+    press(&d, x, y);
+    curve_xy(&d, 0.4f, 0.6f, &x2, &y2);
+    drag_to(&d, x2, y2);
+    release(&d, x2, y2);
+    assert_true(c.t[0] == 0.0f && fabsf(c.v[0] - 0.6f) < 0.01f);
+    // A press that does not move is no change.
+    int before = c.changes;
+    curve_xy(&d, c.t[0], c.v[0], &x, &y);
+    click(&d, x, y);
+    assert_int_equal(c.changes, before);
+    // Right-click removes an inner point, never an end.
+    curve_xy(&d, c.t[1], c.v[1], &x, &y);
+    d.in.mouse_x = x, d.in.mouse_y = y;
+    d.in.mouse_pressed[1] = 1;
+    frame(&d);
+    assert_int_equal(c.n, 2);
+    curve_xy(&d, c.t[0], c.v[0], &x, &y);
+    d.in.mouse_x = x, d.in.mouse_y = y;
+    d.in.mouse_pressed[1] = 1;
+    frame(&d);
+    assert_int_equal(c.n, 2);
+    // The arrays' room is respected: a full curve takes no more points.
+    for (int i = 0; i < 10; i++) {
+        curve_xy(&d, 0.05f + 0.09f * i, 0.5f, &x, &y);
+        d.in.double_click = 1;
+        press(&d, x, y);
+        release(&d, x, y);
+    }
+    assert_int_equal(c.n, 8);
+    for (int i = 1; i < c.n; i++)
+        assert_true(c.t[i] > c.t[i - 1]);
+    drv_free(&d);
+}
+
 // ---- sliders --------------------------------------------------------------------------
 
 typedef struct slider_state {
@@ -1656,6 +1746,7 @@ static void test_tooltip(void **state) {
 int main(void) {
     const struct CMUnitTest tests[] = {
         T(test_font_atlas),
+        T(test_curve_editor),
         T(test_font_widths_and_fallback),
         T(test_utf8_decode),
         T(test_font_offset_at),

@@ -86,6 +86,11 @@ struct ui_context {
     float drag_start_x;
     int drag_fine;
 
+    // Curve editors: the point being dragged, where it is now (the caller's arrays
+    // change only when the drag ends).
+    int curve_point;
+    float curve_t, curve_v;
+
     // Menus and combos: one popup open at a time.
     ui_id open_popup;
     ui_rect popup_rect, popup_rect_prev;
@@ -1255,4 +1260,93 @@ void ui_log(ui_context *ui, const char *name, size_t count,
     }
     ui_draw_pop_clip(ui->target);
     ui->last_id = id, ui->last_rect = r, ui->last_hovered = over(ui, r);
+}
+
+// ---- curve editor ----------------------------------------------------------------------
+
+static float clampf(float x, float lo, float hi) {
+    return x < lo ? lo : x > hi ? hi : x;
+}
+
+int ui_curve(ui_context *ui, const char *label, float *t, float *v, int *count, int max) {
+    ui_id id = ui_get_id(ui, label);
+    ui_rect r = ui_next_cell(ui);
+    record_widget(ui, label, r);
+    float pad = ui_em(ui, 0.45f);
+    ui_rect a = {r.x + pad, r.y + pad, r.w - 2 * pad, r.h - 2 * pad}; // the unit square
+    if (a.w < 1 || a.h < 1 || *count < 2) return 0;
+    int n = *count, done = 0;
+    const float mx = ui->in.mouse_x, my = ui->in.mouse_y;
+    int hovered = over(ui, r);
+    if (hovered) ui->hot_next = id;
+    // The point under the pointer, within half an em of its handle.
+    int near = -1;
+    float best = ui_em(ui, 0.5f) * ui_em(ui, 0.5f);
+    for (int k = 0; k < n; k++) {
+        float dx = mx - (a.x + t[k] * a.w), dy = my - (a.y + (1 - v[k]) * a.h);
+        if (dx * dx + dy * dy <= best) best = dx * dx + dy * dy, near = k;
+    }
+    float pt = clampf((mx - a.x) / a.w, 0, 1), pv = clampf(1 - (my - a.y) / a.h, 0, 1);
+    if (hovered && press_for(ui, id) && near >= 0 && !ui->in.double_click) {
+        ui->active = id;
+        ui->curve_point = near;
+        ui->curve_t = t[near], ui->curve_v = v[near];
+    } else if (hovered && press_for(ui, id) && ui->in.double_click && near < 0 && n < max &&
+               pt > t[0] && pt < t[n - 1]) { // a new point where the double click was
+        int at = 1;
+        while (at < n - 1 && t[at] < pt)
+            at++;
+        if (pt > t[at - 1] && pt < t[at]) {
+            memmove(t + at + 1, t + at, (size_t)(n - at) * sizeof *t);
+            memmove(v + at + 1, v + at, (size_t)(n - at) * sizeof *v);
+            t[at] = pt, v[at] = pv;
+            *count = ++n;
+            done = 1;
+        }
+    }
+    if (hovered && ui->in.mouse_pressed[1] && near > 0 && near < n - 1 && n > 2) {
+        memmove(t + near, t + near + 1, (size_t)(n - near - 1) * sizeof *t);
+        memmove(v + near, v + near + 1, (size_t)(n - near - 1) * sizeof *v);
+        *count = --n;
+        done = 1;
+    }
+    int dragged = ui->active == id && ui->curve_point < n ? ui->curve_point : -1;
+    if (dragged >= 0) { // ends move up and down only; inner points stay between neighbours
+        const float gap = 1e-3f;
+        ui->curve_v = pv;
+        ui->curve_t = dragged == 0       ? t[0]
+                      : dragged == n - 1 ? t[n - 1]
+                                         : clampf(pt, t[dragged - 1] + gap, t[dragged + 1] - gap);
+        if (!ui->in.mouse_down[0]) {
+            ui->active = 0;
+            done = t[dragged] != ui->curve_t || v[dragged] != ui->curve_v;
+            t[dragged] = ui->curve_t, v[dragged] = ui->curve_v;
+            dragged = -1;
+        }
+    }
+    ui->last_id = id, ui->last_rect = r, ui->last_hovered = hovered;
+    // The square, quarter lines, the curve and its handles (the dragged one where it is).
+    ui_draw_rect(ui->target, r, ui->theme.widget);
+    for (int q = 1; q < 4; q++) {
+        float gx = a.x + a.w * q / 4, gy = a.y + a.h * q / 4;
+        ui_draw_line(ui->target, gx, a.y, gx, a.y + a.h, ui->theme.panel_alt, 1);
+        ui_draw_line(ui->target, a.x, gy, a.x + a.w, gy, ui->theme.panel_alt, 1);
+    }
+    float px = 0, py = 0;
+    for (int k = 0; k < n; k++) {
+        float tk = k == dragged ? ui->curve_t : t[k], vk = k == dragged ? ui->curve_v : v[k];
+        float x = a.x + tk * a.w, y = a.y + (1 - vk) * a.h;
+        if (k == 0 && tk > 0) px = a.x, py = y; // flat before the first point
+        if (k > 0 || tk > 0) ui_draw_line(ui->target, px, py, x, y, ui->theme.accent, 2);
+        px = x, py = y;
+    }
+    if (px < a.x + a.w) ui_draw_line(ui->target, px, py, a.x + a.w, py, ui->theme.accent, 2);
+    float h = ui_em(ui, 0.22f);
+    for (int k = 0; k < n; k++) {
+        float tk = k == dragged ? ui->curve_t : t[k], vk = k == dragged ? ui->curve_v : v[k];
+        float x = a.x + tk * a.w, y = a.y + (1 - vk) * a.h;
+        ui_color c = k == dragged || (k == near && hovered) ? ui->theme.accent_hot : ui->theme.text;
+        ui_draw_rect(ui->target, (ui_rect){x - h, y - h, 2 * h, 2 * h}, c);
+    }
+    return done;
 }

@@ -162,6 +162,13 @@ const ui_input *ui_get_input(const ui_context *ui);
 // Gives keyboard focus to the text box with this label in the current scope next frame.
 void ui_focus(ui_context *ui, const char *label);
 void ui_separator(ui_context *ui);
+// A curve editor filling the next cell: points (t[i], v[i]) in [0, 1] with t rising,
+// joined by straight lines and held flat beyond the ends (as brush falloff curves are
+// read). Drag a point to move it (the two ends only up and down, the others between
+// their neighbours); double-click the square to add a point; right-click a point to
+// remove it (never an end). The arrays change, and 1 is returned, only when a change
+// is done (a drag released, a point added or removed); max is the arrays' room.
+int ui_curve(ui_context *ui, const char *label, float *t, float *v, int *count, int max);
 void ui_progress(ui_context *ui, double fraction, const char *text);
 // A collapsible section header; returns 1 while open (starts open when default_open).
 int ui_section(ui_context *ui, const char *label, int default_open);
