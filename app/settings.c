@@ -82,7 +82,13 @@ void app_settings_load(app_settings *s, const char *path) {
             read_number(path, e, 1, 170, &s->field_of_view);
         else if (strcmp(e->key, "frame_target_ms") == 0)
             read_number(path, e, 5, 1000, &s->frame_target_ms);
-        else if (strncmp(e->key, "recent_", 7) == 0) {
+        else if (strcmp(e->key, "tool") == 0)
+            snprintf(s->tool, sizeof s->tool, "%.31s", e->value);
+        else if (strncmp(e->key, "tool_", 5) == 0) {
+            if (s->tool_count < SETTINGS_TOOLS && e->key[5])
+                snprintf(s->tools[s->tool_count++], sizeof s->tools[0], "%.40s %.700s", e->key + 5,
+                         e->value);
+        } else if (strncmp(e->key, "recent_", 7) == 0) {
             if (s->recent_count < SETTINGS_RECENT && e->value[0])
                 snprintf(s->recent[s->recent_count++], sizeof s->recent[0], "%s", e->value);
         } else {
@@ -111,7 +117,7 @@ int app_settings_save(const app_settings *s, const char *path, og_error *err) {
     if (!path[0]) return og_error_set(err, "no settings folder (HOME is not set)");
     if (make_folders(path) != 0)
         return og_error_set(err, "%s: cannot create its folder: %s", path, strerror(errno));
-    char text[16384], num[64];
+    char text[32768], num[64];
     size_t n = 0;
 #define PUT(...) n += (size_t)snprintf(text + n, n < sizeof text ? sizeof text - n : 0, __VA_ARGS__)
     PUT("# Orogen's editor settings (written when the editor closes).\n");
@@ -126,6 +132,12 @@ int app_settings_save(const app_settings *s, const char *path, og_error *err) {
     PUT("frame_target_ms = %s;\n", num);
     for (int i = 0; i < s->recent_count; i++)
         if (!strpbrk(s->recent[i], ";#\n")) PUT("recent_%d = %s;\n", i, s->recent[i]);
+    if (s->tool[0] && !strpbrk(s->tool, ";#\n= ")) PUT("tool = %s;\n", s->tool);
+    for (int i = 0; i < s->tool_count; i++) {
+        const char *space = strchr(s->tools[i], ' ');
+        if (space && !strpbrk(s->tools[i], ";#\n"))
+            PUT("tool_%.*s = %s;\n", (int)(space - s->tools[i]), s->tools[i], space + 1);
+    }
 #undef PUT
     if (n >= sizeof text) return og_error_set(err, "%s: settings too long", path);
     return param_file_write_atomic(path, text, n, err);

@@ -1,6 +1,7 @@
 // The editor's own settings, kept between runs in $XDG_CONFIG_HOME/orogen/settings
 // (default ~/.config/orogen/settings) in the parameter-file syntax: window size and
-// position, the UI scale, the frame-time goal while moving, recent files, and Kahoun
+// position, the UI scale, the frame-time goal while moving, recent files, each tool's
+// settings, and Kahoun
 // 2010's configuration keys (width, height, field_of_view, enable_fullscreen). The
 // console's history is kept beside it in console_history, one command a line.
 // A broken file gives warnings naming its lines and the defaults, never a failure.
@@ -12,6 +13,7 @@
 #include <stddef.h>
 
 #define SETTINGS_RECENT 8
+#define SETTINGS_TOOLS 16
 
 typedef struct app_settings {
     int width, height;      // window size (1280 x 800)
@@ -22,6 +24,11 @@ typedef struct app_settings {
     double frame_target_ms; // dynamic resolution's goal while moving (50)
     char recent[SETTINGS_RECENT][1024];
     int recent_count;
+    // Each tool's settings as last used, "NAME key=value ..." (tool_NAME in the file),
+    // and the tool in use (tool); see tool_settings.h.
+    char tools[SETTINGS_TOOLS][768];
+    int tool_count;
+    char tool[32];
 } app_settings;
 
 void app_settings_default(app_settings *s);

@@ -3,6 +3,7 @@
 #include "app/camera_controls.h"
 #include "app/editor_ui.h"
 #include "app/settings.h"
+#include "app/tool_settings.h"
 #include "app/work_queue.h"
 #include "renderer/gl_context.h"
 #include "renderer/gl_target.h"
@@ -1072,6 +1073,7 @@ static void save_settings(window_state *st) {
     for (int i = st->ed.recent_count - 1; i >= 0; i--)
         app_settings_add_recent(s, st->ed.recent[i]);
     app_settings_add_recent(s, world_path(st->ctx->world));
+    tool_settings_capture(st->ctx, s);
     og_error err = {{0}};
     if (app_settings_save(s, st->settings_path, &err) != 0)
         fprintf(stderr, "orogen: settings not saved: %s\n", err.msg);
@@ -1174,6 +1176,7 @@ int window_run(cmd_context *ctx, og_error *err) {
     ctx->session = open_memstream(&session_text, &session_len);
     ctx->session_text = &session_text;
     ctx->session_len = &session_len;
+    tool_settings_restore(ctx, &settings, settings_path); // each tool as it was last used
     work_queue_init(&st.work, ctx, &st.ed.console, wake_window, NULL);
     st.ed.work = &st.work;
     st.ed.console.submit = submit_console_line;

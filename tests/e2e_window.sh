@@ -188,6 +188,12 @@ echo "camera 1 2" >&3
 sleep 0.3
 kill -0 $app 2>/dev/null && [ -n "$(ask "camera" '^camera ')" ]; check "the editor survives bad commands" $?
 
+# Each tool keeps its own settings, and they are kept between runs.
+echo "tool smooth radius=33 falloff=tip; tool raise radius=12" >&3
+line=$(ask "tool smooth; tool" '^radius=')
+[ "$line" = "radius=33" ]; check "a tool picked again has its own radius back ($line)" $?
+echo "tool raise" >&3
+
 echo "exit" >&3
 status=1
 for _ in $(seq 200); do kill -0 $app 2>/dev/null || break; sleep 0.1; done
@@ -195,6 +201,13 @@ if ! kill -0 $app 2>/dev/null; then wait $app; status=$?; fi
 [ $status = 0 ]; check "exit closes the editor with status 0" $?
 grep -q "^recent_0 = $work/saved.world;" "$work/config/orogen/settings" && grep -q '^width = ' "$work/config/orogen/settings"
 rc=$?; check "the editor's settings are kept for the next run (window size, recent worlds): $(tr "\n" " " <"$work/config/orogen/settings" 2>&1)" $rc
+grep -q '^tool_smooth = radius=33 .*falloff=tip' "$work/config/orogen/settings" &&
+    grep -q '^tool = raise;' "$work/config/orogen/settings"
+check "each tool's settings are written to the settings" $?
+printf 'tool\ntool smooth; tool\nexit\n' | "$orogen" >"$work/rerun.out" 2>"$work/rerun.err"
+grep -q '^radius=12$' "$work/rerun.out" && grep -q '^radius=33$' "$work/rerun.out" &&
+    grep -q '^falloff=tip$' "$work/rerun.out"
+check "the next run starts with each tool as it was left ($(grep -E '^(tool|radius|falloff)=' "$work/rerun.out" | tr '\n' ' '); $(head -c 200 "$work/rerun.err"))" $?
 cp "$work/session.og" "$work/replay.og"
 echo "hash $(awk -v x="$px" -v z="$pz" 'BEGIN { print x - 150, z - 150, x + 150, z + 150 }')" >>"$work/replay.og"
 "$orogen" --batch "$work/replay.og" >"$work/replay.out" 2>"$work/replay.err"

@@ -16,6 +16,9 @@ typedef struct cmd_context {
     FILE *out;               // where commands print results
     int exit_requested;      // set by `exit`
     brush brush;             // the current tool (`tool`), used by dab and stroke
+    // Each tool's own settings, as it was last used (a tool picked again gets them back).
+    brush tool_memory[BRUSH_TOOL_COUNT];
+    unsigned tool_remembered; // bit t: tool_memory[t] holds settings
     struct stroke *stroke;   // the stroke stroke_begin opened (NULL: none)
     FILE *record;            // when set, every command that succeeded is written here
     // The session's commands for `history script FILE` (the editor window keeps them

@@ -12,21 +12,21 @@
 #include <stdlib.h>
 #include <string.h>
 
-// Another tool with the shared settings of b (size, strength, falloff, spacing, layer).
-static brush switched_tool(const brush *b, brush_tool t, int invert) {
-    brush fresh;
-    brush_defaults(&fresh, t);
-    fresh.radius = b->radius;
-    fresh.strength = b->strength;
-    fresh.falloff = b->falloff;
-    fresh.curve_count = b->curve_count;
-    memcpy(fresh.curve_t, b->curve_t, sizeof b->curve_t);
-    memcpy(fresh.curve_v, b->curve_v, sizeof b->curve_v);
-    fresh.spacing = b->spacing;
-    fresh.face = b->face;
-    if (t != BRUSH_PAINT && b->target != TILE_LAYER_MATERIAL) fresh.target = b->target;
-    fresh.invert = invert;
-    return fresh;
+// The settings tool t had when it was last used (its defaults the first time), on the
+// face the current brush is on.
+static brush recalled_tool(const cmd_context *ctx, brush_tool t) {
+    brush b;
+    if (ctx->tool_remembered & (1u << t))
+        b = ctx->tool_memory[t];
+    else
+        brush_defaults(&b, t);
+    b.face = ctx->brush.face;
+    return b;
+}
+
+static void remember_tool(cmd_context *ctx, const brush *b) {
+    ctx->tool_memory[b->tool] = *b;
+    ctx->tool_remembered |= 1u << b->tool;
 }
 
 int cmd_tool(cmd_context *ctx, int argc, char **argv, og_error *err) {
@@ -45,9 +45,14 @@ int cmd_tool(cmd_context *ctx, int argc, char **argv, og_error *err) {
         snprintf(err->msg + n, sizeof err->msg - n, " lower)");
         return -1;
     }
+    // Each tool keeps its own settings (Terrain3D, Unreal): the one left is remembered,
+    // the one picked comes back as it was. Raise and lower are one tool, inverted.
     brush b = ctx->brush;
-    if (b.tool != (brush_tool)t || strcmp(argv[1], "lower") == 0)
-        b = switched_tool(&b, (brush_tool)t, strcmp(argv[1], "lower") == 0);
+    if (b.tool != (brush_tool)t) {
+        remember_tool(ctx, &ctx->brush);
+        b = recalled_tool(ctx, (brush_tool)t);
+    }
+    if (t == BRUSH_RAISE) b.invert = strcmp(argv[1], "lower") == 0;
     for (int i = 2; i < argc; i++) {
         char buf[512], *key = NULL, *value = NULL;
         if (parse_setting(argv[i], buf, sizeof buf, &key, &value, err) != 0 ||
@@ -55,6 +60,7 @@ int cmd_tool(cmd_context *ctx, int argc, char **argv, og_error *err) {
             return -1;
     }
     ctx->brush = b;
+    remember_tool(ctx, &b);
     return 0;
 }
 
@@ -109,7 +115,11 @@ int cmd_stroke_begin(cmd_context *ctx, int argc, char **argv, og_error *err) {
         } else if (strcmp(key, "tool") == 0) {
             int t = brush_tool_parse(value);
             if (t < 0) return og_error_set(err, "tool: unknown tool '%s'", value);
-            b = switched_tool(&b, (brush_tool)t, strcmp(value, "lower") == 0);
+            // That tool's own settings at the size the cursor shows.
+            double radius = b.radius;
+            b = recalled_tool(ctx, (brush_tool)t);
+            b.radius = radius;
+            if (t == BRUSH_RAISE) b.invert = strcmp(value, "lower") == 0;
         } else {
             return og_error_set(err, "stroke_begin: unknown setting '%s' (invert, tool)", key);
         }
