@@ -10,6 +10,8 @@
 
 void editor_ui_init(editor_ui *e) {
     memset(e, 0, sizeof *e);
+    e->camera_mode_request = -1;
+    e->dynamic_resolution = 1;
     console_init(&e->console);
     stamp_browser_init(&e->stamps);
 }
@@ -150,6 +152,26 @@ static void menus(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v, u
             if (ui_menu_item(ui, label, NULL, v->settings.contours != contours[i]))
                 runf(e, ctx, "render contours=%g", contours[i]);
         }
+        if (ui_menu_item(ui,
+                         v->settings.sun_rotation != 0 ? "Light rotation: on##Light"
+                                                       : "Light rotation: off##Light",
+                         "R", 1))
+            runf(e, ctx, "render sun_rotation=%g", v->settings.sun_rotation != 0 ? 0.0 : 20.0);
+        if (ui_menu_item(ui, "More levels of detail",
+                         "Ctrl+=", v->settings.levels < RENDER_MAX_LEVELS))
+            runf(e, ctx, "render levels=%d", v->settings.levels + 1);
+        if (ui_menu_item(ui, "Fewer levels of detail", "Ctrl+-",
+                         v->settings.levels > RENDER_MIN_LEVELS))
+            runf(e, ctx, "render levels=%d", v->settings.levels - 1);
+        if (ui_menu_item(ui,
+                         e->dynamic_resolution ? "Dynamic resolution: on##Dynamic"
+                                               : "Dynamic resolution: off##Dynamic",
+                         "L", 1))
+            runf(e, ctx, "dynamic_resolution %s", e->dynamic_resolution ? "off" : "on");
+        ui_menu_separator(ui);
+        static const char *const cameras[] = {"Camera: fly", "Camera: orbit", "Camera: walk"};
+        for (int i = 0; i < 3; i++)
+            if (ui_menu_item(ui, cameras[i], "C", e->camera_mode != i)) e->camera_mode_request = i;
         if (ui_menu_item(ui, "Reset view", "Home", 1)) editor_ui_run(e, ctx, "camera default");
         ui_menu_separator(ui);
         static const double scales[] = {1.0, 1.25, 1.5, 2.0};
@@ -179,21 +201,27 @@ typedef struct tool_entry {
     const char *name;  // as `tool` takes it
     const char *label; // on the button
     const char *tip;
+    char key; // its shortcut over the viewport (none collides with the camera's keys)
 } tool_entry;
 
 static const tool_entry tools[] = {
-    {"raise", "Raise", "Raise the terrain by amount metres per dab"},
-    {"lower", "Lower", "Lower the terrain by amount metres per dab"},
-    {"smooth", "Smooth", "Blend toward a blur that widens with the radius (invert sharpens)"},
-    {"flatten", "Flatten", "Blend toward a height, or the height under the stroke's start"},
-    {"set", "Set height", "Blend toward the height you give"},
-    {"ramp", "Ramp", "A ramp from the stroke's first point to its last"},
-    {"noise", "Noise", "Add fractal noise"},
-    {"terrace", "Terrace", "Blend toward terraces of a step height"},
-    {"thermal", "Thermal", "Thermal erosion down to the talus angle"},
-    {"hydraulic", "Hydraulic", "Droplet erosion: water carves and deposits"},
-    {"paint", "Paint", "Paint a material (invert removes it)"},
+    {"raise", "Raise", "Raise the terrain by amount metres per dab (key U)", 'U'},
+    {"lower", "Lower", "Lower the terrain by amount metres per dab (key J)", 'J'},
+    {"smooth", "Smooth",
+     "Blend toward a blur that widens with the radius; invert sharpens (key M; Shift while "
+     "dragging smooths with any tool)",
+     'M'},
+    {"flatten", "Flatten", "Blend toward a height, or the height under the stroke's start (key T)",
+     'T'},
+    {"set", "Set height", "Blend toward the height you give (key H)", 'H'},
+    {"ramp", "Ramp", "A ramp from the stroke's first point to its last (key P)", 'P'},
+    {"noise", "Noise", "Add fractal noise (key N)", 'N'},
+    {"terrace", "Terrace", "Blend toward terraces of a step height (key K)", 'K'},
+    {"thermal", "Thermal", "Thermal erosion down to the talus angle (key Y)", 'Y'},
+    {"hydraulic", "Hydraulic", "Droplet erosion: water carves and deposits (key O)", 'O'},
+    {"paint", "Paint", "Paint a material; invert removes it (key I)", 'I'},
 };
+#define STAMP_KEY 'B' // the stamp tool's shortcut
 #define TOOL_COUNT (sizeof tools / sizeof tools[0])
 
 static int tool_is_current(const brush *b, const char *name) {
@@ -268,15 +296,31 @@ static void tool_icon(ui_context *ui, int tool, ui_rect r, ui_color c) {
 #undef P
 }
 
+int editor_ui_tool_for_key(int letter) {
+    for (size_t i = 0; i < TOOL_COUNT; i++)
+        if (tools[i].key == letter) return (int)i;
+    return letter == STAMP_KEY ? (int)TOOL_COUNT : -1;
+}
+
+void editor_ui_pick_tool(editor_ui *e, cmd_context *ctx, int index) {
+    if (index >= 0 && index < (int)TOOL_COUNT) {
+        runf(e, ctx, "tool %s", tools[index].name);
+        e->stamps.active = 0;
+    } else if (index == (int)TOOL_COUNT) { // the stamp tool: the browser shows its stamps
+        stamp_browser_load(&e->stamps, ctx);
+        if (e->stamps.selected < 0 && e->stamps.count > 0) e->stamps.selected = 0;
+        e->stamps.active = e->stamps.selected >= 0;
+        e->stamps.open_request = 1;
+    }
+}
+
 static void palette(editor_ui *e, ui_context *ui, cmd_context *ctx, ui_rect r) {
     ui_panel_begin(ui, "Tools", r);
     ui_row(ui, 1, NULL, ui_em(ui, 1.6f));
     for (size_t i = 0; i < TOOL_COUNT; i++) {
         int on = !e->stamps.active && tool_is_current(&ctx->brush, tools[i].name);
-        if (ui_toggle_button_indented(ui, tools[i].label, on, ui_em(ui, 1.3f))) {
-            runf(e, ctx, "tool %s", tools[i].name);
-            e->stamps.active = 0;
-        }
+        if (ui_toggle_button_indented(ui, tools[i].label, on, ui_em(ui, 1.3f)))
+            editor_ui_pick_tool(e, ctx, (int)i);
         ui_rect b = ui_last_rect(ui);
         float side = b.h * 0.6f;
         tool_icon(ui, (int)i, (ui_rect){b.x + b.h * 0.2f, b.y + b.h * 0.2f, side, side},
@@ -287,13 +331,8 @@ static void palette(editor_ui *e, ui_context *ui, cmd_context *ctx, ui_rect r) {
     ui_rect sb = ui_last_rect(ui);
     tool_icon(ui, 11, (ui_rect){sb.x + sb.h * 0.2f, sb.y + sb.h * 0.2f, sb.h * 0.6f, sb.h * 0.6f},
               ui_get_theme(ui)->text);
-    if (stamp_clicked) {
-        stamp_browser_load(&e->stamps, ctx);
-        if (e->stamps.selected < 0 && e->stamps.count > 0) e->stamps.selected = 0;
-        e->stamps.active = e->stamps.selected >= 0;
-        e->stamps.open_request = 1;
-    }
-    ui_tooltip(ui, "Place a stamp (a shape or heightmap) with a click in the viewport");
+    if (stamp_clicked) editor_ui_pick_tool(e, ctx, (int)TOOL_COUNT);
+    ui_tooltip(ui, "Place a stamp (a shape or heightmap) with a click in the viewport (key B)");
     ui_panel_end(ui);
 }
 
@@ -642,9 +681,39 @@ static void files_dialog(editor_ui *e, ui_context *ui, cmd_context *ctx, ui_rect
     }
 }
 
+// The keyboard shortcuts (Help > Keyboard shortcuts, F1).
+static const char *const help_lines[] = {
+    "Left drag: sculpt or paint; with Ctrl inverted, with Shift smoothing",
+    "Alt + left drag, middle drag: orbit around the point under the pointer",
+    "Right drag: look; with it held W A S D fly, Q E down/up, Shift faster",
+    "Wheel: dolly toward the pointer (with right drag: fly speed)",
+    "G walk mode, F focus on the pointer, Home reset the view",
+    "1-5 shaded, wireframe, levels, height, slope views; R rotates the light",
+    "C camera: fly, orbit (right drag orbits the view's centre), walk",
+    "L dynamic resolution while moving; Ctrl+= / Ctrl+- more / fewer levels of detail",
+    "Over the viewport: U raise, J lower, M smooth, T flatten, H set height, P ramp,",
+    "  N noise, K terrace, Y thermal, O hydraulic, I paint, B stamp",
+    "Ctrl+Z undo, Ctrl+Shift+Z or Ctrl+Y redo; [ ] brush radius, - = strength",
+    "(Slartibartfast's = and - level-of-detail keys are Ctrl+= and Ctrl+- here: - and = are "
+    "strength)",
+    "Ctrl+S save, Ctrl+Shift+S save as, Ctrl+N new, Ctrl+O open, Ctrl+Q quit",
+    "~ console, F1 this help, Esc close menus and dialogs, cancel long work",
+};
+#define HELP_LINES ((int)(sizeof help_lines / sizeof help_lines[0]))
+
+// A text dialog's rectangle: as wide as its longest line (within the window).
+static ui_rect text_dialog_rect(const ui_context *ui, const char *const *lines, int n, float width,
+                                float height) {
+    float w = ui_em(ui, 20);
+    for (int i = 0; i < n; i++)
+        w = fmaxf(w, ui_font_text_width(ui_get_font(ui), UI_FACE_SANS, lines[i], strlen(lines[i])));
+    return centred(width, height, fminf(width * 0.95f, w + ui_em(ui, 2)),
+                   fminf(height * 0.95f, ui_em(ui, 1.45f * (n + 3))));
+}
+
 static void text_dialog(ui_context *ui, const char *name, const char *const *lines, int n,
                         int *show, float width, float height) {
-    ui_rect r = centred(width, height, ui_em(ui, 28), ui_em(ui, 1.45f * (n + 2.5f)));
+    ui_rect r = text_dialog_rect(ui, lines, n, width, height);
     ui_panel_begin(ui, name, r);
     ui_row(ui, 1, NULL, 0);
     for (int i = 0; i < n; i++)
@@ -660,7 +729,7 @@ static ui_rect dialog_rect(const editor_ui *e, const ui_context *ui, float width
         return centred(width, height, fminf(width * 0.9f, ui_em(ui, 34)),
                        fminf(height * 0.85f, ui_em(ui, 24)));
     if (e->pending != PENDING_NONE) return centred(width, height, ui_em(ui, 22), ui_em(ui, 6));
-    if (e->show_help) return centred(width, height, ui_em(ui, 28), ui_em(ui, 1.45f * (9 + 2.5f)));
+    if (e->show_help) return text_dialog_rect(ui, help_lines, HELP_LINES, width, height);
     if (e->show_about) return centred(width, height, ui_em(ui, 28), ui_em(ui, 1.45f * (3 + 2.5f)));
     return (ui_rect){0, 0, 0, 0};
 }
@@ -707,19 +776,7 @@ ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport
     }
     if (modal.w > 0) ui_dim(ui); // the dialog stands out; the rest waits
     if (e->show_help) {
-        static const char *const help[] = {
-            "Left drag: sculpt or paint; with Ctrl inverted, with Shift smoothing",
-            "Alt + left drag, middle drag: orbit around the point under the pointer",
-            "Right drag: look; with it held W A S D fly, Q E down/up, Shift faster",
-            "Wheel: dolly toward the pointer (with right drag: fly speed)",
-            "G walk mode, F focus on the pointer, Home reset the view",
-            "1-5 shaded, wireframe, levels, height, slope views",
-            "Ctrl+Z undo, Ctrl+Shift+Z or Ctrl+Y redo; [ ] brush radius, - = strength",
-            "Ctrl+S save, Ctrl+Shift+S save as, Ctrl+N new, Ctrl+O open, Ctrl+Q quit",
-            "~ console, F1 this help, Esc close menus and dialogs",
-        };
-        text_dialog(ui, "Keyboard shortcuts", help, (int)(sizeof help / sizeof help[0]),
-                    &e->show_help, width, height);
+        text_dialog(ui, "Keyboard shortcuts", help_lines, HELP_LINES, &e->show_help, width, height);
     }
     if (e->show_about) {
         char gl[256];

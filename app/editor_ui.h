@@ -45,6 +45,9 @@ typedef struct editor_ui {
     uint32_t material_textures[8];     // swatches of the paint materials (0: automatic)
     int quit_requested;                // the window should close
     work_queue *work;                  // where actions are queued (NULL: run at once)
+    int camera_mode;                   // 0 fly, 1 orbit, 2 walk (the window's, shown in View)
+    int camera_mode_request;           // View > Camera asked for one (-1: none)
+    int dynamic_resolution;            // the window lowers the resolution while moving
 } editor_ui;
 
 void editor_ui_init(editor_ui *e);
@@ -64,6 +67,11 @@ int editor_ui_run(editor_ui *e, cmd_context *ctx, const char *text);
 // nothing of the world. Returns 1 when Cancel was clicked.
 int editor_ui_build_busy(ui_context *ui, const char *what, double fraction, double elapsed_ms,
                          float width, float height);
+
+// The palette's tools by index (the stamp tool last), and the letter key of each
+// (-1 for a letter that picks none).
+void editor_ui_pick_tool(editor_ui *e, cmd_context *ctx, int index);
+int editor_ui_tool_for_key(int letter);
 
 // Opens the file browser to save the world somewhere (File > Save as, Ctrl+Shift+S) or
 // to open one (File > Open, Ctrl+O).

@@ -47,9 +47,12 @@ typedef struct window_state {
     camera_controls cc;
     double mouse_x, mouse_y; // window coordinates of the last motion event
     int mouse_in;
-    drag_kind drag;  // left or middle button
-    int looking;     // right button held: mouse look, WASD, wheel sets the speed
-    double pivot[3]; // orbit pivot of the current drag
+    drag_kind drag;       // left or middle button
+    int looking;          // right button held: mouse look, WASD, wheel sets the speed
+    int orbit_mode;       // the orbit camera (C): the right button orbits the view's centre
+    int dynamic_res;      // lower the resolution while moving (L)
+    double sun_turned_at; // when the rotating light last turned (seconds)
+    double pivot[3];      // orbit pivot of the current drag
     int key_down[MOVE_KEY_COUNT];
     double key_since[MOVE_KEY_COUNT], key_held[MOVE_KEY_COUNT]; // seconds, see bank_keys
     int dirty;                                                  // something changed: draw a frame
@@ -353,6 +356,17 @@ static void on_mouse_button(GLFWwindow *win, int button, int action, int mods) {
     st->dirty = 1;
     // Drags start where the last motion event left the cursor (not where the pointer
     // is now: events queue up, and querying would skip the moves between).
+    if (button == GLFW_MOUSE_BUTTON_RIGHT && st->orbit_mode && !st->cc.walk) {
+        if (action == GLFW_RELEASE) {
+            if (st->drag == DRAG_ORBIT) st->drag = DRAG_NONE;
+        } else if (st->drag == DRAG_NONE) { // the orbit camera turns about the view's centre
+            ui_rect r = st->view_rect;
+            double cx = r.x + r.w * 0.5, cy = r.y + r.h * 0.5;
+            st->drag = DRAG_ORBIT;
+            if (pick_at(st, cx, cy, st->pivot) != 0) point_along_ray(st, cx, cy, 100.0, st->pivot);
+        }
+        return;
+    }
     if (button == GLFW_MOUSE_BUTTON_RIGHT) {
         bank_keys(st);
         st->looking = action == GLFW_PRESS;
@@ -513,6 +527,19 @@ static void on_char(GLFWwindow *win, unsigned int codepoint) {
     if (n + strlen(u) < sizeof st->in.text) memcpy(st->in.text + n, u, strlen(u) + 1);
 }
 
+// Fly, orbit or walk (C, View > Camera): seed 004's camera switch.
+static void set_camera_mode(window_state *st, int mode) {
+    bank_keys(st);
+    st->orbit_mode = mode == 1;
+    if ((mode == 2) != st->cc.walk)
+        camera_controls_toggle_walk(&st->cc, &st->v->cam, ground_height, st);
+    st->dirty = st->ui_dirty = 1;
+}
+
+static int camera_mode(const window_state *st) {
+    return st->cc.walk ? 2 : st->orbit_mode ? 1 : 0;
+}
+
 static void toggle_console(window_state *st) {
     st->ed.console.open = !st->ed.console.open;
     st->ed.console.focus_input = st->ed.console.open;
@@ -567,6 +594,14 @@ static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
             run_commands(st, "undo", "Ctrl+Z");
         else if (key == GLFW_KEY_Y)
             run_commands(st, "redo", "Ctrl+Y");
+        else if (key == GLFW_KEY_EQUAL || key == GLFW_KEY_MINUS) { // seed 004's = and -
+            int levels = st->v->settings.levels + (key == GLFW_KEY_EQUAL ? 1 : -1);
+            if (levels >= RENDER_MIN_LEVELS && levels <= RENDER_MAX_LEVELS) {
+                char cmd[64];
+                snprintf(cmd, sizeof cmd, "render levels=%d", levels);
+                run_commands(st, cmd, "key");
+            }
+        }
         return;
     }
     double hit[3];
@@ -611,10 +646,32 @@ static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
     case GLFW_KEY_2:
     case GLFW_KEY_3:
     case GLFW_KEY_4:
-    case GLFW_KEY_5:
-        st->v->settings.view = (view_mode)(key - GLFW_KEY_1);
+    case GLFW_KEY_5: {
+        char cmd[64];
+        snprintf(cmd, sizeof cmd, "view %s", view_mode_name((view_mode)(key - GLFW_KEY_1)));
+        run_commands(st, cmd, "key");
+        break;
+    }
+    case GLFW_KEY_C:
+        set_camera_mode(st, (camera_mode(st) + 1) % 3);
+        break;
+    case GLFW_KEY_R:
+        run_commands(st,
+                     st->v->settings.sun_rotation != 0 ? "render sun_rotation=0"
+                                                       : "render sun_rotation=20",
+                     "key");
+        break;
+    case GLFW_KEY_L:
+        run_commands(st, st->dynamic_res ? "dynamic_resolution off" : "dynamic_resolution on",
+                     "key");
         break;
     default:
+        // One letter per tool, while the pointer is over the viewport.
+        if (key >= GLFW_KEY_A && key <= GLFW_KEY_Z && !st->looking &&
+            in_view(st, st->mouse_x, st->mouse_y)) {
+            int tool = editor_ui_tool_for_key('A' + (key - GLFW_KEY_A));
+            if (tool >= 0) editor_ui_pick_tool(&st->ed, st->ctx, tool);
+        }
         break;
     }
 }
@@ -684,7 +741,10 @@ static void update_title(window_state *st) {
                  "Orogen - %s%s - cam (%.1f, %.1f, %.1f) yaw %.1f pitch %.1f - %s %.3g m/s - "
                  "levels %d/%d - tool %s r%g - pending %d",
                  name, world_is_modified(st->ctx->world) ? " *" : "", c->pos[0], c->pos[1],
-                 c->pos[2], c->yaw, c->pitch, st->cc.walk ? "walk" : "fly",
+                 c->pos[2], c->yaw, c->pitch,
+                 st->cc.walk      ? "walk"
+                 : st->orbit_mode ? "orbit"
+                                  : "fly",
                  camera_controls_speed(&st->cc), rs.levels_ready, used,
                  brush_tool_name(st->ctx->brush.tool), st->ctx->brush.radius, st->pending);
     if (strcmp(title, st->title) != 0) {
@@ -783,6 +843,8 @@ static const ui_draw_list *build_ui(window_state *st, int fw, int fh) {
     }
     st->in.time = glfwGetTime();
     st->ed.ui_scale = st->settings.ui_scale; // the ui_scale command may have changed it
+    st->ed.camera_mode = camera_mode(st);
+    st->ed.dynamic_resolution = st->dynamic_res;
     ui_begin(st->ui, &st->in, (float)fw, (float)fh);
     ui_rect vr = editor_ui_build(&st->ed, st->ui, st->ctx, st->v, &info, (float)fw, (float)fh);
     const ui_draw_list *dl = ui_end(st->ui);
@@ -807,8 +869,8 @@ static int render_terrain(window_state *st, int vw, int vh, int arrived) {
     if (vw <= 0 || vh <= 0) return 0;
     update_cursor(st);
     int moving = memcmp(&v->cam, &st->drawn_cam, sizeof v->cam) != 0 || st->drag == DRAG_SCULPT ||
-                 st->drag == DRAG_ORBIT || keys_held(st);
-    float scale = moving ? st->res_scale : 1.0f;
+                 v->settings.sun_rotation != 0 || st->drag == DRAG_ORBIT || keys_held(st);
+    float scale = moving && st->dynamic_res ? st->res_scale : 1.0f;
     int w = (int)fmaxf(1.0f, roundf(vw * scale)), h = (int)fmaxf(1.0f, roundf(vh * scale));
     int changed = !st->terrain_valid || arrived || st->world_changed ||
                   memcmp(&v->cam, &st->drawn_cam, sizeof v->cam) != 0 ||
@@ -940,6 +1002,18 @@ static int cmd_ui_scale(cmd_context *ctx, int argc, char **argv, og_error *err) 
     return set_ui_scale(st, v, err);
 }
 
+// dynamic_resolution [on|off]: lower the viewport's resolution while moving (L).
+static int cmd_dynamic_resolution(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    window_state *st = current_window;
+    if (!st) return og_error_set(err, "dynamic_resolution: no editor window is open");
+    if (argc > 1 && parse_switch(argv[1], "dynamic_resolution", &st->dynamic_res, err) != 0)
+        return -1;
+    st->dirty = st->ui_dirty = 1;
+    fprintf(ctx->out, "dynamic_resolution %s (target %g ms)\n", st->dynamic_res ? "on" : "off",
+            st->target_ms);
+    return 0;
+}
+
 // ui_widgets: the named widgets of the last UI frame, for tests that click by name.
 static int cmd_ui_widgets(cmd_context *ctx, int argc, char **argv, og_error *err) {
     window_state *st = current_window;
@@ -1011,6 +1085,10 @@ static const cmd_def window_commands[] = {
      "Sets the editor's UI scale (0.5-4, times the monitor's content scale; View > UI scale); "
      "without a value, prints it.",
      0, 1, cmd_ui_scale, CMD_NOT_RECORDED},
+    {"dynamic_resolution", "dynamic_resolution [on|off]",
+     "While the camera moves or a stroke is drawn, render the viewport at a lower resolution "
+     "chosen to keep frames near the frame-time goal (L toggles it); without a value, prints it.",
+     0, 1, cmd_dynamic_resolution, CMD_NOT_RECORDED},
     {"ui_widgets", "ui_widgets [FILTER]",
      "Lists the editor window's named widgets of the last frame as NAME X Y W H (window pixels; "
      "names containing FILTER), and the Viewport's rectangle first.",
@@ -1140,6 +1218,7 @@ int window_run(cmd_context *ctx, og_error *err) {
     }
     editor_ui_init(&st.ed);
     st.res_scale = 1.0f;
+    st.dynamic_res = 1;
     update_px_scale(&st);
     st.settings = settings;
     snprintf(st.settings_path, sizeof st.settings_path, "%s", settings_path);
@@ -1220,7 +1299,8 @@ int window_run(cmd_context *ctx, og_error *err) {
     while (!glfwWindowShouldClose(win)) {
         // Input first; wake often while tiles arrive, keys fly the camera or work runs.
         int awake = st.pending || st.settled < 2 || keys_held(&st) || st.drag == DRAG_SCULPT ||
-                    !work_queue_idle(&st.work) || ui_needs_frame(st.ui);
+                    v->settings.sun_rotation != 0 || !work_queue_idle(&st.work) ||
+                    ui_needs_frame(st.ui);
         glfwWaitEventsTimeout(awake ? 0.01 : 0.1);
         int w, h;
         glfwGetFramebufferSize(win, &w, &h);
@@ -1240,6 +1320,17 @@ int window_run(cmd_context *ctx, og_error *err) {
         }
         move_keys keys = take_keys(&st);
         if (camera_controls_move(&st.cc, &v->cam, &keys, ground_height, &st)) st.dirty = 1;
+        if (st.ed.camera_mode_request >= 0) { // View > Camera
+            set_camera_mode(&st, st.ed.camera_mode_request);
+            st.ed.camera_mode_request = -1;
+        }
+        double now_s = glfwGetTime();
+        if (v->settings.sun_rotation != 0) { // R: the light turns while time passes
+            double dt = fmin(now_s - st.sun_turned_at, 0.25);
+            v->settings.sun_yaw = fmod(v->settings.sun_yaw + v->settings.sun_rotation * dt, 360.0);
+            st.dirty = 1;
+        }
+        st.sun_turned_at = now_s;
         poll_stdin(&st);
         pump_work(&st);
         if (ctx->exit_requested) break;

@@ -30,6 +30,7 @@ typedef struct render_settings {
     int culling;               // per-block frustum culling (1)
     int morph;                 // transition morphing between levels (1)
     double contours;           // metres between contour lines drawn over the terrain; 0: none
+    double sun_rotation;       // degrees a second the editor window turns the sun (0: still)
 } render_settings;
 
 void render_settings_default(render_settings *s);

@@ -274,6 +274,36 @@ saved1=$(hash_box "$px" "$pz")
 saved2=$(hash_box "$qx" "$qz")
 [ "$saved1" = "$h1" ]; check "the saved world keeps the first stroke" $?
 
+# 7a. Seed 004's keys and a letter per tool, over the viewport.
+xdotool mousemove --window "$wid" $((VX + VW / 2)) $((VY + VH / 2))
+key m
+line=$(ask_until tool '^tool=' '^tool=smooth$'); check "M over the viewport picks the smooth tool ($line)" $?
+key u
+line=$(ask_until tool '^tool=' '^tool=raise$'); check "U picks raise again ($line)" $?
+key c
+wait_title " orbit "; check "C switches the camera to orbit ($(title))" $?
+key c
+wait_title " walk "; check "C again: walk ($(title))" $?
+key c
+wait_title " fly "; check "C again: fly ($(title))" $?
+key r
+line=$(ask_until render '^render ' 'sun_rotation=20 '); check "R sets the light turning ($line)" $?
+key r
+line=$(ask_until render '^render ' 'sun_rotation=0 '); check "R again stops it" $?
+levels=$(ask render '^render ' | sed -E 's/.*levels=([0-9]+).*/\1/')
+key ctrl+equal
+line=$(ask_until render '^render ' "levels=$((levels + 1)) "); check "Ctrl+= adds a level of detail ($levels -> $line)" $?
+key ctrl+minus
+line=$(ask_until render '^render ' "levels=$levels "); check "Ctrl+- takes it away" $?
+key 2
+line=$(ask_until render '^render ' 'view=wireframe'); check "2 shows the wireframe ($line)" $?
+key 1
+ask_until render '^render ' 'view=shaded' >/dev/null; check "1 the shaded view again" $?
+key l
+line=$(ask_until dynamic_resolution '^dynamic_resolution ' '^dynamic_resolution off'); check "L turns dynamic resolution off ($line)" $?
+key l
+line=$(ask_until dynamic_resolution '^dynamic_resolution ' '^dynamic_resolution on'); check "L turns it on again ($line)" $?
+
 # 7b. Long work runs off the UI thread: a hydraulic stroke of a million droplets a dab
 # shows its progress and a Cancel button, and Cancel (or Esc) leaves no trace.
 hl0=$(hash_box "$px" "$pz")
