@@ -578,6 +578,9 @@ static void status_bar(ui_context *ui, cmd_context *ctx, viewport *v, const edit
     snprintf(cam, sizeof cam, "camera %.0f, %.0f, %.0f", v->cam.pos[0], v->cam.pos[1],
              v->cam.pos[2]);
     snprintf(tool, sizeof tool, "%s r %.1f m", current_tool(&ctx->brush), ctx->brush.radius);
+    if (info->resizing)
+        snprintf(tool, sizeof tool, "%s r %.1f m, strength %.2f", current_tool(&ctx->brush),
+                 info->resize_radius, info->resize_strength);
     if (stamps->active)
         snprintf(tool, sizeof tool, "stamp %s x%.2f", stamps->entries[stamps->selected].name,
                  stamps->scale);

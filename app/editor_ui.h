@@ -21,6 +21,8 @@ typedef struct editor_frame_info {
     float resolution_scale;
     int pending;
     const char *gl_renderer;
+    int resizing; // the brush is being resized on screen: its radius and strength so far
+    double resize_radius, resize_strength;
 } editor_frame_info;
 
 typedef enum editor_pending {

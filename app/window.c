@@ -37,7 +37,8 @@ enum { MOVE_KEY_COUNT = 6 };
 static const int move_key_codes[MOVE_KEY_COUNT] = {GLFW_KEY_W, GLFW_KEY_S, GLFW_KEY_A,
                                                    GLFW_KEY_D, GLFW_KEY_E, GLFW_KEY_Q};
 
-typedef enum drag_kind { DRAG_NONE, DRAG_SCULPT, DRAG_ORBIT } drag_kind;
+// Left: sculpt; middle or Alt+left: orbit; Alt+right: resize the brush on screen.
+typedef enum drag_kind { DRAG_NONE, DRAG_SCULPT, DRAG_ORBIT, DRAG_RESIZE } drag_kind;
 
 typedef struct window_state {
     cmd_context *ctx;
@@ -53,6 +54,10 @@ typedef struct window_state {
     int dynamic_res;      // lower the resolution while moving (L)
     double sun_turned_at; // when the rotating light last turned (seconds)
     double pivot[3];      // orbit pivot of the current drag
+    // Alt+right drag: right/left sizes the brush, up/down its strength; the cursor stays
+    // where the drag began and one `tool` command applies the result on release.
+    double resize_x0, resize_y0, resize_r0, resize_s0, resize_radius, resize_strength;
+    double resize_at[3];
     int key_down[MOVE_KEY_COUNT];
     double key_since[MOVE_KEY_COUNT], key_held[MOVE_KEY_COUNT]; // seconds, see bank_keys
     int dirty;                                                  // something changed: draw a frame
@@ -176,6 +181,36 @@ static void sculpt_end(window_state *st) {
     snprintf(echo, sizeof echo, "> stroke_begin; stroke_to ... (%d points); stroke_end",
              st->stroke_points);
     console_add(&st->ed.console, CONSOLE_ECHO, echo);
+}
+
+// --- the brush on screen -------------------------------------------------------------
+
+static void run_commands(window_state *st, const char *text, const char *label);
+
+static const char *tool_name(const brush *b) {
+    return b->tool == BRUSH_RAISE && b->invert ? "lower" : brush_tool_name(b->tool);
+}
+
+static void resize_begin(window_state *st) {
+    if (pick_at(st, st->mouse_x, st->mouse_y, st->resize_at) != 0) return; // no terrain there
+    st->drag = DRAG_RESIZE;
+    st->resize_x0 = st->mouse_x, st->resize_y0 = st->mouse_y;
+    st->resize_radius = st->resize_r0 = st->ctx->brush.radius;
+    st->resize_strength = st->resize_s0 = st->ctx->brush.strength;
+}
+
+static void resize_to(window_state *st, double x, double y) {
+    double r = st->resize_r0 * pow(1.01, x - st->resize_x0); // 1% a pixel
+    st->resize_radius = fmin(fmax(r, 0.5), 5000);
+    st->resize_strength = fmin(fmax(st->resize_s0 - 0.004 * (y - st->resize_y0), 0), 1);
+}
+
+static void resize_end(window_state *st) {
+    st->drag = DRAG_NONE;
+    char cmd[128];
+    snprintf(cmd, sizeof cmd, "tool %s radius=%.4g strength=%.3g", tool_name(&st->ctx->brush),
+             st->resize_radius, st->resize_strength);
+    run_commands(st, cmd, "resize");
 }
 
 // --- the camera --------------------------------------------------------------------
@@ -356,6 +391,15 @@ static void on_mouse_button(GLFWwindow *win, int button, int action, int mods) {
     st->dirty = 1;
     // Drags start where the last motion event left the cursor (not where the pointer
     // is now: events queue up, and querying would skip the moves between).
+    if (button == GLFW_MOUSE_BUTTON_RIGHT && st->drag == DRAG_RESIZE && action == GLFW_RELEASE) {
+        resize_end(st);
+        return;
+    }
+    if (button == GLFW_MOUSE_BUTTON_RIGHT && (mods & GLFW_MOD_ALT) && action == GLFW_PRESS &&
+        st->drag == DRAG_NONE && !st->ed.stamps.active) {
+        resize_begin(st);
+        return;
+    }
     if (button == GLFW_MOUSE_BUTTON_RIGHT && st->orbit_mode && !st->cc.walk) {
         if (action == GLFW_RELEASE) {
             if (st->drag == DRAG_ORBIT) st->drag = DRAG_NONE;
@@ -413,7 +457,9 @@ static void on_cursor(GLFWwindow *win, double x, double y) {
         sculpt_to(st, x, y);
         return;
     }
-    if (st->drag == DRAG_ORBIT)
+    if (st->drag == DRAG_RESIZE)
+        resize_to(st, x, y);
+    else if (st->drag == DRAG_ORBIT)
         camera_controls_orbit(&st->cc, &st->v->cam, st->pivot, dx, dy);
     else if (st->drag == DRAG_SCULPT)
         sculpt_to(st, x, y);
@@ -617,7 +663,7 @@ static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
     case GLFW_KEY_MINUS:
     case GLFW_KEY_EQUAL: {
         const brush *b = &st->ctx->brush;
-        const char *name = b->tool == BRUSH_RAISE && b->invert ? "lower" : brush_tool_name(b->tool);
+        const char *name = tool_name(b);
         char cmd[128];
         if (key == GLFW_KEY_LEFT_BRACKET || key == GLFW_KEY_RIGHT_BRACKET) {
             double r = b->radius * (key == GLFW_KEY_RIGHT_BRACKET ? 1.15 : 1 / 1.15);
@@ -753,24 +799,53 @@ static void update_title(window_state *st) {
     }
 }
 
+// The brush cursor's colour for a tool: warm raises, cool lowers, green smooths, yellow
+// levels, violet adds noise, cyan erodes, pink paints.
+static void cursor_colour(brush_tool tool, int invert, float rgb[3]) {
+    static const float colours[][3] = {
+        [BRUSH_RAISE] = {1.0f, 0.55f, 0.1f},     [BRUSH_SMOOTH] = {0.3f, 0.9f, 0.4f},
+        [BRUSH_FLATTEN] = {1.0f, 0.85f, 0.2f},   [BRUSH_SET] = {1.0f, 0.85f, 0.2f},
+        [BRUSH_RAMP] = {1.0f, 0.85f, 0.2f},      [BRUSH_NOISE] = {0.75f, 0.4f, 1.0f},
+        [BRUSH_TERRACE] = {1.0f, 0.85f, 0.2f},   [BRUSH_THERMAL] = {0.2f, 0.85f, 0.9f},
+        [BRUSH_HYDRAULIC] = {0.2f, 0.85f, 0.9f}, [BRUSH_PAINT] = {1.0f, 0.35f, 0.75f},
+    };
+    static const float lowering[3] = {0.25f, 0.5f, 1.0f};
+    memcpy(rgb, invert && (tool == BRUSH_RAISE || tool == BRUSH_NOISE) ? lowering : colours[tool],
+           3 * sizeof(float));
+}
+
 static void update_cursor(window_state *st) {
     brush_cursor *bc = &st->v->cursor;
     double hit[3];
     bc->visible = st->mouse_in && !st->looking && st->drag != DRAG_ORBIT &&
-                  pick_at(st, st->mouse_x, st->mouse_y, hit) == 0;
+                  (st->drag == DRAG_RESIZE || pick_at(st, st->mouse_x, st->mouse_y, hit) == 0);
     if (!bc->visible) return;
+    if (st->drag == DRAG_RESIZE) memcpy(hit, st->resize_at, sizeof hit);
     bc->x = hit[0], bc->z = hit[2];
     if (st->ed.stamps.active) { // the stamp's footprint: its half size, no falloff
         bc->radius =
             stamp_browser_half_size(&st->ed.stamps, world_get_params(st->ctx->world)->spacing);
         for (int i = 0; i < BRUSH_FALLOFF_SAMPLES; i++)
             bc->falloff[i] = 1.0f;
+        bc->color[0] = bc->color[1] = bc->color[2] = 0.9f;
+        bc->opacity = 0.25f;
         return;
     }
-    bc->radius = st->ctx->brush.radius;
+    const brush *b = &st->ctx->brush;
+    bc->radius = st->drag == DRAG_RESIZE ? st->resize_radius : b->radius;
     for (int i = 0; i < BRUSH_FALLOFF_SAMPLES; i++)
-        bc->falloff[i] =
-            brush_falloff_weight(&st->ctx->brush, (float)i / (BRUSH_FALLOFF_SAMPLES - 1));
+        bc->falloff[i] = brush_falloff_weight(b, (float)i / (BRUSH_FALLOFF_SAMPLES - 1));
+    // Coloured by what a stroke would do now (Ctrl inverts, Shift smooths), as strong
+    // as the strength.
+    int ctrl =
+        glfwGetKey(st->win, GLFW_KEY_LEFT_CONTROL) || glfwGetKey(st->win, GLFW_KEY_RIGHT_CONTROL);
+    int shift =
+        glfwGetKey(st->win, GLFW_KEY_LEFT_SHIFT) || glfwGetKey(st->win, GLFW_KEY_RIGHT_SHIFT);
+    brush_tool tool = shift ? BRUSH_SMOOTH : b->tool;
+    int invert = !shift && (b->invert != ctrl);
+    cursor_colour(tool, invert, bc->color);
+    double strength = st->drag == DRAG_RESIZE ? st->resize_strength : b->strength;
+    bc->opacity = (float)(0.12 + 0.5 * strength);
 }
 
 // Brings the clipmaps up to date without waiting for tiles. Returns 1 when the picture
@@ -835,7 +910,10 @@ static const ui_draw_list *build_ui(window_state *st, int fw, int fh) {
     editor_frame_info info = {.frame_ms = st->terrain_ms,
                               .resolution_scale = st->drawn_scale,
                               .pending = st->pending,
-                              .gl_renderer = st->gl_renderer};
+                              .gl_renderer = st->gl_renderer,
+                              .resizing = st->drag == DRAG_RESIZE,
+                              .resize_radius = st->resize_radius,
+                              .resize_strength = st->resize_strength};
     double hit[3];
     if (st->mouse_in && pick_at(st, st->mouse_x, st->mouse_y, hit) == 0) {
         info.cursor_valid = 1;

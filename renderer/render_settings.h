@@ -40,6 +40,8 @@ typedef struct brush_cursor {
     double x, z;                          // world metres
     double radius;                        // metres
     float falloff[BRUSH_FALLOFF_SAMPLES]; // weight at distance i/(N-1) of the radius
+    float color[3]; // the tool's colour (0-1 RGB); with opacity 0 the default orange
+    float opacity;  // how strongly the falloff is tinted at the centre (follows strength)
 } brush_cursor;
 
 #endif

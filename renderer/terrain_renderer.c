@@ -556,6 +556,14 @@ static void set_terrain_uniforms(terrain_renderer *r, const camera *cam, const r
                             cursor->falloff);
     }
     glProgramUniform4fv(prog, glGetUniformLocation(prog, "u_brush"), 1, brush);
+    float tint[4] = {1.0f, 0.55f, 0.1f, 0.35f}, ring[3] = {1.0f, 0.9f, 0.3f}; // default: orange
+    if (cursor && cursor->opacity > 0) { // the tool's colour, the ring a lighter shade of it
+        for (int i = 0; i < 3; i++)
+            tint[i] = cursor->color[i], ring[i] = 0.65f * cursor->color[i] + 0.35f;
+        tint[3] = cursor->opacity;
+    }
+    glProgramUniform4fv(prog, glGetUniformLocation(prog, "u_brush_tint"), 1, tint);
+    glProgramUniform3fv(prog, glGetUniformLocation(prog, "u_brush_ring"), 1, ring);
     set_lighting(prog, r, s);
     const char *samplers[] = {"u_heights", "u_material",  "u_albedo",
                               "u_detail",  "u_detail_pd", "u_falloff"};

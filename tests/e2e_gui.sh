@@ -280,6 +280,16 @@ key m
 line=$(ask_until tool '^tool=' '^tool=smooth$'); check "M over the viewport picks the smooth tool ($line)" $?
 key u
 line=$(ask_until tool '^tool=' '^tool=raise$'); check "U picks raise again ($line)" $?
+r0=$(ask tool '^radius=')
+xdotool keydown alt mousedown 3
+for dx in 20 40 60 80; do sleep 0.05; xdotool mousemove --window "$wid" $((VX + VW / 2 + dx)) $((VY + VH / 2 - dx / 4)); done
+xdotool mouseup 3 keyup alt
+r1=$r0
+for _ in $(seq 30); do r1=$(ask tool '^radius='); [ "$r1" != "$r0" ] && break; sleep 0.3; done
+awk -v a="${r0#radius=}" -v b="${r1#radius=}" 'BEGIN { exit !(b > 1.8 * a && b < 2.6 * a) }'
+check "Alt+right drag to the right enlarges the brush about 1% a pixel ($r0 -> $r1)" $?
+line=$(ask tool '^strength='); [ "$line" != "strength=0.5" ]; check "and up raises its strength ($line)" $?
+echo "tool raise radius=20 strength=0.5" >&3
 key c
 wait_title " orbit "; check "C switches the camera to orbit ($(title))" $?
 key c

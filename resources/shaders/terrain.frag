@@ -39,6 +39,8 @@ uniform int u_parallax_steps;          // iterations (the quality setting)
 uniform float u_parallax_fade;         // metres: detail fades out by this distance
 uniform vec4 u_brush;                  // centre relative to the camera (xz), radius, visible
 uniform sampler2D u_falloff;           // the brush's falloff curve over 0..1 of the radius (64x1)
+uniform vec4 u_brush_tint;              // the tool's colour, and its opacity (follows strength)
+uniform vec3 u_brush_ring;              // the colour of its edge and centre
 uniform vec3 u_level_tint[MAX_LEVELS];
 uniform float u_contour;               // metres between contour lines; 0: none
 
@@ -209,11 +211,11 @@ void main() {
         float fw = max(fwidth(d), 1e-4);
         if (d < 1.0) {
             float f = texture(u_falloff, vec2(d, 0.5)).r;
-            lit = mix(lit, vec3(1.0, 0.55, 0.1), 0.35 * f);
+            lit = mix(lit, u_brush_tint.rgb, u_brush_tint.a * f);
         }
         float ring = 1.0 - smoothstep(0.0, 1.5 * fw, abs(d - 1.0));
         float centre = 1.0 - smoothstep(0.0, 1.5 * fw, d - 0.02);
-        lit = mix(lit, vec3(1.0, 0.9, 0.3), max(ring, centre));
+        lit = mix(lit, u_brush_ring, max(ring, centre));
     }
     o_colour = vec4(apply_fog(with_contours(lit, h), v_rel), 1.0);
 }
