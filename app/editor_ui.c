@@ -153,6 +153,15 @@ static void menus(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v, u
                 runf(e, ctx, "render contours=%g", contours[i]);
         }
         if (ui_menu_item(ui,
+                         v->settings.tile_grid ? "Tile grid: on##Tiles" : "Tile grid: off##Tiles",
+                         NULL, 1))
+            runf(e, ctx, "render tile_grid=%s", v->settings.tile_grid ? "off" : "on");
+        if (ui_menu_item(ui,
+                         v->settings.level_grid ? "Clipmap level grid: on##Levels"
+                                                : "Clipmap level grid: off##Levels",
+                         NULL, 1))
+            runf(e, ctx, "render level_grid=%s", v->settings.level_grid ? "off" : "on");
+        if (ui_menu_item(ui,
                          v->settings.sun_rotation != 0 ? "Light rotation: on##Light"
                                                        : "Light rotation: off##Light",
                          "R", 1))

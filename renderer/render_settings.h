@@ -31,6 +31,8 @@ typedef struct render_settings {
     int morph;                 // transition morphing between levels (1)
     double contours;           // metres between contour lines drawn over the terrain; 0: none
     double sun_rotation;       // degrees a second the editor window turns the sun (0: still)
+    int tile_grid;             // lines along the edges of the world's tiles (0)
+    int level_grid;            // each clipmap level's vertex grid in its level's colour (0)
 } render_settings;
 
 void render_settings_default(render_settings *s);

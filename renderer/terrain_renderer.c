@@ -467,6 +467,7 @@ static void set_terrain_uniforms(terrain_renderer *r, const camera *cam, const r
     float src_a[RENDER_MAX_LEVELS][4] = {{0}}, src_b[RENDER_MAX_LEVELS][4] = {{0}};
     float bounds[RENDER_MAX_LEVELS][4] = {{0}}, uv[RENDER_MAX_LEVELS][4] = {{0}};
     float mat[RENDER_MAX_LEVELS][4] = {{0}}, detail[RENDER_MAX_LEVELS][4] = {{0}};
+    float grid[RENDER_MAX_LEVELS][4] = {{0}};
     double ratio = p->detail_ratio;
     for (int l = r->finest; l < r->levels; l++) {
         if (r->src[l] < 0) continue;
@@ -490,6 +491,14 @@ static void set_terrain_uniforms(terrain_renderer *r, const camera *cam, const r
         } else {
             bounds[l][0] = bounds[l][1] = -UNBOUNDED;
             bounds[l][2] = bounds[l][3] = UNBOUNDED;
+        }
+        // The tile grid: tiles are TILE_SIZE level-0 samples across, TILE_SIZE >> l here
+        // (finer than one level sample from level 8 on: not drawn there).
+        int64_t period = TILE_SIZE >> l;
+        if (period >= 1) {
+            grid[l][0] = (float)(((r->origin[l][0] % period) + period) % period);
+            grid[l][1] = (float)(((r->origin[l][1] % period) + period) % period);
+            grid[l][2] = (float)period;
         }
         uv[l][0] = (float)positive_fmod(x0, TEX_PERIOD_NEAR);
         uv[l][1] = (float)positive_fmod(z0, TEX_PERIOD_NEAR);
@@ -525,6 +534,9 @@ static void set_terrain_uniforms(terrain_renderer *r, const camera *cam, const r
     uniform_vec4s(prog, "u_lvl_uv", uv, RENDER_MAX_LEVELS);
     uniform_vec4s(prog, "u_lvl_mat", mat, RENDER_MAX_LEVELS);
     uniform_vec4s(prog, "u_lvl_detail", detail, RENDER_MAX_LEVELS);
+    uniform_vec4s(prog, "u_lvl_grid", grid, RENDER_MAX_LEVELS);
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "u_overlays"),
+                       (s->tile_grid ? 1 : 0) | (s->level_grid ? 2 : 0));
     glProgramUniform3fv(prog, glGetUniformLocation(prog, "u_level_tint"), RENDER_MAX_LEVELS,
                         &level_tints[0][0]);
     glProgramUniform1i(prog, glGetUniformLocation(prog, "u_view_mode"), s->view);

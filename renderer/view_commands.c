@@ -93,10 +93,11 @@ static int parse_int_in(const char *key, const char *value, int lo, int hi, int 
 static void print_settings(cmd_context *ctx, const render_settings *s) {
     fprintf(ctx->out,
             "render levels=%d parallax=%s quality=%d detail_distance=%g culling=%s morph=%s "
-            "sun=%g,%g sun_rotation=%g fog=%g contours=%g view=%s\n",
+            "sun=%g,%g sun_rotation=%g fog=%g contours=%g tile_grid=%s level_grid=%s view=%s\n",
             s->levels, s->parallax ? "on" : "off", s->parallax_steps, s->detail_distance,
             s->culling ? "on" : "off", s->morph ? "on" : "off", s->sun_yaw, s->sun_pitch,
-            s->sun_rotation, s->fog_density, s->contours, view_mode_name(s->view));
+            s->sun_rotation, s->fog_density, s->contours, s->tile_grid ? "on" : "off",
+            s->level_grid ? "on" : "off", view_mode_name(s->view));
 }
 
 static int cmd_render(cmd_context *ctx, int argc, char **argv, og_error *err) {
@@ -121,6 +122,10 @@ static int cmd_render(cmd_context *ctx, int argc, char **argv, og_error *err) {
             rc = parse_switch(value, key, &s.morph, err);
         else if (strcmp(key, "contours") == 0)
             rc = parse_number_in(value, key, 0, 100000, &s.contours, err);
+        else if (strcmp(key, "tile_grid") == 0)
+            rc = parse_switch(value, key, &s.tile_grid, err);
+        else if (strcmp(key, "level_grid") == 0)
+            rc = parse_switch(value, key, &s.level_grid, err);
         else if (strcmp(key, "sun_rotation") == 0)
             rc = parse_number_in(value, key, -360, 360, &s.sun_rotation, err);
         else if (strcmp(key, "fog") == 0)
@@ -135,10 +140,12 @@ static int cmd_render(cmd_context *ctx, int argc, char **argv, og_error *err) {
                     err, "sun: expected YAW,PITCH in degrees (pitch -90 .. 90), got '%s'", value);
             s.sun_yaw = yaw, s.sun_pitch = pitch, rc = 0;
         } else
-            return og_error_set(err,
-                                "render: unknown setting '%s' (levels parallax quality "
-                                "detail_distance culling morph fog sun sun_rotation contours)",
-                                key);
+            return og_error_set(
+                err,
+                "render: unknown setting '%s' (levels parallax quality "
+                "detail_distance culling morph fog sun sun_rotation contours tile_grid "
+                "level_grid)",
+                key);
         if (rc != 0) return -1;
     }
     v->settings = s;
@@ -198,7 +205,8 @@ static const cmd_def view_commands[] = {
      "Viewport settings: levels (3-12 clipmap levels), parallax (on/off), quality (parallax steps "
      "1-32), detail_distance (m), culling, morph (on/off), fog (per metre, 0 = automatic), "
      "sun=YAW,PITCH, sun_rotation (degrees a second the editor turns the sun; R toggles it), "
-     "contours (metres between contour lines, 0 = none). Without arguments, prints "
+     "contours (metres between contour lines, 0 = none), tile_grid=on|off (the tiles' edges), "
+     "level_grid=on|off (each clipmap level's vertex grid). Without arguments, prints "
      "them.",
      0, 10, cmd_render, 0},
     {"screenshot", "screenshot FILE [W H]",

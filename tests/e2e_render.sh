@@ -105,6 +105,16 @@ r=$(rmse "$work/no_detail.png" "$work/parallax_off.png"); less 1 "$r"; check "de
 for v in wireframe levels height slope; do
     r=$(rmse "$work/default.png" "$work/$v.png"); less 5 "$r"; check "view $v differs from shaded (RMSE $r)" $?
 done
+# The View menu's overlays each draw over the shaded view, and off again is as before.
+run "screenshot $work/plain.png $size; render contours=50; screenshot $work/contours.png $size;
+     render contours=0 tile_grid=on; screenshot $work/tile_grid.png $size;
+     render tile_grid=off level_grid=on; screenshot $work/level_grid.png $size;
+     render level_grid=off; screenshot $work/plain_again.png $size"
+rc=$?; check "the overlays render ($(cat "$work/err"))" $rc
+for o in contours tile_grid level_grid; do
+    r=$(rmse "$work/plain.png" "$work/$o.png"); less 1 "$r"; check "the $o overlay shows (RMSE $r)" $?
+done
+r=$(rmse "$work/plain.png" "$work/plain_again.png"); less "$r" 0.5; check "with the overlays off the view is as before (RMSE $r)" $?
 r=$(rmse "$work/far.png" "$work/far_1mm.png"); less "$r" 1; check "10,000 km out, 1 mm of camera motion does not jitter (RMSE $r)" $?
 r=$(rmse "$work/far.png" "$work/far_1cm.png"); less "$r" 1; check "10,000 km out, 1 cm of camera motion does not jitter (RMSE $r)" $?
 

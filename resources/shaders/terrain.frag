@@ -22,6 +22,8 @@ uniform int u_view_mode;
 uniform vec4 u_lvl_bounds[MAX_LEVELS]; // the world's extent in local units (x0, z0, x1, z1)
 uniform vec4 u_lvl_uv[MAX_LEVELS];     // local (0,0) in metres modulo the texture periods
 uniform vec4 u_lvl_mat[MAX_LEVELS];    // painted weights: texel of local (0,0), texels per unit, valid
+uniform vec4 u_lvl_grid[MAX_LEVELS];   // tile grid: local (0,0) modulo a tile (xy), a tile in units (z; 0: none)
+uniform int u_overlays;                // 1: the tile grid, 2: the clipmap level grids
 uniform vec4 u_lvl_detail[MAX_LEVELS]; // detail: sample of local (0,0), samples per unit, valid
 uniform float u_ocean_level, u_max_height;
 uniform vec2 u_tex_period;             // metres per repeat: near texture, far variation
@@ -53,6 +55,25 @@ vec3 with_contours(vec3 c, float h) {
     float line = 1.0 - smoothstep(0.0, 1.2 * fw, abs(fract(k + 0.5) - 0.5));
     float crowd = 1.0 - smoothstep(0.15, 0.35, fw);
     return mix(c, vec3(0.06, 0.05, 0.04), 0.65 * line * crowd);
+}
+
+// Lines about a pixel wide where k crosses an integer, faded where they would crowd.
+float grid_lines(vec2 k) {
+    vec2 fw = max(fwidth(k), vec2(1e-5));
+    vec2 d = abs(fract(k + 0.5) - 0.5) / fw;
+    return (1.0 - smoothstep(0.0, 1.5, min(d.x, d.y))) * (1.0 - smoothstep(0.12, 0.3, max(fw.x, fw.y)));
+}
+
+// The View menu's overlays: the world's tile edges in white, each clipmap level's vertex
+// grid in its level's colour (Terrain3D's region and vertex grids), so the rings where
+// the level (and the vertex spacing) changes show.
+vec3 with_grids(vec3 c) {
+    if ((u_overlays & 2) != 0) // every vertex close up, every eighth farther out
+        c = mix(c, u_level_tint[u_level], 0.7 * max(grid_lines(v_local), grid_lines(v_local / 8.0)));
+    vec4 g = u_lvl_grid[u_level];
+    if ((u_overlays & 1) != 0 && g.z > 0.0)
+        c = mix(c, vec3(1.0), 0.8 * grid_lines((v_local + g.xy) / g.z));
+    return c;
 }
 
 // Central differences one source texel apart, clamped to the level's window: past its
@@ -169,17 +190,17 @@ void main() {
 
     if (u_view_mode == VIEW_LEVELS) {
         vec3 c = u_level_tint[u_level] * (0.35 + 0.65 * max(dot(n, u_sun_dir), 0.0));
-        o_colour = vec4(c, 1.0);
+        o_colour = vec4(with_grids(c), 1.0);
         return;
     }
     if (u_view_mode == VIEW_HEIGHT) {
         float t = (h + u_max_height) / (2.0 * u_max_height);
-        o_colour = vec4(with_contours(ramp(t) * (0.55 + 0.45 * max(dot(n, u_sun_dir), 0.0)), h), 1.0);
+        o_colour = vec4(with_grids(with_contours(ramp(t) * (0.55 + 0.45 * max(dot(n, u_sun_dir), 0.0)), h)), 1.0);
         return;
     }
     if (u_view_mode == VIEW_SLOPE) {
         float degrees_ = degrees(atan(slope));
-        o_colour = vec4(with_contours(ramp(degrees_ / 60.0) * (0.55 + 0.45 * max(dot(n, u_sun_dir), 0.0)), h), 1.0);
+        o_colour = vec4(with_grids(with_contours(ramp(degrees_ / 60.0) * (0.55 + 0.45 * max(dot(n, u_sun_dir), 0.0)), h)), 1.0);
         return;
     }
 
@@ -217,5 +238,5 @@ void main() {
         float centre = 1.0 - smoothstep(0.0, 1.5 * fw, d - 0.02);
         lit = mix(lit, u_brush_ring, max(ring, centre));
     }
-    o_colour = vec4(apply_fog(with_contours(lit, h), v_rel), 1.0);
+    o_colour = vec4(apply_fog(with_grids(with_contours(lit, h)), v_rel), 1.0);
 }
