@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 static const char *const modes[] = {"add", "subtract", "max", "min", "blend"};
 static const char *const layers[] = {"coarse", "detail"};
@@ -61,10 +62,48 @@ void stamp_browser_init(stamp_browser *b) {
     b->intensity = 50;
 }
 
+static long long folder_time(const char *dir) {
+    struct stat st;
+    if (!dir[0] || stat(dir, &st) != 0) return 0;
+    return (long long)st.st_mtim.tv_sec * 1000000000LL + st.st_mtim.tv_nsec;
+}
+
+int stamp_browser_stale(stamp_browser *b, const cmd_context *ctx, double now) {
+    if (!b->loaded || now - b->checked_at < 1.0) return 0;
+    b->checked_at = now;
+    return folder_time(ctx->stamp_dir) != b->folder_stamp;
+}
+
+void stamp_browser_reload(stamp_browser *b, const cmd_context *ctx) {
+    char before[STAMP_BROWSER_MAX][128];
+    int n = b->count;
+    char selected[128] = "";
+    for (int i = 0; i < n; i++)
+        snprintf(before[i], sizeof before[i], "%s", b->entries[i].name);
+    if (b->selected >= 0) snprintf(selected, sizeof selected, "%s", b->entries[b->selected].name);
+    b->count = 0;
+    b->loaded = 0;
+    b->selected = -1;
+    stamp_browser_load(b, ctx);
+    for (int i = 0; i < b->count; i++) {
+        int known = 0;
+        for (int k = 0; k < n && !known; k++)
+            known = strcmp(before[k], b->entries[i].name) == 0;
+        if (strcmp(b->entries[i].name, selected) == 0 && b->selected < 0) b->selected = i;
+        if (!known && n > 0) { // new: it is what the user just added
+            b->selected = i;
+            b->active = 1;
+            b->open_request = 1;
+            break;
+        }
+    }
+}
+
 void stamp_browser_load(stamp_browser *b, const cmd_context *ctx) {
     if (b->loaded) return;
     b->loaded = 1;
     b->needs_upload = 1;
+    b->folder_stamp = folder_time(ctx->stamp_dir);
     char *text = NULL;
     size_t len = 0;
     FILE *mem = open_memstream(&text, &len);
@@ -76,6 +115,7 @@ void stamp_browser_load(stamp_browser *b, const cmd_context *ctx) {
          line = strtok(NULL, "\n")) {
         stamp_entry *e = &b->entries[b->count];
         if (sscanf(line, "%127s %15s", e->name, e->kind) != 2) continue;
+        e->texture = 0; // made by the window from rgba
         stamp_source s;
         og_error err;
         if (stamp_find(e->name, ctx->resource_dir, ctx->stamp_dir, &s, &err) != 0) continue;

@@ -24,11 +24,13 @@ typedef struct stamp_entry {
 typedef struct stamp_browser {
     stamp_entry entries[STAMP_BROWSER_MAX];
     int count;
-    int selected;     // -1: none
-    int active;       // the stamp tool is the viewport's tool
-    int open_request; // show the browser's section (the palette's Stamp button)
-    int loaded;       // the stamps are listed and their thumbnails rendered
-    int needs_upload; // thumbnails rendered since the window last made textures of them
+    int selected;           // -1: none
+    int active;             // the stamp tool is the viewport's tool
+    int open_request;       // show the browser's section (the palette's Stamp button)
+    int loaded;             // the stamps are listed and their thumbnails rendered
+    int needs_upload;       // thumbnails rendered since the window last made textures of them
+    long long folder_stamp; // the user folder's modification time when it was listed
+    double checked_at;      // when that was last compared (seconds)
     double scale, rotation, intensity;
     int mode, layer, mirror;
 } stamp_browser;
@@ -38,6 +40,13 @@ void stamp_browser_init(stamp_browser *b);
 // Lists the stamps and renders their thumbnails (CPU; the window uploads them when
 // needs_upload is set), once: on first use, as reading the library takes a moment.
 void stamp_browser_load(stamp_browser *b, const cmd_context *ctx);
+// 1 when the user stamp folder changed since the stamps were listed (looked at once a
+// second: `now` in seconds): the window then frees the thumbnails' textures and calls
+// stamp_browser_reload.
+int stamp_browser_stale(stamp_browser *b, const cmd_context *ctx, double now);
+// Lists the stamps again; a stamp that was not there before becomes the selected one
+// and the stamp tool the current tool (an image dropped on the window).
+void stamp_browser_reload(stamp_browser *b, const cmd_context *ctx);
 // The dock section: thumbnails and placement options.
 void stamp_browser_draw(stamp_browser *b, ui_context *ui, cmd_context *ctx, int *tool_changed);
 // The command that places the selected stamp at (x, z) metres.

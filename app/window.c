@@ -5,6 +5,7 @@
 #include "app/settings.h"
 #include "app/tool_settings.h"
 #include "app/work_queue.h"
+#include "editor/tools/stamp.h"
 #include "renderer/gl_context.h"
 #include "renderer/gl_target.h"
 #include "renderer/material_textures.h"
@@ -722,6 +723,43 @@ static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
     }
 }
 
+// Files dropped on the window: a world opens (asking first about unsaved changes), an
+// image becomes a user stamp (stamp_add; the browser then selects it), anything else is
+// refused with a message.
+static void on_drop(GLFWwindow *win, int count, const char **paths) {
+    window_state *st = glfwGetWindowUserPointer(win);
+    st->ui_dirty = 1;
+    for (int i = 0; i < count; i++) {
+        const char *p = paths[i], *dot = strrchr(p, '.');
+        char msg[4400];
+        if (work_queue_busy(&st->work)) {
+            snprintf(msg, sizeof msg, "%.4000s: dropped while work runs; drop it again after", p);
+            console_add(&st->ed.console, CONSOLE_ERROR, msg);
+            fprintf(stderr, "%s\n", msg);
+        } else if (dot && (strcmp(dot, ".world") == 0 || strcmp(dot, ".planet") == 0)) {
+            snprintf(st->ed.open_path, sizeof st->ed.open_path, "%.1023s", p);
+            editor_ui_request(&st->ed, st->ctx, PENDING_OPEN);
+        } else if (stamp_is_image_file(p)) {
+            char cmd[4200] = "stamp_add \"";
+            size_t n = strlen(cmd);
+            for (const char *c = p; *c && n + 3 < sizeof cmd; c++) {
+                if (*c == '"' || *c == '\\') cmd[n++] = '\\';
+                cmd[n++] = *c;
+            }
+            cmd[n++] = '"', cmd[n] = 0;
+            stamp_browser_load(&st->ed.stamps,
+                               st->ctx); // listed before, so the new one shows as new
+            run_commands(st, cmd, "drop");
+            st->ed.stamps.checked_at = 0; // look at the folder again at once
+        } else {
+            snprintf(msg, sizeof msg,
+                     "%.4000s: Orogen opens .world and .planet files and makes images stamps", p);
+            console_add(&st->ed.console, CONSOLE_ERROR, msg);
+            fprintf(stderr, "%s\n", msg);
+        }
+    }
+}
+
 static void on_refresh(GLFWwindow *win) {
     window_state *st = glfwGetWindowUserPointer(win);
     st->dirty = 1;
@@ -906,6 +944,19 @@ static int upload_stamp_thumbnails(stamp_browser *b) {
     return 1;
 }
 
+// Lists the stamps again when the user's stamp folder changed (an image dropped on the
+// window, stamp_add in the console, a file copied there by hand).
+static void refresh_stamps(window_state *st) {
+    stamp_browser *b = &st->ed.stamps;
+    if (!stamp_browser_stale(b, st->ctx, glfwGetTime())) return;
+    for (int i = 0; i < b->count; i++) {
+        ui_renderer_delete_texture(b->entries[i].texture);
+        b->entries[i].texture = 0;
+    }
+    stamp_browser_reload(b, st->ctx);
+    st->ui_dirty = 1;
+}
+
 static const ui_draw_list *build_ui(window_state *st, int fw, int fh) {
     editor_frame_info info = {.frame_ms = st->terrain_ms,
                               .resolution_scale = st->drawn_scale,
@@ -920,6 +971,7 @@ static const ui_draw_list *build_ui(window_state *st, int fw, int fh) {
         memcpy(info.cursor, hit, sizeof hit);
     }
     st->in.time = glfwGetTime();
+    refresh_stamps(st);
     st->ed.ui_scale = st->settings.ui_scale; // the ui_scale command may have changed it
     st->ed.camera_mode = camera_mode(st);
     st->ed.dynamic_resolution = st->dynamic_res;
@@ -1360,6 +1412,7 @@ int window_run(cmd_context *ctx, og_error *err) {
     glfwSetCharCallback(win, on_char);
     glfwSetFramebufferSizeCallback(win, on_framebuffer_size);
     glfwSetWindowCloseCallback(win, on_close);
+    glfwSetDropCallback(win, on_drop);
     printf("Orogen viewport:\n"
            "  left-drag sculpts with the current tool (console: tool NAME key=value ...)\n"
            "  Alt+left-drag or middle-drag orbits, wheel dollies to the point under the cursor\n"

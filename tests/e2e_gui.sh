@@ -342,6 +342,35 @@ check "work that is not cancelled is one undo step" $?
 echo "undo; tool raise radius=20" >&3
 hash_is "$hl0"; check "undo takes it back" $?
 
+# 7c. The stamp browser: a thumbnail picks the stamp, a click in the viewport places
+# it there (previewed under the cursor); an image made a user stamp (stamp_add, what
+# dropping an image on the window runs) shows up selected. Then Paint with a swatch.
+read -r _ sx _ sz <<<"$(ask "pick $((VW / 2)) $((VH / 2)) $VW $VH" '^pick ')"
+box_hash() { ask "hash $(awk -v x="$sx" -v z="$sz" 'BEGIN { print x - 150, z - 150, x + 150, z + 150 }')" '^[0-9a-f]\{16\}$'; }
+hs0=$(box_hash)
+click "Tools/Stamp" && click "Dock/Stamps/crater"
+xdotool mousemove --window "$wid" $((VX + VW / 2)) $((VY + VH / 2)) click 1
+line=$(ask_until history '^\*\? *[0-9]* ' 'stamp crater') || line=$(ask history 'stamp crater')
+hs1=$hs0
+for _ in $(seq 30); do hs1=$(box_hash); [ "$hs1" != "$hs0" ] && break; sleep 0.3; done
+[ -n "$hs0" ] && [ "$hs1" != "$hs0" ] && grep -q '^stamp crater ' "$work/session.og"
+check "Stamps/crater, then a click in the viewport, stamps a crater there ($hs0 -> $hs1)" $?
+echo "undo" >&3
+for _ in $(seq 30); do [ "$(box_hash)" = "$hs0" ] && break; sleep 0.3; done
+[ "$(box_hash)" = "$hs0" ]; check "undo takes the stamp away" $?
+cp "$2/../resources/stamps/hills.png" "$work/my_hills.png"
+echo "stamp_add $work/my_hills.png" >&3
+widget "Dock/Stamps/my_hills" >/dev/null; check "an image made a user stamp shows in the browser (Dock/Stamps/my_hills)" $?
+widget "Dock/Tool: stamp my_hills" >/dev/null; check "and becomes the selected stamp" $?
+click "Tools/Paint" && click "Dock/Materials/rock"
+line=$(ask_until tool '^material=' '^material=3$'); check "Tools/Paint and the rock swatch pick paint with material 3 ($line)" $?
+steps0=$(ask history '^steps=')
+sculpt
+line=$(ask_until history 'paint stroke' 'paint stroke tiles=[1-9]')
+check "a drag paints: a paint stroke step touching tiles ($line)" $?
+echo "undo; tool raise" >&3
+line=$(ask_until history '^steps=' "^${steps0%% *} "); check "undo takes the paint away ($line)" $?
+
 # 8. The unsaved-changes prompt: Cancel keeps working, Discard quits without saving.
 sculpt
 wait_title "gui.world \* - "; rc=$?; check "a new stroke marks the world modified ($(title))" $rc

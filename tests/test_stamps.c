@@ -4,6 +4,8 @@
 // loads, peaks at 1 and is 0 on its border).
 #include "editor/tools/stamp_library.h"
 #include "editor/tools/stamp_shapes.h"
+#include "editor/tools/stamp.h"
+#include "editor/tools/stamp_user.h"
 #include "io/image_read.h"
 
 #include "support/test_support.h"
@@ -271,6 +273,56 @@ static void test_committed_library_is_regenerated(void **state) {
     assert_non_null(strstr(err.msg, "/nonexistent/folder"));
 }
 
+// An image dropped on the editor (stamp_add) is copied byte for byte into the user
+// folder, under its own name or the one given, never over another stamp; bad names,
+// built-in names and files that are not images are refused with the file named.
+static void test_user_stamp_add(void **state) {
+    (void)state;
+    char dir[4096], user[4200], src[4200], junk[4200];
+    snprintf(dir, sizeof dir, "%s", test_tmpdir("user_stamps"));
+    snprintf(user, sizeof user, "%s/deep/stamps", dir); // made on demand
+    snprintf(src, sizeof src, "%s/stamps/hills.png", OROGEN_RESOURCE_DIR);
+    char name[256];
+    og_error err = {{0}};
+    assert_int_equal(
+        stamp_user_add(src, "my_hills", OROGEN_RESOURCE_DIR, user, name, sizeof name, &err), 0);
+    assert_string_equal(name, "my_hills");
+    assert_int_equal(
+        stamp_user_add(src, "my_hills", OROGEN_RESOURCE_DIR, user, name, sizeof name, &err), 0);
+    assert_string_equal(name, "my_hills_2"); // taken: a new name, the first kept
+    size_t a_len = 0, b_len = 0;
+    char *a = test_read_file(src, &a_len), path[4400];
+    snprintf(path, sizeof path, "%s/my_hills_2.png", user);
+    char *b = test_read_file(path, &b_len);
+    assert_non_null(a);
+    assert_non_null(b);
+    assert_true(a_len == b_len && memcmp(a, b, a_len) == 0);
+    free(a), free(b);
+    stamp_source s;
+    assert_int_equal(stamp_find("my_hills_2", OROGEN_RESOURCE_DIR, user, &s, &err), 0);
+    stamp_source_free(&s);
+    // Refusals, each naming what is wrong.
+    assert_int_equal(stamp_user_add(src, NULL, OROGEN_RESOURCE_DIR, user, name, sizeof name, &err),
+                     -1);
+    assert_non_null(strstr(err.msg, "'hills' is a built-in stamp"));
+    assert_int_equal(
+        stamp_user_add(src, "crater", OROGEN_RESOURCE_DIR, user, name, sizeof name, &err), -1);
+    assert_int_equal(
+        stamp_user_add(src, "bad name", OROGEN_RESOURCE_DIR, user, name, sizeof name, &err), -1);
+    assert_non_null(strstr(err.msg, "cannot name a stamp"));
+    snprintf(junk, sizeof junk, "%s/junk.png", dir);
+    test_write_file(junk, "not a png", 9);
+    assert_int_equal(stamp_user_add(junk, NULL, OROGEN_RESOURCE_DIR, user, name, sizeof name, &err),
+                     -1);
+    assert_non_null(strstr(err.msg, junk));
+    snprintf(junk, sizeof junk, "%s/notes.txt", dir);
+    test_write_file(junk, "text", 4);
+    assert_int_equal(stamp_user_add(junk, NULL, OROGEN_RESOURCE_DIR, user, name, sizeof name, &err),
+                     -1);
+    assert_non_null(strstr(err.msg, "not an image"));
+    test_rmtree(dir);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_shape_names),
@@ -282,6 +334,7 @@ int main(void) {
         cmocka_unit_test(test_library_entries),
         cmocka_unit_test(test_library_render),
         cmocka_unit_test(test_committed_library_is_regenerated),
+        cmocka_unit_test(test_user_stamp_add),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -264,6 +264,10 @@ static const cmd_def commands[] = {
      "pixel), rot is degrees, mirror none|x|z|xz, intensity metres at value 1 (50; 0.5 on detail), "
      "mode add|subtract|max|min|blend, layer coarse|detail. One undo step.",
      3, 10, cmd_stamp, CMD_ENDS_STROKE},
+    {"stamp_add", "stamp_add IMAGE [NAME]",
+     "Makes an image a user stamp: copies it into the user stamp folder as NAME (default: the "
+     "file's name; NAME_2... when taken). Dropping an image on the editor window does this.",
+     1, 2, cmd_stamp_add, CMD_NOT_RECORDED},
     {"stamps", "stamps",
      "Lists the stamps: functional shapes, the built-in library and the user's stamp folder.", 0, 0,
      cmd_stamps, 0},

@@ -5,6 +5,7 @@
 #include "editor/edit/edit.h"
 #include "editor/world/history.h"
 #include "editor/tools/stamp.h"
+#include "editor/tools/stamp_user.h"
 #include "editor/tools/stroke.h"
 #include "io/parse.h"
 
@@ -264,6 +265,15 @@ int cmd_stamp(cmd_context *ctx, int argc, char **argv, og_error *err) {
     int rc = stamp_apply(ctx->world, &s, &p, err);
     stamp_source_free(&s);
     return rc;
+}
+
+int cmd_stamp_add(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    char name[256];
+    if (stamp_user_add(argv[1], argc > 2 ? argv[2] : NULL, ctx->resource_dir, ctx->stamp_dir, name,
+                       sizeof name, err) != 0)
+        return -1;
+    fprintf(ctx->out, "stamp %s added to %s\n", name, ctx->stamp_dir);
+    return 0;
 }
 
 int cmd_stamps(cmd_context *ctx, int argc, char **argv, og_error *err) {

@@ -17,6 +17,7 @@ int cmd_undo(cmd_context *ctx, int argc, char **argv, og_error *err);
 int cmd_redo(cmd_context *ctx, int argc, char **argv, og_error *err);
 int cmd_history(cmd_context *ctx, int argc, char **argv, og_error *err);
 int cmd_stamp(cmd_context *ctx, int argc, char **argv, og_error *err);
+int cmd_stamp_add(cmd_context *ctx, int argc, char **argv, og_error *err);
 int cmd_stamps(cmd_context *ctx, int argc, char **argv, og_error *err);
 
 // Ends the open stroke, if any, as one undo step (the end of a batch run, a window

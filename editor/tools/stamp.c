@@ -147,6 +147,11 @@ static int has_image_ext(const char *file, size_t *stem) {
     return 0;
 }
 
+int stamp_is_image_file(const char *file) {
+    size_t stem;
+    return has_image_ext(file, &stem);
+}
+
 static int compare_names(const void *a, const void *b) {
     return strcmp(*(char *const *)a, *(char *const *)b);
 }

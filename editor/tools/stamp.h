@@ -53,6 +53,8 @@ int stamp_placement_set(stamp_placement *p, const char *key, const char *value, 
 int stamp_find(const char *name, const char *resource_dir, const char *user_dir, stamp_source *out,
                og_error *err);
 void stamp_source_free(stamp_source *s);
+// 1 when file's extension is one of the image formats stamps are read from.
+int stamp_is_image_file(const char *file);
 // Prints every available stamp, one per line: "NAME KIND [about]".
 void stamp_list(const char *resource_dir, const char *user_dir, FILE *out);
 

@@ -23,5 +23,8 @@ start_xvfb() {
 # cannot even name (the driver is unloaded at exit); leaks in Orogen's own code are
 # caught by the other tests, which run the same code without a GL driver.
 if [ -n "${ASAN_OPTIONS:-}" ]; then export ASAN_OPTIONS="$ASAN_OPTIONS:detect_leaks=0"; fi
-# The editor keeps its settings between runs: keep them inside the test.
+# The editor keeps its settings between runs, and user stamps in the data folder:
+# keep both inside the test.
 export XDG_CONFIG_HOME="$work/config"
+export XDG_DATA_HOME="$work/data"
+unset OROGEN_STAMP_DIR
