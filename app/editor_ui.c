@@ -1,6 +1,7 @@
 #include "app/editor_ui.h"
 
 #include "editor/gen/gen.h"
+#include "editor/params/world_params.h"
 #include "editor/world/history.h"
 
 #include <math.h>
@@ -325,23 +326,32 @@ void editor_ui_pick_tool(editor_ui *e, cmd_context *ctx, int index) {
 
 static void palette(editor_ui *e, ui_context *ui, cmd_context *ctx, ui_rect r) {
     ui_panel_begin(ui, "Tools", r);
+    // Names beside the icons when they fit; icons alone (names in the tooltips) when the
+    // window is narrow, as Blender's toolbar does.
+    float indent = ui_em(ui, 1.3f), widest = 0;
+    for (size_t i = 0; i < TOOL_COUNT; i++)
+        widest = fmaxf(widest, ui_font_text_width(ui_get_font(ui), UI_FACE_SANS, tools[i].label,
+                                                  strlen(tools[i].label)));
+    int names = r.w >= indent + widest + ui_em(ui, 1.3f);
+    if (!names) indent = r.w;
     ui_row(ui, 1, NULL, ui_em(ui, 1.6f));
-    for (size_t i = 0; i < TOOL_COUNT; i++) {
-        int on = !e->stamps.active && tool_is_current(&ctx->brush, tools[i].name);
-        if (ui_toggle_button_indented(ui, tools[i].label, on, ui_em(ui, 1.3f)))
-            editor_ui_pick_tool(e, ctx, (int)i);
+    char tip[300];
+    for (size_t i = 0; i <= TOOL_COUNT; i++) {
+        int stamp = i == TOOL_COUNT;
+        const char *label = stamp ? "Stamp" : tools[i].label;
+        int on = stamp ? e->stamps.active
+                       : !e->stamps.active && tool_is_current(&ctx->brush, tools[i].name);
+        int clicked = ui_toggle_button_indented(ui, label, on, indent);
         ui_rect b = ui_last_rect(ui);
-        float side = b.h * 0.6f;
-        tool_icon(ui, (int)i, (ui_rect){b.x + b.h * 0.2f, b.y + b.h * 0.2f, side, side},
-                  ui_get_theme(ui)->text);
-        ui_tooltip(ui, tools[i].tip);
+        float side = b.h * 0.6f, x = names ? b.x + b.h * 0.2f : b.x + (b.w - side) * 0.5f;
+        tool_icon(ui, (int)i, (ui_rect){x, b.y + b.h * 0.2f, side, side}, ui_get_theme(ui)->text);
+        snprintf(tip, sizeof tip, "%s%s%s", names ? "" : label, names ? "" : ": ",
+                 stamp ? "Place a stamp (a shape or heightmap) with a click in the viewport "
+                         "(key B)"
+                       : tools[i].tip);
+        ui_tooltip(ui, tip);
+        if (clicked) editor_ui_pick_tool(e, ctx, (int)i);
     }
-    int stamp_clicked = ui_toggle_button_indented(ui, "Stamp", e->stamps.active, ui_em(ui, 1.3f));
-    ui_rect sb = ui_last_rect(ui);
-    tool_icon(ui, 11, (ui_rect){sb.x + sb.h * 0.2f, sb.y + sb.h * 0.2f, sb.h * 0.6f, sb.h * 0.6f},
-              ui_get_theme(ui)->text);
-    if (stamp_clicked) editor_ui_pick_tool(e, ctx, (int)TOOL_COUNT);
-    ui_tooltip(ui, "Place a stamp (a shape or heightmap) with a click in the viewport (key B)");
     ui_panel_end(ui);
 }
 
@@ -452,10 +462,18 @@ static void tool_options(editor_ui *e, ui_context *ui, cmd_context *ctx) {
         }
         break;
     case BRUSH_FLATTEN:
-    case BRUSH_SET:
+    case BRUSH_SET: {
+        float cols[2] = {0, ui_em(ui, 3.5f)};
+        ui_row(ui, 2, cols, 0);
         slider_key(e, ui, ctx, "Height", "height", b->height, -1000, 5000, "%.1f m",
                    "The height to blend toward, in metres");
+        if (ui_toggle_button(ui, "Pick##height", e->picking_height))
+            e->picking_height = !e->picking_height;
+        ui_tooltip(ui, "Pick the height from the terrain: the next click in the viewport takes "
+                       "the height there (Esc: no)");
+        ui_row(ui, 1, NULL, 0);
         break;
+    }
     case BRUSH_TERRACE:
         slider_key(e, ui, ctx, "Step", "step", b->terrace_step, 0.5, 200, "%.1f m",
                    "Height of one terrace");
@@ -496,39 +514,102 @@ static void tool_options(editor_ui *e, ui_context *ui, cmd_context *ctx) {
 
 // ---- world and history ------------------------------------------------------------------
 
+// A slider for one parameter of the next generate (`set KEY VALUE`), with the
+// parameter's own description as its tooltip.
+static void param_slider(editor_ui *e, ui_context *ui, cmd_context *ctx, const char *label,
+                         const char *key, double value, double lo, double hi, const char *fmt) {
+    double v = value;
+    if (ui_slider(ui, label, &v, lo, hi, fmt)) runf(e, ctx, "set %s %.6g", key, v);
+    ui_tooltip(ui, world_params_key_help(key));
+}
+
+// The tile store's count is a query: asked again at most once a second.
+static long long tiles_stored(editor_ui *e, cmd_context *ctx, double now) {
+    if (now - e->tiles_counted_at >= 1.0 || now < e->tiles_counted_at) {
+        tile_store *store = world_store(ctx->world);
+        e->tiles_stored = store ? (long long)tile_store_count(store, -1) : 0;
+        e->tiles_counted_at = now;
+    }
+    return e->tiles_stored;
+}
+
+// The World panel's less used parameters: fBm shape, the generator's own keys, the
+// grid (collapsed by default, so the dock keeps room for the history).
+static void world_more(editor_ui *e, ui_context *ui, cmd_context *ctx, const world_params *next) {
+    char line[128];
+    if (next->generator != GEN_FLAT) {
+        param_slider(e, ui, ctx, "Gain (w_factor)", "w_factor", next->w_factor, 0.05, 1.45, "%.2f");
+        param_slider(e, ui, ctx, "Lacunarity (exponent)", "exponent", next->exponent, 1.1, 4,
+                     "%.2f");
+        param_slider(e, ui, ctx, "Feature size", "feature_size", next->feature_size, 0, 50000,
+                     next->feature_size > 0 ? "%.0f m" : "automatic");
+    }
+    param_slider(e, ui, ctx, "Base height", "base_height", next->base_height, -2000, 2000,
+                 "%.0f m");
+    if (next->generator == GEN_DIAMOND_SQUARE) {
+        param_slider(e, ui, ctx, "Roughness", "roughness", next->roughness, 0, 2, "%.2f");
+        param_slider(e, ui, ctx, "Smoothing", "smoothing", next->smoothing, 0, 1, "%.2f");
+    } else if (next->generator == GEN_RIDGED) {
+        param_slider(e, ui, ctx, "Ridge offset", "ridge_offset", next->ridge_offset, 0, 2, "%.2f");
+    } else if (next->generator == GEN_FAULTS) {
+        param_slider(e, ui, ctx, "Faults", "fault_count", next->fault_count, 0, 1000,
+                     "%.0f per 64 km");
+    }
+    param_slider(e, ui, ctx, "Spacing", "spacing", next->spacing, 0.25, 100, "%.2f m");
+    static const char *const sizes[] = {"unbounded", "512",  "1024", "2048",
+                                        "4096",      "8192", "16384"};
+    static const long long size_values[] = {0, 512, 1024, 2048, 4096, 8192, 16384};
+    int sz = -1;
+    for (int i = 0; i < 7; i++)
+        if (size_values[i] == next->size) sz = i;
+    if (sz < 0) { // another size, set by a command: shown, not offered
+        snprintf(line, sizeof line, "Size: %lld samples", (long long)next->size);
+        ui_label(ui, line);
+    } else if (ui_combo(ui, "Size", &sz, sizes, 7)) {
+        runf(e, ctx, "set size %lld", size_values[sz]);
+    }
+    ui_tooltip(ui, world_params_key_help("size"));
+}
+
 static void world_panel(editor_ui *e, ui_context *ui, cmd_context *ctx) {
     const world_params *next = &ctx->next;
-    char line[512];
+    char line[1200];
     ui_row(ui, 1, NULL, 0);
     snprintf(line, sizeof line, "%s%s", file_name(world_path(ctx->world)),
              world_is_modified(ctx->world) ? " (unsaved changes)" : "");
     ui_label(ui, line);
     ui_tooltip(ui, "The world's parameter file; its edits are kept in NAME.tiles beside it");
+    tile_store *store = world_store(ctx->world);
+    snprintf(line, sizeof line, "%lld tiles stored%s%s",
+             tiles_stored(e, ctx, ui_get_input(ui)->time), store ? " in " : "",
+             store ? file_name(tile_store_path(store)) : "");
+    ui_label_colored(ui, line, ui_get_theme(ui)->text_dim);
+    ui_tooltip(ui, "The tile store: the sculpted and painted tiles kept on disk");
+    ui_label_colored(ui, "For the next Generate:", ui_get_theme(ui)->text_dim);
+    ui_tooltip(ui, "These parameters apply when you press Generate (one undo step)");
     const char *names[GEN_COUNT];
     for (int g = 0; g < GEN_COUNT; g++)
         names[g] = gen_kind_name((gen_kind)g);
     int g = (int)next->generator;
     if (ui_combo(ui, "Generator", &g, names, GEN_COUNT)) runf(e, ctx, "generator %s", names[g]);
-    ui_tooltip(ui, "How the unedited terrain is made (applied by Generate)");
+    ui_tooltip(ui, world_params_key_help("generator"));
     float half[2] = {0, ui_em(ui, 4.5f)};
     ui_row(ui, 2, half, 0);
     snprintf(line, sizeof line, "Seed: %lld", (long long)next->seed);
     ui_label(ui, line);
-    ui_tooltip(ui, "The random seed of the generator");
+    ui_tooltip(ui, world_params_key_help("seed"));
     if (ui_button(ui, "Random##seed"))
         runf(e, ctx, "seed %u", (unsigned)(next->seed * 2654435761u + 12345u) % 1000000u);
     ui_tooltip(ui, "Pick another seed (applied by Generate)");
     ui_row(ui, 1, NULL, 0);
-    double v = next->max_height;
-    if (ui_slider(ui, "Max height", &v, 10, 9000, "%.0f m")) runf(e, ctx, "max_height %.6g", v);
-    ui_tooltip(ui, "The highest the generated terrain reaches, in metres");
-    v = next->ocean_level;
-    if (ui_slider(ui, "Ocean level", &v, -1000, 3000, "%.0f m"))
-        runf(e, ctx, "ocean_level %.6g", v);
-    ui_tooltip(ui, "Height of the water plane, in metres");
-    v = next->octaves;
-    if (ui_slider(ui, "Octaves", &v, 1, 16, "%.1f")) runf(e, ctx, "octaves %.3g", v);
-    ui_tooltip(ui, "fBm octaves: more adds finer detail");
+    if (next->generator != GEN_FLAT) {
+        param_slider(e, ui, ctx, "Max height", "max_height", next->max_height, 10, 9000, "%.0f m");
+        param_slider(e, ui, ctx, "Octaves", "octaves", next->octaves, 1, 16, "%.1f");
+    }
+    param_slider(e, ui, ctx, "Ocean level", "ocean_level", next->ocean_level, -1000, 3000,
+                 "%.0f m");
+    if (ui_section(ui, "More parameters", 0)) world_more(e, ui, ctx, next);
+    ui_row(ui, 1, NULL, 0);
     if (ui_button(ui, "Generate")) editor_ui_run(e, ctx, "generate");
     ui_tooltip(ui, "Regenerate the terrain from these parameters (one undo step; edits stay)");
 }
@@ -804,7 +885,7 @@ ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport
     // The menu bar last: its menus open over everything.
     menus(e, ui, ctx, v, top);
     if (ui_get_input(ui)->key_pressed[UI_KEY_ESCAPE] && !ui_wants_keyboard(ui)) {
-        e->show_help = e->show_about = 0;
+        e->show_help = e->show_about = e->picking_height = 0;
         if (e->files.open)
             e->files.open = 0;
         else if (e->pending != PENDING_NONE)

@@ -433,6 +433,14 @@ static void on_mouse_button(GLFWwindow *win, int button, int action, int mods) {
                 point_along_ray(st, ww * 0.5, wh * 0.5, 100.0, st->pivot);
         }
         st->cc.walk = 0;
+    } else if (st->ed.picking_height && button == GLFW_MOUSE_BUTTON_LEFT) {
+        double hit[3]; // the tool's height from the terrain (the Pick button)
+        st->ed.picking_height = 0;
+        if (pick_at(st, st->mouse_x, st->mouse_y, hit) == 0) {
+            char cmd[128];
+            snprintf(cmd, sizeof cmd, "tool %s height=%.6g", tool_name(&st->ctx->brush), hit[1]);
+            run_commands(st, cmd, "pick");
+        }
     } else if (st->ed.stamps.active && button == GLFW_MOUSE_BUTTON_LEFT) {
         double hit[3]; // the stamp tool: one click, one stamp at the picked point
         char cmd[512];

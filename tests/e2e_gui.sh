@@ -290,6 +290,16 @@ awk -v a="${r0#radius=}" -v b="${r1#radius=}" 'BEGIN { exit !(b > 1.8 * a && b <
 check "Alt+right drag to the right enlarges the brush about 1% a pixel ($r0 -> $r1)" $?
 line=$(ask tool '^strength='); [ "$line" != "strength=0.5" ]; check "and up raises its strength ($line)" $?
 echo "tool raise radius=20 strength=0.5" >&3
+# Set height's Pick button: the next click in the viewport takes the height there.
+key h
+click "Dock/Pick"
+read -r _ _ ty _ <<<"$(ask "pick $((VW / 2)) $((VH / 2)) $VW $VH" '^pick ')"
+xdotool mousemove --window "$wid" $((VX + VW / 2)) $((VY + VH / 2)) click 1
+line=$(ask_until tool '^height=' '^height=-\?[0-9]')
+awk -v a="${line#height=}" -v b="$ty" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(d < 0.01) }'
+check "Set height's Pick, then a click, takes the height there ($line, the terrain at $ty)" $?
+[ "$(ask history '^steps=')" = "$(ask history '^steps=')" ]
+key u
 key c
 wait_title " orbit "; check "C switches the camera to orbit ($(title))" $?
 key c

@@ -579,8 +579,9 @@ static int toggle(ui_context *ui, const char *label, int on, float indent, int c
     ui_color bg =
         on ? (ui->hot == id ? ui->theme.accent_hot : ui->theme.accent) : widget_colour(ui, id);
     ui_draw_rect(ui->target, r, bg);
-    text_in(ui, (ui_rect){r.x + indent, r.y, r.w - indent, r.h}, label, label_len(label),
-            ui->theme.text, centred);
+    if (indent < r.w) // an indent of the whole width: an icon button (the caller draws it)
+        text_in(ui, (ui_rect){r.x + indent, r.y, r.w - indent, r.h}, label, label_len(label),
+                ui->theme.text, centred);
     record_widget(ui, label, r);
     return clicked;
 }

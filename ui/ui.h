@@ -131,7 +131,9 @@ void ui_label(ui_context *ui, const char *text);
 void ui_label_colored(ui_context *ui, const char *text, ui_color c);
 int ui_button(ui_context *ui, const char *label); // 1 when clicked
 int ui_toggle_button(ui_context *ui, const char *label, int on);
-// The same with its label left-aligned after indent pixels (room for an icon).
+// The same with its label left-aligned after indent pixels (room for an icon); with
+// an indent of the cell's whole width no text is drawn (an icon-only button, still
+// named by its label).
 int ui_toggle_button_indented(ui_context *ui, const char *label, int on,
                               float indent);                    // a button shown pressed when on
 int ui_checkbox(ui_context *ui, const char *label, int *value); // 1 when changed
