@@ -1,6 +1,7 @@
 #include "app/window.h"
 
 #include "app/camera_controls.h"
+#include "app/dynamic_resolution.h"
 #include "app/editor_ui.h"
 #include "app/settings.h"
 #include "app/tool_settings.h"
@@ -1036,10 +1037,8 @@ static int render_terrain(window_state *st, int vw, int vh, int arrived) {
     }
     glFinish(); // the frame's real cost, for the resolution controller
     st->terrain_ms = now_ms() - t0;
-    if (moving) { // aim at target_ms: pixels scale with the square of the side
-        float next = st->res_scale * sqrtf((float)(st->target_ms / fmax(st->terrain_ms, 1.0)));
-        st->res_scale = fminf(1.0f, fmaxf(0.25f, 0.5f * (st->res_scale + next)));
-    }
+    if (moving)
+        st->res_scale = dynamic_resolution_next(st->res_scale, st->terrain_ms, st->target_ms);
     st->drawn_cam = v->cam;
     st->drawn_settings = v->settings;
     st->drawn_cursor = v->cursor;

@@ -105,6 +105,15 @@ r=$(rmse "$work/no_detail.png" "$work/parallax_off.png"); less 1 "$r"; check "de
 for v in wireframe levels height slope; do
     r=$(rmse "$work/default.png" "$work/$v.png"); less 5 "$r"; check "view $v differs from shaded (RMSE $r)" $?
 done
+# A stroke shows while it goes on (the coarser levels follow each stroke_to), and its
+# end changes nothing more on screen.
+run "$crater_cam; screenshot $work/open0.png $size; tool raise radius=40 amount=20 strength=1;
+     stroke_begin; stroke_to $spot_x $spot_z; screenshot $work/open1.png $size; stroke_end;
+     screenshot $work/open2.png $size"
+rc=$?; check "a stroke renders while open ($(cat "$work/err"))" $rc
+r=$(rmse "$work/open0.png" "$work/open1.png"); less 1 "$r"; check "the open stroke shows before it ends (RMSE $r)" $?
+r=$(rmse "$work/open1.png" "$work/open2.png"); less "$r" 0.05; check "ending it changes nothing more on screen (RMSE $r)" $?
+
 # The View menu's overlays each draw over the shaded view, and off again is as before.
 run "screenshot $work/plain.png $size; render contours=50; screenshot $work/contours.png $size;
      render contours=0 tile_grid=on; screenshot $work/tile_grid.png $size;

@@ -62,12 +62,18 @@ near() { awk -v a="$1" -v b="$2" -v t="$3" 'BEGIN { d = a - b; exit !(d <= t && 
 # 400 x 300; every position below is relative to the viewport's top-left (VX, VY).
 viewport_rect() { ask "ui_widgets Viewport" '^Viewport ' | awk '{ print $2, $3, $4, $5 }'; }
 # (The side panels may narrow with the window, so the size is corrected a few times.)
-for _ in 1 2 3 4 5 6; do
-    read -r VX VY VW VH <<<"$(viewport_rect)"
+# Each correction waits for a frame laid out at the new size (a busy machine draws slowly).
+read -r VX VY VW VH <<<"$(viewport_rect)"
+for _ in $(seq 12); do
     [ "$VW" = 400 ] && [ "$VH" = 300 ] && break
     read -r WW WH <<<"$(xdotool getwindowgeometry --shell "$wid" | awk -F= '/WIDTH|HEIGHT/ { printf "%s ", $2 }')"
     xdotool windowsize --sync "$wid" $((WW + 400 - VW)) $((WH + 300 - VH))
-    sleep 0.5
+    before="$VX $VY $VW $VH"
+    for _ in $(seq 30); do
+        sleep 0.2
+        read -r VX VY VW VH <<<"$(viewport_rect)"
+        [ "$VX $VY $VW $VH" != "$before" ] && break
+    done
 done
 [ "$VW" = 400 ] && [ "$VH" = 300 ]; check "the viewport is found by name and sized 400 x 300 (at $VX $VY, $VW x $VH)" $?
 xdotool windowfocus --sync "$wid" 2>/dev/null

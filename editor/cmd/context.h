@@ -19,8 +19,8 @@ typedef struct cmd_context {
     // Each tool's own settings, as it was last used (a tool picked again gets them back).
     brush tool_memory[BRUSH_TOOL_COUNT];
     unsigned tool_remembered; // bit t: tool_memory[t] holds settings
-    struct stroke *stroke;   // the stroke stroke_begin opened (NULL: none)
-    FILE *record;            // when set, every command that succeeded is written here
+    struct stroke *stroke;    // the stroke stroke_begin opened (NULL: none)
+    FILE *record;             // when set, every command that succeeded is written here
     // The session's commands for `history script FILE` (the editor window keeps them
     // in memory: an open_memstream over session_text / session_len); NULL: none.
     FILE *session;

@@ -95,10 +95,15 @@ static int parent_tile_task(void *user, int task, og_error *err) {
         if (edit_tile_acquire(j->e, key, &v, err) != 0) {
             rc = -1;
         } else {
+            // The parent as it was before the edit plus the whole change so far, so the
+            // update can run again while a stroke goes on (the viewport shows it live).
             float *t = v.data;
+            const float *was = edit_snapshot(j->e, key);
             for (int64_t z = 0; z < ph; z++) {
-                float *dst =
-                    t + (sub.z0 + z - tz * TILE_SIZE) * TILE_SIZE + (sub.x0 - tx * TILE_SIZE);
+                size_t row =
+                    (size_t)((sub.z0 + z - tz * TILE_SIZE) * TILE_SIZE + (sub.x0 - tx * TILE_SIZE));
+                float *dst = t + row;
+                const float *before = was ? was + row : dst;
                 for (int64_t x = 0; x < pw; x++) {
                     const float *c = win + (2 * z) * cw + 2 * x;
                     float d;
@@ -111,7 +116,7 @@ static int parent_tile_task(void *user, int task, og_error *err) {
                         float g = 0.25f * r2[0] + 0.5f * r2[1] + 0.25f * r2[2];
                         d = 0.25f * a + 0.5f * b + 0.25f * g;
                     }
-                    dst[x] += d;
+                    dst[x] = before[x] + d;
                 }
             }
             edit_tile_release(j->e, &v);
@@ -122,12 +127,18 @@ static int parent_tile_task(void *user, int task, og_error *err) {
 }
 
 int edit_mips_update(edit *e, og_error *err) {
+    return edit_mips_update_from(e, 0, err);
+}
+
+int edit_mips_update_from(edit *e, size_t first, og_error *err) {
     const world_params *p = world_get_params(edit_world(e));
     int planet = p->kind == WORLD_PLANET, faces = planet ? 6 : 1;
     int64_t extent = planet ? world_grid_face_samples(p) : p->size;
     int top = edit_mips_top_level(p);
     const dirty_rect *d;
     size_t n = edit_dirty_rects(e, &d);
+    if (first > n) first = n;
+    d += first, n -= first;
     for (int face = 0; face < faces; face++) {
         grid_rect r = {0, 0, 0, 0};
         int have = 0;

@@ -3,6 +3,7 @@
 #include "editor/tools/brush_dab.h"
 #include "editor/edit/edit.h"
 #include "editor/edit/edit_commit.h"
+#include "editor/edit/edit_mips.h"
 #include "editor/world/layer_grid.h"
 #include "io/progress.h"
 
@@ -24,6 +25,7 @@ struct stroke {
     double carry; // distance walked since the last dab
     float target; // flatten / set height
     long dabs;
+    size_t mips_from; // dirty areas from here on have not reached the mip levels yet
 };
 
 // Height of the edited layer at (x, z) metres, bilinear.
@@ -98,7 +100,27 @@ static int check_point(stroke *s, double x, double z, double pressure, og_error 
     return 0;
 }
 
+// Brings the coarser levels up to date with the dabs laid so far, so the viewport (which
+// draws them away from the camera) shows the stroke while it goes on.
+static int show_live(stroke *s, og_error *err) {
+    const dirty_rect *rects;
+    size_t n = edit_dirty_rects(s->edit, &rects);
+    if (n == 0) return 0;
+    // The last area may have grown since the last call: it is done again.
+    size_t from = s->mips_from > 0 ? s->mips_from - 1 : 0;
+    if (edit_mips_update_from(s->edit, from, err) != 0) return -1;
+    s->mips_from = n;
+    return 0;
+}
+
+static int lay_to(stroke *s, double x, double z, double pressure, og_error *err);
+
 int stroke_to(stroke *s, double x, double z, double pressure, og_error *err) {
+    if (lay_to(s, x, z, pressure, err) != 0) return -1;
+    return show_live(s, err);
+}
+
+static int lay_to(stroke *s, double x, double z, double pressure, og_error *err) {
     if (check_point(s, x, z, pressure, err) != 0) return -1;
     if (!s->started) {
         s->started = 1;
