@@ -417,7 +417,7 @@ static void falloff_options(editor_ui *e, ui_context *ui, cmd_context *ctx, cons
     }
     ui_tooltip(ui, "How the effect fades from the centre to the edge: Unreal's smooth, linear, "
                    "spherical and tip, constant, or your own curve");
-    ui_row(ui, 1, NULL, ui_em(ui, 5.5f));
+    ui_row(ui, 1, NULL, ui_em(ui, 4.5f));
     if (ui_curve(ui, "Falloff curve", ct, cv, &n, BRUSH_CURVE_MAX))
         set_curve(e, ctx, tool, ct, cv, n);
     ui_tooltip(ui, "The falloff from the centre (left) to the edge (right). Drag a point, "
@@ -585,14 +585,13 @@ static void world_panel(editor_ui *e, ui_context *ui, cmd_context *ctx) {
              store ? file_name(tile_store_path(store)) : "");
     ui_label_colored(ui, line, ui_get_theme(ui)->text_dim);
     ui_tooltip(ui, "The tile store: the sculpted and painted tiles kept on disk");
-    ui_label_colored(ui, "For the next Generate:", ui_get_theme(ui)->text_dim);
-    ui_tooltip(ui, "These parameters apply when you press Generate (one undo step)");
     const char *names[GEN_COUNT];
     for (int g = 0; g < GEN_COUNT; g++)
         names[g] = gen_kind_name((gen_kind)g);
     int g = (int)next->generator;
     if (ui_combo(ui, "Generator", &g, names, GEN_COUNT)) runf(e, ctx, "generator %s", names[g]);
-    ui_tooltip(ui, world_params_key_help("generator"));
+    ui_tooltip(ui, "The generator of the next Generate (the parameters below apply when you "
+                   "press Generate: one undo step)");
     float half[2] = {0, ui_em(ui, 4.5f)};
     ui_row(ui, 2, half, 0);
     snprintf(line, sizeof line, "Seed: %lld", (long long)next->seed);
@@ -612,6 +611,44 @@ static void world_panel(editor_ui *e, ui_context *ui, cmd_context *ctx) {
     ui_row(ui, 1, NULL, 0);
     if (ui_button(ui, "Generate")) editor_ui_run(e, ctx, "generate");
     ui_tooltip(ui, "Regenerate the terrain from these parameters (one undo step; edits stay)");
+}
+
+// The layers: the coarse and detail heights (the current tool's target), the material
+// layer's eight materials (the paint material) and whether the automatic material rules
+// colour unpainted ground.
+static void layers_panel(editor_ui *e, ui_context *ui, cmd_context *ctx, const viewport *v) {
+    static const char *const names[8] = {"automatic", "sand", "grass",  "rock",
+                                         "snow",      "dirt", "gravel", "moss"};
+    const brush *b = &ctx->brush;
+    int painting = b->tool == BRUSH_PAINT && !e->stamps.active;
+    ui_row(ui, 1, NULL, 0);
+    if (ui_tree_push(ui, "Height layers", 1)) {
+        static const char *const targets[2] = {"coarse", "detail"};
+        static const char *const labels[2] = {"Coarse: the terrain's shape",
+                                              "Detail: fine relief (parallax)"};
+        for (int i = 0; i < 2; i++) {
+            int on = !painting && (b->target == TILE_LAYER_DETAIL) == i;
+            if (ui_selectable(ui, labels[i], on))
+                runf(e, ctx, "tool %s target=%s", painting ? "raise" : current_tool(b), targets[i]);
+            ui_tooltip(ui, "Sculpt this layer (the current tool's target)");
+        }
+        ui_tree_pop(ui);
+    }
+    if (ui_tree_push(ui, "Material layer", 1)) {
+        for (int m = 0; m < 8; m++) {
+            if (ui_color_swatch(ui, names[m], e->material_colors[m], painting && b->material == m))
+                runf(e, ctx, "tool paint material=%d", m);
+            ui_tooltip(ui, m == 0 ? "Paint back to the automatic rules (grass, rock, snow by "
+                                    "height and slope)"
+                                  : "Paint this material (picks the paint tool)");
+        }
+        int rules = v->settings.auto_materials;
+        if (ui_checkbox(ui, "Automatic material rules", &rules))
+            runf(e, ctx, "render auto_materials=%s", rules ? "on" : "off");
+        ui_tooltip(ui, "Show the automatic materials on unpainted ground; off shows it as plain "
+                       "clay, so painted areas stand out");
+        ui_tree_pop(ui);
+    }
 }
 
 static void history_panel(editor_ui *e, ui_context *ui, cmd_context *ctx) {
@@ -857,6 +894,7 @@ ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport
         e->stamps.open_request = 0;
     }
     if (ui_section(ui, "Stamps", 0)) stamp_browser_draw(&e->stamps, ui, ctx, &picked);
+    if (ui_section(ui, "Layers", 0)) layers_panel(e, ui, ctx, v);
     if (ui_section(ui, "World", 1)) world_panel(e, ui, ctx);
     if (ui_section(ui, "History", 1)) history_panel(e, ui, ctx);
     ui_panel_end(ui);

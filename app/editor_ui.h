@@ -45,6 +45,7 @@ typedef struct editor_ui {
     double ui_scale, ui_scale_request; // the current scale; a new one asked for (0: none)
     stamp_browser stamps;              // the stamp tool (stamps.active) and its options
     uint32_t material_textures[8];     // swatches of the paint materials (0: automatic)
+    ui_color material_colors[8];       // and their mean colours (the Layers panel)
     int quit_requested;                // the window should close
     work_queue *work;                  // where actions are queued (NULL: run at once)
     int camera_mode;                   // 0 fly, 1 orbit, 2 walk (the window's, shown in View)

@@ -1254,7 +1254,7 @@ static viewport *attach_viewport(cmd_context *ctx, og_error *err) {
 
 // Swatches of the paint materials from the renderer's own procedural textures (a
 // 64-pixel crop of each); "automatic" shows its rules' grass, rock and snow side by side.
-static void make_material_swatches(uint32_t out[8]) {
+static void make_material_swatches(uint32_t out[8], ui_color mean[8]) {
     enum { SWATCH = 64 };
     static unsigned char full[MATERIAL_TEXTURE_COUNT]
                              [MATERIAL_TEXTURE_SIZE * MATERIAL_TEXTURE_SIZE * 4];
@@ -1271,6 +1271,12 @@ static void make_material_swatches(uint32_t out[8]) {
                 unsigned char *dst = swatch + ((size_t)y * SWATCH + x) * 4;
                 dst[0] = src[0], dst[1] = src[1], dst[2] = src[2], dst[3] = 255;
             }
+        double sum[3] = {0, 0, 0};
+        for (int i = 0; i < SWATCH * SWATCH; i++)
+            for (int c = 0; c < 3; c++)
+                sum[c] += swatch[i * 4 + c];
+        mean[m] = UI_RGBA((int)(sum[0] / (SWATCH * SWATCH)), (int)(sum[1] / (SWATCH * SWATCH)),
+                          (int)(sum[2] / (SWATCH * SWATCH)), 255);
         out[m] = ui_renderer_create_texture(SWATCH, SWATCH, swatch);
     }
 }
@@ -1398,7 +1404,7 @@ int window_run(cmd_context *ctx, og_error *err) {
     st.ed.console.submit = submit_console_line;
     st.ed.console.submit_user = &st;
     current_window = &st;
-    make_material_swatches(st.ed.material_textures);
+    make_material_swatches(st.ed.material_textures, st.ed.material_colors);
 
     // The first frame lays out the UI, so the viewport's rectangle is known for the camera.
     {

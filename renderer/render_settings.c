@@ -25,5 +25,6 @@ void render_settings_default(render_settings *s) {
                            .sun_pitch = 35.0,
                            .fog_density = 0.0,
                            .culling = 1,
-                           .morph = 1};
+                           .morph = 1,
+                           .auto_materials = 1};
 }

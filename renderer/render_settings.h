@@ -33,6 +33,8 @@ typedef struct render_settings {
     double sun_rotation;       // degrees a second the editor window turns the sun (0: still)
     int tile_grid;             // lines along the edges of the world's tiles (0)
     int level_grid;            // each clipmap level's vertex grid in its level's colour (0)
+    int auto_materials;        // the automatic material rules (grass, rock, snow by height and
+                               // slope) colour unpainted ground; off: a neutral clay (1)
 } render_settings;
 
 void render_settings_default(render_settings *s);

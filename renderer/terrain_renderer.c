@@ -541,6 +541,7 @@ static void set_terrain_uniforms(terrain_renderer *r, const camera *cam, const r
                         &level_tints[0][0]);
     glProgramUniform1i(prog, glGetUniformLocation(prog, "u_view_mode"), s->view);
     glProgramUniform1f(prog, glGetUniformLocation(prog, "u_contour"), (float)s->contours);
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "u_auto_materials"), s->auto_materials);
     glProgramUniform1f(prog, glGetUniformLocation(prog, "u_ocean_level"), (float)p->ocean_level);
     glProgramUniform1f(prog, glGetUniformLocation(prog, "u_max_height"), (float)p->max_height);
     glProgramUniform2f(prog, glGetUniformLocation(prog, "u_tex_period"), (float)TEX_PERIOD_NEAR,

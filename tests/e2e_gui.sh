@@ -55,7 +55,7 @@ ask() {
     alive || return 1
     before=$(wc -l <"$work/out")
     echo "$1" >&3
-    for _ in $(seq 300); do
+    for _ in $(seq "${ask_tries:-300}"); do
         alive || return 1
         local line
         line=$(tail -n +$((before + 1)) "$work/out" | grep -m 1 -- "$2")
@@ -69,7 +69,7 @@ ask() {
 ask_until() { # command pattern want
     local line
     for _ in $(seq 30); do
-        line=$(ask "$1" "$2")
+        line=$(ask_tries=50 ask "$1" "$2") # a line that never comes: 5 s a try, not 30
         if echo "$line" | grep -q -- "$3"; then echo "$line"; return 0; fi
         sleep 0.3
     done
@@ -140,7 +140,8 @@ is_png() { [ -s "$1" ] && [ "$(head -c 4 "$1" | od -An -c | tr -d ' ')" = "211PN
 
 # A window with a viewport of a few hundred pixels keeps software rendering (llvmpipe)
 # fast and leaves the dock room for every section.
-xdotool windowsize --sync "$wid" 900 650
+WIN_H=720
+xdotool windowsize --sync "$wid" 900 $WIN_H
 xdotool windowfocus --sync "$wid" 2>/dev/null
 sleep 0.5
 read -r VX VY VW VH <<<"$(widget Viewport)"
@@ -290,6 +291,7 @@ awk -v a="${r0#radius=}" -v b="${r1#radius=}" 'BEGIN { exit !(b > 1.8 * a && b <
 check "Alt+right drag to the right enlarges the brush about 1% a pixel ($r0 -> $r1)" $?
 line=$(ask tool '^strength='); [ "$line" != "strength=0.5" ]; check "and up raises its strength ($line)" $?
 echo "tool raise radius=20 strength=0.5" >&3
+ask_until tool '^strength=' '^strength=0.5$' >/dev/null # before the key: input is not ordered
 # Set height's Pick button: the next click in the viewport takes the height there.
 key h
 click "Dock/Pick"
@@ -372,6 +374,35 @@ cp "$2/../resources/stamps/hills.png" "$work/my_hills.png"
 echo "stamp_add $work/my_hills.png" >&3
 widget "Dock/Stamps/my_hills" >/dev/null; check "an image made a user stamp shows in the browser (Dock/Stamps/my_hills)" $?
 widget "Dock/Tool: stamp my_hills" >/dev/null; check "and becomes the selected stamp" $?
+# The Layers section: the height layer a tool sculpts, the paint material, the rules.
+click "Dock/Layers"
+click "Dock/Height layers/Detail: fine relief (parallax)"
+line=$(ask_until tool '^target=' '^target=detail$'); check "Layers > Detail makes the tool sculpt the detail layer ($line)" $?
+click "Dock/Height layers/Coarse: the terrain's shape"
+ask_until tool '^target=' '^target=coarse$' >/dev/null; check "Layers > Coarse back to the coarse layer" $?
+# The open section runs below the dock's bottom: the wheel over the dock scrolls it.
+scroll_into_view() { # NAME: wheel down over the dock until NAME lies above the status bar
+    local x y w h
+    for _ in $(seq 12); do
+        read -r x y w h <<<"$(widget "$1")"
+        [ -n "${h:-}" ] && [ $((y + h)) -lt $((WIN_H - 30)) ] && return 0
+        xdotool mousemove --window "$wid" $((x + w / 2)) $((WIN_H / 2)) click 5
+        sleep 0.3
+    done
+    return 1
+}
+scroll_into_view "Dock/Material layer/Automatic material rules"
+check "the wheel scrolls the dock to the material layer" $?
+click "Dock/Material layer/snow"
+line=$(ask_until tool '^material=' '^material=4$'); check "Layers > snow picks paint with snow ($line)" $?
+click "Dock/Material layer/Automatic material rules"
+line=$(ask_until render '^render ' 'auto_materials=off'); check "unticking the automatic rules hides them ($line)" $?
+click "Dock/Material layer/Automatic material rules"
+ask_until render '^render ' 'auto_materials=on' >/dev/null; check "ticking shows them again" $?
+read -r x y w h <<<"$(widget "Dock/")"
+xdotool mousemove --window "$wid" $((x + w / 2)) $((WIN_H / 2)) click --repeat 10 4 # back to the top
+sleep 0.3
+click "Dock/Layers" # closed again
 click "Tools/Paint" && click "Dock/Materials/rock"
 line=$(ask_until tool '^material=' '^material=3$'); check "Tools/Paint and the rock swatch pick paint with material 3 ($line)" $?
 steps0=$(ask history '^steps=')

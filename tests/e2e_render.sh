@@ -107,7 +107,7 @@ for v in wireframe levels height slope; do
 done
 # A stroke shows while it goes on (the coarser levels follow each stroke_to), and its
 # end changes nothing more on screen.
-run "$crater_cam; screenshot $work/open0.png $size; tool raise radius=40 amount=20 strength=1;
+run "$crater_cam; screenshot $work/open0.png $size; tool raise radius=60 amount=40 strength=1;
      stroke_begin; stroke_to $spot_x $spot_z; screenshot $work/open1.png $size; stroke_end;
      screenshot $work/open2.png $size"
 rc=$?; check "a stroke renders while open ($(cat "$work/err"))" $rc
@@ -118,9 +118,10 @@ r=$(rmse "$work/open1.png" "$work/open2.png"); less "$r" 0.05; check "ending it 
 run "screenshot $work/plain.png $size; render contours=50; screenshot $work/contours.png $size;
      render contours=0 tile_grid=on; screenshot $work/tile_grid.png $size;
      render tile_grid=off level_grid=on; screenshot $work/level_grid.png $size;
-     render level_grid=off; screenshot $work/plain_again.png $size"
+     render level_grid=off auto_materials=off; screenshot $work/auto_off.png $size;
+     render auto_materials=on; screenshot $work/plain_again.png $size"
 rc=$?; check "the overlays render ($(cat "$work/err"))" $rc
-for o in contours tile_grid level_grid; do
+for o in contours tile_grid level_grid auto_off; do
     r=$(rmse "$work/plain.png" "$work/$o.png"); less 1 "$r"; check "the $o overlay shows (RMSE $r)" $?
 done
 r=$(rmse "$work/plain.png" "$work/plain_again.png"); less "$r" 0.5; check "with the overlays off the view is as before (RMSE $r)" $?

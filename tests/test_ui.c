@@ -830,6 +830,64 @@ static void test_curve_editor(void **state) {
     drv_free(&d);
 }
 
+// ---- trees and colour swatches ----------------------------------------------------------
+
+typedef struct tree_state {
+    int clicks[3];
+    int open_seen;
+} tree_state;
+
+static void build_tree(drv *d) {
+    tree_state *t = d->user;
+    ui_panel_begin(d->ui, "P", (ui_rect){10, 10, 300, 300});
+    ui_row(d->ui, 1, NULL, 0);
+    t->open_seen = 0;
+    if (ui_tree_push(d->ui, "Node", 1)) {
+        t->open_seen = 1;
+        if (ui_color_swatch(d->ui, "Red", UI_RGBA(255, 0, 0, 255), t->clicks[0] > 0))
+            t->clicks[0]++;
+        if (ui_tree_push(d->ui, "Inner", 0)) {
+            if (ui_button(d->ui, "Deep")) t->clicks[2]++;
+            ui_tree_pop(d->ui);
+        }
+        ui_tree_pop(d->ui);
+    }
+    if (ui_button(d->ui, "After")) t->clicks[1]++;
+    ui_panel_end(d->ui);
+}
+
+static void test_tree_and_swatch(void **state) {
+    (void)state;
+    tree_state t = {{0}, 0};
+    drv d;
+    drv_init(&d, build_tree, &t);
+    // Open by default: its child is named below it and indented; the closed inner node
+    // hides its own child.
+    ui_rect node = rect_of(&d, "P/Node"), red = rect_of(&d, "P/Node/Red");
+    ui_rect after = rect_of(&d, "P/After");
+    assert_true(red.x > node.x + 5 && red.w < node.w);
+    assert_true(after.x == node.x && after.w == node.w); // the indent ends with the node
+    assert_null(ui_widget_find(d.ui, "P/Node/Inner/Deep"));
+    click_widget(&d, "P/Node/Red");
+    assert_int_equal(t.clicks[0], 1);
+    // Opening the inner node shows its child, indented twice.
+    click_widget(&d, "P/Node/Inner");
+    frame(&d);
+    ui_rect deep = rect_of(&d, "P/Node/Inner/Deep");
+    assert_true(deep.x > red.x + 5);
+    click_widget(&d, "P/Node/Inner/Deep");
+    assert_int_equal(t.clicks[2], 1);
+    // Closing the outer node hides everything below it; the row after moves up.
+    click_widget(&d, "P/Node");
+    frame(&d);
+    assert_int_equal(t.open_seen, 0);
+    assert_null(ui_widget_find(d.ui, "P/Node/Red"));
+    assert_true(rect_of(&d, "P/After").y < after.y);
+    click_widget(&d, "P/After");
+    assert_int_equal(t.clicks[1], 1);
+    drv_free(&d);
+}
+
 // ---- sliders --------------------------------------------------------------------------
 
 typedef struct slider_state {
@@ -1747,6 +1805,7 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         T(test_font_atlas),
         T(test_curve_editor),
+        T(test_tree_and_swatch),
         T(test_font_widths_and_fallback),
         T(test_utf8_decode),
         T(test_font_offset_at),

@@ -692,6 +692,54 @@ int ui_section(ui_context *ui, const char *label, int default_open) {
     return s->open;
 }
 
+int ui_tree_push(ui_context *ui, const char *label, int default_open) {
+    ui_id id = ui_get_id(ui, label);
+    slot *s = get_slot(ui, id);
+    if (!s->initialised) s->open = default_open, s->initialised = 1;
+    ui_rect r = ui_next_cell(ui);
+    if (behave(ui, id, r)) s->open = !s->open;
+    if (ui->hot == id) ui_draw_rect(ui->target, r, ui->theme.widget_hot);
+    char head[256];
+    snprintf(head, sizeof head, "%s %.*s", s->open ? "\xe2\x96\xbe" : "\xe2\x96\xb8",
+             (int)label_len(label), label);
+    text_in(ui, r, head, strlen(head), ui->theme.text, 0);
+    record_widget(ui, label, r);
+    if (!s->open) return 0;
+    layout *l = top_layout(ui); // children are indented and named below the node
+    float indent = ui_em(ui, 1.0f);
+    l->body.x += indent;
+    l->body.w -= indent;
+    l->col = l->columns; // they start a new row
+    ui_push_scope(ui, label);
+    return 1;
+}
+
+void ui_tree_pop(ui_context *ui) {
+    ui_pop_scope(ui);
+    layout *l = top_layout(ui);
+    float indent = ui_em(ui, 1.0f);
+    l->body.x -= indent;
+    l->body.w += indent;
+    l->col = l->columns;
+}
+
+int ui_color_swatch(ui_context *ui, const char *label, ui_color color, int on) {
+    ui_id id = ui_get_id(ui, label);
+    ui_rect r = ui_next_cell(ui);
+    int clicked = behave(ui, id, r);
+    if (on || ui->hot == id)
+        ui_draw_rect(ui->target, r, on ? ui->theme.selection : ui->theme.widget_hot);
+    float side = r.h - ui_em(ui, 0.3f), pad = (r.h - side) * 0.5f;
+    ui_rect sw = {r.x + pad, r.y + pad, side * 1.6f, side};
+    ui_draw_rect(ui->target, sw, color);
+    ui_draw_rect_outline(ui->target, sw, ui->theme.border, 1.0f);
+    float text_x = sw.x + sw.w + ui_em(ui, 0.2f);
+    text_in(ui, (ui_rect){text_x, r.y, r.x + r.w - text_x, r.h}, label, label_len(label),
+            ui->theme.text, 0);
+    record_widget(ui, label, r);
+    return clicked;
+}
+
 void ui_section_set(ui_context *ui, const char *label, int open) {
     slot *s = get_slot(ui, ui_get_id(ui, label));
     s->open = open;

@@ -174,6 +174,13 @@ int ui_curve(ui_context *ui, const char *label, float *t, float *v, int *count, 
 void ui_progress(ui_context *ui, double fraction, const char *text);
 // A collapsible section header; returns 1 while open (starts open when default_open).
 int ui_section(ui_context *ui, const char *label, int default_open);
+// A tree node: a row with an arrow that opens and closes it. While open (returns 1) the
+// rows after it are indented and named below it (NODE/child) until ui_tree_pop, which
+// is called only when it returned 1.
+int ui_tree_push(ui_context *ui, const char *label, int default_open);
+void ui_tree_pop(ui_context *ui);
+// A colour swatch with its label beside it, shown selected when on; 1 when clicked.
+int ui_color_swatch(ui_context *ui, const char *label, ui_color color, int on);
 // Opens or closes the section with this label (in the current scope) from the next frame.
 void ui_section_set(ui_context *ui, const char *label, int open);
 // Shows text near the pointer after a short hover over the last widget.

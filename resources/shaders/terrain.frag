@@ -24,6 +24,7 @@ uniform vec4 u_lvl_uv[MAX_LEVELS];     // local (0,0) in metres modulo the textu
 uniform vec4 u_lvl_mat[MAX_LEVELS];    // painted weights: texel of local (0,0), texels per unit, valid
 uniform vec4 u_lvl_grid[MAX_LEVELS];   // tile grid: local (0,0) modulo a tile (xy), a tile in units (z; 0: none)
 uniform int u_overlays;                // 1: the tile grid, 2: the clipmap level grids
+uniform int u_auto_materials;          // 0: unpainted ground in a neutral clay
 uniform vec4 u_lvl_detail[MAX_LEVELS]; // detail: sample of local (0,0), samples per unit, valid
 uniform float u_ocean_level, u_max_height;
 uniform vec2 u_tex_period;             // metres per repeat: near texture, far variation
@@ -209,7 +210,8 @@ void main() {
     vec2 metres_far = luv.zw + v_local * spacing;
     vec2 uv = metres_near / u_tex_period.x, uv_far = metres_far / u_tex_period.y;
 
-    vec3 auto_c = automatic(h, slope, uv, uv_far);
+    // Unpainted ground: the automatic rules, or a neutral clay when they are hidden.
+    vec3 auto_c = u_auto_materials != 0 ? automatic(h, slope, uv, uv_far) : vec3(0.45, 0.42, 0.38);
     vec3 c = auto_c;
     vec4 lm = u_lvl_mat[u_level];
     if (lm.w > 0.0) {
