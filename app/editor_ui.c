@@ -426,6 +426,22 @@ static void falloff_options(editor_ui *e, ui_context *ui, cmd_context *ctx, cons
     ui_row(ui, 1, NULL, 0);
 }
 
+// The tool's seed with a button for another one.
+static void seed_row(editor_ui *e, ui_context *ui, cmd_context *ctx, const char *tip) {
+    const brush *b = &ctx->brush;
+    float cols[2] = {0, ui_em(ui, 4.5f)};
+    ui_row(ui, 2, cols, 0);
+    char line[64];
+    snprintf(line, sizeof line, "Seed: %u##tool_seed", b->seed);
+    ui_label(ui, line);
+    ui_tooltip(ui, tip);
+    if (ui_button(ui, "Random##tool_seed"))
+        runf(e, ctx, "tool %s seed=%u", current_tool(b),
+             (b->seed * 2654435761u + 12345u) % 1000000u);
+    ui_tooltip(ui, "Pick another seed");
+    ui_row(ui, 1, NULL, 0);
+}
+
 static void tool_options(editor_ui *e, ui_context *ui, cmd_context *ctx) {
     const brush *b = &ctx->brush;
     const char *t = current_tool(b);
@@ -459,6 +475,7 @@ static void tool_options(editor_ui *e, ui_context *ui, cmd_context *ctx) {
                        "Metres per noise feature");
             slider_key(e, ui, ctx, "Octaves", "octaves", b->noise_octaves, 1, 12, "%.1f",
                        "Layers of finer noise");
+            seed_row(e, ui, ctx, "The noise pattern's seed");
         }
         break;
     case BRUSH_FLATTEN:
@@ -472,6 +489,13 @@ static void tool_options(editor_ui *e, ui_context *ui, cmd_context *ctx) {
         ui_tooltip(ui, "Pick the height from the terrain: the next click in the viewport takes "
                        "the height there (Esc: no)");
         ui_row(ui, 1, NULL, 0);
+        if (b->tool == BRUSH_FLATTEN) {
+            static const char *const modes[] = {"both", "raise", "lower"};
+            int m = (int)b->flatten;
+            if (ui_combo(ui, "Mode", &m, modes, 3)) runf(e, ctx, "tool flatten mode=%s", modes[m]);
+            ui_tooltip(ui, "both: raise and lower toward the height; raise: only fill up to it; "
+                           "lower: only cut down to it");
+        }
         break;
     }
     case BRUSH_TERRACE:
@@ -489,6 +513,17 @@ static void tool_options(editor_ui *e, ui_context *ui, cmd_context *ctx) {
     case BRUSH_HYDRAULIC:
         slider_key(e, ui, ctx, "Droplets", "droplets", b->hydraulic.droplets, 1, 20000, "%.0f",
                    "Water droplets per dab");
+        slider_key(e, ui, ctx, "Erosion", "erosion", b->hydraulic.erosion, 0, 1, "%.2f",
+                   "How fast the water takes material away where it carries less than it can");
+        slider_key(e, ui, ctx, "Deposition", "deposition", b->hydraulic.deposition, 0, 1, "%.2f",
+                   "How fast it lays material down where it carries more than it can");
+        slider_key(e, ui, ctx, "Evaporation", "evaporation", b->hydraulic.evaporation, 0, 0.2,
+                   "%.3f", "The water lost at each step (shorter, more local channels)");
+        slider_key(e, ui, ctx, "Capacity", "capacity", b->hydraulic.capacity, 0, 20, "%.1f",
+                   "How much sediment fast water can carry");
+        slider_key(e, ui, ctx, "Inertia", "inertia", b->hydraulic.inertia, 0, 1, "%.2f",
+                   "How much of its direction a droplet keeps (0: straight downhill)");
+        seed_row(e, ui, ctx, "The droplets' seed");
         break;
     case BRUSH_PAINT: {
         static const char *const materials[] = {"automatic", "sand", "grass",  "rock",

@@ -1007,8 +1007,12 @@ static int render_terrain(window_state *st, int vw, int vh, int arrived) {
     viewport *v = st->v;
     if (vw <= 0 || vh <= 0) return 0;
     update_cursor(st);
+    // The cursor is drawn with the terrain: while it moves the frame is made at the
+    // moving scale too, so it follows the pointer at the frame-time goal.
     int moving = memcmp(&v->cam, &st->drawn_cam, sizeof v->cam) != 0 || st->drag == DRAG_SCULPT ||
-                 v->settings.sun_rotation != 0 || st->drag == DRAG_ORBIT || keys_held(st);
+                 v->settings.sun_rotation != 0 ||
+                 memcmp(&v->cursor, &st->drawn_cursor, sizeof v->cursor) != 0 ||
+                 st->drag == DRAG_ORBIT || keys_held(st);
     float scale = moving && st->dynamic_res ? st->res_scale : 1.0f;
     int w = (int)fmaxf(1.0f, roundf(vw * scale)), h = (int)fmaxf(1.0f, roundf(vh * scale));
     int changed = !st->terrain_valid || arrived || st->world_changed ||
@@ -1512,7 +1516,7 @@ int window_run(cmd_context *ctx, og_error *err) {
                 drawn = 1;
                 st.ui_dirty = 1; // the status bar shows the new frame's figures
             }
-            st.dirty = 0;
+            st.dirty = st.drawn_scale < 1.0f; // a lowered frame: full size once all is still
         }
         if (drawn) {
             compose(&st, dl, w, h);
