@@ -3,6 +3,7 @@
 #include "editor/gen/gen.h"
 #include "editor/params/world_params.h"
 #include "editor/world/history.h"
+#include "io/tile_store.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -127,6 +128,8 @@ static void menus(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v, u
         snprintf(redo_id, sizeof redo_id, "%s##Redo", redo);
         if (ui_menu_item(ui, undo_id, "Ctrl+Z", pos > 0)) editor_ui_run(e, ctx, "undo");
         if (ui_menu_item(ui, redo_id, "Ctrl+Shift+Z", pos < n)) editor_ui_run(e, ctx, "redo");
+        ui_menu_separator(ui);
+        if (ui_menu_item(ui, "History", NULL, 1)) e->history_request = 1; // the dock's section
         ui_menu_end(ui);
     }
     if (ui_menu_begin(ui, "View")) {
@@ -153,6 +156,21 @@ static void menus(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v, u
             if (ui_menu_item(ui, label, NULL, v->settings.contours != contours[i]))
                 runf(e, ctx, "render contours=%g", contours[i]);
         }
+        static const char *const quality[] = {"Parallax quality: low", "Parallax quality: high"};
+        static const int steps[] = {4, 16};
+        for (int i = 0; i < 2; i++)
+            if (ui_menu_item(ui, quality[i], NULL, v->settings.parallax_steps != steps[i]))
+                runf(e, ctx, "render quality=%d", steps[i]);
+        static const char *const fogs[] = {"Fog: automatic", "Fog: light", "Fog: thick"};
+        static const double densities[] = {0, 0.0002, 0.002};
+        for (int i = 0; i < 3; i++)
+            if (ui_menu_item(ui, fogs[i], NULL, v->settings.fog_density != densities[i]))
+                runf(e, ctx, "render fog=%g", densities[i]);
+        static const char *const suns[] = {"Sun: morning", "Sun: noon", "Sun: evening"};
+        static const double sun_at[3][2] = {{90, 15}, {135, 60}, {270, 12}};
+        for (int i = 0; i < 3; i++)
+            if (ui_menu_item(ui, suns[i], NULL, 1))
+                runf(e, ctx, "render sun=%g,%g", sun_at[i][0], sun_at[i][1]);
         if (ui_menu_item(ui,
                          v->settings.tile_grid ? "Tile grid: on##Tiles" : "Tile grid: off##Tiles",
                          NULL, 1))
@@ -878,7 +896,8 @@ static ui_rect text_dialog_rect(const ui_context *ui, const char *const *lines, 
 
 static void text_dialog(ui_context *ui, const char *name, const char *const *lines, int n,
                         int *show, float width, float height) {
-    ui_rect r = text_dialog_rect(ui, lines, n, width, height);
+    ui_rect r = n == 3 ? centred(width, height, ui_em(ui, 34), ui_em(ui, 1.45f * (3 + 3)))
+                       : text_dialog_rect(ui, lines, n, width, height);
     ui_panel_begin(ui, name, r);
     ui_row(ui, 1, NULL, 0);
     for (int i = 0; i < n; i++)
@@ -895,7 +914,7 @@ static ui_rect dialog_rect(const editor_ui *e, const ui_context *ui, float width
                        fminf(height * 0.85f, ui_em(ui, 24)));
     if (e->pending != PENDING_NONE) return centred(width, height, ui_em(ui, 22), ui_em(ui, 6));
     if (e->show_help) return text_dialog_rect(ui, help_lines, HELP_LINES, width, height);
-    if (e->show_about) return centred(width, height, ui_em(ui, 28), ui_em(ui, 1.45f * (3 + 2.5f)));
+    if (e->show_about) return centred(width, height, ui_em(ui, 34), ui_em(ui, 1.45f * (3 + 3)));
     return (ui_rect){0, 0, 0, 0};
 }
 
@@ -931,6 +950,10 @@ ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport
     if (ui_section(ui, "Stamps", 0)) stamp_browser_draw(&e->stamps, ui, ctx, &picked);
     if (ui_section(ui, "Layers", 0)) layers_panel(e, ui, ctx, v);
     if (ui_section(ui, "World", 1)) world_panel(e, ui, ctx);
+    if (e->history_request) { // Edit > History: the section opens
+        ui_section_set(ui, "History", 1);
+        e->history_request = 0;
+    }
     if (ui_section(ui, "History", 1)) history_panel(e, ui, ctx);
     ui_panel_end(ui);
     status_bar(ui, ctx, v, info, &e->stamps, (ui_rect){0, height - status, width, status});
@@ -947,8 +970,10 @@ ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport
     if (e->show_about) {
         char gl[256];
         snprintf(gl, sizeof gl, "Renderer: %s", info->gl_renderer ? info->gl_renderer : "?");
-        const char *about[] = {"Orogen 0.1: a terrain editor", gl,
-                               "OpenGL 4.5 core, GLFW, SQLite, zstd, OpenImageIO, stb_truetype"};
+        char libs[256];
+        snprintf(libs, sizeof libs, "GLFW %s; %s; OpenImageIO, stb_truetype, DejaVu fonts",
+                 e->glfw_version ? e->glfw_version : "?", tile_store_library_versions());
+        const char *about[] = {"Orogen 0.1: a terrain editor", gl, libs};
         text_dialog(ui, "About", about, 3, &e->show_about, width, height);
     }
     if (e->files.open)

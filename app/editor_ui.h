@@ -51,6 +51,8 @@ typedef struct editor_ui {
     int camera_mode;                   // 0 fly, 1 orbit, 2 walk (the window's, shown in View)
     int camera_mode_request;           // View > Camera asked for one (-1: none)
     int dynamic_resolution;            // the window lowers the resolution while moving
+    int history_request;               // Edit > History: open the History section
+    const char *glfw_version;          // for Help > About
     int picking_height;                // the next click in the viewport picks the tool's height
     long long tiles_stored;            // the World panel's count of stored tiles, and when
     double tiles_counted_at;           // it was taken (seconds)

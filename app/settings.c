@@ -16,6 +16,7 @@ void app_settings_default(app_settings *s) {
     s->ui_scale = 1.0;
     s->field_of_view = 60.0;
     s->frame_target_ms = 50.0;
+    s->fly_speed = 50.0;
 }
 
 void app_settings_path(char *buf, size_t size, const char *file) {
@@ -82,6 +83,8 @@ void app_settings_load(app_settings *s, const char *path) {
             read_number(path, e, 1, 170, &s->field_of_view);
         else if (strcmp(e->key, "frame_target_ms") == 0)
             read_number(path, e, 5, 1000, &s->frame_target_ms);
+        else if (strcmp(e->key, "fly_speed") == 0)
+            read_number(path, e, 0.01, 1e7, &s->fly_speed);
         else if (strcmp(e->key, "tool") == 0)
             snprintf(s->tool, sizeof s->tool, "%.31s", e->value);
         else if (strncmp(e->key, "tool_", 5) == 0) {
@@ -130,6 +133,8 @@ int app_settings_save(const app_settings *s, const char *path, og_error *err) {
     PUT("field_of_view = %s;\n", num);
     parse_format_f64(num, sizeof num, s->frame_target_ms);
     PUT("frame_target_ms = %s;\n", num);
+    parse_format_f64(num, sizeof num, s->fly_speed);
+    PUT("fly_speed = %s;\n", num);
     for (int i = 0; i < s->recent_count; i++)
         if (!strpbrk(s->recent[i], ";#\n")) PUT("recent_%d = %s;\n", i, s->recent[i]);
     if (s->tool[0] && !strpbrk(s->tool, ";#\n= ")) PUT("tool = %s;\n", s->tool);

@@ -22,6 +22,7 @@ typedef struct app_settings {
     double ui_scale;        // the user's UI scale, times the monitor's (1)
     double field_of_view;   // degrees (60)
     double frame_target_ms; // dynamic resolution's goal while moving (50)
+    double fly_speed;       // the camera's flying speed, m/s (50)
     char recent[SETTINGS_RECENT][1024];
     int recent_count;
     // Each tool's settings as last used, "NAME key=value ..." (tool_NAME in the file),

@@ -1299,6 +1299,7 @@ static void save_settings(window_state *st) {
         app_settings_add_recent(s, st->ed.recent[i]);
     app_settings_add_recent(s, world_path(st->ctx->world));
     tool_settings_capture(st->ctx, s);
+    s->fly_speed = st->cc.fly_speed;
     og_error err = {{0}};
     if (app_settings_save(s, st->settings_path, &err) != 0)
         fprintf(stderr, "orogen: settings not saved: %s\n", err.msg);
@@ -1375,6 +1376,8 @@ int window_run(cmd_context *ctx, og_error *err) {
         snprintf(st.ed.recent[i], sizeof st.ed.recent[0], "%s", settings.recent[i]);
     st.ed.recent_count = settings.recent_count;
     st.target_ms = settings.frame_target_ms;
+    st.cc.fly_speed = settings.fly_speed; // the wheel with the right button held changes it
+    st.ed.glfw_version = glfwGetVersionString();
     st.ed.ui_scale = settings.ui_scale;
     st.drawn_scale = 1.0f;
     st.gl_renderer = (const char *)glGetString(GL_RENDERER);

@@ -854,3 +854,9 @@ int tile_store_clear(tile_store *store, og_error *err) {
     pthread_mutex_unlock(&store->lock);
     return rc;
 }
+
+const char *tile_store_library_versions(void) {
+    static char text[96];
+    snprintf(text, sizeof text, "SQLite %s, zstd %s", sqlite3_libversion(), ZSTD_versionString());
+    return text;
+}

@@ -32,6 +32,8 @@ typedef enum tile_store_status {
 tile_store *tile_store_open(const char *path, og_error *err);
 void tile_store_close(tile_store *store);
 const char *tile_store_path(const tile_store *store);
+// The SQLite and zstd versions the store runs with ("SQLite 3.40.1, zstd 1.5.4").
+const char *tile_store_library_versions(void);
 
 // Reads one tile into out (bytes must equal tile_layer_bytes(key.layer)).
 tile_store_status tile_store_get(tile_store *store, tile_key key, void *out, size_t bytes,

@@ -222,6 +222,11 @@ hash_is "$h0"; check "Ctrl+Z undoes the stroke" $?
 click "Dock/Steps/1 raise stroke"
 hash_is "$h1"; check "clicking the undone step in History redoes it" $?
 
+# 4b. Edit > History opens the History section (closed here first).
+click "Dock/History" && widget_gone "Dock/Steps/1 raise stroke"
+click "Menu/Edit" && click "Menu/Edit/History"
+widget "Dock/Steps/1 raise stroke" >/dev/null; check "Edit > History opens the History section" $?
+
 # 5. The World panel: Random picks another seed for the next Generate; Generate applies it.
 s0=$(ask nparams '^seed = ')
 click "Dock/Random"
@@ -360,7 +365,12 @@ hash_is "$hl0"; check "undo takes it back" $?
 read -r _ sx _ sz <<<"$(ask "pick $((VW / 2)) $((VH / 2)) $VW $VH" '^pick ')"
 box_hash() { ask "hash $(awk -v x="$sx" -v z="$sz" 'BEGIN { print x - 150, z - 150, x + 150, z + 150 }')" '^[0-9a-f]\{16\}$'; }
 hs0=$(box_hash)
-click "Tools/Stamp" && click "Dock/Stamps/crater"
+click "Tools/Stamp"
+sleep 1 # the browser renders its thumbnails; the dock's layout settles (a scroll bar)
+for _ in 1 2 3; do # picked once the tool section names it
+    click "Dock/Stamps/crater"
+    widget "Dock/Tool: stamp crater" 8 >/dev/null && break
+done
 xdotool mousemove --window "$wid" $((VX + VW / 2)) $((VY + VH / 2)) click 1
 line=$(ask_until history '^\*\? *[0-9]* ' 'stamp crater') || line=$(ask history 'stamp crater')
 hs1=$hs0

@@ -205,8 +205,9 @@ status=1
 for _ in $(seq 200); do kill -0 $app 2>/dev/null || break; sleep 0.1; done
 if ! kill -0 $app 2>/dev/null; then wait $app; status=$?; fi
 [ $status = 0 ]; check "exit closes the editor with status 0" $?
-grep -q "^recent_0 = $work/saved.world;" "$work/config/orogen/settings" && grep -q '^width = ' "$work/config/orogen/settings"
-rc=$?; check "the editor's settings are kept for the next run (window size, recent worlds): $(tr "\n" " " <"$work/config/orogen/settings" 2>&1)" $rc
+grep -q "^recent_0 = $work/saved.world;" "$work/config/orogen/settings" && grep -q '^width = ' "$work/config/orogen/settings" &&
+    grep -q '^fly_speed = ' "$work/config/orogen/settings"
+rc=$?; check "the editor's settings are kept for the next run (window size, recent worlds, fly speed): $(tr "\n" " " <"$work/config/orogen/settings" 2>&1)" $rc
 grep -q '^tool_smooth = radius=33 .*falloff=tip' "$work/config/orogen/settings" &&
     grep -q '^tool = raise;' "$work/config/orogen/settings"
 check "each tool's settings are written to the settings" $?
