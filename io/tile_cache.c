@@ -17,6 +17,7 @@ typedef struct entry {
     int dirty;   // changed since last written to the store
     int edited;  // loaded from a store, or written since it was generated
     int invalid; // the source said the key lies outside the world
+    int writing; // being written to the store with the lock released: writers wait
     void *data;
     struct entry *hnext;         // hash chain
     struct entry *lprev, *lnext; // LRU list of READY entries, most recent first
@@ -160,14 +161,17 @@ static void free_entry(tile_cache *c, entry *e) {
 // Writes one dirty entry back with the lock released. Returns 0 on success.
 static int write_back(tile_cache *c, entry *e) {
     e->pins++;
+    e->writing++; // the store reads the payload unlocked: no writer may touch it
     tile_key key = e->key;
     void *data = e->data;
-    e->dirty = 0; // a writer that dirties it meanwhile sets it again
+    e->dirty = 0;
     pthread_mutex_unlock(&c->lock);
     og_error err = {{0}};
     int rc = tile_store_put(c->desc.store, key, data, &err);
     pthread_mutex_lock(&c->lock);
     e->pins--;
+    e->writing--;
+    pthread_cond_broadcast(&c->done);
     if (rc != 0) {
         e->dirty = 1;
         warnf(c, "tile cache: could not write back an edited tile, keeping it in memory: %s%s",
@@ -423,7 +427,7 @@ static int acquire(tile_cache *c, tile_key key, tile_view *view, int write, og_e
         return og_error_set(err, "tile cache: out of memory");
     }
     e->pins++; // a waiter: it must not be evicted between READY and our wake-up
-    while (e->state != ENTRY_READY)
+    while (e->state != ENTRY_READY || (write && e->writing))
         pthread_cond_wait(&c->done, &c->lock);
     e->pins--;
     int rc = 0;
@@ -492,6 +496,7 @@ int tile_cache_flush(tile_cache *c, og_error *err) {
     for (entry *e = c->lru_head; e; e = e->lnext) {
         if (!e->dirty) continue;
         e->pins++;
+        e->writing++;
         e->dirty = 0;
         pinned[k] = e;
         writes[k++] = (tile_store_write){e->key, e->data};
@@ -501,8 +506,10 @@ int tile_cache_flush(tile_cache *c, og_error *err) {
     pthread_mutex_lock(&c->lock);
     for (size_t i = 0; i < n; i++) {
         pinned[i]->pins--;
+        pinned[i]->writing--;
         if (rc != 0) pinned[i]->dirty = 1; // nothing landed: still unsaved
     }
+    pthread_cond_broadcast(&c->done);
     if (rc == 0) c->counters.written += n;
     pthread_mutex_unlock(&c->lock);
     free(writes);

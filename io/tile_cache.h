@@ -72,6 +72,7 @@ tile_status tile_cache_request(tile_cache *cache, tile_key key, tile_view *view)
 // Blocks until the tile is resident and pins it. Returns -1 for keys outside the world.
 int tile_cache_acquire(tile_cache *cache, tile_key key, tile_view *view, og_error *err);
 // As acquire, for writing: the tile is marked dirty (written back before eviction).
+// Waits while the tile is being written to the store, which reads it unlocked.
 int tile_cache_acquire_write(tile_cache *cache, tile_key key, tile_view *view, og_error *err);
 void tile_cache_release(tile_cache *cache, tile_view *view);
 // Forgets a resident tile without writing it back, so the next request loads or

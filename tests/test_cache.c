@@ -1,6 +1,7 @@
 // Tile cache: the budget holds over an area far larger than it, requests never
 // block and offer coarser levels, dirty tiles survive eviction, corrupt stored
-// tiles fall back to the generated terrain.
+// tiles fall back to the generated terrain, edits made while tiles are written
+// back are kept.
 #include "editor/gen/gen.h"
 #include "editor/world/world.h"
 #include "io/tile_cache.h"
@@ -236,6 +237,82 @@ static void test_dirty_tiles_written_back_before_eviction(void **state) {
     test_rmtree(dir);
 }
 
+// Writers keep editing tiles while the workers evict them, writing each back to
+// the store with the cache unlocked: a writer must never change a tile the store is
+// reading (TSan watches this test), and no edit may be lost.
+typedef struct writer_args {
+    tile_cache *cache;
+    int row, rounds;
+    float last[4]; // what this writer last wrote into each tile of its row
+} writer_args;
+
+// Edits tiles of one row in a scrambled order, so a tile being evicted (written
+// back) is often the next one asked for.
+static void *edit_row_of_tiles(void *arg) {
+    writer_args *a = arg;
+    og_error err;
+    uint32_t rng = 12345u + (uint32_t)a->row;
+    for (int r = 1; r <= a->rounds; r++) {
+        rng = rng * 1664525u + 1013904223u;
+        int tx = (int)(rng >> 30);
+        tile_view v;
+        if (tile_cache_acquire_write(a->cache, (tile_key){0, 0, 0, tx, a->row}, &v, &err))
+            return "acquire_write failed";
+        float *h = v.data;
+        for (size_t k = 0; k < TILE_SAMPLES; k++)
+            h[k] = (float)r;
+        a->last[tx] = (float)r;
+        tile_cache_release(a->cache, &v);
+    }
+    return NULL;
+}
+
+static void test_edits_during_write_back_are_kept(void **state) {
+    (void)state;
+    const char *dir = test_tmpdir("cache");
+    char path[4200];
+    snprintf(path, sizeof path, "%s/w.tiles", dir);
+    og_error err;
+    tile_store *store = tile_store_open(path, &err);
+    assert_non_null(store);
+    // Room for five of the eight tiles being edited: most rounds evict one.
+    tile_cache *c = tile_cache_create(
+        &(tile_cache_desc){.budget_bytes = 5 * tile_layer_bytes(TILE_LAYER_COARSE),
+                           .workers = 2,
+                           .source = plain_source,
+                           .store = store},
+        &err);
+    assert_non_null(c);
+    writer_args args[2] = {{c, 0, 150, {0}}, {c, 1, 150, {0}}};
+    pthread_t th[2];
+    for (int i = 0; i < 2; i++)
+        assert_int_equal(pthread_create(&th[i], NULL, edit_row_of_tiles, &args[i]), 0);
+    for (int i = 0; i < 2; i++) {
+        void *failed;
+        pthread_join(th[i], &failed);
+        assert_null(failed);
+    }
+    tile_cache_stats st;
+    tile_cache_stats_get(c, &st);
+    assert_true(st.written >= 8);
+    assert_int_equal(tile_cache_flush(c, &err), 0);
+    assert_int_equal(tile_cache_destroy(c, &err), 0);
+    // Every tile in the store holds its writer's last edit, whole.
+    float *h = malloc(tile_layer_bytes(TILE_LAYER_COARSE));
+    for (int row = 0; row < 2; row++)
+        for (int tx = 0; tx < 4; tx++) {
+            if (args[row].last[tx] == 0.0f) continue; // never picked
+            assert_int_equal(tile_store_get(store, (tile_key){0, 0, 0, tx, row}, h,
+                                            tile_layer_bytes(TILE_LAYER_COARSE), &err),
+                             TILE_STORE_OK);
+            for (size_t k = 0; k < TILE_SAMPLES; k += 997)
+                assert_true(h[k] == args[row].last[tx]);
+        }
+    free(h);
+    tile_store_close(store);
+    test_rmtree(dir);
+}
+
 typedef struct warnings {
     char last[2048];
     int count;
@@ -293,6 +370,7 @@ int main(void) {
         cmocka_unit_test(test_budget_holds_over_large_area),
         cmocka_unit_test(test_request_never_blocks_and_falls_back),
         cmocka_unit_test(test_dirty_tiles_written_back_before_eviction),
+        cmocka_unit_test(test_edits_during_write_back_are_kept),
         cmocka_unit_test(test_corrupt_stored_tile_falls_back),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
