@@ -4,18 +4,21 @@
 // is built as the module liborogen_image.so and opened with dlopen here.
 #include "io/image_read.h"
 
+#include "io/module_load.h"
+
 #include <dlfcn.h>
-#include <limits.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <string.h>
-#include <unistd.h>
 
 typedef int (*read_fn)(const char *, float **, int *, int *, og_error *);
 typedef int (*write_fn)(const char *, const float *, int, int, og_error *);
 typedef int (*read_rgb8_fn)(const char *, unsigned char **, int *, int *, og_error *);
 typedef int (*write_rgb8_fn)(const char *, const unsigned char *, int, int, og_error *);
+typedef int (*read_channel_fn)(const char *, const char *, int, float **, int *, int *, int *,
+                               int *, char *, size_t, og_error *);
+typedef int (*write_samples_fn)(const char *, const float *, int, int, int, const char *,
+                                og_error *);
 
 static struct {
     pthread_once_t once;
@@ -23,51 +26,32 @@ static struct {
     write_fn write;
     read_rgb8_fn read_rgb8;
     write_rgb8_fn write_rgb8;
+    read_channel_fn read_channel;
+    write_samples_fn write_samples;
     char why[1024];
 } module = {.once = PTHREAD_ONCE_INIT};
 
-static void *try_open(const char *path) {
-    if (!path || !*path) return NULL;
-    void *h = dlopen(path, RTLD_NOW | RTLD_LOCAL);
-    if (!h) snprintf(module.why, sizeof module.why, "%s", dlerror());
-    return h;
-}
-
 static void load_module(void) {
-    // $OROGEN_IMAGE_MODULE, then the installed lib/orogen beside bin/, then the build tree.
-    char installed[PATH_MAX + 64] = "";
-    char exe[PATH_MAX];
-    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
-    if (n > 0) {
-        exe[n] = 0;
-        char *slash = strrchr(exe, '/');
-        if (slash) *slash = 0;
-        snprintf(installed, sizeof installed, "%s/../lib/orogen/liborogen_image.so", exe);
-    }
-    const char *candidates[] = {getenv("OROGEN_IMAGE_MODULE"), installed,
+    void *h = module_open("OROGEN_IMAGE_MODULE", "liborogen_image.so",
 #ifdef OROGEN_IMAGE_MODULE_PATH
-                                OROGEN_IMAGE_MODULE_PATH
+                          OROGEN_IMAGE_MODULE_PATH,
 #else
-                                NULL
+                          NULL,
 #endif
-    };
-    snprintf(module.why, sizeof module.why, "liborogen_image.so not found");
-    for (size_t i = 0; i < sizeof candidates / sizeof candidates[0]; i++) {
-        if (!candidates[i] || access(candidates[i], R_OK) != 0) continue;
-        void *h = try_open(candidates[i]);
-        if (!h) continue;
-        module.read = (read_fn)dlsym(h, "orogen_image_module_read_luminance");
-        module.write = (write_fn)dlsym(h, "orogen_image_module_write_gray16");
-        module.read_rgb8 = (read_rgb8_fn)dlsym(h, "orogen_image_module_read_rgb8");
-        module.write_rgb8 = (write_rgb8_fn)dlsym(h, "orogen_image_module_write_rgb8");
-        if (module.read && module.write && module.read_rgb8 && module.write_rgb8) return;
-        // An older module lacks the newer entry points: all or nothing.
-        snprintf(module.why, sizeof module.why, "%s is not Orogen's image module", candidates[i]);
-        module.read = NULL;
-        module.write = NULL;
-        module.read_rgb8 = NULL;
-        module.write_rgb8 = NULL;
-    }
+                          module.why, sizeof module.why);
+    if (!h) return;
+    module.read = (read_fn)dlsym(h, "orogen_image_module_read_luminance");
+    module.write = (write_fn)dlsym(h, "orogen_image_module_write_gray16");
+    module.read_rgb8 = (read_rgb8_fn)dlsym(h, "orogen_image_module_read_rgb8");
+    module.write_rgb8 = (write_rgb8_fn)dlsym(h, "orogen_image_module_write_rgb8");
+    module.read_channel = (read_channel_fn)dlsym(h, "orogen_image_module_read_channel");
+    module.write_samples = (write_samples_fn)dlsym(h, "orogen_image_module_write_samples");
+    if (module.read && module.write && module.read_rgb8 && module.write_rgb8 &&
+        module.read_channel && module.write_samples)
+        return;
+    // An older module lacks the newer entry points: all or nothing.
+    snprintf(module.why, sizeof module.why, "liborogen_image.so is not Orogen's image module");
+    module.read = NULL;
 }
 
 static int ready(const char *path, og_error *err) {
@@ -99,4 +83,20 @@ int image_read_rgb8(const char *path, unsigned char **rgb, int *width, int *heig
     *width = *height = 0;
     if (ready(path, err) != 0) return -1;
     return module.read_rgb8(path, rgb, width, height, err);
+}
+
+int image_read_channel(const char *path, const char *channel, int max_size, float **samples,
+                       int *width, int *height, int *kind, int *bits, char *desc, size_t desc_len,
+                       og_error *err) {
+    *samples = NULL;
+    *width = *height = 0;
+    if (ready(path, err) != 0) return -1;
+    return module.read_channel(path, channel, max_size, samples, width, height, kind, bits, desc,
+                               desc_len, err);
+}
+
+int image_write_samples(const char *path, const float *samples, int width, int height,
+                        image_sample_format format, const char *channel, og_error *err) {
+    if (ready(path, err) != 0) return -1;
+    return module.write_samples(path, samples, width, height, (int)format, channel, err);
 }

@@ -5,9 +5,11 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <exception>
@@ -37,7 +39,8 @@ std::string one_line(std::string s) {
 }
 
 // Opens path and checks what every reader needs: a flat 2D image within the size limit.
-int open_checked(const char *path, std::unique_ptr<OIIO::ImageInput> &in, og_error *err) {
+int open_checked(const char *path, std::unique_ptr<OIIO::ImageInput> &in, og_error *err,
+                 int max_size = IMAGE_MAX_SIZE) {
     struct stat st;
     if (stat(path, &st) != 0)
         return og_error_set(err, "%s: cannot open: %s", path, strerror(errno));
@@ -56,9 +59,9 @@ int open_checked(const char *path, std::unique_ptr<OIIO::ImageInput> &in, og_err
     if (w <= 0 || h <= 0 || spec.nchannels <= 0)
         return og_error_set(err, "%s: image has zero size (%d x %d, %d channels)", path, w, h,
                             spec.nchannels);
-    if (w > IMAGE_MAX_SIZE || h > IMAGE_MAX_SIZE)
+    if (w > max_size || h > max_size)
         return og_error_set(err, "%s: image is %d x %d, larger than the %d x %d limit", path, w, h,
-                            IMAGE_MAX_SIZE, IMAGE_MAX_SIZE);
+                            max_size, max_size);
     if (spec.tile_width > 0 && spec.tile_height <= 0)
         return og_error_set(err, "%s: tiled image with tile height %d", path, spec.tile_height);
     return 0;
@@ -228,6 +231,187 @@ int read_rgb8_impl(const char *path, unsigned char **rgb, int *width, int *heigh
     return 0;
 }
 
+// One channel in its stored type, converted to float without normalising: 16-bit
+// 40000 reads as 40000.0, so the caller maps heights from what the file holds.
+int read_channel_impl(const char *path, const char *channel, int max_size, float **samples,
+                      int *width, int *height, int *kind, int *bits, char *desc, size_t desc_len,
+                      og_error *err) {
+    std::unique_ptr<OIIO::ImageInput> in;
+    if (open_checked(path, in, err, max_size) != 0) return -1;
+    const OIIO::ImageSpec spec = in->spec();
+    const int w = spec.width, h = spec.height;
+    int ch = 0;
+    if (channel && *channel) {
+        ch = spec.channelindex(channel);
+        if (ch < 0) {
+            std::string names;
+            for (const auto &n : spec.channelnames)
+                names += (names.empty() ? "" : ", ") + n;
+            return og_error_set(err, "%s: no channel named '%s' (it has %s)", path, channel,
+                                names.c_str());
+        }
+    }
+    OIIO::TypeDesc type = spec.channelformat(ch);
+    switch (type.basetype) {
+    case OIIO::TypeDesc::UINT8:
+    case OIIO::TypeDesc::UINT16:
+    case OIIO::TypeDesc::UINT32:
+        *kind = 0;
+        break;
+    case OIIO::TypeDesc::INT8:
+    case OIIO::TypeDesc::INT16:
+    case OIIO::TypeDesc::INT32:
+        *kind = 1;
+        break;
+    case OIIO::TypeDesc::HALF:
+    case OIIO::TypeDesc::FLOAT:
+    case OIIO::TypeDesc::DOUBLE:
+        *kind = 2;
+        break;
+    default:
+        return og_error_set(err, "%s: channel %d has sample type %s, which is not a height", path,
+                            ch, type.c_str());
+    }
+    *bits = (int)type.size() * 8;
+    const char *chname = ch < (int)spec.channelnames.size() ? spec.channelnames[ch].c_str() : "?";
+    snprintf(desc, desc_len, "%s %s, channel %s of %d", in->format_name(), type.c_str(), chname,
+             spec.nchannels);
+    // Stored integers are read as 32-bit of the same signedness (OIIO widens them
+    // without scaling only within a type: read native, convert here).
+    const size_t elem = type.size();
+    int band = BAND_ROWS;
+    if (spec.tile_width > 0) band = std::max(1, BAND_ROWS / spec.tile_height) * spec.tile_height;
+    std::unique_ptr<float, free_deleter> out(
+        static_cast<float *>(std::malloc(sizeof(float) * (size_t)w * (size_t)h)));
+    if (!out) return og_error_set(err, "%s: out of memory for %d x %d samples", path, w, h);
+    std::vector<unsigned char> buf((size_t)band * (size_t)w * elem);
+    for (int y0 = 0; y0 < h; y0 += band) {
+        const int y1 = std::min(h, y0 + band);
+        bool ok = spec.tile_width > 0
+                      ? in->read_tiles(0, 0, spec.x, spec.x + w, spec.y + y0, spec.y + y1, spec.z,
+                                       spec.z + 1, ch, ch + 1, type, buf.data())
+                      : in->read_scanlines(0, 0, spec.y + y0, spec.y + y1, spec.z, ch, ch + 1, type,
+                                           buf.data());
+        if (!ok)
+            return og_error_set(err, "%s: cannot read samples (%s)", path,
+                                one_line(in->geterror()).c_str());
+        const size_t n = (size_t)(y1 - y0) * w;
+        float *dst = out.get() + (size_t)y0 * w;
+        const unsigned char *src = buf.data();
+        for (size_t i = 0; i < n; i++) {
+            const unsigned char *p = src + i * elem;
+            float v;
+            switch (type.basetype) {
+            case OIIO::TypeDesc::UINT8:
+                v = *p;
+                break;
+            case OIIO::TypeDesc::INT8:
+                v = (float)*(const int8_t *)p;
+                break;
+            case OIIO::TypeDesc::UINT16:
+                v = *(const uint16_t *)(const void *)p;
+                break;
+            case OIIO::TypeDesc::INT16:
+                v = *(const int16_t *)(const void *)p;
+                break;
+            case OIIO::TypeDesc::UINT32:
+                v = (float)*(const uint32_t *)(const void *)p;
+                break;
+            case OIIO::TypeDesc::INT32:
+                v = (float)*(const int32_t *)(const void *)p;
+                break;
+            case OIIO::TypeDesc::HALF: {
+                float f;
+                OIIO::convert_pixel_values(type, p, OIIO::TypeFloat, &f, 1);
+                v = f;
+                break;
+            }
+            case OIIO::TypeDesc::FLOAT:
+                std::memcpy(&v, p, 4);
+                break;
+            default:
+                v = (float)*(const double *)(const void *)p;
+                break;
+            }
+            dst[i] = v; // NaN / Inf stay: the caller reports or fills them
+        }
+    }
+    in->close();
+    *samples = out.release();
+    *width = w;
+    *height = h;
+    return 0;
+}
+
+// Writes one channel atomically (temp file beside it, fsync, rename). format: 0 =
+// uint16 from values already in 0..65535, 1 = float32, 2 = half. The file type comes
+// from the extension of path.
+int write_samples_impl(const char *path, const float *samples, int width, int height, int format,
+                       const char *channel, og_error *err) {
+    if (width <= 0 || height <= 0 || width > 65536 || height > 65536)
+        return og_error_set(err, "%s: cannot write a %d x %d image (1 to 65536 per side)", path,
+                            width, height);
+    std::string p(path);
+    size_t dot = p.rfind('.');
+    std::string ext = dot == std::string::npos ? "" : p.substr(dot + 1);
+    for (auto &c : ext)
+        c = (char)std::tolower((unsigned char)c);
+    const char *oiio_format = ext == "png"                      ? "png"
+                              : ext == "exr"                    ? "openexr"
+                              : (ext == "tif" || ext == "tiff") ? "tiff"
+                                                                : nullptr;
+    if (!oiio_format) return og_error_set(err, "%s: not a .png, .tif or .exr name", path);
+    if (ext == "png" && format != 0)
+        return og_error_set(err, "%s: PNG holds integers only (16-bit)", path);
+    const size_t n = (size_t)width * (size_t)height;
+    OIIO::TypeDesc type = format == 0   ? OIIO::TypeUInt16
+                          : format == 1 ? OIIO::TypeFloat
+                                        : OIIO::TypeHalf;
+    std::vector<uint16_t> q;
+    const void *data = samples;
+    if (format == 0) {
+        q.resize(n);
+        for (size_t i = 0; i < n; i++) {
+            float v = samples[i];
+            if (!(v >= 0.0f && v <= 65535.0f))
+                return og_error_set(err, "%s: sample (%d, %d) = %g is outside 0..65535", path,
+                                    (int)(i % width), (int)(i / width), (double)v);
+            q[i] = (uint16_t)(v + 0.5f);
+        }
+        data = q.data();
+    }
+    OIIO::ImageSpec spec(width, height, 1, type);
+    if (channel && *channel) spec.channelnames[0] = channel;
+    if (ext == "png") spec.attribute("png:compressionLevel", 6);
+    if (ext == "exr") spec.attribute("compression", "zip");
+    if (ext == "tif" || ext == "tiff") spec.attribute("compression", "zip");
+
+    temp_file tmp;
+    std::string name = p + ".tmp-XXXXXX";
+    int fd = mkstemp(&name[0]);
+    if (fd < 0)
+        return og_error_set(err, "%s: cannot create a temp file beside it: %s", path,
+                            strerror(errno));
+    tmp.path = name;
+    fchmod(fd, 0644);
+    close(fd);
+    auto out = OIIO::ImageOutput::create(oiio_format);
+    if (!out)
+        return og_error_set(err, "%s: OpenImageIO has no %s writer (%s)", path, oiio_format,
+                            one_line(OIIO::geterror()).c_str());
+    // The temp file's type is by format name; images this large are written in one go
+    // (OIIO converts nothing: the buffer is already in the file's type).
+    if (!out->open(name, spec) || !out->write_image(type, data) || !out->close())
+        return og_error_set(err, "%s: cannot write (%s)", path, one_line(out->geterror()).c_str());
+    if (fsync_path(name.c_str(), 0) != 0)
+        return og_error_set(err, "%s: cannot sync: %s", path, strerror(errno));
+    if (rename(name.c_str(), path) != 0)
+        return og_error_set(err, "%s: cannot rename the temp file into place: %s", path,
+                            strerror(errno));
+    tmp.keep = true;
+    return 0;
+}
+
 } // namespace
 
 extern "C" __attribute__((visibility("default"))) int
@@ -279,6 +463,36 @@ orogen_image_module_write_rgb8(const char *path, const unsigned char *rgb, int w
     if (!path || !rgb) return og_error_set(err, "image_write_rgb8: no path or pixels");
     try {
         return write_rgb8_impl(path, rgb, width, height, err);
+    } catch (const std::exception &e) {
+        return og_error_set(err, "%s: cannot write image: %s", path, e.what());
+    } catch (...) {
+        return og_error_set(err, "%s: cannot write image: unknown error", path);
+    }
+}
+
+extern "C" __attribute__((visibility("default"))) int
+orogen_image_module_read_channel(const char *path, const char *channel, int max_size,
+                                 float **samples, int *width, int *height, int *kind, int *bits,
+                                 char *desc, size_t desc_len, og_error *err) {
+    *samples = nullptr;
+    *width = *height = 0;
+    if (!path) return og_error_set(err, "image_read_channel: no path");
+    try {
+        return read_channel_impl(path, channel, max_size, samples, width, height, kind, bits, desc,
+                                 desc_len, err);
+    } catch (const std::exception &e) {
+        return og_error_set(err, "%s: cannot read image: %s", path, e.what());
+    } catch (...) {
+        return og_error_set(err, "%s: cannot read image: unknown error", path);
+    }
+}
+
+extern "C" __attribute__((visibility("default"))) int
+orogen_image_module_write_samples(const char *path, const float *samples, int width, int height,
+                                  int format, const char *channel, og_error *err) {
+    if (!path || !samples) return og_error_set(err, "image_write_samples: no path or samples");
+    try {
+        return write_samples_impl(path, samples, width, height, format, channel, err);
     } catch (const std::exception &e) {
         return og_error_set(err, "%s: cannot write image: %s", path, e.what());
     } catch (...) {

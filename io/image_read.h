@@ -39,6 +39,33 @@ int image_write_rgb8(const char *path, const unsigned char *rgb, int width, int 
 // err names the file, with the same checks as image_read_luminance.
 int image_read_rgb8(const char *path, unsigned char **rgb, int *width, int *height, og_error *err);
 
+typedef enum image_sample_kind {
+    IMAGE_SAMPLES_UNSIGNED = 0,
+    IMAGE_SAMPLES_SIGNED = 1,
+    IMAGE_SAMPLES_FLOAT = 2
+} image_sample_kind;
+
+// Reads one channel (by name, or the first when channel is NULL or empty) as stored:
+// integers keep their values (16-bit 40000 reads as 40000.0), half and float as they
+// are, NaN and infinities included. Sizes up to max_size per side. *kind is an
+// image_sample_kind, *bits the stored sample size; desc gets "FORMAT TYPE, channel
+// NAME of N". On failure *samples is NULL and err names the file.
+int image_read_channel(const char *path, const char *channel, int max_size, float **samples,
+                       int *width, int *height, int *kind, int *bits, char *desc, size_t desc_len,
+                       og_error *err);
+
+typedef enum image_sample_format {
+    IMAGE_WRITE_UINT16 = 0, // samples already in 0..65535, rounded
+    IMAGE_WRITE_FLOAT = 1,
+    IMAGE_WRITE_HALF = 2
+} image_sample_format;
+
+// Writes a one-channel image (.png: uint16 only; .tif/.tiff; .exr), the channel named
+// `channel` (NULL: OIIO's default), atomically: temp file beside it, fsync, rename.
+// Sizes 1..65536 per side.
+int image_write_samples(const char *path, const float *samples, int width, int height,
+                        image_sample_format format, const char *channel, og_error *err);
+
 #ifdef __cplusplus
 }
 #endif

@@ -15,6 +15,7 @@ packages=(
   xvfb xdotool xauth assimp-utils imagemagick
   python3 clang-format
   libnoise-dev
+  libgdal-dev gdal-bin parallel
 )
 
 sudo=""

@@ -19,7 +19,8 @@ ALLOWED = {
     "editor/world": ["editor/gen", "editor/params", "io"],
     "editor/edit": ["editor/world", "editor/gen", "editor/params", "io"],
     "editor/tools": ["editor/edit", "editor/world", "editor/gen", "editor/params", "io"],
-    "editor/cmd": ["editor/tools", "editor/edit", "editor/world", "editor/gen", "editor/params",
+    "editor/interchange": ["editor/edit", "editor/world", "editor/gen", "editor/params", "io"],
+    "editor/cmd": ["editor/interchange", "editor/tools", "editor/edit", "editor/world", "editor/gen", "editor/params",
                    "io"],
     "renderer": ["editor/cmd", "editor/world", "editor/gen", "editor/params", "io", "ui"],
     "app": None,  # everything

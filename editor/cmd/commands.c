@@ -2,6 +2,7 @@
 
 #include "editor/edit/edit.h"
 #include "editor/cmd/edit_commands.h"
+#include "editor/cmd/interchange_commands.h"
 #include "editor/cmd/tokenize.h"
 #include "editor/gen/gen.h"
 #include "io/parse.h"
@@ -45,7 +46,15 @@ static int replace_world(cmd_context *ctx, world *w) {
 }
 
 static int c_new(cmd_context *ctx, int argc, char **argv, og_error *err) {
-    (void)argc;
+    if (argc > 2) {
+        if (strcmp(argv[1], "flat") != 0 || strncmp(argv[2], "from=", 5) != 0 || !argv[2][5])
+            return og_error_set(err,
+                                "new: expected 'new flat|planet' or 'new flat from=FILE "
+                                "[import options]', got '%s'",
+                                argv[2]);
+        world *w = cmd_world_from_raster(ctx, argv[2] + 5, argc, argv, 3, err);
+        return w ? replace_world(ctx, w) : -1;
+    }
     world_kind kind;
     if (strcmp(argv[1], "flat") == 0)
         kind = WORLD_FLAT;
@@ -192,9 +201,11 @@ static int c_cmdlist(cmd_context *ctx, int argc, char **argv, og_error *err);
     { key, key " [" arg "]", text " Without a value, prints it.", 0, 1, c_param, 0 }
 
 static const cmd_def commands[] = {
-    {"new", "new flat|planet",
-     "Replaces the current world with a new one of that kind, with default parameters.", 1, 1,
-     c_new, CMD_ENDS_STROKE},
+    {"new", "new flat|planet | new flat from=FILE [import options]",
+     "Replaces the current world with a new one of that kind, with default parameters; 'from=' "
+     "makes a bounded flat world sized and spaced by a heightmap or elevation raster and imports "
+     "it (see import for the options).",
+     1, 12, c_new, CMD_ENDS_STROKE},
     {"load", "load FILE",
      "Loads a world (.world) or planet (.planet) parameter file and its tile store.", 1, 1, c_load,
      CMD_ENDS_STROKE},
@@ -271,6 +282,30 @@ static const cmd_def commands[] = {
     {"stamps", "stamps",
      "Lists the stamps: functional shapes, the built-in library and the user's stamp folder.", 0, 0,
      cmd_stamps, 0},
+    {"import",
+     "import FILE [min= max= | scale= offset=] [spacing=] [x= z= | anchor=centre] "
+     "[layer=] [resample=] [blend=] [falloff=] [channel=] [endian=] [format=] [width= height=]",
+     "Imports a heightmap or elevation raster as one undo step: images (PNG, TIFF, EXR, PGM, PFM) "
+     "through OpenImageIO, GeoTIFF, SRTM .hgt, ESRI ASCII grid and other rasters through GDAL, "
+     "RAW/R16 (uint16 little-endian; endian=big, format=f32; square sizes inferred). Heights are "
+     "metres as stored; 8/16-bit images map 0..top to min..max (default 0..max_height) unless "
+     "scale=/offset= (height = stored x scale + offset) or the file's FILE.json sidecar say "
+     "otherwise. Row 0, column 0 lands at x, z (default 0, 0 or the sidecar's origin), columns "
+     "toward +X, rows toward +Z; anchor=centre centres it there. spacing= metres per sample "
+     "(default: the file's georeferencing, else one world sample per pixel); layer coarse|detail; "
+     "resample nearest|bilinear|bicubic; blend replace|add|max|min with falloff= metres at the "
+     "edge; channel= names an image channel. Voids (nodata, NaN) are filled and counted.",
+     1, 18, cmd_import, CMD_ENDS_STROKE},
+    {"export",
+     "export FILE [region=X0,Z0,X1,Z1] [preset=] [layer=] [bits=] [min= max= | scale= "
+     "offset=]",
+     "Writes a heightmap of the region (metres, corners; default the whole bounded world) by "
+     "the extension: .png 16-bit, .tif float GeoTIFF (bits=16: 16-bit TIFF), .exr float "
+     "(channel Y), .r16/.raw 16-bit little-endian; plus FILE.json with spacing, origin and the "
+     "height mapping (16-bit: the region's range, or min/max or scale/offset). Prints the "
+     "settings for Unreal and Unity. preset unreal|unity|godot|houdini|blender checks the format "
+     "and crops to the sizes the engine imports. Written to a temp file and renamed.",
+     1, 9, cmd_export, 0},
     {"undo", "undo", "Undoes the last change (stroke, stamp, generate).", 0, 0, cmd_undo,
      CMD_ENDS_STROKE},
     {"redo", "redo", "Redoes the last undone change.", 0, 0, cmd_redo, CMD_ENDS_STROKE},

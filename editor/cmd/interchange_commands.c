@@ -1,0 +1,139 @@
+#include "editor/cmd/interchange_commands.h"
+
+#include "editor/interchange/export.h"
+#include "editor/interchange/import.h"
+#include "editor/interchange/sidecar.h"
+#include "io/parse.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+static double seconds_since(const struct timespec *t0) {
+    struct timespec t1;
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    return (double)(t1.tv_sec - t0->tv_sec) + (double)(t1.tv_nsec - t0->tv_nsec) * 1e-9;
+}
+
+static int parse_import_options(int argc, char **argv, int first, import_options *o,
+                                og_error *err) {
+    import_options_defaults(o);
+    for (int i = first; i < argc; i++) {
+        char buf[512], *key, *value;
+        if (parse_setting(argv[i], buf, sizeof buf, &key, &value, err) != 0 ||
+            import_options_set(o, key, value, err) != 0)
+            return -1;
+    }
+    return 0;
+}
+
+static void print_import(FILE *out, const char *path, const import_report *r, tile_layer layer,
+                         double seconds) {
+    fprintf(out,
+            "imported %s: %d x %d samples (%s), %.6g x %.6g m apart; heights %.6g .. %.6g m "
+            "(%s); %lld voids filled; placed at %.6g, %.6g .. %.6g, %.6g m on the %s layer "
+            "(%lld samples); %.2f s\n",
+            path, r->width, r->height, r->source, r->spacing_x, r->spacing_z, r->min, r->max,
+            r->mapping, (long long)r->voids, r->x0, r->z0, r->x1, r->z1,
+            layer == TILE_LAYER_DETAIL ? "detail" : "coarse", (long long)r->samples, seconds);
+}
+
+int cmd_import(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    import_options o;
+    if (parse_import_options(argc, argv, 2, &o, err) != 0) return -1;
+    struct timespec t0;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    import_report r;
+    if (import_apply(ctx->world, argv[1], &o, &r, err) != 0) return -1;
+    print_import(ctx->out, argv[1], &r, o.layer, seconds_since(&t0));
+    return 0;
+}
+
+world *cmd_world_from_raster(cmd_context *ctx, const char *path, int argc, char **argv, int first,
+                             og_error *err) {
+    import_options o;
+    if (parse_import_options(argc, argv, first, &o, err) != 0) return NULL;
+    if (o.layer != TILE_LAYER_COARSE) {
+        og_error_set(err, "new flat from=: the raster becomes the coarse layer (no layer=)");
+        return NULL;
+    }
+    struct timespec t0;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    raster r;
+    if (raster_read(path, &o.read, &r, err) != 0) return NULL;
+    double scale, offset;
+    char how[160];
+    world_params p;
+    world_params_default(&p, WORLD_FLAT);
+    int rc =
+        import_height_mapping(path, &r, &o, p.max_height, &scale, &offset, how, sizeof how, err);
+    double lo = INFINITY, hi = -INFINITY;
+    for (size_t i = 0; rc == 0 && i < (size_t)r.width * (size_t)r.height; i++) {
+        double v = r.samples[i] * scale + offset;
+        lo = fmin(lo, v), hi = fmax(hi, v);
+    }
+    // One world sample per raster sample along the finer axis.
+    double sx = o.spacing > 0 ? o.spacing : r.spacing_x,
+           sz = o.spacing > 0 ? o.spacing : r.spacing_z;
+    sidecar sc;
+    og_error ignore;
+    if (sx <= 0 && sidecar_read(path, &sc, &ignore) == 1) sx = sz = sc.spacing;
+    if (sx <= 0) sx = sz = p.spacing;
+    const int width = r.width, height = r.height;
+    raster_free(&r);
+    if (rc != 0) return NULL;
+    const double spacing = fmin(sx, sz);
+    p.generator = GEN_FLAT;
+    p.base_height = lo; // where the raster does not reach (a non-square raster)
+    p.max_height = fmax(1.0, fmax(fabs(lo), fabs(hi)));
+    p.spacing = spacing;
+    p.size = (int64_t)ceil(fmax((width - 1) * sx, (height - 1) * sz) / spacing - 1e-6) + 1;
+    if (world_params_validate(&p, err) != 0) return NULL;
+    world *w = world_create(&p, &ctx->settings, err);
+    if (!w) return NULL;
+    o.has_position = 1;
+    o.x = o.z = 0;
+    o.anchor_centre = 0;
+    if (o.spacing <= 0 && sx == sz) o.spacing = sx;
+    import_report rep;
+    if (import_apply(w, path, &o, &rep, err) != 0) {
+        world_close(w);
+        return NULL;
+    }
+    fprintf(ctx->out, "new flat world of %lld x %lld samples, %.6g m apart, from %s\n",
+            (long long)p.size, (long long)p.size, spacing, path);
+    print_import(ctx->out, path, &rep, TILE_LAYER_COARSE, seconds_since(&t0));
+    return w;
+}
+
+int cmd_export(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    export_options o;
+    export_options_defaults(&o);
+    for (int i = 2; i < argc; i++) {
+        char buf[512], *key, *value;
+        if (parse_setting(argv[i], buf, sizeof buf, &key, &value, err) != 0 ||
+            export_options_set(&o, key, value, err) != 0)
+            return -1;
+    }
+    struct timespec t0;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    export_report r;
+    char *hints = NULL;
+    size_t hints_len = 0;
+    FILE *h = open_memstream(&hints, &hints_len);
+    if (!h) return og_error_set(err, "export: out of memory");
+    int rc = export_heightmap(ctx->world, argv[1], &o, h, &r, err);
+    fclose(h);
+    if (rc == 0) {
+        if (r.changed[0]) fprintf(ctx->out, "%s\n", r.changed);
+        fprintf(ctx->out,
+                "exported %s (%s): %d x %d samples %.6g m apart from %.6g, %.6g m; heights "
+                "%.6g .. %.6g m; height = stored x %.9g + %.9g m; %lld bytes with %s.json; "
+                "%.2f s\n%s",
+                argv[1], r.format, r.width, r.height, r.spacing, r.origin_x, r.origin_z, r.min,
+                r.max, r.scale, r.offset, r.bytes, argv[1], seconds_since(&t0), hints);
+    }
+    free(hints);
+    return rc;
+}

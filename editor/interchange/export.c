@@ -1,0 +1,381 @@
+#include "editor/interchange/export.h"
+
+#include "editor/interchange/sidecar.h"
+#include "editor/world/layer_grid.h"
+#include "io/gdal_raster.h"
+#include "io/image_read.h"
+#include "io/param_file.h"
+#include "io/parse.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <sys/statvfs.h>
+
+static const char *const preset_names[] = {"none",  "unreal",  "unity",
+                                           "godot", "houdini", "blender"};
+
+const char *export_preset_name(export_preset p) {
+    return preset_names[p];
+}
+
+void export_options_defaults(export_options *o) {
+    memset(o, 0, sizeof *o);
+    o->layer = TILE_LAYER_COARSE;
+    o->bits = 32;
+}
+
+int export_options_set(export_options *o, const char *key, const char *value, og_error *err) {
+    double v;
+    if (!strcmp(key, "region")) {
+        double c[4];
+        const char *p = value;
+        for (int i = 0; i < 4; i++) {
+            const char *end;
+            if (parse_scan_f64(p, &c[i], &end) != 0 || !isfinite(c[i]) || (i < 3 && *end != ',') ||
+                (i == 3 && *end))
+                return og_error_set(err, "region: expected X0,Z0,X1,Z1 in metres, got '%s'", value);
+            p = end + 1;
+        }
+        o->x0 = fmin(c[0], c[2]), o->x1 = fmax(c[0], c[2]);
+        o->z0 = fmin(c[1], c[3]), o->z1 = fmax(c[1], c[3]);
+        o->has_region = 1;
+    } else if (!strcmp(key, "preset")) {
+        for (int i = 0; i < 6; i++)
+            if (!strcmp(value, preset_names[i])) return o->preset = (export_preset)i, 0;
+        return og_error_set(
+            err, "preset: expected unreal|unity|godot|houdini|blender|none, got '%s'", value);
+    } else if (!strcmp(key, "layer")) {
+        if (!strcmp(value, "coarse"))
+            o->layer = TILE_LAYER_COARSE;
+        else if (!strcmp(value, "detail"))
+            o->layer = TILE_LAYER_DETAIL;
+        else
+            return og_error_set(err, "layer: expected coarse|detail, got '%s'", value);
+    } else if (!strcmp(key, "bits")) {
+        if (strcmp(value, "16") && strcmp(value, "32"))
+            return og_error_set(err, "bits: expected 16 or 32, got '%s'", value);
+        o->bits = atoi(value);
+    } else if (!strcmp(key, "min") || !strcmp(key, "max")) {
+        if (parse_number(value, key, &v, err) != 0) return -1;
+        *(key[1] == 'i' ? &o->min : &o->max) = v;
+        o->has_min_max |= key[1] == 'i' ? 1 : 2;
+    } else if (!strcmp(key, "scale") || !strcmp(key, "offset")) {
+        if (parse_number(value, key, &v, err) != 0) return -1;
+        if (key[0] == 's') {
+            if (v == 0) return og_error_set(err, "scale: must not be 0");
+            o->scale = v;
+            o->has_scale |= 1;
+        } else {
+            o->offset = v;
+            o->has_scale |= 2;
+        }
+    } else {
+        return og_error_set(err,
+                            "export: unknown option '%s' (region preset layer bits min max scale "
+                            "offset)",
+                            key);
+    }
+    return 0;
+}
+
+typedef enum file_format { FMT_PNG16, FMT_TIFF16, FMT_TIFF32, FMT_EXR32, FMT_R16 } file_format;
+static const char *const format_names[] = {"png16", "tiff16", "tiff32", "exr32", "r16"};
+
+static int format_of(const char *path, int bits, file_format *f, og_error *err) {
+    const char *slash = strrchr(path, '/');
+    const char *dot = strrchr(slash ? slash : path, '.');
+    const char *ext = dot ? dot + 1 : "";
+    if (!strcasecmp(ext, "png"))
+        *f = FMT_PNG16;
+    else if (!strcasecmp(ext, "tif") || !strcasecmp(ext, "tiff"))
+        *f = bits == 16 ? FMT_TIFF16 : FMT_TIFF32;
+    else if (!strcasecmp(ext, "exr"))
+        *f = FMT_EXR32;
+    else if (!strcasecmp(ext, "r16") || !strcasecmp(ext, "raw"))
+        *f = FMT_R16;
+    else
+        return og_error_set(
+            err, "%s: cannot tell the format: name it .png, .tif, .exr, .r16 or .raw", path);
+    return 0;
+}
+
+static int is_16bit(file_format f) {
+    return f == FMT_PNG16 || f == FMT_TIFF16 || f == FMT_R16;
+}
+
+// The largest of sizes[] not above n, or 0.
+static int largest_fitting(const int *sizes, int count, int n) {
+    int best = 0;
+    for (int i = 0; i < count; i++)
+        if (sizes[i] <= n && sizes[i] > best) best = sizes[i];
+    return best;
+}
+
+// What the preset requires of the format and size; crops w x h to what the engine
+// takes and says so in changed.
+static int apply_preset(const char *path, const export_options *o, file_format f, int64_t *w,
+                        int64_t *h, char *changed, size_t len, og_error *err) {
+    changed[0] = 0;
+    int64_t nw = *w, nh = *h;
+    switch (o->preset) {
+    case EXPORT_PRESET_NONE:
+        return 0;
+    case EXPORT_PRESET_UNREAL: {
+        if (f != FMT_PNG16 && f != FMT_R16)
+            return og_error_set(err,
+                                "%s: Unreal's landscape imports 16-bit PNG or R16: name it "
+                                ".png or .r16",
+                                path);
+        // Unreal's recommended landscape sizes (vertices per side).
+        static const int sizes[] = {127, 253, 505, 1009, 2017, 4033, 8129};
+        nw = largest_fitting(sizes, 7, (int)(*w < 8129 ? *w : 8129));
+        nh = largest_fitting(sizes, 7, (int)(*h < 8129 ? *h : 8129));
+        if (!nw || !nh)
+            return og_error_set(err,
+                                "%s: %lld x %lld samples is under Unreal's smallest landscape "
+                                "(127 x 127)",
+                                path, (long long)*w, (long long)*h);
+        break;
+    }
+    case EXPORT_PRESET_UNITY: {
+        if (f != FMT_R16)
+            return og_error_set(err, "%s: Unity's terrain imports RAW 16-bit: name it .raw or .r16",
+                                path);
+        static const int sizes[] = {33, 65, 129, 257, 513, 1025, 2049, 4097};
+        int64_t side = *w < *h ? *w : *h;
+        nw = nh = largest_fitting(sizes, 8, (int)(side < 4097 ? side : 4097));
+        if (!nw)
+            return og_error_set(err,
+                                "%s: %lld x %lld samples is under Unity's smallest terrain "
+                                "(33 x 33)",
+                                path, (long long)*w, (long long)*h);
+        break;
+    }
+    case EXPORT_PRESET_GODOT:
+    case EXPORT_PRESET_HOUDINI:
+    case EXPORT_PRESET_BLENDER:
+        if (f != FMT_EXR32 && f != FMT_TIFF32)
+            return og_error_set(err,
+                                "%s: preset %s takes float heights in metres: name it .exr "
+                                "(or .tif)",
+                                path, export_preset_name(o->preset));
+        return 0;
+    }
+    if (nw != *w || nh != *h)
+        snprintf(changed, len,
+                 "preset %s: cropped %lld x %lld samples to %lld x %lld (the sizes it imports), "
+                 "keeping the first corner",
+                 export_preset_name(o->preset), (long long)*w, (long long)*h, (long long)nw,
+                 (long long)nh);
+    *w = nw;
+    *h = nh;
+    return 0;
+}
+
+static void print_hints(FILE *out, const export_options *o, file_format f, const export_report *r) {
+    if (!out) return;
+    const double span_x = (r->width - 1) * r->spacing, span_z = (r->height - 1) * r->spacing;
+    if (!is_16bit(f)) {
+        fprintf(out, "  heights are metres as stored (float); %g m between samples\n", r->spacing);
+        if (o->preset == EXPORT_PRESET_GODOT)
+            fprintf(out,
+                    "  Godot Terrain3D: import the EXR with scale 1, offset 0, vertex spacing "
+                    "%g\n",
+                    r->spacing);
+        if (o->preset == EXPORT_PRESET_HOUDINI)
+            fprintf(out, "  Houdini: HeightField File with grid spacing %g, height scale 1\n",
+                    r->spacing);
+        if (o->preset == EXPORT_PRESET_BLENDER)
+            fprintf(out,
+                    "  Blender: displace a %g x %g m grid (%d x %d vertices) by the image, "
+                    "strength 1, midlevel 0\n",
+                    span_x, span_z, r->width, r->height);
+        return;
+    }
+    // Unreal: height cm = (stored - 32768) / 128 x ScaleZ + LocationZ.
+    const double scale_z = 12800.0 * r->scale;
+    const double location_z = 100.0 * r->offset + 32768.0 * 100.0 * r->scale;
+    if (o->preset == EXPORT_PRESET_NONE || o->preset == EXPORT_PRESET_UNREAL)
+        fprintf(out, "  Unreal landscape: Scale X = Y = %g, Scale Z = %.6g, Location Z = %.6g cm\n",
+                100.0 * r->spacing, scale_z, location_z);
+    if (o->preset == EXPORT_PRESET_NONE || o->preset == EXPORT_PRESET_UNITY)
+        fprintf(out,
+                "  Unity terrain: Import Raw, Depth 16 bit, Byte Order Windows, resolution "
+                "%d; Terrain Width %g, Length %g, Height %.6g m; position Y %.6g m\n",
+                r->width, span_x, span_z, 65535.0 * r->scale, r->offset);
+}
+
+// Refuses before writing when the folder lacks room for bytes (with a margin).
+static int check_space(const char *path, double bytes, og_error *err) {
+    char dir[4200];
+    snprintf(dir, sizeof dir, "%s", path);
+    char *slash = strrchr(dir, '/');
+    if (slash)
+        *(slash == dir ? slash + 1 : slash) = 0;
+    else
+        snprintf(dir, sizeof dir, ".");
+    struct statvfs st;
+    if (statvfs(dir, &st) != 0)
+        return og_error_set(err, "%s: cannot reach its folder: %s", path, strerror(errno));
+    double free_bytes = (double)st.f_bavail * (double)st.f_frsize;
+    if (free_bytes < bytes * 1.1 + (1 << 20))
+        return og_error_set(err, "%s: needs about %.0f MB, but only %.0f MB are free there", path,
+                            bytes / 1e6, free_bytes / 1e6);
+    return 0;
+}
+
+static int write_r16(const char *path, const float *q, int64_t n, og_error *err) {
+    unsigned char *bytes = malloc((size_t)n * 2);
+    if (!bytes) return og_error_set(err, "%s: out of memory", path);
+    for (int64_t i = 0; i < n; i++) {
+        uint16_t v = (uint16_t)(q[i] + 0.5f);
+        bytes[2 * i] = (unsigned char)(v & 0xff);
+        bytes[2 * i + 1] = (unsigned char)(v >> 8);
+    }
+    int rc = param_file_write_atomic(path, (const char *)bytes, (size_t)n * 2, err);
+    free(bytes);
+    return rc;
+}
+
+static long long file_size(const char *path) {
+    FILE *f = fopen(path, "rb");
+    if (!f) return 0;
+    fseek(f, 0, SEEK_END);
+    long long n = ftell(f);
+    fclose(f);
+    return n;
+}
+
+int export_heightmap(world *w, const char *path, const export_options *o, FILE *hints,
+                     export_report *report, og_error *err) {
+    const world_params *p = world_get_params(w);
+    if (p->kind == WORLD_PLANET)
+        return og_error_set(err, "export: planets are exported by their own issue's tools, not as "
+                                 "one heightmap");
+    file_format f = FMT_PNG16;
+    if (format_of(path, o->bits, &f, err) != 0) return -1;
+    layer_grid g;
+    if (layer_grid_init(&g, p, o->layer, 0, err) != 0) return -1;
+    grid_rect r;
+    if (o->has_region) {
+        r = (grid_rect){(int64_t)ceil(o->x0 / g.spacing - 1e-9),
+                        (int64_t)ceil(o->z0 / g.spacing - 1e-9),
+                        (int64_t)floor(o->x1 / g.spacing + 1e-9) + 1,
+                        (int64_t)floor(o->z1 / g.spacing + 1e-9) + 1};
+        if (fabs(o->x0) > 1e15 || fabs(o->x1) > 1e15 || fabs(o->z0) > 1e15 || fabs(o->z1) > 1e15)
+            return og_error_set(err, "%s: region is beyond any world", path);
+        if (g.extent) r = layer_grid_clip(&g, r);
+    } else {
+        if (!g.extent)
+            return og_error_set(err, "%s: the world is unbounded: give region=X0,Z0,X1,Z1 (metres)",
+                                path);
+        r = (grid_rect){0, 0, g.extent, g.extent};
+    }
+    int64_t w64 = r.x1 - r.x0, h64 = r.z1 - r.z0;
+    if (w64 < 2 || h64 < 2)
+        return og_error_set(err,
+                            "%s: the region holds %lld x %lld samples; a heightmap needs at "
+                            "least 2 x 2 (%g m between samples)",
+                            path, (long long)(w64 > 0 ? w64 : 0), (long long)(h64 > 0 ? h64 : 0),
+                            g.spacing);
+    if (w64 > EXPORT_MAX_SIDE || h64 > EXPORT_MAX_SIDE || w64 * h64 > EXPORT_MAX_SAMPLES)
+        return og_error_set(err,
+                            "%s: the region is %lld x %lld samples, over the limit of %d per "
+                            "side and %lld in all (export it as tiles)",
+                            path, (long long)w64, (long long)h64, EXPORT_MAX_SIDE,
+                            (long long)EXPORT_MAX_SAMPLES);
+    export_report rep;
+    memset(&rep, 0, sizeof rep);
+    if (apply_preset(path, o, f, &w64, &h64, rep.changed, sizeof rep.changed, err) != 0) return -1;
+    r.x1 = r.x0 + w64;
+    r.z1 = r.z0 + h64;
+    const int64_t n = w64 * h64;
+    const double bytes_estimate = (double)n * (is_16bit(f) ? 2.0 : 4.0);
+    if (check_space(path, bytes_estimate, err) != 0) return -1;
+    float *h = malloc(sizeof(float) * (size_t)n);
+    if (!h) return og_error_set(err, "%s: out of memory for %lld samples", path, (long long)n);
+    int rc = -1;
+    if (layer_grid_read(w, &g, r, h, err) != 0) goto done;
+    rep.min = INFINITY, rep.max = -INFINITY;
+    for (int64_t i = 0; i < n; i++) {
+        rep.min = fmin(rep.min, h[i]);
+        rep.max = fmax(rep.max, h[i]);
+    }
+    rep.width = (int)w64;
+    rep.height = (int)h64;
+    rep.spacing = g.spacing;
+    rep.origin_x = (double)r.x0 * g.spacing;
+    rep.origin_z = (double)r.z0 * g.spacing;
+    snprintf(rep.format, sizeof rep.format, "%s", format_names[f]);
+    rep.scale = 1.0;
+    rep.offset = 0.0;
+    if (is_16bit(f)) {
+        if (o->has_scale && o->has_min_max) {
+            og_error_set(err, "export: give min=/max= or scale=/offset=, not both");
+            goto done;
+        }
+        if (o->has_scale) {
+            rep.scale = o->has_scale & 1 ? o->scale : 1.0;
+            rep.offset = o->offset;
+        } else {
+            double lo = rep.min, hi = rep.max;
+            if (o->has_min_max == 3) lo = o->min, hi = o->max;
+            if (!(hi > lo)) hi = lo + 1.0; // a flat region still needs a step
+            rep.scale = (hi - lo) / 65535.0;
+            rep.offset = lo;
+        }
+        for (int64_t i = 0; i < n; i++) {
+            double q = round((h[i] - rep.offset) / rep.scale);
+            if (q < 0 || q > 65535) {
+                og_error_set(err,
+                             "%s: height %g m at sample (%lld, %lld) is outside the 16-bit range "
+                             "%g .. %g m of this mapping",
+                             path, (double)h[i], (long long)(i % w64), (long long)(i / w64),
+                             rep.offset, rep.offset + 65535.0 * rep.scale);
+                goto done;
+            }
+            h[i] = (float)q;
+        }
+    }
+    switch (f) {
+    case FMT_PNG16:
+    case FMT_TIFF16:
+        rc = image_write_samples(path, h, rep.width, rep.height, IMAGE_WRITE_UINT16, NULL, err);
+        break;
+    case FMT_EXR32:
+        rc = image_write_samples(path, h, rep.width, rep.height, IMAGE_WRITE_FLOAT, "Y", err);
+        break;
+    case FMT_TIFF32: {
+        // North-up GeoTIFF: rows run toward +Z, i.e. south; GDAL's corners are half a
+        // sample outside the first sample's centre.
+        double gt[6] = {rep.origin_x - g.spacing / 2,    g.spacing, 0,
+                        -(rep.origin_z - g.spacing / 2), 0,         -g.spacing};
+        rc = gdal_raster_write_geotiff(path, h, rep.width, rep.height, gt, err);
+        break;
+    }
+    case FMT_R16:
+        rc = write_r16(path, h, n, err);
+        break;
+    }
+    if (rc != 0) goto done;
+    sidecar sc = {g.spacing,  rep.origin_x, rep.origin_z, rep.width, rep.height, rep.scale,
+                  rep.offset, rep.min,      rep.max,      "",        ""};
+    snprintf(sc.format, sizeof sc.format, "%s", rep.format);
+    snprintf(sc.layer, sizeof sc.layer, "%s", o->layer == TILE_LAYER_DETAIL ? "detail" : "coarse");
+    char extra[256] = "";
+    if (o->preset != EXPORT_PRESET_NONE)
+        snprintf(extra, sizeof extra, "  \"preset\": \"%s\"", export_preset_name(o->preset));
+    rc = sidecar_write(path, &sc, extra, err);
+    if (rc != 0) goto done;
+    char json[4200];
+    snprintf(json, sizeof json, "%s.json", path);
+    rep.bytes = file_size(path) + file_size(json);
+    print_hints(hints, o, f, &rep);
+    if (report) *report = rep;
+done:
+    free(h);
+    return rc;
+}

@@ -1,0 +1,60 @@
+// Export: a rectangle of the world (or the whole bounded world) written as a
+// heightmap (16-bit PNG / TIFF, float GeoTIFF, float EXR, R16 RAW) with its sidecar,
+// in the convention import reads back (io/raster.h, import.h): row 0, column 0 is
+// the rectangle's corner nearest the origin, columns toward +X, rows toward +Z.
+#ifndef OROGEN_EDITOR_INTERCHANGE_EXPORT_H
+#define OROGEN_EDITOR_INTERCHANGE_EXPORT_H
+
+#include "editor/world/world.h"
+#include "io/err.h"
+#include "io/tile.h"
+
+#include <stdint.h>
+#include <stdio.h>
+
+// The most samples one export reads (per side, and in all).
+#define EXPORT_MAX_SIDE 65536
+#define EXPORT_MAX_SAMPLES ((int64_t)1 << 28)
+
+typedef enum export_preset {
+    EXPORT_PRESET_NONE,
+    EXPORT_PRESET_UNREAL,
+    EXPORT_PRESET_UNITY,
+    EXPORT_PRESET_GODOT,
+    EXPORT_PRESET_HOUDINI,
+    EXPORT_PRESET_BLENDER
+} export_preset;
+
+typedef struct export_options {
+    int has_region;
+    double x0, z0, x1, z1; // metres, corners (inclusive samples)
+    export_preset preset;
+    tile_layer layer;
+    int bits; // .tif: 16 or 32 (default 32)
+    int has_min_max, has_scale;
+    double min, max;      // 16-bit: metres at stored 0 and 65535
+    double scale, offset; // 16-bit: height = stored x scale + offset
+} export_options;
+
+void export_options_defaults(export_options *o);
+// region=X0,Z0,X1,Z1 preset= layer= bits= min= max= scale= offset=
+int export_options_set(export_options *o, const char *key, const char *value, og_error *err);
+const char *export_preset_name(export_preset p);
+
+typedef struct export_report {
+    int width, height;
+    double spacing, origin_x, origin_z;
+    double min, max;      // metres
+    double scale, offset; // the stored mapping (1, 0 for float files)
+    long long bytes;      // written (file + sidecar)
+    char format[16];
+    char changed[512]; // what a preset changed ("" if nothing)
+} export_report;
+
+// Writes path (format from its extension) and path.json. Prints what to type into
+// the target engine to hints (may be NULL). Nothing is written on failure; an
+// existing file stays as it was.
+int export_heightmap(world *w, const char *path, const export_options *o, FILE *hints,
+                     export_report *report, og_error *err);
+
+#endif

@@ -1,0 +1,315 @@
+#include "editor/interchange/import.h"
+
+#include "editor/edit/edit_commit.h"
+#include "editor/edit/edit_rows.h"
+#include "editor/interchange/sidecar.h"
+#include "editor/world/layer_grid.h"
+#include "io/parse.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+void import_options_defaults(import_options *o) {
+    memset(o, 0, sizeof *o);
+    o->layer = TILE_LAYER_COARSE;
+    o->resample = IMPORT_BILINEAR;
+    o->blend = IMPORT_REPLACE;
+}
+
+static int pick(const char *value, const char *what, const char *const *names, int count, int *out,
+                og_error *err) {
+    for (int i = 0; i < count; i++)
+        if (strcmp(value, names[i]) == 0) return *out = i, 0;
+    char list[200] = "";
+    for (int i = 0; i < count; i++)
+        snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", i ? "|" : "", names[i]);
+    return og_error_set(err, "%s: expected %s, got '%s'", what, list, value);
+}
+
+int import_options_set(import_options *o, const char *key, const char *value, og_error *err) {
+    double v;
+    int i = 0;
+    if (!strcmp(key, "min") || !strcmp(key, "max")) {
+        if (parse_number(value, key, &v, err) != 0) return -1;
+        *(key[1] == 'i' ? &o->min : &o->max) = v;
+        o->has_min_max |= key[1] == 'i' ? 1 : 2;
+    } else if (!strcmp(key, "scale") || !strcmp(key, "offset")) {
+        if (parse_number(value, key, &v, err) != 0) return -1;
+        if (key[0] == 's') {
+            o->scale = v;
+            o->has_scale = 1;
+        } else {
+            o->offset = v;
+            o->has_scale |= 2; // offset alone keeps scale 1
+        }
+    } else if (!strcmp(key, "spacing")) {
+        if (parse_number_in(value, key, 1e-6, 1e7, &o->spacing, err) != 0) return -1;
+    } else if (!strcmp(key, "x") || !strcmp(key, "z")) {
+        if (parse_number_in(value, key, -1e15, 1e15, key[0] == 'x' ? &o->x : &o->z, err) != 0)
+            return -1;
+        o->has_position = 1;
+    } else if (!strcmp(key, "anchor")) {
+        static const char *const names[] = {"corner", "centre", "center"};
+        if (pick(value, key, names, 3, &i, err) != 0) return -1;
+        o->anchor_centre = i > 0;
+    } else if (!strcmp(key, "layer")) {
+        static const char *const names[] = {"coarse", "detail"};
+        if (pick(value, key, names, 2, &i, err) != 0) return -1;
+        o->layer = i ? TILE_LAYER_DETAIL : TILE_LAYER_COARSE;
+    } else if (!strcmp(key, "resample")) {
+        static const char *const names[] = {"nearest", "bilinear", "bicubic"};
+        if (pick(value, key, names, 3, &i, err) != 0) return -1;
+        o->resample = (import_resample)i;
+    } else if (!strcmp(key, "blend")) {
+        static const char *const names[] = {"replace", "add", "max", "min"};
+        if (pick(value, key, names, 4, &i, err) != 0) return -1;
+        o->blend = (import_blend)i;
+    } else if (!strcmp(key, "falloff")) {
+        if (parse_number_in(value, key, 0, 1e9, &o->falloff, err) != 0) return -1;
+    } else if (!strcmp(key, "channel")) {
+        if (strlen(value) >= sizeof o->read.channel)
+            return og_error_set(err, "channel: name too long");
+        snprintf(o->read.channel, sizeof o->read.channel, "%s", value);
+    } else if (!strcmp(key, "endian")) {
+        static const char *const names[] = {"little", "big"};
+        if (pick(value, key, names, 2, &i, err) != 0) return -1;
+        o->read.endian = (raster_endian)i;
+    } else if (!strcmp(key, "format")) {
+        static const char *const names[] = {"u16", "f32"};
+        if (pick(value, key, names, 2, &i, err) != 0) return -1;
+        o->read.raw_float = i;
+    } else if (!strcmp(key, "width") || !strcmp(key, "height")) {
+        if (parse_integer_in(value, key, 1, RASTER_MAX_SIZE, &v, err) != 0) return -1;
+        *(key[0] == 'w' ? &o->read.width : &o->read.height) = (int)v;
+    } else {
+        return og_error_set(err,
+                            "import: unknown option '%s' (min max scale offset spacing x z anchor "
+                            "layer resample blend falloff channel endian format width height)",
+                            key);
+    }
+    return 0;
+}
+
+int import_height_mapping(const char *path, const raster *r, const import_options *o,
+                          double default_max, double *scale, double *offset, char *how,
+                          size_t how_len, og_error *err) {
+    if (o->has_scale && o->has_min_max)
+        return og_error_set(err, "import: give min=/max= or scale=/offset=, not both");
+    if (o->has_scale) {
+        *scale = o->has_scale & 1 ? o->scale : 1.0;
+        *offset = o->offset;
+        snprintf(how, how_len, "height = stored x %.9g + %.9g m", *scale, *offset);
+        return 0;
+    }
+    // The stored range a normalised format spans: integers 0 .. 2^bits - 1; float 0 .. 1.
+    double top = r->kind == RASTER_FLOAT ? 1.0 : ldexp(1.0, r->bits) - 1.0;
+    if (r->kind == RASTER_SIGNED) top = ldexp(1.0, r->bits - 1) - 1.0;
+    if (o->has_min_max) {
+        if (o->has_min_max != 3) return og_error_set(err, "import: min= and max= go together");
+        *scale = (o->max - o->min) / top;
+        *offset = o->min;
+        snprintf(how, how_len, "stored 0..%.9g mapped to %.9g..%.9g m", top, o->min, o->max);
+        return 0;
+    }
+    sidecar sc;
+    int has = sidecar_read(path, &sc, err);
+    if (has < 0) return -1;
+    if (has) {
+        *scale = sc.scale;
+        *offset = sc.offset;
+        snprintf(how, how_len, "from %s.json: height = stored x %.9g + %.9g m", path, *scale,
+                 *offset);
+        return 0;
+    }
+    if (r->kind == RASTER_UNSIGNED && strcmp(r->reader, "gdal") != 0) {
+        // A plain image or RAW carries no units: 0..top spans 0..default_max metres.
+        *scale = default_max / top;
+        *offset = 0.0;
+        snprintf(how, how_len,
+                 "stored 0..%.9g mapped to 0..%.9g m (the world's max_height; give min= max= "
+                 "to choose)",
+                 top, default_max);
+        return 0;
+    }
+    *scale = 1.0;
+    *offset = 0.0;
+    snprintf(how, how_len, "metres as stored");
+    return 0;
+}
+
+typedef struct import_op {
+    const float *src; // mapped heights, width x height
+    int width, height;
+    double x0, z0;       // world position of the first sample
+    double sx, sz;       // metres per source sample
+    double grid_spacing; // metres per layer sample
+    import_resample resample;
+    import_blend blend;
+    double falloff;
+} import_op;
+
+static float at(const import_op *o, int64_t i, int64_t j) {
+    i = i < 0 ? 0 : i >= o->width ? o->width - 1 : i;
+    j = j < 0 ? 0 : j >= o->height ? o->height - 1 : j;
+    return o->src[j * o->width + i];
+}
+
+static double cubic(double a, double b, double c, double d, double t) { // Catmull-Rom
+    return b + 0.5 * t * (c - a + t * (2 * a - 5 * b + 4 * c - d + t * (3 * (b - c) + d - a)));
+}
+
+// A source coordinate that lands within rounding of a sample is that sample: equal
+// spacings then copy samples exactly (the round-trip guarantee).
+static double snap(double u) {
+    double r = round(u);
+    return fabs(u - r) < 1e-6 ? r : u;
+}
+
+static double sample(const import_op *o, double u, double v) {
+    u = snap(u);
+    v = snap(v);
+    if (o->resample == IMPORT_NEAREST) return at(o, (int64_t)llround(u), (int64_t)llround(v));
+    int64_t i = (int64_t)floor(u), j = (int64_t)floor(v);
+    double tu = u - (double)i, tv = v - (double)j;
+    if (tu == 0 && tv == 0) return at(o, i, j);
+    if (o->resample == IMPORT_BILINEAR) {
+        double a = at(o, i, j) * (1 - tu) + at(o, i + 1, j) * tu;
+        double b = at(o, i, j + 1) * (1 - tu) + at(o, i + 1, j + 1) * tu;
+        return a * (1 - tv) + b * tv;
+    }
+    double rows[4];
+    for (int k = 0; k < 4; k++)
+        rows[k] = cubic(at(o, i - 1, j - 1 + k), at(o, i, j - 1 + k), at(o, i + 1, j - 1 + k),
+                        at(o, i + 2, j - 1 + k), tu);
+    return cubic(rows[0], rows[1], rows[2], rows[3], tv);
+}
+
+static void import_row(void *user, void *row, int64_t z, int64_t x0, int64_t x1) {
+    const import_op *o = user;
+    float *h = row;
+    const double wz = (double)z * o->grid_spacing;
+    const double v = (wz - o->z0) / o->sz;
+    const double span_x = (o->width - 1) * o->sx, span_z = (o->height - 1) * o->sz;
+    for (int64_t x = x0; x < x1; x++) {
+        const double wx = (double)x * o->grid_spacing;
+        double val = sample(o, (wx - o->x0) / o->sx, v);
+        double weight = 1.0;
+        if (o->falloff > 0) {
+            double d =
+                fmin(fmin(wx - o->x0, o->x0 + span_x - wx), fmin(wz - o->z0, o->z0 + span_z - wz));
+            double t = fmax(0.0, fmin(1.0, d / o->falloff));
+            weight = t * t * (3 - 2 * t);
+        }
+        const double old = h[x - x0];
+        double target = val;
+        switch (o->blend) {
+        case IMPORT_REPLACE:
+            break;
+        case IMPORT_ADD:
+            target = old + val;
+            break;
+        case IMPORT_MAX:
+            target = fmax(old, val);
+            break;
+        case IMPORT_MIN:
+            target = fmin(old, val);
+            break;
+        }
+        h[x - x0] = weight == 1.0 ? (float)target : (float)(old + (target - old) * weight);
+    }
+}
+
+int import_apply(world *w, const char *path, const import_options *o, import_report *report,
+                 og_error *err) {
+    const world_params *p = world_get_params(w);
+    layer_grid g;
+    if (layer_grid_init(&g, p, o->layer, 0, err) != 0) return -1;
+    if (p->kind == WORLD_PLANET)
+        return og_error_set(err, "import: planets take no rasters yet (import onto a flat world)");
+    raster r;
+    if (raster_read(path, &o->read, &r, err) != 0) return -1;
+    int rc = -1;
+    import_report rep;
+    memset(&rep, 0, sizeof rep);
+    double scale, offset;
+    if (import_height_mapping(path, &r, o, p->max_height, &scale, &offset, rep.mapping,
+                              sizeof rep.mapping, err) != 0)
+        goto done;
+    sidecar sc;
+    og_error ignore;
+    int has_sidecar = sidecar_read(path, &sc, &ignore) == 1;
+    double sx = o->spacing, sz = o->spacing;
+    if (sx <= 0) sx = r.spacing_x, sz = r.spacing_z;
+    if (sx <= 0 && has_sidecar) sx = sz = sc.spacing;
+    if (sx <= 0) sx = sz = g.spacing; // one sample per pixel
+    const size_t n = (size_t)r.width * (size_t)r.height;
+    rep.min = INFINITY;
+    rep.max = -INFINITY;
+    for (size_t i = 0; i < n; i++) {
+        float v = (float)((double)r.samples[i] * scale + offset);
+        if (!isfinite(v)) {
+            og_error_set(err, "%s: sample (%zu, %zu) maps to %g m, not a height", path,
+                         i % (size_t)r.width, i / (size_t)r.width, (double)v);
+            goto done;
+        }
+        r.samples[i] = v;
+        rep.min = fmin(rep.min, v);
+        rep.max = fmax(rep.max, v);
+    }
+    import_op op = {r.samples, r.width,   r.height,    0,        0,         sx,
+                    sz,        g.spacing, o->resample, o->blend, o->falloff};
+    if (o->has_position) {
+        op.x0 = o->x;
+        op.z0 = o->z;
+    } else if (has_sidecar) {
+        op.x0 = sc.origin_x;
+        op.z0 = sc.origin_z;
+    }
+    if (o->anchor_centre) {
+        op.x0 -= (r.width - 1) * sx / 2;
+        op.z0 -= (r.height - 1) * sz / 2;
+    }
+    const double x1 = op.x0 + (r.width - 1) * sx, z1 = op.z0 + (r.height - 1) * sz;
+    if (layer_grid_check_position(&g, op.x0, op.z0, err) != 0 ||
+        layer_grid_check_position(&g, x1, z1, err) != 0)
+        goto done;
+    // The layer samples the raster covers (within rounding of its edges).
+    grid_rect want = {
+        (int64_t)ceil(op.x0 / g.spacing - 1e-6), (int64_t)ceil(op.z0 / g.spacing - 1e-6),
+        (int64_t)floor(x1 / g.spacing + 1e-6) + 1, (int64_t)floor(z1 / g.spacing + 1e-6) + 1};
+    grid_rect rect = layer_grid_clip(&g, want);
+    if (grid_rect_empty(rect)) {
+        og_error_set(err,
+                     "%s: placed at %.9g, %.9g .. %.9g, %.9g m it lies outside the world "
+                     "(0 .. %.9g m)",
+                     path, op.x0, op.z0, x1, z1, (double)(g.extent - 1) * g.spacing);
+        goto done;
+    }
+    char label[300];
+    const char *slash = strrchr(path, '/');
+    snprintf(label, sizeof label, "import %s", slash ? slash + 1 : path);
+    edit *e = edit_begin(w, label, err);
+    if (!e) goto done;
+    if (edit_rows_apply(e, &g, rect, import_row, NULL, &op, err) != 0) {
+        edit_abort(e);
+        goto done;
+    }
+    if (edit_commit(e, err) != 0) goto done;
+    rc = 0;
+    rep.width = r.width;
+    rep.height = r.height;
+    rep.spacing_x = sx;
+    rep.spacing_z = sz;
+    rep.voids = r.voids;
+    rep.x0 = (double)rect.x0 * g.spacing;
+    rep.z0 = (double)rect.z0 * g.spacing;
+    rep.x1 = (double)(rect.x1 - 1) * g.spacing;
+    rep.z1 = (double)(rect.z1 - 1) * g.spacing;
+    rep.samples = (rect.x1 - rect.x0) * (rect.z1 - rect.z0);
+    snprintf(rep.source, sizeof rep.source, "%s", r.description);
+    if (report) *report = rep;
+done:
+    raster_free(&r);
+    return rc;
+}

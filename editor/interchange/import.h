@@ -1,0 +1,63 @@
+// Import: a height raster (io/raster.h) placed on the coarse or detail layer as one
+// undo step, at true scale: heights as stored unless mapped (min=/max=, scale=/
+// offset=, or the file's sidecar), sample spacing from the file's georeferencing,
+// resampled to the world's spacing and blended into what is there.
+//
+// Placement: the raster's first stored sample (row 0, column 0: the top-left of an
+// image, the north-west corner of a north-up DEM) sits at x, z; columns run toward
+// +X, rows toward +Z. anchor=centre centres the raster on x, z instead. Export
+// follows the same convention, so import -> export -> import is the identity.
+#ifndef OROGEN_EDITOR_INTERCHANGE_IMPORT_H
+#define OROGEN_EDITOR_INTERCHANGE_IMPORT_H
+
+#include "editor/world/world.h"
+#include "io/err.h"
+#include "io/raster.h"
+#include "io/tile.h"
+
+#include <stdint.h>
+
+typedef enum import_blend { IMPORT_REPLACE, IMPORT_ADD, IMPORT_MAX, IMPORT_MIN } import_blend;
+typedef enum import_resample { IMPORT_NEAREST, IMPORT_BILINEAR, IMPORT_BICUBIC } import_resample;
+
+typedef struct import_options {
+    raster_read_options read; // channel=, endian=, format=, width=, height=
+    int has_min_max, has_scale;
+    double min, max;      // metres at the lowest / highest stored value (normalised formats)
+    double scale, offset; // height = stored value x scale + offset
+    double spacing;       // metres between the raster's samples; 0: the file's, else the layer's
+    int has_position, anchor_centre;
+    double x, z; // metres
+    tile_layer layer;
+    import_resample resample;
+    import_blend blend;
+    double falloff; // metres over which the patch's edge fades into the terrain
+} import_options;
+
+typedef struct import_report {
+    int width, height;           // source samples
+    double spacing_x, spacing_z; // source metres per sample
+    double min, max;             // metres, after mapping
+    int64_t voids;               // filled samples
+    double x0, z0, x1, z1;       // placed rectangle, metres
+    int64_t samples;             // layer samples written
+    char mapping[160];           // how stored values became metres
+    char source[300];            // what was read
+} import_report;
+
+void import_options_defaults(import_options *o);
+// One key=value: min max scale offset spacing x z anchor layer resample blend falloff
+// channel endian format width height.
+int import_options_set(import_options *o, const char *key, const char *value, og_error *err);
+
+// Reads path and applies it as one undo step. report (may be NULL) says what happened.
+int import_apply(world *w, const char *path, const import_options *o, import_report *report,
+                 og_error *err);
+
+// The mapping from stored values to metres for raster r under options o (and the
+// file's sidecar, when o sets none): height = v x *scale + *offset.
+int import_height_mapping(const char *path, const raster *r, const import_options *o,
+                          double default_max, double *scale, double *offset, char *how,
+                          size_t how_len, og_error *err);
+
+#endif

@@ -1,0 +1,77 @@
+#include "editor/interchange/sidecar.h"
+
+#include "io/param_file.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+int sidecar_write(const char *image_path, const sidecar *s, const char *extra, og_error *err) {
+    char path[4200];
+    if (snprintf(path, sizeof path, "%s.json", image_path) >= (int)sizeof path)
+        return og_error_set(err, "%s: path too long", image_path);
+    char *text = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&text, &len);
+    if (!f) return og_error_set(err, "%s: out of memory", path);
+    // %.17g: every double reads back bit-exactly.
+    fprintf(f,
+            "{\n  \"generator\": \"orogen\",\n  \"format\": \"%s\",\n  \"layer\": \"%s\",\n"
+            "  \"width\": %d,\n  \"height\": %d,\n  \"spacing\": %.17g,\n"
+            "  \"origin_x\": %.17g,\n  \"origin_z\": %.17g,\n"
+            "  \"axes\": \"columns run toward +X, rows toward +Z; origin is row 0, column 0\",\n"
+            "  \"height_scale\": %.17g,\n  \"height_offset\": %.17g,\n"
+            "  \"min_height\": %.17g,\n  \"max_height\": %.17g%s%s\n}\n",
+            s->format, s->layer, s->width, s->height, s->spacing, s->origin_x, s->origin_z,
+            s->scale, s->offset, s->min, s->max, extra && *extra ? ",\n" : "", extra ? extra : "");
+    fclose(f);
+    int rc = param_file_write_atomic(path, text, len, err);
+    free(text);
+    return rc;
+}
+
+// The number after "key": in a flat JSON object (our own files).
+static int number_field(const char *text, const char *key, double *out) {
+    char quoted[64];
+    snprintf(quoted, sizeof quoted, "\"%s\"", key);
+    const char *p = strstr(text, quoted);
+    if (!p) return -1;
+    p = strchr(p + strlen(quoted), ':');
+    if (!p) return -1;
+    char *end;
+    errno = 0;
+    double v = strtod(p + 1, &end);
+    if (end == p + 1 || errno || !isfinite(v)) return -1;
+    *out = v;
+    return 0;
+}
+
+int sidecar_read(const char *image_path, sidecar *s, og_error *err) {
+    char path[4200];
+    if (snprintf(path, sizeof path, "%s.json", image_path) >= (int)sizeof path) return 0;
+    FILE *f = fopen(path, "rb");
+    if (!f) return 0;
+    char text[8192];
+    size_t n = fread(text, 1, sizeof text - 1, f);
+    fclose(f);
+    text[n] = 0;
+    memset(s, 0, sizeof *s);
+    static const char *const keys[] = {"width",    "height",       "spacing",      "origin_x",
+                                       "origin_z", "height_scale", "height_offset"};
+    double v[7];
+    for (int i = 0; i < 7; i++)
+        if (number_field(text, keys[i], &v[i]) != 0)
+            return og_error_set(err, "%s: no number for \"%s\"", path, keys[i]);
+    if (v[2] <= 0) return og_error_set(err, "%s: \"spacing\" must be positive", path);
+    s->width = (int)v[0];
+    s->height = (int)v[1];
+    s->spacing = v[2];
+    s->origin_x = v[3];
+    s->origin_z = v[4];
+    s->scale = v[5];
+    s->offset = v[6];
+    number_field(text, "min_height", &s->min);
+    number_field(text, "max_height", &s->max);
+    return 1;
+}

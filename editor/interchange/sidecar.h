@@ -1,0 +1,29 @@
+// The sidecar FILE.json written beside every exported heightmap: what a sample
+// means (height = stored value x scale + offset, metres), where the first sample
+// sits (origin, metres) and how far apart samples are, so the file goes back in at
+// true scale and place. Import reads it when present.
+#ifndef OROGEN_EDITOR_INTERCHANGE_SIDECAR_H
+#define OROGEN_EDITOR_INTERCHANGE_SIDECAR_H
+
+#include "io/err.h"
+
+#include <stdio.h>
+
+typedef struct sidecar {
+    double spacing;            // metres between samples (both axes)
+    double origin_x, origin_z; // world position of row 0, column 0 (metres)
+    int width, height;         // samples
+    double scale, offset;      // height = stored value x scale + offset
+    double min, max;           // metres: the heights the file holds
+    char format[32];           // "png16", "tiff16", "tiff32", "exr32", "r16", ...
+    char layer[16];            // "coarse", "detail"
+} sidecar;
+
+// Writes path + ".json" atomically. extra (may be NULL) is inserted as more
+// members (already formatted `"key": value` lines joined by ",\n").
+int sidecar_write(const char *image_path, const sidecar *s, const char *extra, og_error *err);
+// Reads image_path + ".json": 1 when read, 0 when there is none, -1 when it is there
+// but unreadable or missing a field (err names the file and field).
+int sidecar_read(const char *image_path, sidecar *s, og_error *err);
+
+#endif

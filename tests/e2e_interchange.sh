@@ -1,0 +1,184 @@
+#!/usr/bin/env bash
+# End-to-end: import and export through the real orogen binary, proven by readers
+# nobody here wrote: GDAL (gdalinfo, gdallocationinfo) and OpenImageIO (iinfo,
+# oiiotool). Usage: e2e_interchange.sh OROGEN TESTS_DIR
+set -u
+orogen=$1
+tests=$2
+work=$(mktemp -d "${TMPDIR:-/tmp}/orogen-e2e-ix-XXXXXX")
+trap '[ -n "${KEEP:-}" ] || rm -rf "$work"' EXIT
+failures=0
+passes=0
+kauai=$tests/data/dem/N22W160.hgt
+vermont=$tests/data/dem/N44W072.hgt
+
+check() { # name, condition already evaluated as $?
+    if [ "$2" = 0 ]; then passes=$((passes + 1)); else echo "FAIL: $1"; failures=$((failures + 1)); fi
+}
+run() { # captures stdout, stderr and status of orogen
+    "$orogen" "$@" >"$work/out" 2>"$work/err"
+    status=$?
+}
+same() { # two numbers equal within $3
+    python3 -c "import sys; sys.exit(0 if abs(float('$1') - float('$2')) <= $3 else 1)"
+}
+pixel() { # FILE X Y: the value OpenImageIO reads at column X, row Y
+    oiiotool "$1" --cut "1x1+$2+$3" -o "$work/pixel.tif" >/dev/null 2>&1 &&
+        oiiotool --dumpdata "$work/pixel.tif" | sed -n 's/.*Pixel (0, 0): *\([-0-9.e+]*\).*/\1/p'
+}
+
+for tool in gdallocationinfo gdalinfo oiiotool iinfo python3; do
+    command -v $tool >/dev/null || { echo "FAIL: $tool is missing (scripts/install-deps.sh)"; exit 1; }
+done
+
+# 1. SRTM at one world sample per raster sample: heights equal what GDAL reads.
+points="0 0
+17 5
+600 600
+1200 1200
+250 911
+1000 42
+733 377"
+cmds="new flat from=$vermont spacing=30"
+while read -r c r; do cmds="$cmds; sample $((c * 30)) $((r * 30))"; done <<<"$points"
+run -c "$cmds"
+check "import the Vermont .hgt" $status
+grep -q "imported $vermont: 3601 x 3601\|imported $vermont: 1201 x 1201" "$work/out"
+check "import reports the source size" $?
+i=0
+ok=0
+while read -r c r; do
+    want=$(gdallocationinfo -valonly "$vermont" "$c" "$r")
+    got=$(grep -E '^-?[0-9]+\.[0-9]+$' "$work/out" | sed -n "$((i + 1))p")
+    if [ "$want" != -32768 ]; then same "$got" "$want" 0 || { ok=1; echo "  ($c, $r): got $got, GDAL $want"; }; fi
+    i=$((i + 1))
+done <<<"$points"
+check "imported heights equal gdallocationinfo at sample points" $ok
+
+# 2. Geographic spacing: degrees become metres at the tile's centre latitude, and
+# row 0 (north) samples land exactly on the world grid along x.
+run -c "new flat from=$kauai; sample 0 0; sample $(python3 -c 'print(85.74684706448636*300)') 0"
+check "import the Kauai .hgt at its own spacing" $status
+grep -q "85.747 x 92.281 m at latitude 22.5000" "$work/out"; check "degree spacing converted at the centre latitude" $?
+voids=$(python3 -c "
+import struct
+d = open('$kauai', 'rb').read()
+print(sum(1 for (v,) in struct.iter_unpack('>h', d) if v == -32768))")
+[ "$voids" -gt 0 ] && grep -q "; $voids voids filled;" "$work/out"
+check "Kauai's $voids voids are filled and counted" $?
+got=$(grep -E '^-?[0-9]+\.[0-9]+$' "$work/out" | sed -n 2p)
+same "$got" "$(gdallocationinfo -valonly "$kauai" 300 0)" 0.001; check "geographic import: value at (300, 0)" $?
+
+# 3. Export: every format, read back by GDAL and OpenImageIO at true scale.
+run -c "new flat from=$vermont spacing=30; export $work/v.tif; export $work/v.exr; export $work/v.png; export $work/v16.tif bits=16; export $work/v.r16; sample 3000 6000"
+check "export tif, exr, png, 16-bit tif and r16" $status
+h=$(tail -n 1 "$work/out")
+gdalinfo "$work/v.tif" >"$work/gdalinfo" 2>&1
+grep -q "Size is 3601, 3601\|Size is 1201, 1201" "$work/gdalinfo"; check "gdalinfo: size" $?
+grep -q "Pixel Size = (30.000000000000000,-30.000000000000000)" "$work/gdalinfo"; check "gdalinfo: 30 m pixels" $?
+grep -q "Origin = (-15.000000000000000,15.000000000000000)" "$work/gdalinfo"; check "gdalinfo: origin half a sample out" $?
+same "$(gdallocationinfo -valonly "$work/v.tif" 100 200)" "$h" 0; check "gdallocationinfo on the GeoTIFF equals sample" $?
+iinfo "$work/v.exr" | grep -q "1 channel, float openexr"; check "iinfo: EXR is one float channel" $?
+oiiotool --info -v "$work/v.exr" | grep -q "channel list: Y"; check "EXR channel is named Y" $?
+same "$(pixel "$work/v.exr" 100 200)" "$h" 0; check "oiiotool reads the EXR height" $?
+iinfo "$work/v.png" | grep -q "1 channel, uint16 png"; check "iinfo: PNG is 16-bit grey" $?
+iinfo "$work/v16.tif" | grep -q "1 channel, uint16 tiff"; check "iinfo: 16-bit TIFF" $?
+scale=$(python3 -c "import json; print(json.load(open('$work/v.png.json'))['height_scale'])")
+offset=$(python3 -c "import json; print(json.load(open('$work/v.png.json'))['height_offset'])")
+raw=$(pixel "$work/v.png" 100 200)
+same "$(python3 -c "print($raw * $scale + $offset)")" "$h" "$(python3 -c "print($scale / 2 + 1e-9)")"
+check "PNG16 x sidecar scale + offset gives the height" $?
+[ "$(stat -c %s "$work/v.r16")" = $(($(python3 -c "import json; d=json.load(open('$work/v.r16.json')); print(d['width']*d['height'])") * 2)) ]
+check "R16 is width x height x 2 bytes" $?
+
+# 4. Round trips: 16-bit files come back to the same bytes, float ones bit-exactly.
+for f in v.r16 v.png v16.tif; do
+    ext=${f##*.}
+    run -c "new flat from=$work/$f; export $work/again.$ext $( [ "$f" = v16.tif ] && echo bits=16 ) scale=$scale offset=$offset"
+    check "re-import $f" $status
+    grep -q "^new flat world of .* samples, 30 m apart" "$work/out"; check "$f: the sidecar's spacing comes back" $?
+    cmp -s "$work/$f" "$work/again.$ext" || oiiotool --diff "$work/$f" "$work/again.$ext" >/dev/null 2>&1
+    check "$f: import -> export is lossless" $?
+done
+for f in v.exr v.tif; do
+    run -c "new flat from=$work/$f; export $work/again.${f##*.}"
+    check "re-import $f" $status
+    idiff -fail 0 -failpercent 0 "$work/$f" "$work/again.${f##*.}" >/dev/null 2>&1
+    check "$f: float round trip is bit-exact" $?
+done
+
+# 5. Placement, blending and undo.
+run -c "new flat; set generator flat; set base_height 10; generate; import $work/v.exr x=1000 z=2000 spacing=30; sample 1000 2000; sample 999 2000; undo; sample 1000 2000"
+check "import onto a flat world at x, z" $status
+first=$(gdallocationinfo -valonly "$work/v.tif" 0 0)
+vals=($(grep -E '^-?[0-9]+\.[0-9]+$' "$work/out"))
+same "${vals[0]}" "$first" 0.001; check "row 0, column 0 lands at x, z" $?
+same "${vals[2]}" 10 0; check "undo removes the import" $?
+run -c "new flat; set generator flat; set base_height 10; generate; import $work/v.exr x=0 z=0 spacing=30 blend=add; sample 0 0"
+same "$(tail -n 1 "$work/out")" "$(python3 -c "print($first + 10)")" 0.001; check "blend=add adds to the terrain" $?
+
+# 6. RAW sizes: inferred squares, and a clear error naming sizes that fit.
+head -c 20000 /dev/zero >"$work/odd.r16"
+run -c "new flat; import $work/odd.r16 min=0 max=100"
+[ $status = 0 ] && grep -q "odd.r16: 100 x 100 samples (RAW uint16 little-endian)" "$work/out"
+check "a RAW of 10000 samples is read as 100 x 100" $?
+head -c 20002 /dev/zero >"$work/odd.r16"
+run -c "new flat; import $work/odd.r16"
+[ $status = 1 ] && grep -q "odd.r16: 10001 uint16 samples is not a square; give width= and height= (sizes that fit: 137x73" "$work/err"
+check "non-square RAW: error lists sizes that fit" $?
+run -c "new flat; import $work/odd.r16 width=137"
+check "width= reads a non-square RAW" $status
+
+# 7. Bad input: a clear error naming the file, and the world unchanged.
+area='hash 0 0 2000 2000'
+run -c "$area"; before=$(cat "$work/out")
+printf 'not an image at all\n' >"$work/junk.png"
+head -c 3000 "$work/v.png" >"$work/truncated.png"
+printf 'P5\n100000 100000\n65535\n' >"$work/huge.pgm"
+head -c 100 "$work/v.tif" >"$work/truncated.tif"
+mkdir -p "$work/folder.png"
+for bad in junk.png truncated.png huge.pgm truncated.tif folder.png missing.exr; do
+    run -c "import $work/$bad; $area"
+    [ $status = 1 ] && grep -q "$work/$bad" "$work/err"; check "bad input $bad: error names the file" $?
+done
+grep -q "100000 x 100000" "$work/err" || true
+run -c "import $work/huge.pgm"
+grep -q "larger than the 65536 x 65536 limit\|over the limit" "$work/err"; check "huge header refused against the limit" $?
+python3 -c "
+import struct
+w, h = 4, 4
+vals = [1.0] * 16
+vals[5] = float('nan'); vals[6] = float('inf')
+open('$work/nan.pfm', 'wb').write(b'Pf\n4 4\n-1.0\n' + struct.pack('<16f', *vals))"
+run -c "new flat; import $work/nan.pfm"
+check "NaN / Inf samples are filled, not fatal" $status
+grep -q "; 2 voids filled;" "$work/out"; check "NaN / Inf samples are counted as voids" $?
+run -c "$area"; after=$(cat "$work/out")
+[ "$before" = "$after" ]; check "failed imports leave the world unchanged" $?
+
+# 8. Bad exports: nothing written, old file untouched.
+cp "$work/v.png" "$work/keep.png"
+run -c "new flat; export $work/keep.png"
+[ $status = 1 ] && grep -q "unbounded: give region=" "$work/err"; check "unbounded world needs a region" $?
+run -c "new flat; export $work/keep.png region=0,0,0,0"
+[ $status = 1 ] && grep -q "keep.png: the region holds" "$work/err"; check "zero-size region refused" $?
+run -c "new flat; export $work/keep.png region=0,0,1e9,1e9"
+[ $status = 1 ] && grep -q "over the limit" "$work/err"; check "gigantic region refused" $?
+cmp -s "$work/v.png" "$work/keep.png"; check "refused exports leave the old file alone" $?
+run -c "new flat; export /proc/orogen-nope/x.png region=0,0,100,100"
+[ $status = 1 ] && grep -q "/proc/orogen-nope/x.png" "$work/err"; check "unwritable export path: clear error" $?
+run -c "new flat; export $work/x.bmp region=0,0,100,100"
+[ $status = 1 ] && grep -q "x.bmp: cannot tell the format" "$work/err"; check "unknown export extension" $?
+! ls "$work" | grep tmp-; check "no temp files left behind" $?
+
+# 9. Presets crop to what the engine imports, and say so.
+run -c "new flat from=$vermont spacing=30; export $work/u.r16 preset=unreal; export $work/y.raw preset=unity; export $work/g.png preset=godot"
+grep -q "preset unreal: cropped .* to 1009 x 1009\|preset unreal: cropped .* to 2017 x 2017\|preset unreal: cropped .* to 8129 x 8129" "$work/out"
+check "unreal preset crops to a recommended size" $?
+grep -q "Scale Z = " "$work/out"; check "unreal preset prints Scale Z" $?
+grep -q "preset unity: cropped .* to 1025 x 1025\|preset unity: cropped .* to 2049 x 2049\|preset unity: cropped .* to 4097 x 4097" "$work/out"
+check "unity preset crops to 2^n+1" $?
+[ $status = 1 ] && grep -q "g.png: preset godot takes float heights" "$work/err"; check "godot preset refuses 16-bit PNG" $?
+
+echo "e2e_interchange: $passes passed, $failures failed"
+[ $failures = 0 ]
