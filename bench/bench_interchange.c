@@ -1,0 +1,125 @@
+// Import and export against the tools everyone uses for the same conversions, in
+// the same run: an 8192^2 16-bit PNG imported into a world and exported as a float
+// EXR against `oiiotool in.png -d float -o out.exr`; an SRTM .hgt imported against
+// `gdal_translate -ot Float32` to a raw float file. Medians of 3. Goal: <= 1.5x.
+// Usage: bench_interchange [DEM.hgt] (default tests/data/dem/N44W072.hgt)
+#include "bench/bench_timing.h"
+#include "editor/interchange/export.h"
+#include "editor/interchange/import.h"
+#include "editor/world/world.h"
+#include "io/image_read.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+enum { REPS = 3, SIDE = 8192 };
+
+static double run_tool(const char *cmd) {
+    double t0 = bench_now();
+    if (system(cmd) != 0) {
+        fprintf(stderr, "bench_interchange: '%s' failed\n", cmd);
+        exit(1);
+    }
+    return bench_now() - t0;
+}
+
+static world *bounded_world(int64_t size, double spacing) {
+    world_params p;
+    world_params_default(&p, WORLD_FLAT);
+    p.generator = GEN_FLAT;
+    p.size = size;
+    p.spacing = spacing;
+    world_settings s = {.cache_budget_bytes = (size_t)3 << 30, .workers = 2};
+    og_error err;
+    world *w = world_create(&p, &s, &err);
+    if (!w) {
+        fprintf(stderr, "bench_interchange: %s\n", err.msg);
+        exit(1);
+    }
+    return w;
+}
+
+int main(int argc, char **argv) {
+    const char *dem = argc > 1 ? argv[1] : OROGEN_SOURCE_DIR "/tests/data/dem/N44W072.hgt";
+    char dir[] = "/tmp/orogen-bench-ix-XXXXXX";
+    if (!mkdtemp(dir)) return 1;
+    char png[256], exr[256], peer_exr[256], raw[256], cmd[1024];
+    snprintf(png, sizeof png, "%s/in.png", dir);
+    snprintf(exr, sizeof exr, "%s/out.exr", dir);
+    snprintf(peer_exr, sizeof peer_exr, "%s/peer.exr", dir);
+    snprintf(raw, sizeof raw, "%s/peer.bil", dir);
+
+    // A terrain-like 16-bit image: smooth relief plus fine detail (compresses like one).
+    float *h = malloc(sizeof(float) * SIDE * SIDE);
+    for (int z = 0; z < SIDE; z++)
+        for (int x = 0; x < SIDE; x++) {
+            double v = 0.5 + 0.3 * sin(x * 0.003) * cos(z * 0.004) +
+                       0.1 * sin(x * 0.05 + z * 0.03) + 0.02 * sin(x * 0.9) * sin(z * 1.1);
+            h[(size_t)z * SIDE + x] = (float)(v * 65535.0);
+        }
+    og_error err;
+    if (image_write_samples(png, h, SIDE, SIDE, IMAGE_WRITE_UINT16, NULL, &err) != 0) {
+        fprintf(stderr, "bench_interchange: %s\n", err.msg);
+        return 1;
+    }
+    free(h);
+
+    double t_import[REPS], t_export[REPS], t_peer[REPS];
+    for (int i = 0; i < REPS; i++) {
+        world *w = bounded_world(SIDE, 1.0);
+        import_options o;
+        import_options_defaults(&o);
+        o.has_min_max = 3, o.min = 0, o.max = 1000;
+        double t0 = bench_now();
+        if (import_apply(w, png, &o, NULL, &err) != 0) {
+            fprintf(stderr, "bench_interchange: %s\n", err.msg);
+            return 1;
+        }
+        t_import[i] = bench_now() - t0;
+        export_options e;
+        export_options_defaults(&e);
+        t0 = bench_now();
+        if (export_heightmap(w, exr, &e, NULL, NULL, &err) != 0) {
+            fprintf(stderr, "bench_interchange: %s\n", err.msg);
+            return 1;
+        }
+        t_export[i] = bench_now() - t0;
+        world_close(w);
+        snprintf(cmd, sizeof cmd, "oiiotool '%s' -d float -o '%s'", png, peer_exr);
+        t_peer[i] = run_tool(cmd);
+    }
+    double imp = bench_median(t_import, REPS), ex = bench_median(t_export, REPS),
+           peer = bench_median(t_peer, REPS);
+    printf("8192^2 PNG16 -> EXR float: orogen import %.2f s + export %.2f s = %.2f s; "
+           "oiiotool %.2f s; ratio %.2fx (goal <= 1.5x) %s\n",
+           imp, ex, imp + ex, peer, (imp + ex) / peer, (imp + ex) / peer <= 1.5 ? "MET" : "MISS");
+    printf("  import alone %.2fx, export alone %.2fx of oiiotool's conversion\n", imp / peer,
+           ex / peer);
+
+    double t_dem[REPS], t_gdal[REPS];
+    for (int i = 0; i < REPS; i++) {
+        world *w = bounded_world(3601, 30.0);
+        import_options o;
+        import_options_defaults(&o);
+        o.spacing = 30.0;
+        double t0 = bench_now();
+        if (import_apply(w, dem, &o, NULL, &err) != 0) {
+            fprintf(stderr, "bench_interchange: %s\n", err.msg);
+            return 1;
+        }
+        t_dem[i] = bench_now() - t0;
+        world_close(w);
+        snprintf(cmd, sizeof cmd, "gdal_translate -q -of ENVI -ot Float32 '%s' '%s'", dem, raw);
+        t_gdal[i] = run_tool(cmd);
+    }
+    double d = bench_median(t_dem, REPS), g = bench_median(t_gdal, REPS);
+    printf("%s import: orogen %.3f s; gdal_translate to raw float %.3f s; ratio %.2fx "
+           "(goal <= 1.5x) %s\n",
+           strrchr(dem, '/') ? strrchr(dem, '/') + 1 : dem, d, g, d / g,
+           d / g <= 1.5 ? "MET" : "MISS");
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    return system(cmd) == 0 ? 0 : 1;
+}
