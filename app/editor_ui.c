@@ -1,5 +1,7 @@
 #include "app/editor_ui.h"
 
+#include "editor/cmd/tokenize.h"
+
 #include "editor/gen/gen.h"
 #include "editor/params/world_params.h"
 #include "editor/world/history.h"
@@ -42,19 +44,6 @@ static int runf(editor_ui *e, cmd_context *ctx, const char *fmt, ...) {
     return editor_ui_run(e, ctx, text);
 }
 
-// A path as one argument of the command language.
-static void quote_arg(char *out, size_t size, const char *path) {
-    size_t n = 0;
-    if (size < 3) return;
-    out[n++] = '"';
-    for (const char *p = path; *p && n + 3 < size; p++) {
-        if (*p == '"' || *p == '\\') out[n++] = '\\';
-        out[n++] = *p;
-    }
-    out[n++] = '"';
-    out[n] = 0;
-}
-
 static void remember_recent(editor_ui *e, const char *path) {
     if (!path[0]) return;
     int n = 0;
@@ -71,7 +60,7 @@ static void do_action(editor_ui *e, cmd_context *ctx, editor_pending action) {
     if (action == PENDING_NEW_FLAT) editor_ui_run(e, ctx, "new flat");
     if (action == PENDING_OPEN) {
         char arg[1100], cmd[1200];
-        quote_arg(arg, sizeof arg, e->open_path);
+        cmd_quote_arg(arg, sizeof arg, e->open_path);
         snprintf(cmd, sizeof cmd, "load %s", arg);
         if (run_now(e, ctx, cmd) == 0) remember_recent(e, e->open_path);
     }
@@ -112,6 +101,13 @@ static void menus(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v, u
         if (ui_menu_item(ui, "Save as...", "Ctrl+Shift+S", 1)) editor_ui_save_as(e, ctx);
         if (ui_menu_item(ui, "Save session as script...", NULL, ctx->session != NULL))
             file_browser_show(&e->files, FILE_BROWSER_SCRIPT, "session.og");
+        ui_menu_separator(ui);
+        int flat = world_get_params(ctx->world)->kind == WORLD_FLAT;
+        if (ui_menu_item(ui, "Import heightmap...", NULL, flat))
+            file_browser_show(&e->files, FILE_BROWSER_IMPORT, e->interchange.path);
+        if (ui_menu_item(ui, "Export heightmap...", NULL, flat))
+            file_browser_show(&e->files, FILE_BROWSER_EXPORT,
+                              e->interchange.path[0] ? e->interchange.path : "heightmap.exr");
         ui_menu_separator(ui);
         if (ui_menu_item(ui, "Quit", "Ctrl+Q", 1)) editor_ui_request(e, ctx, PENDING_QUIT);
         ui_menu_end(ui);
@@ -847,8 +843,15 @@ static void files_dialog(editor_ui *e, ui_context *ui, cmd_context *ctx, ui_rect
         editor_ui_request(e, ctx, PENDING_OPEN);
         return;
     }
+    if (e->files.mode == FILE_BROWSER_IMPORT || e->files.mode == FILE_BROWSER_EXPORT) {
+        const world_params *p = world_get_params(ctx->world);
+        double bounded = p->size > 0 ? (double)(p->size - 1) * p->spacing : 0.0;
+        interchange_dialog_show(&e->interchange, e->files.mode == FILE_BROWSER_EXPORT,
+                                e->files.path, bounded, e->view_x, e->view_z);
+        return;
+    }
     char arg[4200], cmd[4300];
-    quote_arg(arg, sizeof arg, e->files.path);
+    cmd_quote_arg(arg, sizeof arg, e->files.path);
     if (e->files.mode == FILE_BROWSER_SCRIPT) {
         snprintf(cmd, sizeof cmd, "history script %s", arg);
         run_now(e, ctx, cmd);
@@ -912,6 +915,11 @@ static ui_rect dialog_rect(const editor_ui *e, const ui_context *ui, float width
     if (e->files.open)
         return centred(width, height, fminf(width * 0.9f, ui_em(ui, 34)),
                        fminf(height * 0.85f, ui_em(ui, 24)));
+    if (e->interchange.open)
+        return centred(
+            width, height, fminf(width * 0.9f, ui_em(ui, 24)),
+            fminf(height * 0.9f,
+                  ui_em(ui, 1.65f * (float)interchange_dialog_rows(&e->interchange) + 1.5f)));
     if (e->pending != PENDING_NONE) return centred(width, height, ui_em(ui, 22), ui_em(ui, 6));
     if (e->show_help) return text_dialog_rect(ui, help_lines, HELP_LINES, width, height);
     if (e->show_about) return centred(width, height, ui_em(ui, 34), ui_em(ui, 1.45f * (3 + 3)));
@@ -976,16 +984,25 @@ ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport
         const char *about[] = {"Orogen 0.1: a terrain editor", gl, libs};
         text_dialog(ui, "About", about, 3, &e->show_about, width, height);
     }
-    if (e->files.open)
+    e->view_x = v->cam.pos[0];
+    e->view_z = v->cam.pos[2];
+    if (e->files.open) {
         files_dialog(e, ui, ctx, modal);
-    else if (e->pending != PENDING_NONE)
+    } else if (e->interchange.open) {
+        char cmd[4600];
+        if (interchange_dialog_draw(&e->interchange, ui, modal, cmd, sizeof cmd))
+            editor_ui_run(e, ctx, cmd);
+    } else if (e->pending != PENDING_NONE) {
         unsaved_prompt(e, ui, ctx, width, height);
+    }
     // The menu bar last: its menus open over everything.
     menus(e, ui, ctx, v, top);
     if (ui_get_input(ui)->key_pressed[UI_KEY_ESCAPE] && !ui_wants_keyboard(ui)) {
         e->show_help = e->show_about = e->picking_height = 0;
         if (e->files.open)
             e->files.open = 0;
+        else if (e->interchange.open)
+            e->interchange.open = 0;
         else if (e->pending != PENDING_NONE)
             e->pending = PENDING_NONE;
     }

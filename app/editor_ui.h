@@ -7,6 +7,7 @@
 
 #include "app/console.h"
 #include "app/file_browser.h"
+#include "app/interchange_dialog.h"
 #include "app/stamp_browser.h"
 #include "app/work_queue.h"
 #include "editor/cmd/commands.h"
@@ -37,8 +38,10 @@ typedef enum editor_pending {
 typedef struct editor_ui {
     console console;
     int show_help, show_about;
-    file_browser files;     // Open and Save as
-    editor_pending pending; // an action waiting on the unsaved-changes prompt
+    file_browser files;             // Open and Save as
+    interchange_dialog interchange; // Import / Export heightmap options
+    double view_x, view_z;          // where the camera is (metres): default placements
+    editor_pending pending;         // an action waiting on the unsaved-changes prompt
     char open_path[1024];
     char recent[EDITOR_RECENT][1024]; // worlds opened or saved lately, newest first
     int recent_count;

@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -13,14 +14,27 @@ static int listed_file(file_browser_mode mode, const char *name) {
     const char *dot = strrchr(name, '.');
     if (!dot) return 0;
     if (mode == FILE_BROWSER_SCRIPT) return strcmp(dot, ".og") == 0 || strcmp(dot, ".txt") == 0;
+    if (mode == FILE_BROWSER_IMPORT || mode == FILE_BROWSER_EXPORT) {
+        static const char *const rasters[] = {".png", ".tif", ".tiff", ".exr", ".r16", ".raw",
+                                              ".hgt", ".asc", ".pgm",  ".pfm", ".dem", ".bil"};
+        static const char *const exports[] = {".png", ".tif", ".tiff", ".exr", ".r16", ".raw"};
+        const char *const *list = mode == FILE_BROWSER_IMPORT ? rasters : exports;
+        int n = mode == FILE_BROWSER_IMPORT ? 12 : 6;
+        for (int i = 0; i < n; i++)
+            if (strcasecmp(dot, list[i]) == 0) return 1;
+        return 0;
+    }
     return strcmp(dot, ".world") == 0 || strcmp(dot, ".planet") == 0;
 }
 
-static const char *const titles[] = {"Open", "Save as", "Save session script"};
+static const char *const titles[] = {"Open", "Save as", "Save session script", "Import heightmap",
+                                     "Export heightmap"};
 static const char *const intros[] = {
     "Open a world (.world or .planet)",
     "Save the world as (a .world file; its tiles go beside it as NAME.tiles)",
-    "Save this session's commands as a script (.og) that replays it on the starting world"};
+    "Save this session's commands as a script (.og) that replays it on the starting world",
+    "Import a heightmap: PNG, TIFF, EXR, RAW/R16, SRTM .hgt, GeoTIFF, ASCII grid",
+    "Export a heightmap: .png (16-bit), .tif (float GeoTIFF), .exr (float), .r16"};
 
 static int sort_mode; // qsort has no user pointer
 
@@ -154,24 +168,27 @@ int file_browser_draw(file_browser *b, ui_context *ui, ui_rect r) {
     ui_tooltip(ui, "The file: type a path, or pick one above");
     float bottom[2] = {-0.5f, 0};
     ui_row(ui, 2, bottom, line);
-    int go = ui_button(ui, b->confirm_overwrite           ? "Overwrite##go"
-                           : b->mode == FILE_BROWSER_OPEN ? "Open##go"
-                                                          : "Save##go") ||
+    static const char *const go_labels[] = {"Open##go", "Save##go", "Save##go", "Next##go",
+                                            "Next##go"};
+    static const char *const go_tips[] = {"Open the chosen world", "Save the world there",
+                                          "Write the script there",
+                                          "Choose how to import it (next: the import options)",
+                                          "Choose what to export there (next: the export options)"};
+    int go = ui_button(ui, b->confirm_overwrite ? "Overwrite##go" : go_labels[b->mode]) ||
              (rc & UI_TEXT_SUBMIT);
-    ui_tooltip(ui, b->mode == FILE_BROWSER_OPEN   ? "Open the chosen world"
-                   : b->mode == FILE_BROWSER_SAVE ? "Save the world there"
-                                                  : "Write the script there");
+    ui_tooltip(ui, go_tips[b->mode]);
     if (ui_button(ui, "Cancel")) b->open = 0;
     ui_tooltip(ui, "Close without choosing (Esc)");
     ui_panel_end(ui);
     if (go && b->path[0]) {
         struct stat st;
         int exists = stat(b->path, &st) == 0;
-        if (b->mode == FILE_BROWSER_OPEN && !exists) {
+        int opening = b->mode == FILE_BROWSER_OPEN || b->mode == FILE_BROWSER_IMPORT;
+        if (opening && !exists) {
             snprintf(b->error, sizeof b->error, "%.400s: no such file", b->path);
         } else if (exists && S_ISDIR(st.st_mode)) {
             go_to(b, b->path);
-        } else if (b->mode != FILE_BROWSER_OPEN && exists && !b->confirm_overwrite) {
+        } else if (!opening && exists && !b->confirm_overwrite) {
             b->confirm_overwrite = 1; // the button asks again: Overwrite
             snprintf(b->error, sizeof b->error, "%.400s exists: press Overwrite to replace it",
                      b->path);

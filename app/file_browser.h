@@ -1,7 +1,7 @@
 // The in-app file browser (no native dialogs exist under Xvfb or on every desktop):
 // a folder's sub-folders and the files of the mode's kind (worlds: .world, .planet;
-// scripts: .og, .txt), parent and home, a path field, sorting by name, date or size,
-// and for saving an overwrite confirmation.
+// scripts: .og, .txt; heightmaps: images, rasters, RAW), parent and home, a path field, sorting by
+// name, date or size, and for saving an overwrite confirmation.
 #ifndef OROGEN_APP_FILE_BROWSER_H
 #define OROGEN_APP_FILE_BROWSER_H
 
@@ -16,6 +16,8 @@ typedef enum file_browser_mode {
     FILE_BROWSER_OPEN,   // a world to open
     FILE_BROWSER_SAVE,   // where to save the world
     FILE_BROWSER_SCRIPT, // where to save the session as a script (.og)
+    FILE_BROWSER_IMPORT, // a heightmap or elevation raster to import
+    FILE_BROWSER_EXPORT, // where to export a heightmap
 } file_browser_mode;
 
 typedef struct file_browser_entry {

@@ -10,6 +10,7 @@
 #include "renderer/gl_context.h"
 #include "renderer/gl_target.h"
 #include "renderer/material_textures.h"
+#include "editor/cmd/tokenize.h"
 #include "renderer/pick.h"
 #include "renderer/ui_renderer.h"
 #include "io/image_read.h"
@@ -25,6 +26,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -732,9 +734,20 @@ static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
     }
 }
 
-// Files dropped on the window: a world opens (asking first about unsaved changes), an
-// image becomes a user stamp (stamp_add; the browser then selects it), anything else is
-// refused with a message.
+// Elevation rasters (not pictures): dropped, they are imported, not made stamps.
+static int is_elevation_raster(const char *path) {
+    static const char *const ext[] = {".hgt", ".tif", ".tiff", ".asc", ".r16",
+                                      ".raw", ".dem", ".bil",  ".exr"};
+    const char *dot = strrchr(path, '.');
+    for (size_t i = 0; dot && i < sizeof ext / sizeof ext[0]; i++)
+        if (strcasecmp(dot, ext[i]) == 0) return 1;
+    return 0;
+}
+
+// Files dropped on the window: a world opens (asking first about unsaved changes), a
+// heightmap (.hgt .tif .exr .r16 ...) is imported centred under the pointer, another
+// image becomes a user stamp (stamp_add; the browser then selects it), anything else
+// is refused with a message.
 static void on_drop(GLFWwindow *win, int count, const char **paths) {
     window_state *st = glfwGetWindowUserPointer(win);
     st->ui_dirty = 1;
@@ -748,21 +761,32 @@ static void on_drop(GLFWwindow *win, int count, const char **paths) {
         } else if (dot && (strcmp(dot, ".world") == 0 || strcmp(dot, ".planet") == 0)) {
             snprintf(st->ed.open_path, sizeof st->ed.open_path, "%.1023s", p);
             editor_ui_request(&st->ed, st->ctx, PENDING_OPEN);
+        } else if (is_elevation_raster(p)) {
+            // Imported centred on the point under the pointer (else where the file says).
+            double hit[3], mx, my;
+            char arg[4200], cmd[4400];
+            cmd_quote_arg(arg, sizeof arg, p);
+            glfwGetCursorPos(win, &mx, &my);
+            if (pick_at(st, mx, my, hit) == 0)
+                snprintf(cmd, sizeof cmd, "import %s x=%.3f z=%.3f anchor=centre", arg, hit[0],
+                         hit[2]);
+            else
+                snprintf(cmd, sizeof cmd, "import %s", arg);
+            run_commands(st, cmd, "drop");
         } else if (stamp_is_image_file(p)) {
-            char cmd[4200] = "stamp_add \"";
-            size_t n = strlen(cmd);
-            for (const char *c = p; *c && n + 3 < sizeof cmd; c++) {
-                if (*c == '"' || *c == '\\') cmd[n++] = '\\';
-                cmd[n++] = *c;
-            }
-            cmd[n++] = '"', cmd[n] = 0;
+            char arg[4200], cmd[4300];
+            cmd_quote_arg(arg, sizeof arg, p);
+            snprintf(cmd, sizeof cmd, "stamp_add %s", arg);
             stamp_browser_load(&st->ed.stamps,
                                st->ctx); // listed before, so the new one shows as new
             run_commands(st, cmd, "drop");
             st->ed.stamps.checked_at = 0; // look at the folder again at once
         } else {
-            snprintf(msg, sizeof msg,
-                     "%.4000s: Orogen opens .world and .planet files and makes images stamps", p);
+            snprintf(
+                msg, sizeof msg,
+                "%.4000s: Orogen opens .world and .planet files, imports heightmaps (.hgt .tif "
+                ".exr .r16 ...) and makes other images stamps",
+                p);
             console_add(&st->ed.console, CONSOLE_ERROR, msg);
             fprintf(stderr, "%s\n", msg);
         }

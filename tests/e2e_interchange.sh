@@ -156,6 +156,10 @@ grep -q "; 2 voids filled;" "$work/out"; check "NaN / Inf samples are counted as
 run -c "$area"; after=$(cat "$work/out")
 [ "$before" = "$after" ]; check "failed imports leave the world unchanged" $?
 
+run -c "new flat; import $vermont"
+[ $status = 1 ] && grep -q "N44W072.hgt: it covers .* over the limit of 134217728 in one import: give a larger spacing=" "$work/err"
+check "a DEM onto a 2 m world: refused before a 10^9-sample edit" $?
+
 # 8. Bad exports: nothing written, old file untouched.
 cp "$work/v.png" "$work/keep.png"
 run -c "new flat; export $work/keep.png"

@@ -118,3 +118,18 @@ int cmd_tokenizer_next(cmd_tokenizer *t, int *argc_out, char ***argv_out, int *l
         argc++;
     }
 }
+
+void cmd_quote_arg(char *out, size_t size, const char *text) {
+    size_t n = 0;
+    if (size < 3) {
+        if (size) out[0] = 0;
+        return;
+    }
+    out[n++] = '"';
+    for (const char *p = text; *p && n + 3 < size; p++) {
+        if (*p == '"' || *p == '\\') out[n++] = '\\';
+        out[n++] = *p;
+    }
+    out[n++] = '"';
+    out[n] = 0;
+}

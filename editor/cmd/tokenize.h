@@ -33,4 +33,8 @@ void cmd_tokenizer_free(cmd_tokenizer *t);
 // err = "label:line: error: ..." (the tokenizer stops there).
 int cmd_tokenizer_next(cmd_tokenizer *t, int *argc, char ***argv, int *line, og_error *err);
 
+// Writes text as one argument the tokenizer reads back as text: double quotes, with a
+// backslash before quotes and backslashes (cut short, still quoted, if out is small).
+void cmd_quote_arg(char *out, size_t size, const char *text);
+
 #endif

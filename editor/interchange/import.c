@@ -286,6 +286,16 @@ int import_apply(world *w, const char *path, const import_options *o, import_rep
                      path, op.x0, op.z0, x1, z1, (double)(g.extent - 1) * g.spacing);
         goto done;
     }
+    const double covered = (double)(rect.x1 - rect.x0) * (double)(rect.z1 - rect.z0);
+    if (covered > (double)IMPORT_MAX_SAMPLES) {
+        og_error_set(err,
+                     "%s: it covers %lld x %lld samples of the world (%.3g m apart), over the "
+                     "limit of %lld in one import: give a larger spacing= or make a world from "
+                     "it (new flat from=FILE)",
+                     path, (long long)(rect.x1 - rect.x0), (long long)(rect.z1 - rect.z0),
+                     g.spacing, (long long)IMPORT_MAX_SAMPLES);
+        goto done;
+    }
     char label[300];
     const char *slash = strrchr(path, '/');
     snprintf(label, sizeof label, "import %s", slash ? slash + 1 : path);

@@ -17,6 +17,9 @@
 
 #include <stdint.h>
 
+// The most world samples one import writes (an SRTM tile at 1 m would be 10^10).
+#define IMPORT_MAX_SAMPLES ((int64_t)1 << 27)
+
 typedef enum import_blend { IMPORT_REPLACE, IMPORT_ADD, IMPORT_MAX, IMPORT_MIN } import_blend;
 typedef enum import_resample { IMPORT_NEAREST, IMPORT_BILINEAR, IMPORT_BICUBIC } import_resample;
 

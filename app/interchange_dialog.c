@@ -1,0 +1,154 @@
+#include "app/interchange_dialog.h"
+
+#include "editor/cmd/tokenize.h"
+
+#include <stdio.h>
+#include <string.h>
+
+void interchange_dialog_show(interchange_dialog *d, int exporting, const char *path,
+                             double bounded_metres, double x, double z) {
+    // Keep the user's last choices; set only what depends on this file and view.
+    d->open = 1;
+    d->exporting = exporting;
+    snprintf(d->path, sizeof d->path, "%s", path);
+    if (!d->x[0]) snprintf(d->x, sizeof d->x, "%.0f", bounded_metres > 0 ? 0.0 : x);
+    if (!d->z[0]) snprintf(d->z, sizeof d->z, "%.0f", bounded_metres > 0 ? 0.0 : z);
+    if (!d->min[0]) snprintf(d->min, sizeof d->min, "0");
+    if (!d->max[0]) snprintf(d->max, sizeof d->max, "500");
+    if (!d->resample) d->resample = 1; // bilinear
+    d->whole = bounded_metres > 0;
+    if (!d->region[2][0]) {
+        const double half = 1000;
+        snprintf(d->region[0], sizeof d->region[0], "%.0f", x - half);
+        snprintf(d->region[1], sizeof d->region[1], "%.0f", z - half);
+        snprintf(d->region[2], sizeof d->region[2], "%.0f", x + half);
+        snprintf(d->region[3], sizeof d->region[3], "%.0f", z + half);
+    }
+}
+
+// A label and its text field in one row; the field is named `name` (labels are listed
+// by their text, so the field needs a name of its own for tests to find it).
+static void labelled_field(ui_context *ui, const char *label, const char *name, char *buf,
+                           size_t size, const char *tip) {
+    float w[2] = {ui_em(ui, 7), 0};
+    ui_row(ui, 2, w, 0);
+    ui_label(ui, label);
+    ui_textbox(ui, name, buf, size);
+    ui_tooltip(ui, tip);
+}
+
+static void import_options(interchange_dialog *d, ui_context *ui) {
+    labelled_field(ui, "X (m)", "x", d->x, sizeof d->x,
+                   "Where the first sample (row 0, column 0) goes, metres east");
+    labelled_field(ui, "Z (m)", "z", d->z, sizeof d->z,
+                   "Where the first sample goes, metres south (rows run toward +Z)");
+    ui_row(ui, 1, NULL, 0);
+    ui_checkbox(ui, "Centre it on X, Z##centre", &d->centre);
+    ui_tooltip(ui, "Place the middle of the heightmap at X, Z instead of its first corner");
+    static const char *const layers[] = {"Coarse heights", "Detail heights"};
+    ui_combo(ui, "Layer", &d->layer, layers, 2);
+    ui_tooltip(ui, "The layer the heights go to: coarse terrain or fine detail");
+    ui_checkbox(ui, "Map 8/16-bit values to heights##map", &d->map_heights);
+    ui_tooltip(ui, "Integer images hold no metres: map their lowest and highest value to these "
+                   "heights (otherwise: the file's sidecar, or 0 .. the world's max height). "
+                   "Float files and DEMs are metres as stored.");
+    if (d->map_heights) {
+        labelled_field(ui, "Lowest (m)", "min", d->min, sizeof d->min,
+                       "Height in metres of the lowest stored value (0)");
+        labelled_field(ui, "Highest (m)", "max", d->max, sizeof d->max,
+                       "Height in metres of the highest stored value (65535 in 16-bit)");
+    }
+    ui_row(ui, 1, NULL, 0);
+    static const char *const blends[] = {"Replace", "Add", "Max", "Min"};
+    ui_combo(ui, "Blend", &d->blend, blends, 4);
+    ui_tooltip(ui, "How the heights meet the terrain: replace it, add to it, keep the higher "
+                   "or the lower");
+    static const char *const resamples[] = {"Nearest", "Bilinear", "Bicubic"};
+    ui_combo(ui, "Resample", &d->resample, resamples, 3);
+    ui_tooltip(ui, "How samples between the file's samples are found when spacings differ");
+    ui_slider(ui, "Edge falloff (m)##falloff", &d->falloff, 0, 2000, "%.0f m");
+    ui_tooltip(ui, "Fade the heightmap's edges into the terrain over this distance");
+}
+
+static void export_options(interchange_dialog *d, ui_context *ui) {
+    ui_row(ui, 1, NULL, 0);
+    ui_checkbox(ui, "The whole world##whole", &d->whole);
+    ui_tooltip(ui, "Export every sample of the bounded world (unbounded worlds need a region)");
+    if (!d->whole) {
+        static const char *const labels[] = {"West X0 (m)", "North Z0 (m)", "East X1 (m)",
+                                             "South Z1 (m)"};
+        static const char *const names[] = {"x0", "z0", "x1", "z1"};
+        static const char *const tips[] = {
+            "The region's west edge, metres", "The region's north edge (smaller Z), metres",
+            "The region's east edge, metres", "The region's south edge, metres"};
+        for (int i = 0; i < 4; i++)
+            labelled_field(ui, labels[i], names[i], d->region[i], sizeof d->region[i], tips[i]);
+    }
+    ui_row(ui, 1, NULL, 0);
+    static const char *const presets[] = {"None",    "Unreal", "Unity", "Godot Terrain3D",
+                                          "Houdini", "Blender"};
+    ui_combo(ui, "Preset", &d->preset, presets, 6);
+    ui_tooltip(ui, "Check the format for an engine and crop to the sizes it imports (Unreal: "
+                   "16-bit PNG or R16, 1009/2017/4033/8129; Unity: RAW 2^n+1; Godot, Houdini, "
+                   "Blender: float EXR). The settings to type in are printed in the console.");
+    const char *dot = strrchr(d->path, '.');
+    if (dot && (!strcmp(dot, ".tif") || !strcmp(dot, ".tiff"))) {
+        ui_checkbox(ui, "16-bit TIFF (not float)##bits16", &d->bits16);
+        ui_tooltip(ui, "Write 16-bit integers and a height mapping instead of float metres");
+    }
+}
+
+int interchange_dialog_rows(const interchange_dialog *d) {
+    if (d->exporting) {
+        const char *dot = strrchr(d->path, '.');
+        int tif = dot && (!strcmp(dot, ".tif") || !strcmp(dot, ".tiff"));
+        return 4 + (d->whole ? 0 : 4) + tif; // title, whole, preset, buttons
+    }
+    return 10 + (d->map_heights ? 2 : 0); // title x z centre layer map blend resample falloff go
+}
+
+int interchange_dialog_draw(interchange_dialog *d, ui_context *ui, ui_rect r, char *cmd,
+                            size_t cmd_len) {
+    ui_panel_begin(ui, d->exporting ? "Export options" : "Import options", r);
+    ui_row(ui, 1, NULL, 0);
+    const char *slash = strrchr(d->path, '/');
+    char title[600];
+    snprintf(title, sizeof title, "%s %.500s", d->exporting ? "Export to" : "Import",
+             slash ? slash + 1 : d->path);
+    ui_label(ui, title);
+    if (d->exporting)
+        export_options(d, ui);
+    else
+        import_options(d, ui);
+    float bottom[2] = {-0.5f, 0};
+    ui_row(ui, 2, bottom, 0);
+    int go = ui_button(ui, d->exporting ? "Export##go" : "Import##go");
+    ui_tooltip(ui, d->exporting ? "Write the file (and its .json sidecar)"
+                                : "Import it as one undo step");
+    if (ui_button(ui, "Cancel")) d->open = 0;
+    ui_tooltip(ui, "Close without doing anything (Esc)");
+    ui_panel_end(ui);
+    if (!go) return 0;
+    char path[4200];
+    cmd_quote_arg(path, sizeof path, d->path);
+    static const char *const blends[] = {"replace", "add", "max", "min"};
+    static const char *const resamples[] = {"nearest", "bilinear", "bicubic"};
+    static const char *const presets[] = {"none", "unreal", "unity", "godot", "houdini", "blender"};
+    if (d->exporting) {
+        char region[200] = "";
+        if (!d->whole)
+            snprintf(region, sizeof region, " region=%s,%s,%s,%s", d->region[0], d->region[1],
+                     d->region[2], d->region[3]);
+        snprintf(cmd, cmd_len, "export %s%s%s%s%s", path, region, d->preset ? " preset=" : "",
+                 d->preset ? presets[d->preset] : "", d->bits16 ? " bits=16" : "");
+    } else {
+        char mapping[100] = "";
+        if (d->map_heights) snprintf(mapping, sizeof mapping, " min=%s max=%s", d->min, d->max);
+        snprintf(cmd, cmd_len, "import %s x=%s z=%s%s layer=%s%s blend=%s resample=%s falloff=%g",
+                 path, d->x, d->z, d->centre ? " anchor=centre" : "",
+                 d->layer ? "detail" : "coarse", mapping, blends[d->blend], resamples[d->resample],
+                 d->falloff);
+    }
+    d->open = 0;
+    return 1;
+}

@@ -1,0 +1,43 @@
+// The options dialogs of File > Import heightmap and Export heightmap: after the
+// file browser chose the file, where and how to import it (placement, layer, height
+// mapping, blending) or what to export (region, engine preset, 16-bit TIFF). The
+// dialog only builds the import / export command; the editor runs it.
+#ifndef OROGEN_APP_INTERCHANGE_DIALOG_H
+#define OROGEN_APP_INTERCHANGE_DIALOG_H
+
+#include "ui/ui.h"
+
+#include <stddef.h>
+
+typedef struct interchange_dialog {
+    int open;
+    int exporting; // 0: import options, 1: export options
+    char path[4096];
+    // import
+    char x[32], z[32]; // metres: where row 0, column 0 (or the centre) goes
+    int centre;        // anchor=centre
+    int layer;         // 0 coarse, 1 detail
+    int map_heights;   // give min= / max= (8/16-bit files)
+    char min[32], max[32];
+    int blend;      // replace add max min
+    int resample;   // nearest bilinear bicubic
+    double falloff; // metres
+    // export
+    int whole;          // the whole bounded world (else region)
+    char region[4][32]; // X0 Z0 X1 Z1 metres
+    int preset;         // none unreal unity godot houdini blender
+    int bits16;         // .tif as 16-bit
+} interchange_dialog;
+
+// Opens the dialog for path with defaults: bounded (world size in metres, 0 when
+// unbounded) sets the export region to the whole world; x, z is where the view looks.
+void interchange_dialog_show(interchange_dialog *d, int exporting, const char *path,
+                             double bounded_metres, double x, double z);
+// The rows of widgets it shows now (to size its rectangle).
+int interchange_dialog_rows(const interchange_dialog *d);
+// Draws it over r; returns 1 when the user pressed Import / Export, with the
+// command in cmd (the dialog closes).
+int interchange_dialog_draw(interchange_dialog *d, ui_context *ui, ui_rect r, char *cmd,
+                            size_t cmd_len);
+
+#endif
