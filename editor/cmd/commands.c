@@ -304,8 +304,11 @@ static const cmd_def commands[] = {
      "(channel Y), .r16/.raw 16-bit little-endian; plus FILE.json with spacing, origin and the "
      "height mapping (16-bit: the region's range, or min/max or scale/offset). Prints the "
      "settings for Unreal and Unity. preset unreal|unity|godot|houdini|blender checks the format "
-     "and crops to the sizes the engine imports. Written to a temp file and renamed.",
-     1, 9, cmd_export, 0},
+     "and crops to the sizes the engine imports. tiles=CxR writes a grid of files sharing their "
+     "edge samples, named NAME_x0_y0 (Unity: NAME_0_0; pattern= with {name} {x} {y}), each "
+     "with its sidecar, plus FILE.json for the set; shard=I/N writes only tiles k with k % N == "
+     "I (for GNU parallel or a Slurm array). Written to a temp file and renamed.",
+     1, 12, cmd_export, 0},
     {"undo", "undo", "Undoes the last change (stroke, stamp, generate).", 0, 0, cmd_undo,
      CMD_ENDS_STROKE},
     {"redo", "redo", "Redoes the last undone change.", 0, 0, cmd_redo, CMD_ENDS_STROKE},

@@ -125,7 +125,15 @@ int cmd_export(cmd_context *ctx, int argc, char **argv, og_error *err) {
     if (!h) return og_error_set(err, "export: out of memory");
     int rc = export_heightmap(ctx->world, argv[1], &o, h, &r, err);
     fclose(h);
-    if (rc == 0) {
+    if (rc == 0 && r.tiles_total > 0) {
+        if (r.changed[0]) fprintf(ctx->out, "%s\n", r.changed);
+        fprintf(ctx->out,
+                "exported %d of %d tiles of %d x %d samples (%s) for %s: %d x %d samples %.6g m "
+                "apart from %.6g, %.6g m; height = stored x %.9g + %.9g m; %lld bytes; %.2f s\n%s",
+                r.tiles_written, r.tiles_total, r.tile_width, r.tile_height, r.format, argv[1],
+                r.width, r.height, r.spacing, r.origin_x, r.origin_z, r.scale, r.offset, r.bytes,
+                seconds_since(&t0), hints);
+    } else if (rc == 0) {
         if (r.changed[0]) fprintf(ctx->out, "%s\n", r.changed);
         fprintf(ctx->out,
                 "exported %s (%s): %d x %d samples %.6g m apart from %.6g, %.6g m; heights "

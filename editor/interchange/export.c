@@ -25,6 +25,21 @@ void export_options_defaults(export_options *o) {
     memset(o, 0, sizeof *o);
     o->layer = TILE_LAYER_COARSE;
     o->bits = 32;
+    o->tiles_x = o->tiles_y = 1;
+    o->shard_count = 1;
+}
+
+// "AxB" or "A/B" as two integers.
+static int parse_pair(const char *value, char sep, int *a, int *b) {
+    char *end;
+    long x = strtol(value, &end, 10);
+    if (end == value || *end != sep) return -1;
+    const char *second = end + 1;
+    long y = strtol(second, &end, 10);
+    if (end == second || *end || x < 0 || y < 0 || x > 1 << 20 || y > 1 << 20) return -1;
+    *a = (int)x;
+    *b = (int)y;
+    return 0;
 }
 
 int export_options_set(export_options *o, const char *key, const char *value, og_error *err) {
@@ -54,6 +69,22 @@ int export_options_set(export_options *o, const char *key, const char *value, og
             o->layer = TILE_LAYER_DETAIL;
         else
             return og_error_set(err, "layer: expected coarse|detail, got '%s'", value);
+    } else if (!strcmp(key, "tiles")) {
+        if (parse_pair(value, 'x', &o->tiles_x, &o->tiles_y) != 0 || o->tiles_x < 1 ||
+            o->tiles_y < 1)
+            return og_error_set(err, "tiles: expected COLUMNSxROWS such as 4x4, got '%s'", value);
+    } else if (!strcmp(key, "shard")) {
+        if (parse_pair(value, '/', &o->shard, &o->shard_count) != 0 || o->shard_count < 1 ||
+            o->shard >= o->shard_count)
+            return og_error_set(err, "shard: expected I/N with 0 <= I < N, got '%s'", value);
+    } else if (!strcmp(key, "pattern")) {
+        if (!strstr(value, "{x}") || !strstr(value, "{y}") || strchr(value, '/') ||
+            strlen(value) >= sizeof o->pattern)
+            return og_error_set(err,
+                                "pattern: needs {x} and {y} (and may use {name}), no '/', "
+                                "got '%s'",
+                                value);
+        snprintf(o->pattern, sizeof o->pattern, "%s", value);
     } else if (!strcmp(key, "bits")) {
         if (strcmp(value, "16") && strcmp(value, "32"))
             return og_error_set(err, "bits: expected 16 or 32, got '%s'", value);
@@ -75,7 +106,7 @@ int export_options_set(export_options *o, const char *key, const char *value, og
     } else {
         return og_error_set(err,
                             "export: unknown option '%s' (region preset layer bits min max scale "
-                            "offset)",
+                            "offset tiles pattern shard)",
                             key);
     }
     return 0;
@@ -249,6 +280,243 @@ static long long file_size(const char *path) {
     return n;
 }
 
+// Reads rectangle r of the layer and writes it to path with its sidecar. The 16-bit
+// mapping is rep's when fixed_mapping (tiles share one), else chosen from o and the
+// rectangle's range.
+static int write_rect(world *w, const layer_grid *g, const char *path, const export_options *o,
+                      file_format f, grid_rect r, int fixed_mapping, export_report *rep,
+                      og_error *err) {
+    const int64_t w64 = r.x1 - r.x0, h64 = r.z1 - r.z0, n = w64 * h64;
+    const double bytes_estimate = (double)n * (is_16bit(f) ? 2.0 : 4.0);
+    if (check_space(path, bytes_estimate, err) != 0) return -1;
+    float *h = malloc(sizeof(float) * (size_t)n);
+    if (!h) return og_error_set(err, "%s: out of memory for %lld samples", path, (long long)n);
+    int rc = -1;
+    if (layer_grid_read(w, g, r, h, err) != 0) goto done;
+    rep->min = INFINITY, rep->max = -INFINITY;
+    for (int64_t i = 0; i < n; i++) {
+        rep->min = fmin(rep->min, h[i]);
+        rep->max = fmax(rep->max, h[i]);
+    }
+    rep->width = (int)w64;
+    rep->height = (int)h64;
+    rep->spacing = g->spacing;
+    rep->origin_x = (double)r.x0 * g->spacing;
+    rep->origin_z = (double)r.z0 * g->spacing;
+    snprintf(rep->format, sizeof rep->format, "%s", format_names[f]);
+    if (!fixed_mapping) rep->scale = 1.0, rep->offset = 0.0;
+    if (is_16bit(f) && !fixed_mapping) {
+        if (o->has_scale && o->has_min_max) {
+            og_error_set(err, "export: give min=/max= or scale=/offset=, not both");
+            goto done;
+        }
+        if (o->has_scale) {
+            rep->scale = o->has_scale & 1 ? o->scale : 1.0;
+            rep->offset = o->offset;
+        } else {
+            double lo = rep->min, hi = rep->max;
+            if (o->has_min_max == 3) lo = o->min, hi = o->max;
+            if (!(hi > lo)) hi = lo + 1.0; // a flat region still needs a step
+            rep->scale = (hi - lo) / 65535.0;
+            rep->offset = lo;
+        }
+    }
+    if (is_16bit(f)) {
+        for (int64_t i = 0; i < n; i++) {
+            double q = round((h[i] - rep->offset) / rep->scale);
+            if (q < 0 || q > 65535) {
+                og_error_set(err,
+                             "%s: height %g m at sample (%lld, %lld) is outside the 16-bit range "
+                             "%g .. %g m of this mapping",
+                             path, (double)h[i], (long long)(i % w64), (long long)(i / w64),
+                             rep->offset, rep->offset + 65535.0 * rep->scale);
+                goto done;
+            }
+            h[i] = (float)q;
+        }
+    }
+    switch (f) {
+    case FMT_PNG16:
+    case FMT_TIFF16:
+        rc = image_write_samples(path, h, rep->width, rep->height, IMAGE_WRITE_UINT16, NULL, err);
+        break;
+    case FMT_EXR32:
+        rc = image_write_samples(path, h, rep->width, rep->height, IMAGE_WRITE_FLOAT, "Y", err);
+        break;
+    case FMT_TIFF32: {
+        // North-up GeoTIFF: rows run toward +Z, i.e. south; GDAL's corners are half a
+        // sample outside the first sample's centre.
+        double gt[6] = {rep->origin_x - g->spacing / 2,    g->spacing, 0,
+                        -(rep->origin_z - g->spacing / 2), 0,          -g->spacing};
+        rc = gdal_raster_write_geotiff(path, h, rep->width, rep->height, gt, err);
+        break;
+    }
+    case FMT_R16:
+        rc = write_r16(path, h, n, err);
+        break;
+    }
+    if (rc != 0) goto done;
+    sidecar sc = {g->spacing,  rep->origin_x, rep->origin_z, rep->width, rep->height, rep->scale,
+                  rep->offset, rep->min,      rep->max,      "",         ""};
+    snprintf(sc.format, sizeof sc.format, "%s", rep->format);
+    snprintf(sc.layer, sizeof sc.layer, "%s", o->layer == TILE_LAYER_DETAIL ? "detail" : "coarse");
+    char extra[256] = "";
+    if (o->preset != EXPORT_PRESET_NONE)
+        snprintf(extra, sizeof extra, "  \"preset\": \"%s\"", export_preset_name(o->preset));
+    rc = sidecar_write(path, &sc, extra, err);
+    if (rc != 0) goto done;
+    char json[4200];
+    snprintf(json, sizeof json, "%s.json", path);
+    rep->bytes = file_size(path) + file_size(json);
+done:
+    free(h);
+    return rc;
+}
+
+// The file name of tile (x, y): the pattern with {name} {x} {y} filled in, in
+// path's folder with path's extension.
+static int tile_path(const char *path, const char *pattern, int x, int y, char *out, size_t len) {
+    const char *slash = strrchr(path, '/');
+    const char *base = slash ? slash + 1 : path;
+    const char *dot = strrchr(base, '.');
+    char name[512];
+    snprintf(name, sizeof name, "%.*s", (int)(dot ? dot - base : (long)strlen(base)), base);
+    char file[1024] = "";
+    size_t n = 0;
+    for (const char *p = pattern; *p && n + 16 < sizeof file;) {
+        if (!strncmp(p, "{name}", 6)) {
+            n += (size_t)snprintf(file + n, sizeof file - n, "%s", name);
+            p += 6;
+        } else if (!strncmp(p, "{x}", 3) || !strncmp(p, "{y}", 3)) {
+            n += (size_t)snprintf(file + n, sizeof file - n, "%d", p[1] == 'x' ? x : y);
+            p += 3;
+        } else {
+            file[n++] = *p++;
+            file[n] = 0;
+        }
+    }
+    int written = snprintf(out, len, "%.*s%s%s", (int)(slash ? slash - path + 1 : 0), path, file,
+                           dot ? dot : "");
+    return written < (int)len ? 0 : -1;
+}
+
+// Tiles of one size sharing their edge samples (what Unreal's and Unity's tiled
+// imports expect), one 16-bit mapping for all, and the set's sidecar.
+static int export_tiles(world *w, const layer_grid *g, const char *path, const export_options *o,
+                        file_format f, grid_rect r, FILE *hints, export_report *report,
+                        og_error *err) {
+    const int C = o->tiles_x, R = o->tiles_y;
+    const int64_t W = r.x1 - r.x0, H = r.z1 - r.z0;
+    const int64_t tw = (W - 1) / C + 1, th = (H - 1) / R + 1;
+    if (tw < 2 || th < 2)
+        return og_error_set(err,
+                            "%s: %lld x %lld samples cannot make %d x %d tiles of 2 samples "
+                            "or more",
+                            path, (long long)W, (long long)H, C, R);
+    if (tw > EXPORT_MAX_SIDE || th > EXPORT_MAX_SIDE || tw * th > EXPORT_MAX_SAMPLES)
+        return og_error_set(err,
+                            "%s: tiles of %lld x %lld samples are over the limit of %d per "
+                            "side: use more tiles",
+                            path, (long long)tw, (long long)th, EXPORT_MAX_SIDE);
+    export_report rep;
+    memset(&rep, 0, sizeof rep);
+    const int64_t used_w = C * (tw - 1) + 1, used_h = R * (th - 1) + 1;
+    if (used_w != W || used_h != H)
+        snprintf(rep.changed, sizeof rep.changed,
+                 "tiles: the region is %lld x %lld samples; %d x %d tiles of %lld x %lld sharing "
+                 "their edges cover %lld x %lld of it (from the first corner)",
+                 (long long)W, (long long)H, C, R, (long long)tw, (long long)th, (long long)used_w,
+                 (long long)used_h);
+    // One mapping for every tile and every shard: what was given, else the generator's range.
+    rep.scale = 1.0, rep.offset = 0.0;
+    if (is_16bit(f)) {
+        if (o->has_scale && o->has_min_max)
+            return og_error_set(err, "export: give min=/max= or scale=/offset=, not both");
+        if (o->has_scale) {
+            rep.scale = o->has_scale & 1 ? o->scale : 1.0;
+            rep.offset = o->offset;
+        } else {
+            const world_params *p = world_get_params(w);
+            double lo = p->base_height - p->max_height, hi = p->base_height + p->max_height;
+            if (o->has_min_max == 3) lo = o->min, hi = o->max;
+            if (!(hi > lo)) hi = lo + 1.0;
+            rep.scale = (hi - lo) / 65535.0;
+            rep.offset = lo;
+        }
+    }
+    const char *pattern = o->pattern[0]                      ? o->pattern
+                          : o->preset == EXPORT_PRESET_UNITY ? "{name}_{x}_{y}"
+                                                             : "{name}_x{x}_y{y}";
+    char *files = NULL;
+    size_t files_len = 0;
+    FILE *list = open_memstream(&files, &files_len);
+    if (!list) return og_error_set(err, "%s: out of memory", path);
+    fprintf(list,
+            "  \"tiles_x\": %d,\n  \"tiles_y\": %d,\n  \"tile_width\": %lld,\n"
+            "  \"tile_height\": %lld,\n  \"overlap\": 1,\n  \"pattern\": \"%s\",\n"
+            "  \"files\": [",
+            C, R, (long long)tw, (long long)th, pattern);
+    int rc = 0;
+    for (int y = 0; y < R && rc == 0; y++)
+        for (int x = 0; x < C && rc == 0; x++) {
+            char tp[4200];
+            if (tile_path(path, pattern, x, y, tp, sizeof tp) != 0) {
+                rc = og_error_set(err, "%s: tile name too long", path);
+                break;
+            }
+            const char *slash = strrchr(tp, '/');
+            fprintf(list, "%s\"%s\"", x || y ? ", " : "", slash ? slash + 1 : tp);
+            if ((y * C + x) % o->shard_count != o->shard) continue;
+            grid_rect t = {r.x0 + x * (tw - 1), r.z0 + y * (th - 1), 0, 0};
+            t.x1 = t.x0 + tw;
+            t.z1 = t.z0 + th;
+            export_report one = rep;
+            rc = write_rect(w, g, tp, o, f, t, 1, &one, err);
+            if (rc == 0) {
+                rep.bytes += one.bytes;
+                rep.tiles_written++;
+                rep.min = rep.tiles_written == 1 ? one.min : fmin(rep.min, one.min);
+                rep.max = rep.tiles_written == 1 ? one.max : fmax(rep.max, one.max);
+            }
+        }
+    fprintf(list, "]");
+    fclose(list);
+    rep.width = (int)used_w;
+    rep.height = (int)used_h;
+    rep.tile_width = (int)tw;
+    rep.tile_height = (int)th;
+    rep.tiles_total = C * R;
+    rep.spacing = g->spacing;
+    rep.origin_x = (double)r.x0 * g->spacing;
+    rep.origin_z = (double)r.z0 * g->spacing;
+    snprintf(rep.format, sizeof rep.format, "%s", format_names[f]);
+    if (rc == 0 && o->shard == 0) {
+        // The set's sidecar depends on nothing another shard does: every shard agrees.
+        sidecar sc = {g->spacing,
+                      rep.origin_x,
+                      rep.origin_z,
+                      rep.width,
+                      rep.height,
+                      rep.scale,
+                      rep.offset,
+                      0,
+                      0,
+                      "",
+                      ""};
+        snprintf(sc.format, sizeof sc.format, "%s", rep.format);
+        snprintf(sc.layer, sizeof sc.layer, "%s",
+                 o->layer == TILE_LAYER_DETAIL ? "detail" : "coarse");
+        sc.min = rep.offset;
+        sc.max = is_16bit(f) ? rep.offset + 65535.0 * rep.scale : 0.0;
+        rc = sidecar_write(path, &sc, files, err);
+    }
+    free(files);
+    if (rc != 0) return -1;
+    print_hints(hints, o, f, &rep);
+    if (report) *report = rep;
+    return 0;
+}
+
 int export_heightmap(world *w, const char *path, const export_options *o, FILE *hints,
                      export_report *report, og_error *err) {
     const world_params *p = world_get_params(w);
@@ -275,6 +543,17 @@ int export_heightmap(world *w, const char *path, const export_options *o, FILE *
         r = (grid_rect){0, 0, g.extent, g.extent};
     }
     int64_t w64 = r.x1 - r.x0, h64 = r.z1 - r.z0;
+    if (o->tiles_x * o->tiles_y > 1) {
+        // Presets check the format; the tiles are cut as asked.
+        int64_t cw = 4097, ch = 4097; // fits every preset: nothing is cropped
+        char ignored[512];
+        export_options fmt_only = *o;
+        if (apply_preset(path, &fmt_only, f, &cw, &ch, ignored, sizeof ignored, err) != 0)
+            return -1;
+        return export_tiles(w, &g, path, o, f, r, hints, report, err);
+    }
+    if (o->shard_count > 1)
+        return og_error_set(err, "%s: shard= splits a tiled export: give tiles=CxR too", path);
     if (w64 < 2 || h64 < 2)
         return og_error_set(err,
                             "%s: the region holds %lld x %lld samples; a heightmap needs at "
@@ -292,90 +571,8 @@ int export_heightmap(world *w, const char *path, const export_options *o, FILE *
     if (apply_preset(path, o, f, &w64, &h64, rep.changed, sizeof rep.changed, err) != 0) return -1;
     r.x1 = r.x0 + w64;
     r.z1 = r.z0 + h64;
-    const int64_t n = w64 * h64;
-    const double bytes_estimate = (double)n * (is_16bit(f) ? 2.0 : 4.0);
-    if (check_space(path, bytes_estimate, err) != 0) return -1;
-    float *h = malloc(sizeof(float) * (size_t)n);
-    if (!h) return og_error_set(err, "%s: out of memory for %lld samples", path, (long long)n);
-    int rc = -1;
-    if (layer_grid_read(w, &g, r, h, err) != 0) goto done;
-    rep.min = INFINITY, rep.max = -INFINITY;
-    for (int64_t i = 0; i < n; i++) {
-        rep.min = fmin(rep.min, h[i]);
-        rep.max = fmax(rep.max, h[i]);
-    }
-    rep.width = (int)w64;
-    rep.height = (int)h64;
-    rep.spacing = g.spacing;
-    rep.origin_x = (double)r.x0 * g.spacing;
-    rep.origin_z = (double)r.z0 * g.spacing;
-    snprintf(rep.format, sizeof rep.format, "%s", format_names[f]);
-    rep.scale = 1.0;
-    rep.offset = 0.0;
-    if (is_16bit(f)) {
-        if (o->has_scale && o->has_min_max) {
-            og_error_set(err, "export: give min=/max= or scale=/offset=, not both");
-            goto done;
-        }
-        if (o->has_scale) {
-            rep.scale = o->has_scale & 1 ? o->scale : 1.0;
-            rep.offset = o->offset;
-        } else {
-            double lo = rep.min, hi = rep.max;
-            if (o->has_min_max == 3) lo = o->min, hi = o->max;
-            if (!(hi > lo)) hi = lo + 1.0; // a flat region still needs a step
-            rep.scale = (hi - lo) / 65535.0;
-            rep.offset = lo;
-        }
-        for (int64_t i = 0; i < n; i++) {
-            double q = round((h[i] - rep.offset) / rep.scale);
-            if (q < 0 || q > 65535) {
-                og_error_set(err,
-                             "%s: height %g m at sample (%lld, %lld) is outside the 16-bit range "
-                             "%g .. %g m of this mapping",
-                             path, (double)h[i], (long long)(i % w64), (long long)(i / w64),
-                             rep.offset, rep.offset + 65535.0 * rep.scale);
-                goto done;
-            }
-            h[i] = (float)q;
-        }
-    }
-    switch (f) {
-    case FMT_PNG16:
-    case FMT_TIFF16:
-        rc = image_write_samples(path, h, rep.width, rep.height, IMAGE_WRITE_UINT16, NULL, err);
-        break;
-    case FMT_EXR32:
-        rc = image_write_samples(path, h, rep.width, rep.height, IMAGE_WRITE_FLOAT, "Y", err);
-        break;
-    case FMT_TIFF32: {
-        // North-up GeoTIFF: rows run toward +Z, i.e. south; GDAL's corners are half a
-        // sample outside the first sample's centre.
-        double gt[6] = {rep.origin_x - g.spacing / 2,    g.spacing, 0,
-                        -(rep.origin_z - g.spacing / 2), 0,         -g.spacing};
-        rc = gdal_raster_write_geotiff(path, h, rep.width, rep.height, gt, err);
-        break;
-    }
-    case FMT_R16:
-        rc = write_r16(path, h, n, err);
-        break;
-    }
-    if (rc != 0) goto done;
-    sidecar sc = {g.spacing,  rep.origin_x, rep.origin_z, rep.width, rep.height, rep.scale,
-                  rep.offset, rep.min,      rep.max,      "",        ""};
-    snprintf(sc.format, sizeof sc.format, "%s", rep.format);
-    snprintf(sc.layer, sizeof sc.layer, "%s", o->layer == TILE_LAYER_DETAIL ? "detail" : "coarse");
-    char extra[256] = "";
-    if (o->preset != EXPORT_PRESET_NONE)
-        snprintf(extra, sizeof extra, "  \"preset\": \"%s\"", export_preset_name(o->preset));
-    rc = sidecar_write(path, &sc, extra, err);
-    if (rc != 0) goto done;
-    char json[4200];
-    snprintf(json, sizeof json, "%s.json", path);
-    rep.bytes = file_size(path) + file_size(json);
+    if (write_rect(w, &g, path, o, f, r, 0, &rep, err) != 0) return -1;
     print_hints(hints, o, f, &rep);
     if (report) *report = rep;
-done:
-    free(h);
-    return rc;
+    return 0;
 }

@@ -34,10 +34,17 @@ typedef struct export_options {
     int has_min_max, has_scale;
     double min, max;      // 16-bit: metres at stored 0 and 65535
     double scale, offset; // 16-bit: height = stored x scale + offset
+    // Tiled export: tiles_x x tiles_y files sharing one sample along each seam, named
+    // by pattern ({name} {x} {y}; "" = the preset's convention); this run writes the
+    // tiles k (row-major) with k % shard_count == shard.
+    int tiles_x, tiles_y;
+    char pattern[128];
+    int shard, shard_count;
 } export_options;
 
 void export_options_defaults(export_options *o);
-// region=X0,Z0,X1,Z1 preset= layer= bits= min= max= scale= offset=
+// region=X0,Z0,X1,Z1 preset= layer= bits= min= max= scale= offset= tiles=CxR pattern=
+// shard=I/N
 int export_options_set(export_options *o, const char *key, const char *value, og_error *err);
 const char *export_preset_name(export_preset p);
 
@@ -48,10 +55,13 @@ typedef struct export_report {
     double scale, offset; // the stored mapping (1, 0 for float files)
     long long bytes;      // written (file + sidecar)
     char format[16];
-    char changed[512]; // what a preset changed ("" if nothing)
+    char changed[512];              // what a preset or the tiling changed ("" if nothing)
+    int tiles_written, tiles_total; // tiled export: by this run, in the set
+    int tile_width, tile_height;
 } export_report;
 
-// Writes path (format from its extension) and path.json. Prints what to type into
+// Writes path (format from its extension) and path.json; tiled, the tiles (each with
+// its own sidecar) and path.json describing the set (written by shard 0). Prints what to type into
 // the target engine to hints (may be NULL). Nothing is written on failure; an
 // existing file stays as it was.
 int export_heightmap(world *w, const char *path, const export_options *o, FILE *hints,
