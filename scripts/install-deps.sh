@@ -30,9 +30,22 @@ done
 
 if [ ${#missing[@]} -eq 0 ]; then
   echo "install-deps: all ${#packages[@]} packages already installed"
-  exit 0
+else
+  echo "install-deps: installing ${missing[*]}"
+  $sudo apt-get update
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y --no-install-recommends "${missing[@]}"
 fi
 
-echo "install-deps: installing ${missing[*]}"
-$sudo apt-get update
-DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y --no-install-recommends "${missing[@]}"
+# Test tools from npm, into the checkout's .cache/npm (ignored by git): the Khronos
+# glTF validator the interchange tests run on exported .glb files.
+root=$(cd "$(dirname "$0")/.." && pwd)
+if ! command -v npm >/dev/null; then # a node install of its own (e.g. NodeSource) brings npm
+  $sudo apt-get update
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y --no-install-recommends nodejs npm
+fi
+validator=2.0.0-dev.3.10
+if [ ! -f "$root/.cache/npm/node_modules/gltf-validator/package.json" ] ||
+  ! grep -q "\"version\": \"$validator\"" "$root/.cache/npm/node_modules/gltf-validator/package.json"; then
+  echo "install-deps: npm install gltf-validator@$validator"
+  npm install --prefix "$root/.cache/npm" --no-audit --no-fund --loglevel=error "gltf-validator@$validator"
+fi

@@ -85,6 +85,10 @@ int export_options_set(export_options *o, const char *key, const char *value, og
                                 "got '%s'",
                                 value);
         snprintf(o->pattern, sizeof o->pattern, "%s", value);
+    } else if (!strcmp(key, "simplify")) {
+        if (parse_number_in(value, key, 0, 1e6, &o->simplify, err) != 0) return -1;
+    } else if (!strcmp(key, "solid") || !strcmp(key, "centred") || !strcmp(key, "centered")) {
+        if (parse_switch(value, key, key[0] == 's' ? &o->solid : &o->centred, err) != 0) return -1;
     } else if (!strcmp(key, "bits")) {
         if (strcmp(value, "16") && strcmp(value, "32"))
             return og_error_set(err, "bits: expected 16 or 32, got '%s'", value);
@@ -106,7 +110,7 @@ int export_options_set(export_options *o, const char *key, const char *value, og
     } else {
         return og_error_set(err,
                             "export: unknown option '%s' (region preset layer bits min max scale "
-                            "offset tiles pattern shard)",
+                            "offset tiles pattern shard simplify solid centred)",
                             key);
     }
     return 0;
@@ -517,6 +521,43 @@ static int export_tiles(world *w, const layer_grid *g, const char *path, const e
     return 0;
 }
 
+// The layer's samples the export covers: region= (corners in metres, clipped to a
+// bounded world) or the whole bounded world.
+static int resolve_region(world *w, const char *path, const export_options *o, layer_grid *gp,
+                          grid_rect *rp, og_error *err) {
+    const world_params *p = world_get_params(w);
+    if (layer_grid_init(gp, p, o->layer, 0, err) != 0) return -1;
+    grid_rect r;
+    if (o->has_region) {
+        r = (grid_rect){(int64_t)ceil(o->x0 / gp->spacing - 1e-9),
+                        (int64_t)ceil(o->z0 / gp->spacing - 1e-9),
+                        (int64_t)floor(o->x1 / gp->spacing + 1e-9) + 1,
+                        (int64_t)floor(o->z1 / gp->spacing + 1e-9) + 1};
+        if (fabs(o->x0) > 1e15 || fabs(o->x1) > 1e15 || fabs(o->z0) > 1e15 || fabs(o->z1) > 1e15)
+            return og_error_set(err, "%s: region is beyond any world", path);
+        if (gp->extent) r = layer_grid_clip(gp, r);
+    } else {
+        if (!gp->extent)
+            return og_error_set(err, "%s: the world is unbounded: give region=X0,Z0,X1,Z1 (metres)",
+                                path);
+        r = (grid_rect){0, 0, gp->extent, gp->extent};
+    }
+    *rp = r;
+    return 0;
+}
+
+int export_mesh_file(world *w, const char *path, const export_options *o, export_mesh_report *rep,
+                     og_error *err) {
+    if (world_get_params(w)->kind == WORLD_PLANET)
+        return og_error_set(err, "%s: meshes are exported from flat worlds", path);
+    if (o->layer != TILE_LAYER_COARSE)
+        return og_error_set(err, "%s: meshes are made of the coarse layer", path);
+    layer_grid g;
+    export_mesh_options m = {.simplify = o->simplify, .solid = o->solid, .centred = o->centred};
+    if (resolve_region(w, path, o, &g, &m.rect, err) != 0) return -1;
+    return export_mesh(w, path, &m, rep, err);
+}
+
 int export_heightmap(world *w, const char *path, const export_options *o, FILE *hints,
                      export_report *report, og_error *err) {
     const world_params *p = world_get_params(w);
@@ -526,22 +567,8 @@ int export_heightmap(world *w, const char *path, const export_options *o, FILE *
     file_format f = FMT_PNG16;
     if (format_of(path, o->bits, &f, err) != 0) return -1;
     layer_grid g;
-    if (layer_grid_init(&g, p, o->layer, 0, err) != 0) return -1;
     grid_rect r;
-    if (o->has_region) {
-        r = (grid_rect){(int64_t)ceil(o->x0 / g.spacing - 1e-9),
-                        (int64_t)ceil(o->z0 / g.spacing - 1e-9),
-                        (int64_t)floor(o->x1 / g.spacing + 1e-9) + 1,
-                        (int64_t)floor(o->z1 / g.spacing + 1e-9) + 1};
-        if (fabs(o->x0) > 1e15 || fabs(o->x1) > 1e15 || fabs(o->z0) > 1e15 || fabs(o->z1) > 1e15)
-            return og_error_set(err, "%s: region is beyond any world", path);
-        if (g.extent) r = layer_grid_clip(&g, r);
-    } else {
-        if (!g.extent)
-            return og_error_set(err, "%s: the world is unbounded: give region=X0,Z0,X1,Z1 (metres)",
-                                path);
-        r = (grid_rect){0, 0, g.extent, g.extent};
-    }
+    if (resolve_region(w, path, o, &g, &r, err) != 0) return -1;
     int64_t w64 = r.x1 - r.x0, h64 = r.z1 - r.z0;
     if (o->tiles_x * o->tiles_y > 1) {
         // Presets check the format; the tiles are cut as asked.

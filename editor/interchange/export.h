@@ -5,6 +5,7 @@
 #ifndef OROGEN_EDITOR_INTERCHANGE_EXPORT_H
 #define OROGEN_EDITOR_INTERCHANGE_EXPORT_H
 
+#include "editor/interchange/export_mesh.h"
 #include "editor/world/world.h"
 #include "io/err.h"
 #include "io/tile.h"
@@ -40,6 +41,9 @@ typedef struct export_options {
     int tiles_x, tiles_y;
     char pattern[128];
     int shard, shard_count;
+    // Meshes (.obj .ply .glb): metres of error allowed, a closed base, centred at 0.
+    double simplify;
+    int solid, centred;
 } export_options;
 
 void export_options_defaults(export_options *o);
@@ -66,5 +70,9 @@ typedef struct export_report {
 // existing file stays as it was.
 int export_heightmap(world *w, const char *path, const export_options *o, FILE *hints,
                      export_report *report, og_error *err);
+
+// A mesh of the region (export_mesh.h) for .obj, .ply and .glb paths.
+int export_mesh_file(world *w, const char *path, const export_options *o, export_mesh_report *rep,
+                     og_error *err);
 
 #endif
