@@ -187,13 +187,22 @@ int write_impl(const char *path, const float *pixels, int width, int height, og_
     return write_png_atomic(path, spec, q.data(), err);
 }
 
+// 8-bit PNG of 1 to 4 channels (grey, grey+alpha, RGB, RGBA), rows top-first.
+int write_u8_impl(const char *path, const unsigned char *data, int width, int height, int channels,
+                  og_error *err) {
+    if (check_write_size(path, width, height, err) != 0) return -1;
+    if (channels < 1 || channels > 4)
+        return og_error_set(err, "%s: cannot write %d channels (1 to 4)", path, channels);
+    OIIO::ImageSpec spec(width, height, channels, OIIO::TypeUInt8);
+    if (channels == 4) spec.attribute("oiio:UnassociatedAlpha", 1); // weights, not coverage
+    // Level 6 (zlib's default): screenshots, diffs and layer images, written often.
+    spec.attribute("png:compressionLevel", 6);
+    return write_png_atomic(path, spec, data, err);
+}
+
 int write_rgb8_impl(const char *path, const unsigned char *rgb, int width, int height,
                     og_error *err) {
-    if (check_write_size(path, width, height, err) != 0) return -1;
-    OIIO::ImageSpec spec(width, height, 3, OIIO::TypeUInt8);
-    // Level 6 (zlib's default): these are screenshots and diffs, written often.
-    spec.attribute("png:compressionLevel", 6);
-    return write_png_atomic(path, spec, rgb, err);
+    return write_u8_impl(path, rgb, width, height, 3, err);
 }
 
 // Reads the whole image as 8-bit RGB in one call: OIIO converts 16-bit and float to
@@ -493,6 +502,19 @@ orogen_image_module_write_samples(const char *path, const float *samples, int wi
     if (!path || !samples) return og_error_set(err, "image_write_samples: no path or samples");
     try {
         return write_samples_impl(path, samples, width, height, format, channel, err);
+    } catch (const std::exception &e) {
+        return og_error_set(err, "%s: cannot write image: %s", path, e.what());
+    } catch (...) {
+        return og_error_set(err, "%s: cannot write image: unknown error", path);
+    }
+}
+
+extern "C" __attribute__((visibility("default"))) int
+orogen_image_module_write_u8(const char *path, const unsigned char *data, int width, int height,
+                             int channels, og_error *err) {
+    if (!path || !data) return og_error_set(err, "image_write_u8: no path or pixels");
+    try {
+        return write_u8_impl(path, data, width, height, channels, err);
     } catch (const std::exception &e) {
         return og_error_set(err, "%s: cannot write image: %s", path, e.what());
     } catch (...) {

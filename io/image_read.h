@@ -32,6 +32,11 @@ int image_write_gray16(const char *path, const float *pixels, int width, int hei
 int image_write_rgb8(const char *path, const unsigned char *rgb, int width, int height,
                      og_error *err);
 
+// Writes an 8-bit PNG of 1 to 4 channels (grey, grey + alpha, RGB, RGBA: alpha kept as
+// stored, not premultiplied) atomically, as image_write_gray16 does.
+int image_write_u8(const char *path, const unsigned char *data, int width, int height, int channels,
+                   og_error *err);
+
 // Reads any image OpenImageIO can as 8-bit RGB, rows top-first: grey is replicated into
 // the three channels, alpha is dropped (colour as stored, not premultiplied), 16-bit
 // and float are converted to uint8 by OIIO (clamped to [0, 1], rounded). On success

@@ -267,5 +267,20 @@ else
     echo "SKIP: Blender is not installed: the headless Blender import check did not run"
 fi
 
+# 12. The other layers: material weights exactly as stored, four per RGBA file, and a
+# tangent-space normal map.
+run -c "new flat; set size 257; set generator flat; generate; tool paint material=3 strength=1 radius=30; dab 100 100; export $work/w.png layer=materials; export $work/n.png layer=normals"
+check "export layer=materials and layer=normals" $status
+iinfo "$work/w_m0-3.png" | grep -q "257 x  257, 4 channel, uint8 png"; check "material weights: 8-bit RGBA, one pixel per sample" $?
+oiiotool "$work/w_m0-3.png" --cut 1x1+50+50 -o "$work/px.tif" && oiiotool --dumpdata "$work/px.tif" | grep -q "Pixel (0, 0): 0 0 0 255 "
+check "painted material 3 reads 255 in the alpha of _m0-3 at the dab" $?
+oiiotool "$work/w_m4-7.png" --cut 1x1+50+50 -o "$work/px.tif" && oiiotool --dumpdata "$work/px.tif" | grep -q "Pixel (0, 0): 0 0 0 0 "
+check "and 0 for materials 4-7" $?
+oiiotool "$work/n.png" --cut 1x1+10+10 -o "$work/px.tif" && oiiotool --dumpdata "$work/px.tif" | grep -q "Pixel (0, 0): 128 128 255 "
+check "a flat world's normal map is (128, 128, 255)" $?
+run -c "new flat; export $work/n.exr layer=normals region=0,0,10,10"
+[ $status = 1 ] && grep -q "n.exr: normal maps and material weights are written as .png" "$work/err"
+check "layer images other than .png are refused" $?
+
 echo "e2e_interchange: $passes passed, $failures failed"
 [ $failures = 0 ]

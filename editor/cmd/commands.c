@@ -307,8 +307,11 @@ static const cmd_def commands[] = {
      "and crops to the sizes the engine imports. tiles=CxR writes a grid of files sharing their "
      "edge samples, named NAME_x0_y0 (Unity: NAME_0_0; pattern= with {name} {x} {y}), each "
      "with its sidecar, plus FILE.json for the set; shard=I/N writes only tiles k with k % N == "
-     "I (for GNU parallel or a Slurm array). Written to a temp file and renamed.",
-     1, 12, cmd_export, 0},
+     "I (for GNU parallel or a Slurm array). layer=normals writes a tangent-space normal map "
+     "(.png), layer=materials the material weights as FILE_m0-3.png and FILE_m4-7.png (RGBA). "
+     ".obj, .ply and .glb write a mesh (metres, +Y up; simplify=METRES, solid=1, centred=1). "
+     "Written to a temp file and renamed.",
+     1, 16, cmd_export, 0},
     {"undo", "undo", "Undoes the last change (stroke, stamp, generate).", 0, 0, cmd_undo,
      CMD_ENDS_STROKE},
     {"redo", "redo", "Redoes the last undone change.", 0, 0, cmd_redo, CMD_ENDS_STROKE},

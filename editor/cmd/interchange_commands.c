@@ -118,6 +118,15 @@ int cmd_export(cmd_context *ctx, int argc, char **argv, og_error *err) {
     }
     struct timespec t0;
     clock_gettime(CLOCK_MONOTONIC, &t0);
+    if (o.image_layer) {
+        char files[8600];
+        if (export_layer_file(ctx->world, argv[1], &o, files, sizeof files, err) != 0) return -1;
+        for (char *nl = strchr(files, '\n'); nl; nl = strchr(nl, '\n'))
+            *nl = nl[1] ? ' ' : 0; // one line: the paths apart by spaces
+        fprintf(ctx->out, "exported the %s layer to %s (%.2f s)\n",
+                o.image_layer == 1 ? "normal" : "material weight", files, seconds_since(&t0));
+        return 0;
+    }
     if (export_mesh_wanted(argv[1])) {
         export_mesh_report m;
         if (export_mesh_file(ctx->world, argv[1], &o, &m, err) != 0) return -1;

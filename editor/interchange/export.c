@@ -1,5 +1,6 @@
 #include "editor/interchange/export.h"
 
+#include "editor/interchange/export_layers.h"
 #include "editor/interchange/sidecar.h"
 #include "editor/world/layer_grid.h"
 #include "io/gdal_raster.h"
@@ -67,8 +68,11 @@ int export_options_set(export_options *o, const char *key, const char *value, og
             o->layer = TILE_LAYER_COARSE;
         else if (!strcmp(value, "detail"))
             o->layer = TILE_LAYER_DETAIL;
+        else if (!strcmp(value, "normals") || !strcmp(value, "materials"))
+            o->image_layer = value[0] == 'n' ? 1 : 2;
         else
-            return og_error_set(err, "layer: expected coarse|detail, got '%s'", value);
+            return og_error_set(err, "layer: expected coarse|detail|normals|materials, got '%s'",
+                                value);
     } else if (!strcmp(key, "tiles")) {
         if (parse_pair(value, 'x', &o->tiles_x, &o->tiles_y) != 0 || o->tiles_x < 1 ||
             o->tiles_y < 1)
@@ -544,6 +548,21 @@ static int resolve_region(world *w, const char *path, const export_options *o, l
     }
     *rp = r;
     return 0;
+}
+
+int export_layer_file(world *w, const char *path, const export_options *o, char *files,
+                      size_t files_len, og_error *err) {
+    if (world_get_params(w)->kind == WORLD_PLANET)
+        return og_error_set(err, "%s: layer images are exported from flat worlds", path);
+    layer_grid g;
+    grid_rect r;
+    if (resolve_region(w, path, o, &g, &r, err) != 0) return -1;
+    const int64_t W = r.x1 - r.x0, D = r.z1 - r.z0;
+    if (W < 1 || D < 1 || W > 16384 || D > 16384)
+        return og_error_set(err, "%s: %lld x %lld samples: layer images are 1 to 16384 per side",
+                            path, (long long)W, (long long)D);
+    return o->image_layer == 1 ? export_normal_map(w, path, r, files, files_len, err)
+                               : export_material_weights(w, path, r, files, files_len, err);
 }
 
 int export_mesh_file(world *w, const char *path, const export_options *o, export_mesh_report *rep,

@@ -44,6 +44,7 @@ typedef struct export_options {
     // Meshes (.obj .ply .glb): metres of error allowed, a closed base, centred at 0.
     double simplify;
     int solid, centred;
+    int image_layer; // layer=normals (1) or materials (2): that layer as images instead
 } export_options;
 
 void export_options_defaults(export_options *o);
@@ -70,6 +71,10 @@ typedef struct export_report {
 // existing file stays as it was.
 int export_heightmap(world *w, const char *path, const export_options *o, FILE *hints,
                      export_report *report, og_error *err);
+
+// layer=normals / materials (export_layers.h): the files written, one per line.
+int export_layer_file(world *w, const char *path, const export_options *o, char *files,
+                      size_t files_len, og_error *err);
 
 // A mesh of the region (export_mesh.h) for .obj, .ply and .glb paths.
 int export_mesh_file(world *w, const char *path, const export_options *o, export_mesh_report *rep,

@@ -43,7 +43,10 @@ tile_key layer_grid_tile(const layer_grid *g, int64_t gx, int64_t gz) {
                       (int32_t)world_grid_floor_div(gz, TILE_SIZE)};
 }
 
-int layer_grid_read(world *w, const layer_grid *g, grid_rect r, float *out, og_error *err) {
+int layer_grid_read_samples(world *w, const layer_grid *g, grid_rect r, void *out_bytes,
+                            og_error *err) {
+    unsigned char *out = out_bytes;
+    const size_t sample = tile_layer_bytes(g->layer) / TILE_SAMPLES; // 4 (heights) or 8
     int64_t width = r.x1 - r.x0;
     // Read the clipped part tile by tile, then replicate edges outward.
     grid_rect in = layer_grid_clip(g, r);
@@ -56,31 +59,38 @@ int layer_grid_read(world *w, const layer_grid *g, grid_rect r, float *out, og_e
             tile_key key = {g->layer, g->face, 0, (int32_t)tx, (int32_t)tz};
             tile_view v;
             if (tile_cache_acquire(cache, key, &v, err) != 0) return -1;
-            const float *t = v.data;
+            const unsigned char *t = v.data;
             grid_rect tr =
                 grid_rect_intersect(in, (grid_rect){tx * TILE_SIZE, tz * TILE_SIZE,
                                                     (tx + 1) * TILE_SIZE, (tz + 1) * TILE_SIZE});
             for (int64_t z = tr.z0; z < tr.z1; z++)
-                memcpy(out + (z - r.z0) * width + (tr.x0 - r.x0),
-                       t + (z - tz * TILE_SIZE) * TILE_SIZE + (tr.x0 - tx * TILE_SIZE),
-                       (size_t)(tr.x1 - tr.x0) * sizeof(float));
+                memcpy(out + ((z - r.z0) * width + (tr.x0 - r.x0)) * sample,
+                       t + ((z - tz * TILE_SIZE) * TILE_SIZE + (tr.x0 - tx * TILE_SIZE)) * sample,
+                       (size_t)(tr.x1 - tr.x0) * sample);
             tile_cache_release(cache, &v);
         }
     }
     if (in.x0 == r.x0 && in.x1 == r.x1 && in.z0 == r.z0 && in.z1 == r.z1) return 0;
     for (int64_t z = in.z0; z < in.z1; z++) {
-        float *row = out + (z - r.z0) * width;
+        unsigned char *row = out + (z - r.z0) * width * sample;
         for (int64_t x = r.x0; x < in.x0; x++)
-            row[x - r.x0] = row[in.x0 - r.x0];
+            memcpy(row + (x - r.x0) * sample, row + (in.x0 - r.x0) * sample, sample);
         for (int64_t x = in.x1; x < r.x1; x++)
-            row[x - r.x0] = row[in.x1 - 1 - r.x0];
+            memcpy(row + (x - r.x0) * sample, row + (in.x1 - 1 - r.x0) * sample, sample);
     }
     for (int64_t z = r.z0; z < r.z1; z++) {
         if (z >= in.z0 && z < in.z1) continue;
         int64_t cz = z < in.z0 ? in.z0 : in.z1 - 1;
-        memcpy(out + (z - r.z0) * width, out + (cz - r.z0) * width, (size_t)width * sizeof(float));
+        memcpy(out + (z - r.z0) * width * sample, out + (cz - r.z0) * width * sample,
+               (size_t)width * sample);
     }
     return 0;
+}
+
+int layer_grid_read(world *w, const layer_grid *g, grid_rect r, float *out, og_error *err) {
+    if (g->layer == TILE_LAYER_MATERIAL)
+        return og_error_set(err, "layer_grid_read: the material layer holds weights, not heights");
+    return layer_grid_read_samples(w, g, r, out, err);
 }
 
 int layer_grid_check_position(const layer_grid *g, double x, double z, og_error *err) {

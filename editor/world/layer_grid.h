@@ -33,6 +33,8 @@ tile_key layer_grid_tile(const layer_grid *g, int64_t gx, int64_t gz);
 // Copies the float samples of r (coarse or detail) into out (row-major, r's width).
 // Samples outside a bounded grid read as the nearest edge sample.
 int layer_grid_read(world *w, const layer_grid *g, grid_rect r, float *out, og_error *err);
+// The same for any layer, as stored: floats, or TILE_MATERIALS weight bytes per sample.
+int layer_grid_read_samples(world *w, const layer_grid *g, grid_rect r, void *out, og_error *err);
 
 // Position checks for user input: finite, and within int32 tile range.
 int layer_grid_check_position(const layer_grid *g, double x, double z, og_error *err);
