@@ -69,6 +69,16 @@ check "Kauai's $voids voids are filled and counted" $?
 got=$(grep -E '^-?[0-9]+\.[0-9]+$' "$work/out" | sed -n 2p)
 same "$got" "$(gdallocationinfo -valonly "$kauai" 300 0)" 0.001; check "geographic import: value at (300, 0)" $?
 
+# 2b. An ESRI ASCII grid through GDAL: its cell size is the spacing, its nodata a void.
+printf 'ncols 4\nnrows 3\nxllcorner 1000\nyllcorner 2000\ncellsize 10\nNODATA_value -9999\n1 2 3 4\n5 -9999 7 8\n9 10 11 12\n' >"$work/grid.asc"
+run -c "new flat; set spacing 10; generate; import $work/grid.asc; sample 30 0; sample 0 20; sample 10 10"
+check "import an ESRI ASCII grid" $status
+grep -q "grid.asc: 4 x 3 samples (AAIGrid .*10 x 10 m per sample), 10 x 10 m apart.* 1 voids filled" "$work/out"
+check "the grid's cell size is the spacing and its nodata cell a filled void" $?
+vals=($(grep -E '^-?[0-9]+\.[0-9]+$' "$work/out"))
+same "${vals[0]}" 4 0 && same "${vals[1]}" 9 0; check "ASCII grid values land row 0 first (4 at x=30, 9 at z=20)" $?
+python3 -c "import sys; v=float('${vals[2]}'); sys.exit(0 if 1 < v < 12 else 1)"; check "the void is filled from its neighbours (${vals[2]})" $?
+
 # 3. Export: every format, read back by GDAL and OpenImageIO at true scale.
 run -c "new flat from=$vermont spacing=30; export $work/v.tif; export $work/v.exr; export $work/v.png; export $work/v16.tif bits=16; export $work/v.r16; sample 3000 6000"
 check "export tif, exr, png, 16-bit tif and r16" $status

@@ -306,8 +306,9 @@ static const cmd_def commands[] = {
      "settings for Unreal and Unity. preset unreal|unity|godot|houdini|blender checks the format "
      "and crops to the sizes the engine imports. tiles=CxR writes a grid of files sharing their "
      "edge samples, named NAME_x0_y0 (Unity: NAME_0_0; pattern= with {name} {x} {y}), each "
-     "with its sidecar, plus FILE.json for the set; shard=I/N writes only tiles k with k % N == "
-     "I (for GNU parallel or a Slurm array). layer=normals writes a tangent-space normal map "
+     "with its sidecar, plus FILE.json for the set; shard=I/N writes only the I-th of N "
+     "contiguous runs of tiles (for GNU parallel or a Slurm array). layer=normals writes a "
+     "tangent-space normal map "
      "(.png), layer=materials the material weights as FILE_m0-3.png and FILE_m4-7.png (RGBA). "
      ".obj, .ply and .glb write a mesh (metres, +Y up; simplify=METRES, solid=1, centred=1). "
      "Written to a temp file and renamed.",

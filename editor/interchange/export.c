@@ -6,6 +6,7 @@
 #include "io/gdal_raster.h"
 #include "io/image_read.h"
 #include "io/param_file.h"
+#include "io/progress.h"
 #include "io/parse.h"
 
 #include <errno.h>
@@ -474,7 +475,17 @@ static int export_tiles(world *w, const layer_grid *g, const char *path, const e
             }
             const char *slash = strrchr(tp, '/');
             fprintf(list, "%s\"%s\"", x || y ? ", " : "", slash ? slash + 1 : tp);
-            if ((y * C + x) % o->shard_count != o->shard) continue;
+            // Shard I takes the I-th of N contiguous runs of tiles (row-major): neighbours
+            // share the cache tiles along their seam, so few are generated twice.
+            const int64_t k = (int64_t)y * C + x;
+            if (k * o->shard_count / ((int64_t)C * R) != o->shard) continue;
+            if (og_progress_report(og_progress_current(), y * C + x, (int64_t)C * R) != 0) {
+                // Tiles already written stay (each whole, with its sidecar); the set's
+                // sidecar is not written, so the set reads as unfinished.
+                rc = og_error_set(err, "%s: cancelled after %d of %d tiles", path,
+                                  rep.tiles_written, C * R);
+                break;
+            }
             grid_rect t = {r.x0 + x * (tw - 1), r.z0 + y * (th - 1), 0, 0};
             t.x1 = t.x0 + tw;
             t.z1 = t.z0 + th;

@@ -37,7 +37,7 @@ typedef struct export_options {
     double scale, offset; // 16-bit: height = stored x scale + offset
     // Tiled export: tiles_x x tiles_y files sharing one sample along each seam, named
     // by pattern ({name} {x} {y}; "" = the preset's convention); this run writes the
-    // tiles k (row-major) with k % shard_count == shard.
+    // tiles k (row-major) with floor(k x shard_count / tiles) == shard: its contiguous run.
     int tiles_x, tiles_y;
     char pattern[128];
     int shard, shard_count;

@@ -3,6 +3,7 @@
 #include "editor/world/layer_grid.h"
 #include "io/image_read.h"
 #include "io/param_file.h"
+#include "io/progress.h"
 
 #include <math.h>
 #include <meshoptimizer.h>
@@ -358,6 +359,11 @@ int export_mesh(world *w, const char *path, const export_mesh_options *o, export
     }
     rep->input_triangles = m.indices / 3;
     rep->achieved_error = 0;
+    og_progress *progress = og_progress_current();
+    if (og_progress_report(progress, 1, 4) != 0) {
+        og_error_set(err, "%s: cancelled", path);
+        goto done;
+    }
     if (o->simplify > 0 && simplify(&m, o->simplify, &rep->achieved_error) != 0) {
         og_error_set(err, "%s: out of memory simplifying", path);
         goto done;
@@ -376,6 +382,10 @@ int export_mesh(world *w, const char *path, const export_mesh_options *o, export
             og_error_set(err, "%s: out of memory for the base", path);
             goto done;
         }
+    }
+    if (og_progress_report(progress, 3, 4) != 0) {
+        og_error_set(err, "%s: cancelled", path);
+        goto done;
     }
     bounds(&m);
     const char *dot = strrchr(path, '.');
