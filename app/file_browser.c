@@ -164,7 +164,7 @@ int file_browser_draw(file_browser *b, ui_context *ui, ui_rect r) {
     ui_row(ui, 1, NULL, list.h - line);
     ui_next_cell(ui);
     ui_row(ui, 1, NULL, line);
-    int rc = ui_textbox(ui, "Path", b->path, sizeof b->path);
+    int rc = ui_textbox_flags(ui, "Path", b->path, sizeof b->path, UI_TEXTBOX_SELECT_ALL);
     ui_tooltip(ui, "The file: type a path, or pick one above");
     float bottom[2] = {-0.5f, 0};
     ui_row(ui, 2, bottom, line);

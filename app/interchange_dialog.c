@@ -33,7 +33,7 @@ static void labelled_field(ui_context *ui, const char *label, const char *name, 
     float w[2] = {ui_em(ui, 7), 0};
     ui_row(ui, 2, w, 0);
     ui_label(ui, label);
-    ui_textbox(ui, name, buf, size);
+    ui_textbox_flags(ui, name, buf, size, UI_TEXTBOX_SELECT_ALL);
     ui_tooltip(ui, tip);
 }
 

@@ -425,20 +425,23 @@ line=$(ask_until history '^steps=' "^${steps0%% *} "); check "undo takes the pai
 # 7d. File > Import heightmap and Export heightmap: the browser, then the options dialog,
 # build import / export commands that run (far from the sculpted boxes; undone after).
 "$orogen" -c "new flat; set generator flat; set base_height 7; generate; export $work/small.exr region=0,0,64,64" >/dev/null 2>&1
+# Types TEXT into the field NAME: a click focuses it and selects its text (the fields of
+# these dialogs replace their text when typed into); the pause lets a slow frame take
+# the click before the keys come.
+fill() {
+    click "$1" || return 1
+    sleep 0.5
+    key ctrl+a
+    xdotool type --delay 20 "$2"
+    sleep 0.3
+}
 click "Menu/File" && click "Menu/File/Import heightmap..."
 widget "Import heightmap/Path" >/dev/null; check "File > Import heightmap... opens the browser" $?
-click "Import heightmap/Path"
-key ctrl+a
-xdotool type --delay 20 "$work/small.exr"
-sleep 0.3
+fill "Import heightmap/Path" "$work/small.exr"
 click "Import heightmap/Next"
 widget "Import options/x" >/dev/null; check "Next opens the import options" $?
-click "Import options/x"
-key ctrl+a
-xdotool type --delay 20 "50000"
-click "Import options/z"
-key ctrl+a
-xdotool type --delay 20 "60000"
+fill "Import options/x" 50000
+fill "Import options/z" 60000
 click "Import options/Import"
 widget_gone "Import options/Import"; check "Import closes the options dialog" $?
 line=$(ask_until "sample 50032 60032" '^-\?[0-9]' '^7\.000000$')
@@ -446,17 +449,12 @@ check "the imported heightmap's 7 m lies at 50000, 60000 .. 50064, 60064 ($line)
 line=$(ask_until history 'import small.exr' 'import small.exr')
 check "the import is an undo step named after the file ($line)" $?
 click "Menu/File" && click "Menu/File/Export heightmap..."
-click "Export heightmap/Path"
-key ctrl+a
-xdotool type --delay 20 "$work/out.png"
-sleep 0.3
+fill "Export heightmap/Path" "$work/out.png"
 click "Export heightmap/Next"
 widget "Export options/The whole world" >/dev/null; check "Next opens the export options" $?
 # An unbounded world: the whole world is off, the region's four edges are asked for.
 for f in x0=50000 z0=60000 x1=50064 z1=60064; do
-    click "Export options/${f%%=*}"
-    key ctrl+a
-    xdotool type --delay 20 "${f#*=}"
+    fill "Export options/${f%%=*}" "${f#*=}"
 done
 click "Export options/Export"
 for _ in $(seq 100); do [ -s "$work/out.png.json" ] && break; sleep 0.1; done

@@ -1119,6 +1119,36 @@ static void test_textbox_focus_and_caret(void **state) {
     drv_free(&d);
 }
 
+// A select-all field (numbers, paths): the click that focuses it selects everything,
+// held over a frame or more, so typing replaces the text; a drag still selects a part.
+static void build_select_all(drv *d) {
+    form *f = d->user;
+    ui_panel_begin(d->ui, "Form", form_panel);
+    f->rc[0] = ui_textbox_flags(d->ui, "Name", f->name, sizeof f->name, UI_TEXTBOX_SELECT_ALL);
+    ui_panel_end(d->ui);
+}
+
+static void test_textbox_select_all_on_click(void **state) {
+    (void)state;
+    form f;
+    drv d;
+    memset(&f, 0, sizeof f);
+    snprintf(f.name, sizeof f.name, "1234");
+    drv_init(&d, build_select_all, &f);
+    ui_rect r = rect_of(&d, "Form/Name");
+    press(&d, r.x + r.w / 2, r.y + r.h / 2);
+    frame(&d); // the button still down a frame later (a slow frame)
+    release(&d, r.x + r.w / 2, r.y + r.h / 2);
+    type(&d, "50000");
+    assert_string_equal(f.name, "50000");
+    // Focused already, a click places the caret as usual.
+    float pad = ui_em(d.ui, 0.3f);
+    click(&d, r.x + pad + ui_font_text_width(font, UI_FACE_SANS, "50", 2), r.y + r.h / 2);
+    type(&d, "x");
+    assert_string_equal(f.name, "50x000");
+    drv_free(&d);
+}
+
 static void test_textbox_selection_and_delete(void **state) {
     (void)state;
     form f;
@@ -1823,6 +1853,7 @@ int main(void) {
         T(test_slider_typing),
         T(test_slider_enter_releases_keyboard),
         T(test_textbox_focus_and_caret),
+        T(test_textbox_select_all_on_click),
         T(test_textbox_selection_and_delete),
         T(test_textbox_word_jumps),
         T(test_textbox_select_all_and_clipboard),

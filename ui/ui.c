@@ -67,6 +67,7 @@ struct ui_context {
     // Text editing (text boxes, and sliders being typed into).
     ui_id edit_id;
     char edit_restore[EDIT_MAX];
+    float select_all_press_x; // where the click that focused a select-all field was
     size_t cursor, anchor;
     char undo[UNDO_MAX][EDIT_MAX];
     int undo_count, typing_run;
@@ -1110,10 +1111,15 @@ static int text_edit(ui_context *ui, ui_id id, ui_rect r, char *buf, size_t size
         ui->cursor = n;
         ui->anchor = 0; // all selected, as most editors do on focus
         ui->caret_time = ui->in.time;
-        if (hovered && press_for(ui, id))
+        if (hovered && press_for(ui, id) && (flags & UI_TEXTBOX_SELECT_ALL))
+            ui->select_all_press_x = ui->in.mouse_x; // keep all selected: typing replaces
+        else if (hovered && press_for(ui, id))
             ui->cursor = ui->anchor =
                 ui_font_offset_at(ui->font, UI_FACE_SANS, buf, n, ui->in.mouse_x - r.x - pad);
-    } else if (ui->focus == id && ui->active == id && ui->in.mouse_down[0]) { // click/drag selects
+    } else if (ui->focus == id && ui->active == id && ui->in.mouse_down[0] &&
+               !((flags & UI_TEXTBOX_SELECT_ALL) && !mouse_pressed(ui) &&
+                 fabsf(ui->in.mouse_x - ui->select_all_press_x) < ui_em(ui, 0.3f))) {
+        // Click/drag selects (a select-all field keeps its selection until a drag).
         size_t at = ui_font_offset_at(ui->font, UI_FACE_SANS, buf, n, ui->in.mouse_x - r.x - pad);
         if (mouse_pressed(ui) && !(ui->in.mods & UI_MOD_SHIFT)) ui->anchor = at;
         ui->cursor = at;

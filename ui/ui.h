@@ -154,8 +154,9 @@ int ui_combo(ui_context *ui, const char *label, int *index, const char *const *i
 enum { UI_TEXT_CHANGED = 1, UI_TEXT_SUBMIT = 2 };
 int ui_textbox(ui_context *ui, const char *label, char *buf, size_t size);
 // The same; with UI_TEXTBOX_OWN_TAB, Tab does not move the focus (the caller uses it,
-// e.g. for completion).
-enum { UI_TEXTBOX_OWN_TAB = 1 };
+// e.g. for completion); with UI_TEXTBOX_SELECT_ALL a click that focuses the field
+// selects all its text, so typing replaces it (number fields, paths, as an address bar).
+enum { UI_TEXTBOX_OWN_TAB = 1, UI_TEXTBOX_SELECT_ALL = 2 };
 int ui_textbox_flags(ui_context *ui, const char *label, char *buf, size_t size, int flags);
 // Whether the last widget has the keyboard focus.
 int ui_last_focused(const ui_context *ui);
