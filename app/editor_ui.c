@@ -919,7 +919,7 @@ static ui_rect dialog_rect(const editor_ui *e, const ui_context *ui, float width
         return centred(
             width, height, fminf(width * 0.9f, ui_em(ui, 24)),
             fminf(height * 0.9f,
-                  ui_em(ui, 1.65f * (float)interchange_dialog_rows(&e->interchange) + 1.5f)));
+                  ui_em(ui, 1.7f * (float)interchange_dialog_rows(&e->interchange) + 1.5f)));
     if (e->pending != PENDING_NONE) return centred(width, height, ui_em(ui, 22), ui_em(ui, 6));
     if (e->show_help) return text_dialog_rect(ui, help_lines, HELP_LINES, width, height);
     if (e->show_about) return centred(width, height, ui_em(ui, 34), ui_em(ui, 1.45f * (3 + 3)));

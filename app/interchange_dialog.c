@@ -39,19 +39,17 @@ static void labelled_field(ui_context *ui, const char *label, const char *name, 
 
 static void import_options(interchange_dialog *d, ui_context *ui) {
     labelled_field(ui, "X (m)", "x", d->x, sizeof d->x,
-                   "Where the first sample (row 0, column 0) goes, metres east");
+                   "Where the first sample (row 0, column 0) goes");
     labelled_field(ui, "Z (m)", "z", d->z, sizeof d->z,
-                   "Where the first sample goes, metres south (rows run toward +Z)");
+                   "Where the first sample goes (rows run toward +Z)");
     ui_row(ui, 1, NULL, 0);
     ui_checkbox(ui, "Centre it on X, Z##centre", &d->centre);
-    ui_tooltip(ui, "Place the middle of the heightmap at X, Z instead of its first corner");
+    ui_tooltip(ui, "Put the heightmap's middle at X, Z, not its first corner");
     static const char *const layers[] = {"Coarse heights", "Detail heights"};
     ui_combo(ui, "Layer", &d->layer, layers, 2);
-    ui_tooltip(ui, "The layer the heights go to: coarse terrain or fine detail");
+    ui_tooltip(ui, "Coarse terrain or fine detail");
     ui_checkbox(ui, "Map 8/16-bit values to heights##map", &d->map_heights);
-    ui_tooltip(ui, "Integer images hold no metres: map their lowest and highest value to these "
-                   "heights (otherwise: the file's sidecar, or 0 .. the world's max height). "
-                   "Float files and DEMs are metres as stored.");
+    ui_tooltip(ui, "8/16-bit files: lowest and highest value in metres");
     if (d->map_heights) {
         labelled_field(ui, "Lowest (m)", "min", d->min, sizeof d->min,
                        "Height in metres of the lowest stored value (0)");
@@ -61,19 +59,18 @@ static void import_options(interchange_dialog *d, ui_context *ui) {
     ui_row(ui, 1, NULL, 0);
     static const char *const blends[] = {"Replace", "Add", "Max", "Min"};
     ui_combo(ui, "Blend", &d->blend, blends, 4);
-    ui_tooltip(ui, "How the heights meet the terrain: replace it, add to it, keep the higher "
-                   "or the lower");
+    ui_tooltip(ui, "Replace the terrain, add to it, or keep the higher / lower");
     static const char *const resamples[] = {"Nearest", "Bilinear", "Bicubic"};
     ui_combo(ui, "Resample", &d->resample, resamples, 3);
-    ui_tooltip(ui, "How samples between the file's samples are found when spacings differ");
+    ui_tooltip(ui, "Sampling when the file's spacing differs from the world's");
     ui_slider(ui, "Edge falloff (m)##falloff", &d->falloff, 0, 2000, "%.0f m");
-    ui_tooltip(ui, "Fade the heightmap's edges into the terrain over this distance");
+    ui_tooltip(ui, "Fade the edges into the terrain over this distance");
 }
 
 static void export_options(interchange_dialog *d, ui_context *ui) {
     ui_row(ui, 1, NULL, 0);
     ui_checkbox(ui, "The whole world##whole", &d->whole);
-    ui_tooltip(ui, "Export every sample of the bounded world (unbounded worlds need a region)");
+    ui_tooltip(ui, "Every sample of a bounded world (else the region below)");
     if (!d->whole) {
         static const char *const labels[] = {"West X0 (m)", "North Z0 (m)", "East X1 (m)",
                                              "South Z1 (m)"};
@@ -88,23 +85,18 @@ static void export_options(interchange_dialog *d, ui_context *ui) {
     static const char *const presets[] = {"None",    "Unreal", "Unity", "Godot Terrain3D",
                                           "Houdini", "Blender"};
     ui_combo(ui, "Preset", &d->preset, presets, 6);
-    ui_tooltip(ui, "Check the format for an engine and crop to the sizes it imports (Unreal: "
-                   "16-bit PNG or R16, 1009/2017/4033/8129; Unity: RAW 2^n+1; Godot, Houdini, "
-                   "Blender: float EXR). The settings to type in are printed in the console.");
+    ui_tooltip(ui, "Crop to an engine's sizes; its settings go to the console");
     const char *dot = strrchr(d->path, '.');
     if (dot && (!strcmp(dot, ".tif") || !strcmp(dot, ".tiff"))) {
         ui_checkbox(ui, "16-bit TIFF (not float)##bits16", &d->bits16);
-        ui_tooltip(ui, "Write 16-bit integers and a height mapping instead of float metres");
+        ui_tooltip(ui, "16-bit values and a mapping, not float metres");
     }
 }
 
 int interchange_dialog_rows(const interchange_dialog *d) {
-    if (d->exporting) {
-        const char *dot = strrchr(d->path, '.');
-        int tif = dot && (!strcmp(dot, ".tif") || !strcmp(dot, ".tiff"));
-        return 4 + (d->whole ? 0 : 4) + tif; // title, whole, preset, buttons
-    }
-    return 10 + (d->map_heights ? 2 : 0); // title x z centre layer map blend resample falloff go
+    // The most it can show (ticking a box must not push the buttons out of view).
+    if (d->exporting) return 9; // title, whole, 4 region edges, preset, 16-bit TIFF, buttons
+    return 12;                  // title x z centre layer map min max blend resample falloff buttons
 }
 
 int interchange_dialog_draw(interchange_dialog *d, ui_context *ui, ui_rect r, char *cmd,

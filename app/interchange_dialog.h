@@ -33,7 +33,7 @@ typedef struct interchange_dialog {
 // unbounded) sets the export region to the whole world; x, z is where the view looks.
 void interchange_dialog_show(interchange_dialog *d, int exporting, const char *path,
                              double bounded_metres, double x, double z);
-// The rows of widgets it shows now (to size its rectangle).
+// The most rows of widgets it shows (to size its rectangle).
 int interchange_dialog_rows(const interchange_dialog *d);
 // Draws it over r; returns 1 when the user pressed Import / Export, with the
 // command in cmd (the dialog closes).
