@@ -423,32 +423,33 @@ int write_samples_impl(const char *path, const float *samples, int width, int he
 
 } // namespace
 
+// Runs an entry point's body: no C++ exception may cross into C.
+template <typename Body>
+static int guarded(const char *path, const char *verb, og_error *err, Body body) {
+    try {
+        return body();
+    } catch (const std::exception &e) {
+        return og_error_set(err, "%s: cannot %s image: %s", path, verb, e.what());
+    } catch (...) {
+        return og_error_set(err, "%s: cannot %s image: unknown error", path, verb);
+    }
+}
+
 extern "C" __attribute__((visibility("default"))) int
 orogen_image_module_read_luminance(const char *path, float **pixels, int *width, int *height,
                                    og_error *err) {
     *pixels = nullptr;
     *width = *height = 0;
     if (!path) return og_error_set(err, "image_read_luminance: no path");
-    try {
-        return read_impl(path, pixels, width, height, err);
-    } catch (const std::exception &e) {
-        return og_error_set(err, "%s: cannot read image: %s", path, e.what());
-    } catch (...) {
-        return og_error_set(err, "%s: cannot read image: unknown error", path);
-    }
+    return guarded(path, "read", err, [&] { return read_impl(path, pixels, width, height, err); });
 }
 
 extern "C" __attribute__((visibility("default"))) int
 orogen_image_module_write_gray16(const char *path, const float *pixels, int width, int height,
                                  og_error *err) {
     if (!path || !pixels) return og_error_set(err, "image_write_gray16: no path or pixels");
-    try {
-        return write_impl(path, pixels, width, height, err);
-    } catch (const std::exception &e) {
-        return og_error_set(err, "%s: cannot write image: %s", path, e.what());
-    } catch (...) {
-        return og_error_set(err, "%s: cannot write image: unknown error", path);
-    }
+    return guarded(path, "write", err,
+                   [&] { return write_impl(path, pixels, width, height, err); });
 }
 
 extern "C" __attribute__((visibility("default"))) int
@@ -457,26 +458,16 @@ orogen_image_module_read_rgb8(const char *path, unsigned char **rgb, int *width,
     *rgb = nullptr;
     *width = *height = 0;
     if (!path) return og_error_set(err, "image_read_rgb8: no path");
-    try {
-        return read_rgb8_impl(path, rgb, width, height, err);
-    } catch (const std::exception &e) {
-        return og_error_set(err, "%s: cannot read image: %s", path, e.what());
-    } catch (...) {
-        return og_error_set(err, "%s: cannot read image: unknown error", path);
-    }
+    return guarded(path, "read", err,
+                   [&] { return read_rgb8_impl(path, rgb, width, height, err); });
 }
 
 extern "C" __attribute__((visibility("default"))) int
 orogen_image_module_write_rgb8(const char *path, const unsigned char *rgb, int width, int height,
                                og_error *err) {
     if (!path || !rgb) return og_error_set(err, "image_write_rgb8: no path or pixels");
-    try {
-        return write_rgb8_impl(path, rgb, width, height, err);
-    } catch (const std::exception &e) {
-        return og_error_set(err, "%s: cannot write image: %s", path, e.what());
-    } catch (...) {
-        return og_error_set(err, "%s: cannot write image: unknown error", path);
-    }
+    return guarded(path, "write", err,
+                   [&] { return write_rgb8_impl(path, rgb, width, height, err); });
 }
 
 extern "C" __attribute__((visibility("default"))) int
@@ -486,38 +477,25 @@ orogen_image_module_read_channel(const char *path, const char *channel, int max_
     *samples = nullptr;
     *width = *height = 0;
     if (!path) return og_error_set(err, "image_read_channel: no path");
-    try {
+    return guarded(path, "read", err, [&] {
         return read_channel_impl(path, channel, max_size, samples, width, height, kind, bits, desc,
                                  desc_len, err);
-    } catch (const std::exception &e) {
-        return og_error_set(err, "%s: cannot read image: %s", path, e.what());
-    } catch (...) {
-        return og_error_set(err, "%s: cannot read image: unknown error", path);
-    }
+    });
 }
 
 extern "C" __attribute__((visibility("default"))) int
 orogen_image_module_write_samples(const char *path, const float *samples, int width, int height,
                                   int format, const char *channel, og_error *err) {
     if (!path || !samples) return og_error_set(err, "image_write_samples: no path or samples");
-    try {
+    return guarded(path, "write", err, [&] {
         return write_samples_impl(path, samples, width, height, format, channel, err);
-    } catch (const std::exception &e) {
-        return og_error_set(err, "%s: cannot write image: %s", path, e.what());
-    } catch (...) {
-        return og_error_set(err, "%s: cannot write image: unknown error", path);
-    }
+    });
 }
 
 extern "C" __attribute__((visibility("default"))) int
 orogen_image_module_write_u8(const char *path, const unsigned char *data, int width, int height,
                              int channels, og_error *err) {
     if (!path || !data) return og_error_set(err, "image_write_u8: no path or pixels");
-    try {
-        return write_u8_impl(path, data, width, height, channels, err);
-    } catch (const std::exception &e) {
-        return og_error_set(err, "%s: cannot write image: %s", path, e.what());
-    } catch (...) {
-        return og_error_set(err, "%s: cannot write image: unknown error", path);
-    }
+    return guarded(path, "write", err,
+                   [&] { return write_u8_impl(path, data, width, height, channels, err); });
 }

@@ -70,21 +70,19 @@ int raster_read_raw(const char *path, const raster_read_options *o, raster *out,
     if (w < 0 || h < 0) return og_error_set(err, "%s: width and height must be positive", path);
     if (w && !h) h = n / w;
     if (h && !w) w = n / h;
-    if (!w) {
+    const int inferred = !w;
+    if (inferred) {
         int64_t side = (int64_t)llround(sqrt((double)n));
-        if (side * side != n) {
-            char sizes[128];
-            fitting_sizes(n, sizes, sizeof sizes);
+        if (side * side == n) w = h = side;
+    }
+    if (w * h != n || !w) {
+        char sizes[128];
+        fitting_sizes(n, sizes, sizeof sizes);
+        if (inferred)
             return og_error_set(err,
                                 "%s: %lld %s samples is not a square; give width= and height= "
                                 "(sizes that fit: %s)",
                                 path, (long long)n, what, sizes);
-        }
-        w = h = side;
-    }
-    if (w * h != n) {
-        char sizes[128];
-        fitting_sizes(n, sizes, sizeof sizes);
         return og_error_set(err,
                             "%s: %lld x %lld is %lld samples but the file holds %lld %s samples "
                             "(sizes that fit: %s)",

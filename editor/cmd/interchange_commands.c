@@ -2,7 +2,6 @@
 
 #include "editor/interchange/export.h"
 #include "editor/interchange/import.h"
-#include "editor/interchange/sidecar.h"
 #include "io/parse.h"
 
 #include <math.h>
@@ -60,47 +59,32 @@ world *cmd_world_from_raster(cmd_context *ctx, const char *path, int argc, char 
     }
     struct timespec t0;
     clock_gettime(CLOCK_MONOTONIC, &t0);
-    raster r;
-    if (raster_read(path, &o.read, &r, err) != 0) return NULL;
-    double scale, offset;
-    char how[160];
     world_params p;
     world_params_default(&p, WORLD_FLAT);
-    int rc =
-        import_height_mapping(path, &r, &o, p.max_height, &scale, &offset, how, sizeof how, err);
-    double lo = INFINITY, hi = -INFINITY;
-    for (size_t i = 0; rc == 0 && i < (size_t)r.width * (size_t)r.height; i++) {
-        double v = r.samples[i] * scale + offset;
-        lo = fmin(lo, v), hi = fmax(hi, v);
-    }
+    import_source src;
+    if (import_source_read(path, &o, p.max_height, &src, err) != 0) return NULL;
     // One world sample per raster sample along the finer axis.
-    double sx = o.spacing > 0 ? o.spacing : r.spacing_x,
-           sz = o.spacing > 0 ? o.spacing : r.spacing_z;
-    sidecar sc;
-    og_error ignore;
-    if (sx <= 0 && sidecar_read(path, &sc, &ignore) == 1) sx = sz = sc.spacing;
+    double sx = src.spacing_x, sz = src.spacing_z;
     if (sx <= 0) sx = sz = p.spacing;
-    const int width = r.width, height = r.height;
-    raster_free(&r);
-    if (rc != 0) return NULL;
+    const int width = src.raster.width, height = src.raster.height;
     const double spacing = fmin(sx, sz);
     p.generator = GEN_FLAT;
-    p.base_height = lo; // where the raster does not reach (a non-square raster)
-    p.max_height = fmax(1.0, fmax(fabs(lo), fabs(hi)));
+    p.base_height = src.min; // where the raster does not reach (a non-square raster)
+    p.max_height = fmax(1.0, fmax(fabs(src.min), fabs(src.max)));
     p.spacing = spacing;
     p.size = (int64_t)ceil(fmax((width - 1) * sx, (height - 1) * sz) / spacing - 1e-6) + 1;
-    if (world_params_validate(&p, err) != 0) return NULL;
-    world *w = world_create(&p, &ctx->settings, err);
-    if (!w) return NULL;
+    world *w = world_params_validate(&p, err) == 0 ? world_create(&p, &ctx->settings, err) : NULL;
     o.has_position = 1;
     o.x = o.z = 0;
     o.anchor_centre = 0;
-    if (o.spacing <= 0 && sx == sz) o.spacing = sx;
+    src.spacing_x = sx, src.spacing_z = sz;
     import_report rep;
-    if (import_apply(w, path, &o, &rep, err) != 0) {
+    if (w && import_apply_source(w, path, &src, &o, &rep, err) != 0) {
         world_close(w);
-        return NULL;
+        w = NULL;
     }
+    import_source_free(&src);
+    if (!w) return NULL;
     fprintf(ctx->out, "new flat world of %lld x %lld samples, %.6g m apart, from %s\n",
             (long long)p.size, (long long)p.size, spacing, path);
     print_import(ctx->out, path, &rep, TILE_LAYER_COARSE, seconds_since(&t0));

@@ -289,6 +289,24 @@ static long long file_size(const char *path) {
     return n;
 }
 
+// The 16-bit mapping (height = stored x scale + offset): scale=/offset= or min=/max=
+// as given, else lo .. hi spread over 0 .. 65535.
+static int mapping_16bit(const export_options *o, double lo, double hi, double *scale,
+                         double *offset, og_error *err) {
+    if (o->has_scale && o->has_min_max)
+        return og_error_set(err, "export: give min=/max= or scale=/offset=, not both");
+    if (o->has_scale) {
+        *scale = o->has_scale & 1 ? o->scale : 1.0;
+        *offset = o->offset;
+        return 0;
+    }
+    if (o->has_min_max == 3) lo = o->min, hi = o->max;
+    if (!(hi > lo)) hi = lo + 1.0; // a flat region still needs a step
+    *scale = (hi - lo) / 65535.0;
+    *offset = lo;
+    return 0;
+}
+
 // Reads rectangle r of the layer and writes it to path with its sidecar. The 16-bit
 // mapping is rep's when fixed_mapping (tiles share one), else chosen from o and the
 // rectangle's range.
@@ -314,22 +332,9 @@ static int write_rect(world *w, const layer_grid *g, const char *path, const exp
     rep->origin_z = (double)r.z0 * g->spacing;
     snprintf(rep->format, sizeof rep->format, "%s", format_names[f]);
     if (!fixed_mapping) rep->scale = 1.0, rep->offset = 0.0;
-    if (is_16bit(f) && !fixed_mapping) {
-        if (o->has_scale && o->has_min_max) {
-            og_error_set(err, "export: give min=/max= or scale=/offset=, not both");
-            goto done;
-        }
-        if (o->has_scale) {
-            rep->scale = o->has_scale & 1 ? o->scale : 1.0;
-            rep->offset = o->offset;
-        } else {
-            double lo = rep->min, hi = rep->max;
-            if (o->has_min_max == 3) lo = o->min, hi = o->max;
-            if (!(hi > lo)) hi = lo + 1.0; // a flat region still needs a step
-            rep->scale = (hi - lo) / 65535.0;
-            rep->offset = lo;
-        }
-    }
+    if (is_16bit(f) && !fixed_mapping &&
+        mapping_16bit(o, rep->min, rep->max, &rep->scale, &rep->offset, err) != 0)
+        goto done;
     if (is_16bit(f)) {
         for (int64_t i = 0; i < n; i++) {
             double q = round((h[i] - rep->offset) / rep->scale);
@@ -438,21 +443,11 @@ static int export_tiles(world *w, const layer_grid *g, const char *path, const e
                  (long long)used_h);
     // One mapping for every tile and every shard: what was given, else the generator's range.
     rep.scale = 1.0, rep.offset = 0.0;
-    if (is_16bit(f)) {
-        if (o->has_scale && o->has_min_max)
-            return og_error_set(err, "export: give min=/max= or scale=/offset=, not both");
-        if (o->has_scale) {
-            rep.scale = o->has_scale & 1 ? o->scale : 1.0;
-            rep.offset = o->offset;
-        } else {
-            const world_params *p = world_get_params(w);
-            double lo = p->base_height - p->max_height, hi = p->base_height + p->max_height;
-            if (o->has_min_max == 3) lo = o->min, hi = o->max;
-            if (!(hi > lo)) hi = lo + 1.0;
-            rep.scale = (hi - lo) / 65535.0;
-            rep.offset = lo;
-        }
-    }
+    const world_params *p = world_get_params(w);
+    if (is_16bit(f) &&
+        mapping_16bit(o, p->base_height - p->max_height, p->base_height + p->max_height, &rep.scale,
+                      &rep.offset, err) != 0)
+        return -1;
     const char *pattern = o->pattern[0]                      ? o->pattern
                           : o->preset == EXPORT_PRESET_UNITY ? "{name}_{x}_{y}"
                                                              : "{name}_x{x}_y{y}";

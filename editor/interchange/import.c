@@ -91,9 +91,11 @@ int import_options_set(import_options *o, const char *key, const char *value, og
     return 0;
 }
 
-int import_height_mapping(const char *path, const raster *r, const import_options *o,
-                          double default_max, double *scale, double *offset, char *how,
-                          size_t how_len, og_error *err) {
+// How stored values become metres (height = v x *scale + *offset): the options, else
+// the sidecar sc (NULL: none), else by the kind of file.
+static int height_mapping(const char *path, const raster *r, const import_options *o,
+                          const sidecar *sc, double default_max, double *scale, double *offset,
+                          char *how, size_t how_len, og_error *err) {
     if (o->has_scale && o->has_min_max)
         return og_error_set(err, "import: give min=/max= or scale=/offset=, not both");
     if (o->has_scale) {
@@ -112,12 +114,9 @@ int import_height_mapping(const char *path, const raster *r, const import_option
         snprintf(how, how_len, "stored 0..%.9g mapped to %.9g..%.9g m", top, o->min, o->max);
         return 0;
     }
-    sidecar sc;
-    int has = sidecar_read(path, &sc, err);
-    if (has < 0) return -1;
-    if (has) {
-        *scale = sc.scale;
-        *offset = sc.offset;
+    if (sc) {
+        *scale = sc->scale;
+        *offset = sc->offset;
         snprintf(how, how_len, "from %s.json: height = stored x %.9g + %.9g m", path, *scale,
                  *offset);
         return 0;
@@ -220,60 +219,91 @@ static void import_row(void *user, void *row, int64_t z, int64_t x0, int64_t x1)
     }
 }
 
+void import_source_free(import_source *s) {
+    raster_free(&s->raster);
+}
+
+int import_source_read(const char *path, const import_options *o, double default_max,
+                       import_source *s, og_error *err) {
+    memset(s, 0, sizeof *s);
+    sidecar sc;
+    int has_sidecar = sidecar_read(path, &sc, err);
+    if (has_sidecar < 0) return -1;
+    if (raster_read(path, &o->read, &s->raster, err) != 0) return -1;
+    raster *r = &s->raster;
+    double scale = 1.0, offset = 0.0;
+    if (height_mapping(path, r, o, has_sidecar ? &sc : NULL, default_max, &scale, &offset,
+                       s->mapping, sizeof s->mapping, err) != 0) {
+        import_source_free(s);
+        return -1;
+    }
+    const size_t n = (size_t)r->width * (size_t)r->height;
+    s->min = INFINITY;
+    s->max = -INFINITY;
+    for (size_t i = 0; i < n; i++) {
+        float v = (float)((double)r->samples[i] * scale + offset);
+        if (!isfinite(v)) {
+            og_error_set(err, "%s: sample (%zu, %zu) maps to %g m, not a height", path,
+                         i % (size_t)r->width, i / (size_t)r->width, (double)v);
+            import_source_free(s);
+            return -1;
+        }
+        r->samples[i] = v;
+        s->min = fmin(s->min, v);
+        s->max = fmax(s->max, v);
+    }
+    s->spacing_x = o->spacing > 0 ? o->spacing : r->spacing_x;
+    s->spacing_z = o->spacing > 0 ? o->spacing : r->spacing_z;
+    if (s->spacing_x <= 0 && has_sidecar) s->spacing_x = s->spacing_z = sc.spacing;
+    if (has_sidecar) {
+        s->has_origin = 1;
+        s->origin_x = sc.origin_x;
+        s->origin_z = sc.origin_z;
+    }
+    return 0;
+}
+
 int import_apply(world *w, const char *path, const import_options *o, import_report *report,
                  og_error *err) {
+    import_source s;
+    if (import_source_read(path, o, world_get_params(w)->max_height, &s, err) != 0) return -1;
+    int rc = import_apply_source(w, path, &s, o, report, err);
+    import_source_free(&s);
+    return rc;
+}
+
+int import_apply_source(world *w, const char *path, const import_source *s, const import_options *o,
+                        import_report *report, og_error *err) {
     const world_params *p = world_get_params(w);
     layer_grid g;
     if (layer_grid_init(&g, p, o->layer, 0, err) != 0) return -1;
     if (p->kind == WORLD_PLANET)
         return og_error_set(err, "import: planets take no rasters yet (import onto a flat world)");
-    raster r;
-    if (raster_read(path, &o->read, &r, err) != 0) return -1;
-    int rc = -1;
+    const raster *r = &s->raster;
     import_report rep;
     memset(&rep, 0, sizeof rep);
-    double scale, offset;
-    if (import_height_mapping(path, &r, o, p->max_height, &scale, &offset, rep.mapping,
-                              sizeof rep.mapping, err) != 0)
-        goto done;
-    sidecar sc;
-    og_error ignore;
-    int has_sidecar = sidecar_read(path, &sc, &ignore) == 1;
-    double sx = o->spacing, sz = o->spacing;
-    if (sx <= 0) sx = r.spacing_x, sz = r.spacing_z;
-    if (sx <= 0 && has_sidecar) sx = sz = sc.spacing;
+    snprintf(rep.mapping, sizeof rep.mapping, "%s", s->mapping);
+    rep.min = s->min;
+    rep.max = s->max;
+    double sx = s->spacing_x, sz = s->spacing_z;
     if (sx <= 0) sx = sz = g.spacing; // one sample per pixel
-    const size_t n = (size_t)r.width * (size_t)r.height;
-    rep.min = INFINITY;
-    rep.max = -INFINITY;
-    for (size_t i = 0; i < n; i++) {
-        float v = (float)((double)r.samples[i] * scale + offset);
-        if (!isfinite(v)) {
-            og_error_set(err, "%s: sample (%zu, %zu) maps to %g m, not a height", path,
-                         i % (size_t)r.width, i / (size_t)r.width, (double)v);
-            goto done;
-        }
-        r.samples[i] = v;
-        rep.min = fmin(rep.min, v);
-        rep.max = fmax(rep.max, v);
-    }
-    import_op op = {r.samples, r.width,   r.height,    0,        0,         sx,
-                    sz,        g.spacing, o->resample, o->blend, o->falloff};
+    import_op op = {r->samples, r->width,  r->height,   0,        0,         sx,
+                    sz,         g.spacing, o->resample, o->blend, o->falloff};
     if (o->has_position) {
         op.x0 = o->x;
         op.z0 = o->z;
-    } else if (has_sidecar) {
-        op.x0 = sc.origin_x;
-        op.z0 = sc.origin_z;
+    } else if (s->has_origin) {
+        op.x0 = s->origin_x;
+        op.z0 = s->origin_z;
     }
     if (o->anchor_centre) {
-        op.x0 -= (r.width - 1) * sx / 2;
-        op.z0 -= (r.height - 1) * sz / 2;
+        op.x0 -= (r->width - 1) * sx / 2;
+        op.z0 -= (r->height - 1) * sz / 2;
     }
-    const double x1 = op.x0 + (r.width - 1) * sx, z1 = op.z0 + (r.height - 1) * sz;
+    const double x1 = op.x0 + (r->width - 1) * sx, z1 = op.z0 + (r->height - 1) * sz;
     if (layer_grid_check_position(&g, op.x0, op.z0, err) != 0 ||
         layer_grid_check_position(&g, x1, z1, err) != 0)
-        goto done;
+        return -1;
     // The layer samples the raster covers (within rounding of its edges).
     grid_rect want = {
         (int64_t)ceil(op.x0 / g.spacing - 1e-6), (int64_t)ceil(op.z0 / g.spacing - 1e-6),
@@ -284,7 +314,7 @@ int import_apply(world *w, const char *path, const import_options *o, import_rep
                      "%s: placed at %.9g, %.9g .. %.9g, %.9g m it lies outside the world "
                      "(0 .. %.9g m)",
                      path, op.x0, op.z0, x1, z1, (double)(g.extent - 1) * g.spacing);
-        goto done;
+        return -1;
     }
     const double covered = (double)(rect.x1 - rect.x0) * (double)(rect.z1 - rect.z0);
     if (covered > (double)IMPORT_MAX_SAMPLES) {
@@ -294,32 +324,29 @@ int import_apply(world *w, const char *path, const import_options *o, import_rep
                      "it (new flat from=FILE)",
                      path, (long long)(rect.x1 - rect.x0), (long long)(rect.z1 - rect.z0),
                      g.spacing, (long long)IMPORT_MAX_SAMPLES);
-        goto done;
+        return -1;
     }
     char label[300];
     const char *slash = strrchr(path, '/');
     snprintf(label, sizeof label, "import %s", slash ? slash + 1 : path);
     edit *e = edit_begin(w, label, err);
-    if (!e) goto done;
+    if (!e) return -1;
     if (edit_rows_apply(e, &g, rect, import_row, NULL, &op, err) != 0) {
         edit_abort(e);
-        goto done;
+        return -1;
     }
-    if (edit_commit(e, err) != 0) goto done;
-    rc = 0;
-    rep.width = r.width;
-    rep.height = r.height;
+    if (edit_commit(e, err) != 0) return -1;
+    rep.width = r->width;
+    rep.height = r->height;
     rep.spacing_x = sx;
     rep.spacing_z = sz;
-    rep.voids = r.voids;
+    rep.voids = r->voids;
     rep.x0 = (double)rect.x0 * g.spacing;
     rep.z0 = (double)rect.z0 * g.spacing;
     rep.x1 = (double)(rect.x1 - 1) * g.spacing;
     rep.z1 = (double)(rect.z1 - 1) * g.spacing;
     rep.samples = (rect.x1 - rect.x0) * (rect.z1 - rect.z0);
-    snprintf(rep.source, sizeof rep.source, "%s", r.description);
+    snprintf(rep.source, sizeof rep.source, "%s", r->description);
     if (report) *report = rep;
-done:
-    raster_free(&r);
-    return rc;
+    return 0;
 }

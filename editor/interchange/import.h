@@ -57,10 +57,24 @@ int import_options_set(import_options *o, const char *key, const char *value, og
 int import_apply(world *w, const char *path, const import_options *o, import_report *report,
                  og_error *err);
 
-// The mapping from stored values to metres for raster r under options o (and the
-// file's sidecar, when o sets none): height = v x *scale + *offset.
-int import_height_mapping(const char *path, const raster *r, const import_options *o,
-                          double default_max, double *scale, double *offset, char *how,
-                          size_t how_len, og_error *err);
+// A raster read once and mapped to metres, ready to place (and to size a world by).
+typedef struct import_source {
+    raster raster; // samples in metres
+    double spacing_x,
+        spacing_z;  // metres per sample: spacing=, the file's or the sidecar's; 0: none
+    int has_origin; // the sidecar gave where row 0, column 0 goes
+    double origin_x, origin_z;
+    double min, max;   // metres
+    char mapping[160]; // how stored values became metres
+} import_source;
+
+// Reads path with o's reader options and maps it: o's min/max or scale/offset, else the
+// file's sidecar, else 0..top to 0..default_max metres for 8/16-bit images and RAW.
+int import_source_read(const char *path, const import_options *o, double default_max,
+                       import_source *s, og_error *err);
+void import_source_free(import_source *s);
+// import_apply with the source already read.
+int import_apply_source(world *w, const char *path, const import_source *s, const import_options *o,
+                        import_report *report, og_error *err);
 
 #endif
