@@ -17,7 +17,7 @@ typedef int (*read_rgb8_fn)(const char *, unsigned char **, int *, int *, og_err
 typedef int (*write_rgb8_fn)(const char *, const unsigned char *, int, int, og_error *);
 typedef int (*read_channel_fn)(const char *, const char *, int, float **, int *, int *, int *,
                                int *, char *, size_t, og_error *);
-typedef int (*write_u8_fn)(const char *, const unsigned char *, int, int, int, og_error *);
+typedef int (*write_png_fn)(const char *, const void *, int, int, int, int, og_error *);
 typedef int (*write_samples_fn)(const char *, const float *, int, int, int, const char *,
                                 og_error *);
 
@@ -29,7 +29,7 @@ static struct {
     write_rgb8_fn write_rgb8;
     read_channel_fn read_channel;
     write_samples_fn write_samples;
-    write_u8_fn write_u8;
+    write_png_fn write_png;
     char why[1024];
 } module = {.once = PTHREAD_ONCE_INIT};
 
@@ -48,9 +48,9 @@ static void load_module(void) {
     module.write_rgb8 = (write_rgb8_fn)dlsym(h, "orogen_image_module_write_rgb8");
     module.read_channel = (read_channel_fn)dlsym(h, "orogen_image_module_read_channel");
     module.write_samples = (write_samples_fn)dlsym(h, "orogen_image_module_write_samples");
-    module.write_u8 = (write_u8_fn)dlsym(h, "orogen_image_module_write_u8");
+    module.write_png = (write_png_fn)dlsym(h, "orogen_image_module_write_png");
     if (module.read && module.write && module.read_rgb8 && module.write_rgb8 &&
-        module.read_channel && module.write_samples && module.write_u8)
+        module.read_channel && module.write_samples && module.write_png)
         return;
     // An older module lacks the newer entry points: all or nothing.
     snprintf(module.why, sizeof module.why, "liborogen_image.so is not Orogen's image module");
@@ -107,5 +107,11 @@ int image_write_samples(const char *path, const float *samples, int width, int h
 int image_write_u8(const char *path, const unsigned char *data, int width, int height, int channels,
                    og_error *err) {
     if (ready(path, err) != 0) return -1;
-    return module.write_u8(path, data, width, height, channels, err);
+    return module.write_png(path, data, width, height, channels, 8, err);
+}
+
+int image_write_u16(const char *path, const uint16_t *data, int width, int height, int channels,
+                    og_error *err) {
+    if (ready(path, err) != 0) return -1;
+    return module.write_png(path, data, width, height, channels, 16, err);
 }

@@ -187,13 +187,15 @@ int write_impl(const char *path, const float *pixels, int width, int height, og_
     return write_png_atomic(path, spec, q.data(), err);
 }
 
-// 8-bit PNG of 1 to 4 channels (grey, grey+alpha, RGB, RGBA), rows top-first.
-int write_u8_impl(const char *path, const unsigned char *data, int width, int height, int channels,
-                  og_error *err) {
+// 8- or 16-bit PNG of 1 to 4 channels (grey, grey+alpha, RGB, RGBA), rows top-first.
+int write_png_impl(const char *path, const void *data, int width, int height, int channels,
+                   int bits, og_error *err) {
     if (check_write_size(path, width, height, err) != 0) return -1;
     if (channels < 1 || channels > 4)
         return og_error_set(err, "%s: cannot write %d channels (1 to 4)", path, channels);
-    OIIO::ImageSpec spec(width, height, channels, OIIO::TypeUInt8);
+    if (bits != 8 && bits != 16)
+        return og_error_set(err, "%s: cannot write %d-bit PNG (8 or 16)", path, bits);
+    OIIO::ImageSpec spec(width, height, channels, bits == 8 ? OIIO::TypeUInt8 : OIIO::TypeUInt16);
     if (channels == 4) spec.attribute("oiio:UnassociatedAlpha", 1); // weights, not coverage
     // Level 6 (zlib's default): screenshots, diffs and layer images, written often.
     spec.attribute("png:compressionLevel", 6);
@@ -202,7 +204,7 @@ int write_u8_impl(const char *path, const unsigned char *data, int width, int he
 
 int write_rgb8_impl(const char *path, const unsigned char *rgb, int width, int height,
                     og_error *err) {
-    return write_u8_impl(path, rgb, width, height, 3, err);
+    return write_png_impl(path, rgb, width, height, 3, 8, err);
 }
 
 // Reads the whole image as 8-bit RGB in one call: OIIO converts 16-bit and float to
@@ -493,9 +495,9 @@ orogen_image_module_write_samples(const char *path, const float *samples, int wi
 }
 
 extern "C" __attribute__((visibility("default"))) int
-orogen_image_module_write_u8(const char *path, const unsigned char *data, int width, int height,
-                             int channels, og_error *err) {
-    if (!path || !data) return og_error_set(err, "image_write_u8: no path or pixels");
+orogen_image_module_write_png(const char *path, const void *data, int width, int height,
+                              int channels, int bits, og_error *err) {
+    if (!path || !data) return og_error_set(err, "image_write_png: no path or pixels");
     return guarded(path, "write", err,
-                   [&] { return write_u8_impl(path, data, width, height, channels, err); });
+                   [&] { return write_png_impl(path, data, width, height, channels, bits, err); });
 }

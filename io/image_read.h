@@ -9,6 +9,7 @@ extern "C" {
 #endif
 
 #include "io/err.h"
+#include <stdint.h>
 
 // The largest width or height either function accepts.
 #define IMAGE_MAX_SIZE 16384
@@ -36,6 +37,9 @@ int image_write_rgb8(const char *path, const unsigned char *rgb, int width, int 
 // stored, not premultiplied) atomically, as image_write_gray16 does.
 int image_write_u8(const char *path, const unsigned char *data, int width, int height, int channels,
                    og_error *err);
+// As image_write_u8 with 16-bit channels (host order in memory; PNG stores big-endian).
+int image_write_u16(const char *path, const uint16_t *data, int width, int height, int channels,
+                    og_error *err);
 
 // Reads any image OpenImageIO can as 8-bit RGB, rows top-first: grey is replicated into
 // the three channels, alpha is dropped (colour as stored, not premultiplied), 16-bit

@@ -288,6 +288,17 @@ oiiotool "$work/w_m4-7.png" --cut 1x1+50+50 -o "$work/px.tif" && oiiotool --dump
 check "and 0 for materials 4-7" $?
 oiiotool "$work/n.png" --cut 1x1+10+10 -o "$work/px.tif" && oiiotool --dumpdata "$work/px.tif" | grep -q "Pixel (0, 0): 128 128 255 "
 check "a flat world's normal map is (128, 128, 255)" $?
+# 16-bit normals: the same normals as the 8-bit map, 257 times finer.
+run -c "new flat; set size 257; generate; export $work/n8.png layer=normals; export $work/n16.png layer=normals bits=16"
+check "export layer=normals bits=16" $status
+iinfo "$work/n16.png" | grep -q "257 x  257, 3 channel, uint16 png"; check "16-bit normal map: uint16 RGB" $?
+rgb_at_80_90() { oiiotool "$1" --cut 1x1+80+90 -o "$work/px.tif" && oiiotool --dumpdata "$work/px.tif" | sed -n 's/.*Pixel (0, 0): \([0-9]*\) \([0-9]*\) \([0-9]*\) .*/\1 \2 \3/p'; }
+p8=$(rgb_at_80_90 "$work/n8.png"); p16=$(rgb_at_80_90 "$work/n16.png")
+echo "$p8 $p16" | awk '{ for (k = 1; k <= 3; k++) { d = $k - $(k + 3) * 255 / 65535; if (d > 0.5 || d < -0.5 || $(k + 3) == 0) exit 1 } }'
+check "16-bit normals round to the 8-bit ones on relief ($p16 vs $p8)" $?
+run -c "new flat; export $work/n.png layer=normals bits=32 region=0,0,10,10"
+[ $status = 1 ] && grep -q "n.png: normal maps are 8 or 16 bits" "$work/err"
+check "bits=32 normals are refused" $?
 run -c "new flat; export $work/n.exr layer=normals region=0,0,10,10"
 [ $status = 1 ] && grep -q "n.exr: normal maps and material weights are written as .png" "$work/err"
 check "layer images other than .png are refused" $?

@@ -9,6 +9,7 @@
 #include "editor/world/world.h"
 #include "io/progress.h"
 
+#include <dirent.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -145,11 +146,58 @@ static void test_cancel(void **state) {
     world_close(ctx.world);
 }
 
+// An export cancelled while it reads the world (most of its time: tiles are generated)
+// writes nothing but whole files named allowed_prefix* (tiles finished before the
+// cancel, NULL: none): no temp file, no set's sidecar.
+static void cancel_export(cmd_context *ctx, const char *dir, const char *text,
+                          const char *allowed_prefix) {
+    og_error err = {{0}};
+    cmd_job *j = cmd_job_start(ctx, text, "test", NULL, NULL, &err);
+    assert_non_null(j);
+    for (int i = 0; i < 6000 && cmd_job_progress(j) == 0.0; i++)
+        cmd_job_wait(j, 10);
+    double seen = cmd_job_progress(j);
+    if (!(seen > 0.0 && seen < 0.5)) fail_msg("'%s': progress %g before the cancel", text, seen);
+    cmd_job_cancel(j);
+    assert_int_equal(cmd_job_wait(j, 60000), 1);
+    assert_int_equal(cmd_job_finish(j, &err), -1);
+    if (!strstr(err.msg, "cancelled")) fail_msg("'%s': error '%s'", text, err.msg);
+    DIR *d = opendir(dir);
+    assert_non_null(d);
+    for (struct dirent *e; (e = readdir(d));)
+        if (e->d_name[0] != '.' &&
+            (!allowed_prefix || strncmp(e->d_name, allowed_prefix, strlen(allowed_prefix)) ||
+             strstr(e->d_name, ".tmp")))
+            fail_msg("'%s': cancelled, yet %s/%s was written", text, dir, e->d_name);
+    closedir(d);
+}
+
+static void test_cancel_export(void **state) {
+    (void)state;
+    char dir[] = "/tmp/orogen-export-cancel-XXXXXX";
+    assert_non_null(mkdtemp(dir));
+    cmd_context ctx;
+    cmd_context_init(&ctx, flat_world(0), NULL, stdout, OROGEN_RESOURCE_DIR);
+    free(run_ok(&ctx, "generator fbm"));
+    char text[512];
+    // One file of 6000 x 6000 samples of generated terrain (seconds of generating).
+    snprintf(text, sizeof text, "export %s/big.exr region=0,0,6000,6000", dir);
+    cancel_export(&ctx, dir, text, NULL);
+    // Tiles: those finished before the cancel stay, each whole with its sidecar.
+    snprintf(text, sizeof text, "export %s/t.exr region=0,0,6000,6000 tiles=3x3", dir);
+    cancel_export(&ctx, dir, text, "t_x");
+    world_close(ctx.world);
+    char cmd[600];
+    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    assert_int_equal(system(cmd), 0);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_progress_parts),
         cmocka_unit_test(test_job_runs_and_reports),
         cmocka_unit_test(test_cancel),
+        cmocka_unit_test(test_cancel_export),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -26,7 +26,7 @@ const char *export_preset_name(export_preset p) {
 void export_options_defaults(export_options *o) {
     memset(o, 0, sizeof *o);
     o->layer = TILE_LAYER_COARSE;
-    o->bits = 32;
+    o->bits = 0; // the format's default: 32 for .tif, 8 for normal maps
     o->tiles_x = o->tiles_y = 1;
     o->shard_count = 1;
 }
@@ -95,8 +95,8 @@ int export_options_set(export_options *o, const char *key, const char *value, og
     } else if (!strcmp(key, "solid") || !strcmp(key, "centred") || !strcmp(key, "centered")) {
         if (parse_switch(value, key, key[0] == 's' ? &o->solid : &o->centred, err) != 0) return -1;
     } else if (!strcmp(key, "bits")) {
-        if (strcmp(value, "16") && strcmp(value, "32"))
-            return og_error_set(err, "bits: expected 16 or 32, got '%s'", value);
+        if (strcmp(value, "8") && strcmp(value, "16") && strcmp(value, "32"))
+            return og_error_set(err, "bits: expected 8, 16 or 32, got '%s'", value);
         o->bits = atoi(value);
     } else if (!strcmp(key, "min") || !strcmp(key, "max")) {
         if (parse_number(value, key, &v, err) != 0) return -1;
@@ -130,9 +130,11 @@ static int format_of(const char *path, int bits, file_format *f, og_error *err) 
     const char *ext = dot ? dot + 1 : "";
     if (!strcasecmp(ext, "png"))
         *f = FMT_PNG16;
-    else if (!strcasecmp(ext, "tif") || !strcasecmp(ext, "tiff"))
+    else if (!strcasecmp(ext, "tif") || !strcasecmp(ext, "tiff")) {
+        if (bits == 8)
+            return og_error_set(err, "%s: heightmap TIFFs are 16 or 32 bits (bits=16|32)", path);
         *f = bits == 16 ? FMT_TIFF16 : FMT_TIFF32;
-    else if (!strcasecmp(ext, "exr"))
+    } else if (!strcasecmp(ext, "exr"))
         *f = FMT_EXR32;
     else if (!strcasecmp(ext, "r16") || !strcasecmp(ext, "raw"))
         *f = FMT_R16;
@@ -307,6 +309,28 @@ static int mapping_16bit(const export_options *o, double lo, double hi, double *
     return 0;
 }
 
+// Reads rectangle r of the layer into h a band of tile rows at a time (reading is
+// most of an export's time: tiles are loaded or generated), reporting progress in the
+// current part and stopping when cancelled. The last step of the part is the write.
+static int read_reporting_progress(world *w, const layer_grid *g, const char *path, grid_rect r,
+                                   float *h, og_error *err) {
+    og_progress *progress = og_progress_current();
+    const int64_t width = r.x1 - r.x0;
+    const int64_t first = world_grid_floor_div(r.z0, TILE_SIZE);
+    const int64_t bands = world_grid_floor_div(r.z1 - 1, TILE_SIZE) - first + 1;
+    for (int64_t b = 0; b < bands; b++) {
+        if (og_progress_report(progress, b, bands + 1) != 0)
+            return og_error_set(err, "%s: cancelled (nothing written)", path);
+        grid_rect band = r;
+        band.z0 = b == 0 ? r.z0 : (first + b) * TILE_SIZE;
+        band.z1 = b == bands - 1 ? r.z1 : (first + b + 1) * TILE_SIZE;
+        if (layer_grid_read(w, g, band, h + (band.z0 - r.z0) * width, err) != 0) return -1;
+    }
+    if (og_progress_report(progress, bands, bands + 1) != 0)
+        return og_error_set(err, "%s: cancelled (nothing written)", path);
+    return 0;
+}
+
 // Reads rectangle r of the layer and writes it to path with its sidecar. The 16-bit
 // mapping is rep's when fixed_mapping (tiles share one), else chosen from o and the
 // rectangle's range.
@@ -319,7 +343,7 @@ static int write_rect(world *w, const layer_grid *g, const char *path, const exp
     float *h = malloc(sizeof(float) * (size_t)n);
     if (!h) return og_error_set(err, "%s: out of memory for %lld samples", path, (long long)n);
     int rc = -1;
-    if (layer_grid_read(w, g, r, h, err) != 0) goto done;
+    if (read_reporting_progress(w, g, path, r, h, err) != 0) goto done;
     rep->min = INFINITY, rep->max = -INFINITY;
     for (int64_t i = 0; i < n; i++) {
         rep->min = fmin(rep->min, h[i]);
@@ -485,7 +509,9 @@ static int export_tiles(world *w, const layer_grid *g, const char *path, const e
             t.x1 = t.x0 + tw;
             t.z1 = t.z0 + th;
             export_report one = rep;
+            og_progress_part outer = og_progress_enter(og_progress_current(), k, (int64_t)C * R);
             rc = write_rect(w, g, tp, o, f, t, 1, &one, err);
+            og_progress_leave(og_progress_current(), outer);
             if (rc == 0) {
                 rep.bytes += one.bytes;
                 rep.tiles_written++;
@@ -567,8 +593,15 @@ int export_layer_file(world *w, const char *path, const export_options *o, char 
     if (W < 1 || D < 1 || W > 16384 || D > 16384)
         return og_error_set(err, "%s: %lld x %lld samples: layer images are 1 to 16384 per side",
                             path, (long long)W, (long long)D);
-    return o->image_layer == 1 ? export_normal_map(w, path, r, files, files_len, err)
-                               : export_material_weights(w, path, r, files, files_len, err);
+    if (o->image_layer == 1) {
+        if (o->bits == 32)
+            return og_error_set(err, "%s: normal maps are 8 or 16 bits (bits=8|16)", path);
+        return export_normal_map(w, path, r, o->bits == 16 ? 16 : 8, files, files_len, err);
+    }
+    if (o->bits != 0 && o->bits != 8)
+        return og_error_set(err, "%s: material weights are stored as 8 bits; bits= does not apply",
+                            path);
+    return export_material_weights(w, path, r, files, files_len, err);
 }
 
 int export_mesh_file(world *w, const char *path, const export_options *o, export_mesh_report *rep,

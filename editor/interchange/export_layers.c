@@ -4,6 +4,7 @@
 #include "io/image_read.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -15,8 +16,8 @@ static int check_png(const char *path, og_error *err) {
     return 0;
 }
 
-int export_normal_map(world *w, const char *path, grid_rect r, char *files, size_t files_len,
-                      og_error *err) {
+int export_normal_map(world *w, const char *path, grid_rect r, int bits, char *files,
+                      size_t files_len, og_error *err) {
     if (check_png(path, err) != 0) return -1;
     layer_grid g;
     if (layer_grid_init(&g, world_get_params(w), TILE_LAYER_COARSE, 0, err) != 0) return -1;
@@ -24,7 +25,8 @@ int export_normal_map(world *w, const char *path, grid_rect r, char *files, size
     // One sample more on each side for central differences (edges repeat at the border).
     grid_rect big = {r.x0 - 1, r.z0 - 1, r.x1 + 1, r.z1 + 1};
     float *h = malloc(sizeof(float) * (size_t)((W + 2) * (D + 2)));
-    unsigned char *rgb = malloc((size_t)(W * D) * 3);
+    const double top = bits == 16 ? 65535.0 : 255.0;
+    uint16_t *rgb = malloc((size_t)(W * D) * 3 * sizeof *rgb); // 16 bits; narrowed for 8
     int rc = -1;
     if (!h || !rgb) {
         og_error_set(err, "%s: out of memory", path);
@@ -38,11 +40,18 @@ int export_normal_map(world *w, const char *path, grid_rect r, char *files, size
             double dz = (c[W + 2] - c[-(W + 2)]) / (2 * g.spacing);
             double len = sqrt(dx * dx + 1 + dz * dz);
             double n[3] = {-dx / len, -(-dz / len), 1 / len}; // x, toward row 0 (-Z), up
-            unsigned char *p = rgb + (size_t)(j * W + i) * 3;
+            uint16_t *p = rgb + (size_t)(j * W + i) * 3;
             for (int k = 0; k < 3; k++)
-                p[k] = (unsigned char)lround((n[k] * 0.5 + 0.5) * 255.0);
+                p[k] = (uint16_t)lround((n[k] * 0.5 + 0.5) * top);
         }
-    rc = image_write_u8(path, rgb, (int)W, (int)D, 3, err);
+    if (bits == 16) {
+        rc = image_write_u16(path, rgb, (int)W, (int)D, 3, err);
+    } else {
+        unsigned char *narrow = (unsigned char *)rgb; // in place: each byte read before written
+        for (size_t k = 0; k < (size_t)(W * D) * 3; k++)
+            narrow[k] = (unsigned char)rgb[k];
+        rc = image_write_u8(path, narrow, (int)W, (int)D, 3, err);
+    }
     if (rc == 0) snprintf(files, files_len, "%s\n", path);
 done:
     free(h);
