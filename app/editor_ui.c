@@ -847,7 +847,7 @@ static void files_dialog(editor_ui *e, ui_context *ui, cmd_context *ctx, ui_rect
         const world_params *p = world_get_params(ctx->world);
         double bounded = p->size > 0 ? (double)(p->size - 1) * p->spacing : 0.0;
         interchange_dialog_show(&e->interchange, e->files.mode == FILE_BROWSER_EXPORT,
-                                e->files.path, bounded, e->view_x, e->view_z);
+                                e->files.path, bounded, p->max_height, e->view_x, e->view_z);
         return;
     }
     char arg[4200], cmd[4300];

@@ -2,11 +2,13 @@
 
 #include "editor/cmd/tokenize.h"
 
+#include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 void interchange_dialog_show(interchange_dialog *d, int exporting, const char *path,
-                             double bounded_metres, double x, double z) {
+                             double bounded_metres, double max_height, double x, double z) {
     // Keep the user's last choices; set only what depends on this file and view.
     d->open = 1;
     d->exporting = exporting;
@@ -24,6 +26,83 @@ void interchange_dialog_show(interchange_dialog *d, int exporting, const char *p
         snprintf(d->region[2], sizeof d->region[2], "%.0f", x + half);
         snprintf(d->region[3], sizeof d->region[3], "%.0f", z + half);
     }
+    d->max_height = max_height;
+    d->preview_ok = 0;
+    d->preview_error[0] = 0;
+    if (exporting) return;
+    import_options o;
+    import_options_defaults(&o);
+    og_error err = {{0}};
+    if (import_preview_read(path, &o, &d->preview, &err) == 0)
+        d->preview_ok = 1;
+    else
+        snprintf(d->preview_error, sizeof d->preview_error, "%s", err.msg);
+}
+
+// The file's values as a histogram over a bar, and the heights the current mapping
+// gives the lowest and highest of them (what the import will make of the file).
+static void mapping_preview(interchange_dialog *d, ui_context *ui) {
+    const ui_theme *theme = ui_get_theme(ui);
+    ui_row(ui, 1, NULL, 0);
+    if (!d->preview_ok) {
+        ui_label_colored(ui, d->preview_error, theme->text_error);
+        ui_tooltip(ui, d->preview_error);
+        return;
+    }
+    const import_preview *p = &d->preview;
+    const raster *r = &p->header;
+    static const char *const kinds[] = {"unsigned", "signed", "float"};
+    char line[300];
+    snprintf(line, sizeof line, "%d x %d samples, %d-bit %s%s", r->width, r->height, r->bits,
+             kinds[r->kind], p->has_sidecar ? ", with sidecar" : "");
+    if (r->voids)
+        snprintf(line + strlen(line), sizeof line - strlen(line), ", %lld voids",
+                 (long long)r->voids);
+    ui_label(ui, line);
+    ui_tooltip(ui, r->description);
+    // The histogram: one bar per bin, scaled to the fullest (log, so few values show).
+    ui_row(ui, 1, NULL, ui_em(ui, 2.2f));
+    ui_rect cell = ui_next_cell(ui);
+    ui_draw_list *dl = ui_draw_target(ui);
+    ui_draw_rect(dl, cell, theme->panel_alt);
+    int most = 1;
+    for (int i = 0; i < IMPORT_PREVIEW_BINS; i++)
+        if (p->histogram[i] > most) most = p->histogram[i];
+    const float bw = cell.w / IMPORT_PREVIEW_BINS;
+    for (int i = 0; i < IMPORT_PREVIEW_BINS; i++) {
+        if (!p->histogram[i]) continue;
+        float f = (float)(log1p((double)p->histogram[i]) / log1p((double)most));
+        float bh = fmaxf(1.0f, f * (cell.h - 2));
+        ui_draw_rect(dl, (ui_rect){cell.x + i * bw, cell.y + cell.h - 1 - bh, fmaxf(1, bw - 1), bh},
+                     theme->accent);
+    }
+    // The mapping the fields give now.
+    import_options o;
+    import_options_defaults(&o);
+    og_error err = {{0}};
+    if (d->map_heights) {
+        char *end_lo, *end_hi;
+        o.min = strtod(d->min, &end_lo);
+        o.max = strtod(d->max, &end_hi);
+        if (end_lo == d->min || *end_lo || end_hi == d->max || *end_hi) {
+            ui_row(ui, 1, NULL, 0);
+            ui_label_colored(ui, "Lowest and highest must be numbers (metres)", theme->text_error);
+            return;
+        }
+        o.has_min_max = 3;
+    }
+    double scale = 1, offset = 0;
+    char how[200];
+    ui_row(ui, 1, NULL, 0);
+    if (import_preview_mapping(d->path, p, &o, d->max_height, &scale, &offset, how, sizeof how,
+                               &err) != 0) {
+        ui_label_colored(ui, err.msg, theme->text_error);
+        return;
+    }
+    snprintf(line, sizeof line, "Stored %.6g .. %.6g become %.6g .. %.6g m", p->stored_min,
+             p->stored_max, p->stored_min * scale + offset, p->stored_max * scale + offset);
+    ui_label(ui, line);
+    ui_tooltip(ui, how);
 }
 
 // A label and its text field in one row; the field is named `name` (labels are listed
@@ -37,7 +116,7 @@ static void labelled_field(ui_context *ui, const char *label, const char *name, 
     ui_tooltip(ui, tip);
 }
 
-static void import_options(interchange_dialog *d, ui_context *ui) {
+static void import_fields(interchange_dialog *d, ui_context *ui) {
     labelled_field(ui, "X (m)", "x", d->x, sizeof d->x,
                    "Where the first sample (row 0, column 0) goes");
     labelled_field(ui, "Z (m)", "z", d->z, sizeof d->z,
@@ -56,6 +135,7 @@ static void import_options(interchange_dialog *d, ui_context *ui) {
         labelled_field(ui, "Highest (m)", "max", d->max, sizeof d->max,
                        "Height in metres of the highest stored value (65535 in 16-bit)");
     }
+    mapping_preview(d, ui);
     ui_row(ui, 1, NULL, 0);
     static const char *const blends[] = {"Replace", "Add", "Max", "Min"};
     ui_combo(ui, "Blend", &d->blend, blends, 4);
@@ -67,7 +147,7 @@ static void import_options(interchange_dialog *d, ui_context *ui) {
     ui_tooltip(ui, "Fade the edges into the terrain over this distance");
 }
 
-static void export_options(interchange_dialog *d, ui_context *ui) {
+static void export_fields(interchange_dialog *d, ui_context *ui) {
     ui_row(ui, 1, NULL, 0);
     ui_checkbox(ui, "The whole world##whole", &d->whole);
     ui_tooltip(ui, "Every sample of a bounded world (else the region below)");
@@ -96,7 +176,9 @@ static void export_options(interchange_dialog *d, ui_context *ui) {
 int interchange_dialog_rows(const interchange_dialog *d) {
     // The most it can show (ticking a box must not push the buttons out of view).
     if (d->exporting) return 9; // title, whole, 4 region edges, preset, 16-bit TIFF, buttons
-    return 12;                  // title x z centre layer map min max blend resample falloff buttons
+    // title x z centre layer map min max, file, histogram (about 1.5 rows), heights,
+    // blend resample falloff buttons
+    return 16;
 }
 
 int interchange_dialog_draw(interchange_dialog *d, ui_context *ui, ui_rect r, char *cmd,
@@ -109,9 +191,9 @@ int interchange_dialog_draw(interchange_dialog *d, ui_context *ui, ui_rect r, ch
              slash ? slash + 1 : d->path);
     ui_label(ui, title);
     if (d->exporting)
-        export_options(d, ui);
+        export_fields(d, ui);
     else
-        import_options(d, ui);
+        import_fields(d, ui);
     float bottom[2] = {-0.5f, 0};
     ui_row(ui, 2, bottom, 0);
     int go = ui_button(ui, d->exporting ? "Export##go" : "Import##go");

@@ -5,6 +5,7 @@
 #ifndef OROGEN_APP_INTERCHANGE_DIALOG_H
 #define OROGEN_APP_INTERCHANGE_DIALOG_H
 
+#include "editor/interchange/import.h"
 #include "ui/ui.h"
 
 #include <stddef.h>
@@ -22,6 +23,12 @@ typedef struct interchange_dialog {
     int blend;      // replace add max min
     int resample;   // nearest bilinear bicubic
     double falloff; // metres
+    // What the file holds, read when the dialog opens: shown with the heights the
+    // mapping gives them, updated as the fields change.
+    int preview_ok;
+    import_preview preview;
+    char preview_error[1024];
+    double max_height; // the world's: what 8/16-bit files map to without min/max
     // export
     int whole;          // the whole bounded world (else region)
     char region[4][32]; // X0 Z0 X1 Z1 metres
@@ -31,8 +38,9 @@ typedef struct interchange_dialog {
 
 // Opens the dialog for path with defaults: bounded (world size in metres, 0 when
 // unbounded) sets the export region to the whole world; x, z is where the view looks.
+// Importing, it reads the file once for the preview (max_height: the world's).
 void interchange_dialog_show(interchange_dialog *d, int exporting, const char *path,
-                             double bounded_metres, double x, double z);
+                             double bounded_metres, double max_height, double x, double z);
 // The most rows of widgets it shows (to size its rectangle).
 int interchange_dialog_rows(const interchange_dialog *d);
 // Draws it over r; returns 1 when the user pressed Import / Export, with the

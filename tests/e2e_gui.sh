@@ -143,8 +143,12 @@ is_png() { [ -s "$1" ] && [ "$(head -c 4 "$1" | od -An -c | tr -d ' ')" = "211PN
 WIN_H=720
 xdotool windowsize --sync "$wid" 900 $WIN_H
 xdotool windowfocus --sync "$wid" 2>/dev/null
-sleep 0.5
-read -r VX VY VW VH <<<"$(widget Viewport)"
+# The window manager-less resize reaches the app a frame or more later: wait for it.
+for _ in $(seq 40); do
+    read -r VX VY VW VH <<<"$(widget Viewport)"
+    [ -n "${VW:-}" ] && [ "$VW" -le 700 ] && break
+    sleep 0.25
+done
 [ -n "${VH:-}" ] && [ "$VW" -ge 200 ] && [ "$VH" -ge 200 ] && [ "$VW" -le 700 ]
 check "the viewport is found by name and a few hundred pixels wide ($VX $VY ${VW:-?} x ${VH:-?})" $?
 wait_title "pending 0$"; rc=$?; check "every tile of the first view arrives: $(title)" $rc
@@ -440,6 +444,18 @@ widget "Import heightmap/Path" >/dev/null; check "File > Import heightmap... ope
 fill "Import heightmap/Path" "$work/small.exr"
 click "Import heightmap/Next"
 widget "Import options/x" >/dev/null; check "Next opens the import options" $?
+# The preview: what the file holds and the heights the mapping gives it (its sidecar's).
+widget "Import options/33 x 33 samples, 32-bit float, with sidecar" >/dev/null
+check "the import options show the file's size, type and sidecar" $?
+widget "Import options/Stored 7 .. 7 become 7 .. 7 m" >/dev/null
+check "and the heights its values become" $?
+import -window "$wid" "$art/gui_import_options.png" 2>/dev/null
+# The same dialog at a larger UI scale, for a reviewer: nothing may be cut off.
+ask "ui_scale 1.5; ui_scale" "^ui_scale 1.5" >/dev/null
+sleep 1
+import -window "$wid" "$art/gui_import_options_1.5x.png" 2>/dev/null
+ask "ui_scale 1; ui_scale" "^ui_scale 1$" >/dev/null
+sleep 1
 fill "Import options/x" 50000
 fill "Import options/z" 60000
 click "Import options/Import"

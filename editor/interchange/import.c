@@ -263,6 +263,39 @@ int import_source_read(const char *path, const import_options *o, double default
     return 0;
 }
 
+int import_preview_read(const char *path, const import_options *o, import_preview *p,
+                        og_error *err) {
+    memset(p, 0, sizeof *p);
+    p->has_sidecar = sidecar_read(path, &p->sc, err);
+    if (p->has_sidecar < 0) return -1;
+    raster r;
+    if (raster_read(path, &o->read, &r, err) != 0) return -1;
+    const size_t n = (size_t)r.width * (size_t)r.height;
+    float lo = INFINITY, hi = -INFINITY;
+    for (size_t i = 0; i < n; i++) {
+        lo = fminf(lo, r.samples[i]);
+        hi = fmaxf(hi, r.samples[i]);
+    }
+    p->stored_min = lo;
+    p->stored_max = hi;
+    const double bin = hi > lo ? ((double)hi - lo) / IMPORT_PREVIEW_BINS : 1.0;
+    for (size_t i = 0; i < n; i++) {
+        int b = (int)(((double)r.samples[i] - lo) / bin);
+        p->histogram[b < IMPORT_PREVIEW_BINS ? b : IMPORT_PREVIEW_BINS - 1]++;
+    }
+    p->header = r;
+    p->header.samples = NULL;
+    raster_free(&r);
+    return 0;
+}
+
+int import_preview_mapping(const char *path, const import_preview *p, const import_options *o,
+                           double default_max, double *scale, double *offset, char *how,
+                           size_t how_len, og_error *err) {
+    return height_mapping(path, &p->header, o, p->has_sidecar ? &p->sc : NULL, default_max, scale,
+                          offset, how, how_len, err);
+}
+
 int import_apply(world *w, const char *path, const import_options *o, import_report *report,
                  og_error *err) {
     import_source s;

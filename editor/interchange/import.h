@@ -10,6 +10,7 @@
 #ifndef OROGEN_EDITOR_INTERCHANGE_IMPORT_H
 #define OROGEN_EDITOR_INTERCHANGE_IMPORT_H
 
+#include "editor/interchange/sidecar.h"
 #include "editor/world/world.h"
 #include "io/err.h"
 #include "io/raster.h"
@@ -76,5 +77,25 @@ void import_source_free(import_source *s);
 // import_apply with the source already read.
 int import_apply_source(world *w, const char *path, const import_source *s, const import_options *o,
                         import_report *report, og_error *err);
+
+// What the import dialog shows before importing: the raster as stored (its samples
+// are not kept), a histogram of its values and, for the options being edited, the
+// heights they map to (import_preview_mapping).
+#define IMPORT_PREVIEW_BINS 48
+typedef struct import_preview {
+    raster header;                      // size, kind, bits, spacing, voids, description; no samples
+    double stored_min, stored_max;      // the values as stored
+    int histogram[IMPORT_PREVIEW_BINS]; // counts over stored_min .. stored_max
+    int has_sidecar;
+    sidecar sc;
+} import_preview;
+
+int import_preview_read(const char *path, const import_options *o, import_preview *p,
+                        og_error *err);
+// height = stored x *scale + *offset for options o, as import_source_read maps;
+// how says which rule applies.
+int import_preview_mapping(const char *path, const import_preview *p, const import_options *o,
+                           double default_max, double *scale, double *offset, char *how,
+                           size_t how_len, og_error *err);
 
 #endif
