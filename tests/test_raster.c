@@ -1,4 +1,6 @@
-// Height rasters: voids filled from their surroundings, RAW sizes, degree spacing.
+// Height rasters: voids filled from their surroundings, RAW sizes, degree spacing, and
+// the import dialog's preview of a raster.
+#include "editor/interchange/import.h"
 #include "io/raster.h"
 #include "support/test_support.h"
 
@@ -115,12 +117,68 @@ static void test_raw_sizes_and_byte_order(void **state) {
     test_rmtree(dir);
 }
 
+// The import dialog's preview: every sample lands in one histogram bin, the stored
+// range is the file's, and the mapping is the one the import would use.
+static void test_import_preview(void **state) {
+    (void)state;
+    const char *dir = test_tmpdir("preview");
+    char path[4200];
+    snprintf(path, sizeof path, "%s/ramp.r16", dir);
+    enum { N = 33 };
+    unsigned char bytes[N * N * 2];
+    for (int i = 0; i < N * N; i++) {
+        unsigned v = (unsigned)(i % N) * 2000u + 1000u; // 1000 .. 65000, one value per column
+        bytes[2 * i] = (unsigned char)(v & 0xff);
+        bytes[2 * i + 1] = (unsigned char)(v >> 8);
+    }
+    FILE *f = fopen(path, "wb");
+    assert_non_null(f);
+    assert_int_equal(fwrite(bytes, 1, sizeof bytes, f), sizeof bytes);
+    fclose(f);
+
+    import_options o;
+    import_options_defaults(&o);
+    import_preview pv;
+    og_error err = {{0}};
+    assert_int_equal(import_preview_read(path, &o, &pv, &err), 0);
+    assert_int_equal(pv.header.width, N);
+    assert_int_equal(pv.header.height, N);
+    assert_null(pv.header.samples);
+    assert_int_equal(pv.has_sidecar, 0);
+    assert_true(pv.stored_min == 1000 && pv.stored_max == 65000);
+    long total = 0;
+    for (int b = 0; b < IMPORT_PREVIEW_BINS; b++)
+        total += pv.histogram[b];
+    assert_int_equal(total, N * N);
+    assert_int_equal(pv.histogram[0], N);                       // the first column
+    assert_int_equal(pv.histogram[IMPORT_PREVIEW_BINS - 1], N); // the last
+
+    // The default maps 0 .. 65535 to 0 .. max_height; min=/max= override it.
+    double scale = 0, offset = -1;
+    char how[300];
+    assert_int_equal(
+        import_preview_mapping(path, &pv, &o, 1000, &scale, &offset, how, sizeof how, &err), 0);
+    assert_true(fabs(scale - 1000.0 / 65535) < 1e-12 && offset == 0);
+    assert_int_equal(import_options_set(&o, "min", "-100", &err), 0);
+    assert_int_equal(import_options_set(&o, "max", "400", &err), 0);
+    assert_int_equal(
+        import_preview_mapping(path, &pv, &o, 1000, &scale, &offset, how, sizeof how, &err), 0);
+    assert_true(fabs(scale - 500.0 / 65535) < 1e-12 && offset == -100);
+
+    // A file that is not there names itself.
+    snprintf(path, sizeof path, "%s/missing.r16", dir);
+    assert_int_not_equal(import_preview_read(path, &o, &pv, &err), 0);
+    assert_non_null(strstr(err.msg, "missing.r16"));
+    test_rmtree(dir);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_voids_filled_from_surroundings),
         cmocka_unit_test(test_all_void_is_an_error),
         cmocka_unit_test(test_metres_per_degree),
         cmocka_unit_test(test_raw_sizes_and_byte_order),
+        cmocka_unit_test(test_import_preview),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
