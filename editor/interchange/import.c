@@ -184,11 +184,27 @@ static double sample(const import_op *o, double u, double v) {
     return cubic(rows[0], rows[1], rows[2], rows[3], tv);
 }
 
+// Whether the row's samples all land on source samples (equal spacing, a whole-sample
+// offset): then a replace is a copy, as sample() would give, at memory speed.
+static const float *source_row_on_grid(const import_op *o, double u0, double v, int64_t n) {
+    if (o->blend != IMPORT_REPLACE || o->falloff > 0 || o->sx != o->grid_spacing) return NULL;
+    const double su = snap(u0), sv = snap(v);
+    if (su != round(su) || sv != round(sv)) return NULL;
+    if (su < 0 || sv < 0 || su + (double)n > o->width || sv >= o->height) return NULL;
+    return o->src + (size_t)sv * (size_t)o->width + (size_t)su;
+}
+
 static void import_row(void *user, void *row, int64_t z, int64_t x0, int64_t x1) {
     const import_op *o = user;
     float *h = row;
     const double wz = (double)z * o->grid_spacing;
     const double v = (wz - o->z0) / o->sz;
+    const float *copy =
+        source_row_on_grid(o, ((double)x0 * o->grid_spacing - o->x0) / o->sx, v, x1 - x0);
+    if (copy) {
+        memcpy(h, copy, sizeof(float) * (size_t)(x1 - x0));
+        return;
+    }
     const double span_x = (o->width - 1) * o->sx, span_z = (o->height - 1) * o->sz;
     for (int64_t x = x0; x < x1; x++) {
         const double wx = (double)x * o->grid_spacing;
@@ -238,10 +254,10 @@ int import_source_read(const char *path, const import_options *o, double default
         return -1;
     }
     const size_t n = (size_t)r->width * (size_t)r->height;
-    s->min = INFINITY;
-    s->max = -INFINITY;
+    float lo = INFINITY, hi = -INFINITY;
+    const int identity = scale == 1.0 && offset == 0.0;
     for (size_t i = 0; i < n; i++) {
-        float v = (float)((double)r->samples[i] * scale + offset);
+        float v = identity ? r->samples[i] : (float)((double)r->samples[i] * scale + offset);
         if (!isfinite(v)) {
             og_error_set(err, "%s: sample (%zu, %zu) maps to %g m, not a height", path,
                          i % (size_t)r->width, i / (size_t)r->width, (double)v);
@@ -249,9 +265,11 @@ int import_source_read(const char *path, const import_options *o, double default
             return -1;
         }
         r->samples[i] = v;
-        s->min = fmin(s->min, v);
-        s->max = fmax(s->max, v);
+        lo = v < lo ? v : lo;
+        hi = v > hi ? v : hi;
     }
+    s->min = lo;
+    s->max = hi;
     s->spacing_x = o->spacing > 0 ? o->spacing : r->spacing_x;
     s->spacing_z = o->spacing > 0 ? o->spacing : r->spacing_z;
     if (s->spacing_x <= 0 && has_sidecar) s->spacing_x = s->spacing_z = sc.spacing;
