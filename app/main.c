@@ -209,9 +209,9 @@ int main(int argc, char **argv) {
     char resource_dir[4096];
     find_resource_dir(resource_dir, sizeof resource_dir);
     world *w;
+    int load_errors = 0;
     if (world_file) {
-        int errors = 0;
-        w = world_load(world_file, &settings, &errors, &err);
+        w = world_load(world_file, &settings, &load_errors, &err);
     } else {
         w = open_default_world(resource_dir, &settings, &err);
     }
@@ -224,6 +224,7 @@ int main(int argc, char **argv) {
     cmd_context ctx;
     cmd_context_init(&ctx, w, &settings, stdout, resource_dir);
     ctx.record = recording;
+    ctx.reported_errors = load_errors;
 
     int status = 0;
     if (script_count == 0) {
@@ -265,6 +266,12 @@ int main(int argc, char **argv) {
     // A script that left a stroke open: it is one undo step like any other.
     if (cmd_end_stroke(&ctx, &err) != 0) {
         fprintf(stderr, "orogen: %s\n", err.msg);
+        status = 1;
+    }
+    // Errors that did not stop the script (a parameter file with bad lines) still fail it.
+    if (script_count > 0 && ctx.reported_errors > 0 && status == 0) {
+        fprintf(stderr, "orogen: %d error%s reported above; exit status 1\n", ctx.reported_errors,
+                ctx.reported_errors == 1 ? "" : "s");
         status = 1;
     }
     fflush(stdout);

@@ -88,6 +88,7 @@ static int parse_line(param_file *pf, const char *s, size_t n, int line) {
     if (hash) n = (size_t)(hash - s);
     trim(&s, &n);
     if (!n) return 0;
+    pf->has_lines = 1;
 
     const char *eq = memchr(s, '=', n);
     if (!eq) {
@@ -154,6 +155,58 @@ static int parse_line(param_file *pf, const char *s, size_t n, int line) {
     return 0;
 }
 
+// Length of the valid UTF-8 sequence at s (at most n bytes), or 0 when it is not one
+// (overlong forms, surrogates and code points past U+10FFFF are not).
+static size_t utf8_sequence(const unsigned char *s, size_t n) {
+    unsigned c = s[0];
+    size_t len;
+    unsigned min;
+    if (c < 0x80) return 1;
+    if (c >= 0xC2 && c <= 0xDF)
+        len = 2, min = 0x80;
+    else if (c >= 0xE0 && c <= 0xEF)
+        len = 3, min = 0x800;
+    else if (c >= 0xF0 && c <= 0xF4)
+        len = 4, min = 0x10000;
+    else
+        return 0;
+    if (n < len) return 0;
+    unsigned cp = c & (0x7F >> len);
+    for (size_t i = 1; i < len; i++) {
+        if ((s[i] & 0xC0) != 0x80) return 0;
+        cp = (cp << 6) | (s[i] & 0x3F);
+    }
+    if (cp < min || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) return 0;
+    return len;
+}
+
+// Fills pf->not_text when text is not UTF-8 text of printable characters, tabs and
+// line ends.
+static void check_text(param_file *pf, const unsigned char *s, size_t n) {
+    int line = 1;
+    size_t line_start = 0;
+    for (size_t i = 0; i < n;) {
+        unsigned c = s[i];
+        if (c == '\n') {
+            line++, line_start = ++i;
+            continue;
+        }
+        if ((c < 0x20 && c != '\t' && c != '\r') || c == 0x7f) {
+            snprintf(pf->not_text, sizeof pf->not_text, "byte 0x%02x at line %d, column %zu", c,
+                     line, i - line_start + 1);
+            return;
+        }
+        size_t len = utf8_sequence(s + i, n - i);
+        if (!len) {
+            snprintf(pf->not_text, sizeof pf->not_text,
+                     "not UTF-8 text: byte 0x%02x at line %d, column %zu", c, line,
+                     i - line_start + 1);
+            return;
+        }
+        i += len;
+    }
+}
+
 int param_file_parse(const char *text, size_t len, param_file *out) {
     *out = (param_file){0};
     // Editors on Windows may start the file with a UTF-8 byte order mark.
@@ -165,6 +218,7 @@ int param_file_parse(const char *text, size_t len, param_file *out) {
         param_file_diag(out, PARAM_WARNING, 0, "empty parameter file, using defaults");
         return 0;
     }
+    check_text(out, (const unsigned char *)text, len);
     int line = 1;
     for (size_t pos = 0; pos < len; line++) {
         const char *nl = memchr(text + pos, '\n', len - pos);

@@ -32,6 +32,11 @@ typedef struct param_file {
     size_t count;
     param_diag *diags;
     size_t diag_count;
+    // Why the bytes are not text ("" when they are): the first NUL or control byte
+    // other than tab, CR and LF, or the first invalid UTF-8 sequence, with its line
+    // and column. A caller refuses such a file as not a parameter file at all.
+    char not_text[128];
+    int has_lines; // some line is neither blank nor only a comment
 } param_file;
 
 // Parses text (not necessarily NUL-terminated; len bytes). Never fails on

@@ -71,7 +71,9 @@ grep -q '^kind = planet;$' "$work/out" && grep -q '^radius = 10;$' "$work/out" &
 # 7. a parameter file with a bad value and an unknown key: reported with lines, rest read
 printf 'seed = 12;\noctaves = lots;\ncolour = blue;\nmax_height = 900;\n' >"$work/bad.world"
 run -c "load $work/bad.world; params"
-check "file with bad values still loads" $status
+[ $status = 1 ] && grep -q '^loaded .*bad.world (with errors' "$work/out"
+check "file with bad values still loads, and the batch exits 1 for its errors" $?
+grep -q "1 error reported above; exit status 1" "$work/err"; check "the exit status is explained" $?
 grep -q "bad.world:2: error: " "$work/err"; check "bad value reported with its line" $?
 grep -q "bad.world:3: warning: unknown key 'colour'" "$work/err"; check "unknown key warned with its line" $?
 grep -q '^max_height = 900;$' "$work/out" && grep -q '^octaves = 8;$' "$work/out"; check "bad key keeps default, later keys read" $?
@@ -129,6 +131,43 @@ check "exit stops before later commands" $status
 run -c "save $work/again.world; save; info"
 [ $status = 0 ] && [ "$(grep -c "^saved $work/again.world$" "$work/out")" = 2 ] && grep -q "^path=$work/again.world$" "$work/out"
 check "save without a file saves to the world's file again" $?
+
+# 12. never lose work: what is not a parameter file is refused and left alone; a file
+# that loaded with errors is not saved over without force=1; save names its files.
+head -c 3000 /dev/urandom >"$work/junk.world"
+cp "$work/junk.world" "$work/junk.orig"
+run -c "load $work/junk.world; save"
+[ $status = 1 ] && grep -q "^-c:1: error: $work/junk.world: not an Orogen world or planet parameter file (" "$work/err"
+check "random bytes are refused as a parameter file" $?
+cmp -s "$work/junk.world" "$work/junk.orig" && ! grep -q "binary data" "$work/err"
+check "and left byte-identical, with one message instead of one per line" $?
+run -c "save $work/junk.world"
+[ $status = 1 ] && grep -q "will not replace $work/junk.world: .*force=1" "$work/err" &&
+    cmp -s "$work/junk.world" "$work/junk.orig"
+check "save does not write over a file that is not a parameter file" $?
+run -c "save $work/junk.world force=1"
+[ $status = 0 ] && grep -q "^saved $work/junk.world$" "$work/out"; check "unless force=1" $?
+
+cp "$work/bad.world" "$work/bad.orig"
+run -c "load $work/bad.world; save"
+[ $status = 1 ] && grep -q "bad.world had 1 error when loaded (2: error: octaves" "$work/err" &&
+    cmp -s "$work/bad.world" "$work/bad.orig"
+check "a file that loaded with an error is not saved over ($(tail -n 1 "$work/err" | head -c 300))" $?
+run -c "load $work/bad.world; save force=1"
+grep -q "^saved $work/bad.world$" "$work/out" && ! cmp -s "$work/bad.world" "$work/bad.orig" &&
+    grep -q '^octaves = 8;$' "$work/bad.world"
+check "save force=1 replaces it, the bad line with its default" $?
+printf 'seed = 12;\ncolour = blue;\n' >"$work/warned.world"
+run -c "load $work/warned.world; save"
+[ $status = 0 ] && grep -q "warning: unknown key 'colour'" "$work/err"
+check "warnings stay warnings: exit 0, and the file saves" $?
+run -c "dab 10 10; save $work/named.world"
+grep -q "^saved $work/named.world$" "$work/out" &&
+    grep -q "^  and its tile store $work/named.tiles ([1-9][0-9]* tiles)$" "$work/out"
+check "save names the parameter file and the tile store it wrote ($(head -c 300 "$work/out"))" $?
+printf 'seed = 3;\noctaves = lots;\n' >"$work/arg.world"
+run "$work/arg.world" -c 'info'
+[ $status = 1 ]; check "a world given on the command line with errors fails the batch too" $?
 
 echo "$passes passed, $failures failed"
 [ $failures = 0 ]

@@ -1583,7 +1583,7 @@ static void test_unsaved_changes(void **state) {
     stroke_world(w, &b, path2, 2);
     uint64_t saved = coarse_hash(w, 0, all);
     og_error err;
-    if (world_save(w, path, &err) != 0) fail_msg("world_save: %s", err.msg);
+    if (world_save(w, path, 0, &err) != 0) fail_msg("world_save: %s", err.msg);
     assert_int_equal(world_is_modified(w), 0);
     assert_non_null(world_store(w));
     int64_t stored = tile_store_count(world_store(w), -1);
@@ -1620,7 +1620,7 @@ static void test_unsaved_changes(void **state) {
     dab_at(w, &b, 350, 350);
     assert_int_equal(world_is_modified(w), 1);
     uint64_t again = coarse_hash(w, 0, all);
-    assert_int_equal(world_save(w, NULL, &err), 0);
+    assert_int_equal(world_save(w, NULL, 0, &err), 0);
     world_close(w);
     w = world_load(path, &s, &errors, &err);
     assert_non_null(w);
@@ -1645,7 +1645,7 @@ static void test_undo_after_save(void **state) {
     dab_at(w, &b, 200, 200);
     uint64_t h1 = coarse_hash(w, 0, all);
     og_error err;
-    assert_int_equal(world_save(w, path, &err), 0);
+    assert_int_equal(world_save(w, path, 0, &err), 0);
     undo(w);
     assert_int_equal(world_is_modified(w), 1);
     uint64_t undone = coarse_hash(w, 0, all);

@@ -383,13 +383,16 @@ static uint64_t rng_next(uint64_t *s) {
     return *s;
 }
 
+// Bytes that are not text are not a parameter file: refused whole, naming the file and
+// the first bad byte, with nothing reported line by line and the parameters untouched.
 static void test_load_binary_garbage(void **state) {
     (void)state;
     const char *dir = test_tmpdir("params");
     uint64_t rng = 0x9E3779B97F4A7C15u;
-    world_params d;
-    world_params_default(&d, WORLD_FLAT);
     static char buf[8192];
+    char path[4200], want[4400];
+    snprintf(path, sizeof path, "%s/garbage.world", dir);
+    snprintf(want, sizeof want, "%s: not an Orogen world or planet parameter file (", path);
     for (int round = 0; round < 40; round++) {
         size_t len = 1 + (size_t)(rng_next(&rng) % sizeof buf);
         for (size_t i = 0; i < len; i++)
@@ -398,29 +401,75 @@ static void test_load_binary_garbage(void **state) {
         world_params p;
         int errors = 0;
         messages m;
-        char path[4200];
         og_error err = {{0}};
-        snprintf(path, sizeof path, "%s/garbage.world", dir);
         test_write_file(path, buf, len);
         memset(&m, 0, sizeof m);
-        assert_int_equal(world_params_load(path, &p, &errors, collect, &m, &err), 0);
-        assert_true(errors > 0);
-        assert_params_equal(&p, &d);
-        for (size_t i = 0; i < m.count; i++)
-            assert_int_equal(strncmp(m.text[i], path, strlen(path)), 0);
+        assert_int_equal(world_params_load(path, &p, &errors, collect, &m, &err), -1);
+        assert_int_equal(strncmp(err.msg, want, strlen(want)), 0);
+        assert_int_equal(m.count, 0);
+        assert_int_equal(world_params_check_file(path, &err), -1);
     }
-    // A garbage line does not stop the lines after it.
+    // One NUL among good lines is enough; the message says where it is.
     const char text[] = "seed = 3;\nab\0cd = 4;\x01\x02\nspacing = 7;\n";
     world_params p;
     int errors = 0;
     messages m;
-    char path[4200], want[4400];
+    og_error err = {{0}};
     assert_int_equal(
-        load_text(dir, "g.world", text, sizeof text - 1, &p, &errors, &m, path, sizeof path), 0);
-    assert_int_equal(errors, 1);
-    snprintf(want, sizeof want, "%s:2: error: binary data (byte 0x00 at column 3)", path);
-    assert_true(has_message_prefix(&m, want));
-    assert_true(p.seed == 3 && p.spacing == 7);
+        load_text(dir, "g.world", text, sizeof text - 1, &p, &errors, &m, path, sizeof path), -1);
+    assert_int_equal(m.count, 0);
+    snprintf(want, sizeof want,
+             "%s: not an Orogen world or planet parameter file (byte 0x00 at line 2, column 3)",
+             path);
+    assert_int_equal(world_params_load(path, &p, &errors, NULL, NULL, &err), -1);
+    assert_string_equal(err.msg, want);
+    test_rmtree(dir);
+}
+
+// Text that is not UTF-8, or in which no line sets a key Orogen knows, is refused too;
+// a file with one known key among unknown ones (seed 004's) loads, and so does one of
+// only comments and blank lines (as an empty file does).
+static void test_load_refuses_foreign_text(void **state) {
+    (void)state;
+    const char *dir = test_tmpdir("params");
+    static const struct {
+        const char *text, *why;
+    } refused[] = {
+        {"seed = 3;\n# caf\xe9 in Latin-1\n", "not UTF-8 text: byte 0xe9 at line 2, column 6"},
+        {"seed = 3;\n\xc0\xaf = 1;\n", "not UTF-8 text: byte 0xc0 at line 2, column 1"},
+        {"seed = 3;\vspacing = 2;\n", "byte 0x0b at line 1, column 10"},
+        {"Dear diary,\ntoday I sculpted a mountain.\n", "no line has the form 'key = value;'"},
+        {"colour = blue;\nname = mine;\n", "no line sets a known key; line 1 sets 'colour'"},
+    };
+    char path[4200], want[4400];
+    for (size_t i = 0; i < sizeof refused / sizeof refused[0]; i++) {
+        world_params p;
+        int errors = 0;
+        messages m;
+        og_error err = {{0}};
+        assert_int_equal(load_text(dir, "f.world", refused[i].text, strlen(refused[i].text), &p,
+                                   &errors, &m, path, sizeof path),
+                         -1);
+        assert_int_equal(world_params_load(path, &p, &errors, NULL, NULL, &err), -1);
+        snprintf(want, sizeof want, "%s: not an Orogen world or planet parameter file (%s)", path,
+                 refused[i].why);
+        assert_string_equal(err.msg, want);
+    }
+    static const char *const taken[] = {
+        "caf\xc3\xa9 = 1;\nseed = 4;\n", // UTF-8, one unknown key and one known
+        "# only a comment\n\n   # and another\n",
+        "seed = oops;\n", // a known key with a bad value: loads, with an error
+    };
+    for (size_t i = 0; i < sizeof taken / sizeof taken[0]; i++) {
+        world_params p;
+        int errors = 0;
+        messages m;
+        assert_int_equal(load_text(dir, "t.world", taken[i], strlen(taken[i]), &p, &errors, &m,
+                                   path, sizeof path),
+                         0);
+        og_error err = {{0}};
+        assert_int_equal(world_params_check_file(path, &err), 0);
+    }
     test_rmtree(dir);
 }
 
@@ -848,6 +897,7 @@ int main(void) {
         cmocka_unit_test(test_load_unknown_key_and_syntax),
         cmocka_unit_test(test_load_empty_file),
         cmocka_unit_test(test_load_binary_garbage),
+        cmocka_unit_test(test_load_refuses_foreign_text),
         cmocka_unit_test(test_load_long_line),
         cmocka_unit_test(test_kind_inference),
         cmocka_unit_test(test_load_unreadable),

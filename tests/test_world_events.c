@@ -629,11 +629,11 @@ static void test_world_publishes(void **state) {
     snprintf(dir, sizeof dir, "%s", test_tmpdir("world-events"));
     char path[4200];
     snprintf(path, sizeof path, "%s/events.world", dir);
-    if (world_save(w, path, &err) != 0) fail_msg("world_save: %s", err.msg);
+    if (world_save(w, path, 0, &err) != 0) fail_msg("world_save: %s", err.msg);
     e = take_all(s);
     assert_int_equal(e.saved, 1);
     assert_int_equal(e.params + e.history + e.area, 0);
-    if (world_save(w, NULL, &err) != 0) fail_msg("world_save again: %s", err.msg);
+    if (world_save(w, NULL, 0, &err) != 0) fail_msg("world_save again: %s", err.msg);
     e = take_all(s);
     assert_int_equal(e.saved, 1);
     world_close(w);

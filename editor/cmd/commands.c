@@ -75,14 +75,34 @@ static int c_load(cmd_context *ctx, int argc, char **argv, og_error *err) {
     world *w = world_load(argv[1], &ctx->settings, &errors, err);
     if (!w) return -1;
     replace_world(ctx, w);
+    ctx->reported_errors += errors;
     fprintf(ctx->out, "loaded %s%s\n", argv[1],
-            errors ? " (with errors: those keys keep their defaults)" : "");
+            errors ? " (with errors: those keys keep their defaults; save will not write over "
+                     "the file without force=1)"
+                   : "");
     return 0;
 }
 
+// save [FILE] [force=1]
 static int c_save(cmd_context *ctx, int argc, char **argv, og_error *err) {
-    if (world_save(ctx->world, argc > 1 ? argv[1] : NULL, err) != 0) return -1;
+    const char *file = NULL;
+    int force = 0;
+    for (int i = 1; i < argc; i++) {
+        if (strncmp(argv[i], "force=", 6) == 0) {
+            if (parse_switch(argv[i] + 6, "force", &force, err) != 0) return -1;
+        } else if (!file) {
+            file = argv[i];
+        } else {
+            return og_error_set(err, "save: expected 'save [FILE] [force=1]', got '%s'", argv[i]);
+        }
+    }
+    if (world_save(ctx->world, file, force, err) != 0) return -1;
+    // Both files it wrote, by name.
+    tile_store *store = world_store(ctx->world);
     fprintf(ctx->out, "saved %s\n", world_path(ctx->world));
+    if (store)
+        fprintf(ctx->out, "  and its tile store %s (%" PRId64 " tiles)\n", tile_store_path(store),
+                tile_store_count(store, -1));
     return 0;
 }
 
@@ -209,9 +229,11 @@ static const cmd_def commands[] = {
     {"load", "load FILE",
      "Loads a world (.world) or planet (.planet) parameter file and its tile store.", 1, 1, c_load,
      CMD_ENDS_STROKE},
-    {"save", "save [FILE]",
-     "Saves the world's parameter file and tile store (to FILE, or where it was loaded from).", 0,
-     1, c_save, CMD_ENDS_STROKE},
+    {"save", "save [FILE] [force=1]",
+     "Saves the world's parameter file and tile store (to FILE, or where it was loaded from) and "
+     "names both. It will not write over a file that loaded with errors (their lines would "
+     "become defaults) or a file that is not a parameter file, unless force=1.",
+     0, 2, c_save, CMD_ENDS_STROKE},
     {"generate", "generate",
      "Regenerates the world from the next parameters (see nparams). Edited tiles stay.", 0, 0,
      c_generate, CMD_ENDS_STROKE},

@@ -15,7 +15,10 @@ typedef struct cmd_context {
     world_settings settings; // used for worlds created by new/load
     FILE *out;               // where commands print results
     int exit_requested;      // set by `exit`
-    brush brush;             // the current tool (`tool`), used by dab and stroke
+    // Errors reported without failing the command (a parameter file that loaded with
+    // bad lines): batch mode exits 1 when any were.
+    int reported_errors;
+    brush brush; // the current tool (`tool`), used by dab and stroke
     // Each tool's own settings, as it was last used (a tool picked again gets them back).
     brush tool_memory[BRUSH_TOOL_COUNT];
     unsigned tool_remembered; // bit t: tool_memory[t] holds settings

@@ -341,11 +341,37 @@ static void sort_diags(param_diag *d, size_t n) {
     }
 }
 
+// Refuses what is not ours: bytes that are not text, or text in which no line sets a
+// key Orogen knows (a file with only blank and comment lines is an empty one).
+static int refuse_foreign(const char *path, const param_file *pf, og_error *err) {
+    const char *what = "not an Orogen world or planet parameter file";
+    if (pf->not_text[0]) return og_error_set(err, "%s: %s (%s)", path, what, pf->not_text);
+    if (!pf->has_lines) return 0;
+    for (size_t i = 0; i < pf->count; i++)
+        if (find_def(pf->entries[i].key)) return 0;
+    if (pf->count)
+        return og_error_set(err, "%s: %s (no line sets a known key; line %d sets '%.60s')", path,
+                            what, pf->entries[0].line, pf->entries[0].key);
+    return og_error_set(err, "%s: %s (no line has the form 'key = value;')", path, what);
+}
+
+int world_params_check_file(const char *path, og_error *err) {
+    param_file pf;
+    if (param_file_read(path, &pf, err) != 0) return -1;
+    int rc = refuse_foreign(path, &pf, err);
+    param_file_free(&pf);
+    return rc;
+}
+
 int world_params_load(const char *path, world_params *p, int *errors,
                       void (*report)(void *user, const char *message), void *user, og_error *err) {
     if (errors) *errors = 0;
     param_file pf;
     if (param_file_read(path, &pf, err) != 0) return -1;
+    if (refuse_foreign(path, &pf, err) != 0) {
+        param_file_free(&pf);
+        return -1;
+    }
 
     const char *ext = path_ext(path);
     world_kind kind = ext && !strcasecmp(ext, ".planet") ? WORLD_PLANET : WORLD_FLAT;

@@ -76,9 +76,15 @@ int world_params_validate(const world_params *p, og_error *err);
 // keep their default; unknown keys as "path:line: warning: ...". All messages go
 // to report (one call per message, no trailing newline) when it is not NULL.
 // Returns 0 when the file was read (even with diagnostics; *errors counts the errors),
-// -1 when it could not be read at all (err names the path).
+// -1 when it could not be read at all or is not a parameter file (err names the path:
+// "PATH: not an Orogen world or planet parameter file (why)" for bytes that are not
+// UTF-8 text or text in which no line sets a known key; nothing is reported then).
 int world_params_load(const char *path, world_params *p, int *errors,
                       void (*report)(void *user, const char *message), void *user, og_error *err);
+
+// 0 when path reads as a parameter file world_params_load would take; -1 with err
+// naming the path and why otherwise (unreadable, not text, no known key).
+int world_params_check_file(const char *path, og_error *err);
 
 // Writes the canonical file: a header, then for each key a `# comment` line and
 // `key = value;`. Floats are printed so that they read back bit-exactly.

@@ -23,6 +23,11 @@ struct world {
     world_settings settings;
     char path[4096];        // parameter file; "" until saved
     char scratch_dir[4096]; // the journal's folder in $TMPDIR
+    // Errors the parameter file had when loaded (those lines kept their defaults, so
+    // saving over it would lose them), and the first few as "LINE: error: ...; ...".
+    // Both are cleared by a save.
+    int file_errors;
+    char file_problems[1024];
     // Edits go to the journal (a scratch store) until saved; the world's own store,
     // when it has one, is only read until `save` merges the journal into it. So a
     // world closed without saving leaves its files exactly as they were.
@@ -175,10 +180,30 @@ static void forward_report(void *user, const char *message) {
         default_warn(NULL, message);
 }
 
+// Forwards load diagnostics and keeps the errors among them for world_save's refusal.
+typedef struct load_report {
+    const world_settings *settings;
+    size_t path_len;
+    char problems[1024];
+} load_report;
+
+static void collect_report(void *user, const char *message) {
+    load_report *r = user;
+    forward_report((void *)r->settings, message);
+    if (!strstr(message, ": error: ")) return;
+    // "PATH:LINE: error: ..." is kept without its path.
+    const char *tail = strlen(message) > r->path_len ? message + r->path_len : message;
+    if (*tail == ':') tail++;
+    size_t n = strlen(r->problems);
+    if (n + 8 < sizeof r->problems)
+        snprintf(r->problems + n, sizeof r->problems - n, "%s%s", n ? "; " : "", tail);
+}
+
 world *world_load(const char *path, const world_settings *settings, int *errors, og_error *err) {
     world_params p;
     int errs = 0;
-    if (world_params_load(path, &p, &errs, forward_report, (void *)settings, err) != 0) return NULL;
+    load_report report = {.settings = settings, .path_len = strlen(path)};
+    if (world_params_load(path, &p, &errs, collect_report, &report, err) != 0) return NULL;
     if (errors) *errors = errs;
     if (check_params(&p, err) != 0) {
         char msg[sizeof err->msg + 4200];
@@ -196,6 +221,8 @@ world *world_load(const char *path, const world_settings *settings, int *errors,
         return NULL;
     }
     snprintf(w->path, sizeof w->path, "%s", path);
+    w->file_errors = errs;
+    memcpy(w->file_problems, report.problems, sizeof w->file_problems);
     // Loading never creates files: a world with no tile store yet has only its journal.
     int failed = open_journal(w, err) != 0;
     if (!failed && access(tiles, F_OK) == 0) failed = !(w->store = tile_store_open(tiles, err));
@@ -218,13 +245,33 @@ void world_close(world *w) {
     free(w);
 }
 
-int world_save(world *w, const char *path, og_error *err) {
+// Whether saving to path would destroy something the user made that this world does
+// not hold: the lines its own file had errors on, or a file that is not ours.
+static int check_overwrite(const world *w, const char *path, og_error *err) {
+    if (strcmp(path, w->path) == 0) {
+        if (!w->file_errors) return 0;
+        return og_error_set(err,
+                            "save: %s had %d error%s when loaded (%s); saving would write the "
+                            "defaults over %s. Fix the file, save to another file, or 'save %s "
+                            "force=1' to replace it",
+                            path, w->file_errors, w->file_errors == 1 ? "" : "s", w->file_problems,
+                            w->file_errors == 1 ? "that line" : "those lines", path);
+    }
+    if (access(path, F_OK) != 0) return 0;
+    og_error why;
+    if (world_params_check_file(path, &why) == 0) return 0;
+    return og_error_set(err, "save: will not replace %s: %s. 'save %s force=1' replaces it", path,
+                        why.msg, path);
+}
+
+int world_save(world *w, const char *path, int force, og_error *err) {
     // A copy: w->path is rewritten below, and snprintf from a buffer into itself is undefined
     // (a bare `save` left the world with no path).
     char target_path[sizeof w->path];
     snprintf(target_path, sizeof target_path, "%s", path && *path ? path : w->path);
     path = target_path;
     if (!*path) return og_error_set(err, "save: this world has no file yet; give a file name");
+    if (!force && check_overwrite(w, path, err) != 0) return -1;
     world_params p = w->params;
     char tiles[4096];
     if (strcmp(path, w->path) != 0) p.tiles[0] = 0; // a new file gets its own NAME.tiles
@@ -263,6 +310,8 @@ int world_save(world *w, const char *path, og_error *err) {
     history_mark_saved(w->history);
     w->params = p;
     snprintf(w->path, sizeof w->path, "%s", path);
+    w->file_errors = 0;
+    w->file_problems[0] = 0;
     if (!same_store) {
         swap_cache(w, cache, gen);
         tile_store_close(w->store);
@@ -447,4 +496,8 @@ int world_hash(world *w, int face, double x0, double z0, double x1, double z1, u
     *digest = h;
     *count = samples;
     return 0;
+}
+
+int world_file_errors(const world *w) {
+    return w->file_errors;
 }

@@ -41,7 +41,12 @@ void world_close(world *w);
 // beside it, copying stored tiles when saving somewhere new. Atomic per file. On
 // failure the world keeps working as before (its cache is replaced only once the
 // new one runs). Publishes WORLD_EVENT_SAVED.
-int world_save(world *w, const char *path, og_error *err);
+// Unless force is set, it refuses to write over what it would destroy: its own file
+// when that loaded with errors (the bad lines would become defaults), or an existing
+// file that is not a parameter file.
+int world_save(world *w, const char *path, int force, og_error *err);
+// Errors the parameter file had when loaded (0 for a clean file, and after a save).
+int world_file_errors(const world *w);
 
 // Replaces the generation parameters (the `generate` command): cached generated
 // tiles are dropped, edited (stored) tiles stay. On failure nothing changes (the old
