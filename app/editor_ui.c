@@ -35,6 +35,16 @@ static int run_now(editor_ui *e, cmd_context *ctx, const char *text) {
     return console_run(&e->console, ctx, text, "ui");
 }
 
+// The problem lines the replace dialog lists (at most this many).
+#define REPLACE_LINES_SHOWN 8
+
+static int problem_lines(const char *problems) {
+    int n = problems[0] != 0;
+    for (const char *c = problems; *c; c++)
+        n += *c == '\n';
+    return n < REPLACE_LINES_SHOWN ? n : REPLACE_LINES_SHOWN;
+}
+
 static int runf(editor_ui *e, cmd_context *ctx, const char *fmt, ...) {
     char text[1024];
     va_list ap;
@@ -97,7 +107,7 @@ static void menus(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v, u
             }
         }
         if (e->recent_count) ui_menu_separator(ui);
-        if (ui_menu_item(ui, "Save", "Ctrl+S", saved_before)) editor_ui_run(e, ctx, "save");
+        if (ui_menu_item(ui, "Save", "Ctrl+S", saved_before)) editor_ui_save(e, ctx);
         if (ui_menu_item(ui, "Save as...", "Ctrl+Shift+S", 1)) editor_ui_save_as(e, ctx);
         if (ui_menu_item(ui, "Save session as script...", NULL, ctx->session != NULL))
             file_browser_show(&e->files, FILE_BROWSER_SCRIPT, "session.og");
@@ -805,7 +815,9 @@ static void unsaved_prompt(editor_ui *e, ui_context *ui, cmd_context *ctx, float
     ui_row(ui, 3, thirds, ui_em(ui, 1.5f));
     int can_save = world_path(ctx->world)[0] != 0;
     if (can_save ? ui_button(ui, "Save") : ui_button(ui, "Save as...##Save")) {
-        if (can_save) {
+        if (can_save && world_file_errors(ctx->world)) {
+            e->confirm_replace = 1; // asks first; goes on from there once saved
+        } else if (can_save) {
             if (run_now(e, ctx, "save") == 0) {
                 editor_pending a = e->pending;
                 e->pending = PENDING_NONE;
@@ -824,6 +836,55 @@ static void unsaved_prompt(editor_ui *e, ui_context *ui, cmd_context *ctx, float
     ui_tooltip(ui, "Go on without saving: the changes are lost");
     if (ui_button(ui, "Cancel")) e->pending = PENDING_NONE;
     ui_tooltip(ui, "Keep working");
+    ui_panel_end(ui);
+}
+
+void editor_ui_save(editor_ui *e, cmd_context *ctx) {
+    if (world_file_errors(ctx->world))
+        e->confirm_replace = 1;
+    else
+        editor_ui_run(e, ctx, "save");
+}
+
+// Saving over a file that loaded with errors writes defaults where its bad lines were:
+// say which lines, and let the user replace it, save elsewhere or keep working.
+static void replace_dialog(editor_ui *e, ui_context *ui, cmd_context *ctx, ui_rect r) {
+    ui_panel_begin(ui, "Replace file", r);
+    ui_row(ui, 1, NULL, 0);
+    int errors = world_file_errors(ctx->world);
+    char text[1200];
+    snprintf(text, sizeof text, "%s had %d error%s when it was loaded.",
+             file_name(world_path(ctx->world)), errors, errors == 1 ? "" : "s");
+    ui_label(ui, text);
+    ui_label(ui, errors == 1 ? "Saving writes the default over this line:"
+                             : "Saving writes the defaults over these lines:");
+    const char *line = world_file_problems(ctx->world);
+    for (int i = 0; i < problem_lines(world_file_problems(ctx->world)); i++) {
+        const char *end = strchr(line, '\n');
+        size_t n = end ? (size_t)(end - line) : strlen(line);
+        snprintf(text, sizeof text, "line %.*s", (int)(n < 1000 ? n : 1000), line);
+        ui_label_colored(ui, text, ui_get_theme(ui)->text_error);
+        ui_tooltip(ui, text);
+        line = end ? end + 1 : line + n;
+    }
+    float thirds[3] = {-0.333f, -0.333f, 0};
+    ui_row(ui, 3, thirds, ui_em(ui, 1.5f));
+    if (ui_button(ui, "Replace")) {
+        e->confirm_replace = 0;
+        if (run_now(e, ctx, "save force=1") == 0 && e->pending != PENDING_NONE) {
+            editor_pending a = e->pending; // saved from the unsaved-changes prompt: go on
+            e->pending = PENDING_NONE;
+            do_action(e, ctx, a);
+        }
+    }
+    ui_tooltip(ui, "Save over the file: those lines become their defaults (save force=1)");
+    if (ui_button(ui, "Save as...")) {
+        e->confirm_replace = 0;
+        editor_ui_save_as(e, ctx);
+    }
+    ui_tooltip(ui, "Save to another file and leave this one as it is");
+    if (ui_button(ui, "Cancel")) e->confirm_replace = 0;
+    ui_tooltip(ui, "Keep working; nothing is written");
     ui_panel_end(ui);
 }
 
@@ -920,6 +981,9 @@ static ui_rect dialog_rect(const editor_ui *e, const ui_context *ui, float width
             width, height, fminf(width * 0.9f, ui_em(ui, 24)),
             fminf(height * 0.9f,
                   ui_em(ui, 1.7f * (float)interchange_dialog_rows(&e->interchange) + 1.5f)));
+    if (e->confirm_replace)
+        return centred(width, height, fminf(width * 0.9f, ui_em(ui, 30)),
+                       fminf(height * 0.9f, ui_em(ui, 1.45f * (float)(e->replace_lines + 4) + 1)));
     if (e->pending != PENDING_NONE) return centred(width, height, ui_em(ui, 22), ui_em(ui, 6));
     if (e->show_help) return text_dialog_rect(ui, help_lines, HELP_LINES, width, height);
     if (e->show_about) return centred(width, height, ui_em(ui, 34), ui_em(ui, 1.45f * (3 + 3)));
@@ -928,6 +992,7 @@ static ui_rect dialog_rect(const editor_ui *e, const ui_context *ui, float width
 
 ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v,
                         const editor_frame_info *info, float width, float height) {
+    e->replace_lines = problem_lines(world_file_problems(ctx->world));
     ui_rect modal = dialog_rect(e, ui, width, height);
     if (modal.w > 0) ui_modal(ui, modal);
     float bar = ui_em(ui, 1.5f), status = ui_em(ui, 1.6f);
@@ -992,6 +1057,8 @@ ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport
         char cmd[4600];
         if (interchange_dialog_draw(&e->interchange, ui, modal, cmd, sizeof cmd))
             editor_ui_run(e, ctx, cmd);
+    } else if (e->confirm_replace) {
+        replace_dialog(e, ui, ctx, modal);
     } else if (e->pending != PENDING_NONE) {
         unsaved_prompt(e, ui, ctx, width, height);
     }
@@ -1003,6 +1070,8 @@ ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport
             e->files.open = 0;
         else if (e->interchange.open)
             e->interchange.open = 0;
+        else if (e->confirm_replace)
+            e->confirm_replace = 0;
         else if (e->pending != PENDING_NONE)
             e->pending = PENDING_NONE;
     }

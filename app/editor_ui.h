@@ -42,6 +42,8 @@ typedef struct editor_ui {
     interchange_dialog interchange; // Import / Export heightmap options
     double view_x, view_z;          // where the camera is (metres): default placements
     editor_pending pending;         // an action waiting on the unsaved-changes prompt
+    int confirm_replace;            // asking before saving over a file that loaded with errors
+    int replace_lines;              // how many of its bad lines the dialog lists
     char open_path[1024];
     char recent[EDITOR_RECENT][1024]; // worlds opened or saved lately, newest first
     int recent_count;
@@ -68,6 +70,10 @@ void editor_ui_free(editor_ui *e);
 // the 3D viewport.
 ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v,
                         const editor_frame_info *info, float width, float height);
+
+// Saves the world to its file (File > Save, Ctrl+S), first asking in a dialog that
+// lists the lines that would change when the file loaded with errors.
+void editor_ui_save(editor_ui *e, cmd_context *ctx);
 
 // Runs a command as a UI action: echoed in the console, output and errors there too.
 // With a work queue the command is queued (and may run off the UI thread): 0 means queued.

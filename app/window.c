@@ -521,6 +521,11 @@ static void save_shortcut(window_state *st) {
                         "or use File > Save as (after that, Ctrl+S saves it there)\n");
         return;
     }
+    if (world_file_errors(st->ctx->world)) {
+        editor_ui_save(&st->ed, st->ctx); // asks first: the file loaded with errors
+        st->ui_dirty = 1;
+        return;
+    }
     run_commands(st, "save", "Ctrl+S");
 }
 

@@ -479,6 +479,28 @@ check "Export writes the region as a 33 x 33 PNG with its sidecar" $?
 echo "undo" >&3
 line=$(ask_until history '^steps=' '.') # the undo has run before section 8 sculpts
 
+# 7e. A file that loaded with errors is not saved over unasked: Ctrl+S and File > Save
+# open a dialog listing the lines that would become defaults; Cancel writes nothing,
+# Replace saves over it.
+printf 'seed = 12;\noctaves = lots;\nmax_height = 900;\n' >"$work/bad.world"
+cp "$work/bad.world" "$work/bad.orig"
+ask "load $work/bad.world" '^loaded' >/dev/null
+wait_title "bad.world - "
+key ctrl+s
+widget "Replace file/Cancel" >/dev/null; check "Ctrl+S on a file that loaded with errors asks first" $?
+widget "Replace file/line 2: error: octaves*" >/dev/null; check "the dialog lists the bad line" $?
+import -window "$wid" "$art/gui_replace_file.png" 2>/dev/null
+click "Replace file/Cancel"
+widget_gone "Replace file/Cancel" && cmp -s "$work/bad.world" "$work/bad.orig"
+check "Cancel closes it and writes nothing" $?
+click "Menu/File" && click "Menu/File/Save"
+click "Replace file/Replace"
+for _ in $(seq 50); do cmp -s "$work/bad.world" "$work/bad.orig" || break; sleep 0.1; done
+grep -q '^octaves = 8;$' "$work/bad.world" && grep -q '^max_height = 900;$' "$work/bad.world"
+check "File > Save, Replace: saved over, the bad line as its default" $?
+ask "load $work/gui.world" '^loaded' >/dev/null
+wait_title "gui.world - "; check "back to gui.world ($(title))" $?
+
 # 8. The unsaved-changes prompt: Cancel keeps working, Discard quits without saving.
 sculpt
 wait_title "gui.world \* - "; rc=$?; check "a new stroke marks the world modified ($(title))" $rc

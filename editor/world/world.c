@@ -24,7 +24,7 @@ struct world {
     char path[4096];        // parameter file; "" until saved
     char scratch_dir[4096]; // the journal's folder in $TMPDIR
     // Errors the parameter file had when loaded (those lines kept their defaults, so
-    // saving over it would lose them), and the first few as "LINE: error: ...; ...".
+    // saving over it would lose them), and the first few as "LINE: error: ..." lines.
     // Both are cleared by a save.
     int file_errors;
     char file_problems[1024];
@@ -196,7 +196,7 @@ static void collect_report(void *user, const char *message) {
     if (*tail == ':') tail++;
     size_t n = strlen(r->problems);
     if (n + 8 < sizeof r->problems)
-        snprintf(r->problems + n, sizeof r->problems - n, "%s%s", n ? "; " : "", tail);
+        snprintf(r->problems + n, sizeof r->problems - n, "%s%s", n ? "\n" : "", tail);
 }
 
 world *world_load(const char *path, const world_settings *settings, int *errors, og_error *err) {
@@ -250,11 +250,21 @@ void world_close(world *w) {
 static int check_overwrite(const world *w, const char *path, og_error *err) {
     if (strcmp(path, w->path) == 0) {
         if (!w->file_errors) return 0;
+        // One line: "2: error: ...; 5: error: ...".
+        char problems[2 * sizeof w->file_problems];
+        size_t n = 0;
+        for (const char *c = w->file_problems; *c; c++) {
+            if (*c == '\n')
+                problems[n++] = ';', problems[n++] = ' ';
+            else
+                problems[n++] = *c;
+        }
+        problems[n] = 0;
         return og_error_set(err,
                             "save: %s had %d error%s when loaded (%s); saving would write the "
                             "defaults over %s. Fix the file, save to another file, or 'save %s "
                             "force=1' to replace it",
-                            path, w->file_errors, w->file_errors == 1 ? "" : "s", w->file_problems,
+                            path, w->file_errors, w->file_errors == 1 ? "" : "s", problems,
                             w->file_errors == 1 ? "that line" : "those lines", path);
     }
     if (access(path, F_OK) != 0) return 0;
@@ -500,4 +510,7 @@ int world_hash(world *w, int face, double x0, double z0, double x1, double z1, u
 
 int world_file_errors(const world *w) {
     return w->file_errors;
+}
+const char *world_file_problems(const world *w) {
+    return w->file_problems;
 }

@@ -47,6 +47,8 @@ void world_close(world *w);
 int world_save(world *w, const char *path, int force, og_error *err);
 // Errors the parameter file had when loaded (0 for a clean file, and after a save).
 int world_file_errors(const world *w);
+// The first of those errors, one "LINE: error: MESSAGE" per line ("" when none).
+const char *world_file_problems(const world *w);
 
 // Replaces the generation parameters (the `generate` command): cached generated
 // tiles are dropped, edited (stored) tiles stay. On failure nothing changes (the old
