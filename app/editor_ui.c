@@ -815,7 +815,7 @@ static void unsaved_prompt(editor_ui *e, ui_context *ui, cmd_context *ctx, float
     ui_row(ui, 3, thirds, ui_em(ui, 1.5f));
     int can_save = world_path(ctx->world)[0] != 0;
     if (can_save ? ui_button(ui, "Save") : ui_button(ui, "Save as...##Save")) {
-        if (can_save && world_file_errors(ctx->world)) {
+        if (can_save && (world_file_errors(ctx->world) || world_read_only(ctx->world)[0])) {
             e->confirm_replace = 1; // asks first; goes on from there once saved
         } else if (can_save) {
             if (run_now(e, ctx, "save") == 0) {
@@ -840,24 +840,39 @@ static void unsaved_prompt(editor_ui *e, ui_context *ui, cmd_context *ctx, float
 }
 
 void editor_ui_save(editor_ui *e, cmd_context *ctx) {
-    if (world_file_errors(ctx->world))
+    if (world_file_errors(ctx->world) || world_read_only(ctx->world)[0])
         e->confirm_replace = 1;
     else
         editor_ui_run(e, ctx, "save");
 }
 
-// Saving over a file that loaded with errors writes defaults where its bad lines were:
-// say which lines, and let the user replace it, save elsewhere or keep working.
+// Saving over a file that loaded with errors writes defaults where its bad lines were,
+// and over a world opened read-only replaces its tile store: say so (which lines, which
+// store), and let the user replace it, save elsewhere or keep working.
 static void replace_dialog(editor_ui *e, ui_context *ui, cmd_context *ctx, ui_rect r) {
     ui_panel_begin(ui, "Replace file", r);
     ui_row(ui, 1, NULL, 0);
     int errors = world_file_errors(ctx->world);
+    const char *read_only = world_read_only(ctx->world);
     char text[1200];
-    snprintf(text, sizeof text, "%s had %d error%s when it was loaded.",
-             file_name(world_path(ctx->world)), errors, errors == 1 ? "" : "s");
-    ui_label(ui, text);
-    ui_label(ui, errors == 1 ? "Saving writes the default over this line:"
-                             : "Saving writes the defaults over these lines:");
+    if (read_only[0]) {
+        // "its tile store X is empty (0 bytes); showing ...": the part before the ';'.
+        snprintf(text, sizeof text, "%s was opened read-only:", file_name(world_path(ctx->world)));
+        ui_label(ui, text);
+        const char *semi = strchr(read_only, ';');
+        int n = semi ? (int)(semi - read_only) : (int)strlen(read_only);
+        snprintf(text, sizeof text, "%.*s.", n < 1000 ? n : 1000, read_only);
+        ui_label_colored(ui, text, ui_get_theme(ui)->text_error);
+        ui_tooltip(ui, read_only);
+        ui_label(ui, "Saving replaces its tile store with the terrain you see.");
+    }
+    if (errors) {
+        snprintf(text, sizeof text, "%s had %d error%s when it was loaded.",
+                 file_name(world_path(ctx->world)), errors, errors == 1 ? "" : "s");
+        ui_label(ui, text);
+        ui_label(ui, errors == 1 ? "Saving writes the default over this line:"
+                                 : "Saving writes the defaults over these lines:");
+    }
     const char *line = world_file_problems(ctx->world);
     for (int i = 0; i < problem_lines(world_file_problems(ctx->world)); i++) {
         const char *end = strchr(line, '\n');
@@ -877,7 +892,9 @@ static void replace_dialog(editor_ui *e, ui_context *ui, cmd_context *ctx, ui_re
             do_action(e, ctx, a);
         }
     }
-    ui_tooltip(ui, "Save over the file: those lines become their defaults (save force=1)");
+    ui_tooltip(ui, read_only[0] ? "Save over the file and its tile store (save force=1)"
+                                : "Save over the file: those lines become their defaults "
+                                  "(save force=1)");
     if (ui_button(ui, "Save as...")) {
         e->confirm_replace = 0;
         editor_ui_save_as(e, ctx);
@@ -983,7 +1000,7 @@ static ui_rect dialog_rect(const editor_ui *e, const ui_context *ui, float width
                   ui_em(ui, 1.7f * (float)interchange_dialog_rows(&e->interchange) + 1.5f)));
     if (e->confirm_replace)
         return centred(width, height, fminf(width * 0.9f, ui_em(ui, 30)),
-                       fminf(height * 0.9f, ui_em(ui, 1.45f * (float)(e->replace_lines + 4) + 1)));
+                       fminf(height * 0.9f, ui_em(ui, 1.45f * (float)(e->replace_lines + 2) + 1)));
     if (e->pending != PENDING_NONE) return centred(width, height, ui_em(ui, 22), ui_em(ui, 6));
     if (e->show_help) return text_dialog_rect(ui, help_lines, HELP_LINES, width, height);
     if (e->show_about) return centred(width, height, ui_em(ui, 34), ui_em(ui, 1.45f * (3 + 3)));
@@ -992,7 +1009,9 @@ static ui_rect dialog_rect(const editor_ui *e, const ui_context *ui, float width
 
 ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v,
                         const editor_frame_info *info, float width, float height) {
-    e->replace_lines = problem_lines(world_file_problems(ctx->world));
+    e->replace_lines = problem_lines(world_file_problems(ctx->world)) +
+                       (world_file_errors(ctx->world) ? 2 : 0) +
+                       (world_read_only(ctx->world)[0] ? 3 : 0);
     ui_rect modal = dialog_rect(e, ui, width, height);
     if (modal.w > 0) ui_modal(ui, modal);
     float bar = ui_em(ui, 1.5f), status = ui_em(ui, 1.6f);

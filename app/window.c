@@ -521,8 +521,8 @@ static void save_shortcut(window_state *st) {
                         "or use File > Save as (after that, Ctrl+S saves it there)\n");
         return;
     }
-    if (world_file_errors(st->ctx->world)) {
-        editor_ui_save(&st->ed, st->ctx); // asks first: the file loaded with errors
+    if (world_file_errors(st->ctx->world) || world_read_only(st->ctx->world)[0]) {
+        editor_ui_save(&st->ed, st->ctx); // asks first: saving would lose something
         st->ui_dirty = 1;
         return;
     }
@@ -850,7 +850,8 @@ static void update_title(window_state *st) {
     char title[sizeof st->title], name[256];
     const char *path = world_path(st->ctx->world);
     const char *slash = strrchr(path, '/');
-    snprintf(name, sizeof name, "%s", path[0] ? (slash ? slash + 1 : path) : "unsaved world");
+    snprintf(name, sizeof name, "%s%s", path[0] ? (slash ? slash + 1 : path) : "unsaved world",
+             world_read_only(st->ctx->world)[0] ? " (read-only)" : "");
     const camera *c = &st->v->cam;
     render_stats rs = {0};
     if (st->v->renderer) terrain_renderer_stats(st->v->renderer, &rs);

@@ -779,6 +779,44 @@ int64_t tile_store_count(tile_store *store, int layer) {
     return n;
 }
 
+int tile_store_get_meta(tile_store *store, const char *key, char *value, size_t len,
+                        og_error *err) {
+    pthread_mutex_lock(&store->lock);
+    sqlite3_stmt *st = NULL;
+    int rc = sqlite3_prepare_v2(store->db, "SELECT value FROM meta WHERE key=?1", -1, &st, NULL);
+    int result = 0;
+    if (rc == SQLITE_OK) {
+        sqlite3_bind_text(st, 1, key, -1, SQLITE_STATIC);
+        rc = sqlite3_step(st);
+    }
+    if (rc == SQLITE_ROW) {
+        const unsigned char *text = sqlite3_column_text(st, 0);
+        snprintf(value, len, "%s", text ? (const char *)text : "");
+        result = 1;
+    } else if (rc != SQLITE_DONE) {
+        result = db_fail(store, err, "cannot read the store's meta table");
+    }
+    sqlite3_finalize(st);
+    pthread_mutex_unlock(&store->lock);
+    return result;
+}
+
+int tile_store_set_meta(tile_store *store, const char *key, const char *value, og_error *err) {
+    pthread_mutex_lock(&store->lock);
+    sqlite3_stmt *st = NULL;
+    int rc =
+        sqlite3_prepare_v2(store->db, "INSERT OR REPLACE INTO meta VALUES(?1, ?2)", -1, &st, NULL);
+    if (rc == SQLITE_OK) {
+        sqlite3_bind_text(st, 1, key, -1, SQLITE_STATIC);
+        sqlite3_bind_text(st, 2, value, -1, SQLITE_STATIC);
+        rc = sqlite3_step(st);
+    }
+    int result = rc == SQLITE_DONE ? 0 : db_fail(store, err, "cannot write the store's meta table");
+    sqlite3_finalize(st);
+    pthread_mutex_unlock(&store->lock);
+    return result;
+}
+
 int tile_store_each(tile_store *store, int (*fn)(void *user, tile_key key), void *user,
                     og_error *err) {
     // Collect the keys first and call fn without the lock, so fn may use the

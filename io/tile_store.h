@@ -60,6 +60,12 @@ static inline int tile_store_put(tile_store *store, tile_key key, const void *da
 // Number of tiles stored, optionally for one layer only (layer < 0: all layers).
 int64_t tile_store_count(tile_store *store, int layer);
 
+// The store's own key = value facts besides its tiles (the meta table): which world's
+// edits it holds ("world_id"). get returns 1 and copies the value, 0 when the key is
+// not set, -1 with err on failure; set writes it in one transaction.
+int tile_store_get_meta(tile_store *store, const char *key, char *value, size_t len, og_error *err);
+int tile_store_set_meta(tile_store *store, const char *key, const char *value, og_error *err);
+
 // Calls fn for every stored key (any order) until it returns non-zero.
 int tile_store_each(tile_store *store, int (*fn)(void *user, tile_key key), void *user,
                     og_error *err);

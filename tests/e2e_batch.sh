@@ -169,5 +169,41 @@ printf 'seed = 3;\noctaves = lots;\n' >"$work/arg.world"
 run "$work/arg.world" -c 'info'
 [ $status = 1 ]; check "a world given on the command line with errors fails the batch too" $?
 
+# 13. a world knows its edits: a tile store that went missing, empty or was swapped for
+# another world's is said so and opens read-only; save refuses without force=1.
+run -c "tool raise radius=30 strength=1; dab 100 100; save $work/kept.world; hash 0 0 400 400"
+h_edit=$(tail -n 1 "$work/out")
+grep -q '^tiles_saved = [1-9][0-9]*;$' "$work/kept.world" && grep -q '^tiles_id = [0-9a-f]\{32\};$' "$work/kept.world"
+check "save records the world's id and its tile count in the file" $?
+run -c "load $work/kept.world; hash 0 0 400 400; info"
+[ $status = 0 ] && [ "$(head -n 2 "$work/out" | tail -n 1)" = "$h_edit" ] && grep -q '^read_only=$' "$work/out"
+check "an intact world loads its edits, not read-only" $?
+run -c "tool raise radius=30 strength=1; dab 300 300; save $work/other.world"
+cp "$work/kept.world" "$work/kept.world.orig"
+cp "$work/kept.tiles" "$work/kept.tiles.orig"
+cp "$work/other.tiles" "$work/kept.tiles"
+run -c "load $work/kept.world; save"
+[ $status = 1 ] && grep -q "kept.tiles belongs to another world" "$work/err" &&
+    grep -q "save: $work/kept.world was opened read-only" "$work/err" && cmp -s "$work/kept.world" "$work/kept.world.orig"
+check "a swapped tile store is another world's: read-only, save refused" $?
+: >"$work/kept.tiles"
+run -c "load $work/kept.world; info; save"
+[ $status = 1 ] && grep -q "kept.tiles is empty (0 bytes)" "$work/err" && grep -q "^read_only=its tile store" "$work/out" &&
+    [ ! -s "$work/kept.tiles" ] && cmp -s "$work/kept.world" "$work/kept.world.orig"
+check "an emptied tile store is noticed, left empty, and not saved over" $?
+rm "$work/kept.tiles"
+run -c "load $work/kept.world; save"
+[ $status = 1 ] && grep -q "kept.tiles is missing (it held [1-9][0-9]* tiles when saved)" "$work/err" && [ ! -e "$work/kept.tiles" ]
+check "a missing tile store is noticed and not recreated empty" $?
+run -c "load $work/kept.world; save $work/elsewhere.world"
+[ -s "$work/elsewhere.world" ]; check "a read-only world saves to another file" $?
+run -c "load $work/kept.world; save force=1; info"
+grep -q "^saved $work/kept.world$" "$work/out" && grep -q '^read_only=$' "$work/out" && [ -s "$work/kept.tiles" ]
+check "save force=1 writes over it and the world is writable again" $?
+cp "$work/kept.tiles.orig" "$work/kept.tiles"
+cp "$work/kept.world.orig" "$work/kept.world"
+run -c "load $work/kept.world; hash 0 0 400 400"
+[ $status = 0 ] && [ "$(tail -n 1 "$work/out")" = "$h_edit" ]; check "the restored store is this world's again" $?
+
 echo "$passes passed, $failures failed"
 [ $failures = 0 ]

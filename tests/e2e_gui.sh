@@ -498,6 +498,17 @@ click "Replace file/Replace"
 for _ in $(seq 50); do cmp -s "$work/bad.world" "$work/bad.orig" || break; sleep 0.1; done
 grep -q '^octaves = 8;$' "$work/bad.world" && grep -q '^max_height = 900;$' "$work/bad.world"
 check "File > Save, Replace: saved over, the bad line as its default" $?
+# A world whose tile store was emptied opens read-only, and Ctrl+S says why first.
+"$orogen" -c "tool raise radius=30 strength=1; dab 100 100; save $work/ro.world" >/dev/null 2>&1
+: >"$work/ro.tiles"
+ask "load $work/ro.world" '^loaded' >/dev/null
+wait_title "ro.world (read-only) - "; check "an emptied tile store opens read-only ($(title))" $?
+key ctrl+s
+widget "Replace file/ro.world was opened read-only:" >/dev/null
+check "Ctrl+S on it asks first, saying why" $?
+import -window "$wid" "$art/gui_read_only.png" 2>/dev/null
+click "Replace file/Cancel"
+widget_gone "Replace file/Cancel" && [ ! -s "$work/ro.tiles" ]; check "Cancel leaves the store as it was" $?
 ask "load $work/gui.world" '^loaded' >/dev/null
 wait_title "gui.world - "; check "back to gui.world ($(title))" $?
 

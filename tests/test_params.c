@@ -123,10 +123,10 @@ static void test_defaults_are_valid(void **state) {
 static void test_key_table(void **state) {
     (void)state;
     static const char *const expected[] = {
-        "kind",      "generator",  "seed",         "octaves",      "w_factor",
-        "exponent",  "max_height", "ocean_level",  "radius",       "omega",
-        "spacing",   "size",       "detail_ratio", "feature_size", "base_height",
-        "roughness", "smoothing",  "ridge_offset", "fault_count",  "tiles"};
+        "kind",         "generator",    "seed",        "octaves",    "w_factor",  "exponent",
+        "max_height",   "ocean_level",  "radius",      "omega",      "spacing",   "size",
+        "detail_ratio", "feature_size", "base_height", "roughness",  "smoothing", "ridge_offset",
+        "fault_count",  "tiles",        "tiles_id",    "tiles_saved"};
     size_t n = sizeof expected / sizeof expected[0];
     assert_int_equal(world_params_key_count(), n);
     for (size_t i = 0; i < n; i++) {
@@ -190,6 +190,10 @@ static void test_set_get_every_key(void **state) {
         {"fault_count", "10000", "10000"},
         {"tiles", "sub/my world.tiles", "sub/my world.tiles"},
         {"tiles", "", ""},
+        {"tiles_id", "0123456789abcdef0123456789abcdef", "0123456789abcdef0123456789abcdef"},
+        {"tiles_id", "", ""},
+        {"tiles_saved", "12", "12"},
+        {"tiles_saved", "-1", "-1"},
     };
     world_params p;
     world_params_default(&p, WORLD_FLAT);
@@ -243,6 +247,8 @@ static void test_bad_values_rejected(void **state) {
         {"fault_count", "10001"}, {"fault_count", "-1"},
         {"tiles", "a;b"},         {"tiles", "a#b"},
         {"tiles", " lead"},       {"tiles", "tab\there"},
+        {"tiles_id", "0123"},     {"tiles_id", "0123456789ABCDEF0123456789ABCDEF"},
+        {"tiles_saved", "-2"},
     };
     world_params p, before;
     world_params_default(&p, WORLD_FLAT);

@@ -168,6 +168,7 @@ static int c_info(cmd_context *ctx, int argc, char **argv, og_error *err) {
     fprintf(o, "tiles_stored=%" PRId64 "\n", store ? tile_store_count(store, -1) : 0);
     fprintf(o, "tiles_unsaved=%" PRId64 "\n", tile_store_count(world_journal(ctx->world), -1));
     fprintf(o, "unsaved_changes=%d\n", world_is_modified(ctx->world));
+    fprintf(o, "read_only=%s\n", world_read_only(ctx->world));
     fprintf(o, "cache_budget_bytes=%zu\n", s.budget_bytes);
     fprintf(o, "cache_resident_bytes=%zu\n", s.resident_bytes);
     fprintf(o, "cache_resident_tiles=%zu\n", s.resident_tiles);

@@ -16,7 +16,7 @@
 // address from the origin outwards.
 #define WORLD_SIZE_MAX (INT64_C(1) << 39)
 
-typedef enum value_type { V_KIND, V_GEN, V_I64, V_I32, V_F64, V_STR } value_type;
+typedef enum value_type { V_KIND, V_GEN, V_I64, V_I32, V_F64, V_STR, V_ID } value_type;
 
 // Range flags: whether lo / hi are themselves allowed.
 enum { LO_OPEN = 1, HI_OPEN = 2, NO_LO = 4, NO_HI = 8 };
@@ -74,6 +74,12 @@ static const key_def KEYS[] = {
      "faults: fault lines per 64 km x 64 km cell, 0 .. 10000"},
     {"tiles", V_STR, F(tiles), 0, 0, 0,
      "tile store (sculpted and painted data), relative to this file; empty = <name>.tiles"},
+    {"tiles_id", V_ID, F(tiles_id), 0, 0, 0,
+     "written by save: the world's id, also kept in its tile store (a missing or other store "
+     "is noticed); empty = not recorded"},
+    {"tiles_saved", V_I64, F(tiles_saved), -1, 1e15, 0,
+     "written by save: how many tiles the store held (an emptied store is noticed); -1 = not "
+     "recorded"},
 };
 
 #undef F
@@ -108,6 +114,8 @@ void world_params_default(world_params *p, world_kind kind) {
         .ridge_offset = 1.0,
         .fault_count = 100,
         .tiles = "",
+        .tiles_id = "",
+        .tiles_saved = -1,
     };
     if (kind == WORLD_PLANET) {
         // Earth-sized, with Kahoun 2010's advanced generator, gain and lacunarity.
@@ -243,6 +251,15 @@ int world_params_set(world_params *p, const char *key, const char *value, og_err
                              value);
         memcpy(p->tiles, value, strlen(value) + 1);
         return 0;
+    case V_ID: {
+        size_t n = strlen(value);
+        int ok = n == 0 || n == WORLD_ID_CHARS;
+        for (size_t i = 0; ok && i < n; i++)
+            ok = (value[i] >= '0' && value[i] <= '9') || (value[i] >= 'a' && value[i] <= 'f');
+        if (!ok) return bad_value(err, d, "32 lowercase hexadecimal digits, or nothing", value);
+        memcpy(p->tiles_id, value, n + 1);
+        return 0;
+    }
     }
     return -1;
 }
@@ -278,6 +295,9 @@ int world_params_get(const world_params *p, const char *key, char *buf, size_t l
     }
     case V_STR:
         text = p->tiles;
+        break;
+    case V_ID:
+        text = p->tiles_id;
         break;
     }
     size_t n = strnlen(text, len);

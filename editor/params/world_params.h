@@ -24,6 +24,9 @@ typedef enum gen_kind {
     GEN_COUNT
 } gen_kind;
 
+// A world's id: 128 random bits as lowercase hex.
+#define WORLD_ID_CHARS 32
+
 typedef struct world_params {
     world_kind kind;
     gen_kind generator;
@@ -45,6 +48,11 @@ typedef struct world_params {
     double ridge_offset;  // ridged multifractal: offset subtracted from |noise|
     int32_t fault_count;  // faults: number of fault lines per 64 km x 64 km cell
     char tiles[1024];     // tile store path as written (relative to the file); "" = name.tiles
+    // What the file was saved with, so a missing, emptied or swapped store is noticed:
+    // the world's id (also in its tile store's meta table; "" = not recorded) and the
+    // count of tiles the store held (-1 = not recorded). Written by save.
+    char tiles_id[WORLD_ID_CHARS + 1];
+    int64_t tiles_saved;
 } world_params;
 
 // The built-in defaults for a kind (a pleasant landscape or an Earth-like planet).

@@ -5,11 +5,14 @@
 #include "editor/params/world_grid.h"
 
 #include <errno.h>
+#include <inttypes.h>
 #include <ftw.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/random.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 // What the cache's workers generate from: a private copy of the parameters, so a
@@ -28,6 +31,9 @@ struct world {
     // Both are cleared by a save.
     int file_errors;
     char file_problems[1024];
+    // Why the world must not be saved over its own files ("" when it may): its tile
+    // store is missing, empty or another world's. Cleared by a (forced) save.
+    char read_only[4608];
     // Edits go to the journal (a scratch store) until saved; the world's own store,
     // when it has one, is only read until `save` merges the journal into it. So a
     // world closed without saving leaves its files exactly as they were.
@@ -199,6 +205,50 @@ static void collect_report(void *user, const char *message) {
         snprintf(r->problems + n, sizeof r->problems - n, "%s%s", n ? "\n" : "", tail);
 }
 
+// Checks the tile store against what the parameter file recorded at its last save.
+// Returns the store to use (NULL: none, the generated terrain) with w->read_only
+// saying why when the store is missing, empty, another world's or short of tiles;
+// -1 only when the store cannot be opened at all.
+static int open_checked_store(world *w, const char *tiles, og_error *err) {
+    const world_params *p = &w->params;
+    struct stat st;
+    int exists = stat(tiles, &st) == 0;
+    const char *fix = "showing generated terrain there; opened read-only ('save force=1' "
+                      "writes over it, save to another file keeps it)";
+    if (!exists) {
+        if (p->tiles_saved > 0 || p->tiles_id[0])
+            snprintf(w->read_only, sizeof w->read_only,
+                     "its tile store %s is missing (it held %" PRId64 " tiles when saved); %s",
+                     tiles, p->tiles_saved > 0 ? p->tiles_saved : 0, fix);
+        return 0;
+    }
+    if (S_ISREG(st.st_mode) && st.st_size == 0) {
+        // Opening it would make it a fresh, empty store; leave it as it is.
+        snprintf(w->read_only, sizeof w->read_only, "its tile store %s is empty (0 bytes); %s",
+                 tiles, fix);
+        return 0;
+    }
+    if (!(w->store = tile_store_open(tiles, err))) return -1;
+    char id[64] = "";
+    int has_id = tile_store_get_meta(w->store, "world_id", id, sizeof id, err);
+    if (has_id < 0) return -1;
+    int64_t count = tile_store_count(w->store, -1);
+    if (p->tiles_id[0] && (has_id == 0 || strcmp(id, p->tiles_id) != 0)) {
+        snprintf(w->read_only, sizeof w->read_only,
+                 "its tile store %s belongs to another world (id %s, this file expects %s); "
+                 "%s",
+                 tiles, has_id ? id : "none", p->tiles_id, fix);
+        tile_store_close(w->store); // its tiles are not this world's
+        w->store = NULL;
+    } else if (p->tiles_saved > 0 && count < p->tiles_saved) {
+        snprintf(w->read_only, sizeof w->read_only,
+                 "its tile store %s holds %" PRId64 " tiles, %" PRId64 " when saved; opened "
+                 "read-only ('save force=1' writes over it, save to another file keeps it)",
+                 tiles, count, p->tiles_saved);
+    }
+    return 0;
+}
+
 world *world_load(const char *path, const world_settings *settings, int *errors, og_error *err) {
     world_params p;
     int errs = 0;
@@ -225,10 +275,16 @@ world *world_load(const char *path, const world_settings *settings, int *errors,
     memcpy(w->file_problems, report.problems, sizeof w->file_problems);
     // Loading never creates files: a world with no tile store yet has only its journal.
     int failed = open_journal(w, err) != 0;
-    if (!failed && access(tiles, F_OK) == 0) failed = !(w->store = tile_store_open(tiles, err));
+    if (!failed) failed = open_checked_store(w, tiles, err) != 0;
     if (failed || start_cache(w, err) != 0) {
         world_close(w);
         return NULL;
+    }
+    if (w->read_only[0]) {
+        char msg[sizeof w->read_only + 4200];
+        snprintf(msg, sizeof msg, "%s: error: %s", path, w->read_only);
+        forward_report((void *)settings, msg);
+        if (errors) ++*errors;
     }
     return w;
 }
@@ -245,10 +301,26 @@ void world_close(world *w) {
     free(w);
 }
 
+static int new_world_id(char out[WORLD_ID_CHARS + 1], og_error *err) {
+    unsigned char bits[WORLD_ID_CHARS / 2];
+    size_t got = 0;
+    while (got < sizeof bits) {
+        ssize_t n = getrandom(bits + got, sizeof bits - got, 0);
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) return og_error_set(err, "save: cannot make a world id: %s", strerror(errno));
+        got += (size_t)n;
+    }
+    for (size_t i = 0; i < sizeof bits; i++)
+        snprintf(out + 2 * i, 3, "%02x", bits[i]);
+    return 0;
+}
+
 // Whether saving to path would destroy something the user made that this world does
 // not hold: the lines its own file had errors on, or a file that is not ours.
 static int check_overwrite(const world *w, const char *path, og_error *err) {
     if (strcmp(path, w->path) == 0) {
+        if (w->read_only[0])
+            return og_error_set(err, "save: %s was opened read-only: %s", path, w->read_only);
         if (!w->file_errors) return 0;
         // One line: "2: error: ...; 5: error: ...".
         char problems[2 * sizeof w->file_problems];
@@ -299,6 +371,11 @@ int world_save(world *w, const char *path, int force, og_error *err) {
         if (rc == 0 && w->store) rc = tile_store_merge_from(target, tile_store_path(w->store), err);
     }
     if (rc == 0) rc = tile_store_merge_from(target, tile_store_path(w->journal), err);
+    // The world's id goes into the store and, with its tile count, into the file, so
+    // a store that later goes missing, empty or is swapped is noticed on load.
+    if (rc == 0 && !p.tiles_id[0]) rc = new_world_id(p.tiles_id, err);
+    if (rc == 0) rc = tile_store_set_meta(target, "world_id", p.tiles_id, err);
+    if (rc == 0) p.tiles_saved = tile_store_count(target, -1);
     if (rc == 0) rc = world_params_save(path, &p, err);
     if (rc != 0) {
         if (!same_store) tile_store_close(target);
@@ -322,6 +399,7 @@ int world_save(world *w, const char *path, int force, og_error *err) {
     snprintf(w->path, sizeof w->path, "%s", path);
     w->file_errors = 0;
     w->file_problems[0] = 0;
+    w->read_only[0] = 0;
     if (!same_store) {
         swap_cache(w, cache, gen);
         tile_store_close(w->store);
@@ -336,6 +414,8 @@ int world_regenerate(world *w, const world_params *params, og_error *err) {
     world_params next = *params;
     // The file-level settings that are not generation parameters stay the world's own.
     snprintf(next.tiles, sizeof next.tiles, "%s", w->params.tiles);
+    memcpy(next.tiles_id, w->params.tiles_id, sizeof next.tiles_id);
+    next.tiles_saved = w->params.tiles_saved;
     // Edited tiles must reach the journal before a new cache reads it; the old cache
     // keeps running until the new one does.
     tile_cache *cache = NULL;
@@ -513,4 +593,7 @@ int world_file_errors(const world *w) {
 }
 const char *world_file_problems(const world *w) {
     return w->file_problems;
+}
+const char *world_read_only(const world *w) {
+    return w->read_only;
 }

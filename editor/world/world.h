@@ -49,6 +49,9 @@ int world_save(world *w, const char *path, int force, og_error *err);
 int world_file_errors(const world *w);
 // The first of those errors, one "LINE: error: MESSAGE" per line ("" when none).
 const char *world_file_problems(const world *w);
+// Why save will not write over the world's own files without force ("" when it
+// will): its tile store was missing, empty or another world's when it was loaded.
+const char *world_read_only(const world *w);
 
 // Replaces the generation parameters (the `generate` command): cached generated
 // tiles are dropped, edited (stored) tiles stay. On failure nothing changes (the old
