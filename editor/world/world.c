@@ -3,6 +3,7 @@
 #include "editor/gen/gen.h"
 #include "editor/world/history.h"
 #include "editor/params/world_grid.h"
+#include "io/file_lock.h"
 
 #include <errno.h>
 #include <inttypes.h>
@@ -34,6 +35,8 @@ struct world {
     // Why the world must not be saved over its own files ("" when it may): its tile
     // store is missing, empty or another world's. Cleared by a (forced) save.
     char read_only[4608];
+    long open_in;   // the live process that has the world open (its read_only says so), or 0
+    file_lock lock; // held on the tile store's lock file while the world is ours to save
     // Edits go to the journal (a scratch store) until saved; the world's own store,
     // when it has one, is only read until `save` merges the journal into it. So a
     // world closed without saving leaves its files exactly as they were.
@@ -150,6 +153,7 @@ static int open_journal(world *w, og_error *err) {
 static world *world_alloc(const world_params *params, const world_settings *settings) {
     world *w = calloc(1, sizeof *w);
     if (!w) return NULL;
+    w->lock.fd = -1;
     w->params = *params;
     if (settings) w->settings = *settings;
     if (!w->settings.warn) w->settings.warn = default_warn;
@@ -249,6 +253,37 @@ static int open_checked_store(world *w, const char *tiles, og_error *err) {
     return 0;
 }
 
+// The lock file beside a tile store.
+static void lock_path_of(const char *tiles, char *out, size_t len) {
+    snprintf(out, len, "%s.lock", tiles);
+}
+
+// Takes the lock of the world's files at tiles for w; *owner gets the pid of a live
+// process holding it instead (then 1 is returned). A lock left by a dead process is
+// taken over, with a warning.
+static int lock_files(world *w, const char *tiles, long *owner, og_error *err) {
+    char path[4300];
+    lock_path_of(tiles, path, sizeof path);
+    file_lock l;
+    long stale = 0;
+    file_lock_result r = file_lock_acquire(&l, path, owner, &stale, err);
+    if (r == FILE_LOCK_ERROR) return -1;
+    // This process holds it: a world being replaced by a load of the same files. It
+    // releases the lock when closed; save takes it then.
+    if (r == FILE_LOCK_HELD && *owner == (long)getpid()) return 0;
+    if (r == FILE_LOCK_HELD) return 1;
+    if (r == FILE_LOCK_ACQUIRED && stale && stale != (long)getpid()) {
+        char msg[4500];
+        snprintf(msg, sizeof msg,
+                 "%s: warning: took over the lock of process %ld, which is no longer running", path,
+                 stale);
+        w->settings.warn(w->settings.warn_user, msg);
+    }
+    file_lock_release(&w->lock);
+    w->lock = l; // FILE_LOCK_UNAVAILABLE leaves fd -1: a read-only folder needs no guard
+    return 0;
+}
+
 world *world_load(const char *path, const world_settings *settings, int *errors, og_error *err) {
     world_params p;
     int errs = 0;
@@ -276,11 +311,23 @@ world *world_load(const char *path, const world_settings *settings, int *errors,
     // Loading never creates files: a world with no tile store yet has only its journal.
     int failed = open_journal(w, err) != 0;
     if (!failed) failed = open_checked_store(w, tiles, err) != 0;
-    if (failed || start_cache(w, err) != 0) {
+    long owner = 0;
+    int locked = failed ? -1 : lock_files(w, tiles, &owner, err);
+    if (locked < 0 || start_cache(w, err) != 0) {
         world_close(w);
         return NULL;
     }
-    if (w->read_only[0]) {
+    if (locked == 1) {
+        // Edits stay possible in memory; only saving over its files is refused.
+        w->open_in = owner ? owner : -1;
+        char msg[4200];
+        snprintf(w->read_only, sizeof w->read_only,
+                 "it is open in process %ld; save to another file to keep your edits", owner);
+        snprintf(msg, sizeof msg, "%s: warning: %s is open in process %ld: opened read-only", path,
+                 path, owner);
+        forward_report((void *)settings, msg);
+    }
+    if (w->read_only[0] && !w->open_in) {
         char msg[sizeof w->read_only + 4200];
         snprintf(msg, sizeof msg, "%s: error: %s", path, w->read_only);
         forward_report((void *)settings, msg);
@@ -296,6 +343,7 @@ void world_close(world *w) {
         if (stop_cache(w, &err) != 0) w->settings.warn(w->settings.warn_user, err.msg);
     }
     close_stores(w);
+    file_lock_release(&w->lock);
     history_destroy(w->history);
     world_events_release(w->own_events);
     free(w);
@@ -319,7 +367,7 @@ static int new_world_id(char out[WORLD_ID_CHARS + 1], og_error *err) {
 // not hold: the lines its own file had errors on, or a file that is not ours.
 static int check_overwrite(const world *w, const char *path, og_error *err) {
     if (strcmp(path, w->path) == 0) {
-        if (w->read_only[0])
+        if (w->read_only[0] && !w->open_in) // the lock is checked again when saving
             return og_error_set(err, "save: %s was opened read-only: %s", path, w->read_only);
         if (!w->file_errors) return 0;
         // One line: "2: error: ...; 5: error: ...".
@@ -346,18 +394,10 @@ static int check_overwrite(const world *w, const char *path, og_error *err) {
                         why.msg, path);
 }
 
-int world_save(world *w, const char *path, int force, og_error *err) {
-    // A copy: w->path is rewritten below, and snprintf from a buffer into itself is undefined
-    // (a bare `save` left the world with no path).
-    char target_path[sizeof w->path];
-    snprintf(target_path, sizeof target_path, "%s", path && *path ? path : w->path);
-    path = target_path;
-    if (!*path) return og_error_set(err, "save: this world has no file yet; give a file name");
-    if (!force && check_overwrite(w, path, err) != 0) return -1;
-    world_params p = w->params;
-    char tiles[4096];
-    if (strcmp(path, w->path) != 0) p.tiles[0] = 0; // a new file gets its own NAME.tiles
-    if (world_params_tiles_path(&p, path, tiles, sizeof tiles, err) != 0) return -1;
+// Writes the world's files at path (tiles beside it) once world_save has checked
+// that it may; on failure the world keeps working as before.
+static int save_files(world *w, const char *path, world_params p, const char *tiles,
+                      og_error *err) {
     if (tile_cache_flush(w->cache, err) != 0) return -1;
 
     int same_store = w->store && strcmp(tiles, tile_store_path(w->store)) == 0;
@@ -405,6 +445,42 @@ int world_save(world *w, const char *path, int force, og_error *err) {
         tile_store_close(w->store);
         w->store = target;
     }
+    return 0;
+}
+
+int world_save(world *w, const char *path, int force, og_error *err) {
+    // A copy: w->path is rewritten below, and snprintf from a buffer into itself is undefined
+    // (a bare `save` left the world with no path).
+    char target_path[sizeof w->path];
+    snprintf(target_path, sizeof target_path, "%s", path && *path ? path : w->path);
+    path = target_path;
+    if (!*path) return og_error_set(err, "save: this world has no file yet; give a file name");
+    if (!force && check_overwrite(w, path, err) != 0) return -1;
+    world_params p = w->params;
+    char tiles[4096];
+    if (strcmp(path, w->path) != 0) p.tiles[0] = 0; // a new file gets its own NAME.tiles
+    if (world_params_tiles_path(&p, path, tiles, sizeof tiles, err) != 0) return -1;
+    // One writer: files another live process has open are not written, even forced.
+    char lock_path[4300];
+    lock_path_of(tiles, lock_path, sizeof lock_path);
+    file_lock lock = {.fd = -1};
+    if (w->lock.fd < 0 || strcmp(w->lock.path, lock_path) != 0) {
+        long owner = 0, stale = 0;
+        file_lock_result r = file_lock_acquire(&lock, lock_path, &owner, &stale, err);
+        if (r == FILE_LOCK_ERROR) return -1;
+        if (r == FILE_LOCK_HELD)
+            return og_error_set(err, "save: %s is open in process %ld; save to another file", path,
+                                owner);
+    }
+    if (save_files(w, path, p, tiles, err) != 0) {
+        file_lock_release(&lock);
+        return -1;
+    }
+    if (lock.fd >= 0) {
+        file_lock_release(&w->lock);
+        w->lock = lock;
+    }
+    w->open_in = 0;
     world_publish(w, &(world_event){.kind = WORLD_EVENT_SAVED});
     return 0;
 }
