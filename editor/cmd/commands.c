@@ -1,6 +1,7 @@
 #include "editor/cmd/commands.h"
 
 #include "editor/edit/edit.h"
+#include "editor/edit/recover.h"
 #include "editor/cmd/edit_commands.h"
 #include "editor/cmd/interchange_commands.h"
 #include "editor/cmd/tokenize.h"
@@ -106,6 +107,28 @@ static int c_save(cmd_context *ctx, int argc, char **argv, og_error *err) {
     return 0;
 }
 
+// recover [discard]: replay (or drop) the journal a session that did not save left.
+static int c_recover(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    if (argc > 1) {
+        if (strcmp(argv[1], "discard") != 0)
+            return og_error_set(err, "recover: expected 'recover' or 'recover discard', got '%s'",
+                                argv[1]);
+        char path[4400];
+        snprintf(path, sizeof path, "%s", world_recovery_path(ctx->world));
+        if (world_recover_discard(ctx->world, err) != 0) return -1;
+        fprintf(ctx->out, "discarded the unsaved edits in %s\n", path);
+        return 0;
+    }
+    recover_report r;
+    if (edit_recover(ctx->world, &r, err) != 0) return -1;
+    fprintf(ctx->out,
+            "recovered %zu step%s (%zu journal records); the world is unsaved: save keeps them\n",
+            r.steps, r.steps == 1 ? "" : "s", r.records);
+    if (r.dropped_bytes)
+        fprintf(ctx->out, "a torn last step (%zu bytes) was left out\n", r.dropped_bytes);
+    return 0;
+}
+
 static int c_generate(cmd_context *ctx, int argc, char **argv, og_error *err) {
     (void)argc, (void)argv;
     return edit_generate(ctx->world, &ctx->next, err);
@@ -169,6 +192,7 @@ static int c_info(cmd_context *ctx, int argc, char **argv, og_error *err) {
     fprintf(o, "tiles_unsaved=%" PRId64 "\n", tile_store_count(world_journal(ctx->world), -1));
     fprintf(o, "unsaved_changes=%d\n", world_is_modified(ctx->world));
     fprintf(o, "read_only=%s\n", world_read_only(ctx->world));
+    fprintf(o, "recoverable_steps=%zu\n", world_recoverable(ctx->world, NULL));
     fprintf(o, "cache_budget_bytes=%zu\n", s.budget_bytes);
     fprintf(o, "cache_resident_bytes=%zu\n", s.resident_bytes);
     fprintf(o, "cache_resident_tiles=%zu\n", s.resident_tiles);
@@ -235,6 +259,11 @@ static const cmd_def commands[] = {
      "names both. It will not write over a file that loaded with errors (their lines would "
      "become defaults) or a file that is not a parameter file, unless force=1.",
      0, 2, c_save, CMD_ENDS_STROKE},
+    {"recover", "recover [discard]",
+     "Restores the edits a session that ended without saving (a crash, a kill) left in the "
+     "world's recovery journal: every committed step, undoable, the world unsaved. 'recover "
+     "discard' drops them.",
+     0, 1, c_recover, CMD_ENDS_STROKE},
     {"generate", "generate",
      "Regenerates the world from the next parameters (see nparams). Edited tiles stay.", 0, 0,
      c_generate, CMD_ENDS_STROKE},

@@ -250,6 +250,7 @@ int edit_record(edit *e, og_error *err) {
         return 0;
     }
     report_dropped(w, history_push(world_history(w), step));
+    world_journal_record(w, RECOVERY_STEP, step);
     world_publish(w, &(world_event){.kind = WORLD_EVENT_HISTORY});
     return 0;
 }
@@ -283,7 +284,7 @@ static int replay_task(void *user, int task, og_error *err) {
     return rc;
 }
 
-static int replay(world *w, const history_step *s, int undo, og_error *err) {
+int edit_apply_step(world *w, const history_step *s, int undo, og_error *err) {
     if (s->has_params && world_regenerate(w, undo ? &s->params_before : &s->params_after, err) != 0)
         return -1;
     replay_job job = {w, s, undo};
@@ -297,8 +298,9 @@ int edit_undo(world *w, og_error *err) {
     history *h = world_history(w);
     history_step *s = history_undo_peek(h);
     if (!s) return 0;
-    if (replay(w, s, 1, err) != 0) return -1;
+    if (edit_apply_step(w, s, 1, err) != 0) return -1;
     history_undo_done(h);
+    world_journal_record(w, RECOVERY_UNDO, s);
     world_publish(w, &(world_event){.kind = WORLD_EVENT_HISTORY});
     return 1;
 }
@@ -307,8 +309,9 @@ int edit_redo(world *w, og_error *err) {
     history *h = world_history(w);
     history_step *s = history_redo_peek(h);
     if (!s) return 0;
-    if (replay(w, s, 0, err) != 0) return -1;
+    if (edit_apply_step(w, s, 0, err) != 0) return -1;
     history_redo_done(h);
+    world_journal_record(w, RECOVERY_REDO, s);
     world_publish(w, &(world_event){.kind = WORLD_EVENT_HISTORY});
     return 1;
 }
@@ -322,6 +325,7 @@ int edit_generate(world *w, const world_params *params, og_error *err) {
     s->params_before = before;
     s->params_after = *world_get_params(w);
     report_dropped(w, history_push(world_history(w), s));
+    world_journal_record(w, RECOVERY_STEP, s);
     world_publish(w, &(world_event){.kind = WORLD_EVENT_HISTORY});
     return 0;
 }

@@ -37,6 +37,9 @@ void edit_abort(edit *e);
 // Undo / redo one step: 1 if a step was replayed, 0 if there was none, -1 on error.
 int edit_undo(world *w, og_error *err);
 int edit_redo(world *w, og_error *err);
+// Replays one step onto the world (undo: backwards), as undo and redo do, without
+// touching the history (crash recovery rebuilds it around this).
+int edit_apply_step(world *w, const history_step *s, int undo, og_error *err);
 // `generate` as an undoable step: the world switches to new parameters.
 int edit_generate(world *w, const world_params *params, og_error *err);
 

@@ -5,7 +5,10 @@
 #include "editor/params/world_grid.h"
 #include "io/file_lock.h"
 
+#include <time.h>
+
 #include <errno.h>
+#include <stdarg.h>
 #include <inttypes.h>
 #include <ftw.h>
 #include <math.h>
@@ -37,6 +40,15 @@ struct world {
     char read_only[4608];
     long open_in;   // the live process that has the world open (its read_only says so), or 0
     file_lock lock; // held on the tile store's lock file while the world is ours to save
+    // Crash recovery: the saved state edits build on (the tile store's state_id, "" for
+    // none), the journal beside the parameter file, this session's writer (opened at its
+    // first record), and a previous session's journal on the same state, unrecovered.
+    char state_id[RECOVERY_STATE_CHARS + 1];
+    char recover_path[4300];
+    recovery_journal *rj;
+    int journal_paused, journal_failed;
+    size_t recoverable;
+    int64_t recoverable_when;
     // Edits go to the journal (a scratch store) until saved; the world's own store,
     // when it has one, is only read until `save` merges the journal into it. So a
     // world closed without saving leaves its files exactly as they were.
@@ -284,6 +296,65 @@ static int lock_files(world *w, const char *tiles, long *owner, og_error *err) {
     return 0;
 }
 
+static void warn_path(world *w, const char *path, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+static void warn_path(world *w, const char *path, const char *fmt, ...) {
+    char msg[4600], text[4096];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(text, sizeof text, fmt, ap);
+    va_end(ap);
+    snprintf(msg, sizeof msg, "%s: %s", path, text);
+    w->settings.warn(w->settings.warn_user, msg);
+}
+
+static void format_time(int64_t t, char *out, size_t len) {
+    time_t tt = (time_t)t;
+    struct tm tm;
+    if (!localtime_r(&tt, &tm) || !strftime(out, len, "%Y-%m-%d %H:%M:%S", &tm))
+        snprintf(out, len, "%lld", (long long)t);
+}
+
+// The journal a session that did not save left beside the world: offered when it
+// builds on the state the world was saved in, reported when it does not.
+static void find_recoverable(world *w, og_error *err) {
+    snprintf(w->recover_path, sizeof w->recover_path, "%s.recover", w->path);
+    if (w->store) {
+        og_error ignored;
+        if (tile_store_get_meta(w->store, "state_id", w->state_id, sizeof w->state_id, &ignored) !=
+            1)
+            w->state_id[0] = 0;
+    }
+    if (access(w->recover_path, F_OK) != 0) return;
+    recovery_scan scan;
+    og_error why;
+    (void)err;
+    if (recovery_journal_read(w->recover_path, &scan, NULL, NULL, &why) != 0) {
+        warn_path(w, w->path, "warning: %s; it is left as it is", why.msg);
+        return;
+    }
+    char when[64];
+    format_time(scan.last, when, sizeof when);
+    if (strcmp(scan.state_id, w->state_id) != 0) {
+        warn_path(w, w->path,
+                  "warning: the recovery journal %s (from %s) builds on another saved state of "
+                  "this world and cannot be replayed on this one; 'recover discard' removes it",
+                  w->recover_path, when);
+        return;
+    }
+    if (!scan.records) return;
+    w->recoverable = scan.records;
+    w->recoverable_when = scan.last;
+    char torn[128] = "";
+    if (scan.dropped_bytes)
+        snprintf(torn, sizeof torn, " (a torn last step of %zu bytes is dropped)",
+                 scan.dropped_bytes);
+    warn_path(w, w->path,
+              "warning: unsaved edits from %s (%zu step%s%s) can be recovered: 'recover' "
+              "restores them, 'recover discard' drops them",
+              when, scan.records, scan.records == 1 ? "" : "s", torn);
+}
+
 world *world_load(const char *path, const world_settings *settings, int *errors, og_error *err) {
     world_params p;
     int errs = 0;
@@ -327,6 +398,7 @@ world *world_load(const char *path, const world_settings *settings, int *errors,
                  path, owner);
         forward_report((void *)settings, msg);
     }
+    if (!w->read_only[0]) find_recoverable(w, err);
     if (w->read_only[0] && !w->open_in) {
         char msg[sizeof w->read_only + 4200];
         snprintf(msg, sizeof msg, "%s: error: %s", path, w->read_only);
@@ -342,6 +414,10 @@ void world_close(world *w) {
         og_error err = {{0}};
         if (stop_cache(w, &err) != 0) w->settings.warn(w->settings.warn_user, err.msg);
     }
+    if (w->rj) { // a quit or another load without saving discards the edits: and their journal
+        recovery_journal_close(w->rj);
+        unlink(w->recover_path);
+    }
     close_stores(w);
     file_lock_release(&w->lock);
     history_destroy(w->history);
@@ -349,6 +425,7 @@ void world_close(world *w) {
     free(w);
 }
 
+// 128 random bits as 32 lowercase hex digits (world ids and saved-state ids).
 static int new_world_id(char out[WORLD_ID_CHARS + 1], og_error *err) {
     unsigned char bits[WORLD_ID_CHARS / 2];
     size_t got = 0;
@@ -398,6 +475,7 @@ static int check_overwrite(const world *w, const char *path, og_error *err) {
 // that it may; on failure the world keeps working as before.
 static int save_files(world *w, const char *path, world_params p, const char *tiles,
                       og_error *err) {
+    const int same_file = strcmp(path, w->path) == 0;
     if (tile_cache_flush(w->cache, err) != 0) return -1;
 
     int same_store = w->store && strcmp(tiles, tile_store_path(w->store)) == 0;
@@ -408,9 +486,12 @@ static int save_files(world *w, const char *path, world_params p, const char *ti
     int rc = 0;
     if (!same_store) {
         rc = tile_store_clear(target, err);
-        if (rc == 0 && w->store) rc = tile_store_merge_from(target, tile_store_path(w->store), err);
+        if (rc == 0 && w->store)
+            rc = tile_store_merge_from(target, tile_store_path(w->store), NULL, err);
     }
-    if (rc == 0) rc = tile_store_merge_from(target, tile_store_path(w->journal), err);
+    char state_id[WORLD_ID_CHARS + 1];
+    if (rc == 0) rc = new_world_id(state_id, err);
+    if (rc == 0) rc = tile_store_merge_from(target, tile_store_path(w->journal), state_id, err);
     // The world's id goes into the store and, with its tile count, into the file, so
     // a store that later goes missing, empty or is swapped is noticed on load.
     if (rc == 0 && !p.tiles_id[0]) rc = new_world_id(p.tiles_id, err);
@@ -440,6 +521,16 @@ static int save_files(world *w, const char *path, world_params p, const char *ti
     w->file_errors = 0;
     w->file_problems[0] = 0;
     w->read_only[0] = 0;
+    // The saved files hold every edit now: this session's journal is done with, and so
+    // is one left unrecovered on the same files; the next edit starts one on the new
+    // state.
+    if (w->rj || (same_file && w->recover_path[0])) unlink(w->recover_path);
+    if (w->rj) recovery_journal_close(w->rj);
+    w->rj = NULL;
+    memcpy(w->state_id, state_id, sizeof w->state_id);
+    snprintf(w->recover_path, sizeof w->recover_path, "%s.recover", path);
+    w->recoverable = 0;
+    w->journal_failed = 0;
     if (!same_store) {
         swap_cache(w, cache, gen);
         tile_store_close(w->store);
@@ -672,4 +763,68 @@ const char *world_file_problems(const world *w) {
 }
 const char *world_read_only(const world *w) {
     return w->read_only;
+}
+
+void world_journal_record(world *w, recovery_kind kind, const history_step *s) {
+    if (w->journal_paused || !w->recover_path[0] || w->read_only[0] || w->journal_failed) return;
+    og_error err;
+    if (!w->rj) {
+        if (w->recoverable) {
+            // A new session's edits cannot follow an unrecovered one's: set it aside.
+            char aside[4400];
+            snprintf(aside, sizeof aside, "%s.old", w->recover_path);
+            if (rename(w->recover_path, aside) == 0)
+                warn_path(w, w->path,
+                          "warning: the unrecovered edits of the last session were set aside "
+                          "in %s",
+                          aside);
+            w->recoverable = 0;
+        }
+        if (!(w->rj = recovery_journal_open(w->recover_path, w->state_id, 0, &err))) {
+            w->journal_failed = 1;
+            warn_path(w, w->path, "warning: %s; edits are not protected against a crash", err.msg);
+            return;
+        }
+    }
+    if (recovery_journal_append(w->rj, kind, s, &err) != 0) {
+        w->journal_failed = 1;
+        warn_path(w, w->path, "warning: %s; edits are not protected against a crash", err.msg);
+    }
+}
+
+size_t world_recoverable(const world *w, int64_t *when) {
+    if (when) *when = w->recoverable_when;
+    return w->recoverable;
+}
+
+const char *world_recovery_path(const world *w) {
+    return w->recover_path;
+}
+
+const char *world_state_id(const world *w) {
+    return w->state_id;
+}
+
+void world_journal_pause(world *w, int paused) {
+    w->journal_paused = paused;
+}
+
+int world_journal_continue(world *w, size_t keep_bytes, og_error *err) {
+    w->recoverable = 0;
+    if (w->read_only[0]) return 0;
+    recovery_journal_close(w->rj);
+    w->rj = recovery_journal_open(w->recover_path, w->state_id, keep_bytes, err);
+    return w->rj ? 0 : -1;
+}
+
+int world_recover_discard(world *w, og_error *err) {
+    if (!w->recover_path[0] || (access(w->recover_path, F_OK) != 0 && !w->rj))
+        return og_error_set(err, "recover: %s has no recovery journal",
+                            w->path[0] ? w->path : "this world");
+    if (w->rj) recovery_journal_close(w->rj);
+    w->rj = NULL;
+    w->recoverable = 0;
+    if (unlink(w->recover_path) != 0 && errno != ENOENT)
+        return og_error_set(err, "recover: cannot remove %s: %s", w->recover_path, strerror(errno));
+    return 0;
 }

@@ -4,6 +4,7 @@
 #define OROGEN_EDITOR_WORLD_H
 
 #include "editor/params/world_params.h"
+#include "editor/world/recovery_journal.h"
 #include "editor/world/world_events.h"
 #include "io/err.h"
 #include "io/tile_cache.h"
@@ -52,6 +53,22 @@ const char *world_file_problems(const world *w);
 // Why save will not write over the world's own files without force ("" when it
 // will): its tile store was missing, empty or another world's when it was loaded.
 const char *world_read_only(const world *w);
+
+// Crash recovery (recovery_journal.h). Records a committed step, or its undo or redo,
+// in the journal beside the world's file (edit.c calls it for every history change;
+// a never-saved or read-only world keeps none).
+void world_journal_record(world *w, recovery_kind kind, const history_step *s);
+// Steps a session that did not save left in the journal, on the state the world was
+// loaded in (0: none), and when the last was made.
+size_t world_recoverable(const world *w, int64_t *when);
+const char *world_recovery_path(const world *w); // "" for a never-saved world
+const char *world_state_id(const world *w);      // the saved state edits build on
+// While `recover` replays the journal, its steps are not recorded again.
+void world_journal_pause(world *w, int paused);
+// After `recover`: this session's records follow the journal's first keep_bytes.
+int world_journal_continue(world *w, size_t keep_bytes, og_error *err);
+// `recover discard`: removes the journal.
+int world_recover_discard(world *w, og_error *err);
 
 // Replaces the generation parameters (the `generate` command): cached generated
 // tiles are dropped, edited (stored) tiles stay. On failure nothing changes (the old

@@ -1,0 +1,449 @@
+#include "editor/world/recovery_journal.h"
+
+#include "io/crc32c.h"
+#include "io/param_file.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/random.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+// File: header record, then step records. Every record is
+//   u32 magic, u32 payload bytes, u32 CRC32C of the payload, payload
+// little-endian. The header's payload: u32 version, state id (32 bytes, NUL padded),
+// i64 start time. A step's: u8 kind, u64 session id, i64 time, u16 label bytes,
+// label, u32 tiles x (i32 layer face level tx ty, u8 was_pristine, u32 bytes, delta),
+// u32 dirty areas x (i32 layer face, i64 x0 z0 x1 z1), u8 has_params (then u32 bytes
+// + text of the parameters before and after).
+#define HEADER_MAGIC 0x4A52474Fu // "OGRJ"
+#define RECORD_MAGIC 0x5252474Fu // "OGRR"
+#define JOURNAL_VERSION 1u
+#define RECORD_HEAD_BYTES 12
+// A record larger than this is damage, not a step (a step holds compressed deltas).
+#define RECORD_MAX_BYTES ((size_t)1 << 31)
+
+struct recovery_journal {
+    int fd;
+    uint32_t session; // random: tells this session's step ids from a recovered one's
+    char path[4200];
+    pthread_t flusher;
+    pthread_mutex_t lock;
+    pthread_cond_t wake;
+    int dirty, stop, failed;
+};
+
+// ---- bytes -------------------------------------------------------------------------
+
+typedef struct buf {
+    uint8_t *p;
+    size_t len, cap;
+    int oom;
+} buf;
+
+static void put(buf *b, const void *data, size_t n) {
+    if (b->oom) return;
+    if (b->len + n > b->cap) {
+        size_t cap = b->cap ? b->cap : 4096;
+        while (cap < b->len + n)
+            cap *= 2;
+        uint8_t *grown = realloc(b->p, cap);
+        if (!grown) {
+            b->oom = 1;
+            return;
+        }
+        b->p = grown, b->cap = cap;
+    }
+    memcpy(b->p + b->len, data, n);
+    b->len += n;
+}
+
+static void put_u8(buf *b, uint8_t v) {
+    put(b, &v, 1);
+}
+static void put_u16(buf *b, uint16_t v) {
+    uint8_t x[2] = {(uint8_t)v, (uint8_t)(v >> 8)};
+    put(b, x, 2);
+}
+static void put_u32(buf *b, uint32_t v) {
+    uint8_t x[4] = {(uint8_t)v, (uint8_t)(v >> 8), (uint8_t)(v >> 16), (uint8_t)(v >> 24)};
+    put(b, x, 4);
+}
+static void put_u64(buf *b, uint64_t v) {
+    put_u32(b, (uint32_t)v);
+    put_u32(b, (uint32_t)(v >> 32));
+}
+
+// A reader over a record's payload; running past the end sets bad.
+typedef struct cursor {
+    const uint8_t *p;
+    size_t left;
+    int bad;
+} cursor;
+
+static const uint8_t *take(cursor *c, size_t n) {
+    if (c->bad || n > c->left) {
+        c->bad = 1;
+        return NULL;
+    }
+    const uint8_t *p = c->p;
+    c->p += n, c->left -= n;
+    return p;
+}
+static uint64_t get_le(cursor *c, size_t n) {
+    const uint8_t *p = take(c, n);
+    uint64_t v = 0;
+    for (size_t i = 0; p && i < n; i++)
+        v |= (uint64_t)p[i] << (8 * i);
+    return v;
+}
+
+// Frames payload as a record of magic: head + payload, checksum filled in.
+static void frame(buf *out, uint32_t magic, const buf *payload) {
+    put_u32(out, magic);
+    put_u32(out, (uint32_t)payload->len);
+    put_u32(out, crc32c_update(0, payload->p, payload->len));
+    put(out, payload->p, payload->len);
+}
+
+static int write_all(int fd, const uint8_t *p, size_t n) {
+    while (n) {
+        ssize_t w = write(fd, p, n);
+        if (w < 0 && errno == EINTR) continue;
+        if (w < 0) return -1;
+        p += w, n -= (size_t)w;
+    }
+    return 0;
+}
+
+// ---- writing -----------------------------------------------------------------------
+
+static uint64_t random_u64(void) {
+    uint64_t v = 0;
+    if (getrandom(&v, sizeof v, 0) != (ssize_t)sizeof v)
+        v = (uint64_t)time(NULL) ^ (uint64_t)getpid();
+    return v;
+}
+
+// The flusher: a record is on disk (fdatasync) within about a second of its write.
+static void *flusher_main(void *arg) {
+    recovery_journal *j = arg;
+    pthread_mutex_lock(&j->lock);
+    while (!j->stop) {
+        if (!j->dirty) {
+            pthread_cond_wait(&j->wake, &j->lock);
+            continue;
+        }
+        struct timespec until;
+        clock_gettime(CLOCK_REALTIME, &until);
+        until.tv_sec += 1;
+        pthread_cond_timedwait(&j->wake, &j->lock, &until); // gathers a second's records
+        j->dirty = 0;
+        pthread_mutex_unlock(&j->lock);
+        fdatasync(j->fd);
+        pthread_mutex_lock(&j->lock);
+    }
+    pthread_mutex_unlock(&j->lock);
+    return NULL;
+}
+
+// Makes the file's name durable: its folder is synced once, when it is created.
+static void sync_folder(const char *path) {
+    char dir[4200];
+    snprintf(dir, sizeof dir, "%s", path);
+    char *slash = strrchr(dir, '/');
+    if (slash)
+        slash == dir ? (void)(dir[1] = 0) : (void)(*slash = 0);
+    else
+        snprintf(dir, sizeof dir, ".");
+    int fd = open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd >= 0) {
+        fsync(fd);
+        close(fd);
+    }
+}
+
+recovery_journal *recovery_journal_open(const char *path, const char *state_id, size_t keep_bytes,
+                                        og_error *err) {
+    recovery_journal *j = calloc(1, sizeof *j);
+    if (!j) {
+        og_error_set(err, "%s: out of memory", path);
+        return NULL;
+    }
+    snprintf(j->path, sizeof j->path, "%s", path);
+    j->session = (uint32_t)random_u64();
+    int flags = O_WRONLY | O_CREAT | O_CLOEXEC | O_APPEND | (keep_bytes ? 0 : O_TRUNC);
+    j->fd = open(path, flags, 0644);
+    if (j->fd < 0) {
+        og_error_set(err, "%s: cannot write the recovery journal: %s", path, strerror(errno));
+        free(j);
+        return NULL;
+    }
+    int rc = 0;
+    if (keep_bytes) {
+        rc = ftruncate(j->fd, (off_t)keep_bytes); // drops a torn tail before appending
+    } else {
+        buf payload = {0}, out = {0};
+        put_u32(&payload, JOURNAL_VERSION);
+        char id[RECOVERY_STATE_CHARS] = {0};
+        memcpy(id, state_id, strnlen(state_id, sizeof id));
+        put(&payload, id, sizeof id);
+        put_u64(&payload, (uint64_t)time(NULL));
+        frame(&out, HEADER_MAGIC, &payload);
+        rc = payload.oom || out.oom ? -1 : write_all(j->fd, out.p, out.len);
+        if (rc == 0) rc = fdatasync(j->fd);
+        free(payload.p);
+        free(out.p);
+    }
+    if (rc != 0) {
+        og_error_set(err, "%s: cannot write the recovery journal: %s", path, strerror(errno));
+        close(j->fd);
+        free(j);
+        return NULL;
+    }
+    if (!keep_bytes) sync_folder(path);
+    pthread_mutex_init(&j->lock, NULL);
+    pthread_cond_init(&j->wake, NULL);
+    if (pthread_create(&j->flusher, NULL, flusher_main, j) != 0) {
+        og_error_set(err, "%s: cannot start the journal's flusher", path);
+        pthread_mutex_destroy(&j->lock);
+        pthread_cond_destroy(&j->wake);
+        close(j->fd);
+        free(j);
+        return NULL;
+    }
+    return j;
+}
+
+static void put_params(buf *b, const world_params *p) {
+    char *text = world_params_format(p);
+    size_t n = text ? strlen(text) : 0;
+    if (!text) b->oom = 1;
+    put_u32(b, (uint32_t)n);
+    put(b, text ? text : "", n);
+    free(text);
+}
+
+int recovery_journal_append(recovery_journal *j, recovery_kind kind, const history_step *s,
+                            og_error *err) {
+    buf payload = {0}, out = {0};
+    put_u8(&payload, (uint8_t)kind);
+    put_u64(&payload, (uint64_t)j->session << 32 | (uint32_t)s->id);
+    put_u64(&payload, (uint64_t)time(NULL));
+    size_t label = strnlen(s->label, sizeof s->label);
+    put_u16(&payload, (uint16_t)label);
+    put(&payload, s->label, label);
+    put_u32(&payload, (uint32_t)s->tile_count);
+    for (size_t i = 0; i < s->tile_count; i++) {
+        const history_tile *t = &s->tiles[i];
+        put_u32(&payload, (uint32_t)t->key.layer);
+        put_u32(&payload, (uint32_t)t->key.face);
+        put_u32(&payload, (uint32_t)t->key.level);
+        put_u32(&payload, (uint32_t)t->key.tx);
+        put_u32(&payload, (uint32_t)t->key.ty);
+        put_u8(&payload, (uint8_t)(t->was_pristine != 0));
+        put_u32(&payload, (uint32_t)t->bytes);
+        put(&payload, t->delta, t->bytes);
+    }
+    put_u32(&payload, (uint32_t)s->dirty_count);
+    for (size_t i = 0; i < s->dirty_count; i++) {
+        const dirty_rect *d = &s->dirty[i];
+        put_u32(&payload, (uint32_t)d->layer);
+        put_u32(&payload, (uint32_t)d->face);
+        put_u64(&payload, (uint64_t)d->rect.x0);
+        put_u64(&payload, (uint64_t)d->rect.z0);
+        put_u64(&payload, (uint64_t)d->rect.x1);
+        put_u64(&payload, (uint64_t)d->rect.z1);
+    }
+    put_u8(&payload, (uint8_t)(s->has_params != 0));
+    if (s->has_params) {
+        put_params(&payload, &s->params_before);
+        put_params(&payload, &s->params_after);
+    }
+    frame(&out, RECORD_MAGIC, &payload);
+    int rc = 0;
+    if (payload.oom || out.oom)
+        rc = og_error_set(err, "%s: out of memory writing the recovery journal", j->path);
+    else if (write_all(j->fd, out.p, out.len) != 0)
+        rc = og_error_set(err, "%s: cannot write the recovery journal: %s", j->path,
+                          strerror(errno));
+    free(payload.p);
+    free(out.p);
+    if (rc == 0) {
+        pthread_mutex_lock(&j->lock);
+        j->dirty = 1;
+        pthread_cond_signal(&j->wake);
+        pthread_mutex_unlock(&j->lock);
+    }
+    return rc;
+}
+
+void recovery_journal_close(recovery_journal *j) {
+    if (!j) return;
+    pthread_mutex_lock(&j->lock);
+    j->stop = 1;
+    pthread_cond_signal(&j->wake);
+    pthread_mutex_unlock(&j->lock);
+    pthread_join(j->flusher, NULL);
+    fdatasync(j->fd);
+    close(j->fd);
+    pthread_mutex_destroy(&j->lock);
+    pthread_cond_destroy(&j->wake);
+    free(j);
+}
+
+// ---- reading -----------------------------------------------------------------------
+
+static int get_params(cursor *c, world_params *p) {
+    uint32_t n = (uint32_t)get_le(c, 4);
+    const uint8_t *text = take(c, n);
+    if (!text) return -1;
+    param_file pf;
+    if (param_file_parse((const char *)text, n, &pf) != 0) return -1;
+    world_params_default(p, WORLD_FLAT);
+    for (size_t i = 0; i < pf.count; i++)
+        if (!strcmp(pf.entries[i].key, "kind"))
+            world_params_default(p, !strcmp(pf.entries[i].value, "planet") ? WORLD_PLANET
+                                                                           : WORLD_FLAT);
+    int rc = 0;
+    for (size_t i = 0; i < pf.count && rc == 0; i++)
+        rc = world_params_set(p, pf.entries[i].key, pf.entries[i].value, NULL) == 0 ? 0 : -1;
+    param_file_free(&pf);
+    return rc;
+}
+
+// Decodes a step record's payload; NULL when it does not parse (damage).
+static history_step *decode_step(cursor *c, recovery_kind *kind, uint64_t *session_id) {
+    *kind = (recovery_kind)get_le(c, 1);
+    *session_id = get_le(c, 8);
+    get_le(c, 8); // the time: read by the scan
+    size_t label_len = (size_t)get_le(c, 2);
+    const uint8_t *label = take(c, label_len);
+    if (c->bad || *kind < RECOVERY_STEP || *kind > RECOVERY_REDO) return NULL;
+    char text[128];
+    snprintf(text, sizeof text, "%.*s", (int)(label_len < 127 ? label_len : 127),
+             (const char *)label);
+    history_step *s = history_step_new(text);
+    if (!s) return NULL;
+    uint32_t tiles = (uint32_t)get_le(c, 4);
+    for (uint32_t i = 0; i < tiles && !c->bad; i++) {
+        tile_key key;
+        key.layer = (int)(int32_t)get_le(c, 4);
+        key.face = (int)(int32_t)get_le(c, 4);
+        key.level = (int)(int32_t)get_le(c, 4);
+        key.tx = (int32_t)get_le(c, 4);
+        key.ty = (int32_t)get_le(c, 4);
+        int pristine = (int)get_le(c, 1);
+        size_t bytes = (size_t)get_le(c, 4);
+        const uint8_t *delta = take(c, bytes);
+        if (!delta || key.layer < 0 || key.layer >= TILE_LAYER_COUNT) {
+            c->bad = 1;
+            break;
+        }
+        void *copy = malloc(bytes ? bytes : 1);
+        if (!copy || history_step_add_delta(s, key, pristine, copy, bytes) != 0) {
+            free(copy);
+            c->bad = 1;
+            break;
+        }
+        memcpy(copy, delta, bytes);
+    }
+    uint32_t dirty = (uint32_t)get_le(c, 4);
+    for (uint32_t i = 0; i < dirty && !c->bad; i++) {
+        dirty_rect d;
+        d.layer = (tile_layer)(int32_t)get_le(c, 4);
+        d.face = (int)(int32_t)get_le(c, 4);
+        d.rect.x0 = (int64_t)get_le(c, 8);
+        d.rect.z0 = (int64_t)get_le(c, 8);
+        d.rect.x1 = (int64_t)get_le(c, 8);
+        d.rect.z1 = (int64_t)get_le(c, 8);
+        if (!c->bad && history_step_add_dirty(s, d) != 0) c->bad = 1;
+    }
+    s->has_params = (int)get_le(c, 1);
+    if (s->has_params && !c->bad &&
+        (get_params(c, &s->params_before) != 0 || get_params(c, &s->params_after) != 0))
+        c->bad = 1;
+    if (c->bad || c->left) { // a record is exactly its fields
+        history_step_free(s);
+        return NULL;
+    }
+    return s;
+}
+
+int recovery_journal_read(const char *path, recovery_scan *scan,
+                          int (*fn)(void *user, recovery_kind kind, uint64_t session_id,
+                                    history_step *step, og_error *err),
+                          void *user, og_error *err) {
+    memset(scan, 0, sizeof *scan);
+    int fd = open(path, O_RDONLY | O_CLOEXEC);
+    if (fd < 0) return og_error_set(err, "%s: cannot open: %s", path, strerror(errno));
+    struct stat st;
+    if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+        close(fd);
+        return og_error_set(err, "%s: not a regular file", path);
+    }
+    size_t size = (size_t)st.st_size;
+    uint8_t *data = malloc(size ? size : 1);
+    size_t got = 0;
+    while (data && got < size) {
+        ssize_t n = read(fd, data + got, size - got);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) break;
+        got += (size_t)n;
+    }
+    close(fd);
+    if (!data) return og_error_set(err, "%s: out of memory", path);
+    size = got;
+    int rc = 0;
+    size_t pos = 0;
+    for (int header = 1; pos + RECORD_HEAD_BYTES <= size; header = 0) {
+        cursor head = {data + pos, RECORD_HEAD_BYTES, 0};
+        uint32_t magic = (uint32_t)get_le(&head, 4), len = (uint32_t)get_le(&head, 4),
+                 crc = (uint32_t)get_le(&head, 4);
+        if (magic != (header ? HEADER_MAGIC : RECORD_MAGIC) || len > RECORD_MAX_BYTES ||
+            len > size - pos - RECORD_HEAD_BYTES)
+            break;
+        const uint8_t *payload = data + pos + RECORD_HEAD_BYTES;
+        if (crc32c_update(0, payload, len) != crc) break;
+        cursor c = {payload, len, 0};
+        if (header) {
+            if (get_le(&c, 4) != JOURNAL_VERSION) break;
+            const uint8_t *id = take(&c, RECOVERY_STATE_CHARS);
+            if (!id) break;
+            memcpy(scan->state_id, id, RECOVERY_STATE_CHARS);
+            scan->state_id[RECOVERY_STATE_CHARS] = 0;
+            scan->started = scan->last = (int64_t)get_le(&c, 8);
+        } else {
+            recovery_kind kind;
+            uint64_t session_id;
+            cursor probe = c;
+            get_le(&probe, 9);
+            int64_t when = (int64_t)get_le(&probe, 8);
+            history_step *s = decode_step(&c, &kind, &session_id);
+            if (!s) break;
+            scan->records++;
+            scan->last = when;
+            if (fn) {
+                if (fn(user, kind, session_id, s, err) != 0) {
+                    rc = -1;
+                    break;
+                }
+            } else {
+                history_step_free(s);
+            }
+        }
+        pos += RECORD_HEAD_BYTES + len;
+        scan->valid_bytes = pos;
+    }
+    free(data);
+    if (rc == 0 && scan->valid_bytes == 0)
+        return og_error_set(err, "%s: not an Orogen recovery journal (bad or missing header)",
+                            path);
+    scan->dropped_bytes = size - scan->valid_bytes;
+    return rc;
+}
