@@ -122,8 +122,9 @@ static int c_recover(cmd_context *ctx, int argc, char **argv, og_error *err) {
     recover_report r;
     if (edit_recover(ctx->world, &r, err) != 0) return -1;
     fprintf(ctx->out,
-            "recovered %zu step%s (%zu journal records); the world is unsaved: save keeps them\n",
-            r.steps, r.steps == 1 ? "" : "s", r.records);
+            "recovered %zu journal record%s of the last session (its steps are in the "
+            "history); the world is unsaved: save keeps them\n",
+            r.records, r.records == 1 ? "" : "s");
     if (r.dropped_bytes)
         fprintf(ctx->out, "a torn last step (%zu bytes) was left out\n", r.dropped_bytes);
     return 0;
