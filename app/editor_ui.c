@@ -11,6 +11,7 @@
 #include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
+#include <time.h>
 
 void editor_ui_init(editor_ui *e) {
     memset(e, 0, sizeof *e);
@@ -839,6 +840,46 @@ static void unsaved_prompt(editor_ui *e, ui_context *ui, cmd_context *ctx, float
     ui_panel_end(ui);
 }
 
+// Whether the world has unsaved edits of a session that ended without saving, and the
+// user has not put the question off for this world.
+static int recovery_offered(const editor_ui *e, cmd_context *ctx) {
+    return world_recoverable(ctx->world, NULL) &&
+           strcmp(e->recover_dismissed, world_recovery_path(ctx->world)) != 0;
+}
+
+// Like Blender's Recover Last Session: the edits a crash or a kill left in the world's
+// journal, offered when the world opens.
+static void recover_dialog(editor_ui *e, ui_context *ui, cmd_context *ctx, ui_rect r) {
+    ui_panel_begin(ui, "Recover unsaved edits", r);
+    ui_row(ui, 1, NULL, 0);
+    int64_t when = 0;
+    size_t steps = world_recoverable(ctx->world, &when);
+    char text[1200], stamp[64];
+    snprintf(text, sizeof text, "%s was not saved when Orogen last stopped.",
+             file_name(world_path(ctx->world)));
+    ui_label(ui, text);
+    time_t t = (time_t)when;
+    struct tm tm;
+    if (!localtime_r(&t, &tm) || !strftime(stamp, sizeof stamp, "%Y-%m-%d %H:%M", &tm))
+        snprintf(stamp, sizeof stamp, "?");
+    snprintf(text, sizeof text, "Its edits of %s (%zu step%s) can be recovered.", stamp, steps,
+             steps == 1 ? "" : "s");
+    ui_label(ui, text);
+    float thirds[3] = {-0.333f, -0.333f, 0};
+    ui_row(ui, 3, thirds, ui_em(ui, 1.5f));
+    if (ui_button(ui, "Recover")) run_now(e, ctx, "recover");
+    ui_tooltip(ui, "Restore those edits: undoable, and unsaved until you save (recover)");
+    if (ui_button(ui, "Discard")) run_now(e, ctx, "recover discard");
+    ui_tooltip(ui, "Drop those edits for good (recover discard)");
+    if (ui_button(ui, "Not now")) {
+        snprintf(e->recover_dismissed, sizeof e->recover_dismissed, "%s",
+                 world_recovery_path(ctx->world));
+    }
+    ui_tooltip(ui, "Keep them for later: the console's 'recover' restores them until the world "
+                   "is edited or saved");
+    ui_panel_end(ui);
+}
+
 void editor_ui_save(editor_ui *e, cmd_context *ctx) {
     if (world_file_errors(ctx->world) || world_read_only(ctx->world)[0])
         e->confirm_replace = 1;
@@ -998,6 +1039,7 @@ static ui_rect dialog_rect(const editor_ui *e, const ui_context *ui, float width
             width, height, fminf(width * 0.9f, ui_em(ui, 24)),
             fminf(height * 0.9f,
                   ui_em(ui, 1.7f * (float)interchange_dialog_rows(&e->interchange) + 1.5f)));
+    if (e->offer_recovery) return centred(width, height, ui_em(ui, 26), ui_em(ui, 6.5f));
     if (e->confirm_replace)
         return centred(width, height, fminf(width * 0.9f, ui_em(ui, 30)),
                        fminf(height * 0.9f, ui_em(ui, 1.45f * (float)(e->replace_lines + 2) + 1)));
@@ -1009,6 +1051,7 @@ static ui_rect dialog_rect(const editor_ui *e, const ui_context *ui, float width
 
 ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v,
                         const editor_frame_info *info, float width, float height) {
+    e->offer_recovery = recovery_offered(e, ctx);
     e->replace_lines = problem_lines(world_file_problems(ctx->world)) +
                        (world_file_errors(ctx->world) ? 2 : 0) +
                        (world_read_only(ctx->world)[0] ? 3 : 0);
@@ -1076,6 +1119,8 @@ ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport
         char cmd[4600];
         if (interchange_dialog_draw(&e->interchange, ui, modal, cmd, sizeof cmd))
             editor_ui_run(e, ctx, cmd);
+    } else if (e->offer_recovery) {
+        recover_dialog(e, ui, ctx, modal);
     } else if (e->confirm_replace) {
         replace_dialog(e, ui, ctx, modal);
     } else if (e->pending != PENDING_NONE) {
@@ -1089,6 +1134,9 @@ ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport
             e->files.open = 0;
         else if (e->interchange.open)
             e->interchange.open = 0;
+        else if (e->offer_recovery)
+            snprintf(e->recover_dismissed, sizeof e->recover_dismissed, "%s",
+                     world_recovery_path(ctx->world));
         else if (e->confirm_replace)
             e->confirm_replace = 0;
         else if (e->pending != PENDING_NONE)

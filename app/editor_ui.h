@@ -44,6 +44,8 @@ typedef struct editor_ui {
     editor_pending pending;         // an action waiting on the unsaved-changes prompt
     int confirm_replace;            // asking before saving over a file that loaded with errors
     int replace_lines;              // how many of its bad lines the dialog lists
+    int offer_recovery;             // the Recover unsaved edits dialog is up
+    char recover_dismissed[4300];   // the journal whose offer was put off ("Not now")
     char open_path[1024];
     char recent[EDITOR_RECENT][1024]; // worlds opened or saved lately, newest first
     int recent_count;

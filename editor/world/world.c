@@ -347,7 +347,7 @@ static void find_recoverable(world *w, og_error *err) {
     w->recoverable_when = scan.last;
     char torn[128] = "";
     if (scan.dropped_bytes)
-        snprintf(torn, sizeof torn, " (a torn last step of %zu bytes is dropped)",
+        snprintf(torn, sizeof torn, "; a torn last step of %zu bytes is left out",
                  scan.dropped_bytes);
     warn_path(w, w->path,
               "warning: unsaved edits from %s (%zu step%s%s) can be recovered: 'recover' "

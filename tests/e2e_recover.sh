@@ -1,0 +1,193 @@
+#!/usr/bin/env bash
+# End-to-end: crash recovery of the real editor. The editor runs under a private Xvfb
+# with its console on standard input; a session of strokes, dabs and stamps is cut
+# by kill -9 at several moments (after a step, in the middle of a long one, at the
+# end); each time `recover` gives a prefix of the committed steps (never part of one)
+# and, for a kill after the last step, exactly the terrain before the kill.
+# Usage: e2e_recover.sh OROGEN TESTS_DIR
+set -u
+orogen=$1
+work=$(mktemp -d "${TMPDIR:-/tmp}/orogen-recover-XXXXXX")
+failures=0
+passes=0
+check() { if [ "$2" = 0 ]; then passes=$((passes + 1)); else echo "FAIL: $1"; failures=$((failures + 1)); fi; }
+
+. "$2/support/window_session.sh"
+require_tools Xvfb xdotool import
+art=${OROGEN_TEST_ARTIFACTS:-$(dirname "$orogen")/test-artifacts}
+mkdir -p "$art"
+start_xvfb 1024x768
+app=
+cleanup() {
+    exec 3>&- 2>/dev/null
+    [ -n "$app" ] && kill -9 "$app" 2>/dev/null
+    kill $xvfb 2>/dev/null
+    wait 2>/dev/null
+    rm -rf "$work"
+}
+trap cleanup EXIT
+trap '' PIPE
+
+area='hash -200 -200 900 900'
+# The saved world every session starts from.
+"$orogen" -c "tool raise radius=40 strength=1; dab 450 450; save $work/base.world" >/dev/null 2>&1
+saved=$("$orogen" "$work/base.world" -c "$area" 2>/dev/null)
+
+# The session's steps: each is one undo step (the last is long: some 5 s of erosion).
+steps=(
+    "tool raise radius=30 strength=1; dab 100 100"
+    "stroke 0 0 300 300 600 0"
+    "stamp crater 500 500 scale=0.5"
+    "tool lower radius=50 strength=0.7; dab 200 400"
+    "undo"
+    "tool smooth radius=60; stroke 100 600 700 100"
+    "tool hydraulic radius=300 droplets=300000; stroke 0 0 300 300"
+)
+
+# Starts the editor on a fresh copy of the saved world, console on a fifo.
+start() {
+    rm -f "$work"/w.*
+    cp "$work/base.world" "$work/w.world"
+    cp "$work/base.tiles" "$work/w.tiles"
+    launch
+}
+# Starts the editor on the world as it is.
+launch() {
+    rm -f "$work/stdin"
+    mkfifo "$work/stdin"
+    : >"$work/out"
+    "$orogen" "$work/w.world" <"$work/stdin" >"$work/out" 2>"$work/err" &
+    app=$!
+    exec 3>"$work/stdin"
+}
+# Runs a console command and waits (up to 60 s) for a new output line matching pattern.
+ask() {
+    local before
+    before=$(wc -l <"$work/out")
+    echo "$1" >&3
+    for _ in $(seq 600); do
+        line=$(tail -n +$((before + 1)) "$work/out" | grep -m 1 -- "$2") && { echo "$line"; return 0; }
+        kill -0 "$app" 2>/dev/null || return 1
+        sleep 0.1
+    done
+    return 1
+}
+# Runs step i and prints the hash after it.
+step() {
+    echo "${steps[$1]}" >&3
+    ask "$area" '^[0-9a-f]\{16\}$'
+}
+kill9() {
+    kill -9 "$app"
+    wait "$app" 2>/dev/null
+    exec 3>&-
+    app=
+}
+# What recover gives on the killed session's world.
+recovered() {
+    "$orogen" "$work/w.world" -c "recover; $area" 2>"$work/recover.err" | tail -n 1
+}
+
+# The hash after each step, from a session that is not killed.
+start
+hashes=("$saved")
+for i in "${!steps[@]}"; do
+    h=$(step "$i")
+    hashes+=("$h")
+done
+kill9
+n=${#steps[@]}
+[ "${#hashes[@]}" = $((n + 1)) ] && [ -n "${hashes[$n]}" ]
+check "a session of $n steps gives a hash after each (${hashes[*]})" $?
+last=${hashes[$n]}
+line=$(recovered)
+[ "$line" = "$last" ]; check "kill -9 after the last step: recover gives the exact terrain ($line, wanted $last)" $?
+grep -q "unsaved edits from .* ($((n + 0)) steps) can be recovered: 'recover' restores them" "$work/recover.err"
+check "loading says what can be recovered ($(head -c 300 "$work/recover.err"))" $?
+
+# A prefix: the hash is one of those after 0..k steps.
+in_prefix() { # hash k
+    local j
+    for ((j = 0; j <= $2; j++)); do [ "$1" = "${hashes[$j]}" ] && return 0; done
+    return 1
+}
+
+# Killed right after step 3 (before any fsync could run: the journal's write is enough).
+start
+for i in 0 1 2; do step "$i" >/dev/null; done
+kill9
+line=$(recovered)
+[ "$line" = "${hashes[3]}" ]; check "kill -9 right after step 3: exactly the first 3 steps ($line)" $?
+
+# Killed in the middle of the long erosion step: the steps before it, none of it.
+start
+for i in $(seq 0 $((n - 2))); do step "$i" >/dev/null; done
+echo "${steps[$((n - 1))]}" >&3
+sleep 2
+kill9
+line=$(recovered)
+[ "$line" = "${hashes[$((n - 1))]}" ]
+check "kill -9 in the middle of a long step: the steps before it, not part of it ($line)" $?
+
+# Killed at random moments of a fast session: always a prefix.
+for delay in 0.3 0.9 1.6; do
+    start
+    for i in 0 1 2 3 4 5; do echo "${steps[$i]}" >&3; done
+    sleep "$delay"
+    kill9
+    line=$(recovered)
+    in_prefix "$line" 6; check "kill -9 after ${delay} s: a prefix of the committed steps ($line)" $?
+done
+
+# The recovered world is unsaved and its steps undo; save keeps them and ends the journal.
+start
+for i in 0 1; do step "$i" >/dev/null; done
+kill9
+out=$("$orogen" "$work/w.world" -c "recover; info; undo; $area; save; info" 2>/dev/null)
+echo "$out" | grep -q '^unsaved_changes=1$' && echo "$out" | grep -q "^${hashes[1]}$" &&
+    [ ! -e "$work/w.world.recover" ]
+check "recovered steps are unsaved and undoable; save removes the journal" $?
+
+# The window offers the recovery when the world opens (like Blender's Recover Last
+# Session): Recover restores the steps.
+start
+for i in 0 1 2; do step "$i" >/dev/null; done
+kill9
+launch
+# The rectangle "X Y W H" of the widget called NAME in the last frame (up to 10 s).
+widget() {
+    local l
+    for _ in $(seq 40); do
+        ask "ui_widgets \"$1\"" '^Viewport ' >/dev/null
+        sleep 0.1
+        l=$(grep -F -- "$1 " "$work/out" | tail -n 1 | grep -oE '(-?[0-9]+ ){3}-?[0-9]+$') && { echo "$l"; return 0; }
+        sleep 0.2
+    done
+    return 1
+}
+wid=$(timeout 30 xdotool search --sync --name '^Orogen' | head -n 1)
+read -r x y w h <<<"$(widget "Recover unsaved edits/Recover")"
+[ -n "${h:-}" ]; check "the window offers to recover the killed session's edits" $?
+widget "Recover unsaved edits/Its edits of *" >/dev/null
+import -window "$wid" "$art/recover_dialog.png" 2>/dev/null
+[ -n "${h:-}" ] && xdotool mousemove --window "$wid" $((x + w / 2)) $((y + h / 2)) click 1
+line=
+for _ in $(seq 50); do
+    line=$(ask "$area" '^[0-9a-f]\{16\}$')
+    [ "$line" = "${hashes[3]}" ] && break
+    sleep 0.2
+done
+[ "$line" = "${hashes[3]}" ]; check "Recover restores them ($line, wanted ${hashes[3]})" $?
+kill9
+
+# A clean quit removes this session's journal: nothing to recover next time.
+start
+step 0 >/dev/null
+ask "exit" 'xyz-never' >/dev/null
+wait "$app" 2>/dev/null
+app=
+exec 3>&-
+[ ! -e "$work/w.world.recover" ]; check "a quit without saving leaves no journal" $?
+
+echo "$passes passed, $failures failed"
+[ $failures = 0 ]

@@ -1,0 +1,248 @@
+// Crash recovery (editor/world/recovery_journal.c, editor/edit/recover.c), through the
+// command language: a session's journal, as a crash leaves it, restores the exact
+// terrain (hash) with its steps undoable; a torn or damaged journal restores the
+// longest valid prefix, never part of a step; a journal of an older save is not
+// replayed; a new session's first edit sets an unrecovered journal aside; discard
+// removes it; a quit removes this session's journal.
+#include "editor/cmd/commands.h"
+#include "editor/cmd/context.h"
+#include "support/test_support.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <stdarg.h>
+#include <setjmp.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#define AREA "hash -100 -100 700 700"
+
+typedef struct session {
+    cmd_context ctx;
+    char dir[4096], world[4200], journal[4300], backup[4300];
+} session;
+
+// Runs text; returns what it printed (malloc'd). It must succeed unless may_fail.
+static char *run_maybe(session *s, const char *text, int may_fail, og_error *err) {
+    char *printed = NULL;
+    size_t len = 0;
+    FILE *mem = open_memstream(&printed, &len);
+    assert_non_null(mem);
+    s->ctx.out = mem;
+    int rc = cmd_run(&s->ctx, text, strlen(text), "test", err);
+    fclose(mem);
+    s->ctx.out = stdout;
+    if (rc != 0 && !may_fail) fail_msg("'%s' failed: %s", text, err->msg);
+    if (rc != 0) {
+        free(printed);
+        return NULL;
+    }
+    return printed;
+}
+
+static void run(session *s, const char *text) {
+    og_error err = {{0}};
+    free(run_maybe(s, text, 0, &err));
+}
+
+// The digest of the area as the hash command prints it (16 hex digits).
+static void hash(session *s, char out[17]) {
+    og_error err = {{0}};
+    char *printed = run_maybe(s, AREA, 0, &err);
+    snprintf(out, 17, "%.16s", printed);
+    free(printed);
+}
+
+static long info_value(session *s, const char *key) {
+    og_error err = {{0}};
+    char *printed = run_maybe(s, "info", 0, &err);
+    const char *at = strstr(printed, key);
+    long v = at ? strtol(at + strlen(key), NULL, 10) : -1;
+    free(printed);
+    return v;
+}
+
+static void copy_file(const char *from, const char *to, long cut) {
+    FILE *f = fopen(from, "rb");
+    assert_non_null(f);
+    static char data[1 << 22];
+    size_t n = fread(data, 1, sizeof data, f);
+    fclose(f);
+    if (cut > 0) n -= (size_t)cut;
+    test_write_file(to, data, n);
+}
+
+static long file_size(const char *path) {
+    struct stat st;
+    return stat(path, &st) == 0 ? (long)st.st_size : -1;
+}
+
+// A saved world, loaded again; a session of five journal records, the hash after each
+// in h[1..5] (h[0]: the saved state); the journal as a kill at that moment leaves it,
+// in s->backup; then the session quits without saving.
+static void crashed_session(session *s, char h[6][17]) {
+    snprintf(s->dir, sizeof s->dir, "%s", test_tmpdir("recovery"));
+    snprintf(s->world, sizeof s->world, "%s/w.world", s->dir);
+    snprintf(s->journal, sizeof s->journal, "%s.recover", s->world);
+    snprintf(s->backup, sizeof s->backup, "%s/crash.recover", s->dir);
+    world_params p;
+    world_params_default(&p, WORLD_FLAT);
+    og_error err = {{0}};
+    world *w = world_create(&p, NULL, &err);
+    assert_non_null(w);
+    cmd_context_init(&s->ctx, w, NULL, stdout, OROGEN_RESOURCE_DIR);
+    char text[4400];
+    snprintf(text, sizeof text, "tool raise radius=30 strength=1; dab 400 400; save %s", s->world);
+    run(s, text);
+    snprintf(text, sizeof text, "load %s", s->world);
+    run(s, text);
+    hash(s, h[0]);
+    run(s, "tool raise radius=30 strength=1; dab 100 100");
+    hash(s, h[1]);
+    run(s, "dab 200 200");
+    hash(s, h[2]);
+    run(s, "undo");
+    hash(s, h[3]);
+    run(s, "seed 99; generate");
+    hash(s, h[4]);
+    run(s, "stroke 0 0 300 300");
+    hash(s, h[5]);
+    assert_string_equal(h[3], h[1]);
+    assert_string_not_equal(h[4], h[3]);
+    assert_string_not_equal(h[5], h[4]);
+    copy_file(s->journal, s->backup, 0); // what a kill -9 leaves
+    run(s, "new flat");                  // quits the world without saving
+    assert_int_equal(access(s->journal, F_OK), -1);
+}
+
+static void reopen(session *s) {
+    char text[4400];
+    snprintf(text, sizeof text, "load %s", s->world);
+    run(s, text);
+}
+
+static void finish(session *s) {
+    world_close(s->ctx.world);
+    test_rmtree(s->dir);
+}
+
+static void test_recover_exact(void **state) {
+    (void)state;
+    session s;
+    char h[6][17], now[17];
+    crashed_session(&s, h);
+    copy_file(s.backup, s.journal, 0);
+    reopen(&s);
+    assert_int_equal(info_value(&s, "recoverable_steps="), 5);
+    hash(&s, now);
+    assert_string_equal(now, h[0]); // nothing happens before 'recover'
+    run(&s, "recover");
+    hash(&s, now);
+    assert_string_equal(now, h[5]);
+    assert_int_equal(info_value(&s, "unsaved_changes="), 1);
+    assert_int_equal(info_value(&s, "recoverable_steps="), 0);
+    // The steps are undoable: back through the stroke and the generate.
+    run(&s, "undo");
+    hash(&s, now);
+    assert_string_equal(now, h[4]);
+    run(&s, "undo");
+    hash(&s, now);
+    assert_string_equal(now, h[3]);
+    run(&s, "redo; redo");
+    hash(&s, now);
+    assert_string_equal(now, h[5]);
+    // This session's steps follow in the same journal: a second crash recovers all.
+    run(&s, "dab 250 250");
+    char after[17];
+    hash(&s, after);
+    copy_file(s.journal, s.backup, 0);
+    run(&s, "new flat");
+    copy_file(s.backup, s.journal, 0);
+    reopen(&s);
+    run(&s, "recover");
+    hash(&s, now);
+    assert_string_equal(now, after);
+    // save keeps them and ends the journal.
+    run(&s, "save");
+    assert_int_equal(access(s.journal, F_OK), -1);
+    reopen(&s);
+    hash(&s, now);
+    assert_string_equal(now, after);
+    assert_int_equal(info_value(&s, "recoverable_steps="), 0);
+    finish(&s);
+}
+
+// A journal cut anywhere in its last record, or damaged in one, gives the steps before.
+static void test_recover_prefix(void **state) {
+    (void)state;
+    session s;
+    char h[6][17], now[17];
+    crashed_session(&s, h);
+    long size = file_size(s.backup);
+    copy_file(s.backup, s.journal, 7); // a torn last record
+    reopen(&s);
+    assert_int_equal(info_value(&s, "recoverable_steps="), 4);
+    run(&s, "recover");
+    hash(&s, now);
+    assert_string_equal(now, h[4]);
+    run(&s, "new flat");
+
+    // A flipped byte in the middle of the file: some prefix, never a torn step.
+    copy_file(s.backup, s.journal, 0);
+    FILE *f = fopen(s.journal, "r+b");
+    assert_non_null(f);
+    fseek(f, size / 2, SEEK_SET);
+    int c = fgetc(f);
+    fseek(f, size / 2, SEEK_SET);
+    fputc(c ^ 0x5a, f);
+    fclose(f);
+    reopen(&s);
+    long steps = info_value(&s, "recoverable_steps=");
+    assert_true(steps >= 0 && steps < 5);
+    if (steps > 0) run(&s, "recover");
+    hash(&s, now);
+    assert_string_equal(now, h[steps]);
+    finish(&s);
+}
+
+// A journal of another saved state is not replayed; the first edit of a session that
+// did not recover sets the old journal aside; discard removes it.
+static void test_recover_stale_aside_discard(void **state) {
+    (void)state;
+    session s;
+    char h[6][17], now[17], text[4400];
+    crashed_session(&s, h);
+    copy_file(s.backup, s.journal, 0);
+    reopen(&s);
+    run(&s, "dab 10 10"); // a new session's first edit
+    snprintf(text, sizeof text, "%s.old", s.journal);
+    assert_int_equal(access(text, F_OK), 0);
+    run(&s, "save"); // a new saved state
+    copy_file(s.backup, s.journal, 0);
+    reopen(&s);
+    assert_int_equal(info_value(&s, "recoverable_steps="), 0);
+    og_error err = {{0}};
+    assert_null(run_maybe(&s, "recover", 1, &err));
+    assert_non_null(strstr(err.msg, "no unsaved edits to recover"));
+    hash(&s, now);
+    run(&s, "recover discard");
+    assert_int_equal(access(s.journal, F_OK), -1);
+    char after[17];
+    hash(&s, after);
+    assert_string_equal(now, after);
+    finish(&s);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_recover_exact),
+        cmocka_unit_test(test_recover_prefix),
+        cmocka_unit_test(test_recover_stale_aside_discard),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
