@@ -7,7 +7,8 @@
 //     core, and on a plain array (one thread, no tiles: the reference);
 //  3. a 1000-dab stroke over 4 tiles with undo capture, then its undo and redo;
 //  4. that stroke's history memory against the raw bytes of the tiles it covers and
-//     the bytes it actually changed;
+//     the bytes it actually changed, and the cost of appending its step to the crash
+//     recovery journal against the stroke's own time (goal: under 5%);
 //  5. hydraulic (100k droplets) and thermal (20 iterations) erosion of a 1024^2
 //     grid against a memcpy of the grid.
 // Figures are medians of several runs, ratios medians of the per-run ratios; goals
@@ -21,6 +22,7 @@
 #include "editor/edit/parallel.h"
 #include "editor/tools/stamp.h"
 #include "editor/tools/stroke.h"
+#include "editor/world/recovery_journal.h"
 #include "editor/world/world.h"
 
 #include <dirent.h>
@@ -408,6 +410,28 @@ static void bench_stroke(void) {
            4 * changed, held / (4.0 * (double)changed), held / (4.0 * (double)changed0));
     goal("stroke history bytes / (4 B x changed samples)", held / (4.0 * (double)changed), 1.0, 0,
          "x");
+
+    // Crash recovery: the stroke's step appended to a recovery journal, as every
+    // committed step is (the fdatasync runs on the journal's flusher thread).
+    char dir[] = "/tmp/orogen-bench-journal-XXXXXX", path[64];
+    if (!mkdtemp(dir)) check(-1, &err, "mkdtemp");
+    snprintf(path, sizeof path, "%s/w.recover", dir);
+    recovery_journal *j = recovery_journal_open(path, "", 0, &err);
+    if (!j) check(-1, &err, "recovery_journal_open");
+    double ap[RUNS], share[RUNS];
+    for (int r = 0; r < RUNS; r++) {
+        double t0 = bench_now();
+        check(recovery_journal_append(j, RECOVERY_STEP, step, &err), &err, "journal append");
+        ap[r] = bench_now() - t0;
+        share[r] = ap[r] / st[r];
+    }
+    recovery_journal_close(j);
+    remove(path);
+    remove(dir);
+    double a = bench_median(ap, RUNS), sh = bench_median(share, RUNS);
+    printf("  recovery journal: appending the step (%zu bytes) %.3f ms = %.2f%% of the stroke\n",
+           step->bytes, a * 1e3, sh * 100);
+    goal("recovery journal append / stroke, %", sh * 100, 5.0, 0, "%");
     world_close(w);
 }
 
