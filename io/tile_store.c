@@ -800,38 +800,52 @@ static int set_state_id(tile_store *store, const char *id, og_error *err) {
     return rc == SQLITE_DONE ? 0 : db_fail(store, err, "cannot record the saved state");
 }
 
-int tile_store_merge_from(tile_store *store, const char *source_path, const char *state_id,
-                          og_error *err) {
+int tile_store_merge_from(tile_store *store, const char *const *sources, size_t count, int replace,
+                          const char *state_id, og_error *err) {
+    if (count > 4) return og_error_set(err, "tile store '%s': at most 4 sources", store->path);
     pthread_mutex_lock(&store->lock);
-    sqlite3_stmt *st = NULL;
     int rc = 0;
-    if (sqlite3_prepare_v2(store->db, "ATTACH DATABASE ?1 AS merge_source", -1, &st, NULL) !=
-        SQLITE_OK) {
-        rc = db_fail(store, err, "cannot prepare attaching the unsaved edits");
-    } else {
-        sqlite3_bind_text(st, 1, source_path, -1, SQLITE_TRANSIENT);
-        if (sqlite3_step(st) != SQLITE_DONE)
-            rc = db_fail(store, err, "cannot attach the unsaved edits");
-    }
-    sqlite3_finalize(st);
-    if (rc == 0) {
-        // Blobs are copied as they are: both stores share the blob format.
-        if (exec(store, "BEGIN IMMEDIATE", err, "cannot start the merge") == 0) {
-            if (exec(store,
-                     "INSERT INTO main.tiles(layer, face, level, tx, ty, data) "
-                     "SELECT layer, face, level, tx, ty, data FROM merge_source.tiles WHERE true "
-                     "ON CONFLICT(layer, face, level, tx, ty) DO UPDATE SET data=excluded.data",
-                     err, "cannot merge the unsaved edits") == 0 &&
-                set_state_id(store, state_id, err) == 0)
-                rc = exec(store, "COMMIT", err, "cannot commit the merge");
-            else
-                rc = -1;
-            if (rc != 0 && !sqlite3_get_autocommit(store->db))
-                sqlite3_exec(store->db, "ROLLBACK", NULL, NULL, NULL);
+    size_t attached = 0;
+    for (; attached < count && rc == 0; attached++) {
+        char sql[64];
+        snprintf(sql, sizeof sql, "ATTACH DATABASE ?1 AS merge_source%zu", attached);
+        sqlite3_stmt *st = NULL;
+        if (sqlite3_prepare_v2(store->db, sql, -1, &st, NULL) != SQLITE_OK) {
+            rc = db_fail(store, err, "cannot prepare attaching the tiles to save");
         } else {
-            rc = -1;
+            sqlite3_bind_text(st, 1, sources[attached], -1, SQLITE_TRANSIENT);
+            if (sqlite3_step(st) != SQLITE_DONE)
+                rc = db_fail(store, err, "cannot attach the tiles to save");
         }
-        sqlite3_exec(store->db, "DETACH DATABASE merge_source", NULL, NULL, NULL);
+        sqlite3_finalize(st);
+        if (rc != 0) break;
+    }
+    // One transaction: the store has all of it, or is as it was (a full disk half-way
+    // through a save-as must not leave it emptied).
+    if (rc == 0 && exec(store, "BEGIN IMMEDIATE", err, "cannot start the merge") == 0) {
+        if (replace) rc = exec(store, "DELETE FROM main.tiles", err, "cannot clear the tiles");
+        for (size_t i = 0; i < count && rc == 0; i++) {
+            // Blobs are copied as they are: both stores share the blob format.
+            char sql[320];
+            snprintf(
+                sql, sizeof sql,
+                "INSERT INTO main.tiles(layer, face, level, tx, ty, data) "
+                "SELECT layer, face, level, tx, ty, data FROM merge_source%zu.tiles WHERE true "
+                "ON CONFLICT(layer, face, level, tx, ty) DO UPDATE SET data=excluded.data",
+                i);
+            rc = exec(store, sql, err, "cannot merge the tiles to save");
+        }
+        if (rc == 0) rc = set_state_id(store, state_id, err);
+        if (rc == 0) rc = exec(store, "COMMIT", err, "cannot commit the merge");
+        if (rc != 0 && !sqlite3_get_autocommit(store->db))
+            sqlite3_exec(store->db, "ROLLBACK", NULL, NULL, NULL);
+    } else if (rc == 0) {
+        rc = -1;
+    }
+    for (size_t i = 0; i < attached; i++) {
+        char sql[64];
+        snprintf(sql, sizeof sql, "DETACH DATABASE merge_source%zu", i);
+        sqlite3_exec(store->db, sql, NULL, NULL, NULL);
     }
     pthread_mutex_unlock(&store->lock);
     return rc;

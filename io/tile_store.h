@@ -70,13 +70,14 @@ int tile_store_set_meta(tile_store *store, const char *key, const char *value, o
 int tile_store_each(tile_store *store, int (*fn)(void *user, tile_key key), void *user,
                     og_error *err);
 
-// Copies every tile of the store file at source_path into this store in one
-// transaction (tiles present in both take the source's). The source must not be
-// mid-write. Used by save to move unsaved edits into the world's own store. A
-// state_id (unless NULL) goes into the meta table in the same transaction: the
-// saved state a recovery journal builds on is named by it, atomically with the tiles.
-int tile_store_merge_from(tile_store *store, const char *source_path, const char *state_id,
-                          og_error *err);
+// Copies every tile of the store files at sources (at most 4, later ones winning)
+// into this store in one transaction, after deleting every tile first when replace is
+// set; tiles present in both take the source's. The sources must not be mid-write.
+// Used by save to move unsaved edits into the world's own store. A state_id (unless
+// NULL) goes into the meta table in the same transaction: the saved state a recovery
+// journal builds on is named by it, atomically with the tiles.
+int tile_store_merge_from(tile_store *store, const char *const *sources, size_t count, int replace,
+                          const char *state_id, og_error *err);
 // Deletes every tile (one transaction).
 int tile_store_clear(tile_store *store, og_error *err);
 

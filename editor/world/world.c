@@ -481,17 +481,15 @@ static int save_files(world *w, const char *path, world_params p, const char *ti
     int same_store = w->store && strcmp(tiles, tile_store_path(w->store)) == 0;
     tile_store *target = same_store ? w->store : tile_store_open(tiles, err);
     if (!target) return -1;
-    // A new place first gets the saved tiles (and loses those of whatever was saved
-    // there before); then the journal's edits go in, in one transaction.
-    int rc = 0;
-    if (!same_store) {
-        rc = tile_store_clear(target, err);
-        if (rc == 0 && w->store)
-            rc = tile_store_merge_from(target, tile_store_path(w->store), NULL, err);
-    }
+    // A new place gets the saved tiles (and loses those of whatever was saved there
+    // before), then the journal's edits: all in one transaction, with the saved state's id.
+    const char *sources[2];
+    size_t count = 0;
+    if (!same_store && w->store) sources[count++] = tile_store_path(w->store);
+    sources[count++] = tile_store_path(w->journal);
     char state_id[WORLD_ID_CHARS + 1];
-    if (rc == 0) rc = new_world_id(state_id, err);
-    if (rc == 0) rc = tile_store_merge_from(target, tile_store_path(w->journal), state_id, err);
+    int rc = new_world_id(state_id, err);
+    if (rc == 0) rc = tile_store_merge_from(target, sources, count, !same_store, state_id, err);
     // The world's id goes into the store and, with its tile count, into the file, so
     // a store that later goes missing, empty or is swapped is noticed on load.
     if (rc == 0 && !p.tiles_id[0]) rc = new_world_id(p.tiles_id, err);
@@ -551,6 +549,16 @@ int world_save(world *w, const char *path, int force, og_error *err) {
     char tiles[4096];
     if (strcmp(path, w->path) != 0) p.tiles[0] = 0; // a new file gets its own NAME.tiles
     if (world_params_tiles_path(&p, path, tiles, sizeof tiles, err) != 0) return -1;
+    // A file its owner made read-only is protected, also from root (rename would
+    // replace it whatever its mode).
+    struct stat st;
+    if (stat(path, &st) == 0 && S_ISREG(st.st_mode) && !(st.st_mode & 0222))
+        return og_error_set(
+            err, "save: %s is read-only (no write permission); save to another file", path);
+    if (stat(tiles, &st) == 0 && S_ISREG(st.st_mode) && !(st.st_mode & 0222))
+        return og_error_set(
+            err, "save: its tile store %s is read-only (no write permission); save to another file",
+            tiles);
     // One writer: files another live process has open are not written, even forced.
     char lock_path[4300];
     lock_path_of(tiles, lock_path, sizeof lock_path);
