@@ -13,7 +13,7 @@ packages=(
   libcglm-dev libstb-dev fonts-dejavu-core
   libmeshoptimizer-dev libcmocka-dev
   xvfb xdotool xauth assimp-utils imagemagick
-  python3 clang-format
+  python3 clang-format clang libclang-rt-14-dev
   libnoise-dev
   libgdal-dev gdal-bin parallel
 )

@@ -82,6 +82,21 @@ EXPORT int orogen_gdal_module_read(const char *path, int max_size, long long max
         og_error_set(err, "%s: complex samples are not heights", path);
         goto done;
     }
+    // GDAL reads whole blocks, of every band at once when they are interleaved: a
+    // damaged header can claim blocks of gigabytes for a small raster (found by
+    // fuzzing: thousands of bands of 256 x 256), which GDAL would allocate.
+    int block_w = 0, block_h = 0;
+    GDALGetBlockSize(band, &block_w, &block_h);
+    const long long bands = GDALGetRasterCount(ds), sample_bytes = (*bits + 7) / 8;
+    const long long block_bytes = (long long)block_w * block_h * bands * sample_bytes;
+    if (block_w <= 0 || block_h <= 0 ||
+        (block_bytes > (1LL << 28) && block_bytes > 4 * (long long)w * h * bands * sample_bytes)) {
+        og_error_set(err,
+                     "%s: the raster is %d x %d but its %lld band%s claim blocks of %d x %d "
+                     "samples (a damaged file?)",
+                     path, w, h, bands, bands == 1 ? "" : "s", block_w, block_h);
+        goto done;
+    }
     out = malloc(sizeof(float) * (size_t)w * (size_t)h);
     if (!out) {
         og_error_set(err, "%s: out of memory for %d x %d samples", path, w, h);
