@@ -45,7 +45,10 @@ typedef struct editor_ui {
     int confirm_replace;            // asking before saving over a file that loaded with errors
     int replace_lines;              // how many of its bad lines the dialog lists
     int offer_recovery;             // the Recover unsaved edits dialog is up
-    char recover_dismissed[4300];   // the journal whose offer was put off ("Not now")
+    char recover_dismissed[4400];   // the journal whose offer was put off ("Not now")
+    char unsaved_journal[4400];     // a never-saved world's journal a crash left ("": none)
+    size_t unsaved_journal_steps;
+    int64_t unsaved_journal_when;
     char open_path[1024];
     char recent[EDITOR_RECENT][1024]; // worlds opened or saved lately, newest first
     int recent_count;

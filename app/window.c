@@ -1,5 +1,7 @@
 #include "app/window.h"
 
+#include "editor/edit/recover.h"
+
 #include "app/camera_controls.h"
 #include "app/dynamic_resolution.h"
 #include "app/editor_ui.h"
@@ -1395,6 +1397,13 @@ int window_run(cmd_context *ctx, og_error *err) {
         return -1;
     }
     editor_ui_init(&st.ed);
+    if (!world_path(ctx->world)[0]) { // a new session: a never-saved world's crash to offer?
+        recovery_scan scan;
+        if (edit_find_unsaved_journal(st.ed.unsaved_journal, sizeof st.ed.unsaved_journal, &scan)) {
+            st.ed.unsaved_journal_steps = scan.records;
+            st.ed.unsaved_journal_when = scan.last;
+        }
+    }
     st.res_scale = 1.0f;
     st.dynamic_res = 1;
     update_px_scale(&st);

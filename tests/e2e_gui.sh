@@ -511,6 +511,9 @@ click "Replace file/Cancel"
 widget_gone "Replace file/Cancel" && [ ! -s "$work/ro.tiles" ]; check "Cancel leaves the store as it was" $?
 ask "load $work/gui.world" '^loaded' >/dev/null
 wait_title "gui.world - "; check "back to gui.world ($(title))" $?
+# Section 8 drags where the terrain was: wait until every tile in view is there again
+# (window_screenshot answers once they are), or a busy machine picks a coarser surface.
+ask "window_screenshot $work/back.png" '^window_screenshot' >/dev/null
 
 # 8. The unsaved-changes prompt: Cancel keeps working, Discard quits without saving.
 sculpt

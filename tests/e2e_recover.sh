@@ -51,12 +51,14 @@ start() {
     cp "$work/base.tiles" "$work/w.tiles"
     launch
 }
-# Starts the editor on the world as it is.
+# Starts the editor on the world as it is (with "-", on a new unsaved world).
 launch() {
     rm -f "$work/stdin"
     mkfifo "$work/stdin"
     : >"$work/out"
-    "$orogen" "$work/w.world" <"$work/stdin" >"$work/out" 2>"$work/err" &
+    local world=("$work/w.world")
+    [ "${1:-}" = - ] && world=()
+    "$orogen" "${world[@]}" <"$work/stdin" >"$work/out" 2>"$work/err" &
     app=$!
     exec 3>"$work/stdin"
 }
@@ -83,9 +85,15 @@ kill9() {
     exec 3>&-
     app=
 }
-# What recover gives on the killed session's world.
+# What recover gives on the killed session's world (killed before its first step:
+# nothing to recover, the saved terrain).
 recovered() {
-    "$orogen" "$work/w.world" -c "recover; $area" 2>"$work/recover.err" | tail -n 1
+    local out
+    out=$("$orogen" "$work/w.world" -c "recover; $area" 2>"$work/recover.err" | tail -n 1)
+    if [ -z "$out" ] && grep -q "no unsaved edits to recover" "$work/recover.err"; then
+        out=$("$orogen" "$work/w.world" -c "$area" 2>/dev/null)
+    fi
+    echo "$out"
 }
 
 # The hash after each step, from a session that is not killed.
@@ -178,6 +186,29 @@ for _ in $(seq 50); do
     sleep 0.2
 done
 [ "$line" = "${hashes[3]}" ]; check "Recover restores them ($line, wanted ${hashes[3]})" $?
+kill9
+
+# A world that was never saved: its journal lives in the recovery folder, and the next
+# editor to start offers it.
+launch -
+step 0 >/dev/null
+h_unsaved=$(step 1)
+kill9
+ls "$XDG_STATE_HOME"/orogen/recover/unsaved-*.recover >/dev/null 2>&1
+check "a never-saved world's steps are journaled in the recovery folder" $?
+launch -
+read -r x y w h <<<"$(widget "Recover unsaved edits/Recover")"
+widget "Recover unsaved edits/A world that was never saved was open when Orogen stopped." >/dev/null
+check "the next editor offers a never-saved world's edits" $?
+wid=$(timeout 30 xdotool search --sync --name '^Orogen' | head -n 1)
+[ -n "${h:-}" ] && xdotool mousemove --window "$wid" $((x + w / 2)) $((y + h / 2)) click 1
+line=
+for _ in $(seq 50); do
+    line=$(ask "$area" '^[0-9a-f]\{16\}$')
+    [ "$line" = "$h_unsaved" ] && break
+    sleep 0.2
+done
+[ "$line" = "$h_unsaved" ]; check "Recover restores the never-saved world's terrain ($line, wanted $h_unsaved)" $?
 kill9
 
 # A clean quit removes this session's journal: nothing to recover next time.

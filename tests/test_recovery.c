@@ -5,6 +5,7 @@
 // replayed; a new session's first edit sets an unrecovered journal aside; discard
 // removes it; a quit removes this session's journal.
 #include "editor/cmd/commands.h"
+#include "editor/edit/recover.h"
 #include "editor/cmd/context.h"
 #include "support/test_support.h"
 
@@ -238,11 +239,64 @@ static void test_recover_stale_aside_discard(void **state) {
     finish(&s);
 }
 
+// A world that was never saved journals in the recovery folder, onto the parameters it
+// was made with; `recover JOURNAL` makes that world again with its steps.
+static void test_recover_never_saved(void **state) {
+    (void)state;
+    session s;
+    snprintf(s.dir, sizeof s.dir, "%s", test_tmpdir("recovery"));
+    char rec[4200], text[8800], h[3][17], now[17];
+    snprintf(rec, sizeof rec, "%s/rec", s.dir);
+    setenv("OROGEN_RECOVER_DIR", rec, 1);
+    world_params p;
+    world_params_default(&p, WORLD_FLAT);
+    p.seed = 4242;
+    og_error err = {{0}};
+    cmd_context_init(&s.ctx, world_create(&p, NULL, &err), NULL, stdout, OROGEN_RESOURCE_DIR);
+    hash(&s, h[0]);
+    run(&s, "tool raise radius=30 strength=1; dab 100 100");
+    hash(&s, h[1]);
+    run(&s, "seed 7; generate; dab 200 200");
+    hash(&s, h[2]);
+    char journal[4400];
+    recovery_scan scan;
+    assert_int_equal(edit_find_unsaved_journal(journal, sizeof journal, &scan), 0); // ours: live
+    snprintf(s.backup, sizeof s.backup, "%s/crash.recover", s.dir);
+    snprintf(text, sizeof text, "%s", world_recovery_path(s.ctx.world));
+    copy_file(text, s.backup, 0);
+    run(&s, "new flat"); // quits that world: its journal goes
+    assert_int_equal(access(text, F_OK), -1);
+    snprintf(journal, sizeof journal, "%s/unsaved-1-1-0.recover", rec);
+    copy_file(s.backup, journal, 0); // what a kill leaves
+    char found[4400];
+    assert_int_equal(edit_find_unsaved_journal(found, sizeof found, &scan), 1);
+    assert_string_equal(found, journal);
+    assert_int_equal(scan.records, 3);
+    og_error e2 = {{0}};
+    char *printed = run_maybe(&s, "recover", 1, &e2); // the world's own: none, but points there
+    assert_null(printed);
+    assert_non_null(strstr(e2.msg, journal));
+    snprintf(text, sizeof text, "recover %s", journal);
+    run(&s, text);
+    hash(&s, now);
+    assert_string_equal(now, h[2]);
+    assert_int_equal(access(journal, F_OK), -1); // taken over under this process's name
+    run(&s, "undo; undo");
+    hash(&s, now);
+    assert_string_equal(now, h[1]);
+    run(&s, "undo");
+    hash(&s, now);
+    assert_string_equal(now, h[0]);
+    unsetenv("OROGEN_RECOVER_DIR");
+    finish(&s);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_recover_exact),
         cmocka_unit_test(test_recover_prefix),
         cmocka_unit_test(test_recover_stale_aside_discard),
+        cmocka_unit_test(test_recover_never_saved),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -107,12 +107,39 @@ static int c_save(cmd_context *ctx, int argc, char **argv, og_error *err) {
     return 0;
 }
 
-// recover [discard]: replay (or drop) the journal a session that did not save left.
+static void print_recovered(cmd_context *ctx, const recover_report *r) {
+    fprintf(ctx->out,
+            "recovered %zu journal record%s of the last session (its steps are in the "
+            "history); the world is unsaved: save keeps them\n",
+            r->records, r->records == 1 ? "" : "s");
+    if (r->dropped_bytes)
+        fprintf(ctx->out, "a torn last step (%zu bytes) was left out\n", r->dropped_bytes);
+}
+
+// recover [discard] [JOURNAL]: replay (or drop) the journal a session that did not save
+// left: the world's own, or a never-saved world's (by its file).
 static int c_recover(cmd_context *ctx, int argc, char **argv, og_error *err) {
-    if (argc > 1) {
-        if (strcmp(argv[1], "discard") != 0)
-            return og_error_set(err, "recover: expected 'recover' or 'recover discard', got '%s'",
-                                argv[1]);
+    int discard = argc > 1 && strcmp(argv[1], "discard") == 0;
+    const char *journal = argc > 1 + discard ? argv[1 + discard] : NULL;
+    if (argc > 2 + discard || (argc == 3 && !discard))
+        return og_error_set(err, "recover: expected 'recover [discard] [JOURNAL]'");
+    if (discard && journal) {
+        recovery_scan scan;
+        if (recovery_journal_read(journal, &scan, NULL, NULL, err) != 0) return -1;
+        if (!scan.has_base)
+            return og_error_set(err,
+                                "recover: %s is a saved world's journal: open the world and "
+                                "run 'recover discard'",
+                                journal);
+        if (recovery_journal_in_use(journal))
+            return og_error_set(err, "recover: %s belongs to an Orogen that is still running",
+                                journal);
+        if (remove(journal) != 0)
+            return og_error_set(err, "recover: cannot remove %s: %s", journal, strerror(errno));
+        fprintf(ctx->out, "discarded the unsaved edits in %s\n", journal);
+        return 0;
+    }
+    if (discard) {
         char path[4400];
         snprintf(path, sizeof path, "%s", world_recovery_path(ctx->world));
         if (world_recover_discard(ctx->world, err) != 0) return -1;
@@ -120,13 +147,25 @@ static int c_recover(cmd_context *ctx, int argc, char **argv, og_error *err) {
         return 0;
     }
     recover_report r;
+    if (journal) {
+        world *w = edit_recover_unsaved(journal, &ctx->settings, &r, err);
+        if (!w) return -1;
+        replace_world(ctx, w);
+        print_recovered(ctx, &r);
+        return 0;
+    }
+    if (!world_recoverable(ctx->world, NULL)) {
+        // Point at a never-saved world's edits, if a crash left some.
+        char path[4400];
+        recovery_scan scan;
+        if (edit_find_unsaved_journal(path, sizeof path, &scan))
+            return og_error_set(err,
+                                "recover: this world has no unsaved edits to recover; a world "
+                                "that was never saved left %zu steps in %s: 'recover %s'",
+                                scan.records, path, path);
+    }
     if (edit_recover(ctx->world, &r, err) != 0) return -1;
-    fprintf(ctx->out,
-            "recovered %zu journal record%s of the last session (its steps are in the "
-            "history); the world is unsaved: save keeps them\n",
-            r.records, r.records == 1 ? "" : "s");
-    if (r.dropped_bytes)
-        fprintf(ctx->out, "a torn last step (%zu bytes) was left out\n", r.dropped_bytes);
+    print_recovered(ctx, &r);
     return 0;
 }
 
@@ -260,11 +299,12 @@ static const cmd_def commands[] = {
      "names both. It will not write over a file that loaded with errors (their lines would "
      "become defaults) or a file that is not a parameter file, unless force=1.",
      0, 2, c_save, CMD_ENDS_STROKE},
-    {"recover", "recover [discard]",
+    {"recover", "recover [discard] [JOURNAL]",
      "Restores the edits a session that ended without saving (a crash, a kill) left in the "
-     "world's recovery journal: every committed step, undoable, the world unsaved. 'recover "
-     "discard' drops them.",
-     0, 1, c_recover, CMD_ENDS_STROKE},
+     "world's recovery journal: every committed step, undoable, the world unsaved. With a "
+     "JOURNAL file, a never-saved world's edits (kept in the recovery folder) as a new world. "
+     "'recover discard' drops them.",
+     0, 2, c_recover, CMD_ENDS_STROKE},
     {"generate", "generate",
      "Regenerates the world from the next parameters (see nparams). Edited tiles stay.", 0, 0,
      c_generate, CMD_ENDS_STROKE},

@@ -2,6 +2,8 @@
 
 #include "editor/edit/edit.h"
 
+#include <dirent.h>
+
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -71,20 +73,83 @@ static int replay_record(void *user, recovery_kind kind, uint64_t journal_id, hi
     return 0;
 }
 
+// Replays the journal at path onto w (its records are not journaled again).
+static int replay_journal(world *w, const char *path, recover_report *report, recovery_scan *scan,
+                          og_error *err) {
+    memset(report, 0, sizeof *report);
+    recovery r = {.w = w, .report = report};
+    world_journal_pause(w, 1);
+    int rc = recovery_journal_read(path, scan, replay_record, &r, err);
+    world_journal_pause(w, 0);
+    free(r.ids);
+    report->dropped_bytes = scan->dropped_bytes;
+    report->when = scan->last;
+    world_publish(w, &(world_event){.kind = WORLD_EVENT_HISTORY});
+    return rc;
+}
+
 int edit_recover(world *w, recover_report *report, og_error *err) {
     memset(report, 0, sizeof *report);
     if (!world_recoverable(w, NULL))
         return og_error_set(err, "recover: %s has no unsaved edits to recover",
                             world_path(w)[0] ? world_path(w) : "this world");
-    recovery r = {.w = w, .report = report};
     recovery_scan scan;
-    world_journal_pause(w, 1);
-    int rc = recovery_journal_read(world_recovery_path(w), &scan, replay_record, &r, err);
-    world_journal_pause(w, 0);
-    free(r.ids);
-    report->dropped_bytes = scan.dropped_bytes;
-    report->when = scan.last;
-    world_publish(w, &(world_event){.kind = WORLD_EVENT_HISTORY});
-    if (rc != 0) return -1;
+    if (replay_journal(w, world_recovery_path(w), report, &scan, err) != 0) return -1;
     return world_journal_continue(w, scan.valid_bytes, err);
+}
+
+world *edit_recover_unsaved(const char *journal, const world_settings *settings,
+                            recover_report *report, og_error *err) {
+    memset(report, 0, sizeof *report);
+    recovery_scan scan;
+    if (recovery_journal_read(journal, &scan, NULL, NULL, err) != 0) return NULL;
+    if (!scan.has_base) {
+        og_error_set(err,
+                     "recover: %s is the journal of a saved world: open that world and run "
+                     "'recover'",
+                     journal);
+        return NULL;
+    }
+    if (recovery_journal_in_use(journal)) {
+        og_error_set(err, "recover: %s belongs to an Orogen that is still running", journal);
+        return NULL;
+    }
+    world *w = world_create(&scan.base, settings, err);
+    if (!w) return NULL;
+    if (replay_journal(w, journal, report, &scan, err) != 0 ||
+        world_adopt_journal(w, journal, scan.valid_bytes, err) != 0) {
+        world_close(w);
+        return NULL;
+    }
+    return w;
+}
+
+int edit_find_unsaved_journal(char *path, size_t len, recovery_scan *scan) {
+    char dir[4096];
+    og_error err;
+    if (world_recovery_dir(dir, sizeof dir, &err) != 0) return 0;
+    DIR *d = opendir(dir);
+    if (!d) return 0;
+    int found = 0;
+    struct dirent *e;
+    while ((e = readdir(d))) {
+        size_t n = strlen(e->d_name);
+        if (strncmp(e->d_name, "unsaved-", 8) != 0 || n < 9 ||
+            strcmp(e->d_name + n - 8, ".recover") != 0)
+            continue;
+        char candidate[4400];
+        snprintf(candidate, sizeof candidate, "%s/%s", dir, e->d_name);
+        recovery_scan s;
+        if (recovery_journal_in_use(candidate) ||
+            recovery_journal_read(candidate, &s, NULL, NULL, &err) != 0 || !s.records ||
+            !s.has_base)
+            continue;
+        if (!found || s.last > scan->last) {
+            snprintf(path, len, "%s", candidate);
+            *scan = s;
+            found = 1;
+        }
+    }
+    closedir(d);
+    return found;
 }

@@ -21,5 +21,13 @@ typedef struct recover_report {
 
 // Fails (nothing changed) when the world has no journal to recover.
 int edit_recover(world *w, recover_report *report, og_error *err);
+// A never-saved world's journal (world_recovery_dir): a new world of its base
+// parameters with its steps replayed, the journal now its own. NULL with err when the
+// journal is not one, or its Orogen still runs.
+world *edit_recover_unsaved(const char *journal, const world_settings *settings,
+                            recover_report *report, og_error *err);
+// The newest journal a never-saved world left in the recovery folder when its Orogen
+// stopped without saving (a crash, a kill): 1 with its path and scan, or 0.
+int edit_find_unsaved_journal(char *path, size_t len, recovery_scan *scan);
 
 #endif

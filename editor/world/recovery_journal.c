@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/file.h>
 #include <sys/random.h>
 #include <sys/stat.h>
 #include <time.h>
@@ -17,7 +18,8 @@
 // File: header record, then step records. Every record is
 //   u32 magic, u32 payload bytes, u32 CRC32C of the payload, payload
 // little-endian. The header's payload: u32 version, state id (32 bytes, NUL padded),
-// i64 start time. A step's: u8 kind, u64 session id, i64 time, u16 label bytes,
+// i64 start time, u32 bytes + text of the base parameters (0: none, the world's file
+// has them). A step's: u8 kind, u64 session id, i64 time, u16 label bytes,
 // label, u32 tiles x (i32 layer face level tx ty, u8 was_pristine, u32 bytes, delta),
 // u32 dirty areas x (i32 layer face, i64 x0 z0 x1 z1), u8 has_params (then u32 bytes
 // + text of the parameters before and after).
@@ -123,6 +125,8 @@ static int write_all(int fd, const uint8_t *p, size_t n) {
 
 // ---- writing -----------------------------------------------------------------------
 
+static void put_params(buf *b, const world_params *p);
+
 static uint64_t random_u64(void) {
     uint64_t v = 0;
     if (getrandom(&v, sizeof v, 0) != (ssize_t)sizeof v)
@@ -168,7 +172,8 @@ static void sync_folder(const char *path) {
     }
 }
 
-recovery_journal *recovery_journal_open(const char *path, const char *state_id, size_t keep_bytes,
+recovery_journal *recovery_journal_open(const char *path, const char *state_id,
+                                        const world_params *base, size_t keep_bytes,
                                         og_error *err) {
     recovery_journal *j = calloc(1, sizeof *j);
     if (!j) {
@@ -194,6 +199,10 @@ recovery_journal *recovery_journal_open(const char *path, const char *state_id, 
         memcpy(id, state_id, strnlen(state_id, sizeof id));
         put(&payload, id, sizeof id);
         put_u64(&payload, (uint64_t)time(NULL));
+        if (base)
+            put_params(&payload, base);
+        else
+            put_u32(&payload, 0);
         frame(&out, HEADER_MAGIC, &payload);
         rc = payload.oom || out.oom ? -1 : write_all(j->fd, out.p, out.len);
         if (rc == 0) rc = fdatasync(j->fd);
@@ -207,6 +216,7 @@ recovery_journal *recovery_journal_open(const char *path, const char *state_id, 
         return NULL;
     }
     if (!keep_bytes) sync_folder(path);
+    flock(j->fd, LOCK_EX | LOCK_NB); // held while open: recovery_journal_in_use says so
     pthread_mutex_init(&j->lock, NULL);
     pthread_cond_init(&j->wake, NULL);
     if (pthread_create(&j->flusher, NULL, flusher_main, j) != 0) {
@@ -418,6 +428,15 @@ int recovery_journal_read(const char *path, recovery_scan *scan,
             memcpy(scan->state_id, id, RECOVERY_STATE_CHARS);
             scan->state_id[RECOVERY_STATE_CHARS] = 0;
             scan->started = scan->last = (int64_t)get_le(&c, 8);
+            cursor peek = c;
+            uint32_t base_len = (uint32_t)get_le(&peek, 4);
+            if (peek.bad) break;
+            if (!base_len)
+                c = peek;
+            else if (get_params(&c, &scan->base) == 0)
+                scan->has_base = 1;
+            else
+                break;
         } else {
             recovery_kind kind;
             uint64_t session_id;
@@ -446,4 +465,12 @@ int recovery_journal_read(const char *path, recovery_scan *scan,
                             path);
     scan->dropped_bytes = size - scan->valid_bytes;
     return rc;
+}
+
+int recovery_journal_in_use(const char *path) {
+    int fd = open(path, O_RDONLY | O_CLOEXEC);
+    if (fd < 0) return 0;
+    int busy = flock(fd, LOCK_EX | LOCK_NB) != 0 && errno == EWOULDBLOCK;
+    close(fd);
+    return busy;
 }

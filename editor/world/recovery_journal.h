@@ -27,10 +27,12 @@ typedef enum recovery_kind {
 typedef struct recovery_journal recovery_journal;
 
 // Opens the journal at path for appending records onto the saved state state_id
-// ("" when the world has no tile store yet). keep_bytes > 0 keeps that much of an
-// existing journal (its valid prefix, after a recovery); 0 starts a new one.
-recovery_journal *recovery_journal_open(const char *path, const char *state_id, size_t keep_bytes,
-                                        og_error *err);
+// ("" when the world has no tile store yet), or, for a world never saved, onto a new
+// world of the parameters base (NULL when the world has a file). keep_bytes > 0 keeps
+// that much of an existing journal (its valid prefix, after a recovery); 0 starts a
+// new one. The file stays locked (flock) while open.
+recovery_journal *recovery_journal_open(const char *path, const char *state_id,
+                                        const world_params *base, size_t keep_bytes, og_error *err);
 // Appends one record: the step's label, tile deltas, dirty areas and parameters.
 int recovery_journal_append(recovery_journal *j, recovery_kind kind, const history_step *s,
                             og_error *err);
@@ -40,10 +42,12 @@ void recovery_journal_close(recovery_journal *j);
 typedef struct recovery_scan {
     char state_id[RECOVERY_STATE_CHARS + 1]; // the saved state it builds on
     int64_t started;                         // when its first record was written (unix s)
-    int64_t last;                            // when its last valid record was written
-    size_t records;                          // valid records
-    size_t valid_bytes;                      // the file's valid prefix
-    size_t dropped_bytes;                    // a torn or damaged tail after it
+    int has_base;                            // a never-saved world's: made from base
+    world_params base;
+    int64_t last;         // when its last valid record was written
+    size_t records;       // valid records
+    size_t valid_bytes;   // the file's valid prefix
+    size_t dropped_bytes; // a torn or damaged tail after it
 } recovery_scan;
 
 // Reads the journal at path: for each valid record, fn gets its kind, an id of the step
@@ -55,5 +59,8 @@ int recovery_journal_read(const char *path, recovery_scan *scan,
                           int (*fn)(void *user, recovery_kind kind, uint64_t session_id,
                                     history_step *step, og_error *err),
                           void *user, og_error *err);
+
+// 1 when a live process has the journal at path open (it is not a crash's).
+int recovery_journal_in_use(const char *path);
 
 #endif

@@ -49,6 +49,10 @@ struct world {
     int journal_paused, journal_failed;
     size_t recoverable;
     int64_t recoverable_when;
+    // A never-saved world journals under the recovery folder, onto the parameters it
+    // was created with.
+    int unsaved_journal;
+    world_params base_params;
     // Edits go to the journal (a scratch store) until saved; the world's own store,
     // when it has one, is only read until `save` merges the journal into it. So a
     // world closed without saving leaves its files exactly as they were.
@@ -183,6 +187,7 @@ static world *world_alloc(const world_params *params, const world_settings *sett
 world *world_create(const world_params *params, const world_settings *settings, og_error *err) {
     if (check_params(params, err) != 0) return NULL;
     world *w = world_alloc(params, settings);
+    if (w) w->base_params = *params;
     if (!w) {
         og_error_set(err, "out of memory");
         return NULL;
@@ -527,6 +532,7 @@ static int save_files(world *w, const char *path, world_params p, const char *ti
     w->rj = NULL;
     memcpy(w->state_id, state_id, sizeof w->state_id);
     snprintf(w->recover_path, sizeof w->recover_path, "%s.recover", path);
+    w->unsaved_journal = 0;
     w->recoverable = 0;
     w->journal_failed = 0;
     if (!same_store) {
@@ -773,9 +779,54 @@ const char *world_read_only(const world *w) {
     return w->read_only;
 }
 
+int world_recovery_dir(char *out, size_t len, og_error *err) {
+    const char *env = getenv("OROGEN_RECOVER_DIR"), *state = getenv("XDG_STATE_HOME"),
+               *home = getenv("HOME");
+    if (env && *env)
+        snprintf(out, len, "%s", env);
+    else if (state && *state)
+        snprintf(out, len, "%s/orogen/recover", state);
+    else if (home && *home)
+        snprintf(out, len, "%s/.local/state/orogen/recover", home);
+    else
+        return og_error_set(err, "no folder for recovery journals ($HOME is not set)");
+    // mkdir -p
+    for (char *c = out + 1;; c++) {
+        if (*c != '/' && *c) continue;
+        char keep = *c;
+        *c = 0;
+        int rc = mkdir(out, 0700);
+        int e = errno;
+        *c = keep;
+        if (rc != 0 && e != EEXIST)
+            return og_error_set(err, "cannot create the recovery folder %s: %s", out, strerror(e));
+        if (!keep) return 0;
+    }
+}
+
+// A journal of this process for a never-saved world.
+static int unsaved_journal_path(char *out, size_t len, og_error *err) {
+    static unsigned counter;
+    char dir[4096];
+    if (world_recovery_dir(dir, sizeof dir, err) != 0) return -1;
+    snprintf(out, len, "%s/unsaved-%ld-%lld-%u.recover", dir, (long)getpid(), (long long)time(NULL),
+             counter++);
+    return 0;
+}
+
 void world_journal_record(world *w, recovery_kind kind, const history_step *s) {
-    if (w->journal_paused || !w->recover_path[0] || w->read_only[0] || w->journal_failed) return;
+    if (w->journal_paused || w->read_only[0] || w->journal_failed) return;
     og_error err;
+    if (!w->recover_path[0]) {
+        if (w->path[0]) return;
+        if (unsaved_journal_path(w->recover_path, sizeof w->recover_path, &err) != 0) {
+            w->journal_failed = 1;
+            warn_path(w, "unsaved world", "warning: %s; edits are not protected against a crash",
+                      err.msg);
+            return;
+        }
+        w->unsaved_journal = 1;
+    }
     if (!w->rj) {
         if (w->recoverable) {
             // A new session's edits cannot follow an unrecovered one's: set it aside.
@@ -788,15 +839,19 @@ void world_journal_record(world *w, recovery_kind kind, const history_step *s) {
                           aside);
             w->recoverable = 0;
         }
-        if (!(w->rj = recovery_journal_open(w->recover_path, w->state_id, 0, &err))) {
+        if (!(w->rj =
+                  recovery_journal_open(w->recover_path, w->state_id,
+                                        w->unsaved_journal ? &w->base_params : NULL, 0, &err))) {
             w->journal_failed = 1;
-            warn_path(w, w->path, "warning: %s; edits are not protected against a crash", err.msg);
+            warn_path(w, w->path[0] ? w->path : "unsaved world",
+                      "warning: %s; edits are not protected against a crash", err.msg);
             return;
         }
     }
     if (recovery_journal_append(w->rj, kind, s, &err) != 0) {
         w->journal_failed = 1;
-        warn_path(w, w->path, "warning: %s; edits are not protected against a crash", err.msg);
+        warn_path(w, w->path[0] ? w->path : "unsaved world",
+                  "warning: %s; edits are not protected against a crash", err.msg);
     }
 }
 
@@ -821,8 +876,17 @@ int world_journal_continue(world *w, size_t keep_bytes, og_error *err) {
     w->recoverable = 0;
     if (w->read_only[0]) return 0;
     recovery_journal_close(w->rj);
-    w->rj = recovery_journal_open(w->recover_path, w->state_id, keep_bytes, err);
+    w->rj = recovery_journal_open(w->recover_path, w->state_id,
+                                  w->unsaved_journal ? &w->base_params : NULL, keep_bytes, err);
     return w->rj ? 0 : -1;
+}
+
+int world_adopt_journal(world *w, const char *journal, size_t keep_bytes, og_error *err) {
+    if (unsaved_journal_path(w->recover_path, sizeof w->recover_path, err) != 0) return -1;
+    if (rename(journal, w->recover_path) != 0)
+        return og_error_set(err, "recover: cannot take over %s: %s", journal, strerror(errno));
+    w->unsaved_journal = 1;
+    return world_journal_continue(w, keep_bytes, err);
 }
 
 int world_recover_discard(world *w, og_error *err) {

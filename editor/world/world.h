@@ -55,8 +55,8 @@ const char *world_file_problems(const world *w);
 const char *world_read_only(const world *w);
 
 // Crash recovery (recovery_journal.h). Records a committed step, or its undo or redo,
-// in the journal beside the world's file (edit.c calls it for every history change;
-// a never-saved or read-only world keeps none).
+// in the journal beside the world's file, or for a never-saved world in the recovery
+// folder (edit.c calls it for every history change; a read-only world keeps none).
 void world_journal_record(world *w, recovery_kind kind, const history_step *s);
 // Steps a session that did not save left in the journal, on the state the world was
 // loaded in (0: none), and when the last was made.
@@ -67,6 +67,12 @@ const char *world_state_id(const world *w);      // the saved state edits build 
 void world_journal_pause(world *w, int paused);
 // After `recover`: this session's records follow the journal's first keep_bytes.
 int world_journal_continue(world *w, size_t keep_bytes, og_error *err);
+// The folder of never-saved worlds' journals ($OROGEN_RECOVER_DIR, else
+// $XDG_STATE_HOME/orogen/recover, else ~/.local/state/orogen/recover), created if need be.
+int world_recovery_dir(char *out, size_t len, og_error *err);
+// After recovering a never-saved world's journal into w: the journal becomes w's own
+// (its first keep_bytes), under this process's name.
+int world_adopt_journal(world *w, const char *journal, size_t keep_bytes, og_error *err);
 // `recover discard`: removes the journal.
 int world_recover_discard(world *w, og_error *err);
 

@@ -27,4 +27,7 @@ if [ -n "${ASAN_OPTIONS:-}" ]; then export ASAN_OPTIONS="$ASAN_OPTIONS:detect_le
 # keep both inside the test.
 export XDG_CONFIG_HOME="$work/config"
 export XDG_DATA_HOME="$work/data"
+# Never-saved worlds' crash journals, and the offer to recover them at start, too.
+export XDG_STATE_HOME="$work/state"
+unset OROGEN_RECOVER_DIR
 unset OROGEN_STAMP_DIR
