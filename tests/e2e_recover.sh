@@ -211,6 +211,19 @@ done
 [ "$line" = "$h_unsaved" ]; check "Recover restores the never-saved world's terrain ($line, wanted $h_unsaved)" $?
 kill9
 
+# One writer: while the editor has the world open, a second orogen opens it read-only
+# and cannot save over it, but can save elsewhere.
+start
+step 0 >/dev/null
+"$orogen" "$work/w.world" -c "dab 10 10; save" >"$work/second.out" 2>"$work/second.err"
+status=$?
+[ $status = 1 ] && grep -q "w.world is open in process $app: opened read-only" "$work/second.err" &&
+    grep -q "save: $work/w.world is open in process $app; save to another file" "$work/second.err"
+check "a second process opens the world read-only and cannot save over it ($(tail -n 1 "$work/second.err" | head -c 200))" $?
+"$orogen" "$work/w.world" -c "dab 10 10; save $work/copy.world" >/dev/null 2>&1
+[ -s "$work/copy.world" ]; check "it saves to another file" $?
+kill9
+
 # A clean quit removes this session's journal: nothing to recover next time.
 start
 step 0 >/dev/null
