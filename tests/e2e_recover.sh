@@ -33,10 +33,9 @@ area='hash -200 -200 900 900'
 "$orogen" -c "tool raise radius=40 strength=1; dab 450 450; save $work/base.world" >/dev/null 2>&1
 saved=$("$orogen" "$work/base.world" -c "$area" 2>/dev/null)
 
-# The session's steps: each is one undo step (the last is long: some 5 s of erosion;
-# the sanitizers' build runs about ten times slower).
+# The session's steps: each is one undo step (the last is long: some 5 s of erosion,
+# longer under the sanitizers).
 droplets=300000
-[ -n "${ASAN_OPTIONS:-}" ] && droplets=40000
 steps=(
     "tool raise radius=30 strength=1; dab 100 100"
     "stroke 0 0 300 300 600 0"
@@ -180,7 +179,7 @@ wid=$(timeout 30 xdotool search --sync --name '^Orogen' | head -n 1)
 read -r x y w h <<<"$(widget "Recover unsaved edits/Recover")"
 [ -n "${h:-}" ]; check "the window offers to recover the killed session's edits" $?
 widget "Recover unsaved edits/Its edits of *" >/dev/null
-import -window "$wid" "$art/recover_dialog.png" 2>/dev/null
+[ -n "$wid" ] && timeout 20 import -window "$wid" "$art/recover_dialog.png" 2>/dev/null
 [ -n "${h:-}" ] && xdotool mousemove --window "$wid" $((x + w / 2)) $((y + h / 2)) click 1
 line=
 for _ in $(seq 50); do

@@ -441,7 +441,7 @@ int recovery_journal_read(const char *path, recovery_scan *scan,
             recovery_kind kind;
             uint64_t session_id;
             cursor probe = c;
-            get_le(&probe, 9);
+            take(&probe, 9); // kind and session id
             int64_t when = (int64_t)get_le(&probe, 8);
             history_step *s = decode_step(&c, &kind, &session_id);
             if (!s) break;
