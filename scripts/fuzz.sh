@@ -34,7 +34,7 @@ for t in "${targets[@]}"; do
   dict=()
   [ -f "$root/tests/fuzz/$name.dict" ] && dict=(-dict="$root/tests/fuzz/$name.dict")
   log="$dir/$t.log"
-  if "$dir/tests/fuzz/$t" -max_total_time="$seconds" -timeout=30 -rss_limit_mb=4096 \
+  if "$dir/tests/fuzz/$t" -max_total_time="$seconds" -timeout=30 -rss_limit_mb=8192 -malloc_limit_mb=8192 \
     -max_len=65536 -artifact_prefix="$dir/artifacts/$t-" -print_final_stats=1 "${dict[@]}" \
     "$found" "$seeds" >"$log" 2>&1; then
     runs=$(grep -m 1 'stat::number_of_executed_units' "$log" | grep -oE '[0-9]+$' || echo '?')

@@ -89,8 +89,10 @@ EXPORT int orogen_gdal_module_read(const char *path, int max_size, long long max
     GDALGetBlockSize(band, &block_w, &block_h);
     const long long bands = GDALGetRasterCount(ds), sample_bytes = (*bits + 7) / 8;
     const long long block_bytes = (long long)block_w * block_h * bands * sample_bytes;
+    // What it may take: a few times the band we read (one strip of a whole big DEM is
+    // fine), not the other bands' share of an interleaved block.
     if (block_w <= 0 || block_h <= 0 ||
-        (block_bytes > (1LL << 28) && block_bytes > 4 * (long long)w * h * bands * sample_bytes)) {
+        (block_bytes > (1LL << 28) && block_bytes > 4 * (long long)w * h * sample_bytes)) {
         og_error_set(err,
                      "%s: the raster is %d x %d but its %lld band%s claim blocks of %d x %d "
                      "samples (a damaged file?)",
