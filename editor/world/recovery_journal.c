@@ -5,6 +5,7 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <limits.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -12,6 +13,7 @@
 #include <sys/file.h>
 #include <sys/random.h>
 #include <sys/stat.h>
+#include <sys/uio.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -239,51 +241,147 @@ static void put_params(buf *b, const world_params *p) {
     free(text);
 }
 
+// A record is written straight from the step's deltas, with no copy of them (an
+// import's step holds hundreds of megabytes): its small fields go to one buffer, and
+// the pieces (buffer spans and deltas, in order) to one writev.
+typedef struct piece {
+    const void *data; // a delta, or NULL: meta bytes [off, off + len)
+    size_t off, len;
+} piece;
+
+typedef struct record {
+    buf meta;
+    piece *pieces;
+    size_t count, cap, meta_mark;
+    int oom;
+} record;
+
+// Ends the meta bytes put since the last piece as a piece of their own.
+static void close_meta(record *r) {
+    if (r->meta.len > r->meta_mark) {
+        if (r->count == r->cap) {
+            size_t cap = r->cap ? r->cap * 2 : 64;
+            piece *grown = realloc(r->pieces, cap * sizeof *grown);
+            if (!grown) {
+                r->oom = 1;
+                return;
+            }
+            r->pieces = grown, r->cap = cap;
+        }
+        r->pieces[r->count++] = (piece){NULL, r->meta_mark, r->meta.len - r->meta_mark};
+    }
+    r->meta_mark = r->meta.len;
+}
+
+static void add_data(record *r, const void *data, size_t len) {
+    close_meta(r);
+    if (r->oom || !len) return;
+    if (r->count == r->cap) {
+        size_t cap = r->cap ? r->cap * 2 : 64;
+        piece *grown = realloc(r->pieces, cap * sizeof *grown);
+        if (!grown) {
+            r->oom = 1;
+            return;
+        }
+        r->pieces = grown, r->cap = cap;
+    }
+    r->pieces[r->count++] = (piece){data, 0, len};
+}
+
+static const void *piece_bytes(const record *r, const piece *p) {
+    return p->data ? p->data : r->meta.p + p->off;
+}
+
+// Writes head + pieces, IOV_MAX at a time, through short writes.
+static int write_pieces(int fd, const uint8_t *head, size_t head_len, const record *r) {
+    struct iovec iov[IOV_MAX];
+    size_t next = 0, skip = 0; // piece index, bytes of it already written
+    int n = 0;
+    iov[n++] = (struct iovec){(void *)head, head_len};
+    for (;;) {
+        while (n < IOV_MAX && next < r->count) {
+            const piece *p = &r->pieces[next];
+            iov[n++] = (struct iovec){(uint8_t *)piece_bytes(r, p) + skip, p->len - skip};
+            skip = 0;
+            next++;
+        }
+        if (!n) return 0;
+        ssize_t w = writev(fd, iov, n);
+        if (w < 0 && errno == EINTR) continue;
+        if (w < 0) return -1;
+        // Drop what was written; a partly written vector stays, shortened.
+        int k = 0;
+        size_t done = (size_t)w;
+        while (k < n && done >= iov[k].iov_len)
+            done -= iov[k++].iov_len;
+        if (k < n) {
+            iov[k].iov_base = (uint8_t *)iov[k].iov_base + done;
+            iov[k].iov_len -= done;
+        }
+        memmove(iov, iov + k, (size_t)(n - k) * sizeof *iov);
+        n -= k;
+    }
+}
+
 int recovery_journal_append(recovery_journal *j, recovery_kind kind, const history_step *s,
                             og_error *err) {
-    buf payload = {0}, out = {0};
-    put_u8(&payload, (uint8_t)kind);
-    put_u64(&payload, (uint64_t)j->session << 32 | (uint32_t)s->id);
-    put_u64(&payload, (uint64_t)time(NULL));
+    record r = {0};
+    buf *m = &r.meta;
+    put_u8(m, (uint8_t)kind);
+    put_u64(m, (uint64_t)j->session << 32 | (uint32_t)s->id);
+    put_u64(m, (uint64_t)time(NULL));
     size_t label = strnlen(s->label, sizeof s->label);
-    put_u16(&payload, (uint16_t)label);
-    put(&payload, s->label, label);
-    put_u32(&payload, (uint32_t)s->tile_count);
+    put_u16(m, (uint16_t)label);
+    put(m, s->label, label);
+    put_u32(m, (uint32_t)s->tile_count);
     for (size_t i = 0; i < s->tile_count; i++) {
         const history_tile *t = &s->tiles[i];
-        put_u32(&payload, (uint32_t)t->key.layer);
-        put_u32(&payload, (uint32_t)t->key.face);
-        put_u32(&payload, (uint32_t)t->key.level);
-        put_u32(&payload, (uint32_t)t->key.tx);
-        put_u32(&payload, (uint32_t)t->key.ty);
-        put_u8(&payload, (uint8_t)(t->was_pristine != 0));
-        put_u32(&payload, (uint32_t)t->bytes);
-        put(&payload, t->delta, t->bytes);
+        put_u32(m, (uint32_t)t->key.layer);
+        put_u32(m, (uint32_t)t->key.face);
+        put_u32(m, (uint32_t)t->key.level);
+        put_u32(m, (uint32_t)t->key.tx);
+        put_u32(m, (uint32_t)t->key.ty);
+        put_u8(m, (uint8_t)(t->was_pristine != 0));
+        put_u32(m, (uint32_t)t->bytes);
+        add_data(&r, t->delta, t->bytes);
     }
-    put_u32(&payload, (uint32_t)s->dirty_count);
+    put_u32(m, (uint32_t)s->dirty_count);
     for (size_t i = 0; i < s->dirty_count; i++) {
         const dirty_rect *d = &s->dirty[i];
-        put_u32(&payload, (uint32_t)d->layer);
-        put_u32(&payload, (uint32_t)d->face);
-        put_u64(&payload, (uint64_t)d->rect.x0);
-        put_u64(&payload, (uint64_t)d->rect.z0);
-        put_u64(&payload, (uint64_t)d->rect.x1);
-        put_u64(&payload, (uint64_t)d->rect.z1);
+        put_u32(m, (uint32_t)d->layer);
+        put_u32(m, (uint32_t)d->face);
+        put_u64(m, (uint64_t)d->rect.x0);
+        put_u64(m, (uint64_t)d->rect.z0);
+        put_u64(m, (uint64_t)d->rect.x1);
+        put_u64(m, (uint64_t)d->rect.z1);
     }
-    put_u8(&payload, (uint8_t)(s->has_params != 0));
+    put_u8(m, (uint8_t)(s->has_params != 0));
     if (s->has_params) {
-        put_params(&payload, &s->params_before);
-        put_params(&payload, &s->params_after);
+        put_params(m, &s->params_before);
+        put_params(m, &s->params_after);
     }
-    frame(&out, RECORD_MAGIC, &payload);
+    close_meta(&r);
     int rc = 0;
-    if (payload.oom || out.oom)
+    if (m->oom || r.oom) {
         rc = og_error_set(err, "%s: out of memory writing the recovery journal", j->path);
-    else if (write_all(j->fd, out.p, out.len) != 0)
-        rc = og_error_set(err, "%s: cannot write the recovery journal: %s", j->path,
-                          strerror(errno));
-    free(payload.p);
-    free(out.p);
+    } else {
+        size_t len = 0;
+        uint32_t crc = 0;
+        for (size_t i = 0; i < r.count; i++) {
+            crc = crc32c_update(crc, piece_bytes(&r, &r.pieces[i]), r.pieces[i].len);
+            len += r.pieces[i].len;
+        }
+        buf head = {0};
+        put_u32(&head, RECORD_MAGIC);
+        put_u32(&head, (uint32_t)len);
+        put_u32(&head, crc);
+        if (head.oom || write_pieces(j->fd, head.p, head.len, &r) != 0)
+            rc = og_error_set(err, "%s: cannot write the recovery journal: %s", j->path,
+                              strerror(errno));
+        free(head.p);
+    }
+    free(m->p);
+    free(r.pieces);
     if (rc == 0) {
         pthread_mutex_lock(&j->lock);
         j->dirty = 1;
