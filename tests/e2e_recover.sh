@@ -175,18 +175,24 @@ widget() {
     done
     return 1
 }
+# Asks for the hash until it is WANT (a click acts a frame later; up to ~10 s); prints
+# the last one.
+hash_until() {
+    local line
+    for _ in $(seq 50); do
+        line=$(ask "$area" '^[0-9a-f]\{16\}$')
+        [ "$line" = "$1" ] && break
+        sleep 0.2
+    done
+    echo "$line"
+}
 wid=$(timeout 30 xdotool search --sync --name '^Orogen' | head -n 1)
 read -r x y w h <<<"$(widget "Recover unsaved edits/Recover")"
 [ -n "${h:-}" ]; check "the window offers to recover the killed session's edits" $?
 widget "Recover unsaved edits/Its edits of *" >/dev/null
 [ -n "$wid" ] && timeout 20 import -window "$wid" "$art/recover_dialog.png" 2>/dev/null
 [ -n "${h:-}" ] && xdotool mousemove --window "$wid" $((x + w / 2)) $((y + h / 2)) click 1
-line=
-for _ in $(seq 50); do
-    line=$(ask "$area" '^[0-9a-f]\{16\}$')
-    [ "$line" = "${hashes[3]}" ] && break
-    sleep 0.2
-done
+line=$(hash_until "${hashes[3]}")
 [ "$line" = "${hashes[3]}" ]; check "Recover restores them ($line, wanted ${hashes[3]})" $?
 kill9
 
@@ -204,12 +210,7 @@ widget "Recover unsaved edits/A world that was never saved was open when Orogen 
 check "the next editor offers a never-saved world's edits" $?
 wid=$(timeout 30 xdotool search --sync --name '^Orogen' | head -n 1)
 [ -n "${h:-}" ] && xdotool mousemove --window "$wid" $((x + w / 2)) $((y + h / 2)) click 1
-line=
-for _ in $(seq 50); do
-    line=$(ask "$area" '^[0-9a-f]\{16\}$')
-    [ "$line" = "$h_unsaved" ] && break
-    sleep 0.2
-done
+line=$(hash_until "$h_unsaved")
 [ "$line" = "$h_unsaved" ]; check "Recover restores the never-saved world's terrain ($line, wanted $h_unsaved)" $?
 kill9
 

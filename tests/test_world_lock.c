@@ -65,6 +65,17 @@ static pid_t open_in_child(const char *path) {
     return pid;
 }
 
+// A new world saved at path, then closed (no threads of ours run while a child forks).
+static void save_new_world(const char *path, world_settings *s) {
+    og_error err = {{0}};
+    world_params p;
+    world_params_default(&p, WORLD_FLAT);
+    world *w = world_create(&p, s, &err);
+    assert_non_null(w);
+    assert_int_equal(world_save(w, path, 0, &err), 0);
+    world_close(w);
+}
+
 static void test_second_process_is_read_only(void **state) {
     (void)state;
     const char *dir = test_tmpdir("lock");
@@ -75,16 +86,11 @@ static void test_second_process_is_read_only(void **state) {
     messages m = {0};
     world_settings s = settings_with(&m);
     og_error err = {{0}};
-    world_params p;
-    world_params_default(&p, WORLD_FLAT);
-    world *w = world_create(&p, &s, &err);
-    assert_non_null(w);
-    assert_int_equal(world_save(w, path, 0, &err), 0);
-    world_close(w);                           // no threads of ours run while the child forks
+    save_new_world(path, &s);
     assert_int_equal(access(lock, F_OK), -1); // a closed world leaves no lock behind
 
     pid_t child = open_in_child(path);
-    w = world_load(path, &s, NULL, &err);
+    world *w = world_load(path, &s, NULL, &err);
     assert_non_null(w);
     snprintf(text, sizeof text, "is open in process %ld: opened read-only", (long)child);
     assert_true(has_message(&m, text));
@@ -121,13 +127,9 @@ static void test_save_after_owner_left(void **state) {
     messages m = {0};
     world_settings s = settings_with(&m);
     og_error err = {{0}};
-    world_params p;
-    world_params_default(&p, WORLD_FLAT);
-    world *w = world_create(&p, &s, &err);
-    assert_int_equal(world_save(w, path, 0, &err), 0);
-    world_close(w);
+    save_new_world(path, &s);
     pid_t child = open_in_child(path);
-    w = world_load(path, &s, NULL, &err);
+    world *w = world_load(path, &s, NULL, &err);
     assert_non_null(strstr(world_read_only(w), "open in process"));
     kill(child, SIGKILL);
     waitpid(child, NULL, 0);

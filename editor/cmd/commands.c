@@ -124,18 +124,7 @@ static int c_recover(cmd_context *ctx, int argc, char **argv, og_error *err) {
     if (argc > 2 + discard || (argc == 3 && !discard))
         return og_error_set(err, "recover: expected 'recover [discard] [JOURNAL]'");
     if (discard && journal) {
-        recovery_scan scan;
-        if (recovery_journal_read(journal, &scan, NULL, NULL, err) != 0) return -1;
-        if (!scan.has_base)
-            return og_error_set(err,
-                                "recover: %s is a saved world's journal: open the world and "
-                                "run 'recover discard'",
-                                journal);
-        if (recovery_journal_in_use(journal))
-            return og_error_set(err, "recover: %s belongs to an Orogen that is still running",
-                                journal);
-        if (remove(journal) != 0)
-            return og_error_set(err, "recover: cannot remove %s: %s", journal, strerror(errno));
+        if (edit_discard_unsaved(journal, err) != 0) return -1;
         fprintf(ctx->out, "discarded the unsaved edits in %s\n", journal);
         return 0;
     }

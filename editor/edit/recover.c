@@ -3,6 +3,7 @@
 #include "editor/edit/edit.h"
 
 #include <dirent.h>
+#include <errno.h>
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -98,22 +99,32 @@ int edit_recover(world *w, recover_report *report, og_error *err) {
     return world_journal_continue(w, scan.valid_bytes, err);
 }
 
+// Whether journal is a never-saved world's that no running Orogen writes.
+static int check_unsaved(const char *journal, recovery_scan *scan, og_error *err) {
+    if (recovery_journal_read(journal, scan, NULL, NULL, err) != 0) return -1;
+    if (!scan->has_base)
+        return og_error_set(err,
+                            "recover: %s is the journal of a saved world: open that world and "
+                            "run 'recover' or 'recover discard'",
+                            journal);
+    if (recovery_journal_in_use(journal))
+        return og_error_set(err, "recover: %s belongs to an Orogen that is still running", journal);
+    return 0;
+}
+
+int edit_discard_unsaved(const char *journal, og_error *err) {
+    recovery_scan scan;
+    if (check_unsaved(journal, &scan, err) != 0) return -1;
+    if (remove(journal) != 0)
+        return og_error_set(err, "recover: cannot remove %s: %s", journal, strerror(errno));
+    return 0;
+}
+
 world *edit_recover_unsaved(const char *journal, const world_settings *settings,
                             recover_report *report, og_error *err) {
     memset(report, 0, sizeof *report);
     recovery_scan scan;
-    if (recovery_journal_read(journal, &scan, NULL, NULL, err) != 0) return NULL;
-    if (!scan.has_base) {
-        og_error_set(err,
-                     "recover: %s is the journal of a saved world: open that world and run "
-                     "'recover'",
-                     journal);
-        return NULL;
-    }
-    if (recovery_journal_in_use(journal)) {
-        og_error_set(err, "recover: %s belongs to an Orogen that is still running", journal);
-        return NULL;
-    }
+    if (check_unsaved(journal, &scan, err) != 0) return NULL;
     world *w = world_create(&scan.base, settings, err);
     if (!w) return NULL;
     if (replay_journal(w, journal, report, &scan, err) != 0 ||

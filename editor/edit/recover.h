@@ -26,6 +26,9 @@ int edit_recover(world *w, recover_report *report, og_error *err);
 // journal is not one, or its Orogen still runs.
 world *edit_recover_unsaved(const char *journal, const world_settings *settings,
                             recover_report *report, og_error *err);
+// `recover discard JOURNAL`: removes a never-saved world's journal (not one a running
+// Orogen writes, nor a saved world's).
+int edit_discard_unsaved(const char *journal, og_error *err);
 // The newest journal a never-saved world left in the recovery folder when its Orogen
 // stopped without saving (a crash, a kill): 1 with its path and scan, or 0.
 int edit_find_unsaved_journal(char *path, size_t len, recovery_scan *scan);

@@ -115,14 +115,80 @@ static void frame(buf *out, uint32_t magic, const buf *payload) {
     put(out, payload->p, payload->len);
 }
 
-static int write_all(int fd, const uint8_t *p, size_t n) {
-    while (n) {
-        ssize_t w = write(fd, p, n);
+// A record is written straight from the step's deltas, with no copy of them (an
+// import's step holds hundreds of megabytes): its small fields go to one buffer, and
+// the pieces (buffer spans and deltas, in order) to one writev.
+typedef struct piece {
+    const void *data; // a delta, or NULL: meta bytes [off, off + len)
+    size_t off, len;
+} piece;
+
+typedef struct record {
+    buf meta;
+    piece *pieces;
+    size_t count, cap, meta_mark;
+    int oom;
+} record;
+
+static void add_piece(record *r, piece p) {
+    if (r->oom) return;
+    if (r->count == r->cap) {
+        size_t cap = r->cap ? r->cap * 2 : 64;
+        piece *grown = realloc(r->pieces, cap * sizeof *grown);
+        if (!grown) {
+            r->oom = 1;
+            return;
+        }
+        r->pieces = grown, r->cap = cap;
+    }
+    r->pieces[r->count++] = p;
+}
+
+// Ends the meta bytes put since the last piece as a piece of their own.
+static void close_meta(record *r) {
+    if (r->meta.len > r->meta_mark)
+        add_piece(r, (piece){NULL, r->meta_mark, r->meta.len - r->meta_mark});
+    r->meta_mark = r->meta.len;
+}
+
+static void add_data(record *r, const void *data, size_t len) {
+    close_meta(r);
+    if (len) add_piece(r, (piece){data, 0, len});
+}
+
+static const void *piece_bytes(const record *r, const piece *p) {
+    return p->data ? p->data : r->meta.p + p->off;
+}
+
+// Writes head + pieces, IOV_MAX at a time, through short writes.
+static int write_pieces(int fd, const uint8_t *head, size_t head_len, const record *r) {
+    struct iovec iov[IOV_MAX];
+    size_t next = 0, skip = 0; // piece index, bytes of it already written
+    int n = 0;
+    iov[n++] = (struct iovec){(void *)head, head_len};
+    for (;;) {
+        while (n < IOV_MAX && next < r->count) {
+            const piece *p = &r->pieces[next];
+            iov[n++] = (struct iovec){(uint8_t *)piece_bytes(r, p) + skip, p->len - skip};
+            skip = 0;
+            next++;
+        }
+        if (!n) return 0;
+        ssize_t w = writev(fd, iov, n);
         if (w < 0 && errno == EINTR) continue;
         if (w < 0) return -1;
-        p += w, n -= (size_t)w;
+        // Drop what was written; a partly written vector stays, shortened.
+        int k = 0;
+        size_t done = (size_t)w;
+        while (k < n && done >= iov[k].iov_len)
+            done -= iov[k++].iov_len;
+        if (k < n) {
+            iov[k].iov_base = (uint8_t *)iov[k].iov_base + done;
+            iov[k].iov_len -= done;
+        }
+        memmove(iov, iov + k, (size_t)(n - k) * sizeof *iov);
+        n -= k;
     }
-    return 0;
 }
 
 // ---- writing -----------------------------------------------------------------------
@@ -206,7 +272,7 @@ recovery_journal *recovery_journal_open(const char *path, const char *state_id,
         else
             put_u32(&payload, 0);
         frame(&out, HEADER_MAGIC, &payload);
-        rc = payload.oom || out.oom ? -1 : write_all(j->fd, out.p, out.len);
+        rc = payload.oom || out.oom ? -1 : write_pieces(j->fd, out.p, out.len, &(record){0});
         if (rc == 0) rc = fdatasync(j->fd);
         free(payload.p);
         free(out.p);
@@ -239,88 +305,6 @@ static void put_params(buf *b, const world_params *p) {
     put_u32(b, (uint32_t)n);
     put(b, text ? text : "", n);
     free(text);
-}
-
-// A record is written straight from the step's deltas, with no copy of them (an
-// import's step holds hundreds of megabytes): its small fields go to one buffer, and
-// the pieces (buffer spans and deltas, in order) to one writev.
-typedef struct piece {
-    const void *data; // a delta, or NULL: meta bytes [off, off + len)
-    size_t off, len;
-} piece;
-
-typedef struct record {
-    buf meta;
-    piece *pieces;
-    size_t count, cap, meta_mark;
-    int oom;
-} record;
-
-// Ends the meta bytes put since the last piece as a piece of their own.
-static void close_meta(record *r) {
-    if (r->meta.len > r->meta_mark) {
-        if (r->count == r->cap) {
-            size_t cap = r->cap ? r->cap * 2 : 64;
-            piece *grown = realloc(r->pieces, cap * sizeof *grown);
-            if (!grown) {
-                r->oom = 1;
-                return;
-            }
-            r->pieces = grown, r->cap = cap;
-        }
-        r->pieces[r->count++] = (piece){NULL, r->meta_mark, r->meta.len - r->meta_mark};
-    }
-    r->meta_mark = r->meta.len;
-}
-
-static void add_data(record *r, const void *data, size_t len) {
-    close_meta(r);
-    if (r->oom || !len) return;
-    if (r->count == r->cap) {
-        size_t cap = r->cap ? r->cap * 2 : 64;
-        piece *grown = realloc(r->pieces, cap * sizeof *grown);
-        if (!grown) {
-            r->oom = 1;
-            return;
-        }
-        r->pieces = grown, r->cap = cap;
-    }
-    r->pieces[r->count++] = (piece){data, 0, len};
-}
-
-static const void *piece_bytes(const record *r, const piece *p) {
-    return p->data ? p->data : r->meta.p + p->off;
-}
-
-// Writes head + pieces, IOV_MAX at a time, through short writes.
-static int write_pieces(int fd, const uint8_t *head, size_t head_len, const record *r) {
-    struct iovec iov[IOV_MAX];
-    size_t next = 0, skip = 0; // piece index, bytes of it already written
-    int n = 0;
-    iov[n++] = (struct iovec){(void *)head, head_len};
-    for (;;) {
-        while (n < IOV_MAX && next < r->count) {
-            const piece *p = &r->pieces[next];
-            iov[n++] = (struct iovec){(uint8_t *)piece_bytes(r, p) + skip, p->len - skip};
-            skip = 0;
-            next++;
-        }
-        if (!n) return 0;
-        ssize_t w = writev(fd, iov, n);
-        if (w < 0 && errno == EINTR) continue;
-        if (w < 0) return -1;
-        // Drop what was written; a partly written vector stays, shortened.
-        int k = 0;
-        size_t done = (size_t)w;
-        while (k < n && done >= iov[k].iov_len)
-            done -= iov[k++].iov_len;
-        if (k < n) {
-            iov[k].iov_base = (uint8_t *)iov[k].iov_base + done;
-            iov[k].iov_len -= done;
-        }
-        memmove(iov, iov + k, (size_t)(n - k) * sizeof *iov);
-        n -= k;
-    }
 }
 
 int recovery_journal_append(recovery_journal *j, recovery_kind kind, const history_step *s,

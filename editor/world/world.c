@@ -227,6 +227,18 @@ static void collect_report(void *user, const char *message) {
 }
 
 // Checks the tile store against what the parameter file recorded at its last save.
+static void warn_path(world *w, const char *path, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+static void warn_path(world *w, const char *path, const char *fmt, ...) {
+    char msg[9000], text[4800];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(text, sizeof text, fmt, ap);
+    va_end(ap);
+    snprintf(msg, sizeof msg, "%s: %s", path, text);
+    w->settings.warn(w->settings.warn_user, msg);
+}
+
 // Returns the store to use (NULL: none, the generated terrain) with w->read_only
 // saying why when the store is missing, empty, another world's or short of tiles;
 // -1 only when the store cannot be opened at all.
@@ -234,19 +246,21 @@ static int open_checked_store(world *w, const char *tiles, og_error *err) {
     const world_params *p = &w->params;
     struct stat st;
     int exists = stat(tiles, &st) == 0;
-    const char *fix = "showing generated terrain there; opened read-only ('save force=1' "
-                      "writes over it, save to another file keeps it)";
+    const char *ro = "opened read-only ('save force=1' writes over it, save to another file "
+                     "keeps it)";
     if (!exists) {
         if (p->tiles_saved > 0 || p->tiles_id[0])
             snprintf(w->read_only, sizeof w->read_only,
-                     "its tile store %s is missing (it held %" PRId64 " tiles when saved); %s",
-                     tiles, p->tiles_saved > 0 ? p->tiles_saved : 0, fix);
+                     "its tile store %s is missing (it held %" PRId64
+                     " tiles when saved); showing generated terrain there; %s",
+                     tiles, p->tiles_saved > 0 ? p->tiles_saved : 0, ro);
         return 0;
     }
     if (S_ISREG(st.st_mode) && st.st_size == 0) {
         // Opening it would make it a fresh, empty store; leave it as it is.
-        snprintf(w->read_only, sizeof w->read_only, "its tile store %s is empty (0 bytes); %s",
-                 tiles, fix);
+        snprintf(w->read_only, sizeof w->read_only,
+                 "its tile store %s is empty (0 bytes); showing generated terrain there; %s", tiles,
+                 ro);
         return 0;
     }
     if (!(w->store = tile_store_open(tiles, err))) return -1;
@@ -257,15 +271,14 @@ static int open_checked_store(world *w, const char *tiles, og_error *err) {
     if (p->tiles_id[0] && (has_id == 0 || strcmp(id, p->tiles_id) != 0)) {
         snprintf(w->read_only, sizeof w->read_only,
                  "its tile store %s belongs to another world (id %s, this file expects %s); "
-                 "%s",
-                 tiles, has_id ? id : "none", p->tiles_id, fix);
+                 "showing generated terrain there; %s",
+                 tiles, has_id ? id : "none", p->tiles_id, ro);
         tile_store_close(w->store); // its tiles are not this world's
         w->store = NULL;
     } else if (p->tiles_saved > 0 && count < p->tiles_saved) {
         snprintf(w->read_only, sizeof w->read_only,
-                 "its tile store %s holds %" PRId64 " tiles, %" PRId64 " when saved; opened "
-                 "read-only ('save force=1' writes over it, save to another file keeps it)",
-                 tiles, count, p->tiles_saved);
+                 "its tile store %s holds %" PRId64 " tiles, %" PRId64 " when saved; %s", tiles,
+                 count, p->tiles_saved, ro);
     }
     return 0;
 }
@@ -289,28 +302,12 @@ static int lock_files(world *w, const char *tiles, long *owner, og_error *err) {
     // releases the lock when closed; save takes it then.
     if (r == FILE_LOCK_HELD && *owner == (long)getpid()) return 0;
     if (r == FILE_LOCK_HELD) return 1;
-    if (r == FILE_LOCK_ACQUIRED && stale && stale != (long)getpid()) {
-        char msg[4500];
-        snprintf(msg, sizeof msg,
-                 "%s: warning: took over the lock of process %ld, which is no longer running", path,
-                 stale);
-        w->settings.warn(w->settings.warn_user, msg);
-    }
+    if (r == FILE_LOCK_ACQUIRED && stale && stale != (long)getpid())
+        warn_path(w, path, "warning: took over the lock of process %ld, which is no longer running",
+                  stale);
     file_lock_release(&w->lock);
     w->lock = l; // FILE_LOCK_UNAVAILABLE leaves fd -1: a read-only folder needs no guard
     return 0;
-}
-
-static void warn_path(world *w, const char *path, const char *fmt, ...)
-    __attribute__((format(printf, 3, 4)));
-static void warn_path(world *w, const char *path, const char *fmt, ...) {
-    char msg[4600], text[4096];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(text, sizeof text, fmt, ap);
-    va_end(ap);
-    snprintf(msg, sizeof msg, "%s: %s", path, text);
-    w->settings.warn(w->settings.warn_user, msg);
 }
 
 static void format_time(int64_t t, char *out, size_t len) {
@@ -322,7 +319,7 @@ static void format_time(int64_t t, char *out, size_t len) {
 
 // The journal a session that did not save left beside the world: offered when it
 // builds on the state the world was saved in, reported when it does not.
-static void find_recoverable(world *w, og_error *err) {
+static void find_recoverable(world *w) {
     snprintf(w->recover_path, sizeof w->recover_path, "%s.recover", w->path);
     if (w->store) {
         og_error ignored;
@@ -333,7 +330,6 @@ static void find_recoverable(world *w, og_error *err) {
     if (access(w->recover_path, F_OK) != 0) return;
     recovery_scan scan;
     og_error why;
-    (void)err;
     if (recovery_journal_read(w->recover_path, &scan, NULL, NULL, &why) != 0) {
         warn_path(w, w->path, "warning: %s; it is left as it is", why.msg);
         return;
@@ -396,18 +392,13 @@ world *world_load(const char *path, const world_settings *settings, int *errors,
     if (locked == 1) {
         // Edits stay possible in memory; only saving over its files is refused.
         w->open_in = owner ? owner : -1;
-        char msg[4200];
         snprintf(w->read_only, sizeof w->read_only,
                  "it is open in process %ld; save to another file to keep your edits", owner);
-        snprintf(msg, sizeof msg, "%s: warning: %s is open in process %ld: opened read-only", path,
-                 path, owner);
-        forward_report((void *)settings, msg);
+        warn_path(w, path, "warning: %s is open in process %ld: opened read-only", path, owner);
     }
-    if (!w->read_only[0]) find_recoverable(w, err);
+    if (!w->read_only[0]) find_recoverable(w);
     if (w->read_only[0] && !w->open_in) {
-        char msg[sizeof w->read_only + 4200];
-        snprintf(msg, sizeof msg, "%s: error: %s", path, w->read_only);
-        forward_report((void *)settings, msg);
+        warn_path(w, path, "error: %s", w->read_only);
         if (errors) ++*errors;
     }
     return w;
