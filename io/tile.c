@@ -10,6 +10,7 @@ size_t tile_layer_bytes(tile_layer layer) {
     case TILE_LAYER_MATERIAL:
         return (size_t)TILE_SAMPLES * TILE_MATERIALS;
     case TILE_LAYER_DETAIL_PD:
+    case TILE_LAYER_VOLUME:
         return (size_t)TILE_SAMPLES * 2 * sizeof(int16_t);
     default:
         return 0;
@@ -18,7 +19,7 @@ size_t tile_layer_bytes(tile_layer layer) {
 
 tile_format tile_layer_format(tile_layer layer) {
     if (layer == TILE_LAYER_MATERIAL) return TILE_FORMAT_U8X8;
-    if (layer == TILE_LAYER_DETAIL_PD) return TILE_FORMAT_S16X2;
+    if (layer == TILE_LAYER_DETAIL_PD || layer == TILE_LAYER_VOLUME) return TILE_FORMAT_S16X2;
     return TILE_FORMAT_F32;
 }
 

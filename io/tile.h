@@ -21,12 +21,21 @@ typedef enum tile_layer {
     TILE_LAYER_COARSE = 0,   // float32 metres, one per coarse sample
     TILE_LAYER_DETAIL = 1,   // float32 metres offset, detail_ratio samples per coarse sample
     TILE_LAYER_MATERIAL = 2, // TILE_MATERIALS x uint8 weights per sample
-    TILE_LAYER_VOLUME = 3,   // reserved for volume edits (overhangs, caves)
+    // Volume edits (overhangs, caves, arches): bricks of VOLUME_BRICK_X x _Y x _Z voxels,
+    // two int16 per voxel (editor/world/volume_grid.h says what they mean). For this layer
+    // the key's `level` is the brick's vertical index (any int32): bricks have no mips.
+    TILE_LAYER_VOLUME = 3,
     // Partial derivatives of the detail layer (Crause 2010's PD map): int16 d/dx, d/dz per
     // detail sample, slope x DETAIL_PD_SCALE. Derived data the editor keeps current.
     TILE_LAYER_DETAIL_PD = 4,
     TILE_LAYER_COUNT
 } tile_layer;
+
+// A volume brick: 32 x 32 voxels across (x, z), 64 up (y): TILE_SAMPLES voxels, so a
+// brick is stored, cached, snapshotted and compressed like a detail-slope tile.
+#define VOLUME_BRICK_X 32
+#define VOLUME_BRICK_Z 32
+#define VOLUME_BRICK_Y 64
 
 typedef struct tile_key {
     int32_t layer; // tile_layer
@@ -39,7 +48,7 @@ typedef struct tile_key {
 typedef enum tile_format {
     TILE_FORMAT_F32 = 1,  // TILE_SAMPLES float32
     TILE_FORMAT_U8X8 = 2, // TILE_SAMPLES x TILE_MATERIALS uint8, interleaved per sample
-    TILE_FORMAT_S16X2 = 3 // TILE_SAMPLES x 2 int16, interleaved per sample
+    TILE_FORMAT_S16X2 = 3 // TILE_SAMPLES x 2 int16, interleaved per sample (or voxel)
 } tile_format;
 
 static inline int tile_key_equal(tile_key a, tile_key b) {
@@ -50,12 +59,17 @@ static inline int tile_key_equal(tile_key a, tile_key b) {
 // A well-mixed 64-bit hash of a key, for hash tables.
 uint64_t tile_key_hash(tile_key key);
 
-// Bytes and format of one tile of a layer. The volume layer has no payload yet.
+// Bytes and format of one tile of a layer (0 bytes: not a layer).
 size_t tile_layer_bytes(tile_layer layer);
 tile_format tile_layer_format(tile_layer layer);
 const char *tile_layer_name(tile_layer layer);
 
 // "coarse face 0 level 2 tile (3,-7)" into buf; returns buf. For messages.
 const char *tile_key_describe(tile_key key, char *buf, size_t len);
+
+// Whether the key's level is a mip level (every layer but the volume layer's bricks).
+static inline int tile_key_has_mips(tile_key key) {
+    return key.layer != TILE_LAYER_VOLUME;
+}
 
 #endif

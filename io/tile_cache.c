@@ -401,7 +401,7 @@ tile_status tile_cache_request(tile_cache *c, tile_key key, tile_view *view) {
             st = TILE_READY;
         }
     } else {
-        for (int d = 1; key.level + d <= TILE_MAX_LEVEL; d++) {
+        for (int d = 1; tile_key_has_mips(key) && key.level + d <= TILE_MAX_LEVEL; d++) {
             tile_key k = key;
             k.level += d;
             k.tx = floor_shift(key.tx, d);

@@ -382,7 +382,8 @@ static int key_valid(tile_key key, og_error *err, const char *path) {
         return og_error_set(err, "tile store '%s': %s: the %s layer has no payload to store", path,
                             tile_key_describe(key, desc, sizeof desc),
                             tile_layer_name((tile_layer)key.layer));
-    if (key.face < 0 || key.face > 5 || key.level < 0 || key.level > TILE_MAX_LEVEL)
+    if (key.face < 0 || key.face > 5 ||
+        (tile_key_has_mips(key) && (key.level < 0 || key.level > TILE_MAX_LEVEL)))
         return og_error_set(err, "tile store '%s': %s: face must be 0-5 and level 0-%d", path,
                             tile_key_describe(key, desc, sizeof desc), TILE_MAX_LEVEL);
     return 0;

@@ -12,6 +12,7 @@
 #include "editor/world/history.h"
 #include "editor/world/layer_grid.h"
 #include "editor/tools/stroke.h"
+#include "editor/tools/volume_brush.h"
 #include "editor/world/world.h"
 #include "editor/params/world_grid.h"
 #include "io/tile_cache.h"
@@ -673,6 +674,21 @@ static void random_stroke(world *w, uint64_t *rng) {
     }
     b.material = (int)(rng_next(rng) % TILE_MATERIALS);
     og_error err;
+    if (brush_tool_is_volume(tool)) { // 3D points around the ground; coarse and material stay
+        double pts[3][3], ground = 0;
+        int n = 1 + (int)(rng_next(rng) % 3);
+        for (int i = 0; i < n; i++) {
+            pts[i][0] = rng_uniform(rng, 50, 650);
+            pts[i][2] = rng_uniform(rng, 50, 650);
+            if (world_sample(w, 0, pts[i][0], pts[i][2], &ground, &err) != 0)
+                fail_msg("world_sample: %s", err.msg);
+            pts[i][1] = ground + rng_uniform(rng, -10, 10);
+        }
+        b.radius = fmin(b.radius, 12);
+        if (volume_brush_apply(w, &b, (const double(*)[3])pts, NULL, (size_t)n, &err) != 0)
+            fail_msg("volume_brush_apply: %s", err.msg);
+        return;
+    }
     stroke *s = stroke_begin(w, &b, &err);
     if (!s) fail_msg("stroke_begin: %s", err.msg);
     int points = 1 + (int)(rng_next(rng) % 4);

@@ -123,10 +123,10 @@ static void test_defaults_are_valid(void **state) {
 static void test_key_table(void **state) {
     (void)state;
     static const char *const expected[] = {
-        "kind",         "generator",    "seed",        "octaves",    "w_factor",  "exponent",
-        "max_height",   "ocean_level",  "radius",      "omega",      "spacing",   "size",
-        "detail_ratio", "feature_size", "base_height", "roughness",  "smoothing", "ridge_offset",
-        "fault_count",  "tiles",        "tiles_id",    "tiles_saved"};
+        "kind",         "generator",    "seed",         "octaves",     "w_factor",   "exponent",
+        "max_height",   "ocean_level",  "radius",       "omega",       "spacing",    "size",
+        "detail_ratio", "volume_ratio", "feature_size", "base_height", "roughness",  "smoothing",
+        "ridge_offset", "fault_count",  "tiles",        "tiles_id",    "tiles_saved"};
     size_t n = sizeof expected / sizeof expected[0];
     assert_int_equal(world_params_key_count(), n);
     for (size_t i = 0; i < n; i++) {
@@ -181,6 +181,8 @@ static void test_set_get_every_key(void **state) {
         {"size", "549755813888", "549755813888"},
         {"detail_ratio", "1", "1"},
         {"detail_ratio", "64", "64"},
+        {"volume_ratio", "1", "1"},
+        {"volume_ratio", "8", "8"},
         {"feature_size", "0", "0"},
         {"feature_size", "2500.5", "2500.5"},
         {"base_height", "-12.75", "-12.75"},
@@ -241,7 +243,8 @@ static void test_bad_values_rejected(void **state) {
         {"spacing", "0"},         {"spacing", "1e6"},
         {"size", "-1"},           {"size", "549755813889"},
         {"size", "100.5"},        {"detail_ratio", "0"},
-        {"detail_ratio", "65"},   {"feature_size", "-1"},
+        {"detail_ratio", "65"},   {"volume_ratio", "0"},
+        {"volume_ratio", "9"},    {"feature_size", "-1"},
         {"base_height", "nan"},   {"roughness", "2.5"},
         {"smoothing", "1.01"},    {"ridge_offset", "-0.1"},
         {"fault_count", "10001"}, {"fault_count", "-1"},

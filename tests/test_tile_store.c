@@ -166,6 +166,12 @@ static void test_round_trip_layers(void **state) {
     assert_round_trip(s, key_of(TILE_LAYER_MATERIAL, 0, 0), m, U8X8_BYTES);
     fill_noise_bits(m, U8X8_BYTES, 77);
     assert_round_trip(s, key_of(TILE_LAYER_MATERIAL, 1, 0), m, U8X8_BYTES);
+    // Volume bricks name their vertical index in `level`, below zero too.
+    fill_noise_bits(f, F32_BYTES, 78);
+    tile_key brick = {TILE_LAYER_VOLUME, 0, -3, 5, -2};
+    assert_round_trip(s, brick, f, F32_BYTES);
+    brick.level = 3;
+    assert_false(tile_store_has(s, brick));
 
     // Planet faces and mip levels are distinct keys.
     tile_key k = {TILE_LAYER_COARSE, 5, TILE_MAX_LEVEL, 1, 1};
@@ -179,11 +185,11 @@ static void test_round_trip_layers(void **state) {
     fill_terrain(f, 3);
     assert_round_trip(s, key_of(TILE_LAYER_COARSE, 0, 0), f, F32_BYTES);
     assert_int_equal(tile_store_count(s, -1), before);
-    assert_int_equal(before, 9);
+    assert_int_equal(before, 10);
     assert_int_equal(tile_store_count(s, TILE_LAYER_COARSE), 4);
     assert_int_equal(tile_store_count(s, TILE_LAYER_DETAIL), 3);
     assert_int_equal(tile_store_count(s, TILE_LAYER_MATERIAL), 2);
-    assert_int_equal(tile_store_count(s, TILE_LAYER_VOLUME), 0);
+    assert_int_equal(tile_store_count(s, TILE_LAYER_VOLUME), 1);
 
     // Persisted across close/reopen.
     tile_store_close(s);
@@ -205,11 +211,12 @@ static void test_round_trip_layers(void **state) {
     assert_int_equal(tile_store_get(s, key_of(TILE_LAYER_COARSE, 9, 9), back, 100, &err),
                      TILE_STORE_ERROR);
     assert_non_null(strstr(err.msg, "buffer"));
-    assert_int_equal(tile_store_put(s, key_of(TILE_LAYER_VOLUME, 0, 0), f, &err), -1);
-    assert_non_null(strstr(err.msg, "volume"));
+    tile_key no_layer = {TILE_LAYER_COUNT, 0, 0, 0, 0};
+    assert_int_equal(tile_store_put(s, no_layer, f, &err), -1);
+    assert_non_null(strstr(err.msg, "not a tile layer"));
     tile_key bad_face = {TILE_LAYER_COARSE, 6, 0, 0, 0};
     assert_int_equal(tile_store_put(s, bad_face, f, &err), -1);
-    assert_int_equal(tile_store_count(s, -1), 8);
+    assert_int_equal(tile_store_count(s, -1), 9);
 
     tile_store_close(s);
     free(f);
@@ -295,8 +302,15 @@ static void test_compression_ratio(void **state) {
     assert_memory_equal(back, f, F32_BYTES);
     free(blob);
 
-    assert_int_equal(tile_blob_encode(TILE_LAYER_VOLUME, f, &blob), 0);
-    assert_null(blob);
+    // A volume brick: two int16 distances per voxel, mostly "no edit" (INT16_MAX).
+    int16_t *v = (int16_t *)f;
+    for (size_t k = 0; k < 2 * (size_t)TILE_SAMPLES; k++)
+        v[k] = k % 2 == 0 && k < 4000 ? (int16_t)(k * 7 % 2001 - 1000) : INT16_MAX;
+    n = tile_blob_encode(TILE_LAYER_VOLUME, f, &blob);
+    assert_true(n > 0 && n < F32_BYTES / 20);
+    assert_int_equal(tile_blob_decode(TILE_LAYER_VOLUME, blob, n, back, &err), 0);
+    assert_memory_equal(back, f, F32_BYTES);
+    free(blob);
     free(f);
     free(m);
     free(back);
@@ -525,16 +539,16 @@ static void test_batch_atomicity(void **state) {
     fill_terrain(b, 2);
     assert_int_equal(tile_store_put(s, key_of(TILE_LAYER_COARSE, 0, 0), a, &err), 0);
 
-    // A batch that fails on its last write (volume layer) changes nothing,
+    // A batch that fails on its last write (no face 6) changes nothing,
     // neither the overwrite nor the new tiles nor the deletion before it.
     tile_store_write w[] = {
         {key_of(TILE_LAYER_COARSE, 0, 0), b}, {key_of(TILE_LAYER_COARSE, 1, 0), b},
         {key_of(TILE_LAYER_DETAIL, 2, 0), a}, {key_of(TILE_LAYER_COARSE, 0, 0), NULL},
-        {key_of(TILE_LAYER_VOLUME, 3, 0), b},
+        {{TILE_LAYER_COARSE, 6, 0, 3, 0}, b},
     };
     memset(&err, 0, sizeof err);
     assert_int_equal(tile_store_put_batch(s, w, 5, &err), -1);
-    assert_non_null(strstr(err.msg, "volume"));
+    assert_non_null(strstr(err.msg, "face must be"));
     assert_int_equal(tile_store_count(s, -1), 1);
     assert_int_equal(tile_store_get(s, key_of(TILE_LAYER_COARSE, 0, 0), out, F32_BYTES, &err),
                      TILE_STORE_OK);

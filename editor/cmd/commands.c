@@ -6,6 +6,7 @@
 #include "editor/cmd/interchange_commands.h"
 #include "editor/cmd/tokenize.h"
 #include "editor/gen/gen.h"
+#include "editor/world/volume_grid.h"
 #include "io/parse.h"
 
 #include <errno.h>
@@ -249,6 +250,17 @@ static int c_sample(cmd_context *ctx, int argc, char **argv, og_error *err) {
     return 0;
 }
 
+static int c_vsample(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    (void)argc;
+    double p[3], d = 0;
+    static const char *const axis[] = {"X", "Y", "Z"};
+    for (int a = 0; a < 3; a++)
+        if (parse_number(argv[1 + a], axis[a], &p[a], err) != 0) return -1;
+    if (volume_sample(ctx->world, p, &d, err) != 0) return -1;
+    fprintf(ctx->out, "%.6f %s\n", d, d < 0 ? "inside" : "outside");
+    return 0;
+}
+
 static int c_hash(cmd_context *ctx, int argc, char **argv, og_error *err) {
     double r[4];
     const char *names[4] = {"X0", "Z0", "X1", "Z1"};
@@ -322,20 +334,28 @@ static const cmd_def commands[] = {
      0, 0, c_info, 0},
     {"sample", "sample X Z [FACE]", "Prints the height in metres at world position X, Z (metres).",
      2, 3, c_sample, 0},
+    {"vsample", "vsample X Y Z",
+     "Prints the signed distance in metres from X, Y, Z (metres, Y up) to the solid's surface "
+     "(terrain with its caves, overhangs and arches) and whether the point is inside or outside.",
+     3, 3, c_vsample, 0},
     {"hash", "hash X0 Z0 X1 Z1 [FACE]",
      "Prints a hex digest of the coarse heights in that rectangle (metres).", 4, 5, c_hash, 0},
     {"tool", "tool [NAME] [KEY=VALUE ...]",
      "Picks and sets up the brush: raise lower smooth flatten set ramp noise terrace thermal "
-     "hydraulic paint. Keys: radius (m) strength (0-1) falloff (smooth linear spherical constant "
+     "hydraulic paint, and the volume tools fill carve vsmooth vflatten (3D points). Keys: radius "
+     "(m) strength (0-1) falloff (smooth linear spherical constant "
      "curve) curve=t:v,... spacing (x radius) invert target (coarse detail) face amount height "
      "mode (both raise lower) scale octaves seed step sharpness talus iterations droplets erosion "
      "deposition evaporation capacity inertia material. Without arguments, prints the brush.",
      0, 24, cmd_tool, 0},
-    {"dab", "dab X Z [PRESSURE]", "One dab of the brush at X, Z (metres); one undo step.", 2, 3,
-     cmd_dab, CMD_ENDS_STROKE},
-    {"stroke", "stroke X0 Z0 X1 Z1 [X2 Z2 ...]",
-     "Drags the brush along the points (metres), dabbing every spacing x radius; one undo step.", 2,
-     CMD_MAX_ARGS, cmd_stroke, CMD_ENDS_STROKE},
+    {"dab", "dab X Z [PRESSURE] | dab X Y Z [PRESSURE]",
+     "One dab of the brush at X, Z (metres); the volume tools (fill carve vsmooth vflatten) take "
+     "a 3D point X Y Z (Y up). One undo step.",
+     2, 4, cmd_dab, CMD_ENDS_STROKE},
+    {"stroke", "stroke X0 Z0 X1 Z1 [X2 Z2 ...] | stroke X0 Y0 Z0 [X1 Y1 Z1 ...]",
+     "Drags the brush along the points (metres), dabbing every spacing x radius; the volume tools "
+     "take X Y Z triples (fill and carve sweep a capsule between them). One undo step.",
+     2, CMD_MAX_ARGS, cmd_stroke, CMD_ENDS_STROKE},
     {"stroke_begin", "stroke_begin [invert=0|1] [tool=NAME]",
      "Starts a stroke with the current tool (as a drag in the viewport does); stroke_to extends "
      "it, stroke_end makes it one undo step. invert= and tool= change this stroke only (the "

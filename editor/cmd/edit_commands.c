@@ -7,6 +7,7 @@
 #include "editor/tools/stamp.h"
 #include "editor/tools/stamp_user.h"
 #include "editor/tools/stroke.h"
+#include "editor/tools/volume_brush.h"
 #include "io/parse.h"
 
 #include <math.h>
@@ -69,7 +70,45 @@ static int parse_point(char **argv, int i, double *x, double *z, og_error *err) 
     return parse_number(argv[i], "X", x, err) || parse_number(argv[i + 1], "Z", z, err) ? -1 : 0;
 }
 
+// The volume tools' dab and stroke: X Y Z points (metres, Y up).
+static int volume_points(const char *cmd, const char *tool, int argc, char **argv,
+                         int with_pressure, double (**points)[3], double **pressure, size_t *count,
+                         og_error *err) {
+    int numbers = argc - 1;
+    int ok = with_pressure ? numbers == 3 || numbers == 4 : numbers >= 3 && numbers % 3 == 0;
+    if (!ok)
+        return og_error_set(err, "%s: %s is a volume tool: expected %s (got %d numbers)", cmd, tool,
+                            with_pressure ? "X Y Z [PRESSURE]" : "X Y Z triples", numbers);
+    *count = with_pressure ? 1 : (size_t)numbers / 3;
+    *points = calloc(*count, sizeof **points);
+    *pressure = calloc(*count, sizeof **pressure);
+    if (!*points || !*pressure) return og_error_set(err, "out of memory");
+    static const char *const axis[] = {"X", "Y", "Z"};
+    for (size_t i = 0; i < *count; i++) {
+        (*pressure)[i] = 1.0;
+        for (int a = 0; a < 3; a++)
+            if (parse_number(argv[1 + 3 * i + a], axis[a], &(*points)[i][a], err) != 0) return -1;
+    }
+    if (numbers == 4 && parse_number(argv[4], "pressure", &(*pressure)[0], err) != 0) return -1;
+    return 0;
+}
+
+static int volume_command(cmd_context *ctx, int argc, char **argv, int dab, og_error *err) {
+    double(*points)[3] = NULL, *pressure = NULL;
+    size_t count = 0;
+    int rc = volume_points(argv[0], brush_tool_name(ctx->brush.tool), argc, argv, dab, &points,
+                           &pressure, &count, err);
+    if (rc == 0) rc = volume_brush_apply(ctx->world, &ctx->brush, points, pressure, count, err);
+    free(points);
+    free(pressure);
+    return rc;
+}
+
 int cmd_dab(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    if (brush_tool_is_volume(ctx->brush.tool)) return volume_command(ctx, argc, argv, 1, err);
+    if (argc > 4)
+        return og_error_set(err, "dab: %s takes X Z [PRESSURE] (got %d numbers)",
+                            brush_tool_name(ctx->brush.tool), argc - 1);
     double x = 0, z = 0, pressure = 1.0;
     if (parse_point(argv, 1, &x, &z, err) != 0) return -1;
     if (argc > 3 && parse_number(argv[3], "pressure", &pressure, err) != 0) return -1;
@@ -83,6 +122,7 @@ int cmd_dab(cmd_context *ctx, int argc, char **argv, og_error *err) {
 }
 
 int cmd_stroke(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    if (brush_tool_is_volume(ctx->brush.tool)) return volume_command(ctx, argc, argv, 0, err);
     if ((argc - 1) % 2 != 0)
         return og_error_set(err, "stroke: expected X Z pairs (got %d numbers)", argc - 1);
     // Check every point before touching the world.

@@ -1,6 +1,7 @@
 #include "editor/cmd/interchange_commands.h"
 
 #include "editor/interchange/export.h"
+#include "editor/interchange/export_vdb.h"
 #include "editor/interchange/import.h"
 #include "io/parse.h"
 
@@ -109,6 +110,19 @@ int cmd_export(cmd_context *ctx, int argc, char **argv, og_error *err) {
             *nl = nl[1] ? ' ' : 0; // one line: the paths apart by spaces
         fprintf(ctx->out, "exported the %s layer to %s (%.2f s)\n",
                 o.image_layer == 1 ? "normal" : "material weight", files, seconds_since(&t0));
+        return 0;
+    }
+    if (export_vdb_wanted(argv[1])) {
+        export_vdb_report v;
+        if (export_vdb_file(ctx->world, argv[1], &o, &v, err) != 0) return -1;
+        fprintf(ctx->out,
+                "exported %s: level set 'surface'%s, voxel %.6g m, band %d voxels, %lld active "
+                "voxels over %lld columns (%lld volume bricks); index bounds %lld,%lld,%lld .. "
+                "%lld,%lld,%lld; %lld bytes; %.2f s\n",
+                argv[1], o.fog ? " and fog volume 'density'" : "", v.voxel, v.band, v.active_voxels,
+                v.columns, v.bricks, (long long)v.lo[0], (long long)v.lo[1], (long long)v.lo[2],
+                (long long)v.hi[0], (long long)v.hi[1], (long long)v.hi[2], v.bytes,
+                seconds_since(&t0));
         return 0;
     }
     if (export_mesh_wanted(argv[1])) {

@@ -102,8 +102,16 @@ void gen_fractal_tile(const world_params *p, tile_key key, float *out) {
 
 int gen_tile(const world_params *p, tile_key key, void *out) {
     int faces = p->kind == WORLD_PLANET ? 6 : 1;
-    if (key.face < 0 || key.face >= faces || key.level < 0 || key.level > TILE_MAX_LEVEL) return -1;
+    if (key.face < 0 || key.face >= faces ||
+        (tile_key_has_mips(key) && (key.level < 0 || key.level > TILE_MAX_LEVEL)))
+        return -1;
     switch (key.layer) {
+    case TILE_LAYER_VOLUME: { // no volume edit yet: every voxel is far from both shapes
+        int16_t *v = out;
+        for (size_t k = 0; k < 2 * (size_t)TILE_SAMPLES; k++)
+            v[k] = INT16_MAX;
+        return 0;
+    }
     case TILE_LAYER_DETAIL: // offsets and their slopes are zero until edited
     case TILE_LAYER_DETAIL_PD:
         memset(out, 0, tile_layer_bytes((tile_layer)key.layer));

@@ -15,8 +15,8 @@
 
 // Fills one tile (tile_layer_bytes(key.layer) bytes). Coarse tiles come from the
 // world's generator; detail tiles are zero offsets; material tiles give all weight
-// to material 0. Returns -1 for keys outside the world (planet face > 5, level
-// beyond TILE_MAX_LEVEL, volume layer).
+// to material 0; volume bricks hold no edit (editor/world/volume_grid.h). Returns -1
+// for keys outside the world (planet face > 5, level beyond TILE_MAX_LEVEL).
 int gen_tile(const world_params *p, tile_key key, void *out);
 
 // The individual generators, for tests. Each fills TILE_SAMPLES floats (metres).

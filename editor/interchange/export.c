@@ -29,6 +29,7 @@ void export_options_defaults(export_options *o) {
     o->bits = 0; // the format's default: 32 for .tif, 8 for normal maps
     o->tiles_x = o->tiles_y = 1;
     o->shard_count = 1;
+    o->band = 3; // OpenVDB's LEVEL_SET_HALF_WIDTH
 }
 
 // "AxB" or "A/B" as two integers.
@@ -90,6 +91,16 @@ int export_options_set(export_options *o, const char *key, const char *value, og
                                 "got '%s'",
                                 value);
         snprintf(o->pattern, sizeof o->pattern, "%s", value);
+    } else if (!strcmp(key, "voxel")) {
+        if (parse_number_in(value, key, 1e-3, 1e4, &o->voxel, err) != 0) return -1;
+    } else if (!strcmp(key, "band")) {
+        double b;
+        if (parse_number_in(value, key, 1, 64, &b, err) != 0) return -1;
+        if (b != floor(b))
+            return og_error_set(err, "band: expected a whole number of voxels, got '%s'", value);
+        o->band = (int)b;
+    } else if (!strcmp(key, "fog")) {
+        if (parse_switch(value, key, &o->fog, err) != 0) return -1;
     } else if (!strcmp(key, "simplify")) {
         if (parse_number_in(value, key, 0, 1e6, &o->simplify, err) != 0) return -1;
     } else if (!strcmp(key, "solid") || !strcmp(key, "centred") || !strcmp(key, "centered")) {
@@ -115,7 +126,7 @@ int export_options_set(export_options *o, const char *key, const char *value, og
     } else {
         return og_error_set(err,
                             "export: unknown option '%s' (region preset layer bits min max scale "
-                            "offset tiles pattern shard simplify solid centred)",
+                            "offset tiles pattern shard simplify solid centred voxel band fog)",
                             key);
     }
     return 0;

@@ -45,11 +45,15 @@ typedef struct export_options {
     double simplify;
     int solid, centred;
     int image_layer; // layer=normals (1) or materials (2): that layer as images instead
+    // .vdb: voxel metres (0 = the world's volume voxel), narrow band half width in
+    // voxels, and a density fog volume beside the level set.
+    double voxel;
+    int band, fog;
 } export_options;
 
 void export_options_defaults(export_options *o);
 // region=X0,Z0,X1,Z1 preset= layer= bits= min= max= scale= offset= tiles=CxR pattern=
-// shard=I/N
+// shard=I/N simplify= solid= centred= voxel= band= fog=
 int export_options_set(export_options *o, const char *key, const char *value, og_error *err);
 const char *export_preset_name(export_preset p);
 

@@ -60,6 +60,9 @@ static const key_def KEYS[] = {
      "flat worlds: coarse samples per side, 0 = unbounded, else 2 .. 2^39"},
     {"detail_ratio", V_I32, F(detail_ratio), 1, 64, 0,
      "detail samples per coarse sample, per side, 1 .. 64"},
+    {"volume_ratio", V_I32, F(volume_ratio), 1, 8, 0,
+     "volume voxels (overhangs, caves) per coarse spacing, per side, 1 .. 8: voxel size = "
+     "spacing / volume_ratio"},
     {"feature_size", V_F64, F(feature_size), 0, 1e9, 0,
      "metres: wavelength of the lowest octave, 0 = automatic"},
     {"base_height", V_F64, F(base_height), 0, 0, NO_LO | NO_HI,
@@ -107,6 +110,7 @@ void world_params_default(world_params *p, world_kind kind) {
         .spacing = 2,
         .size = 0,
         .detail_ratio = 4,
+        .volume_ratio = 1,
         .feature_size = 0,
         .base_height = 0,
         .roughness = 0.4, // Harris 2011

@@ -41,6 +41,7 @@ typedef struct world_params {
     double spacing;       // metres between coarse samples
     int64_t size;         // flat worlds: coarse samples per side; 0 = unbounded
     int32_t detail_ratio; // detail samples per coarse sample, per side
+    int32_t volume_ratio; // volume voxels per coarse spacing (voxel = spacing / volume_ratio)
     double feature_size;  // metres: wavelength of the lowest octave; 0 = automatic
     double base_height;   // metres added to every generated height (flat generator's height)
     double roughness;     // diamond-square: first displacement, as a fraction of max_height

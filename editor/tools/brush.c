@@ -6,9 +6,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *tool_names[BRUSH_TOOL_COUNT] = {"raise",     "smooth", "flatten", "set",
-                                                   "ramp",      "noise",  "terrace", "thermal",
-                                                   "hydraulic", "paint"};
+static const char *tool_names[BRUSH_TOOL_COUNT] = {
+    "raise",   "smooth",    "flatten", "set",  "ramp",  "noise",   "terrace",
+    "thermal", "hydraulic", "paint",   "fill", "carve", "vsmooth", "vflatten"};
 static const char *falloff_names[FALLOFF_COUNT] = {"smooth",   "linear", "spherical",
                                                    "constant", "curve",  "tip"};
 static const char *flatten_names[] = {"both", "raise", "lower"};
@@ -47,6 +47,7 @@ void brush_defaults(brush *b, brush_tool tool) {
     hydraulic_params_default(&b->hydraulic);
     b->hydraulic.droplets = 2000;
     b->material = 1;
+    if (tool == BRUSH_FILL || tool == BRUSH_CARVE) b->strength = 1.0;
 }
 
 float brush_falloff_weight(const brush *b, float t) {

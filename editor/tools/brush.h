@@ -22,6 +22,12 @@ typedef enum brush_tool {
     BRUSH_THERMAL,   // thermal erosion down to the talus angle
     BRUSH_HYDRAULIC, // droplet erosion
     BRUSH_PAINT,     // material weights (invert: remove the material)
+    // Volume tools (editor/tools/volume_brush.h): 3D points, the volume layer.
+    BRUSH_FILL,     // add a ball per dab, a capsule along a stroke
+    BRUSH_CARVE,    // subtract a ball per dab, a capsule along a stroke
+    BRUSH_VSMOOTH,  // blend the combined surface toward its blur
+    BRUSH_VFLATTEN, // blend the combined surface toward a level plane (height=, else the first
+                    // dab's)
     BRUSH_TOOL_COUNT
 } brush_tool;
 
@@ -69,10 +75,15 @@ typedef struct brush {
 } brush;
 
 const char *brush_tool_name(brush_tool t);
+// Whether the tool edits the volume layer (takes X Y Z points).
+static inline int brush_tool_is_volume(brush_tool t) {
+    return t >= BRUSH_FILL && t <= BRUSH_VFLATTEN;
+}
 int brush_tool_parse(const char *name); // -1 if unknown
 const char *brush_falloff_name(brush_falloff f);
 
-// Defaults for a tool (radius 20 m, strength 0.5, smooth falloff, spacing 0.25, ...).
+// Defaults for a tool (radius 20 m, strength 0.5, smooth falloff, spacing 0.25, ...;
+// fill and carve: strength 1, a whole ball per dab).
 void brush_defaults(brush *b, brush_tool tool);
 // Sets one key=value; the brush is unchanged on error (which names the key).
 int brush_set(brush *b, const char *key, const char *value, og_error *err);

@@ -48,6 +48,13 @@ stroke *stroke_begin(world *w, const brush *b, og_error *err) {
     }
     s->world = w;
     s->brush = *b;
+    if (brush_tool_is_volume(b->tool)) {
+        og_error_set(err,
+                     "%s is a volume tool: it takes X Y Z points (dab X Y Z, stroke X0 Y0 Z0 "
+                     "X1 Y1 Z1 ...)",
+                     brush_tool_name(b->tool));
+        goto fail;
+    }
     tile_layer layer = b->tool == BRUSH_PAINT ? TILE_LAYER_MATERIAL : b->target;
     if (layer_grid_init(&s->grid, world_get_params(w), layer, b->face, err) != 0) goto fail;
     if (b->radius / s->grid.spacing > BRUSH_MAX_RADIUS_SAMPLES) {

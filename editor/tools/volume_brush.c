@@ -1,0 +1,371 @@
+#include "editor/tools/volume_brush.h"
+
+#include "editor/edit/edit.h"
+#include "editor/edit/edit_commit.h"
+#include "editor/edit/parallel.h"
+#include "editor/world/volume_grid.h"
+
+#include <stdatomic.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+// A dab box beyond this many voxels across would take minutes and gigabytes.
+#define VOLUME_MAX_RADIUS_VOXELS 512.0
+
+static _Atomic long long last_voxels;
+
+long long volume_brush_last_voxels(void) {
+    return atomic_load(&last_voxels);
+}
+
+// Polynomial smooth minimum (Quilez): min(a, b) rounded over a width k.
+static float smin(float a, float b, float k) {
+    if (k <= 0) return fminf(a, b);
+    float h = fmaxf(k - fabsf(a - b), 0.0f) / k;
+    return fminf(a, b) - h * h * k * 0.25f;
+}
+
+static float smax(float a, float b, float k) {
+    return -smin(-a, -b, k);
+}
+
+typedef struct vol_job {
+    world *w;
+    edit *e;
+    const brush *b;
+    volume_grid g;
+    volume_box box;
+    tile_key *bricks;
+    size_t brick_count;
+    _Atomic long long voxels;
+    // fill / carve: the path, the ball radius at each point, the seam's blend width and
+    // how far beyond the shape distances are written.
+    const double (*pts)[3];
+    double *radius;
+    size_t count;
+    double blend, margin;
+    // vsmooth / vflatten: one dab's target surface over box (row-major x, z, y slowest).
+    float *target, *now;
+    volume_box field_box; // box grown by one voxel: where `now` is known
+    volume_heights vh;
+} vol_job;
+
+// Signed distance from p to the round cone around segment a-b (radii ra, rb).
+static double segment_distance(const double p[3], const double a[3], const double b[3], double ra,
+                               double rb) {
+    double ab[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    double ap[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+    double len2 = ab[0] * ab[0] + ab[1] * ab[1] + ab[2] * ab[2];
+    double t = len2 > 0 ? (ap[0] * ab[0] + ap[1] * ab[1] + ap[2] * ab[2]) / len2 : 0;
+    t = t < 0 ? 0 : t > 1 ? 1 : t;
+    double d[3] = {ap[0] - t * ab[0], ap[1] - t * ab[1], ap[2] - t * ab[2]};
+    return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) - (ra + t * (rb - ra));
+}
+
+static double path_distance(const vol_job *j, const double p[3]) {
+    if (j->count == 1) return segment_distance(p, j->pts[0], j->pts[0], j->radius[0], j->radius[0]);
+    double best = INFINITY;
+    for (size_t s = 0; s + 1 < j->count; s++) {
+        double d = segment_distance(p, j->pts[s], j->pts[s + 1], j->radius[s], j->radius[s + 1]);
+        if (d < best) best = d;
+    }
+    return best;
+}
+
+// Whether a brick lies farther than the margin from the whole path (skipped: untouched).
+static int brick_beyond_path(const vol_job *j, tile_key key) {
+    volume_box b = volume_brick_box(key);
+    double v = j->g.voxel;
+    double c[3] = {(b.i0 + b.i1 - 1) * 0.5 * v, (b.j0 + b.j1 - 1) * 0.5 * v,
+                   (b.k0 + b.k1 - 1) * 0.5 * v};
+    double half = 0.5 * v *
+                  sqrt((double)(VOLUME_BRICK_X * VOLUME_BRICK_X + VOLUME_BRICK_Y * VOLUME_BRICK_Y +
+                                VOLUME_BRICK_Z * VOLUME_BRICK_Z));
+    return path_distance(j, c) > half + j->margin;
+}
+
+static int list_bricks(vol_job *j, int skip_beyond_path, og_error *err) {
+    volume_box b = j->box;
+    int64_t n = volume_box_bricks(b);
+    free(j->bricks);
+    j->brick_count = 0;
+    j->bricks = malloc((size_t)n * sizeof *j->bricks);
+    if (!j->bricks) return og_error_set(err, "out of memory listing %lld bricks", (long long)n);
+    for (int64_t by = volume_floor_div(b.j0, VOLUME_BRICK_Y);
+         by <= volume_floor_div(b.j1 - 1, VOLUME_BRICK_Y); by++)
+        for (int64_t bz = volume_floor_div(b.k0, VOLUME_BRICK_Z);
+             bz <= volume_floor_div(b.k1 - 1, VOLUME_BRICK_Z); bz++)
+            for (int64_t bx = volume_floor_div(b.i0, VOLUME_BRICK_X);
+                 bx <= volume_floor_div(b.i1 - 1, VOLUME_BRICK_X); bx++) {
+                tile_key key = {TILE_LAYER_VOLUME, 0, (int32_t)by, (int32_t)bx, (int32_t)bz};
+                if (skip_beyond_path && brick_beyond_path(j, key)) continue;
+                j->bricks[j->brick_count++] = key;
+            }
+    return 0;
+}
+
+// fill / carve on one brick.
+static int shape_task(void *user, int t, og_error *err) {
+    vol_job *j = user;
+    tile_key key = j->bricks[t];
+    volume_box b = volume_box_intersect(volume_brick_box(key), j->box);
+    tile_view view;
+    if (edit_tile_acquire(j->e, key, &view, err) != 0) return -1;
+    int16_t *data = view.data;
+    double v = j->g.voxel;
+    float k = (float)j->blend;
+    int fill = j->b->tool == BRUSH_FILL;
+    long long visited = 0;
+    for (int64_t y = b.j0; y < b.j1; y++)
+        for (int64_t z = b.k0; z < b.k1; z++)
+            for (int64_t x = b.i0; x < b.i1; x++) {
+                double p[3] = {x * v, y * v, z * v};
+                double d = path_distance(j, p);
+                visited++;
+                if (d > j->margin) continue;
+                int16_t *pair = data + 2 * volume_brick_offset(key, x, y, z);
+                float add = volume_to_metres(pair[0], v), sub = volume_to_metres(pair[1], v);
+                float df = (float)d;
+                if (fill) {
+                    add = smin(add, df, k);
+                    sub = smax(sub, -df, k);
+                } else {
+                    sub = smin(sub, df, k);
+                    add = smax(add, -df, k);
+                }
+                pair[0] = volume_from_metres(add, v);
+                pair[1] = volume_from_metres(sub, v);
+            }
+    edit_tile_release(j->e, &view);
+    atomic_fetch_add(&j->voxels, visited);
+    return 0;
+}
+
+// Makes the combined distance at a voxel equal t by changing ADD and SUB only
+// (volume_grid.h: d = max(min(h, add), -sub)): lowering it needs add <= t and
+// sub >= -t; raising it, -sub >= t.
+static void set_combined(int16_t *pair, float d_height, float t, double v) {
+    float add = volume_to_metres(pair[0], v), sub = volume_to_metres(pair[1], v);
+    float now = volume_combine(d_height, add, sub);
+    if (t < now) {
+        pair[0] = volume_from_metres(fminf(add, t), v);
+        pair[1] = volume_from_metres(fmaxf(sub, -t), v);
+    } else if (t > now) {
+        pair[1] = volume_from_metres(fminf(sub, -t), v);
+    }
+}
+
+static size_t field_index(const volume_box *f, int64_t x, int64_t y, int64_t z) {
+    return (size_t)(((y - f->j0) * (f->k1 - f->k0) + (z - f->k0)) * (f->i1 - f->i0) + (x - f->i0));
+}
+
+// Reads the combined distance over field_box into now.
+static int read_field(vol_job *j, og_error *err) {
+    volume_box f = j->field_box;
+    tile_cache *cache = world_cache(j->w);
+    double v = j->g.voxel;
+    for (int64_t by = volume_floor_div(f.j0, VOLUME_BRICK_Y);
+         by <= volume_floor_div(f.j1 - 1, VOLUME_BRICK_Y); by++)
+        for (int64_t bz = volume_floor_div(f.k0, VOLUME_BRICK_Z);
+             bz <= volume_floor_div(f.k1 - 1, VOLUME_BRICK_Z); bz++)
+            for (int64_t bx = volume_floor_div(f.i0, VOLUME_BRICK_X);
+                 bx <= volume_floor_div(f.i1 - 1, VOLUME_BRICK_X); bx++) {
+                tile_key key = {TILE_LAYER_VOLUME, 0, (int32_t)by, (int32_t)bx, (int32_t)bz};
+                volume_box b = volume_box_intersect(volume_brick_box(key), f);
+                tile_view view;
+                if (tile_cache_acquire(cache, key, &view, err) != 0) return -1;
+                const int16_t *data = view.data;
+                for (int64_t y = b.j0; y < b.j1; y++)
+                    for (int64_t z = b.k0; z < b.k1; z++)
+                        for (int64_t x = b.i0; x < b.i1; x++) {
+                            const int16_t *pair = data + 2 * volume_brick_offset(key, x, y, z);
+                            j->now[field_index(&f, x, y, z)] = volume_combine(
+                                volume_heights_distance(&j->vh, x, z, (double)y * v),
+                                volume_to_metres(pair[0], v), volume_to_metres(pair[1], v));
+                        }
+                tile_cache_release(cache, &view);
+            }
+    return 0;
+}
+
+// vsmooth / vflatten: writes the target into one brick.
+static int surface_task(void *user, int t, og_error *err) {
+    vol_job *j = user;
+    tile_key key = j->bricks[t];
+    volume_box b = volume_box_intersect(volume_brick_box(key), j->box);
+    tile_view view;
+    if (edit_tile_acquire(j->e, key, &view, err) != 0) return -1;
+    int16_t *data = view.data;
+    double v = j->g.voxel;
+    long long visited = 0;
+    for (int64_t y = b.j0; y < b.j1; y++)
+        for (int64_t z = b.k0; z < b.k1; z++)
+            for (int64_t x = b.i0; x < b.i1; x++) {
+                size_t f = field_index(&j->field_box, x, y, z);
+                visited++;
+                if (j->target[f] == j->now[f]) continue;
+                set_combined(data + 2 * volume_brick_offset(key, x, y, z),
+                             volume_heights_distance(&j->vh, x, z, (double)y * v), j->target[f], v);
+            }
+    edit_tile_release(j->e, &view);
+    atomic_fetch_add(&j->voxels, visited);
+    return 0;
+}
+
+// One vsmooth / vflatten dab at c with pressure.
+static int surface_dab(vol_job *j, const double c[3], double pressure, double plane_y,
+                       og_error *err) {
+    const brush *b = j->b;
+    double v = j->g.voxel, r = b->radius;
+    double lo[3] = {c[0], c[1], c[2]};
+    j->box = volume_grid_box_around(&j->g, lo, lo, r);
+    volume_box f = {j->box.i0 - 1, j->box.j0 - 1, j->box.k0 - 1,
+                    j->box.i1 + 1, j->box.j1 + 1, j->box.k1 + 1};
+    j->field_box = f;
+    size_t n = (size_t)volume_box_voxels(f);
+    free(j->now);
+    free(j->target);
+    j->now = malloc(n * sizeof *j->now);
+    j->target = malloc(n * sizeof *j->target);
+    if (!j->now || !j->target) return og_error_set(err, "out of memory for a %zu-voxel dab", n);
+    volume_heights_free(&j->vh);
+    if (volume_heights_read(j->w, &j->g, j->g.voxel, f.i0, f.k0, f.i1, f.k1, &j->vh, err) != 0 ||
+        read_field(j, err) != 0)
+        return -1;
+    memcpy(j->target, j->now, n * sizeof *j->target);
+    double strength = b->strength * pressure;
+    int64_t sx = f.i1 - f.i0, sxz = sx * (f.k1 - f.k0);
+    for (int64_t y = j->box.j0; y < j->box.j1; y++)
+        for (int64_t z = j->box.k0; z < j->box.k1; z++)
+            for (int64_t x = j->box.i0; x < j->box.i1; x++) {
+                double dx = x * v - c[0], dy = y * v - c[1], dz = z * v - c[2];
+                float w = (float)strength *
+                          brush_falloff_weight(b, (float)(sqrt(dx * dx + dy * dy + dz * dz) / r));
+                if (w <= 0) continue;
+                size_t i = field_index(&f, x, y, z);
+                float goal;
+                if (b->tool == BRUSH_VSMOOTH) {
+                    double sum = 0;
+                    for (int64_t oy = -1; oy <= 1; oy++)
+                        for (int64_t oz = -1; oz <= 1; oz++)
+                            for (int64_t ox = -1; ox <= 1; ox++)
+                                sum += j->now[(int64_t)i + oy * sxz + oz * sx + ox];
+                    goal = (float)(sum / 27.0);
+                } else {
+                    goal = (float)(y * v - plane_y);
+                }
+                j->target[i] = j->now[i] + w * (goal - j->now[i]);
+            }
+    if (list_bricks(j, 0, err) != 0) return -1;
+    if (parallel_run((int)j->brick_count, surface_task, j, err) != 0) return -1;
+    edit_dirty(j->e, TILE_LAYER_VOLUME, 0, (grid_rect){j->box.i0, j->box.k0, j->box.i1, j->box.k1});
+    return 0;
+}
+
+static int check_input(const volume_grid *g, const brush *b, const double (*pts)[3],
+                       const double *pressure, size_t count, tile_cache *cache, og_error *err) {
+    const char *name = brush_tool_name(b->tool);
+    if (count == 0) return og_error_set(err, "%s: needs at least one X Y Z point", name);
+    for (size_t i = 0; i < count; i++) {
+        if (volume_grid_check_position(g, pts[i], err) != 0)
+            return og_error_set(err, "%s: point %zu: %s", name, i + 1, err->msg);
+        if (pressure && !(pressure[i] >= 0 && pressure[i] <= 1))
+            return og_error_set(err, "%s: point %zu: pressure %g must be 0 to 1", name, i + 1,
+                                pressure[i]);
+    }
+    if (!(b->radius > 0) || b->radius / g->voxel > VOLUME_MAX_RADIUS_VOXELS)
+        return og_error_set(err,
+                            "%s: radius %g m is %.0f voxels of %g m; the volume tools take up to "
+                            "%.0f (raise volume_ratio's voxel or lower the radius)",
+                            name, b->radius, b->radius / g->voxel, g->voxel,
+                            VOLUME_MAX_RADIUS_VOXELS);
+    // The bricks one dab (and a stroke's segments) keep pinned must fit the cache.
+    double lo[3] = {pts[0][0], pts[0][1], pts[0][2]};
+    volume_box one = volume_grid_box_around(g, lo, lo, b->radius + VOLUME_EXACT_VOXELS * g->voxel);
+    tile_cache_stats st;
+    tile_cache_stats_get(cache, &st);
+    double need = (double)volume_box_bricks(one) * (double)tile_layer_bytes(TILE_LAYER_VOLUME);
+    if (need > st.budget_bytes / 2.0)
+        return og_error_set(err,
+                            "%s: a %g m dab at %g m voxels touches %.0f MiB of volume bricks, more "
+                            "than half the tile cache (%.0f MiB)",
+                            name, b->radius, g->voxel, need / 1048576.0,
+                            st.budget_bytes / 1048576.0);
+    return 0;
+}
+
+static int apply_shape(vol_job *j, const double *pressure, og_error *err) {
+    const brush *b = j->b;
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    double widest = 0;
+    j->radius = malloc(j->count * sizeof *j->radius);
+    if (!j->radius) return og_error_set(err, "out of memory");
+    for (size_t i = 0; i < j->count; i++) {
+        j->radius[i] = b->radius * b->strength * (pressure ? pressure[i] : 1.0);
+        if (j->radius[i] > widest) widest = j->radius[i];
+        for (int a = 0; a < 3; a++) {
+            lo[a] = fmin(lo[a], j->pts[i][a]);
+            hi[a] = fmax(hi[a], j->pts[i][a]);
+        }
+    }
+    j->blend = b->radius * (1.0 - brush_falloff_weight(b, 0.5f)) * 0.5;
+    if (b->falloff == FALLOFF_CONSTANT) j->blend = 0;
+    j->margin = VOLUME_EXACT_VOXELS * j->g.voxel + j->blend;
+    j->box = volume_grid_box_around(&j->g, lo, hi, widest + j->margin);
+    if (list_bricks(j, 1, err) != 0) return -1;
+    if (parallel_run((int)j->brick_count, shape_task, j, err) != 0) return -1;
+    edit_dirty(j->e, TILE_LAYER_VOLUME, 0, (grid_rect){j->box.i0, j->box.k0, j->box.i1, j->box.k1});
+    return 0;
+}
+
+static int apply_surface(vol_job *j, const double *pressure, og_error *err) {
+    const brush *b = j->b;
+    double plane_y = b->has_height ? b->height : j->pts[0][1];
+    double step = b->spacing * b->radius;
+    if (surface_dab(j, j->pts[0], pressure ? pressure[0] : 1.0, plane_y, err) != 0) return -1;
+    double carry = 0; // distance along the path since the last dab
+    for (size_t s = 0; s + 1 < j->count; s++) {
+        const double *a = j->pts[s], *c = j->pts[s + 1];
+        double len = sqrt((c[0] - a[0]) * (c[0] - a[0]) + (c[1] - a[1]) * (c[1] - a[1]) +
+                          (c[2] - a[2]) * (c[2] - a[2]));
+        double at = step - carry;
+        for (; at <= len; at += step) {
+            double t = len > 0 ? at / len : 1;
+            double p[3] = {a[0] + t * (c[0] - a[0]), a[1] + t * (c[1] - a[1]),
+                           a[2] + t * (c[2] - a[2])};
+            double pr = pressure ? pressure[s] + t * (pressure[s + 1] - pressure[s]) : 1.0;
+            if (surface_dab(j, p, pr, plane_y, err) != 0) return -1;
+        }
+        carry = len - (at - step);
+    }
+    return 0;
+}
+
+int volume_brush_apply(world *w, const brush *b, const double (*points)[3], const double *pressure,
+                       size_t count, og_error *err) {
+    if (!brush_tool_is_volume(b->tool))
+        return og_error_set(err, "%s is not a volume tool (fill, carve, vsmooth, vflatten)",
+                            brush_tool_name(b->tool));
+    vol_job j = {.w = w, .b = b, .pts = points, .count = count};
+    if (volume_grid_init(&j.g, world_get_params(w), err) != 0 ||
+        check_input(&j.g, b, points, pressure, count, world_cache(w), err) != 0)
+        return -1;
+    char label[64];
+    snprintf(label, sizeof label, "%s %s", brush_tool_name(b->tool), count == 1 ? "dab" : "stroke");
+    j.e = edit_begin(w, label, err);
+    if (!j.e) return -1;
+    int rc = b->tool == BRUSH_FILL || b->tool == BRUSH_CARVE ? apply_shape(&j, pressure, err)
+                                                             : apply_surface(&j, pressure, err);
+    free(j.bricks);
+    free(j.radius);
+    free(j.now);
+    free(j.target);
+    volume_heights_free(&j.vh);
+    atomic_store(&last_voxels, atomic_load(&j.voxels));
+    if (rc != 0) {
+        edit_abort(j.e);
+        return -1;
+    }
+    return edit_commit(j.e, err);
+}

@@ -1,0 +1,129 @@
+#include "io/vdb_file.h"
+
+#include "io/module_load.h"
+
+#include <dlfcn.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <libgen.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+typedef void *(*create_fn)(double, float, char *, size_t);
+typedef int (*column_fn)(void *, int, int, int, int, const float *, int);
+typedef int (*merge_fn)(void *, void *);
+typedef long long (*active_fn)(void *);
+typedef int (*write_fn)(void *, const char *, int, const char *const *, int, char *, size_t);
+typedef void (*free_fn)(void *);
+
+static struct {
+    pthread_once_t once;
+    create_fn create;
+    column_fn column;
+    merge_fn merge;
+    active_fn active;
+    write_fn write;
+    free_fn release;
+    char why[1024];
+} module = {.once = PTHREAD_ONCE_INIT};
+
+static void load_module(void) {
+    void *h = module_open("OROGEN_VDB_MODULE", "liborogen_vdb.so",
+#ifdef OROGEN_VDB_MODULE_PATH
+                          OROGEN_VDB_MODULE_PATH,
+#else
+                          NULL,
+#endif
+                          module.why, sizeof module.why);
+    if (!h) return;
+    module.create = (create_fn)dlsym(h, "orogen_vdb_module_create");
+    module.column = (column_fn)dlsym(h, "orogen_vdb_module_set_column");
+    module.merge = (merge_fn)dlsym(h, "orogen_vdb_module_merge");
+    module.active = (active_fn)dlsym(h, "orogen_vdb_module_active_voxels");
+    module.write = (write_fn)dlsym(h, "orogen_vdb_module_write");
+    module.release = (free_fn)dlsym(h, "orogen_vdb_module_free");
+    if (module.create && module.column && module.merge && module.active && module.write &&
+        module.release)
+        return;
+    snprintf(module.why, sizeof module.why, "liborogen_vdb.so is not Orogen's OpenVDB module");
+    module.create = NULL;
+}
+
+vdb_level_set *vdb_level_set_create(double voxel, float background, og_error *err) {
+    pthread_once(&module.once, load_module);
+    if (!module.create) {
+        og_error_set(err, "OpenVDB support is unavailable: %s", module.why);
+        return NULL;
+    }
+    char why[512] = "";
+    void *g = module.create(voxel, background, why, sizeof why);
+    if (!g) og_error_set(err, "OpenVDB: %s", why);
+    return g;
+}
+
+int vdb_level_set_column(vdb_level_set *ls, int32_t i, int32_t k, int32_t j0, int32_t n,
+                         const float *values, int overwrite, og_error *err) {
+    if (module.column(ls, i, k, j0, n, values, overwrite) != 0)
+        return og_error_set(err, "OpenVDB: out of memory building the level set");
+    return 0;
+}
+
+int vdb_level_set_merge(vdb_level_set *dst, vdb_level_set *src, og_error *err) {
+    if (module.merge(dst, src) != 0)
+        return og_error_set(err, "OpenVDB: out of memory merging level sets");
+    return 0;
+}
+
+long long vdb_level_set_active_voxels(vdb_level_set *ls) {
+    return module.active(ls);
+}
+
+static int fsync_path(const char *path, int flags) {
+    int fd = open(path, O_RDONLY | flags);
+    if (fd < 0) return -1;
+    int rc = fsync(fd);
+    close(fd);
+    return rc;
+}
+
+int vdb_level_set_write(vdb_level_set *ls, const char *path, int fog, const char *const *meta,
+                        int meta_count, og_error *err) {
+    size_t len = strlen(path);
+    char *tmp = malloc(len + 16), *dir = strdup(path);
+    if (!tmp || !dir) {
+        free(tmp);
+        free(dir);
+        return og_error_set(err, "%s: out of memory", path);
+    }
+    snprintf(tmp, len + 16, "%s.tmp-XXXXXX", path);
+    int rc = -1;
+    int fd = mkstemp(tmp);
+    if (fd < 0) {
+        og_error_set(err, "%s: cannot write there: %s", path, strerror(errno));
+        goto done;
+    }
+    close(fd);
+    char why[512] = "";
+    if (module.write(ls, tmp, fog, meta, meta_count, why, sizeof why) != 0) {
+        og_error_set(err, "%s: OpenVDB could not write it: %s", path, why);
+    } else if (fsync_path(tmp, 0) != 0) {
+        og_error_set(err, "%s: cannot flush the file to disk: %s", path, strerror(errno));
+    } else if (rename(tmp, path) != 0) {
+        og_error_set(err, "%s: cannot rename the temp file into place: %s", path, strerror(errno));
+    } else {
+        fsync_path(dirname(dir), O_DIRECTORY); // best effort: the file itself is durable
+        rc = 0;
+    }
+    if (rc != 0) unlink(tmp);
+done:
+    free(tmp);
+    free(dir);
+    return rc;
+}
+
+void vdb_level_set_free(vdb_level_set *ls) {
+    if (ls) module.release(ls);
+}
