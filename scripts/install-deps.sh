@@ -8,7 +8,7 @@ packages=(
   libglfw3-dev libegl-dev libopengl-dev libgl-dev libgles-dev libepoxy-dev
   libegl1-mesa-dev libgl1-mesa-dri libglx-mesa0 mesa-utils
   libopenimageio-dev openimageio-tools
-  libopenvdb-dev libboost-dev libtbb-dev libopenvdb-tools
+  libopenvdb-dev libboost-dev libtbb-dev libopenvdb-tools python3-openvdb
   libsqlite3-dev sqlite3 libzstd-dev zstd
   libcglm-dev libstb-dev fonts-dejavu-core
   libmeshoptimizer-dev libcmocka-dev
