@@ -475,6 +475,19 @@ void tile_cache_release(tile_cache *c, tile_view *view) {
     view->data = NULL;
 }
 
+size_t tile_cache_edited_keys(tile_cache *c, int layer, tile_key *out, size_t max) {
+    size_t n = 0;
+    pthread_mutex_lock(&c->lock);
+    for (size_t b = 0; b < c->bucket_count; b++)
+        for (entry *e = c->buckets[b]; e; e = e->hnext)
+            if (e->key.layer == layer && e->state == ENTRY_READY && e->edited && e->data) {
+                if (n < max) out[n] = e->key;
+                n++;
+            }
+    pthread_mutex_unlock(&c->lock);
+    return n;
+}
+
 int tile_cache_flush(tile_cache *c, og_error *err) {
     if (!c->desc.store) return 0;
     pthread_mutex_lock(&c->lock);

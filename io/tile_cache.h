@@ -80,6 +80,10 @@ void tile_cache_release(tile_cache *cache, tile_view *view);
 // pinned or still being produced (it then stays), 0 otherwise.
 int tile_cache_discard(tile_cache *cache, tile_key key);
 
+// Keys of the resident tiles of a layer that hold edits (loaded from a store, or
+// written since generated): up to max into out; returns how many there are.
+size_t tile_cache_edited_keys(tile_cache *cache, int layer, tile_key *out, size_t max);
+
 // Writes every dirty tile to the store in one transaction. Tiles stay resident.
 int tile_cache_flush(tile_cache *cache, og_error *err);
 // Whether any resident tile has changes not yet written to the store.

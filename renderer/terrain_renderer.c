@@ -7,6 +7,7 @@
 #include "renderer/lighting.h"
 #include "renderer/material_textures.h"
 #include "renderer/shader.h"
+#include "renderer/volume_renderer.h"
 
 #include <epoxy/gl.h>
 #include <math.h>
@@ -44,6 +45,8 @@ struct terrain_renderer {
     int src[RENDER_MAX_LEVELS];           // level whose texture draws level l (-1: none)
     int material_current, detail_current;
     int64_t detail_origin[2];
+
+    volume_renderer *volume; // caves, overhangs and arches near the camera
 
     render_stats stats;
     uint64_t frame_texels;
@@ -139,7 +142,8 @@ terrain_renderer *terrain_renderer_create(const char *resource_dir, og_error *er
     snprintf(dir, sizeof dir, "%s/shaders", resource_dir);
     if (!(r->prog_terrain = shader_program_load(dir, "terrain.vert", "terrain.frag", err)) ||
         !(r->prog_sky = shader_program_load(dir, "fullscreen.vert", "sky.frag", err)) ||
-        !(r->prog_water = shader_program_load(dir, "water.vert", "water.frag", err)))
+        !(r->prog_water = shader_program_load(dir, "water.vert", "water.frag", err)) ||
+        !(r->volume = volume_renderer_create(dir, err)))
         goto fail;
     if (clipmap_mesh_build(&r->mesh, CLIP_N) != 0) {
         og_error_set(err, "out of memory for the clipmap mesh");
@@ -173,6 +177,7 @@ fail:
 void terrain_renderer_destroy(terrain_renderer *r) {
     if (!r) return;
     world_events_unsubscribe(r->changes);
+    volume_renderer_destroy(r->volume);
     glDeleteProgram(r->prog_terrain);
     glDeleteProgram(r->prog_sky);
     glDeleteProgram(r->prog_water);
@@ -272,6 +277,7 @@ static void invalidate_all(terrain_renderer *r) {
     clip_window_invalidate(&r->material);
     clip_window_invalidate(&r->detail);
     clip_window_invalidate(&r->detail_pd);
+    if (r->volume) volume_renderer_reset(r->volume);
 }
 
 // Re-reads just the changed samples of every window.
@@ -279,11 +285,20 @@ static void refresh_area(terrain_renderer *r, tile_cache *cache, const world_eve
     grid_rect g = e->rect;
     if (e->face != 0 || e->level != 0) return;
     switch (e->layer) {
-    case TILE_LAYER_COARSE:
+    case TILE_LAYER_COARSE: {
         // Mips are tent-filtered: a change reaches one sample further per level.
         for (int l = 0; l < RENDER_MAX_LEVELS; l++)
             clip_window_refresh(&r->heights[l], cache, (g.x0 >> l) - 1, (g.z0 >> l) - 1,
                                 ((g.x1 - 1) >> l) + 2, ((g.z1 - 1) >> l) + 2);
+        // Volume meshes include the ground inside their bricks (and its slope).
+        int64_t k = r->params.volume_ratio > 0 ? r->params.volume_ratio : 1;
+        volume_renderer_touched(
+            r->volume, (grid_rect){(g.x0 - 1) * k, (g.z0 - 1) * k, (g.x1 + 1) * k, (g.z1 + 1) * k},
+            0);
+        break;
+    }
+    case TILE_LAYER_VOLUME:
+        volume_renderer_touched(r->volume, g, 1);
         break;
     case TILE_LAYER_MATERIAL:
         clip_window_refresh(&r->material, cache, g.x0, g.z0, g.x1, g.z1);
@@ -344,6 +359,9 @@ int terrain_renderer_update(terrain_renderer *r, world *w, const camera *cam,
     if (apply_changes(r, w, err) != 0) return -1;
     r->params = *p;
     layout_levels(r, p, cam, s);
+    // Meshing waits for nothing but takes CPU: a few milliseconds a frame while moving.
+    int volume_ok = volume_renderer_update(r->volume, w, cam, 12.0, err);
+    if (volume_ok < 0) return -1;
     tile_cache *cache = world_cache(w);
     int all = 1;
     // Finest first: the cache serves the last request first, so the coarsest level,
@@ -394,7 +412,7 @@ int terrain_renderer_update(terrain_renderer *r, world *w, const camera *cam,
         r->stats.levels_ready += r->src[l] == l;
     r->stats.finest_level = r->finest;
     r->stats.cpu_ms = now_ms() - t0;
-    return all;
+    return all && volume_ok;
 }
 
 int terrain_renderer_height_at(void *renderer, double x, double z, double *h) {
@@ -585,6 +603,7 @@ static void set_terrain_uniforms(terrain_renderer *r, const camera *cam, const r
     GLuint tex[] = {r->tex_heights, r->tex_material,  r->tex_albedo,
                     r->tex_detail,  r->tex_detail_pd, r->tex_falloff};
     glBindTextures(0, 6, tex);
+    volume_renderer_mask_uniforms(r->volume, prog, cam, 6);
 }
 
 // The camera-relative bounding box of a piece of level l, for culling.
@@ -713,6 +732,14 @@ int terrain_renderer_draw(terrain_renderer *r, world *w, const camera *cam,
         set_terrain_uniforms(r, cam, s, cursor, view_proj);
         if (wire) glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
         draw_terrain(r, cam, s, view_proj);
+        if (s->view != VIEW_LEVELS) {
+            float period[2] = {(float)TEX_PERIOD_NEAR, (float)TEX_PERIOD_FAR};
+            uint64_t t =
+                volume_renderer_draw(r->volume, cam, view_proj, s, r->tex_albedo, fog_density(r, s),
+                                     r->params.ocean_level, r->params.max_height, period);
+            r->stats.triangles += t;
+            r->stats.draw_calls += t > 0;
+        }
         if (wire) glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
         if (!wire && s->view == VIEW_SHADED) draw_water(r, cam, s, view_proj);
     }
@@ -726,6 +753,10 @@ int terrain_renderer_draw(terrain_renderer *r, world *w, const camera *cam,
 
 void terrain_renderer_stats(const terrain_renderer *r, render_stats *out) {
     *out = r->stats;
+}
+
+volume_renderer *terrain_renderer_volume(terrain_renderer *r) {
+    return r->volume;
 }
 
 uint64_t terrain_renderer_texels_total(const terrain_renderer *r) {

@@ -40,6 +40,10 @@ int terrain_renderer_draw(terrain_renderer *r, world *w, const camera *cam,
                           int height, og_error *err);
 
 void terrain_renderer_stats(const terrain_renderer *r, render_stats *out);
+// The volume meshes (caves, overhangs) the renderer draws, for picking.
+typedef struct volume_renderer volume_renderer;
+volume_renderer *terrain_renderer_volume(terrain_renderer *r);
+
 // Texels copied into the level textures since creation (all levels and layers).
 uint64_t terrain_renderer_texels_total(const terrain_renderer *r);
 

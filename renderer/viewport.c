@@ -2,6 +2,7 @@
 
 #include "renderer/gl_target.h"
 #include "renderer/pick.h"
+#include "renderer/volume_renderer.h"
 #include "io/image_read.h"
 
 #include <epoxy/gl.h>
@@ -105,6 +106,14 @@ int viewport_screenshot(viewport *v, world *w, const char *path, int width, int 
     return rc;
 }
 
+// The ground the viewport shows: the heightfield, except where a volume mesh replaces it
+// (there the ray passes through; the mesh itself is picked separately).
+static int shown_height(void *user, double x, double z, double *h) {
+    terrain_renderer *r = user;
+    if (terrain_renderer_height_at(r, x, z, h) != 0) return -1;
+    return volume_renderer_replaces(terrain_renderer_volume(r), x, *h, z) ? -1 : 0;
+}
+
 int viewport_pick_loaded(viewport *v, world *w, double sx, double sy, double aspect,
                          double hit[3]) {
     if (!v->renderer) return -1;
@@ -113,8 +122,19 @@ int viewport_pick_loaded(viewport *v, world *w, double sx, double sy, double asp
     const world_params *p = world_get_params(w);
     // As far as the coarsest level reaches; steps of one coarse sample near the camera.
     double reach = 0.75 * 254 * p->spacing * (double)((int64_t)1 << (v->settings.levels - 1));
-    return pick_ray(terrain_renderer_height_at, v->renderer, v->cam.pos, dir, reach, p->spacing,
-                    hit);
+    int ground = pick_ray(shown_height, v->renderer, v->cam.pos, dir, reach, p->spacing, hit);
+    double t_ground = ground == 0 ? sqrt((hit[0] - v->cam.pos[0]) * (hit[0] - v->cam.pos[0]) +
+                                         (hit[1] - v->cam.pos[1]) * (hit[1] - v->cam.pos[1]) +
+                                         (hit[2] - v->cam.pos[2]) * (hit[2] - v->cam.pos[2]))
+                                  : reach;
+    double t_mesh;
+    if (volume_renderer_pick(terrain_renderer_volume(v->renderer), v->cam.pos, dir, t_ground,
+                             &t_mesh) == 0) {
+        for (int a = 0; a < 3; a++)
+            hit[a] = v->cam.pos[a] + t_mesh * dir[a];
+        return 0;
+    }
+    return ground;
 }
 
 int viewport_pick(viewport *v, world *w, double px, double py, int width, int height, double hit[3],

@@ -58,13 +58,29 @@ scenes() {
          screenshot $d/parallax_on.png $size; render parallax=off; screenshot $d/parallax_off.png $size"
     rc=$?; check "detail sculpted and rendered with parallax on and off ($(cat "$work/err"))" $rc
 
+    # A tunnel through a hill and an arch over the plain (volume meshes): the tunnel shows
+    # as a hole, and a pick ray along it passes through the hill (the same ray meets the
+    # hill before the carve).
+    run "set generator flat; set base_height 0; set size 1024; set spacing 1; generate;
+         stamp gaussian 500 500 scale=1.5 intensity=60; camera 340 8 500 90 -1 60;
+         pick $((W / 2)) $((H / 2)) $size;
+         tool carve radius=7 falloff=constant; stroke 380 8 500 620 8 500;
+         tool fill radius=3 falloff=constant; stroke 430 30 560 470 42 560 510 30 560;
+         pick $((W / 2)) $((H / 2)) $size; camera 340 12 500 90 -2 60;
+         screenshot $d/cave.png $size"
+    rc=$?; check "a tunnel and an arch render ($(cat "$work/err"))" $rc
+    picks=$(sed -n 's/^pick \([-0-9.]*\) .*/\1/p' "$work/out" | tr '\n' ' ')
+    read -r before after <<<"$picks"
+    less "$before" 460 && less 620 "$after"
+    check "a pick ray meets the hill (x $before) and, once carved, goes through the tunnel (x $after)" $?
+
     run "camera 10000000 300 0 30 -18; screenshot $d/far.png $size; camera 10000000.001 300 0 30 -18;
          screenshot $d/far_1mm.png $size; camera 10000000.01 300 0 30 -18; screenshot $d/far_1cm.png $size"
     rc=$?; check "a camera 10,000 km from the origin renders ($(cat "$work/err"))" $rc
 }
 scenes "$work/a"
 scenes "$work/b"
-golden_names="default wireframe crater parallax_on parallax_off far"
+golden_names="default wireframe crater parallax_on parallax_off far cave"
 max_repeat=0.5
 for name in $golden_names levels height slope before undone no_detail; do
     r=$(rmse "$work/a/$name.png" "$work/b/$name.png")

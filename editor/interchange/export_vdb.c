@@ -74,31 +74,6 @@ static int height_task(void *user, int t, og_error *err) {
     return rc;
 }
 
-// Pinned volume bricks, a few at a time, for sampling around one brick.
-#define BRICK_SLOTS 32
-typedef struct brick_reader {
-    tile_cache *cache;
-    tile_view views[BRICK_SLOTS];
-    int used[BRICK_SLOTS];
-} brick_reader;
-
-static const int16_t *brick_pair(brick_reader *r, int64_t i, int64_t j, int64_t k, og_error *err) {
-    tile_key key = volume_brick_key(i, j, k);
-    size_t slot = tile_key_hash(key) % BRICK_SLOTS;
-    if (!r->used[slot] || !tile_key_equal(r->views[slot].key, key)) {
-        if (r->used[slot]) tile_cache_release(r->cache, &r->views[slot]);
-        r->used[slot] = 0;
-        if (tile_cache_acquire(r->cache, key, &r->views[slot], err) != 0) return NULL;
-        r->used[slot] = 1;
-    }
-    return (const int16_t *)r->views[slot].data + 2 * volume_brick_offset(key, i, j, k);
-}
-
-static void brick_reader_close(brick_reader *r) {
-    for (int s = 0; s < BRICK_SLOTS; s++)
-        if (r->used[s]) tile_cache_release(r->cache, &r->views[s]);
-}
-
 // Export columns [*lo, *hi) whose positions fall in voxels [v0, v1) of the world's voxel
 // grid (a position belongs to the voxel at or below it).
 static void export_span(double wv, double ev, int64_t v0, int64_t v1, int64_t *lo, int64_t *hi) {
@@ -107,7 +82,7 @@ static void export_span(double wv, double ev, int64_t v0, int64_t v1, int64_t *l
 }
 
 // The combined field over one brick's voxels: heights with the volume edits.
-static int brick_pass(vdb_job *j, tile_key key, brick_reader *r, float **values, size_t *cap,
+static int brick_pass(vdb_job *j, tile_key key, volume_reader *r, float **values, size_t *cap,
                       og_error *err) {
     volume_box b = volume_brick_box(key);
     double wv = j->g.voxel, ev = j->ev;
@@ -149,7 +124,7 @@ static int brick_pass(vdb_job *j, tile_key key, brick_reader *r, float **values,
                     if (weight == 0) continue;
                     int64_t ci = vx + (corner & 1), cj = vy + (corner >> 1 & 1),
                             ck = vz + (corner >> 2 & 1);
-                    const int16_t *pair = brick_pair(r, ci, cj, ck, err);
+                    const int16_t *pair = volume_reader_pair(r, ci, cj, ck, err);
                     if (!pair) return -1;
                     float dh = (float)((cj * wv - h) * s);
                     d += weight * volume_combine(dh, volume_to_metres(pair[0], wv),
@@ -239,7 +214,8 @@ int export_vdb_file(world *w, const char *path, const export_options *o, export_
     for (int t = 1; t < j.tasks; t++)
         if (vdb_level_set_merge(j.sets[0], j.sets[t], err) != 0) goto done;
     // The volume edits replace the heightfield's values over their bricks.
-    brick_reader reader = {.cache = world_cache(w)};
+    volume_reader reader;
+    volume_reader_init(&reader, w);
     float *values = NULL;
     size_t cap = 0;
     int brick_rc = 0;
@@ -253,7 +229,7 @@ int export_vdb_file(world *w, const char *path, const export_options *o, export_
         rep->bricks++;
     }
     free(values);
-    brick_reader_close(&reader);
+    volume_reader_close(&reader);
     if (brick_rc != 0) goto done;
 
     char spacing[64], voxel[64], region[192], volume_ratio[16];

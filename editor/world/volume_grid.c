@@ -3,6 +3,7 @@
 #include "editor/world/layer_grid.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 // Heights beyond this many metres are no terrain anyone edits (brush.h's limit too).
 #define VOLUME_HEIGHT_LIMIT 1.0e6
@@ -154,6 +155,30 @@ void volume_heights_free(volume_heights *vh) {
     vh->height = vh->slope_scale = NULL;
 }
 
+void volume_reader_init(volume_reader *r, world *w) {
+    memset(r, 0, sizeof *r);
+    r->cache = world_cache(w);
+}
+
+const int16_t *volume_reader_pair(volume_reader *r, int64_t i, int64_t j, int64_t k,
+                                  og_error *err) {
+    tile_key key = volume_brick_key(i, j, k);
+    size_t slot = tile_key_hash(key) % VOLUME_READER_SLOTS;
+    if (!r->used[slot] || !tile_key_equal(r->views[slot].key, key)) {
+        if (r->used[slot]) tile_cache_release(r->cache, &r->views[slot]);
+        r->used[slot] = 0;
+        if (tile_cache_acquire(r->cache, key, &r->views[slot], err) != 0) return NULL;
+        r->used[slot] = 1;
+    }
+    return (const int16_t *)r->views[slot].data + 2 * volume_brick_offset(key, i, j, k);
+}
+
+void volume_reader_close(volume_reader *r) {
+    for (int s = 0; s < VOLUME_READER_SLOTS; s++)
+        if (r->used[s]) tile_cache_release(r->cache, &r->views[s]);
+    memset(r->used, 0, sizeof r->used);
+}
+
 typedef struct key_list {
     tile_key *keys;
     size_t count, cap;
@@ -186,9 +211,15 @@ int volume_list_bricks(world *w, tile_key **keys, size_t *count, og_error *err) 
     key_list l = {0};
     *keys = NULL;
     *count = 0;
-    // Written bricks live in the saved store, the unsaved-edit journal, or dirty in the
-    // cache: flushing puts the last into the journal.
-    if (tile_cache_flush(world_cache(w), err) != 0) return -1;
+    // Written bricks live in the saved store, the unsaved-edit journal, or (not yet
+    // written back) in the cache.
+    tile_cache *cache = world_cache(w);
+    size_t resident = tile_cache_edited_keys(cache, TILE_LAYER_VOLUME, NULL, 0);
+    l.cap = resident + 64;
+    l.keys = malloc(l.cap * sizeof *l.keys);
+    if (!l.keys) return og_error_set(err, "out of memory listing volume bricks");
+    l.count = tile_cache_edited_keys(cache, TILE_LAYER_VOLUME, l.keys, l.cap);
+    if (l.count > l.cap) l.count = l.cap; // edits run on this thread: cannot grow meanwhile
     tile_store *stores[2] = {world_store(w), world_journal(w)};
     for (int s = 0; s < 2; s++) {
         if (!stores[s]) continue;

@@ -130,6 +130,20 @@ static inline float volume_heights_distance(const volume_heights *vh, int64_t i,
     return (float)((y - vh->height[c]) * vh->slope_scale[c]);
 }
 
+// Reads voxels anywhere, keeping the last few bricks pinned (for passes that walk a
+// brick and its borders).
+#define VOLUME_READER_SLOTS 32
+typedef struct volume_reader {
+    tile_cache *cache;
+    tile_view views[VOLUME_READER_SLOTS];
+    int used[VOLUME_READER_SLOTS];
+} volume_reader;
+
+void volume_reader_init(volume_reader *r, world *w);
+// The (ADD, SUB) pair of voxel (i, j, k), or NULL with err set.
+const int16_t *volume_reader_pair(volume_reader *r, int64_t i, int64_t j, int64_t k, og_error *err);
+void volume_reader_close(volume_reader *r);
+
 // The keys of every volume brick the world has written (saved or not; after undo a
 // brick may hold no edit any more), sorted, without duplicates. malloc'd.
 int volume_list_bricks(world *w, tile_key **keys, size_t *count, og_error *err);

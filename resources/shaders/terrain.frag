@@ -6,6 +6,8 @@
 #include "terrain_common.glsl"
 #include "lighting.glsl"
 #include "colour_ramp.glsl"
+#include "materials.glsl"
+#include "volume_mask.glsl"
 
 in vec2 v_local;
 in vec3 v_rel;
@@ -26,12 +28,10 @@ uniform vec4 u_lvl_grid[MAX_LEVELS];   // tile grid: local (0,0) modulo a tile (
 uniform int u_overlays;                // 1: the tile grid, 2: the clipmap level grids
 uniform int u_auto_materials;          // 0: unpainted ground in a neutral clay
 uniform vec4 u_lvl_detail[MAX_LEVELS]; // detail: sample of local (0,0), samples per unit, valid
-uniform float u_ocean_level, u_max_height;
 uniform vec2 u_tex_period;             // metres per repeat: near texture, far variation
 
 uniform usampler2D u_material;         // 8 x uint8 weights per texel (RG32UI), toroidal
 uniform ivec2 u_mat_wrap;              // texel of the window's origin sample
-uniform sampler2DArray u_albedo;       // the 8 procedural material textures
 uniform sampler2D u_detail;            // detail heights (metres), toroidal
 uniform sampler2D u_detail_pd;         // detail slopes (RG16 snorm, x 8)
 uniform vec2 u_detail_wrap;            // texel of the detail window's origin sample
@@ -107,39 +107,11 @@ void painted_weights(vec2 t, out vec4 w0, out vec4 w1) {
     w0 /= 255.0, w1 /= 255.0;
 }
 
-vec4 albedo(int layer, vec2 uv, vec2 uv_far) {
-    vec4 near_c = texture(u_albedo, vec3(uv, float(layer)));
-    // A second, much larger scale breaks up the repetition.
-    float v = texture(u_albedo, vec3(uv_far, float(layer))).g;
-    return vec4(near_c.rgb * (0.82 + 0.36 * v), near_c.a);
-}
-
-// Height-aware blend: the material whose texture stands higher wins at the border.
-vec3 blend2(vec4 a, vec4 b, float t) {
-    float ha = a.a * (1.0 - t), hb = b.a * t;
-    float m = max(ha, hb) - 0.15;
-    float wa = max(ha - m, 0.0) + (1.0 - t) * 0.01, wb = max(hb - m, 0.0) + t * 0.01;
-    return (a.rgb * wa + b.rgb * wb) / (wa + wb);
-}
-
-// Harris 2011's four materials by height and slope: sand by the water, grass, rock on
-// steep ground, snow up high; cliff rock where it is steeper still.
-vec3 automatic(float h, float slope, vec2 uv, vec2 uv_far) {
-    vec4 sand = albedo(0, uv, uv_far), grass = albedo(1, uv, uv_far);
-    vec4 rock = albedo(2, uv, uv_far), snow = albedo(3, uv, uv_far), cliff = albedo(7, uv, uv_far);
-    float beach = u_ocean_level + max(u_max_height * 0.015, 2.0);
-    float snow_line = u_ocean_level + (u_max_height - u_ocean_level) * 0.62;
-    vec3 c = blend2(sand, grass, smoothstep(beach - 2.0, beach + 4.0, h));
-    c = blend2(vec4(c, 0.5), rock, smoothstep(0.55, 0.85, slope));
-    c = blend2(vec4(c, 0.5), cliff, smoothstep(1.1, 1.5, slope));
-    float snowy = smoothstep(snow_line - 40.0, snow_line + 40.0, h) * (1.0 - smoothstep(0.55, 0.8, slope));
-    return blend2(vec4(c, 0.5), snow, snowy);
-}
-
 void main() {
     vec4 bounds = u_lvl_bounds[u_level];
     if (v_local.x < bounds.x || v_local.y < bounds.y || v_local.x > bounds.z || v_local.y > bounds.w)
         discard; // outside a bounded world
+    if (replaced_by_volume(v_rel)) discard; // the volume mesh draws the ground here
     vec4 off = u_lvl_offset[u_level];
     float spacing = off.z;
     float alpha = morph_factor(v_local);

@@ -1,0 +1,197 @@
+#include "renderer/volume_mesh.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+// A brick meshes the voxel edges that start within one voxel of it (its own and a ring
+// its neighbours mesh too): the meshes of neighbouring bricks overlap by a voxel with
+// identical triangles, and overlap the heightfield drawn beside them, so no crack opens
+// where they meet. Samples reach one voxel further, for the cells around those edges.
+#define BORDER 2 // samples before the brick's first voxel
+#define NX (VOLUME_BRICK_X + 2 * BORDER)
+#define NY (VOLUME_BRICK_Y + 2 * BORDER)
+#define NZ (VOLUME_BRICK_Z + 2 * BORDER)
+#define SAMPLE(x, y, z) (((size_t)(y)*NZ + (size_t)(z)) * NX + (size_t)(x))
+#define CELL(x, y, z) (((size_t)(y) * (NZ - 1) + (size_t)(z)) * (NX - 1) + (size_t)(x))
+
+typedef struct mesh_builder {
+    volume_mesh *m;
+    size_t vertex_cap, index_cap;
+} mesh_builder;
+
+static int push_vertex(mesh_builder *b, const float p[3], const float n[3]) {
+    volume_mesh *m = b->m;
+    if (m->vertex_count == b->vertex_cap) {
+        size_t cap = b->vertex_cap ? b->vertex_cap * 2 : 1024;
+        float *pos = realloc(m->pos, cap * 3 * sizeof *pos);
+        if (pos) m->pos = pos;
+        float *nrm = realloc(m->normal, cap * 3 * sizeof *nrm);
+        if (nrm) m->normal = nrm;
+        if (!pos || !nrm) return -1;
+        b->vertex_cap = cap;
+    }
+    memcpy(m->pos + 3 * m->vertex_count, p, 3 * sizeof *p);
+    memcpy(m->normal + 3 * m->vertex_count, n, 3 * sizeof *n);
+    m->vertex_count++;
+    return 0;
+}
+
+static int push_quad(mesh_builder *b, uint32_t a, uint32_t c, uint32_t d, uint32_t e) {
+    volume_mesh *m = b->m;
+    if (m->index_count + 6 > b->index_cap) {
+        size_t cap = b->index_cap ? b->index_cap * 2 : 4096;
+        uint32_t *idx = realloc(m->index, cap * sizeof *idx);
+        if (!idx) return -1;
+        m->index = idx;
+        b->index_cap = cap;
+    }
+    uint32_t q[6] = {a, c, d, a, d, e};
+    memcpy(m->index + m->index_count, q, sizeof q);
+    m->index_count += 6;
+    return 0;
+}
+
+// The combined distance at every sample around the brick.
+static int sample_field(world *w, const volume_grid *g, volume_box box, float *f, og_error *err) {
+    volume_heights vh;
+    if (volume_heights_read(w, g, g->voxel, box.i0 - BORDER, box.k0 - BORDER, box.i1 + BORDER,
+                            box.k1 + BORDER, &vh, err) != 0)
+        return -1;
+    volume_reader r;
+    volume_reader_init(&r, w);
+    int rc = 0;
+    double v = g->voxel;
+    for (int y = 0; y < NY && rc == 0; y++)
+        for (int z = 0; z < NZ && rc == 0; z++)
+            for (int x = 0; x < NX; x++) {
+                int64_t i = box.i0 - BORDER + x, j = box.j0 - BORDER + y, k = box.k0 - BORDER + z;
+                const int16_t *pair = volume_reader_pair(&r, i, j, k, err);
+                if (!pair) {
+                    rc = -1;
+                    break;
+                }
+                f[SAMPLE(x, y, z)] =
+                    volume_combine(volume_heights_distance(&vh, i, k, (double)j * v),
+                                   volume_to_metres(pair[0], v), volume_to_metres(pair[1], v));
+            }
+    volume_reader_close(&r);
+    volume_heights_free(&vh);
+    return rc;
+}
+
+// The cell's vertex: the mean of its edges' zero crossings, with the field's
+// gradient there (trilinear) as the normal.
+static void cell_vertex(const float c[8], float out_p[3], float out_n[3]) {
+    static const int edges[12][2] = {{0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3},
+                                     {4, 6}, {5, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+    float sum[3] = {0, 0, 0};
+    int n = 0;
+    for (int e = 0; e < 12; e++) {
+        float a = c[edges[e][0]], b = c[edges[e][1]];
+        if ((a < 0) == (b < 0)) continue;
+        float t = a / (a - b);
+        for (int axis = 0; axis < 3; axis++) {
+            float pa = (float)(edges[e][0] >> axis & 1), pb = (float)(edges[e][1] >> axis & 1);
+            sum[axis] += pa + t * (pb - pa);
+        }
+        n++;
+    }
+    float p[3] = {sum[0] / n, sum[1] / n, sum[2] / n};
+    // Corner bit 0 = x, 1 = y, 2 = z.
+    float gx = (1 - p[1]) * (1 - p[2]) * (c[1] - c[0]) + p[1] * (1 - p[2]) * (c[3] - c[2]) +
+               (1 - p[1]) * p[2] * (c[5] - c[4]) + p[1] * p[2] * (c[7] - c[6]);
+    float gy = (1 - p[0]) * (1 - p[2]) * (c[2] - c[0]) + p[0] * (1 - p[2]) * (c[3] - c[1]) +
+               (1 - p[0]) * p[2] * (c[6] - c[4]) + p[0] * p[2] * (c[7] - c[5]);
+    float gz = (1 - p[0]) * (1 - p[1]) * (c[4] - c[0]) + p[0] * (1 - p[1]) * (c[5] - c[1]) +
+               (1 - p[0]) * p[1] * (c[6] - c[2]) + p[0] * p[1] * (c[7] - c[3]);
+    float len = sqrtf(gx * gx + gy * gy + gz * gz);
+    if (len < 1e-12f) gx = 0, gy = 1, gz = 0, len = 1;
+    memcpy(out_p, p, sizeof p);
+    out_n[0] = gx / len, out_n[1] = gy / len, out_n[2] = gz / len;
+}
+
+int volume_mesh_brick(world *w, const volume_grid *g, tile_key key, volume_mesh *out,
+                      og_error *err) {
+    memset(out, 0, sizeof *out);
+    volume_box box = volume_brick_box(key);
+    double v = g->voxel;
+    out->origin[0] = box.i0 * v, out->origin[1] = box.j0 * v, out->origin[2] = box.k0 * v;
+    float *f = malloc((size_t)NX * NY * NZ * sizeof *f);
+    int32_t *cell = malloc((size_t)(NX - 1) * (NY - 1) * (NZ - 1) * sizeof *cell);
+    if (!f || !cell) {
+        free(f);
+        free(cell);
+        return og_error_set(err, "out of memory meshing a volume brick");
+    }
+    int rc = sample_field(w, g, box, f, err);
+    mesh_builder b = {out, 0, 0};
+    for (int y = 0; y < NY - 1 && rc == 0; y++)
+        for (int z = 0; z < NZ - 1 && rc == 0; z++)
+            for (int x = 0; x < NX - 1; x++) {
+                float c[8];
+                int inside = 0;
+                for (int k = 0; k < 8; k++) {
+                    c[k] = f[SAMPLE(x + (k & 1), y + (k >> 1 & 1), z + (k >> 2 & 1))];
+                    inside += c[k] < 0;
+                }
+                cell[CELL(x, y, z)] = -1;
+                if (inside == 0 || inside == 8) continue;
+                float p[3], n[3];
+                cell_vertex(c, p, n);
+                // Sample (x, y, z) is voxel (i0 - BORDER + x, ...).
+                float local[3] = {(float)((x - BORDER + p[0]) * v),
+                                  (float)((y - BORDER + p[1]) * v),
+                                  (float)((z - BORDER + p[2]) * v)};
+                if (push_vertex(&b, local, n) != 0) {
+                    rc = og_error_set(err, "out of memory meshing a volume brick");
+                    break;
+                }
+                cell[CELL(x, y, z)] = (int32_t)(out->vertex_count - 1);
+            }
+    // Each edge crossing the surface makes a quad of the four cells around it, facing out
+    // of the solid.
+    for (int y = 1; y < NY - 1 && rc == 0; y++)
+        for (int z = 1; z < NZ - 1 && rc == 0; z++)
+            for (int x = 1; x < NX - 1 && rc == 0; x++) {
+                int p[3] = {x, y, z};
+                float here = f[SAMPLE(x, y, z)];
+                for (int a = 0; a < 3; a++) {
+                    int q[3] = {x, y, z};
+                    q[a]++;
+                    float there = f[SAMPLE(q[0], q[1], q[2])];
+                    if ((here < 0) == (there < 0)) continue;
+                    int bx = (a + 1) % 3, cx = (a + 2) % 3;
+                    int c00[3] = {p[0], p[1], p[2]}, c10[3], c11[3], c01[3];
+                    c00[bx]--, c00[cx]--;
+                    memcpy(c10, p, sizeof p), c10[cx]--;
+                    memcpy(c11, p, sizeof p);
+                    memcpy(c01, p, sizeof p), c01[bx]--;
+                    int32_t v00 = cell[CELL(c00[0], c00[1], c00[2])];
+                    int32_t v10 = cell[CELL(c10[0], c10[1], c10[2])];
+                    int32_t v11 = cell[CELL(c11[0], c11[1], c11[2])];
+                    int32_t v01 = cell[CELL(c01[0], c01[1], c01[2])];
+                    if (v00 < 0 || v10 < 0 || v11 < 0 || v01 < 0) continue;
+                    // (b, c) counter-clockwise faces +a: outward when the solid is at p.
+                    int ok = here < 0 ? push_quad(&b, (uint32_t)v00, (uint32_t)v10, (uint32_t)v11,
+                                                  (uint32_t)v01)
+                                      : push_quad(&b, (uint32_t)v00, (uint32_t)v01, (uint32_t)v11,
+                                                  (uint32_t)v10);
+                    if (ok != 0) {
+                        rc = og_error_set(err, "out of memory meshing a volume brick");
+                        break;
+                    }
+                }
+            }
+    free(f);
+    free(cell);
+    if (rc != 0) volume_mesh_free(out);
+    return rc;
+}
+
+void volume_mesh_free(volume_mesh *m) {
+    free(m->pos);
+    free(m->normal);
+    free(m->index);
+    memset(m, 0, sizeof *m);
+}
