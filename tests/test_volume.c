@@ -375,6 +375,26 @@ static void test_heightfield_edit_keeps_volume_in_place(void **state) {
 }
 
 // vflatten makes a level floor; vsmooth wears a spike down.
+// A stroke laid point by point (the viewport's drag) equals the same points in one call.
+static void test_stroke_point_by_point(void **state) {
+    (void)state;
+    world_params p = flat_params(0, 1);
+    world *a = open_world(&p), *b = open_world(&p);
+    brush carve = tool(BRUSH_CARVE, 4, FALLOFF_CONSTANT);
+    const double path[4][3] = {{3, -2, 3}, {15, -4, 9}, {30, -3, 12}, {42, 0, 30}};
+    apply(a, &carve, path, 4);
+    og_error err;
+    stroke *s = stroke_begin(b, &carve, &err);
+    assert_non_null(s);
+    for (int i = 0; i < 4; i++)
+        assert_int_equal(stroke_to_3d(s, path[i], 1.0, &err), 0);
+    assert_int_equal(stroke_end(s, &err), 0);
+    assert_true(volume_digest(a) == volume_digest(b));
+    assert_int_equal(history_count(world_history(b)), 1);
+    world_close(a);
+    world_close(b);
+}
+
 static void test_flatten_and_smooth(void **state) {
     (void)state;
     world_params p = flat_params(0, 1);
@@ -436,9 +456,20 @@ static void test_refusals_change_nothing(void **state) {
     assert_non_null(strstr(err.msg, "MiB"));
     assert_int_equal(history_count(world_history(tight)), 0);
     world_close(tight);
-    // The 2D stroke refuses the volume tools, and planets refuse volume edits.
-    assert_null(stroke_begin(w, &fill, &err));
+    // A stroke of a volume tool refuses 2D points (and a 2D tool's, 3D points); planets
+    // refuse volume edits.
+    stroke *s = stroke_begin(w, &fill, &err);
+    assert_non_null(s);
+    assert_int_equal(stroke_to(s, 20, 20, 1.0, &err), -1);
     assert_non_null(strstr(err.msg, "X Y Z"));
+    stroke_cancel(s);
+    brush raise2;
+    brush_defaults(&raise2, BRUSH_RAISE);
+    s = stroke_begin(w, &raise2, &err);
+    assert_non_null(s);
+    assert_int_equal(stroke_to_3d(s, ok[0], 1.0, &err), -1);
+    assert_non_null(strstr(err.msg, "X Z"));
+    stroke_cancel(s);
     assert_int_equal(history_count(h), 0);
     assert_false(world_is_modified(w));
     world_close(w);
@@ -459,6 +490,7 @@ int main(void) {
         cmocka_unit_test(test_save_load_round_trip),
         cmocka_unit_test(test_memory_follows_edits),
         cmocka_unit_test(test_heightfield_edit_keeps_volume_in_place),
+        cmocka_unit_test(test_stroke_point_by_point),
         cmocka_unit_test(test_flatten_and_smooth),
         cmocka_unit_test(test_refusals_change_nothing),
     };

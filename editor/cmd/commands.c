@@ -362,9 +362,10 @@ static const cmd_def commands[] = {
      "viewport's Ctrl and Shift). Commands that change the world (dab, stamp, undo, save, load, "
      "...) end it first.",
      0, 2, cmd_stroke_begin, CMD_ENDS_STROKE},
-    {"stroke_to", "stroke_to X Z [PRESSURE]",
-     "Drags the open stroke to X, Z (metres), dabbing every spacing x radius; PRESSURE 0-1 (1).", 2,
-     3, cmd_stroke_to, 0},
+    {"stroke_to", "stroke_to X Z [PRESSURE] | stroke_to X Y Z [PRESSURE]",
+     "Drags the open stroke to X, Z (metres), dabbing every spacing x radius; PRESSURE 0-1 (1). "
+     "A volume tool's stroke takes X Y Z (Y up).",
+     2, 4, cmd_stroke_to, 0},
     {"stroke_end", "stroke_end",
      "Ends the open stroke as one undo step (a stroke that laid no dab leaves none).", 0, 0,
      cmd_stroke_end, 0},

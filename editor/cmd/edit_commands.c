@@ -177,10 +177,27 @@ static int no_stroke(const char *name, og_error *err) {
 
 int cmd_stroke_to(cmd_context *ctx, int argc, char **argv, og_error *err) {
     if (!ctx->stroke) return no_stroke(argv[0], err);
-    double x = 0, z = 0, pressure = 1.0;
-    if (parse_point(argv, 1, &x, &z, err) != 0) return -1;
-    if (argc > 3 && parse_number(argv[3], "pressure", &pressure, err) != 0) return -1;
-    if (stroke_to(ctx->stroke, x, z, pressure, err) != 0) {
+    int rc;
+    if (stroke_is_volume(ctx->stroke)) {
+        double(*points)[3] = NULL, *pressure = NULL;
+        size_t count = 0;
+        rc = volume_points(argv[0], brush_tool_name(ctx->brush.tool), argc, argv, 1, &points,
+                           &pressure, &count, err);
+        if (rc == 0) rc = stroke_to_3d(ctx->stroke, points[0], pressure[0], err);
+        free(points);
+        free(pressure);
+    } else {
+        double x = 0, z = 0, pressure = 1.0;
+        if (argc > 4)
+            return og_error_set(err,
+                                "stroke_to: the stroke's tool takes X Z [PRESSURE] (got %d "
+                                "numbers)",
+                                argc - 1);
+        if (parse_point(argv, 1, &x, &z, err) != 0) return -1;
+        if (argc > 3 && parse_number(argv[3], "pressure", &pressure, err) != 0) return -1;
+        rc = stroke_to(ctx->stroke, x, z, pressure, err);
+    }
+    if (rc != 0) {
         // A failed dab leaves the stroke half-applied: abandon it whole.
         stroke_cancel(ctx->stroke);
         ctx->stroke = NULL;

@@ -1,6 +1,7 @@
 #include "editor/tools/stroke.h"
 
 #include "editor/tools/brush_dab.h"
+#include "editor/tools/volume_brush.h"
 #include "editor/edit/edit.h"
 #include "editor/edit/edit_commit.h"
 #include "editor/edit/edit_mips.h"
@@ -25,7 +26,8 @@ struct stroke {
     double carry; // distance walked since the last dab
     float target; // flatten / set height
     long dabs;
-    size_t mips_from; // dirty areas from here on have not reached the mip levels yet
+    size_t mips_from;      // dirty areas from here on have not reached the mip levels yet
+    volume_stroke *volume; // the volume tools' stroke (3D points) instead of the above
 };
 
 // Height of the edited layer at (x, z) metres, bilinear.
@@ -49,11 +51,8 @@ stroke *stroke_begin(world *w, const brush *b, og_error *err) {
     s->world = w;
     s->brush = *b;
     if (brush_tool_is_volume(b->tool)) {
-        og_error_set(err,
-                     "%s is a volume tool: it takes X Y Z points (dab X Y Z, stroke X0 Y0 Z0 "
-                     "X1 Y1 Z1 ...)",
-                     brush_tool_name(b->tool));
-        goto fail;
+        if (!(s->volume = volume_stroke_begin(w, b, err))) goto fail;
+        return s;
     }
     tile_layer layer = b->tool == BRUSH_PAINT ? TILE_LAYER_MATERIAL : b->target;
     if (layer_grid_init(&s->grid, world_get_params(w), layer, b->face, err) != 0) goto fail;
@@ -123,6 +122,9 @@ static int show_live(stroke *s, og_error *err) {
 static int lay_to(stroke *s, double x, double z, double pressure, og_error *err);
 
 int stroke_to(stroke *s, double x, double z, double pressure, og_error *err) {
+    if (s->volume)
+        return og_error_set(err, "%s is a volume tool: it takes X Y Z points",
+                            brush_tool_name(s->brush.tool));
     if (lay_to(s, x, z, pressure, err) != 0) return -1;
     return show_live(s, err);
 }
@@ -187,7 +189,23 @@ static int apply_ramp(stroke *s, og_error *err) {
     return brush_dab_apply(s->edit, &s->grid, &d, err);
 }
 
+int stroke_to_3d(stroke *s, const double p[3], double pressure, og_error *err) {
+    if (!s->volume)
+        return og_error_set(err, "%s takes X Z points (the volume tools take X Y Z)",
+                            brush_tool_name(s->brush.tool));
+    return volume_stroke_to(s->volume, p, pressure, err);
+}
+
+int stroke_is_volume(const stroke *s) {
+    return s->volume != NULL;
+}
+
 int stroke_end(stroke *s, og_error *err) {
+    if (s->volume) {
+        int rc = volume_stroke_end(s->volume, err);
+        free(s);
+        return rc;
+    }
     int rc = 0;
     if (s->started && s->brush.tool == BRUSH_RAMP) rc = apply_ramp(s, err);
     if (rc != 0) {
@@ -201,10 +219,13 @@ int stroke_end(stroke *s, og_error *err) {
 
 void stroke_cancel(stroke *s) {
     if (!s) return;
-    edit_abort(s->edit);
+    if (s->volume)
+        volume_stroke_cancel(s->volume);
+    else
+        edit_abort(s->edit);
     free(s);
 }
 
 long stroke_dab_count(const stroke *s) {
-    return s->dabs;
+    return s->volume ? volume_stroke_dabs(s->volume) : s->dabs;
 }

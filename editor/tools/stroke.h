@@ -15,6 +15,10 @@ stroke *stroke_begin(world *w, const brush *b, og_error *err);
 // Moves the brush to (x, z) metres (face-local on planets) with pressure 0-1: the first
 // call lays one dab there, later calls lay dabs along the segment from the last point.
 int stroke_to(stroke *s, double x, double z, double pressure, og_error *err);
+// The volume tools' strokes (editor/tools/volume_brush.h) take 3D points (metres, y up);
+// each form refuses the other's tools.
+int stroke_to_3d(stroke *s, const double p[3], double pressure, og_error *err);
+int stroke_is_volume(const stroke *s);
 // Commits the stroke as one undo step and frees it.
 int stroke_end(stroke *s, og_error *err);
 // Undoes what the stroke did so far and frees it.

@@ -45,6 +45,10 @@ typedef struct vol_job {
     double *radius;
     size_t count;
     double blend, margin;
+    // The stroke's previous piece: voxels nearer to it than to this one were shaped by
+    // it already (no second blend at the joints).
+    int has_prev;
+    double prev[2][3], prev_radius[2];
     // vsmooth / vflatten: one dab's target surface over box (row-major x, z, y slowest).
     float *target, *now;
     volume_box field_box; // box grown by one voxel: where `now` is known
@@ -124,6 +128,9 @@ static int shape_task(void *user, int t, og_error *err) {
                 double d = path_distance(j, p);
                 visited++;
                 if (d > j->margin) continue;
+                if (j->has_prev && segment_distance(p, j->prev[0], j->prev[1], j->prev_radius[0],
+                                                    j->prev_radius[1]) <= d)
+                    continue;
                 int16_t *pair = data + 2 * volume_brick_offset(key, x, y, z);
                 float add = volume_to_metres(pair[0], v), sub = volume_to_metres(pair[1], v);
                 float df = (float)d;
@@ -263,26 +270,29 @@ static int surface_dab(vol_job *j, const double c[3], double pressure, double pl
     return 0;
 }
 
-static int check_input(const volume_grid *g, const brush *b, const double (*pts)[3],
-                       const double *pressure, size_t count, tile_cache *cache, og_error *err) {
+// Checks that hold for the whole stroke (the tool, the world, the radius).
+static int check_brush(const volume_grid *g, const brush *b, og_error *err) {
     const char *name = brush_tool_name(b->tool);
-    if (count == 0) return og_error_set(err, "%s: needs at least one X Y Z point", name);
-    for (size_t i = 0; i < count; i++) {
-        if (volume_grid_check_position(g, pts[i], err) != 0)
-            return og_error_set(err, "%s: point %zu: %s", name, i + 1, err->msg);
-        if (pressure && !(pressure[i] >= 0 && pressure[i] <= 1))
-            return og_error_set(err, "%s: point %zu: pressure %g must be 0 to 1", name, i + 1,
-                                pressure[i]);
-    }
     if (!(b->radius > 0) || b->radius / g->voxel > VOLUME_MAX_RADIUS_VOXELS)
         return og_error_set(err,
                             "%s: radius %g m is %.0f voxels of %g m; the volume tools take up to "
-                            "%.0f (raise volume_ratio's voxel or lower the radius)",
+                            "%.0f (a smaller radius, or coarser voxels: a lower volume_ratio)",
                             name, b->radius, b->radius / g->voxel, g->voxel,
                             VOLUME_MAX_RADIUS_VOXELS);
-    // The bricks one dab (and a stroke's segments) keep pinned must fit the cache.
-    double lo[3] = {pts[0][0], pts[0][1], pts[0][2]};
-    volume_box one = volume_grid_box_around(g, lo, lo, b->radius + VOLUME_EXACT_VOXELS * g->voxel);
+    return 0;
+}
+
+// Checks one point: where it is, its pressure, and that the bricks one dab there keeps
+// pinned fit the cache.
+static int check_point(const volume_grid *g, const brush *b, const double p[3], double pressure,
+                       tile_cache *cache, og_error *err) {
+    const char *name = brush_tool_name(b->tool);
+    og_error where;
+    if (volume_grid_check_position(g, p, &where) != 0)
+        return og_error_set(err, "%s: %s", name, where.msg);
+    if (!(pressure >= 0 && pressure <= 1))
+        return og_error_set(err, "%s: pressure %g must be 0 to 1", name, pressure);
+    volume_box one = volume_grid_box_around(g, p, p, b->radius + VOLUME_EXACT_VOXELS * g->voxel);
     tile_cache_stats st;
     tile_cache_stats_get(cache, &st);
     double need = (double)volume_box_bricks(one) * (double)tile_layer_bytes(TILE_LAYER_VOLUME);
@@ -295,77 +305,164 @@ static int check_input(const volume_grid *g, const brush *b, const double (*pts)
     return 0;
 }
 
-static int apply_shape(vol_job *j, const double *pressure, og_error *err) {
-    const brush *b = j->b;
-    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    double widest = 0;
-    j->radius = malloc(j->count * sizeof *j->radius);
-    if (!j->radius) return og_error_set(err, "out of memory");
-    for (size_t i = 0; i < j->count; i++) {
-        j->radius[i] = b->radius * b->strength * (pressure ? pressure[i] : 1.0);
-        if (j->radius[i] > widest) widest = j->radius[i];
-        for (int a = 0; a < 3; a++) {
-            lo[a] = fmin(lo[a], j->pts[i][a]);
-            hi[a] = fmax(hi[a], j->pts[i][a]);
-        }
+struct volume_stroke {
+    vol_job job;
+    brush b;
+    long dabs;
+    double last[3], last_radius, last_pressure;
+    double carry;   // vsmooth / vflatten: distance since the last dab
+    double plane_y; // vflatten
+};
+
+volume_stroke *volume_stroke_begin(world *w, const brush *b, og_error *err) {
+    if (!brush_tool_is_volume(b->tool)) {
+        og_error_set(err, "%s is not a volume tool (fill, carve, vsmooth, vflatten)",
+                     brush_tool_name(b->tool));
+        return NULL;
     }
-    j->blend = b->radius * (1.0 - brush_falloff_weight(b, 0.5f)) * 0.5;
-    if (b->falloff == FALLOFF_CONSTANT) j->blend = 0;
+    volume_stroke *s = calloc(1, sizeof *s);
+    if (!s) {
+        og_error_set(err, "out of memory");
+        return NULL;
+    }
+    s->b = *b;
+    s->job.w = w;
+    s->job.b = &s->b;
+    char label[64];
+    snprintf(label, sizeof label, "%s stroke", brush_tool_name(b->tool));
+    if (volume_grid_init(&s->job.g, world_get_params(w), err) != 0 ||
+        check_brush(&s->job.g, b, err) != 0 || !(s->job.e = edit_begin(w, label, err))) {
+        free(s);
+        return NULL;
+    }
+    return s;
+}
+
+// fill / carve: the ball at the first point, then each piece of the path.
+static int shape_piece(volume_stroke *s, const double p[3], double radius, og_error *err) {
+    vol_job *j = &s->job;
+    const brush *b = &s->b;
+    double pts[2][3], radii[2];
+    memcpy(pts[1], p, sizeof pts[1]);
+    radii[1] = radius;
+    if (s->dabs > 0) {
+        memcpy(pts[0], s->last, sizeof pts[0]);
+        radii[0] = s->last_radius;
+    } else {
+        memcpy(pts[0], p, sizeof pts[0]);
+        radii[0] = radius;
+    }
+    j->pts = (const double(*)[3])pts;
+    j->radius = radii;
+    j->count = 2;
+    j->blend = b->falloff == FALLOFF_CONSTANT
+                   ? 0
+                   : b->radius * (1.0 - brush_falloff_weight(b, 0.5f)) * 0.5;
     j->margin = VOLUME_EXACT_VOXELS * j->g.voxel + j->blend;
-    j->box = volume_grid_box_around(&j->g, lo, hi, widest + j->margin);
-    if (list_bricks(j, 1, err) != 0) return -1;
-    if (parallel_run((int)j->brick_count, shape_task, j, err) != 0) return -1;
-    edit_dirty(j->e, TILE_LAYER_VOLUME, 0, (grid_rect){j->box.i0, j->box.k0, j->box.i1, j->box.k1});
+    double lo[3], hi[3];
+    for (int a = 0; a < 3; a++)
+        lo[a] = fmin(pts[0][a], pts[1][a]), hi[a] = fmax(pts[0][a], pts[1][a]);
+    j->box = volume_grid_box_around(&j->g, lo, hi, fmax(radii[0], radii[1]) + j->margin);
+    int rc = list_bricks(j, 1, err);
+    if (rc == 0) rc = parallel_run((int)j->brick_count, shape_task, j, err);
+    if (rc == 0)
+        edit_dirty(j->e, TILE_LAYER_VOLUME, 0,
+                   (grid_rect){j->box.i0, j->box.k0, j->box.i1, j->box.k1});
+    j->has_prev = 1;
+    memcpy(j->prev, pts, sizeof pts);
+    memcpy(j->prev_radius, radii, sizeof radii);
+    j->pts = NULL;
+    j->radius = NULL;
+    return rc;
+}
+
+// vsmooth / vflatten: dabs every spacing x radius from the last point to p.
+static int surface_piece(volume_stroke *s, const double p[3], double pressure, og_error *err) {
+    const brush *b = &s->b;
+    if (s->dabs == 0) {
+        s->plane_y = b->has_height ? b->height : p[1];
+        return surface_dab(&s->job, p, pressure, s->plane_y, err);
+    }
+    const double *a = s->last;
+    double step = b->spacing * b->radius;
+    double len = sqrt((p[0] - a[0]) * (p[0] - a[0]) + (p[1] - a[1]) * (p[1] - a[1]) +
+                      (p[2] - a[2]) * (p[2] - a[2]));
+    double at = step - s->carry;
+    for (; at <= len; at += step) {
+        double t = len > 0 ? at / len : 1;
+        double q[3] = {a[0] + t * (p[0] - a[0]), a[1] + t * (p[1] - a[1]),
+                       a[2] + t * (p[2] - a[2])};
+        double pr = s->last_pressure + t * (pressure - s->last_pressure);
+        if (surface_dab(&s->job, q, pr, s->plane_y, err) != 0) return -1;
+    }
+    s->carry = len - (at - step);
     return 0;
 }
 
-static int apply_surface(vol_job *j, const double *pressure, og_error *err) {
-    const brush *b = j->b;
-    double plane_y = b->has_height ? b->height : j->pts[0][1];
-    double step = b->spacing * b->radius;
-    if (surface_dab(j, j->pts[0], pressure ? pressure[0] : 1.0, plane_y, err) != 0) return -1;
-    double carry = 0; // distance along the path since the last dab
-    for (size_t s = 0; s + 1 < j->count; s++) {
-        const double *a = j->pts[s], *c = j->pts[s + 1];
-        double len = sqrt((c[0] - a[0]) * (c[0] - a[0]) + (c[1] - a[1]) * (c[1] - a[1]) +
-                          (c[2] - a[2]) * (c[2] - a[2]));
-        double at = step - carry;
-        for (; at <= len; at += step) {
-            double t = len > 0 ? at / len : 1;
-            double p[3] = {a[0] + t * (c[0] - a[0]), a[1] + t * (c[1] - a[1]),
-                           a[2] + t * (c[2] - a[2])};
-            double pr = pressure ? pressure[s] + t * (pressure[s + 1] - pressure[s]) : 1.0;
-            if (surface_dab(j, p, pr, plane_y, err) != 0) return -1;
-        }
-        carry = len - (at - step);
-    }
+int volume_stroke_to(volume_stroke *s, const double p[3], double pressure, og_error *err) {
+    vol_job *j = &s->job;
+    if (check_point(&j->g, &s->b, p, pressure, world_cache(j->w), err) != 0) return -1;
+    atomic_store(&j->voxels, 0);
+    int shape = s->b.tool == BRUSH_FILL || s->b.tool == BRUSH_CARVE;
+    double radius = s->b.radius * s->b.strength * pressure;
+    int rc = shape ? shape_piece(s, p, radius, err) : surface_piece(s, p, pressure, err);
+    atomic_store(&last_voxels, atomic_load(&j->voxels));
+    if (rc != 0) return -1;
+    memcpy(s->last, p, sizeof s->last);
+    s->last_radius = radius;
+    s->last_pressure = pressure;
+    s->dabs++;
     return 0;
+}
+
+static void free_stroke(volume_stroke *s) {
+    free(s->job.bricks);
+    free(s->job.now);
+    free(s->job.target);
+    volume_heights_free(&s->job.vh);
+    free(s);
+}
+
+int volume_stroke_end(volume_stroke *s, og_error *err) {
+    edit *e = s->job.e;
+    long dabs = s->dabs;
+    free_stroke(s);
+    if (dabs == 0) { // nothing laid: no step
+        edit_abort(e);
+        return 0;
+    }
+    return edit_commit(e, err);
+}
+
+void volume_stroke_cancel(volume_stroke *s) {
+    edit_abort(s->job.e);
+    free_stroke(s);
+}
+
+long volume_stroke_dabs(const volume_stroke *s) {
+    return s->dabs;
 }
 
 int volume_brush_apply(world *w, const brush *b, const double (*points)[3], const double *pressure,
                        size_t count, og_error *err) {
-    if (!brush_tool_is_volume(b->tool))
-        return og_error_set(err, "%s is not a volume tool (fill, carve, vsmooth, vflatten)",
-                            brush_tool_name(b->tool));
-    vol_job j = {.w = w, .b = b, .pts = points, .count = count};
-    if (volume_grid_init(&j.g, world_get_params(w), err) != 0 ||
-        check_input(&j.g, b, points, pressure, count, world_cache(w), err) != 0)
-        return -1;
-    char label[64];
-    snprintf(label, sizeof label, "%s %s", brush_tool_name(b->tool), count == 1 ? "dab" : "stroke");
-    j.e = edit_begin(w, label, err);
-    if (!j.e) return -1;
-    int rc = b->tool == BRUSH_FILL || b->tool == BRUSH_CARVE ? apply_shape(&j, pressure, err)
-                                                             : apply_surface(&j, pressure, err);
-    free(j.bricks);
-    free(j.radius);
-    free(j.now);
-    free(j.target);
-    volume_heights_free(&j.vh);
-    atomic_store(&last_voxels, atomic_load(&j.voxels));
-    if (rc != 0) {
-        edit_abort(j.e);
-        return -1;
+    if (count == 0)
+        return og_error_set(err, "%s: needs at least one X Y Z point", brush_tool_name(b->tool));
+    volume_stroke *s = volume_stroke_begin(w, b, err);
+    if (!s) return -1;
+    // Every point is checked before anything changes.
+    for (size_t i = 0; i < count; i++) {
+        og_error why;
+        if (check_point(&s->job.g, b, points[i], pressure ? pressure[i] : 1.0, world_cache(w),
+                        &why) != 0) {
+            og_error_set(err, "point %zu: %s", i + 1, why.msg);
+            volume_stroke_cancel(s);
+            return -1;
+        }
     }
-    return edit_commit(j.e, err);
+    for (size_t i = 0; i < count; i++)
+        if (volume_stroke_to(s, points[i], pressure ? pressure[i] : 1.0, err) != 0) {
+            volume_stroke_cancel(s);
+            return -1;
+        }
+    return volume_stroke_end(s, err);
 }

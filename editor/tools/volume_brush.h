@@ -23,15 +23,26 @@
 
 #include <stddef.h>
 
+// A stroke laid point by point (the viewport's drag): one undo step at the end. The
+// points are checked as they come (a bad one is refused and the stroke stays open).
+typedef struct volume_stroke volume_stroke;
+volume_stroke *volume_stroke_begin(world *w, const brush *b, og_error *err);
+int volume_stroke_to(volume_stroke *s, const double p[3], double pressure, og_error *err);
+// Commits the stroke as one step (none when no point was laid) and frees it.
+int volume_stroke_end(volume_stroke *s, og_error *err);
+// Undoes what the stroke did and frees it.
+void volume_stroke_cancel(volume_stroke *s);
+long volume_stroke_dabs(const volume_stroke *s);
+
 // Applies the brush's volume tool along count points (count >= 1; one point is one
-// dab) with a pressure 0-1 each (NULL: all 1), as one undo step labelled "TOOL dab" or
-// "TOOL stroke". Bad input (not a volume tool, a planet, a point that is not finite or
+// dab) with a pressure 0-1 each (NULL: all 1), as one undo step ("TOOL stroke"). Bad
+// input (not a volume tool, a planet, a point that is not finite or
 // lies outside the world, more bricks than the tile cache can hold) is refused with
 // err naming it, and nothing changes.
 int volume_brush_apply(world *w, const brush *b, const double (*points)[3], const double *pressure,
                        size_t count, og_error *err);
 
-// Voxels the last volume_brush_apply in this process visited (for benchmarks).
+// Voxels the last point laid in this process visited (for benchmarks).
 long long volume_brush_last_voxels(void);
 
 #endif
