@@ -255,6 +255,19 @@ static const tool_entry tools[] = {
     {"thermal", "Thermal", "Thermal erosion down to the talus angle (key Y)", 'Y'},
     {"hydraulic", "Hydraulic", "Droplet erosion: water carves and deposits (key O)", 'O'},
     {"paint", "Paint", "Paint a material; invert removes it (key I)", 'I'},
+    {"fill", "Fill",
+     "Add rock in 3D: a ball per dab, a tube along a drag (overhangs, arches; "
+     "Ctrl carves instead)",
+     0},
+    {"carve", "Carve",
+     "Cut rock away in 3D: a ball per dab, a tube along a drag (caves, "
+     "undercuts; Ctrl fills instead)",
+     0},
+    {"vsmooth", "Smooth 3D", "Smooth the surface in 3D, overhangs included", 0},
+    {"vflatten", "Flatten 3D",
+     "Flatten the surface in 3D to a level plane (height, or the "
+     "first point's)",
+     0},
 };
 #define STAMP_KEY 'B' // the stamp tool's shortcut
 #define TOOL_COUNT (sizeof tools / sizeof tools[0])
@@ -323,6 +336,38 @@ static void tool_icon(ui_context *ui, int tool, ui_rect r, ui_color c) {
         ui_draw_rect(dl, (ui_rect){P(0.42f, 0.05f), w * 0.16f, h * 0.5f}, c);
         ui_draw_triangle(dl, P(0.25f, 0.55f), P(0.75f, 0.55f), P(0.5f, 0.95f), c);
         break;
+    case 11: // fill: a ball on the ground
+    case 12: // carve: a ring cut into a block
+        if (tool == 12) ui_draw_rect(dl, (ui_rect){P(0.05f, 0.55f), w * 0.9f, h * 0.4f}, c);
+        for (int i = 0; i < 12; i++) {
+            float a = i * 0.5236f, b = (i + 1) * 0.5236f;
+            if (tool == 11)
+                ui_draw_triangle(dl, P(0.5f, 0.45f),
+                                 P(0.5f + 0.3f * cosf(a), 0.45f + 0.3f * sinf(a)),
+                                 P(0.5f + 0.3f * cosf(b), 0.45f + 0.3f * sinf(b)), c);
+            else
+                ui_draw_line(dl, P(0.5f + 0.28f * cosf(a), 0.55f + 0.28f * sinf(a)),
+                             P(0.5f + 0.28f * cosf(b), 0.55f + 0.28f * sinf(b)), c, t);
+        }
+        if (tool == 11) ui_draw_rect(dl, (ui_rect){P(0.05f, 0.8f), w * 0.9f, t}, c);
+        break;
+    case 13: // smooth 3D: a wave under an arch
+        for (int i = 0; i < 8; i++) {
+            float a = i / 8.0f, b = (i + 1) / 8.0f;
+            ui_draw_line(dl, P(a, 0.75f - 0.12f * sinf(a * 6.283f)),
+                         P(b, 0.75f - 0.12f * sinf(b * 6.283f)), c, t);
+            ui_draw_line(dl, P(0.15f + 0.7f * a, 0.45f - 0.3f * sinf(a * 3.1416f)),
+                         P(0.15f + 0.7f * b, 0.45f - 0.3f * sinf(b * 3.1416f)), c, t);
+        }
+        break;
+    case 14: // flatten 3D: a bar across a ball
+        ui_draw_rect(dl, (ui_rect){P(0.05f, 0.45f), w * 0.9f, t}, c);
+        for (int i = 0; i < 6; i++) {
+            float a = 3.1416f + i * 0.5236f, b = 3.1416f + (i + 1) * 0.5236f;
+            ui_draw_triangle(dl, P(0.5f, 0.48f), P(0.5f + 0.3f * cosf(a), 0.48f - 0.3f * sinf(a)),
+                             P(0.5f + 0.3f * cosf(b), 0.48f - 0.3f * sinf(b)), c);
+        }
+        break;
     default: // stamp: a block and its print
         ui_draw_rect(dl, (ui_rect){P(0.25f, 0.1f), w * 0.5f, h * 0.45f}, c);
         ui_draw_rect(dl, (ui_rect){P(0.1f, 0.75f), w * 0.8f, t * 1.5f}, c);
@@ -359,7 +404,12 @@ static void palette(editor_ui *e, ui_context *ui, cmd_context *ctx, ui_rect r) {
                                                   strlen(tools[i].label)));
     int names = r.w >= indent + widest + ui_em(ui, 1.3f);
     if (!names) indent = r.w;
-    ui_row(ui, 1, NULL, ui_em(ui, 1.6f));
+    // Icons two to a row when one column of them would not fit the height (a small
+    // window, a large UI scale), so every tool stays in view without scrolling.
+    int columns = !names && (TOOL_COUNT + 1) * ui_em(ui, 1.9f) > r.h ? 2 : 1;
+    float halves[2] = {0, 0};
+    if (columns == 2) indent = r.w / 2;
+    ui_row(ui, columns, columns == 2 ? halves : NULL, ui_em(ui, 1.6f));
     char tip[300];
     for (size_t i = 0; i <= TOOL_COUNT; i++) {
         int stamp = i == TOOL_COUNT;
@@ -467,6 +517,30 @@ static void seed_row(editor_ui *e, ui_context *ui, cmd_context *ctx, const char 
     ui_row(ui, 1, NULL, 0);
 }
 
+// The volume tools: where the brush sits in 3D, and vflatten's plane.
+static void volume_options(editor_ui *e, ui_context *ui, cmd_context *ctx, const char *t) {
+    const brush *b = &ctx->brush;
+    slider_key(e, ui, ctx, "Depth", "depth", b->depth, -50, 50, "%.1f m",
+               "How far past the surface under the mouse the brush centre sits, along the view "
+               "(negative: in front of it)");
+    static const char *const locks[] = {"surface", "plane"};
+    int lock = b->lock_plane;
+    if (ui_combo(ui, "Follow", &lock, locks, 2)) runf(e, ctx, "tool %s lock=%s", t, locks[lock]);
+    ui_tooltip(ui, "surface: the brush follows the surface under the mouse; plane: it stays on "
+                   "the level plane where the drag began (a tunnel at one height)");
+    if (b->tool == BRUSH_VFLATTEN) {
+        float cols[2] = {0, ui_em(ui, 3.5f)};
+        ui_row(ui, 2, cols, 0);
+        slider_key(e, ui, ctx, "Height", "height", b->height, -1000, 5000, "%.1f m",
+                   "The plane's height in metres (unset: the first point's height)");
+        if (ui_toggle_button(ui, "Pick##height", e->picking_height))
+            e->picking_height = !e->picking_height;
+        ui_tooltip(ui, "Pick the height from the terrain: the next click in the viewport takes "
+                       "the height there (Esc: no)");
+        ui_row(ui, 1, NULL, 0);
+    }
+}
+
 static void tool_options(editor_ui *e, ui_context *ui, cmd_context *ctx) {
     const brush *b = &ctx->brush;
     const char *t = current_tool(b);
@@ -478,6 +552,10 @@ static void tool_options(editor_ui *e, ui_context *ui, cmd_context *ctx) {
     slider_key(e, ui, ctx, "Spacing", "spacing", b->spacing, 0.05, 2, "%.2f x radius",
                "Distance between dabs along a stroke, as a fraction of the radius");
     falloff_options(e, ui, ctx, t);
+    if (brush_tool_is_volume(b->tool)) {
+        volume_options(e, ui, ctx, t);
+        return;
+    }
     if (b->tool != BRUSH_RAISE) { // raise/lower is the invert pair
         int inv = b->invert;
         if (ui_checkbox(ui, "Invert", &inv)) runf(e, ctx, "tool %s invert=%d", t, inv);

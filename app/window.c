@@ -97,9 +97,11 @@ typedef struct window_state {
     brush_cursor drawn_cursor;
     float drawn_scale;
     int drawn_w, drawn_h;
-    int world_changed; // change notifications since the terrain image
-    int stroke_points; // stroke_to commands of the current drag
-    double px_scale;   // framebuffer pixels per window unit (HiDPI)
+    int world_changed;     // change notifications since the terrain image
+    int stroke_points;     // stroke_to commands of the current drag
+    int stroke_volume;     // the drag is a volume tool's: 3D points
+    double stroke_plane_y; // a volume drag locked to a plane: its height
+    double px_scale;       // framebuffer pixels per window unit (HiDPI)
     app_settings settings;
     char settings_path[4096], history_path[4096];
 
@@ -156,23 +158,59 @@ static void sculpt_add(window_state *st, const char *text) {
     work_queue_add(&st->work, text, "sculpt", WORK_STROKE);
 }
 
+// A volume tool's brush centre for the mouse at (x, y): the picked surface pushed
+// `depth` metres along the view ray, or the ray's crossing of the drag's level plane.
+static int volume_point(window_state *st, double x, double y, const double hit[3], double out[3]) {
+    const brush *b = &st->ctx->brush;
+    ui_rect r = st->view_rect;
+    double dir[3];
+    camera_ray(&st->v->cam, (double)r.w / r.h, (x - r.x) / r.w, (y - r.y) / r.h, dir);
+    if (b->lock_plane && st->stroke_points > 0) {
+        double dy = st->stroke_plane_y - st->v->cam.pos[1];
+        if (fabs(dir[1]) < 1e-9 || dy / dir[1] <= 0) return -1; // the ray never meets it
+        for (int a = 0; a < 3; a++)
+            out[a] = st->v->cam.pos[a] + dir[a] * (dy / dir[1]);
+        return 0;
+    }
+    for (int a = 0; a < 3; a++)
+        out[a] = hit[a] + dir[a] * b->depth;
+    st->stroke_plane_y = out[1];
+    return 0;
+}
+
 static void sculpt_to(window_state *st, double x, double y) {
     double hit[3];
     if (st->drag != DRAG_SCULPT || pick_at(st, x, y, hit) != 0) return; // off the terrain
-    char text[128];
-    snprintf(text, sizeof text, "stroke_to %.17g %.17g", hit[0], hit[2]);
+    char text[160];
+    if (st->stroke_volume) {
+        double p[3];
+        if (volume_point(st, x, y, hit, p) != 0) return;
+        snprintf(text, sizeof text, "stroke_to %.17g %.17g %.17g", p[0], p[1], p[2]);
+    } else {
+        snprintf(text, sizeof text, "stroke_to %.17g %.17g", hit[0], hit[2]);
+    }
     sculpt_add(st, text);
     st->stroke_points++;
 }
 
-// Ctrl held inverts the tool for the stroke, Shift smooths instead (Unreal, Terrain3D).
+// Ctrl held inverts the tool for the stroke, Shift smooths instead (Unreal, Terrain3D);
+// for the volume tools Ctrl swaps fill and carve and Shift smooths in 3D.
 static void sculpt_begin(window_state *st, int mods) {
     st->stroke_points = 0;
+    const brush *b = &st->ctx->brush;
+    st->stroke_volume = brush_tool_is_volume(b->tool);
     char cmd[64] = "stroke_begin";
-    if (mods & GLFW_MOD_SHIFT)
+    if (st->stroke_volume) {
+        if (mods & GLFW_MOD_SHIFT)
+            snprintf(cmd, sizeof cmd, "stroke_begin tool=vsmooth");
+        else if ((mods & GLFW_MOD_CONTROL) && (b->tool == BRUSH_FILL || b->tool == BRUSH_CARVE))
+            snprintf(cmd, sizeof cmd, "stroke_begin tool=%s",
+                     b->tool == BRUSH_FILL ? "carve" : "fill");
+    } else if (mods & GLFW_MOD_SHIFT) {
         snprintf(cmd, sizeof cmd, "stroke_begin tool=smooth");
-    else if (mods & GLFW_MOD_CONTROL)
+    } else if (mods & GLFW_MOD_CONTROL) {
         snprintf(cmd, sizeof cmd, "stroke_begin invert=%d", !st->ctx->brush.invert);
+    }
     sculpt_add(st, cmd);
     sculpt_to(st, st->mouse_x, st->mouse_y);
 }

@@ -426,6 +426,24 @@ check "a drag paints: a paint stroke step touching tiles ($line)" $?
 echo "undo; tool raise" >&3
 line=$(ask_until history '^steps=' "^${steps0%% *} "); check "undo takes the paint away ($line)" $?
 
+# 7c. The volume tools: Tools/Carve and a drag dig into the ground under the mouse (one
+# carve stroke step of 3D points), which the viewport then shows and undo fills again.
+read -r _ cx cy cz <<<"$(ask "pick $((VW / 2)) $((VH / 2)) $VW $VH" '^pick ')"
+below=$(awk -v y="$cy" 'BEGIN { print y - 4 }')
+d0=$(ask "vsample $cx $below $cz" 'side$')
+click "Tools/Carve"
+line=$(ask_until tool '^tool=' '^tool=carve$'); check "Tools/Carve picks the carve tool ($line)" $?
+sculpt
+line=$(ask_until history 'carve stroke' 'carve stroke tiles=[1-9]')
+check "a drag with Carve makes one carve stroke step of volume bricks ($line)" $?
+d1=$(ask "vsample $cx $below $cz" 'side$')
+[ "${d0##* }" = inside ] && [ "${d1##* }" = outside ]
+check "4 m under the picked ground was rock and is now air ($d0 -> $d1)" $?
+ask "window_screenshot $work/gui_carve.png" '^window_screenshot' >/dev/null
+cp "$work/gui_carve.png" "$art/" 2>/dev/null
+echo "undo; tool raise" >&3
+line=$(ask_until "vsample $cx $below $cz" 'side$' 'inside$'); check "undo fills the carve again ($line)" $?
+
 # 7d. File > Import heightmap and Export heightmap: the browser, then the options dialog,
 # build import / export commands that run (far from the sculpted boxes; undone after).
 "$orogen" -c "new flat; set generator flat; set base_height 7; generate; export $work/small.exr region=0,0,64,64" >/dev/null 2>&1

@@ -346,7 +346,8 @@ static const cmd_def commands[] = {
      "(m) strength (0-1) falloff (smooth linear spherical constant "
      "curve) curve=t:v,... spacing (x radius) invert target (coarse detail) face amount height "
      "mode (both raise lower) scale octaves seed step sharpness talus iterations droplets erosion "
-     "deposition evaporation capacity inertia material. Without arguments, prints the brush.",
+     "deposition evaporation capacity inertia material depth (m along the view ray, volume tools) "
+     "lock (surface plane). Without arguments, prints the brush.",
      0, 24, cmd_tool, 0},
     {"dab", "dab X Z [PRESSURE] | dab X Y Z [PRESSURE]",
      "One dab of the brush at X, Z (metres); the volume tools (fill carve vsmooth vflatten) take "

@@ -201,6 +201,12 @@ int brush_set(brush *b, const char *key, const char *value, og_error *err) {
     } else if (strcmp(key, "inertia") == 0) {
         rc = parse_number_in(value, key, 0, 1, &v, err);
         n.hydraulic.inertia = (float)v;
+    } else if (strcmp(key, "depth") == 0) {
+        rc = parse_number_in(value, key, -1e4, 1e4, &n.depth, err);
+    } else if (strcmp(key, "lock") == 0) {
+        if (strcmp(value, "surface") && strcmp(value, "plane"))
+            return og_error_set(err, "lock: '%s' is not surface or plane", value);
+        n.lock_plane = strcmp(value, "plane") == 0;
     } else if (strcmp(key, "material") == 0) {
         rc = parse_integer_in(value, key, 0, TILE_MATERIALS - 1, &v, err);
         n.material = (int)v;
@@ -215,7 +221,7 @@ int brush_set(brush *b, const char *key, const char *value, og_error *err) {
 const char *brush_keys(void) {
     return "radius strength falloff curve spacing invert target face amount height mode scale "
            "octaves seed step sharpness talus iterations droplets erosion deposition "
-           "evaporation capacity inertia material";
+           "evaporation capacity inertia material depth lock";
 }
 
 void brush_print(const brush *b, FILE *o) {
@@ -265,6 +271,18 @@ void brush_print(const brush *b, FILE *o) {
         break;
     case BRUSH_PAINT:
         fprintf(o, "material=%d\n", b->material);
+        break;
+    case BRUSH_FILL:
+    case BRUSH_CARVE:
+    case BRUSH_VSMOOTH:
+    case BRUSH_VFLATTEN:
+        fprintf(o, "depth=%.17g\nlock=%s\n", b->depth, b->lock_plane ? "plane" : "surface");
+        if (b->tool == BRUSH_VFLATTEN) {
+            if (b->has_height)
+                fprintf(o, "height=%.17g\n", b->height);
+            else
+                fprintf(o, "height=(the stroke's first centre)\n");
+        }
         break;
     default:
         break;

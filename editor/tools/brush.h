@@ -72,6 +72,11 @@ typedef struct brush {
     thermal_params thermal;
     hydraulic_params hydraulic; // droplets = per dab
     int material;               // paint: 0 .. TILE_MATERIALS-1
+    // Volume tools in the viewport: the brush centre is the picked surface point pushed
+    // depth metres along the view ray (negative: toward the camera), or with lock_plane
+    // the view ray's crossing of the level plane through the stroke's first centre.
+    double depth;
+    int lock_plane;
 } brush;
 
 const char *brush_tool_name(brush_tool t);
