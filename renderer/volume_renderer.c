@@ -4,7 +4,7 @@
 #include "renderer/frustum.h"
 #include "renderer/lighting.h"
 #include "renderer/shader.h"
-#include "renderer/volume_mesh.h"
+#include "editor/world/volume_mesh.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -118,6 +118,43 @@ $py probe.py caves.vdb >probe.txt 2>&1
 check "pyopenvdb finds the tunnel, the arch and open air where orogen does" $?
 [ $failures = 0 ] || cat probe.txt
 
+# The same solid as a mesh: assimp reads the OBJ; its edges pair up (watertight) except
+# along the region's sides, and a vertical ray through the arch meets it three times
+# (the arch's top and underside, then the ground).
+run -c "load caves.world; export arch.obj region=560,560,680,640"
+check "export arch.obj ($(cat "$work/err"))" $status
+triangles=$(sed -n 's/^exported arch.obj: [0-9]* vertices, \([0-9]*\) triangles.*/\1/p' "$work/out")
+assimp info arch.obj >assimp.txt 2>&1
+faces=$(sed -n 's/^Faces: *\([0-9]*\).*/\1/p' assimp.txt)
+[ -n "$faces" ] && [ "$faces" = "$triangles" ]
+check "assimp info reads arch.obj: $faces faces, as exported ($triangles)" $?
+cat >rays.py <<'EOF'
+import collections, sys
+V, F = [], []
+for line in open('arch.obj'):
+    if line.startswith('v '): V.append(tuple(map(float, line.split()[1:4])))
+    elif line.startswith('f '): F.append([int(t.split('/')[0]) - 1 for t in line.split()[1:]])
+edges = collections.Counter()
+for f in F:
+    for a, b in zip(f, f[1:] + f[:1]): edges[(min(a, b), max(a, b))] += 1
+side = lambda p: min(abs(p[0] - 560), abs(p[0] - 680), abs(p[2] - 560), abs(p[2] - 640)) < 1e-3
+open_inside = sum(1 for e, c in edges.items() if c != 2 and not (side(V[e[0]]) and side(V[e[1]])))
+def hits(x, z):
+    n = 0
+    for f in F:
+        a, b, c = [V[i] for i in f]
+        d = (b[2] - c[2]) * (a[0] - c[0]) + (c[0] - b[0]) * (a[2] - c[2])
+        if abs(d) < 1e-12: continue
+        l1 = ((b[2] - c[2]) * (x - c[0]) + (c[0] - b[0]) * (z - c[2])) / d
+        l2 = ((c[2] - a[2]) * (x - c[0]) + (a[0] - c[0]) * (z - c[2])) / d
+        n += min(l1, l2, 1 - l1 - l2) >= 0
+    return n
+print('edges not paired inside the region:', open_inside, 'ray hits:', hits(620.3, 600.2))
+sys.exit(0 if open_inside == 0 and hits(620.3, 600.2) >= 3 else 1)
+EOF
+$py rays.py >rays.txt 2>&1
+check "arch.obj is closed inside the region and a vertical ray meets the arch twice and the ground ($(cat rays.txt))" $?
+
 # The saved world keeps its volume edits.
 run -c "load caves.world; vsample 330 $in_cave 300"
 check "load caves.world" $status

@@ -1,5 +1,6 @@
 #include "editor/interchange/export_mesh.h"
 
+#include "editor/interchange/export_solid.h"
 #include "editor/world/layer_grid.h"
 #include "io/image_read.h"
 #include "io/param_file.h"
@@ -111,6 +112,28 @@ static int add_base(mesh *m, int64_t w, int64_t d, float floor_y) {
     free(top);
     m->vertices = nv;
     m->indices = ni;
+    return 0;
+}
+
+// The solid's surface (overhangs, caves) as the writers' vertices: position, normal,
+// and texture coordinates over the region from above.
+static int from_solid(const volume_mesh *sm, double x0, double z0, double width, double depth,
+                      double ox, double oz, mesh *m) {
+    m->vertices = sm->vertex_count;
+    m->indices = sm->index_count;
+    m->v = malloc(sizeof(float) * VERTEX_FLOATS * (m->vertices ? m->vertices : 1));
+    m->idx = malloc(sizeof(uint32_t) * (m->indices ? m->indices : 1));
+    if (!m->v || !m->idx) return -1;
+    for (size_t i = 0; i < m->vertices; i++) {
+        float *v = m->v + i * VERTEX_FLOATS;
+        const float *p = sm->pos + 3 * i;
+        // The cells at the region's sides reach half a voxel past it: onto the side.
+        double x = fmin(fmax(p[0], x0), x0 + width), z = fmin(fmax(p[2], z0), z0 + depth);
+        v[0] = (float)(x - x0 + ox), v[1] = p[1], v[2] = (float)(z - z0 + oz);
+        memcpy(v + 3, sm->normal + 3 * i, 3 * sizeof *v);
+        v[6] = (float)((x - x0) / width), v[7] = (float)((z - z0) / depth);
+    }
+    memcpy(m->idx, sm->index, sizeof(uint32_t) * m->indices);
     return 0;
 }
 
@@ -353,7 +376,28 @@ int export_mesh(world *w, const char *path, const export_mesh_options *o, export
     if (layer_grid_read(w, &g, r, h, err) != 0) goto done;
     double ox = (double)r.x0 * g.spacing, oz = (double)r.z0 * g.spacing;
     if (o->centred) ox = -(double)(W - 1) * g.spacing / 2, oz = -(double)(D - 1) * g.spacing / 2;
-    if (build_grid(h, W, D, g.spacing, ox, oz, &m) != 0) {
+    int volume = 0;
+    if (export_solid_has_volume(w, r, &volume, err) != 0) goto done;
+    if (volume) { // caves and overhangs: the solid's surface, the heightfield's included
+        if (o->solid) {
+            og_error_set(err,
+                         "%s: solid=1 needs a region without volume edits (caves, "
+                         "overhangs): their surface is exported as it is",
+                         path);
+            goto done;
+        }
+        volume_mesh sm;
+        if (export_solid_surface(w, r, &sm, err) != 0) goto done;
+        int built = from_solid(&sm, (double)r.x0 * g.spacing, (double)r.z0 * g.spacing,
+                               (double)(W - 1) * g.spacing, (double)(D - 1) * g.spacing,
+                               o->centred ? ox : (double)r.x0 * g.spacing,
+                               o->centred ? oz : (double)r.z0 * g.spacing, &m);
+        volume_mesh_free(&sm);
+        if (built != 0) {
+            og_error_set(err, "%s: out of memory for the mesh", path);
+            goto done;
+        }
+    } else if (build_grid(h, W, D, g.spacing, ox, oz, &m) != 0) {
         og_error_set(err, "%s: out of memory for the mesh", path);
         goto done;
     }

@@ -2,7 +2,9 @@
 // axes; Blender's importer shows it Z-up at true size): OBJ with normals and UVs,
 // binary PLY, or glTF 2.0 binary (.glb) with a base-colour texture from the terrain's
 // height and slope. Optional simplification to a height error in metres
-// (meshoptimizer, borders kept) and a closed base for 3D printing and booleans.
+// (meshoptimizer, borders kept) and a closed base for 3D printing and booleans. A region
+// with volume edits (caves, overhangs, arches) is exported as the solid's surface
+// (export_solid.h): overhangs included, no seam where the edits meet the ground.
 #ifndef OROGEN_EDITOR_INTERCHANGE_EXPORT_MESH_H
 #define OROGEN_EDITOR_INTERCHANGE_EXPORT_MESH_H
 

@@ -1,19 +1,8 @@
-#include "renderer/volume_mesh.h"
+#include "editor/world/volume_mesh.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-
-// A brick meshes the voxel edges that start within one voxel of it (its own and a ring
-// its neighbours mesh too): the meshes of neighbouring bricks overlap by a voxel with
-// identical triangles, and overlap the heightfield drawn beside them, so no crack opens
-// where they meet. Samples reach one voxel further, for the cells around those edges.
-#define BORDER 2 // samples before the brick's first voxel
-#define NX (VOLUME_BRICK_X + 2 * BORDER)
-#define NY (VOLUME_BRICK_Y + 2 * BORDER)
-#define NZ (VOLUME_BRICK_Z + 2 * BORDER)
-#define SAMPLE(x, y, z) (((size_t)(y)*NZ + (size_t)(z)) * NX + (size_t)(x))
-#define CELL(x, y, z) (((size_t)(y) * (NZ - 1) + (size_t)(z)) * (NX - 1) + (size_t)(x))
 
 typedef struct mesh_builder {
     volume_mesh *m;
@@ -52,26 +41,38 @@ static int push_quad(mesh_builder *b, uint32_t a, uint32_t c, uint32_t d, uint32
     return 0;
 }
 
-// The combined distance at every sample around the brick.
-static int sample_field(world *w, const volume_grid *g, volume_box box, float *f, og_error *err) {
+// The samples around the edges: one before their starts (the cells below and behind)
+// and one past their ends.
+typedef struct sample_box {
+    volume_box box; // voxels sampled
+    int64_t nx, ny, nz;
+} sample_box;
+
+static size_t at(const sample_box *s, int64_t x, int64_t y, int64_t z) {
+    return (size_t)((y * s->nz + z) * s->nx + x);
+}
+
+// The combined distance at every sample.
+static int sample_field(world *w, const volume_grid *g, const sample_box *s, float *f,
+                        og_error *err) {
     volume_heights vh;
-    if (volume_heights_read(w, g, g->voxel, box.i0 - BORDER, box.k0 - BORDER, box.i1 + BORDER,
-                            box.k1 + BORDER, &vh, err) != 0)
+    if (volume_heights_read(w, g, g->voxel, s->box.i0, s->box.k0, s->box.i1, s->box.k1, &vh, err) !=
+        0)
         return -1;
     volume_reader r;
     volume_reader_init(&r, w);
     int rc = 0;
     double v = g->voxel;
-    for (int y = 0; y < NY && rc == 0; y++)
-        for (int z = 0; z < NZ && rc == 0; z++)
-            for (int x = 0; x < NX; x++) {
-                int64_t i = box.i0 - BORDER + x, j = box.j0 - BORDER + y, k = box.k0 - BORDER + z;
+    for (int64_t y = 0; y < s->ny && rc == 0; y++)
+        for (int64_t z = 0; z < s->nz && rc == 0; z++)
+            for (int64_t x = 0; x < s->nx; x++) {
+                int64_t i = s->box.i0 + x, j = s->box.j0 + y, k = s->box.k0 + z;
                 const int16_t *pair = volume_reader_pair(&r, i, j, k, err);
                 if (!pair) {
                     rc = -1;
                     break;
                 }
-                f[SAMPLE(x, y, z)] =
+                f[at(s, x, y, z)] =
                     volume_combine(volume_heights_distance(&vh, i, k, (double)j * v),
                                    volume_to_metres(pair[0], v), volume_to_metres(pair[1], v));
             }
@@ -111,66 +112,78 @@ static void cell_vertex(const float c[8], float out_p[3], float out_n[3]) {
     out_n[0] = gx / len, out_n[1] = gy / len, out_n[2] = gz / len;
 }
 
-int volume_mesh_brick(world *w, const volume_grid *g, tile_key key, volume_mesh *out,
-                      og_error *err) {
+static int inside_box(volume_box b, int64_t i, int64_t j, int64_t k) {
+    return i >= b.i0 && i < b.i1 && j >= b.j0 && j < b.j1 && k >= b.k0 && k < b.k1;
+}
+
+int volume_mesh_edges(world *w, const volume_grid *g, volume_box starts, volume_box within,
+                      const double origin[3], volume_mesh *out, og_error *err) {
     memset(out, 0, sizeof *out);
-    volume_box box = volume_brick_box(key);
-    double v = g->voxel;
-    out->origin[0] = box.i0 * v, out->origin[1] = box.j0 * v, out->origin[2] = box.k0 * v;
-    float *f = malloc((size_t)NX * NY * NZ * sizeof *f);
-    int32_t *cell = malloc((size_t)(NX - 1) * (NY - 1) * (NZ - 1) * sizeof *cell);
+    memcpy(out->origin, origin, sizeof out->origin);
+    if (volume_box_empty(starts)) return 0;
+    sample_box s;
+    s.box = (volume_box){starts.i0 - 1, starts.j0 - 1, starts.k0 - 1,
+                         starts.i1 + 1, starts.j1 + 1, starts.k1 + 1};
+    s.nx = s.box.i1 - s.box.i0, s.ny = s.box.j1 - s.box.j0, s.nz = s.box.k1 - s.box.k0;
+    size_t samples = (size_t)(s.nx * s.ny * s.nz);
+    float *f = malloc(samples * sizeof *f);
+    int32_t *cell = malloc(samples * sizeof *cell); // by the cell's lowest corner
     if (!f || !cell) {
         free(f);
         free(cell);
-        return og_error_set(err, "out of memory meshing a volume brick");
+        return og_error_set(err, "out of memory meshing %lld voxels", (long long)samples);
     }
-    int rc = sample_field(w, g, box, f, err);
+    int rc = sample_field(w, g, &s, f, err);
     mesh_builder b = {out, 0, 0};
-    for (int y = 0; y < NY - 1 && rc == 0; y++)
-        for (int z = 0; z < NZ - 1 && rc == 0; z++)
-            for (int x = 0; x < NX - 1; x++) {
+    double v = g->voxel;
+    for (int64_t y = 0; y < s.ny && rc == 0; y++)
+        for (int64_t z = 0; z < s.nz && rc == 0; z++)
+            for (int64_t x = 0; x < s.nx; x++) {
+                cell[at(&s, x, y, z)] = -1;
+                if (x == s.nx - 1 || y == s.ny - 1 || z == s.nz - 1) continue;
                 float c[8];
                 int inside = 0;
                 for (int k = 0; k < 8; k++) {
-                    c[k] = f[SAMPLE(x + (k & 1), y + (k >> 1 & 1), z + (k >> 2 & 1))];
+                    c[k] = f[at(&s, x + (k & 1), y + (k >> 1 & 1), z + (k >> 2 & 1))];
                     inside += c[k] < 0;
                 }
-                cell[CELL(x, y, z)] = -1;
                 if (inside == 0 || inside == 8) continue;
                 float p[3], n[3];
                 cell_vertex(c, p, n);
-                // Sample (x, y, z) is voxel (i0 - BORDER + x, ...).
-                float local[3] = {(float)((x - BORDER + p[0]) * v),
-                                  (float)((y - BORDER + p[1]) * v),
-                                  (float)((z - BORDER + p[2]) * v)};
+                float local[3] = {(float)((s.box.i0 + x + p[0]) * v - origin[0]),
+                                  (float)((s.box.j0 + y + p[1]) * v - origin[1]),
+                                  (float)((s.box.k0 + z + p[2]) * v - origin[2])};
                 if (push_vertex(&b, local, n) != 0) {
-                    rc = og_error_set(err, "out of memory meshing a volume brick");
+                    rc = og_error_set(err, "out of memory meshing");
                     break;
                 }
-                cell[CELL(x, y, z)] = (int32_t)(out->vertex_count - 1);
+                cell[at(&s, x, y, z)] = (int32_t)(out->vertex_count - 1);
             }
-    // Each edge crossing the surface makes a quad of the four cells around it, facing out
-    // of the solid.
-    for (int y = 1; y < NY - 1 && rc == 0; y++)
-        for (int z = 1; z < NZ - 1 && rc == 0; z++)
-            for (int x = 1; x < NX - 1 && rc == 0; x++) {
-                int p[3] = {x, y, z};
-                float here = f[SAMPLE(x, y, z)];
+    // Each owned edge crossing the surface makes a quad of the four cells around it,
+    // facing out of the solid.
+    for (int64_t y = 1; y < s.ny - 1 && rc == 0; y++)
+        for (int64_t z = 1; z < s.nz - 1 && rc == 0; z++)
+            for (int64_t x = 1; x < s.nx - 1 && rc == 0; x++) {
+                int64_t p[3] = {x, y, z};
+                float here = f[at(&s, x, y, z)];
                 for (int a = 0; a < 3; a++) {
-                    int q[3] = {x, y, z};
+                    int64_t q[3] = {x, y, z};
                     q[a]++;
-                    float there = f[SAMPLE(q[0], q[1], q[2])];
+                    if (!inside_box(within, s.box.i0 + q[0], s.box.j0 + q[1], s.box.k0 + q[2]) ||
+                        !inside_box(within, s.box.i0 + x, s.box.j0 + y, s.box.k0 + z))
+                        continue;
+                    float there = f[at(&s, q[0], q[1], q[2])];
                     if ((here < 0) == (there < 0)) continue;
                     int bx = (a + 1) % 3, cx = (a + 2) % 3;
-                    int c00[3] = {p[0], p[1], p[2]}, c10[3], c11[3], c01[3];
-                    c00[bx]--, c00[cx]--;
+                    int64_t c00[3], c10[3], c11[3], c01[3];
+                    memcpy(c00, p, sizeof p), c00[bx]--, c00[cx]--;
                     memcpy(c10, p, sizeof p), c10[cx]--;
                     memcpy(c11, p, sizeof p);
                     memcpy(c01, p, sizeof p), c01[bx]--;
-                    int32_t v00 = cell[CELL(c00[0], c00[1], c00[2])];
-                    int32_t v10 = cell[CELL(c10[0], c10[1], c10[2])];
-                    int32_t v11 = cell[CELL(c11[0], c11[1], c11[2])];
-                    int32_t v01 = cell[CELL(c01[0], c01[1], c01[2])];
+                    int32_t v00 = cell[at(&s, c00[0], c00[1], c00[2])];
+                    int32_t v10 = cell[at(&s, c10[0], c10[1], c10[2])];
+                    int32_t v11 = cell[at(&s, c11[0], c11[1], c11[2])];
+                    int32_t v01 = cell[at(&s, c01[0], c01[1], c01[2])];
                     if (v00 < 0 || v10 < 0 || v11 < 0 || v01 < 0) continue;
                     // (b, c) counter-clockwise faces +a: outward when the solid is at p.
                     int ok = here < 0 ? push_quad(&b, (uint32_t)v00, (uint32_t)v10, (uint32_t)v11,
@@ -178,7 +191,7 @@ int volume_mesh_brick(world *w, const volume_grid *g, tile_key key, volume_mesh 
                                       : push_quad(&b, (uint32_t)v00, (uint32_t)v01, (uint32_t)v11,
                                                   (uint32_t)v10);
                     if (ok != 0) {
-                        rc = og_error_set(err, "out of memory meshing a volume brick");
+                        rc = og_error_set(err, "out of memory meshing");
                         break;
                     }
                 }
@@ -187,6 +200,21 @@ int volume_mesh_brick(world *w, const volume_grid *g, tile_key key, volume_mesh 
     free(cell);
     if (rc != 0) volume_mesh_free(out);
     return rc;
+}
+
+volume_box volume_box_everything(void) {
+    volume_box b = {INT64_MIN / 4, INT64_MIN / 4, INT64_MIN / 4,
+                    INT64_MAX / 4, INT64_MAX / 4, INT64_MAX / 4};
+    return b;
+}
+
+int volume_mesh_brick(world *w, const volume_grid *g, tile_key key, volume_mesh *out,
+                      og_error *err) {
+    volume_box box = volume_brick_box(key);
+    // Its own edges and a ring of one voxel around them, which the neighbours mesh too.
+    volume_box starts = {box.i0 - 1, box.j0 - 1, box.k0 - 1, box.i1 + 1, box.j1 + 1, box.k1 + 1};
+    double origin[3] = {box.i0 * g->voxel, box.j0 * g->voxel, box.k0 * g->voxel};
+    return volume_mesh_edges(w, g, starts, volume_box_everything(), origin, out, err);
 }
 
 void volume_mesh_free(volume_mesh *m) {
