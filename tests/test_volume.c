@@ -12,6 +12,7 @@
 #include "editor/tools/brush.h"
 #include "editor/tools/stroke.h"
 #include "editor/tools/volume_brush.h"
+#include "editor/tools/volume_shapes.h"
 #include "editor/world/volume_grid.h"
 #include "support/test_support.h"
 
@@ -421,6 +422,52 @@ static void test_flatten_and_smooth(void **state) {
     world_close(w);
 }
 
+// The shape generators: an arch stands over air, a tunnel follows its radius profile, a
+// hoodoo's cap overhangs its column, an overhang juts out over the lower side of a cliff.
+static void test_shapes(void **state) {
+    (void)state;
+    world_params p = flat_params(0, 1);
+    world *w = open_world(&p);
+    og_error err;
+    const double a[3] = {0, 0, 0}, b[3] = {40, 0, 0};
+    assert_int_equal(volume_arch(w, a, b, 20, 4, &err), 0);
+    assert_true(vsample(w, 20, 20, 0) < -1.5); // the apex is rock
+    assert_true(vsample(w, 20, 10, 0) > 5);    // under it, air
+    assert_true(vsample(w, 3, 4, 0) < 0);      // a foot
+
+    const double path[3][3] = {{100, -20, 0}, {130, -20, 0}, {160, -20, 0}};
+    const double radius[3] = {3, 8, 3};
+    assert_int_equal(volume_tunnel(w, path, radius, 3, &err), 0);
+    assert_float_equal(vsample(w, 130, -20 + 7, 0), 1.0, 0.1); // 1 m inside the 8 m bore
+    assert_float_equal(vsample(w, 100, -20 + 2, 0), 1.0, 0.1); // 1 m inside the 3 m bore
+    assert_true(vsample(w, 100, -20 + 4, 0) < 0);
+
+    const double foot[3] = {200, 0, 0};
+    assert_int_equal(volume_spire(w, foot, 30, 5, 0.3, 6, &err), 0);
+    assert_true(vsample(w, 200, 15, 0) < -2);                       // the column
+    assert_true(vsample(w, 205, 31, 0) < 0);                        // the cap reaches out 5 m...
+    assert_true(vsample(w, 205, 25, 0) > 1);                        // ...over air
+    assert_int_equal(volume_spire(w, foot, 30, 5, 2, 0, &err), -1); // taper > 1
+    assert_non_null(strstr(err.msg, "taper"));
+
+    // A 20 m plateau of radius 30 at (300, 0); its cliff faces +x at x = 330.
+    brush set;
+    brush_defaults(&set, BRUSH_SET);
+    set.radius = 30, set.strength = 1, set.falloff = FALLOFF_CONSTANT;
+    set.has_height = 1, set.height = 20;
+    stroke *st = stroke_begin(w, &set, &err);
+    assert_non_null(st);
+    assert_int_equal(stroke_to(st, 300, 0, 1.0, &err), 0);
+    assert_int_equal(stroke_end(st, &err), 0);
+    assert_true(vsample(w, 335, 18, 0) > 0); // air beyond the cliff
+    assert_int_equal(volume_overhang(w, 326, -8, 326, 8, 10, 4, &err), 0);
+    assert_true(vsample(w, 334, 18, 0) < 0); // the shelf, out past the cliff
+    assert_true(vsample(w, 334, 12, 0) > 0); // and air under it
+    size_t steps = history_count(world_history(w));
+    assert_int_equal(steps, 5); // arch, tunnel, spire, set stroke, overhang; the bad spire: none
+    world_close(w);
+}
+
 static void test_refusals_change_nothing(void **state) {
     (void)state;
     world_params p = flat_params(512, 1);
@@ -492,6 +539,7 @@ int main(void) {
         cmocka_unit_test(test_heightfield_edit_keeps_volume_in_place),
         cmocka_unit_test(test_stroke_point_by_point),
         cmocka_unit_test(test_flatten_and_smooth),
+        cmocka_unit_test(test_shapes),
         cmocka_unit_test(test_refusals_change_nothing),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -4,6 +4,7 @@
 #include "editor/edit/recover.h"
 #include "editor/cmd/edit_commands.h"
 #include "editor/cmd/interchange_commands.h"
+#include "editor/cmd/volume_commands.h"
 #include "editor/cmd/tokenize.h"
 #include "editor/gen/gen.h"
 #include "editor/world/volume_grid.h"
@@ -357,6 +358,25 @@ static const cmd_def commands[] = {
      "Drags the brush along the points (metres), dabbing every spacing x radius; the volume tools "
      "take X Y Z triples (fill and carve sweep a capsule between them). One undo step.",
      2, CMD_MAX_ARGS, cmd_stroke, CMD_ENDS_STROKE},
+    {"arch", "arch X0 Y0 Z0 X1 Y1 Z1 [rise=M] [thickness=M]",
+     "Adds a rock arch from foot X0 Y0 Z0 to foot X1 Y1 Z1 (metres, Y up), its middle rise "
+     "metres above the line between them (half the span) and thickness metres thick (6). One "
+     "undo step.",
+     6, 8, cmd_arch, CMD_ENDS_STROKE},
+    {"tunnel", "tunnel X0 Y0 Z0 X1 Y1 Z1 [...] [radius=R|R0,R1,...]",
+     "Carves a tunnel along the points (metres, Y up), radius metres wide (5), or one radius per "
+     "point. One undo step.",
+     6, CMD_MAX_ARGS, cmd_tunnel, CMD_ENDS_STROKE},
+    {"spire", "spire X Y Z [height=M] [radius=M] [taper=F] [cap=M]",
+     "Adds a rock spire standing on X Y Z: height metres tall (30), radius metres at the foot "
+     "(6), taper x radius at the top (0.3), and with cap= a capstone of that radius (a "
+     "hoodoo). One undo step.",
+     3, 7, cmd_spire, CMD_ENDS_STROKE},
+    {"overhang", "overhang X0 Z0 X1 Z1 [distance=M] [thickness=M]",
+     "Pushes a shelf of rock out from the cliff edge X0 Z0 - X1 Z1 (metres) over its lower side: "
+     "distance metres out (8), thickness metres thick (4), its top level with the ground at the "
+     "edge. One undo step.",
+     4, 6, cmd_overhang, CMD_ENDS_STROKE},
     {"stroke_begin", "stroke_begin [invert=0|1] [tool=NAME]",
      "Starts a stroke with the current tool (as a drag in the viewport does); stroke_to extends "
      "it, stroke_end makes it one undo step. invert= and tool= change this stroke only (the "

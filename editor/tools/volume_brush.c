@@ -315,6 +315,13 @@ struct volume_stroke {
 };
 
 volume_stroke *volume_stroke_begin(world *w, const brush *b, og_error *err) {
+    char label[64];
+    snprintf(label, sizeof label, "%s stroke", brush_tool_name(b->tool));
+    return volume_stroke_begin_labelled(w, b, label, err);
+}
+
+volume_stroke *volume_stroke_begin_labelled(world *w, const brush *b, const char *label,
+                                            og_error *err) {
     if (!brush_tool_is_volume(b->tool)) {
         og_error_set(err, "%s is not a volume tool (fill, carve, vsmooth, vflatten)",
                      brush_tool_name(b->tool));
@@ -328,8 +335,6 @@ volume_stroke *volume_stroke_begin(world *w, const brush *b, og_error *err) {
     s->b = *b;
     s->job.w = w;
     s->job.b = &s->b;
-    char label[64];
-    snprintf(label, sizeof label, "%s stroke", brush_tool_name(b->tool));
     if (volume_grid_init(&s->job.g, world_get_params(w), err) != 0 ||
         check_brush(&s->job.g, b, err) != 0 || !(s->job.e = edit_begin(w, label, err))) {
         free(s);
@@ -412,6 +417,17 @@ int volume_stroke_to(volume_stroke *s, const double p[3], double pressure, og_er
     s->last_radius = radius;
     s->last_pressure = pressure;
     s->dabs++;
+    return 0;
+}
+
+int volume_stroke_move(volume_stroke *s, const double p[3], double pressure, og_error *err) {
+    if (check_point(&s->job.g, &s->b, p, pressure, world_cache(s->job.w), err) != 0) return -1;
+    if (s->dabs == 0) return volume_stroke_to(s, p, pressure, err);
+    memcpy(s->last, p, sizeof s->last);
+    s->last_radius = s->b.radius * s->b.strength * pressure;
+    s->last_pressure = pressure;
+    s->carry = 0;
+    s->job.has_prev = 0;
     return 0;
 }
 

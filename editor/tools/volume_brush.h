@@ -27,7 +27,13 @@
 // points are checked as they come (a bad one is refused and the stroke stays open).
 typedef struct volume_stroke volume_stroke;
 volume_stroke *volume_stroke_begin(world *w, const brush *b, og_error *err);
+// The same with its own undo label (the shape generators: "arch", "tunnel", ...).
+volume_stroke *volume_stroke_begin_labelled(world *w, const brush *b, const char *label,
+                                            og_error *err);
 int volume_stroke_to(volume_stroke *s, const double p[3], double pressure, og_error *err);
+// Lifts the pen: the next point starts a new piece at p (nothing is laid between). The
+// first point of a stroke is laid as a dab.
+int volume_stroke_move(volume_stroke *s, const double p[3], double pressure, og_error *err);
 // Commits the stroke as one step (none when no point was laid) and frees it.
 int volume_stroke_end(volume_stroke *s, og_error *err);
 // Undoes what the stroke did and frees it.
