@@ -2,7 +2,9 @@
 //  1. a volume brush dab (carve, radius 16 voxels, one undo step each: begin, first-
 //     touch snapshots, commit) in voxels visited per second, against the 2D raise dab
 //     of the same radius (one undo step each) in samples per second;
-//  2. `.vdb` export of a 1024 x 1024-voxel region of the default world (with a carved
+//  2. re-meshing after a dab: the viewport's surface nets over every brick the dab
+//     touched, in milliseconds, against the dab itself;
+//  3. `.vdb` export of a 1024 x 1024-voxel region of the default world (with a carved
 //     tunnel) in voxels computed per second, against OpenVDB's tools::meshToLevelSet
 //     building the same narrow-band level set from the heightfield's triangle mesh
 //     (goal: at least as fast).
@@ -12,6 +14,7 @@
 #include "editor/tools/stroke.h"
 #include "editor/tools/volume_brush.h"
 #include "editor/world/layer_grid.h"
+#include "editor/world/volume_mesh.h"
 #include "editor/world/world.h"
 
 #include <stdio.h>
@@ -85,7 +88,38 @@ int main(void) {
     printf("  per voxel vs per sample: %.2fx the raise dab's rate\n",
            (voxels / ct) / (samples / rt));
 
-    // 2. Export of a 1024^2 region with a tunnel through it.
+    // 2. Re-meshing the bricks one dab touched (what the viewport does after it).
+    double mesh_t[DAB_RUNS];
+    long long bricks_meshed = 0, triangles = 0;
+    volume_grid vg;
+    check(volume_grid_init(&vg, world_get_params(w), &err), &err, "volume grid");
+    for (int r = 0; r < DAB_RUNS; r++) {
+        double x = 100 + 70 * r, z = 300, y = ground(w, x, z);
+        double lo[3] = {x, y, z};
+        volume_box box = volume_grid_box_around(&vg, lo, lo, radius + VOLUME_EXACT_VOXELS);
+        double t0 = bench_now();
+        bricks_meshed = triangles = 0;
+        for (int64_t by = volume_floor_div(box.j0, VOLUME_BRICK_Y);
+             by <= volume_floor_div(box.j1 - 1, VOLUME_BRICK_Y); by++)
+            for (int64_t bz = volume_floor_div(box.k0, VOLUME_BRICK_Z);
+                 bz <= volume_floor_div(box.k1 - 1, VOLUME_BRICK_Z); bz++)
+                for (int64_t bx = volume_floor_div(box.i0, VOLUME_BRICK_X);
+                     bx <= volume_floor_div(box.i1 - 1, VOLUME_BRICK_X); bx++) {
+                    tile_key key = {TILE_LAYER_VOLUME, 0, (int32_t)by, (int32_t)bx, (int32_t)bz};
+                    volume_mesh m;
+                    check(volume_mesh_brick(w, &vg, key, &m, &err), &err, "mesh");
+                    triangles += (long long)(m.index_count / 3);
+                    bricks_meshed++;
+                    volume_mesh_free(&m);
+                }
+        mesh_t[r] = bench_now() - t0;
+    }
+    double mt = bench_median(mesh_t, DAB_RUNS);
+    printf("re-meshing after a carve dab: %.2f ms for %lld bricks (%lld triangles), %.2fx the "
+           "dab's %.2f ms\n",
+           mt * 1e3, bricks_meshed, triangles, mt / ct, ct * 1e3);
+
+    // 3. Export of a 1024^2 region with a tunnel through it.
     double x0 = 2048, z0 = 2048;
     double tunnel[3][3] = {
         {x0 + 100, 0, z0 + 500}, {x0 + 500, 0, z0 + 520}, {x0 + 900, 0, z0 + 400}};

@@ -7,11 +7,15 @@
 #include "editor/world/volume_mesh.h"
 
 #include <math.h>
+#include <pthread.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 #define MASK_LEVELS 32 // bits per mask texel: brick levels above the column's lowest
+#define MESH_BATCH 8   // bricks meshed together (on every core) between budget checks
 
 typedef struct vbrick {
     tile_key key;
@@ -248,6 +252,70 @@ static void build_mask(volume_renderer *vr) {
     vr->mask_valid = 1;
 }
 
+// Up to max dirty bricks in view, nearest the camera's column first.
+static int nearest_dirty(volume_renderer *vr, const int64_t col[2], vbrick **out, int max) {
+    int n = 0;
+    for (size_t i = 0; i < vr->count; i++) {
+        vbrick *b = &vr->bricks[i];
+        if (!b->dirty || !in_view(vr, b)) continue;
+        int64_t dx = b->key.tx - col[0], dz = b->key.ty - col[1], d = dx * dx + dz * dz;
+        int at = n < max ? n++ : max;
+        // Insertion into the sorted list (a brick farther than all kept ones drops out).
+        while (at > 0) {
+            const vbrick *o = out[at - 1];
+            int64_t ox = o->key.tx - col[0], oz = o->key.ty - col[1];
+            if (ox * ox + oz * oz <= d) break;
+            if (at < max) out[at] = out[at - 1];
+            at--;
+        }
+        if (at < max) out[at] = b;
+    }
+    return n;
+}
+
+typedef struct mesh_job {
+    world *w;
+    const volume_grid *g;
+    vbrick **bricks;
+    int count;
+    atomic_int next;
+    atomic_int failed;
+    og_error err;
+} mesh_job;
+
+static void *mesh_worker(void *arg) {
+    mesh_job *j = arg;
+    for (;;) {
+        int i = atomic_fetch_add(&j->next, 1);
+        if (i >= j->count) break;
+        vbrick *b = j->bricks[i];
+        volume_mesh_free(&b->mesh);
+        og_error err;
+        if (volume_mesh_brick(j->w, j->g, b->key, &b->mesh, &err) != 0 &&
+            atomic_exchange(&j->failed, 1) == 0)
+            j->err = err;
+    }
+    return NULL;
+}
+
+// Meshes the bricks on every core (the cache and the world's reads are thread-safe).
+static int mesh_batch(world *w, const volume_grid *g, vbrick **bricks, int count, og_error *err) {
+    mesh_job j = {.w = w, .g = g, .bricks = bricks, .count = count};
+    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    int helpers = (int)(cores > 1 ? cores - 1 : 0);
+    if (helpers > count - 1) helpers = count - 1;
+    if (helpers > MESH_BATCH) helpers = MESH_BATCH;
+    pthread_t threads[MESH_BATCH];
+    int started = 0;
+    for (; started < helpers; started++)
+        if (pthread_create(&threads[started], NULL, mesh_worker, &j) != 0) break;
+    mesh_worker(&j);
+    for (int t = 0; t < started; t++)
+        pthread_join(threads[t], NULL);
+    if (atomic_load(&j.failed)) return og_error_set(err, "%s", j.err.msg);
+    return 0;
+}
+
 int volume_renderer_update(volume_renderer *vr, world *w, const camera *cam, double budget_ms,
                            og_error *err) {
     vr->last_meshed = 0;
@@ -278,28 +346,23 @@ int volume_renderer_update(volume_renderer *vr, world *w, const camera *cam, dou
         vr->mask_valid = 0;
     }
     if (!vr->mask_valid) build_mask(vr);
-    // Nearest dirty bricks first, until the budget is spent.
+    // Nearest dirty bricks first, a batch at a time on every core, until the budget is spent.
     double t0 = now_ms();
     int all = 1;
     for (;;) {
-        vbrick *next = NULL;
-        int64_t best = INT64_MAX;
-        for (size_t i = 0; i < vr->count; i++) {
-            vbrick *b = &vr->bricks[i];
-            if (!b->dirty || !in_view(vr, b)) continue;
-            int64_t dx = b->key.tx - col[0], dz = b->key.ty - col[1];
-            if (dx * dx + dz * dz < best) best = dx * dx + dz * dz, next = b;
-        }
-        if (!next) break;
+        vbrick *batch[MESH_BATCH];
+        int n = nearest_dirty(vr, col, batch, MESH_BATCH);
+        if (n == 0) break;
         if (budget_ms > 0 && vr->last_meshed > 0 && now_ms() - t0 > budget_ms) {
             all = 0;
             break;
         }
-        volume_mesh_free(&next->mesh);
-        if (volume_mesh_brick(w, &vr->grid, next->key, &next->mesh, err) != 0) return -1;
-        upload(next);
-        next->dirty = 0;
-        vr->last_meshed++;
+        if (mesh_batch(w, &vr->grid, batch, n, err) != 0) return -1;
+        for (int i = 0; i < n; i++) {
+            upload(batch[i]);
+            batch[i]->dirty = 0;
+        }
+        vr->last_meshed += n;
     }
     vr->last_mesh_ms = now_ms() - t0;
     return all;

@@ -493,6 +493,19 @@ static void test_refusals_change_nothing(void **state) {
     assert_int_equal(volume_brush_apply(w, &raise, ok, NULL, 1, &err), -1);
     assert_non_null(strstr(err.msg, "not a volume tool"));
     assert_int_equal(volume_brush_apply(w, &fill, ok, NULL, 0, &err), -1);
+    // The voxel size cannot change under volume edits (they would move and stretch).
+    world *edited = open_world(&p);
+    const double cave[1][3] = {{20, -5, 20}};
+    brush carve = tool(BRUSH_CARVE, 4, FALLOFF_CONSTANT);
+    apply(edited, &carve, cave, 1);
+    world_params finer = p;
+    finer.volume_ratio = 2;
+    assert_int_equal(edit_generate(edited, &finer, &err), -1);
+    assert_non_null(strstr(err.msg, "volume edits"));
+    assert_int_equal(world_get_params(edited)->volume_ratio, 1);
+    assert_int_equal(edit_undo(edited, &err), 1); // no edit left: now it may
+    assert_int_equal(edit_generate(edited, &finer, &err), 0);
+    world_close(edited);
     // A small cache cannot hold a big dab's bricks.
     world_settings small = {.cache_budget_bytes = (size_t)8 << 20, .workers = 2, .warn = silent};
     world *tight = world_create(&p, &small, &err);

@@ -217,6 +217,15 @@ static int c_info(cmd_context *ctx, int argc, char **argv, og_error *err) {
     fprintf(o, "size=%" PRId64 "\n", p->size);
     fprintf(o, "spacing=%.17g\n", p->spacing);
     fprintf(o, "tile_size=%d\n", TILE_SIZE);
+    if (p->kind == WORLD_FLAT) {
+        tile_key *bricks = NULL;
+        size_t n = 0;
+        og_error ignored;
+        if (volume_list_bricks(ctx->world, &bricks, &n, &ignored) == 0)
+            fprintf(o, "volume_voxel=%.17g\nvolume_bricks=%zu\n",
+                    p->spacing / (p->volume_ratio > 0 ? p->volume_ratio : 1), n);
+        free(bricks);
+    }
     tile_store *store = world_store(ctx->world);
     fprintf(o, "tile_store=%s\n", store ? tile_store_path(store) : "");
     fprintf(o, "tiles_stored=%" PRId64 "\n", store ? tile_store_count(store, -1) : 0);

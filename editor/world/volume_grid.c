@@ -237,6 +237,27 @@ int volume_list_bricks(world *w, tile_key **keys, size_t *count, og_error *err) 
     return 0;
 }
 
+int volume_has_edits(world *w, int *has, og_error *err) {
+    *has = 0;
+    tile_key *keys;
+    size_t n;
+    if (volume_list_bricks(w, &keys, &n, err) != 0) return -1;
+    int rc = 0;
+    for (size_t b = 0; b < n && !*has; b++) {
+        tile_view v;
+        if (tile_cache_acquire(world_cache(w), keys[b], &v, err) != 0) {
+            rc = -1;
+            break;
+        }
+        const int16_t *d = v.data;
+        for (size_t i = 0; i < 2 * (size_t)TILE_SAMPLES && !*has; i++)
+            *has = d[i] != VOLUME_FAR;
+        tile_cache_release(world_cache(w), &v);
+    }
+    free(keys);
+    return rc;
+}
+
 int volume_sample(world *w, const double p[3], double *distance, og_error *err) {
     volume_grid g;
     if (volume_grid_init(&g, world_get_params(w), err) != 0 ||

@@ -148,6 +148,10 @@ void volume_reader_close(volume_reader *r);
 // brick may hold no edit any more), sorted, without duplicates. malloc'd.
 int volume_list_bricks(world *w, tile_key **keys, size_t *count, og_error *err);
 
+// Whether any volume brick holds an edit (*has 1 or 0): bricks undone back to no edit
+// do not count.
+int volume_has_edits(world *w, int *has, og_error *err);
+
 // Samples the combined solid's signed distance at a point (metres; trilinear in the
 // volume voxels around it, bilinear in the heights). For `vsample` and tests.
 int volume_sample(world *w, const double p[3], double *distance, og_error *err);
