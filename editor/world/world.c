@@ -1,6 +1,5 @@
 #include "editor/world/world.h"
 
-#include "editor/world/volume_grid.h"
 
 #include "editor/gen/gen.h"
 #include "editor/world/history.h"
@@ -583,23 +582,8 @@ int world_save(world *w, const char *path, int force, og_error *err) {
     return 0;
 }
 
-static double voxel_size(const world_params *p) {
-    return p->spacing / (p->volume_ratio > 0 ? p->volume_ratio : 1);
-}
-
 int world_regenerate(world *w, const world_params *params, og_error *err) {
     if (check_params(params, err) != 0) return -1;
-    // Volume edits are stored per voxel: a new voxel size would move and stretch them.
-    if (params->kind == WORLD_FLAT && w->params.kind == WORLD_FLAT &&
-        voxel_size(params) != voxel_size(&w->params)) {
-        int has = 0;
-        if (volume_has_edits(w, &has, err) != 0) return -1;
-        if (has)
-            return og_error_set(err,
-                                "spacing / volume_ratio: the world has volume edits (caves, "
-                                "overhangs) on %g m voxels; keep spacing / volume_ratio at %g m",
-                                voxel_size(&w->params), voxel_size(&w->params));
-    }
     world_params next = *params;
     // The file-level settings that are not generation parameters stay the world's own.
     snprintf(next.tiles, sizeof next.tiles, "%s", w->params.tiles);
