@@ -1,6 +1,5 @@
 #include "editor/world/world.h"
 
-
 #include "editor/gen/gen.h"
 #include "editor/world/history.h"
 #include "editor/params/world_grid.h"
