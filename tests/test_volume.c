@@ -493,6 +493,18 @@ static void test_refusals_change_nothing(void **state) {
     assert_int_equal(volume_brush_apply(w, &raise, ok, NULL, 1, &err), -1);
     assert_non_null(strstr(err.msg, "not a volume tool"));
     assert_int_equal(volume_brush_apply(w, &fill, ok, NULL, 0, &err), -1);
+    // A typo'd coordinate: a piece far too long for the cache, or for vsmooth's dabs.
+    world_params open_p = flat_params(0, 1);
+    world *wide = open_world(&open_p);
+    const double diagonal[2][3] = {{0, 0, 0}, {3e6, 0, 3e6}};
+    assert_int_equal(volume_brush_apply(wide, &fill, diagonal, NULL, 2, &err), -1);
+    assert_non_null(strstr(err.msg, "bricks"));
+    brush smooth = tool(BRUSH_VSMOOTH, 2, FALLOFF_SMOOTH);
+    const double long_way[2][3] = {{0, 0, 0}, {1e6, 0, 0}};
+    assert_int_equal(volume_brush_apply(wide, &smooth, long_way, NULL, 2, &err), -1);
+    assert_non_null(strstr(err.msg, "dabs"));
+    assert_int_equal(history_count(world_history(wide)), 0);
+    world_close(wide);
     // The voxel size cannot change under volume edits (they would move and stretch).
     world *edited = open_world(&p);
     const double cave[1][3] = {{20, -5, 20}};

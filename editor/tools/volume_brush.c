@@ -12,6 +12,10 @@
 
 // A dab box beyond this many voxels across would take minutes and gigabytes.
 #define VOLUME_MAX_RADIUS_VOXELS 512.0
+// Bricks one piece of a stroke may span (its bounding box), and vsmooth / vflatten dabs
+// one piece may lay: more is a typo'd coordinate, not a stroke.
+#define VOLUME_MAX_PIECE_BRICKS (1 << 22)
+#define VOLUME_MAX_PIECE_DABS 100000
 
 static _Atomic long long last_voxels;
 
@@ -92,6 +96,9 @@ static int brick_beyond_path(const vol_job *j, tile_key key) {
 static int list_bricks(vol_job *j, int skip_beyond_path, og_error *err) {
     volume_box b = j->box;
     int64_t n = volume_box_bricks(b);
+    if (n > VOLUME_MAX_PIECE_BRICKS)
+        return og_error_set(err, "%s: one piece of the stroke spans %lld bricks (the limit is %d)",
+                            brush_tool_name(j->b->tool), (long long)n, VOLUME_MAX_PIECE_BRICKS);
     free(j->bricks);
     j->brick_count = 0;
     j->bricks = malloc((size_t)n * sizeof *j->bricks);
@@ -369,6 +376,16 @@ static int shape_piece(volume_stroke *s, const double p[3], double radius, og_er
         lo[a] = fmin(pts[0][a], pts[1][a]), hi[a] = fmax(pts[0][a], pts[1][a]);
     j->box = volume_grid_box_around(&j->g, lo, hi, fmax(radii[0], radii[1]) + j->margin);
     int rc = list_bricks(j, 1, err);
+    // A piece whose bricks would not fit the cache (a typo'd coordinate, not a stroke).
+    tile_cache_stats st;
+    tile_cache_stats_get(world_cache(j->w), &st);
+    double need = (double)j->brick_count * (double)tile_layer_bytes(TILE_LAYER_VOLUME);
+    if (rc == 0 && need > st.budget_bytes / 2.0)
+        rc = og_error_set(err,
+                          "%s: the piece from (%g, %g, %g) to (%g, %g, %g) m touches %.0f MiB of "
+                          "volume bricks, more than half the tile cache (%.0f MiB)",
+                          brush_tool_name(b->tool), pts[0][0], pts[0][1], pts[0][2], pts[1][0],
+                          pts[1][1], pts[1][2], need / 1048576.0, st.budget_bytes / 1048576.0);
     if (rc == 0) rc = parallel_run((int)j->brick_count, shape_task, j, err);
     if (rc == 0)
         edit_dirty(j->e, TILE_LAYER_VOLUME, 0,
@@ -393,6 +410,9 @@ static int surface_piece(volume_stroke *s, const double p[3], double pressure, o
     double len = sqrt((p[0] - a[0]) * (p[0] - a[0]) + (p[1] - a[1]) * (p[1] - a[1]) +
                       (p[2] - a[2]) * (p[2] - a[2]));
     double at = step - s->carry;
+    if ((len - at) / step > VOLUME_MAX_PIECE_DABS)
+        return og_error_set(err, "%s: a piece of %g m would need more than %d dabs",
+                            brush_tool_name(b->tool), len, VOLUME_MAX_PIECE_DABS);
     for (; at <= len; at += step) {
         double t = len > 0 ? at / len : 1;
         double q[3] = {a[0] + t * (p[0] - a[0]), a[1] + t * (p[1] - a[1]),
