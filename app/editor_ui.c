@@ -517,6 +517,77 @@ static void seed_row(editor_ui *e, ui_context *ui, cmd_context *ctx, const char 
     ui_row(ui, 1, NULL, 0);
 }
 
+// The 3D shapes placed with clicks in the viewport, sized by the brush radius R.
+enum { SHAPE_NONE, SHAPE_ARCH, SHAPE_SPIRE, SHAPE_HOODOO, SHAPE_OVERHANG, SHAPE_COUNT };
+static const struct {
+    const char *label;
+    int clicks;
+    const char *tip;
+} shapes[SHAPE_COUNT] = {
+    {NULL, 0, NULL},
+    {"Arch", 2, "An arch: click its two feet (R thick, rising half its span)"},
+    {"Spire", 1, "A rock spire: click its foot (R/2 wide at the foot, 3R tall)"},
+    {"Hoodoo", 1, "A spire with a capstone: click its foot"},
+    {"Overhang", 2,
+     "A shelf out over a cliff: click two points along the cliff's top edge (R "
+     "out, R/2 thick)"},
+};
+
+int editor_ui_shape_click(editor_ui *e, const cmd_context *ctx, const double hit[3], char *cmd,
+                          size_t len) {
+    int kind = e->shape_placing;
+    if (kind <= SHAPE_NONE || kind >= SHAPE_COUNT) return 0;
+    if (++e->shape_clicks < shapes[kind].clicks) {
+        memcpy(e->shape_at, hit, sizeof e->shape_at);
+        return 0;
+    }
+    double r = ctx->brush.radius;
+    const double *a = e->shape_at;
+    switch (kind) {
+    case SHAPE_ARCH:
+        snprintf(cmd, len, "arch %.17g %.17g %.17g %.17g %.17g %.17g thickness=%.6g", a[0], a[1],
+                 a[2], hit[0], hit[1], hit[2], r);
+        break;
+    case SHAPE_SPIRE:
+    case SHAPE_HOODOO:
+        snprintf(cmd, len, "spire %.17g %.17g %.17g height=%.6g radius=%.6g%s", hit[0], hit[1],
+                 hit[2], 3 * r, r / 2, kind == SHAPE_HOODOO ? " taper=0.4" : "");
+        if (kind == SHAPE_HOODOO) {
+            size_t at = strlen(cmd);
+            snprintf(cmd + at, len - at, " cap=%.6g", r * 0.6);
+        }
+        break;
+    default:
+        snprintf(cmd, len, "overhang %.17g %.17g %.17g %.17g distance=%.6g thickness=%.6g", a[0],
+                 a[2], hit[0], hit[2], r, r / 2);
+        break;
+    }
+    e->shape_placing = 0;
+    e->shape_clicks = 0;
+    return 1;
+}
+
+// The shape buttons: one arms its placement (a second click on it, or Esc, disarms).
+static void shape_buttons(editor_ui *e, ui_context *ui) {
+    float halves[2] = {0, 0};
+    for (int k = SHAPE_ARCH; k < SHAPE_COUNT; k++) {
+        if ((k - SHAPE_ARCH) % 2 == 0) ui_row(ui, 2, halves, 0);
+        if (ui_toggle_button(ui, shapes[k].label, e->shape_placing == k)) {
+            e->shape_placing = e->shape_placing == k ? SHAPE_NONE : k;
+            e->shape_clicks = 0;
+        }
+        ui_tooltip(ui, shapes[k].tip);
+    }
+    ui_row(ui, 1, NULL, 0);
+    if (e->shape_placing) {
+        char line[96];
+        snprintf(line, sizeof line, "%s: click %s in the view (Esc: no)",
+                 shapes[e->shape_placing].label,
+                 shapes[e->shape_placing].clicks - e->shape_clicks > 1 ? "twice" : "once");
+        ui_label(ui, line);
+    }
+}
+
 // The volume tools: where the brush sits in 3D, and vflatten's plane.
 static void volume_options(editor_ui *e, ui_context *ui, cmd_context *ctx, const char *t) {
     const brush *b = &ctx->brush;
@@ -539,10 +610,12 @@ static void volume_options(editor_ui *e, ui_context *ui, cmd_context *ctx, const
                        "the height there (Esc: no)");
         ui_row(ui, 1, NULL, 0);
     }
+    shape_buttons(e, ui);
 }
 
 static void tool_options(editor_ui *e, ui_context *ui, cmd_context *ctx) {
     const brush *b = &ctx->brush;
+    if (!brush_tool_is_volume(b->tool)) e->shape_placing = 0; // its buttons are gone
     const char *t = current_tool(b);
     ui_row(ui, 1, NULL, 0);
     slider_key(e, ui, ctx, "Radius", "radius", b->radius, 0.5, 500, "%.1f m",
@@ -1233,7 +1306,7 @@ ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport
     // The menu bar last: its menus open over everything.
     menus(e, ui, ctx, v, top);
     if (ui_get_input(ui)->key_pressed[UI_KEY_ESCAPE] && !ui_wants_keyboard(ui)) {
-        e->show_help = e->show_about = e->picking_height = 0;
+        e->show_help = e->show_about = e->picking_height = e->shape_placing = 0;
         if (e->files.open)
             e->files.open = 0;
         else if (e->interchange.open)

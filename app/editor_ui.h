@@ -64,9 +64,18 @@ typedef struct editor_ui {
     int history_request;               // Edit > History: open the History section
     const char *glfw_version;          // for Help > About
     int picking_height;                // the next click in the viewport picks the tool's height
+    int shape_placing;                 // a 3D shape waits for clicks in the viewport (0: none)
+    int shape_clicks;                  // clicks it has had
+    double shape_at[3];                // where the first one picked
     long long tiles_stored;            // the World panel's count of stored tiles, and when
     double tiles_counted_at;           // it was taken (seconds)
 } editor_ui;
+
+// A click in the viewport on the surface point hit while a shape is being placed:
+// 1 and the command that makes it (cmd) once it has its clicks, 0 while it waits for
+// another.
+int editor_ui_shape_click(editor_ui *e, const cmd_context *ctx, const double hit[3], char *cmd,
+                          size_t len);
 
 void editor_ui_init(editor_ui *e);
 void editor_ui_free(editor_ui *e);

@@ -484,6 +484,12 @@ static void on_mouse_button(GLFWwindow *win, int button, int action, int mods) {
             snprintf(cmd, sizeof cmd, "tool %s height=%.6g", tool_name(&st->ctx->brush), hit[1]);
             run_commands(st, cmd, "pick");
         }
+    } else if (st->ed.shape_placing && button == GLFW_MOUSE_BUTTON_LEFT) {
+        double hit[3]; // a 3D shape: its clicks, then its command
+        char cmd[512];
+        if (pick_at(st, st->mouse_x, st->mouse_y, hit) == 0 &&
+            editor_ui_shape_click(&st->ed, st->ctx, hit, cmd, sizeof cmd) == 1)
+            run_commands(st, cmd, "shape");
     } else if (st->ed.stamps.active && button == GLFW_MOUSE_BUTTON_LEFT) {
         double hit[3]; // the stamp tool: one click, one stamp at the picked point
         char cmd[512];
@@ -917,14 +923,17 @@ static void update_title(window_state *st) {
 }
 
 // The brush cursor's colour for a tool: warm raises, cool lowers, green smooths, yellow
-// levels, violet adds noise, cyan erodes, pink paints.
+// levels, violet adds noise, cyan erodes, pink paints; the volume tools as their 2D
+// counterparts, carving cool.
 static void cursor_colour(brush_tool tool, int invert, float rgb[3]) {
-    static const float colours[][3] = {
+    static const float colours[BRUSH_TOOL_COUNT][3] = {
         [BRUSH_RAISE] = {1.0f, 0.55f, 0.1f},     [BRUSH_SMOOTH] = {0.3f, 0.9f, 0.4f},
         [BRUSH_FLATTEN] = {1.0f, 0.85f, 0.2f},   [BRUSH_SET] = {1.0f, 0.85f, 0.2f},
         [BRUSH_RAMP] = {1.0f, 0.85f, 0.2f},      [BRUSH_NOISE] = {0.75f, 0.4f, 1.0f},
         [BRUSH_TERRACE] = {1.0f, 0.85f, 0.2f},   [BRUSH_THERMAL] = {0.2f, 0.85f, 0.9f},
         [BRUSH_HYDRAULIC] = {0.2f, 0.85f, 0.9f}, [BRUSH_PAINT] = {1.0f, 0.35f, 0.75f},
+        [BRUSH_FILL] = {1.0f, 0.55f, 0.1f},      [BRUSH_CARVE] = {0.25f, 0.5f, 1.0f},
+        [BRUSH_VSMOOTH] = {0.3f, 0.9f, 0.4f},    [BRUSH_VFLATTEN] = {1.0f, 0.85f, 0.2f},
     };
     static const float lowering[3] = {0.25f, 0.5f, 1.0f};
     memcpy(rgb, invert && (tool == BRUSH_RAISE || tool == BRUSH_NOISE) ? lowering : colours[tool],

@@ -443,6 +443,18 @@ ask "window_screenshot $work/gui_carve.png" '^window_screenshot' >/dev/null
 cp "$work/gui_carve.png" "$art/" 2>/dev/null
 echo "undo; tool raise" >&3
 line=$(ask_until "vsample $cx $below $cz" 'side$' 'inside$'); check "undo fills the carve again ($line)" $?
+# Dock/Spire arms a shape; a click in the viewport stands a spire on the picked ground.
+click "Tools/Fill"
+line=$(ask_until tool '^tool=' '^tool=fill$'); check "Tools/Fill picks the fill tool ($line)" $?
+click "Dock/Spire"
+widget "Dock/Spire: click once in the view (Esc: no)" >/dev/null
+check "Dock/Spire asks for a click in the view" $?
+xdotool mousemove --window "$wid" $((VX + VW / 2)) $((VY + VH / 2)) click 1
+line=$(ask_until history 'spire' 'spire tiles=[1-9]'); check "a click places a spire: one spire step ($line)" $?
+above=$(awk -v y="$cy" 'BEGIN { print y + 10 }')
+line=$(ask_until "vsample $cx $above $cz" 'side$' 'inside$'); check "10 m over the picked ground is now rock ($line)" $?
+echo "undo; tool raise" >&3
+line=$(ask_until "vsample $cx $above $cz" 'side$' 'outside$'); check "undo takes the spire away ($line)" $?
 
 # 7d. File > Import heightmap and Export heightmap: the browser, then the options dialog,
 # build import / export commands that run (far from the sculpted boxes; undone after).

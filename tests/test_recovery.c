@@ -178,6 +178,45 @@ static void test_recover_exact(void **state) {
     finish(&s);
 }
 
+// Volume edits (a carved cave, an arch) come back from the journal like any other.
+static void test_recover_volume(void **state) {
+    (void)state;
+    session s;
+    snprintf(s.dir, sizeof s.dir, "%s", test_tmpdir("recovery-volume"));
+    snprintf(s.world, sizeof s.world, "%s/w.world", s.dir);
+    snprintf(s.journal, sizeof s.journal, "%s.recover", s.world);
+    snprintf(s.backup, sizeof s.backup, "%s/crash.recover", s.dir);
+    world_params p;
+    world_params_default(&p, WORLD_FLAT);
+    og_error err = {{0}};
+    world *w = world_create(&p, NULL, &err);
+    assert_non_null(w);
+    cmd_context_init(&s.ctx, w, NULL, stdout, OROGEN_RESOURCE_DIR);
+    char text[4400];
+    snprintf(text, sizeof text, "set generator flat; generate; save %s", s.world);
+    run(&s, text);
+    reopen(&s);
+    const char *probe = "vsample 50 -4 50; vsample 80 13 80";
+    char *before = run_maybe(&s, probe, 0, &err);
+    run(&s, "tool carve radius=6 falloff=constant; dab 50 -4 50; arch 70 0 70 90 0 90 rise=12");
+    char *after = run_maybe(&s, probe, 0, &err);
+    assert_string_not_equal(before, after);
+    copy_file(s.journal, s.backup, 0); // what a kill -9 leaves
+    run(&s, "new flat");
+    copy_file(s.backup, s.journal, 0);
+    reopen(&s);
+    char *reloaded = run_maybe(&s, probe, 0, &err);
+    assert_string_equal(reloaded, before);
+    run(&s, "recover");
+    char *recovered = run_maybe(&s, probe, 0, &err);
+    assert_string_equal(recovered, after);
+    free(before);
+    free(after);
+    free(reloaded);
+    free(recovered);
+    finish(&s);
+}
+
 // A journal cut anywhere in its last record, or damaged in one, gives the steps before.
 static void test_recover_prefix(void **state) {
     (void)state;
@@ -294,6 +333,7 @@ static void test_recover_never_saved(void **state) {
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_recover_exact),
+        cmocka_unit_test(test_recover_volume),
         cmocka_unit_test(test_recover_prefix),
         cmocka_unit_test(test_recover_stale_aside_discard),
         cmocka_unit_test(test_recover_never_saved),
