@@ -160,12 +160,13 @@ static void sculpt_add(window_state *st, const char *text) {
 
 // A volume tool's brush centre for the mouse at (x, y): the picked surface pushed
 // `depth` metres along the view ray, or the ray's crossing of the drag's level plane.
-static int volume_point(window_state *st, double x, double y, const double hit[3], double out[3]) {
+static int volume_point(window_state *st, double x, double y, const double hit[3], double out[3],
+                        int dragging) {
     const brush *b = &st->ctx->brush;
     ui_rect r = st->view_rect;
     double dir[3];
     camera_ray(&st->v->cam, (double)r.w / r.h, (x - r.x) / r.w, (y - r.y) / r.h, dir);
-    if (b->lock_plane && st->stroke_points > 0) {
+    if (dragging && b->lock_plane && st->stroke_points > 0) {
         double dy = st->stroke_plane_y - st->v->cam.pos[1];
         if (fabs(dir[1]) < 1e-9 || dy / dir[1] <= 0) return -1; // the ray never meets it
         for (int a = 0; a < 3; a++)
@@ -174,7 +175,7 @@ static int volume_point(window_state *st, double x, double y, const double hit[3
     }
     for (int a = 0; a < 3; a++)
         out[a] = hit[a] + dir[a] * b->depth;
-    st->stroke_plane_y = out[1];
+    if (dragging && st->stroke_points == 0) st->stroke_plane_y = out[1];
     return 0;
 }
 
@@ -184,7 +185,7 @@ static void sculpt_to(window_state *st, double x, double y) {
     char text[160];
     if (st->stroke_volume) {
         double p[3];
-        if (volume_point(st, x, y, hit, p) != 0) return;
+        if (volume_point(st, x, y, hit, p, 1) != 0) return;
         snprintf(text, sizeof text, "stroke_to %.17g %.17g %.17g", p[0], p[1], p[2]);
     } else {
         snprintf(text, sizeof text, "stroke_to %.17g %.17g", hit[0], hit[2]);
@@ -969,8 +970,21 @@ static void update_cursor(window_state *st) {
         glfwGetKey(st->win, GLFW_KEY_LEFT_SHIFT) || glfwGetKey(st->win, GLFW_KEY_RIGHT_SHIFT);
     brush_tool tool = shift ? BRUSH_SMOOTH : b->tool;
     int invert = !shift && (b->invert != ctrl);
-    cursor_colour(tool, invert, bc->color);
     double strength = st->drag == DRAG_RESIZE ? st->resize_strength : b->strength;
+    bc->sphere = brush_tool_is_volume(b->tool) && st->drag != DRAG_RESIZE;
+    if (bc->sphere) { // where the next point would go, as big as the ball it would lay
+        double p[3];
+        bc->visible =
+            volume_point(st, st->mouse_x, st->mouse_y, hit, p, st->drag == DRAG_SCULPT) == 0;
+        bc->x = p[0], bc->y = p[1], bc->z = p[2];
+        if (b->tool == BRUSH_FILL || b->tool == BRUSH_CARVE) {
+            bc->radius *= strength;
+            if (ctrl) tool = b->tool == BRUSH_FILL ? BRUSH_CARVE : BRUSH_FILL;
+        }
+        if (shift) tool = BRUSH_VSMOOTH;
+        invert = 0;
+    }
+    cursor_colour(tool, invert, bc->color);
     bc->opacity = (float)(0.12 + 0.5 * strength);
 }
 

@@ -46,6 +46,10 @@ typedef struct brush_cursor {
     float falloff[BRUSH_FALLOFF_SAMPLES]; // weight at distance i/(N-1) of the radius
     float color[3]; // the tool's colour (0-1 RGB); with opacity 0 the default orange
     float opacity;  // how strongly the falloff is tinted at the centre (follows strength)
+    // A volume tool's brush: a sphere of the radius around (x, y, z) instead of the disc
+    // draped on the ground.
+    int sphere;
+    double y;
 } brush_cursor;
 
 #endif

@@ -25,7 +25,7 @@
 #define UNBOUNDED 1e9f
 
 struct terrain_renderer {
-    GLuint prog_terrain, prog_sky, prog_water;
+    GLuint prog_terrain, prog_sky, prog_water, prog_cursor;
     GLuint vao, vbo, ebo, empty_vao;
     clipmap_mesh mesh;
     GLuint tex_heights, tex_material, tex_albedo, tex_detail, tex_detail_pd, tex_falloff;
@@ -143,6 +143,7 @@ terrain_renderer *terrain_renderer_create(const char *resource_dir, og_error *er
     if (!(r->prog_terrain = shader_program_load(dir, "terrain.vert", "terrain.frag", err)) ||
         !(r->prog_sky = shader_program_load(dir, "fullscreen.vert", "sky.frag", err)) ||
         !(r->prog_water = shader_program_load(dir, "water.vert", "water.frag", err)) ||
+        !(r->prog_cursor = shader_program_load(dir, "cursor.vert", "cursor.frag", err)) ||
         !(r->volume = volume_renderer_create(dir, err)))
         goto fail;
     if (clipmap_mesh_build(&r->mesh, CLIP_N) != 0) {
@@ -181,6 +182,7 @@ void terrain_renderer_destroy(terrain_renderer *r) {
     glDeleteProgram(r->prog_terrain);
     glDeleteProgram(r->prog_sky);
     glDeleteProgram(r->prog_water);
+    glDeleteProgram(r->prog_cursor);
     glDeleteVertexArrays(1, &r->vao);
     glDeleteVertexArrays(1, &r->empty_vao);
     glDeleteBuffers(1, &r->vbo);
@@ -578,7 +580,7 @@ static void set_terrain_uniforms(terrain_renderer *r, const camera *cam, const r
     glProgramUniform1f(prog, glGetUniformLocation(prog, "u_parallax_fade"),
                        (float)s->detail_distance);
     float brush[4] = {0, 0, 1, 0};
-    if (cursor && cursor->visible && cursor->radius > 0) {
+    if (cursor && cursor->visible && cursor->radius > 0 && !cursor->sphere) {
         brush[0] = (float)(cursor->x - cam->pos[0]);
         brush[1] = (float)(cursor->z - cam->pos[2]);
         brush[2] = (float)cursor->radius;
@@ -672,6 +674,37 @@ static void draw_terrain(terrain_renderer *r, const camera *cam, const render_se
     }
 }
 
+// A volume tool's cursor: a sphere's three great circles, faint where the ground hides
+// them and solid where seen.
+static void draw_sphere_cursor(terrain_renderer *r, const camera *cam, const brush_cursor *c,
+                               const float view_proj[16]) {
+    GLuint prog = r->prog_cursor;
+    glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "u_view_proj"), 1, GL_FALSE,
+                              view_proj);
+    glProgramUniform3f(prog, glGetUniformLocation(prog, "u_centre"), (float)(c->x - cam->pos[0]),
+                       (float)(c->y - cam->pos[1]), (float)(c->z - cam->pos[2]));
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "u_radius"), (float)c->radius);
+    GLint colour = glGetUniformLocation(prog, "u_colour");
+    float rgb[3] = {1.0f, 0.55f, 0.1f};
+    if (c->opacity > 0) memcpy(rgb, c->color, sizeof rgb);
+    glUseProgram(prog);
+    glBindVertexArray(r->empty_vao);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    glDepthMask(GL_FALSE);
+    GLint first[3] = {0, 64, 128};
+    GLsizei count[3] = {64, 64, 64};
+    glDisable(GL_DEPTH_TEST);
+    glProgramUniform4f(prog, colour, rgb[0], rgb[1], rgb[2], 0.3f);
+    glMultiDrawArrays(GL_LINE_LOOP, first, count, 3);
+    glEnable(GL_DEPTH_TEST);
+    glProgramUniform4f(prog, colour, rgb[0], rgb[1], rgb[2], 1.0f);
+    glMultiDrawArrays(GL_LINE_LOOP, first, count, 3);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+    r->stats.draw_calls += 2;
+}
+
 static void draw_water(terrain_renderer *r, const camera *cam, const render_settings *s,
                        const float view_proj[16]) {
     const world_params *p = &r->params;
@@ -742,6 +775,8 @@ int terrain_renderer_draw(terrain_renderer *r, world *w, const camera *cam,
         }
         if (wire) glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
         if (!wire && s->view == VIEW_SHADED) draw_water(r, cam, s, view_proj);
+        if (cursor && cursor->visible && cursor->sphere && cursor->radius > 0)
+            draw_sphere_cursor(r, cam, cursor, view_proj);
     }
     glBindVertexArray(0);
     glUseProgram(0);
