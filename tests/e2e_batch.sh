@@ -88,6 +88,12 @@ run -c 'size 1024; generate; sample 100 100; sample 5000 10'
 [ "$(head -n 1 "$work/out" | grep -c '^-\?[0-9]*\.[0-9]*$')" = 1 ]; check "sample prints a number" $?
 run -c 'new planet; sample 1000 2000 3; hash 0 0 5000 5000 5'
 check "planet sample and hash on faces" $status
+run -c 'new planet; info'
+n=$(sed -n 's/^face_samples=//p' "$work/out"); e=$(sed -n 's/^face_extent_m=//p' "$work/out")
+# Earth-sized at 100 m: the face's arc (pi/2 x 6371 km) in whole 256-sample tiles.
+[ "$n" = 100096 ] && [ "$e" = 10009500 ]; check "info on a planet: face_samples=$n face_extent_m=$e" $?
+run -c "new planet; sample $e $e 2; sample $(awk -v e="$e" 'BEGIN { print e + 1 }') 0 2"
+[ $status = 1 ] && grep -q "outside" "$work/err"; check "face_extent_m is the last position a face takes" $?
 run -c 'new planet; sample 1000 2000 6'
 [ $status = 1 ] && grep -q "face 6 does not exist" "$work/err"; check "bad face rejected" $?
 run -c 'sample nan 3'

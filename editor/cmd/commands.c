@@ -217,6 +217,13 @@ static int c_info(cmd_context *ctx, int argc, char **argv, og_error *err) {
     fprintf(o, "size=%" PRId64 "\n", p->size);
     fprintf(o, "spacing=%.17g\n", p->spacing);
     fprintf(o, "tile_size=%d\n", TILE_SIZE);
+    if (p->kind == WORLD_PLANET) {
+        // The cube-face grid sample, hash, dab, stroke and stamp address with FACE and
+        // face-local metres 0 .. face_extent_m.
+        int64_t n = world_grid_face_samples(p);
+        fprintf(o, "face_samples=%" PRId64 "\nface_extent_m=%.17g\n", n,
+                (double)(n - 1) * p->spacing);
+    }
     if (p->kind == WORLD_FLAT) {
         tile_key *bricks = NULL;
         size_t n = 0;
