@@ -517,6 +517,19 @@ static void seed_row(editor_ui *e, ui_context *ui, cmd_context *ctx, const char 
     ui_row(ui, 1, NULL, 0);
 }
 
+// The Height slider and its Pick button (the next click in the viewport takes the
+// height there).
+static void height_row(editor_ui *e, ui_context *ui, cmd_context *ctx, const char *tip) {
+    float cols[2] = {0, ui_em(ui, 3.5f)};
+    ui_row(ui, 2, cols, 0);
+    slider_key(e, ui, ctx, "Height", "height", ctx->brush.height, -1000, 5000, "%.1f m", tip);
+    if (ui_toggle_button(ui, "Pick##height", e->picking_height))
+        e->picking_height = !e->picking_height;
+    ui_tooltip(ui, "Pick the height from the terrain: the next click in the viewport takes "
+                   "the height there (Esc: no)");
+    ui_row(ui, 1, NULL, 0);
+}
+
 // The 3D shapes placed with clicks in the viewport, sized by the brush radius R.
 enum { SHAPE_NONE, SHAPE_ARCH, SHAPE_SPIRE, SHAPE_HOODOO, SHAPE_OVERHANG, SHAPE_COUNT };
 static const struct {
@@ -599,17 +612,8 @@ static void volume_options(editor_ui *e, ui_context *ui, cmd_context *ctx, const
     if (ui_combo(ui, "Follow", &lock, locks, 2)) runf(e, ctx, "tool %s lock=%s", t, locks[lock]);
     ui_tooltip(ui, "surface: the brush follows the surface under the mouse; plane: it stays on "
                    "the level plane where the drag began (a tunnel at one height)");
-    if (b->tool == BRUSH_VFLATTEN) {
-        float cols[2] = {0, ui_em(ui, 3.5f)};
-        ui_row(ui, 2, cols, 0);
-        slider_key(e, ui, ctx, "Height", "height", b->height, -1000, 5000, "%.1f m",
-                   "The plane's height in metres (unset: the first point's height)");
-        if (ui_toggle_button(ui, "Pick##height", e->picking_height))
-            e->picking_height = !e->picking_height;
-        ui_tooltip(ui, "Pick the height from the terrain: the next click in the viewport takes "
-                       "the height there (Esc: no)");
-        ui_row(ui, 1, NULL, 0);
-    }
+    if (b->tool == BRUSH_VFLATTEN)
+        height_row(e, ui, ctx, "The plane's height in metres (unset: the first point's height)");
     shape_buttons(e, ui);
 }
 
@@ -656,15 +660,7 @@ static void tool_options(editor_ui *e, ui_context *ui, cmd_context *ctx) {
         break;
     case BRUSH_FLATTEN:
     case BRUSH_SET: {
-        float cols[2] = {0, ui_em(ui, 3.5f)};
-        ui_row(ui, 2, cols, 0);
-        slider_key(e, ui, ctx, "Height", "height", b->height, -1000, 5000, "%.1f m",
-                   "The height to blend toward, in metres");
-        if (ui_toggle_button(ui, "Pick##height", e->picking_height))
-            e->picking_height = !e->picking_height;
-        ui_tooltip(ui, "Pick the height from the terrain: the next click in the viewport takes "
-                       "the height there (Esc: no)");
-        ui_row(ui, 1, NULL, 0);
+        height_row(e, ui, ctx, "The height to blend toward, in metres");
         if (b->tool == BRUSH_FLATTEN) {
             static const char *const modes[] = {"both", "raise", "lower"};
             int m = (int)b->flatten;

@@ -43,11 +43,9 @@ typedef struct vol_job {
     tile_key *bricks;
     size_t brick_count;
     _Atomic long long voxels;
-    // fill / carve: the path, the ball radius at each point, the seam's blend width and
-    // how far beyond the shape distances are written.
-    const double (*pts)[3];
-    double *radius;
-    size_t count;
+    // fill / carve: the piece of the path (a round cone between two points), the seam's
+    // blend width and how far beyond the shape distances are written.
+    double seg[2][3], seg_radius[2];
     double blend, margin;
     // The stroke's previous piece: voxels nearer to it than to this one were shaped by
     // it already (no second blend at the joints).
@@ -71,18 +69,12 @@ static double segment_distance(const double p[3], const double a[3], const doubl
     return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) - (ra + t * (rb - ra));
 }
 
-static double path_distance(const vol_job *j, const double p[3]) {
-    if (j->count == 1) return segment_distance(p, j->pts[0], j->pts[0], j->radius[0], j->radius[0]);
-    double best = INFINITY;
-    for (size_t s = 0; s + 1 < j->count; s++) {
-        double d = segment_distance(p, j->pts[s], j->pts[s + 1], j->radius[s], j->radius[s + 1]);
-        if (d < best) best = d;
-    }
-    return best;
+static double piece_distance(const vol_job *j, const double p[3]) {
+    return segment_distance(p, j->seg[0], j->seg[1], j->seg_radius[0], j->seg_radius[1]);
 }
 
-// Whether a brick lies farther than the margin from the whole path (skipped: untouched).
-static int brick_beyond_path(const vol_job *j, tile_key key) {
+// Whether a brick lies farther than the margin from the piece (skipped: untouched).
+static int brick_beyond_piece(const vol_job *j, tile_key key) {
     volume_box b = volume_brick_box(key);
     double v = j->g.voxel;
     double c[3] = {(b.i0 + b.i1 - 1) * 0.5 * v, (b.j0 + b.j1 - 1) * 0.5 * v,
@@ -90,29 +82,22 @@ static int brick_beyond_path(const vol_job *j, tile_key key) {
     double half = 0.5 * v *
                   sqrt((double)(VOLUME_BRICK_X * VOLUME_BRICK_X + VOLUME_BRICK_Y * VOLUME_BRICK_Y +
                                 VOLUME_BRICK_Z * VOLUME_BRICK_Z));
-    return path_distance(j, c) > half + j->margin;
+    return piece_distance(j, c) > half + j->margin;
 }
 
-static int list_bricks(vol_job *j, int skip_beyond_path, og_error *err) {
-    volume_box b = j->box;
-    int64_t n = volume_box_bricks(b);
+static int list_bricks(vol_job *j, int skip_beyond_piece, og_error *err) {
+    int64_t n = volume_box_bricks(j->box);
     if (n > VOLUME_MAX_PIECE_BRICKS)
         return og_error_set(err, "%s: one piece of the stroke spans %lld bricks (the limit is %d)",
                             brush_tool_name(j->b->tool), (long long)n, VOLUME_MAX_PIECE_BRICKS);
     free(j->bricks);
-    j->brick_count = 0;
-    j->bricks = malloc((size_t)n * sizeof *j->bricks);
+    j->bricks = malloc((size_t)(n > 0 ? n : 1) * sizeof *j->bricks);
     if (!j->bricks) return og_error_set(err, "out of memory listing %lld bricks", (long long)n);
-    for (int64_t by = volume_floor_div(b.j0, VOLUME_BRICK_Y);
-         by <= volume_floor_div(b.j1 - 1, VOLUME_BRICK_Y); by++)
-        for (int64_t bz = volume_floor_div(b.k0, VOLUME_BRICK_Z);
-             bz <= volume_floor_div(b.k1 - 1, VOLUME_BRICK_Z); bz++)
-            for (int64_t bx = volume_floor_div(b.i0, VOLUME_BRICK_X);
-                 bx <= volume_floor_div(b.i1 - 1, VOLUME_BRICK_X); bx++) {
-                tile_key key = {TILE_LAYER_VOLUME, 0, (int32_t)by, (int32_t)bx, (int32_t)bz};
-                if (skip_beyond_path && brick_beyond_path(j, key)) continue;
-                j->bricks[j->brick_count++] = key;
-            }
+    size_t all = volume_box_brick_keys(j->box, j->bricks);
+    j->brick_count = 0;
+    for (size_t i = 0; i < all; i++)
+        if (!skip_beyond_piece || !brick_beyond_piece(j, j->bricks[i]))
+            j->bricks[j->brick_count++] = j->bricks[i];
     return 0;
 }
 
@@ -132,7 +117,7 @@ static int shape_task(void *user, int t, og_error *err) {
         for (int64_t z = b.k0; z < b.k1; z++)
             for (int64_t x = b.i0; x < b.i1; x++) {
                 double p[3] = {x * v, y * v, z * v};
-                double d = path_distance(j, p);
+                double d = piece_distance(j, p);
                 visited++;
                 if (d > j->margin) continue;
                 if (j->has_prev && segment_distance(p, j->prev[0], j->prev[1], j->prev_radius[0],
@@ -176,31 +161,7 @@ static size_t field_index(const volume_box *f, int64_t x, int64_t y, int64_t z) 
 
 // Reads the combined distance over field_box into now.
 static int read_field(vol_job *j, og_error *err) {
-    volume_box f = j->field_box;
-    tile_cache *cache = world_cache(j->w);
-    double v = j->g.voxel;
-    for (int64_t by = volume_floor_div(f.j0, VOLUME_BRICK_Y);
-         by <= volume_floor_div(f.j1 - 1, VOLUME_BRICK_Y); by++)
-        for (int64_t bz = volume_floor_div(f.k0, VOLUME_BRICK_Z);
-             bz <= volume_floor_div(f.k1 - 1, VOLUME_BRICK_Z); bz++)
-            for (int64_t bx = volume_floor_div(f.i0, VOLUME_BRICK_X);
-                 bx <= volume_floor_div(f.i1 - 1, VOLUME_BRICK_X); bx++) {
-                tile_key key = {TILE_LAYER_VOLUME, 0, (int32_t)by, (int32_t)bx, (int32_t)bz};
-                volume_box b = volume_box_intersect(volume_brick_box(key), f);
-                tile_view view;
-                if (tile_cache_acquire(cache, key, &view, err) != 0) return -1;
-                const int16_t *data = view.data;
-                for (int64_t y = b.j0; y < b.j1; y++)
-                    for (int64_t z = b.k0; z < b.k1; z++)
-                        for (int64_t x = b.i0; x < b.i1; x++) {
-                            const int16_t *pair = data + 2 * volume_brick_offset(key, x, y, z);
-                            j->now[field_index(&f, x, y, z)] = volume_combine(
-                                volume_heights_distance(&j->vh, x, z, (double)y * v),
-                                volume_to_metres(pair[0], v), volume_to_metres(pair[1], v));
-                        }
-                tile_cache_release(cache, &view);
-            }
-    return 0;
+    return volume_field_read(j->w, &j->g, &j->vh, j->field_box, j->now, err);
 }
 
 // vsmooth / vflatten: writes the target into one brick.
@@ -354,19 +315,11 @@ volume_stroke *volume_stroke_begin_labelled(world *w, const brush *b, const char
 static int shape_piece(volume_stroke *s, const double p[3], double radius, og_error *err) {
     vol_job *j = &s->job;
     const brush *b = &s->b;
-    double pts[2][3], radii[2];
+    double(*pts)[3] = j->seg, *radii = j->seg_radius;
     memcpy(pts[1], p, sizeof pts[1]);
     radii[1] = radius;
-    if (s->dabs > 0) {
-        memcpy(pts[0], s->last, sizeof pts[0]);
-        radii[0] = s->last_radius;
-    } else {
-        memcpy(pts[0], p, sizeof pts[0]);
-        radii[0] = radius;
-    }
-    j->pts = (const double(*)[3])pts;
-    j->radius = radii;
-    j->count = 2;
+    memcpy(pts[0], s->dabs > 0 ? s->last : p, sizeof pts[0]);
+    radii[0] = s->dabs > 0 ? s->last_radius : radius;
     j->blend = b->falloff == FALLOFF_CONSTANT
                    ? 0
                    : b->radius * (1.0 - brush_falloff_weight(b, 0.5f)) * 0.5;
@@ -391,10 +344,8 @@ static int shape_piece(volume_stroke *s, const double p[3], double radius, og_er
         edit_dirty(j->e, TILE_LAYER_VOLUME, 0,
                    (grid_rect){j->box.i0, j->box.k0, j->box.i1, j->box.k1});
     j->has_prev = 1;
-    memcpy(j->prev, pts, sizeof pts);
-    memcpy(j->prev_radius, radii, sizeof radii);
-    j->pts = NULL;
-    j->radius = NULL;
+    memcpy(j->prev, j->seg, sizeof j->prev);
+    memcpy(j->prev_radius, j->seg_radius, sizeof j->prev_radius);
     return rc;
 }
 

@@ -65,6 +65,19 @@ int64_t volume_box_bricks(volume_box b) {
     return (nx + 1) * (ny + 1) * (nz + 1);
 }
 
+size_t volume_box_brick_keys(volume_box b, tile_key *out) {
+    size_t n = 0;
+    if (volume_box_empty(b)) return 0;
+    for (int64_t by = volume_floor_div(b.j0, VOLUME_BRICK_Y);
+         by <= volume_floor_div(b.j1 - 1, VOLUME_BRICK_Y); by++)
+        for (int64_t bz = volume_floor_div(b.k0, VOLUME_BRICK_Z);
+             bz <= volume_floor_div(b.k1 - 1, VOLUME_BRICK_Z); bz++)
+            for (int64_t bx = volume_floor_div(b.i0, VOLUME_BRICK_X);
+                 bx <= volume_floor_div(b.i1 - 1, VOLUME_BRICK_X); bx++)
+                out[n++] = (tile_key){TILE_LAYER_VOLUME, 0, (int32_t)by, (int32_t)bx, (int32_t)bz};
+    return n;
+}
+
 volume_box volume_brick_box(tile_key key) {
     volume_box b = {(int64_t)key.tx * VOLUME_BRICK_X,
                     (int64_t)key.level * VOLUME_BRICK_Y,
@@ -153,6 +166,40 @@ void volume_heights_free(volume_heights *vh) {
     free(vh->height);
     free(vh->slope_scale);
     vh->height = vh->slope_scale = NULL;
+}
+
+int volume_field_read(world *w, const volume_grid *g, const volume_heights *vh, volume_box box,
+                      float *out, og_error *err) {
+    int64_t n = volume_box_bricks(box);
+    tile_key *keys = malloc((size_t)(n > 0 ? n : 1) * sizeof *keys);
+    if (!keys) return og_error_set(err, "out of memory reading %lld bricks", (long long)n);
+    size_t count = volume_box_brick_keys(box, keys);
+    tile_cache *cache = world_cache(w);
+    int64_t nx = box.i1 - box.i0, nz = box.k1 - box.k0;
+    double v = g->voxel;
+    int rc = 0;
+    for (size_t b = 0; b < count && rc == 0; b++) {
+        volume_box part = volume_box_intersect(volume_brick_box(keys[b]), box);
+        tile_view view;
+        if (tile_cache_acquire(cache, keys[b], &view, err) != 0) {
+            rc = -1;
+            break;
+        }
+        for (int64_t j = part.j0; j < part.j1; j++)
+            for (int64_t k = part.k0; k < part.k1; k++) {
+                const int16_t *pair =
+                    (const int16_t *)view.data + 2 * volume_brick_offset(keys[b], part.i0, j, k);
+                float *row = out + ((j - box.j0) * nz + (k - box.k0)) * nx + (part.i0 - box.i0);
+                double y = (double)j * v;
+                for (int64_t i = part.i0; i < part.i1; i++, pair += 2)
+                    *row++ =
+                        volume_combine(volume_heights_distance(vh, i, k, y),
+                                       volume_to_metres(pair[0], v), volume_to_metres(pair[1], v));
+            }
+        tile_cache_release(cache, &view);
+    }
+    free(keys);
+    return rc;
 }
 
 void volume_reader_init(volume_reader *r, world *w) {

@@ -62,8 +62,10 @@ int volume_grid_check_position(const volume_grid *g, const double p[3], og_error
 volume_box volume_grid_box_around(const volume_grid *g, const double lo[3], const double hi[3],
                                   double margin);
 int64_t volume_box_voxels(volume_box b);
-// Bricks a box touches.
+// Bricks a box touches, and their keys (out holds volume_box_bricks(b) keys; by level,
+// then row, then column). Returns how many it wrote.
 int64_t volume_box_bricks(volume_box b);
+size_t volume_box_brick_keys(volume_box b, tile_key *out);
 
 static inline int64_t volume_floor_div(int64_t a, int64_t b) {
     return a >= 0 ? a / b : -((-a + b - 1) / b);
@@ -129,6 +131,11 @@ static inline float volume_heights_distance(const volume_heights *vh, int64_t i,
     size_t c = (size_t)((k - vh->k0) * vh->w + (i - vh->i0));
     return (float)((y - vh->height[c]) * vh->slope_scale[c]);
 }
+
+// The combined signed distance at every voxel of box into out (x fastest, then z, then
+// y; metres), with vh covering the box's columns. Reads brick by brick.
+int volume_field_read(world *w, const volume_grid *g, const volume_heights *vh, volume_box box,
+                      float *out, og_error *err);
 
 // Reads voxels anywhere, keeping the last few bricks pinned (for passes that walk a
 // brick and its borders).

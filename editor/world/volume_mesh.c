@@ -59,36 +59,7 @@ static int sample_field(world *w, const volume_grid *g, const sample_box *s, flo
     if (volume_heights_read(w, g, g->voxel, s->box.i0, s->box.k0, s->box.i1, s->box.k1, &vh, err) !=
         0)
         return -1;
-    tile_cache *cache = world_cache(w);
-    volume_box all = s->box;
-    double v = g->voxel;
-    int rc = 0;
-    for (int64_t by = volume_floor_div(all.j0, VOLUME_BRICK_Y);
-         by <= volume_floor_div(all.j1 - 1, VOLUME_BRICK_Y) && rc == 0; by++)
-        for (int64_t bz = volume_floor_div(all.k0, VOLUME_BRICK_Z);
-             bz <= volume_floor_div(all.k1 - 1, VOLUME_BRICK_Z) && rc == 0; bz++)
-            for (int64_t bx = volume_floor_div(all.i0, VOLUME_BRICK_X);
-                 bx <= volume_floor_div(all.i1 - 1, VOLUME_BRICK_X); bx++) {
-                tile_key key = {TILE_LAYER_VOLUME, 0, (int32_t)by, (int32_t)bx, (int32_t)bz};
-                volume_box b = volume_box_intersect(volume_brick_box(key), all);
-                tile_view view;
-                if (tile_cache_acquire(cache, key, &view, err) != 0) {
-                    rc = -1;
-                    break;
-                }
-                const int16_t *data = view.data;
-                for (int64_t j = b.j0; j < b.j1; j++)
-                    for (int64_t k = b.k0; k < b.k1; k++) {
-                        const int16_t *pair = data + 2 * volume_brick_offset(key, b.i0, j, k);
-                        float *out = f + at(s, b.i0 - all.i0, j - all.j0, k - all.k0);
-                        double y = (double)j * v;
-                        for (int64_t i = b.i0; i < b.i1; i++, pair += 2)
-                            *out++ = volume_combine(volume_heights_distance(&vh, i, k, y),
-                                                    volume_to_metres(pair[0], v),
-                                                    volume_to_metres(pair[1], v));
-                    }
-                tile_cache_release(cache, &view);
-            }
+    int rc = volume_field_read(w, g, &vh, s->box, f, err);
     volume_heights_free(&vh);
     return rc;
 }
