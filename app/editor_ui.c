@@ -812,8 +812,12 @@ static void world_panel(editor_ui *e, ui_context *ui, cmd_context *ctx) {
         param_slider(e, ui, ctx, "Max height", "max_height", next->max_height, 10, 9000, "%.0f m");
         param_slider(e, ui, ctx, "Octaves", "octaves", next->octaves, 1, 16, "%.1f");
     }
-    param_slider(e, ui, ctx, "Ocean level", "ocean_level", next->ocean_level, -1000, 3000,
-                 "%.0f m");
+    if (next->kind == WORLD_PLANET) // a radius there (seed 004)
+        param_slider(e, ui, ctx, "Sea radius", "ocean_level", next->ocean_level,
+                     next->radius - next->max_height, next->radius + next->max_height, "%.0f m");
+    else
+        param_slider(e, ui, ctx, "Ocean level", "ocean_level", next->ocean_level, -1000, 3000,
+                     "%.0f m");
     if (ui_section(ui, "More parameters", 0)) world_more(e, ui, ctx, next);
     ui_row(ui, 1, NULL, 0);
     if (ui_button(ui, "Generate")) editor_ui_run(e, ctx, "generate");

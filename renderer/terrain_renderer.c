@@ -562,7 +562,8 @@ static void set_terrain_uniforms(terrain_renderer *r, const camera *cam, const r
     glProgramUniform1i(prog, glGetUniformLocation(prog, "u_view_mode"), s->view);
     glProgramUniform1f(prog, glGetUniformLocation(prog, "u_contour"), (float)s->contours);
     glProgramUniform1i(prog, glGetUniformLocation(prog, "u_auto_materials"), s->auto_materials);
-    glProgramUniform1f(prog, glGetUniformLocation(prog, "u_ocean_level"), (float)p->ocean_level);
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "u_ocean_level"),
+                       (float)world_params_ocean_height(p));
     glProgramUniform1f(prog, glGetUniformLocation(prog, "u_max_height"), (float)p->max_height);
     glProgramUniform2f(prog, glGetUniformLocation(prog, "u_tex_period"), (float)TEX_PERIOD_NEAR,
                        (float)TEX_PERIOD_FAR);
@@ -723,7 +724,7 @@ static void draw_water(terrain_renderer *r, const camera *cam, const render_sett
                        (float)(z0 - cam->pos[2]), (float)(x1 - cam->pos[0]),
                        (float)(z1 - cam->pos[2]));
     glProgramUniform1f(prog, glGetUniformLocation(prog, "u_water_y"),
-                       (float)(p->ocean_level - cam->pos[1]));
+                       (float)(world_params_ocean_height(p) - cam->pos[1]));
     set_lighting(prog, r, s);
     glUseProgram(prog);
     glBindVertexArray(r->empty_vao);
@@ -767,9 +768,9 @@ int terrain_renderer_draw(terrain_renderer *r, world *w, const camera *cam,
         draw_terrain(r, cam, s, view_proj);
         if (s->view != VIEW_LEVELS) {
             float period[2] = {(float)TEX_PERIOD_NEAR, (float)TEX_PERIOD_FAR};
-            uint64_t t =
-                volume_renderer_draw(r->volume, cam, view_proj, s, r->tex_albedo, fog_density(r, s),
-                                     r->params.ocean_level, r->params.max_height, period);
+            uint64_t t = volume_renderer_draw(
+                r->volume, cam, view_proj, s, r->tex_albedo, fog_density(r, s),
+                world_params_ocean_height(&r->params), r->params.max_height, period);
             r->stats.triangles += t;
             r->stats.draw_calls += t > 0;
         }

@@ -39,7 +39,7 @@ int viewport_default_camera(viewport *v, world *w, og_error *err) {
     camera_default(&v->cam);
     v->cam.pos[0] = centre;
     v->cam.pos[2] = centre;
-    v->cam.pos[1] = fmax(ground, p->ocean_level) + fmax(40.0, 0.25 * p->max_height);
+    v->cam.pos[1] = fmax(ground, world_params_ocean_height(p)) + fmax(40.0, 0.25 * p->max_height);
     v->cam.yaw = 30;
     v->cam.pitch = -18;
     v->cam_set = 1;

@@ -67,6 +67,15 @@ check "seed 004 planet loads" $status
 grep -q '^kind = planet;$' "$work/out" && grep -q '^radius = 10;$' "$work/out" &&
     grep -q '^w_factor = 0.5;$' "$work/out"; check "seed 004 values kept" $?
 [ ! -s "$work/err" ]; check "seed 004 planet loads without diagnostics" $?
+# Its ocean_level is a radius (seed 004): saved as such, and generate accepts it.
+run -c "load $tests/data/params/seed004.planet; save $work/s4.planet; generate"
+check "seed 004 planet saves and generates" $status
+grep -q '^ocean_level = 10.1;$' "$work/s4.planet"; check "saved planet keeps ocean_level as a radius" $?
+run -c 'new planet; radius 3389500; generate'
+[ $status = 1 ] && grep -q "ocean_level: on a planet the sea's radius" "$work/err"
+check "a planet's ocean_level beyond radius + max_height is refused by name" $?
+run -c 'new planet; radius 3389500; ocean_level 3389500; generate'
+check "a planet's ocean_level set as a radius generates" $status
 
 # 7. a parameter file with a bad value and an unknown key: reported with lines, rest read
 printf 'seed = 12;\noctaves = lots;\ncolour = blue;\nmax_height = 900;\n' >"$work/bad.world"

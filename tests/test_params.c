@@ -89,6 +89,8 @@ static void test_seed004_planet_loads_unchanged(void **state) {
     assert_true(p.radius == 10.0);
     assert_true(p.max_height == 0.5);
     assert_true(p.ocean_level == 10.1);
+    // Seed 004's meaning: a radius, the sea 0.1 above the datum.
+    assert_true(fabs(world_params_ocean_height(&p) - 0.1) < 1e-12);
     assert_true(p.omega == 0.1);
     assert_true(p.seed == 12345);
     assert_true(p.w_factor == 0.5);
@@ -116,7 +118,8 @@ static void test_defaults_are_valid(void **state) {
     world_params_default(&p, WORLD_PLANET);
     assert_int_equal(p.kind, WORLD_PLANET);
     assert_int_equal(p.generator, GEN_FBM_ADVANCED);
-    assert_true(p.radius == 6371000 && p.max_height == 8848 && p.ocean_level == 0);
+    assert_true(p.radius == 6371000 && p.max_height == 8848 && p.ocean_level == p.radius);
+    assert_true(world_params_ocean_height(&p) == 0);
     assert_int_equal(world_params_validate(&p, &err), 0);
 }
 
@@ -571,7 +574,20 @@ static void test_validate(void **state) {
     p.max_height = p.radius;
     assert_int_equal(world_params_validate(&p, &err), -1);
     assert_non_null(strstr(err.msg, "max_height"));
+    // A planet's ocean_level is a radius: 0 .. radius + max_height.
+    world_params_default(&p, WORLD_PLANET);
+    p.ocean_level = p.radius + p.max_height + 1;
+    assert_int_equal(world_params_validate(&p, &err), -1);
+    assert_non_null(strstr(err.msg, "ocean_level: on a planet the sea's radius"));
+    p.ocean_level = -1;
+    assert_int_equal(world_params_validate(&p, &err), -1);
+    p.ocean_level = p.radius - 10;
+    assert_int_equal(world_params_validate(&p, &err), 0);
+    assert_true(world_params_ocean_height(&p) == -10);
     world_params_default(&p, WORLD_FLAT);
+    p.ocean_level = -5000; // flat: metres, any height
+    assert_int_equal(world_params_validate(&p, &err), 0);
+    assert_true(world_params_ocean_height(&p) == -5000);
     p.size = 1;
     assert_int_equal(world_params_validate(&p, &err), -1);
     assert_non_null(strstr(err.msg, "size"));

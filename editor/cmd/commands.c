@@ -338,7 +338,9 @@ static const cmd_def commands[] = {
     PARAM_CMD("radius", "F", "Sets the planet radius in metres for the next generate."),
     PARAM_CMD("max_height", "F",
               "Sets the maximal terrain height in metres for the next generate."),
-    PARAM_CMD("ocean_level", "F", "Sets the ocean level in metres for the next generate."),
+    PARAM_CMD("ocean_level", "F",
+              "Sets the ocean level for the next generate: metres above the datum on flat "
+              "worlds, the sea's radius on planets (seed 004: radius + 10 is 10 m up)."),
     PARAM_CMD("omega", "F", "Sets the planet's angular velocity for the next generate."),
     PARAM_CMD("spacing", "F", "Sets the metres between coarse samples for the next generate."),
     PARAM_CMD("size", "N",

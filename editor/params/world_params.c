@@ -49,7 +49,8 @@ static const key_def KEYS[] = {
     {"max_height", V_F64, F(max_height), 0, 1e6, LO_OPEN,
      "metres: generated heights lie within +-max_height, 0 < max_height <= 1e6"},
     {"ocean_level", V_F64, F(ocean_level), 0, 0, NO_LO | NO_HI,
-     "metres: height of the water plane above the datum"},
+     "metres: flat worlds: height of the water plane above the datum; planets: the sea's radius "
+     "from the centre (seed 004), e.g. radius + 10 puts the sea 10 m above the datum"},
     {"radius", V_F64, F(radius), 0, 1e9, LO_OPEN,
      "planets: metres from the centre to the datum, 0 < radius <= 1e9"},
     {"omega", V_F64, F(omega), 0, 0, NO_LO | NO_HI,
@@ -126,10 +127,14 @@ void world_params_default(world_params *p, world_kind kind) {
         p->generator = GEN_FBM_ADVANCED;
         p->octaves = 12.5;
         p->max_height = 8848;
-        p->ocean_level = 0;
+        p->ocean_level = p->radius; // a radius on planets (seed 004): the sea at the datum
         p->omega = 7.2921e-5;
         p->spacing = 100;
     }
+}
+
+double world_params_ocean_height(const world_params *p) {
+    return p->kind == WORLD_PLANET ? p->ocean_level - p->radius : p->ocean_level;
 }
 
 const char *gen_kind_name(gen_kind g) {
@@ -323,10 +328,12 @@ int world_params_validate(const world_params *p, og_error *err) {
         if (!(p->max_height < p->radius))
             return og_error_set(err, "max_height: must be below radius (%g m), got %g m", p->radius,
                                 p->max_height);
-        // Loose on purpose: Kahoun 2010's files give ocean_level near the radius.
-        if (!(fabs(p->ocean_level) <= p->radius + p->max_height))
-            return og_error_set(err, "ocean_level: must lie within +-(radius + max_height), got %g",
-                                p->ocean_level);
+        // A radius (seed 004); 0 .. below the lowest ground is a planet without a sea.
+        if (!(p->ocean_level >= 0 && p->ocean_level <= p->radius + p->max_height))
+            return og_error_set(err,
+                                "ocean_level: on a planet the sea's radius (seed 004), 0 .. radius "
+                                "+ max_height = %.9g m, got %.9g (the datum is radius = %.9g m)",
+                                p->radius + p->max_height, p->ocean_level, p->radius);
     } else if (p->size == 1) {
         return og_error_set(err, "size: a flat world needs 0 (unbounded) or at least 2 samples "
                                  "per side, got 1");

@@ -35,7 +35,7 @@ typedef struct world_params {
     double w_factor;      // fBm gain: weight multiplier per octave
     double exponent;      // fBm lacunarity: frequency multiplier per octave
     double max_height;    // metres: generated heights lie in (-max_height, max_height)
-    double ocean_level;   // metres above the datum where the water plane sits
+    double ocean_level;   // flat: metres above the datum; planets: the sea's radius (seed 004)
     double radius;        // planets: metres from the centre to the datum
     double omega;         // planets: angular velocity, radians per second (Kahoun 2010)
     double spacing;       // metres between coarse samples
@@ -58,6 +58,9 @@ typedef struct world_params {
 
 // The built-in defaults for a kind (a pleasant landscape or an Earth-like planet).
 void world_params_default(world_params *p, world_kind kind);
+// The sea's height above the datum in metres, whatever the kind (planets keep
+// ocean_level as a radius, as seed 004's files do).
+double world_params_ocean_height(const world_params *p);
 
 // Generator names: "fbm", "fbm_advanced", "ridged", "diamond_square", "faults", "flat".
 const char *gen_kind_name(gen_kind g);
