@@ -440,7 +440,7 @@ static const cmd_def commands[] = {
      1, 18, cmd_import, CMD_ENDS_STROKE},
     {"export",
      "export FILE [region=X0,Z0,X1,Z1] [preset=] [layer=] [bits=] [min= max= | scale= "
-     "offset=]",
+     "offset=] | export N FILE.obj [size=]",
      "Writes a heightmap of the region (metres, corners; default the whole bounded world) by "
      "the extension: .png 16-bit, .tif float GeoTIFF (bits=16: 16-bit TIFF), .exr float "
      "(channel Y), .r16/.raw 16-bit little-endian; plus FILE.json with spacing, origin and the "
@@ -453,7 +453,10 @@ static const cmd_def commands[] = {
      "tangent-space normal map "
      "(.png), layer=materials the material weights as FILE_m0-3.png and FILE_m4-7.png (RGBA). "
      ".obj, .ply and .glb write a mesh (metres, +Y up; simplify=METRES, solid=1, centred=1). "
-     "Written to a temp file and renamed.",
+     "Written to a temp file and renamed. On planets, export N FILE.obj [size=PIXELS] (seed "
+     "004) writes the N-th subdivision of the cube (0 .. 20: 12 x 2^N triangles, watertight) "
+     "with normals and per-face UVs, and FILE_height_F.png (16-bit, with .json) and "
+     "FILE_normal_F.png for the six faces F, size= pixels per side at most (1024).",
      1, 16, cmd_export, 0},
     {"undo", "undo", "Undoes the last change (stroke, stamp, generate).", 0, 0, cmd_undo,
      CMD_ENDS_STROKE},

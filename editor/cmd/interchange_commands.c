@@ -1,6 +1,7 @@
 #include "editor/cmd/interchange_commands.h"
 
 #include "editor/interchange/export.h"
+#include "editor/interchange/export_planet.h"
 #include "editor/interchange/export_vdb.h"
 #include "editor/interchange/import.h"
 #include "io/parse.h"
@@ -92,7 +93,38 @@ world *cmd_world_from_raster(cmd_context *ctx, const char *path, int argc, char 
     return w;
 }
 
+// Seed 004's `export N FILE [size=PIXELS]` on planets.
+static int export_planet_command(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    int64_t n = 0;
+    if (parse_i64(argv[1], &n) != 0 || n > EXPORT_PLANET_MAX_SUBDIVISION)
+        return og_error_set(err, "export N FILE: N is the cube's subdivision, 0 .. %d, got '%s'",
+                            EXPORT_PLANET_MAX_SUBDIVISION, argv[1]);
+    int64_t size = 0;
+    for (int i = 3; i < argc; i++) {
+        char buf[512], *key, *value;
+        if (parse_setting(argv[i], buf, sizeof buf, &key, &value, err) != 0) return -1;
+        if (strcmp(key, "size") != 0)
+            return og_error_set(err, "export N FILE: unknown option '%s' (size=PIXELS)", key);
+        if (parse_i64(value, &size) != 0 || size < 1 || size > EXPORT_PLANET_MAX_IMAGE)
+            return og_error_set(err, "size: face image pixels per side, 1 .. %d, got '%s'",
+                                EXPORT_PLANET_MAX_IMAGE, value);
+    }
+    struct timespec t0;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    export_planet_report r;
+    if (export_planet(ctx->world, (int)n, argv[2], (int)size, &r, err) != 0) return -1;
+    fprintf(ctx->out,
+            "exported %s: subdivision %d of the cube, %zu vertices, %zu triangles (watertight); "
+            "6 height and 6 normal images of %d x %d pixels (face grid level %d), heights "
+            "%.6g .. %.6g m; %d files, %lld bytes; %.2f s\n",
+            argv[2], (int)n, r.vertices, r.triangles, r.image_size, r.image_size, r.level, r.min,
+            r.max, r.files, r.bytes, seconds_since(&t0));
+    return 0;
+}
+
 int cmd_export(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    if (argc >= 3 && export_planet_wanted(argv[1]))
+        return export_planet_command(ctx, argc, argv, err);
     export_options o;
     export_options_defaults(&o);
     for (int i = 2; i < argc; i++) {
