@@ -12,7 +12,10 @@ int64_t world_grid_face_samples(const world_params *p) {
 void world_grid_face_direction(int face, double s, double t, double dir[3]) {
     // Tangent warp: equal steps in s map to equal angles, so cells near face
     // corners are not squeezed as in the plain gnomonic projection.
-    double a = tan(s * (M_PI / 4.0)), b = tan(t * (M_PI / 4.0));
+    world_grid_face_direction_warped(face, tan(s * (M_PI / 4.0)), tan(t * (M_PI / 4.0)), dir);
+}
+
+void world_grid_face_direction_warped(int face, double a, double b, double dir[3]) {
     double v[3];
     switch (face) {
     case 0:

@@ -21,6 +21,9 @@ int64_t world_grid_face_samples(const world_params *p);
 
 // Unit direction from the planet centre through face-local coordinates s, t in [-1, 1].
 void world_grid_face_direction(int face, double s, double t, double dir[3]);
+// The same from the warped coordinates a = tan(s pi/4), b = tan(t pi/4), for loops
+// that compute each row's and column's tangent once.
+void world_grid_face_direction_warped(int face, double a, double b, double dir[3]);
 
 // Face-local coordinate in [-1, 1] of the centre of level-L sample index i (any tile).
 double world_grid_face_coord(const world_params *p, int level, int64_t i);
