@@ -1,5 +1,7 @@
 #include "app/camera_controls.h"
 
+#include "renderer/planet_camera.h"
+
 #include <math.h>
 
 static const double DEG = 3.14159265358979323846 / 180.0;
@@ -25,8 +27,44 @@ void camera_controls_look(const camera_controls *cc, camera *c, double dx, doubl
     camera_look(c, dx * cc->look_deg_per_px, -dy * cc->look_deg_per_px);
 }
 
+static double length3(const double v[3]) {
+    return sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+}
+
+// Planets: the altitude above the ground below (the datum when it is unknown).
+static double planet_altitude(const camera_controls *cc, const camera *c) {
+    double ground = 0;
+    if (cc->planet_ground && cc->planet_ground(cc->planet_user, c->pos, &ground) != 0) ground = 0;
+    return length3(c->pos) - cc->planet_radius - ground;
+}
+
+// Puts the camera at distance r from the centre along its direction.
+static void planet_set_distance(camera *c, double r) {
+    double d = length3(c->pos);
+    if (d > 0)
+        for (int k = 0; k < 3; k++)
+            c->pos[k] *= r / d;
+}
+
+// Keeps the eye eye_height over the ground (walking) or at least 0.5 m over it.
+static void planet_keep_above(const camera_controls *cc, camera *c, double least) {
+    double ground;
+    if (!cc->planet_ground || cc->planet_ground(cc->planet_user, c->pos, &ground) != 0) return;
+    double r = length3(c->pos), floor_r = cc->planet_radius + ground + least;
+    if (cc->walk || r < floor_r) planet_set_distance(c, floor_r);
+}
+
 void camera_controls_orbit(const camera_controls *cc, camera *c, const double pivot[3], double dx,
                            double dy) {
+    if (cc->planet_radius > 0) { // around the centre: the drag turns the globe
+        double lat, lon, r = length3(c->pos);
+        planet_lat_lon(c->pos, &lat, &lon);
+        double alt = fmax(r - cc->planet_radius, 1.0);
+        double k = cc->orbit_deg_per_px * fmin(1.0, alt / cc->planet_radius);
+        lat = fmin(fmax(lat + dy * k, -89.9), 89.9);
+        planet_position(lat, lon - dx * k, r, c->pos);
+        return;
+    }
     // camera_orbit turns the view: a view turned down (negative dpitch) sees the pivot
     // from above, and dy < 0 is a drag up.
     camera_orbit(c, pivot, dx * cc->orbit_deg_per_px, dy * cc->orbit_deg_per_px);
@@ -40,6 +78,28 @@ int camera_controls_move(const camera_controls *cc, camera *c, const move_keys *
     double up = speed * (k->up - k->down);
     if (!isfinite(fwd) || !isfinite(side) || !isfinite(up)) return 0;
     double before[3] = {c->pos[0], c->pos[1], c->pos[2]};
+    if (cc->planet_radius > 0) {
+        if (fwd == 0 && side == 0 && up == 0) return 0;
+        // Faster the higher: half the altitude a second at the default speed.
+        double scale = fmax(1.0, planet_altitude(cc, c) / 100.0);
+        double f[3], r[3], u[3], e[3], n[3], vertical[3];
+        planet_camera_basis(c, f, r, u);
+        planet_local_frame(c->pos, e, n, vertical);
+        if (cc->walk) { // along the heading on the local level, then back onto the ground
+            double d = f[0] * vertical[0] + f[1] * vertical[1] + f[2] * vertical[2];
+            for (int k = 0; k < 3; k++)
+                f[k] -= d * vertical[k];
+            double len = length3(f);
+            if (len > 0)
+                for (int k = 0; k < 3; k++)
+                    f[k] /= len;
+            scale = 1.0, up = 0;
+        }
+        for (int k = 0; k < 3; k++)
+            c->pos[k] += scale * (fwd * f[k] + side * r[k] + up * vertical[k]);
+        planet_keep_above(cc, c, cc->walk ? cc->eye_height : 0.5);
+        return 1;
+    }
     if (!cc->walk) {
         if (fwd == 0 && side == 0 && up == 0) return 0;
         camera_move_local(c, fwd, side, up);
@@ -69,6 +129,12 @@ void camera_controls_speed_wheel(camera_controls *cc, double notches) {
 
 void camera_controls_dolly(const camera_controls *cc, camera *c, const double pivot[3],
                            double notches) {
+    if (cc->planet_radius > 0) { // toward the ground below, by the altitude
+        double alt = fmax(planet_altitude(cc, c), 0.5);
+        planet_set_distance(c, length3(c->pos) - alt + alt * pow(cc->dolly_per_notch, notches));
+        planet_keep_above(cc, c, 0.5);
+        return;
+    }
     camera_dolly(c, pivot, pow(cc->dolly_per_notch, notches));
 }
 
@@ -80,6 +146,10 @@ void camera_controls_focus(camera_controls *cc, camera *c, const double point[3]
 
 int camera_controls_toggle_walk(camera_controls *cc, camera *c, pick_height_fn height, void *user) {
     cc->walk = !cc->walk;
+    if (cc->planet_radius > 0) {
+        if (cc->walk) planet_keep_above(cc, c, cc->eye_height);
+        return cc->walk;
+    }
     if (cc->walk) camera_walk(c, height, user, cc->eye_height);
     return cc->walk;
 }

@@ -18,6 +18,13 @@ typedef struct camera_controls {
     double dolly_per_notch;  // wheel: distance to the point under the cursor x this (0.8)
     double eye_height;       // walk mode: metres above the ground (1.8)
     int walk;                // walk mode: the eye follows the ground
+    // Planets: the radius (0 on flat worlds) and the ground's height above the datum
+    // below a position (planet coordinates; 0 and *h, or -1). On a planet the camera
+    // orbits its centre, flies at a speed that grows with the altitude, dollies by
+    // altitude and walks with "up" on the local vertical.
+    double planet_radius;
+    int (*planet_ground)(void *user, const double pos[3], double *h);
+    void *planet_user;
 } camera_controls;
 
 // Movement keys: how many seconds each was held since the last step (the window

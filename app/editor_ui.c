@@ -6,6 +6,7 @@
 #include "editor/params/world_params.h"
 #include "editor/world/history.h"
 #include "io/tile_store.h"
+#include "renderer/planet_camera.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -69,6 +70,7 @@ static void remember_recent(editor_ui *e, const char *path) {
 
 static void do_action(editor_ui *e, cmd_context *ctx, editor_pending action) {
     if (action == PENDING_NEW_FLAT) editor_ui_run(e, ctx, "new flat");
+    if (action == PENDING_NEW_PLANET) runf(e, ctx, "new planet preset=%s", e->planet_preset);
     if (action == PENDING_OPEN) {
         char arg[1100], cmd[1200];
         cmd_quote_arg(arg, sizeof arg, e->open_path);
@@ -98,6 +100,15 @@ static void menus(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v, u
     if (ui_menu_begin(ui, "File")) {
         if (ui_menu_item(ui, "New flat world", "Ctrl+N", 1))
             editor_ui_request(e, ctx, PENDING_NEW_FLAT);
+        static const char *const presets[4][2] = {{"New planet: Earth-like", "earth"},
+                                                  {"New planet: Mars-like", "mars"},
+                                                  {"New planet: moon", "moon"},
+                                                  {"New planet: small asteroid", "asteroid"}};
+        for (int i = 0; i < 4; i++)
+            if (ui_menu_item(ui, presets[i][0], NULL, 1)) {
+                snprintf(e->planet_preset, sizeof e->planet_preset, "%s", presets[i][1]);
+                editor_ui_request(e, ctx, PENDING_NEW_PLANET);
+            }
         if (ui_menu_item(ui, "Open...", "Ctrl+O", 1)) editor_ui_open(e, ctx);
         for (int i = 0; i < e->recent_count; i++) {
             char label[1100];
@@ -812,10 +823,12 @@ static void world_panel(editor_ui *e, ui_context *ui, cmd_context *ctx) {
         param_slider(e, ui, ctx, "Max height", "max_height", next->max_height, 10, 9000, "%.0f m");
         param_slider(e, ui, ctx, "Octaves", "octaves", next->octaves, 1, 16, "%.1f");
     }
-    if (next->kind == WORLD_PLANET) // a radius there (seed 004)
+    if (next->kind == WORLD_PLANET) { // a radius there (seed 004)
+        param_slider(e, ui, ctx, "Radius", "radius", next->radius, 1000, 1e7, "%.0f m");
         param_slider(e, ui, ctx, "Sea radius", "ocean_level", next->ocean_level,
                      next->radius - next->max_height, next->radius + next->max_height, "%.0f m");
-    else
+        param_slider(e, ui, ctx, "Atmosphere", "atmosphere", next->atmosphere, 0, 3, "%.2f");
+    } else
         param_slider(e, ui, ctx, "Ocean level", "ocean_level", next->ocean_level, -1000, 3000,
                      "%.0f m");
     if (ui_section(ui, "More parameters", 0)) world_more(e, ui, ctx, next);
@@ -915,6 +928,20 @@ static void status_bar(ui_context *ui, cmd_context *ctx, viewport *v, const edit
         snprintf(cursor, sizeof cursor, "no terrain under the pointer");
     snprintf(cam, sizeof cam, "camera %.0f, %.0f, %.0f", v->cam.pos[0], v->cam.pos[1],
              v->cam.pos[2]);
+    const world_params *wp = world_get_params(ctx->world);
+    if (wp->kind == WORLD_PLANET) { // latitude, longitude, altitude above the datum
+        double lat, lon,
+            r = sqrt(v->cam.pos[0] * v->cam.pos[0] + v->cam.pos[1] * v->cam.pos[1] +
+                     v->cam.pos[2] * v->cam.pos[2]);
+        planet_lat_lon(v->cam.pos, &lat, &lon);
+        double alt = r - wp->radius;
+        if (fabs(alt) >= 10000)
+            snprintf(cam, sizeof cam, "%.4f%c %.4f%c  alt %.1f km", fabs(lat), lat < 0 ? 'S' : 'N',
+                     fabs(lon), lon < 0 ? 'W' : 'E', alt / 1000.0);
+        else
+            snprintf(cam, sizeof cam, "%.4f%c %.4f%c  alt %.1f m", fabs(lat), lat < 0 ? 'S' : 'N',
+                     fabs(lon), lon < 0 ? 'W' : 'E', alt);
+    }
     snprintf(tool, sizeof tool, "%s r %.1f m", current_tool(&ctx->brush), ctx->brush.radius);
     if (info->resizing)
         snprintf(tool, sizeof tool, "%s r %.1f m, strength %.2f", current_tool(&ctx->brush),
@@ -936,7 +963,9 @@ static void status_bar(ui_context *ui, cmd_context *ctx, viewport *v, const edit
     ui_label(ui, cursor);
     ui_tooltip(ui, "The terrain point under the pointer");
     ui_label(ui, cam);
-    ui_tooltip(ui, "The camera's position in metres");
+    ui_tooltip(ui, wp->kind == WORLD_PLANET
+                       ? "The camera's latitude, longitude and altitude above the datum"
+                       : "The camera's position in metres");
     ui_label(ui, tool);
     ui_tooltip(ui, "The current tool and its radius");
     ui_label(ui, frame);

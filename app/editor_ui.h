@@ -29,7 +29,8 @@ typedef struct editor_frame_info {
 typedef enum editor_pending {
     PENDING_NONE,
     PENDING_NEW_FLAT,
-    PENDING_OPEN, // open_path
+    PENDING_NEW_PLANET, // planet_preset
+    PENDING_OPEN,       // open_path
     PENDING_QUIT,
 } editor_pending;
 
@@ -50,6 +51,7 @@ typedef struct editor_ui {
     size_t unsaved_journal_steps;
     int64_t unsaved_journal_when;
     char open_path[1024];
+    char planet_preset[16]; // PENDING_NEW_PLANET: the preset (earth, mars, moon, asteroid)
     char recent[EDITOR_RECENT][1024]; // worlds opened or saved lately, newest first
     int recent_count;
     double ui_scale, ui_scale_request; // the current scale; a new one asked for (0: none)

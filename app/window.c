@@ -14,6 +14,7 @@
 #include "renderer/material_textures.h"
 #include "editor/cmd/tokenize.h"
 #include "renderer/pick.h"
+#include "renderer/planet_camera.h"
 #include "renderer/ui_renderer.h"
 #include "io/image_read.h"
 #include "renderer/view_commands.h"
@@ -260,9 +261,19 @@ static void resize_end(window_state *st) {
 
 // --- the camera --------------------------------------------------------------------
 
+static int planet_ground(void *user, const double pos[3], double *h) {
+    window_state *st = user;
+    og_error err = {{0}};
+    return planet_ground_height(st->ctx->world, pos, h, &err);
+}
+
 static void reset_camera(window_state *st) {
     og_error err = {{0}};
     st->cc.walk = 0;
+    const world_params *p = world_get_params(st->ctx->world);
+    st->cc.planet_radius = p->kind == WORLD_PLANET ? p->radius : 0;
+    st->cc.planet_ground = planet_ground;
+    st->cc.planet_user = st;
     st->render_failed = 0;
     if (viewport_default_camera(st->v, st->ctx->world, &err) != 0) report("camera", &err);
     st->dirty = 1;
@@ -765,12 +776,15 @@ static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
     case GLFW_KEY_C:
         set_camera_mode(st, (camera_mode(st) + 1) % 3);
         break;
-    case GLFW_KEY_R:
-        run_commands(st,
-                     st->v->settings.sun_rotation != 0 ? "render sun_rotation=0"
-                                                       : "render sun_rotation=20",
-                     "key");
+    case GLFW_KEY_R: { // the light turns; on a planet at its omega (seed 004)
+        const world_params *p = world_get_params(st->ctx->world);
+        double speed = p->kind == WORLD_PLANET && p->omega != 0 ? p->omega * 180.0 / M_PI : 20.0;
+        char cmd[64];
+        snprintf(cmd, sizeof cmd, "render sun_rotation=%.6g",
+                 st->v->settings.sun_rotation != 0 ? 0.0 : fmax(-360, fmin(360, speed)));
+        run_commands(st, cmd, "key");
         break;
+    }
     case GLFW_KEY_L:
         run_commands(st, st->dynamic_res ? "dynamic_resolution off" : "dynamic_resolution on",
                      "key");
@@ -904,7 +918,7 @@ static void update_title(window_state *st) {
     if (st->v->renderer) terrain_renderer_stats(st->v->renderer, &rs);
     int used = st->v->settings.levels - rs.finest_level;
     if (st->render_failed)
-        snprintf(title, sizeof title, "Orogen - %s%s - planet worlds are not drawn yet", name,
+        snprintf(title, sizeof title, "Orogen - %s%s - the viewport failed (see the console)", name,
                  world_is_modified(st->ctx->world) ? " *" : "");
     else
         snprintf(title, sizeof title,

@@ -7,6 +7,7 @@
 #include "renderer/lighting.h"
 #include "renderer/material_textures.h"
 #include "renderer/shader.h"
+#include "renderer/planet_renderer.h"
 #include "renderer/volume_renderer.h"
 
 #include <epoxy/gl.h>
@@ -47,6 +48,9 @@ struct terrain_renderer {
     int64_t detail_origin[2];
 
     volume_renderer *volume; // caves, overhangs and arches near the camera
+    planet_renderer *planet; // planets' cube-sphere, made on the first planet
+    char resource_dir[4096];
+    int width, height; // of the last frame drawn (the planet's level of detail uses it)
 
     render_stats stats;
     uint64_t frame_texels;
@@ -140,6 +144,8 @@ terrain_renderer *terrain_renderer_create(const char *resource_dir, og_error *er
     }
     char dir[4200];
     snprintf(dir, sizeof dir, "%s/shaders", resource_dir);
+    snprintf(r->resource_dir, sizeof r->resource_dir, "%s", resource_dir);
+    r->width = 1280, r->height = 720;
     if (!(r->prog_terrain = shader_program_load(dir, "terrain.vert", "terrain.frag", err)) ||
         !(r->prog_sky = shader_program_load(dir, "fullscreen.vert", "sky.frag", err)) ||
         !(r->prog_water = shader_program_load(dir, "water.vert", "water.frag", err)) ||
@@ -179,6 +185,7 @@ void terrain_renderer_destroy(terrain_renderer *r) {
     if (!r) return;
     world_events_unsubscribe(r->changes);
     volume_renderer_destroy(r->volume);
+    planet_renderer_destroy(r->planet);
     glDeleteProgram(r->prog_terrain);
     glDeleteProgram(r->prog_sky);
     glDeleteProgram(r->prog_water);
@@ -328,11 +335,18 @@ static int apply_changes(terrain_renderer *r, world *w, og_error *err) {
     }
     r->world = w;
     if (fresh) invalidate_all(r);
+    if (fresh && r->planet) planet_renderer_forget(r->planet);
     tile_cache *cache = world_cache(w);
     world_event events[64];
     size_t n;
     while ((n = world_subscription_take(r->changes, events, 64)) > 0) {
         for (size_t i = 0; i < n; i++) {
+            const world_event *e = &events[i];
+            if (r->planet && (e->kind == WORLD_EVENT_PARAMS || e->kind == WORLD_EVENT_REPLACED))
+                planet_renderer_forget(r->planet);
+            else if (r->planet && e->kind == WORLD_EVENT_AREA && e->layer == TILE_LAYER_COARSE &&
+                     e->level == 0)
+                planet_renderer_touched(r->planet, e->face, e->rect);
             if (events[i].kind == WORLD_EVENT_PARAMS || events[i].kind == WORLD_EVENT_REPLACED)
                 invalidate_all(r);
             else if (events[i].kind == WORLD_EVENT_AREA)
@@ -343,13 +357,35 @@ static int apply_changes(terrain_renderer *r, world *w, og_error *err) {
     return 0;
 }
 
+// The planet's figures in the viewport's terms (texels: chunk vertices uploaded).
+static void copy_planet_stats(terrain_renderer *r) {
+    planet_stats ps;
+    planet_renderer_stats(r->planet, &ps);
+    r->stats.triangles = ps.triangles;
+    r->stats.draw_calls = ps.draw_calls;
+    r->stats.levels_drawn = ps.chunks_drawn;
+    r->stats.levels_ready = ps.chunks_resident;
+    r->stats.finest_level = ps.finest_level;
+    r->stats.texels_uploaded = ps.vertices_uploaded;
+    r->stats.cpu_ms = ps.cpu_ms;
+}
+
 int terrain_renderer_update(terrain_renderer *r, world *w, const camera *cam,
                             const render_settings *s, og_error *err) {
     double t0 = now_ms();
     const world_params *p = world_get_params(w);
-    if (p->kind != WORLD_FLAT)
-        return og_error_set(err, "the viewport draws flat worlds; this is a planet (planet "
-                                 "rendering is not built yet)");
+    if (p->kind == WORLD_PLANET) {
+        if (!r->planet &&
+            !(r->planet = planet_renderer_create(r->resource_dir, r->tex_albedo, err)))
+            return -1;
+        if (apply_changes(r, w, err) != 0) return -1;
+        r->params = *p;
+        int rc = planet_renderer_update(r->planet, w, cam, s, (double)r->width / r->height,
+                                        r->height, err);
+        copy_planet_stats(r);
+        r->texels_total += r->stats.texels_uploaded;
+        return rc;
+    }
     // Tile coordinates are int32: keep the window's samples addressable (with margin).
     double limit = 0.25 * 2147483647.0 * TILE_SIZE * p->spacing;
     if (!(fabs(cam->pos[0]) < limit && fabs(cam->pos[2]) < limit && fabs(cam->pos[1]) < 1e12))
@@ -419,7 +455,7 @@ int terrain_renderer_update(terrain_renderer *r, world *w, const camera *cam,
 
 int terrain_renderer_height_at(void *renderer, double x, double z, double *h) {
     terrain_renderer *r = renderer;
-    if (!r->world) return -1;
+    if (!r->world || r->params.kind == WORLD_PLANET) return -1; // planets: no flat heights
     double spacing = r->params.spacing;
     for (int l = r->finest; l < r->levels; l++) {
         const clip_window *w = &r->heights[l];
@@ -742,6 +778,12 @@ int terrain_renderer_draw(terrain_renderer *r, world *w, const camera *cam,
                           int height, og_error *err) {
     double t0 = now_ms();
     if (r->world != w) return og_error_set(err, "terrain_renderer_draw: update first");
+    r->width = width, r->height = height;
+    if (r->params.kind == WORLD_PLANET && r->planet) {
+        int rc = planet_renderer_draw(r->planet, cam, s, width, height, err);
+        copy_planet_stats(r);
+        return rc;
+    }
     r->stats.triangles = 0;
     r->stats.draw_calls = 0;
     r->stats.levels_drawn = 0;
@@ -785,6 +827,10 @@ int terrain_renderer_draw(terrain_renderer *r, world *w, const camera *cam,
     r->stats.cpu_ms += now_ms() - t0;
     if (e != GL_NO_ERROR) return og_error_set(err, "terrain_renderer_draw: GL error 0x%x", e);
     return 0;
+}
+
+void terrain_renderer_set_view_size(terrain_renderer *r, int width, int height) {
+    if (width > 0 && height > 0) r->width = width, r->height = height;
 }
 
 void terrain_renderer_stats(const terrain_renderer *r, render_stats *out) {

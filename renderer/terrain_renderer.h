@@ -40,6 +40,9 @@ int terrain_renderer_draw(terrain_renderer *r, world *w, const camera *cam,
                           int height, og_error *err);
 
 void terrain_renderer_stats(const terrain_renderer *r, render_stats *out);
+// The size the next frame will have (each draw records its own): a planet's level of
+// detail is chosen for it.
+void terrain_renderer_set_view_size(terrain_renderer *r, int width, int height);
 // The volume meshes (caves, overhangs) the renderer draws, for picking.
 typedef struct volume_renderer volume_renderer;
 volume_renderer *terrain_renderer_volume(terrain_renderer *r);

@@ -1,6 +1,7 @@
 #include "renderer/view_commands.h"
 
 #include "io/parse.h"
+#include "renderer/planet_camera.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -28,6 +29,53 @@ static viewport *get_viewport(cmd_context *ctx, og_error *err) {
 static void print_camera(cmd_context *ctx, const camera *c) {
     fprintf(ctx->out, "camera %.3f %.3f %.3f %.3f %.3f %.3f\n", c->pos[0], c->pos[1], c->pos[2],
             c->yaw, c->pitch, c->fov_y);
+    const world_params *p = world_get_params(ctx->world);
+    if (p->kind == WORLD_PLANET) {
+        double lat, lon,
+            r = sqrt(c->pos[0] * c->pos[0] + c->pos[1] * c->pos[1] + c->pos[2] * c->pos[2]);
+        planet_lat_lon(c->pos, &lat, &lon);
+        fprintf(ctx->out, "camera_geo %.6f %.6f %.3f %.3f %.3f %.3f\n", lat, lon, r - p->radius,
+                c->yaw, c->pitch, c->fov_y);
+    }
+}
+
+// Planets: the camera by latitude, longitude and altitude above the datum; yaw and
+// pitch in the local frame there (yaw 0 north, pitch -90 straight down).
+static int cmd_camera_geo(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    viewport *v = get_viewport(ctx, err);
+    if (!v) return -1;
+    const world_params *p = world_get_params(ctx->world);
+    if (p->kind != WORLD_PLANET)
+        return og_error_set(err, "camera_geo: planets only (flat worlds: camera X Y Z YAW PITCH)");
+    const char *names[6] = {"LAT", "LON", "ALT", "YAW", "PITCH", "FOV"};
+    double val[6] = {0, 0, 0, 0, -90, v->cam.fov_y};
+    int above_ground = 0;
+    if (argc > 1 && strcmp(argv[argc - 1], "ground") == 0) above_ground = 1, argc--;
+    if (argc < 4)
+        return og_error_set(err, "usage: camera_geo LAT LON ALT [YAW PITCH [FOV]] [ground]");
+    for (int i = 1; i < argc; i++)
+        if (parse_number(argv[i], names[i - 1], &val[i - 1], err) != 0) return -1;
+    if (fabs(val[0]) > 90)
+        return og_error_set(err, "LAT: expected degrees in [-90, 90], got '%g'", val[0]);
+    if (val[2] < -p->radius * 0.5 || val[2] > 1e10)
+        return og_error_set(err, "ALT: %g m is outside -radius/2 .. 1e10 m", val[2]);
+    if (val[4] < -90 || val[4] > 90)
+        return og_error_set(err, "PITCH: expected degrees in [-90, 90], got '%g'", val[4]);
+    if (val[5] < 1 || val[5] > 170)
+        return og_error_set(err, "FOV: expected degrees in [1, 170], got '%g'", val[5]);
+    camera c = v->cam;
+    planet_position(val[0], val[1], p->radius + val[2], c.pos);
+    double ground = 0;
+    if (above_ground) { // ALT above the ground there, not the datum
+        if (planet_ground_height(ctx->world, c.pos, &ground, err) != 0) return -1;
+        planet_position(val[0], val[1], p->radius + ground + val[2], c.pos);
+    }
+    c.yaw = 0, c.pitch = 0;
+    camera_look(&c, val[3], val[4]);
+    c.fov_y = val[5];
+    v->cam = c;
+    v->cam_set = 1;
+    return 0;
 }
 
 static int cmd_camera(cmd_context *ctx, int argc, char **argv, og_error *err) {
@@ -201,6 +249,11 @@ static const cmd_def view_commands[] = {
      "Places the viewport camera: position in metres, yaw (0 looks toward -Z, 90 toward +X) and "
      "pitch in degrees, vertical field of view (60). Without arguments, prints it.",
      0, 6, cmd_camera, 0},
+    {"camera_geo", "camera_geo LAT LON ALT [YAW PITCH [FOV]] [ground]",
+     "Planets: places the camera at latitude, longitude (degrees; longitude 0 on +Z, east toward "
+     "+X) and ALT metres above the datum (with `ground`: above the ground there), turned by yaw "
+     "(0 north, 90 east) and pitch (-90, the default, looks straight down) in the local frame.",
+     3, 7, cmd_camera_geo, 0},
     {"view", "view [MODE]",
      "Picks what the viewport shows: shaded, wireframe, levels (clipmap level colours), height or "
      "slope colours.",

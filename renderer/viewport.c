@@ -1,6 +1,7 @@
 #include "renderer/viewport.h"
 
 #include "renderer/gl_target.h"
+#include "renderer/planet_camera.h"
 #include "renderer/pick.h"
 #include "renderer/volume_renderer.h"
 #include "io/image_read.h"
@@ -31,8 +32,14 @@ void viewport_destroy(viewport *v) {
 
 int viewport_default_camera(viewport *v, world *w, og_error *err) {
     const world_params *p = world_get_params(w);
-    if (p->kind != WORLD_FLAT)
-        return og_error_set(err, "the viewport draws flat worlds; this is a planet");
+    if (p->kind == WORLD_PLANET) {
+        // From orbit: the whole planet in view, looking down at its centre.
+        camera_default(&v->cam);
+        planet_position(20.0, 30.0, 3.0 * (p->radius + p->max_height), v->cam.pos);
+        v->cam.pitch = -CAMERA_PITCH_LIMIT;
+        v->cam_set = 1;
+        return 0;
+    }
     double centre = p->size > 0 ? 0.5 * (double)(p->size - 1) * p->spacing : 0.0;
     double ground = 0;
     if (world_sample(w, 0, centre, centre, &ground, err) != 0) return -1;
@@ -86,6 +93,8 @@ int viewport_settle(viewport *v, world *w, og_error *err) {
 
 int viewport_screenshot(viewport *v, world *w, const char *path, int width, int height,
                         og_error *err) {
+    if (viewport_prepare(v, err) != 0) return -1;
+    terrain_renderer_set_view_size(v->renderer, width, height);
     if (viewport_settle(v, w, err) != 0) return -1;
     gl_target target;
     if (gl_target_create(&target, width, height, err) != 0) return -1;

@@ -8,5 +8,6 @@ here=$(cd "$(dirname "$0")" && pwd)
 build=${1:-"$here/../build"}
 [ -x "$build/orogen" ] || { echo "golden_update: $build/orogen is missing (build first)" >&2; exit 1; }
 OROGEN_UPDATE_GOLDEN=1 bash "$here/e2e_render.sh" "$build/orogen" "$here"
+OROGEN_UPDATE_GOLDEN=1 bash "$here/e2e_planet_render.sh" "$build/orogen" "$here"
 # The whole editor window at two UI scales (after a deliberate change to the UI).
 OROGEN_UPDATE_GOLDEN=1 bash "$here/e2e_window_golden.sh" "$build/orogen" "$here"

@@ -165,6 +165,29 @@ static void test_planet_seamless(void **state) {
     free(f0), free(f4);
 }
 
+// The planet's face mapping and its inverse agree everywhere, including the edges and
+// corners where faces meet (every direction belongs to one face).
+static void test_face_direction_inverse(void **state) {
+    (void)state;
+    for (int face = 0; face < 6; face++)
+        for (int i = 0; i <= 20; i++)
+            for (int j = 0; j <= 20; j++) {
+                double s = -1.0 + 0.1 * i, t = -1.0 + 0.1 * j, d[3], back[3], s2, t2;
+                int f2;
+                world_grid_face_direction(face, s, t, d);
+                world_grid_direction_face(d, &f2, &s2, &t2);
+                assert_true(s2 >= -1.0 - 1e-12 && s2 <= 1.0 + 1e-12);
+                assert_true(t2 >= -1.0 - 1e-12 && t2 <= 1.0 + 1e-12);
+                world_grid_face_direction(f2, s2, t2, back);
+                for (int k = 0; k < 3; k++)
+                    assert_true(fabs(back[k] - d[k]) < 1e-12);
+                if (i > 0 && i < 20 && j > 0 && j < 20) { // inside: the same face back
+                    assert_int_equal(f2, face);
+                    assert_true(fabs(s2 - s) < 1e-12 && fabs(t2 - t) < 1e-12);
+                }
+            }
+}
+
 static void test_fractional_octaves(void **state) {
     (void)state;
     world_params p = flat_params(GEN_FBM);
@@ -314,6 +337,7 @@ int main(void) {
         cmocka_unit_test(test_diamond_square_subsample),
         cmocka_unit_test(test_diamond_square_one_array),
         cmocka_unit_test(test_heights_finite_and_bounded),
+        cmocka_unit_test(test_face_direction_inverse),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -126,10 +126,10 @@ static void test_defaults_are_valid(void **state) {
 static void test_key_table(void **state) {
     (void)state;
     static const char *const expected[] = {
-        "kind",         "generator",    "seed",         "octaves",     "w_factor",   "exponent",
-        "max_height",   "ocean_level",  "radius",       "omega",       "spacing",    "size",
-        "detail_ratio", "volume_ratio", "feature_size", "base_height", "roughness",  "smoothing",
-        "ridge_offset", "fault_count",  "tiles",        "tiles_id",    "tiles_saved"};
+        "kind",       "generator",    "seed",         "octaves",      "w_factor",    "exponent",
+        "max_height", "ocean_level",  "radius",       "omega",        "atmosphere",  "spacing",
+        "size",       "detail_ratio", "volume_ratio", "feature_size", "base_height", "roughness",
+        "smoothing",  "ridge_offset", "fault_count",  "tiles",        "tiles_id",    "tiles_saved"};
     size_t n = sizeof expected / sizeof expected[0];
     assert_int_equal(world_params_key_count(), n);
     for (size_t i = 0; i < n; i++) {
@@ -178,6 +178,8 @@ static void test_set_get_every_key(void **state) {
         {"ocean_level", "-1e-300", "-1e-300"},
         {"radius", "6371000", "6371000"},
         {"omega", "-7.2921e-5", "-7.2921e-05"},
+        {"atmosphere", "0", "0"},
+        {"atmosphere", "0.6", "0.6"},
         {"spacing", "0.25", "0.25"},
         {"size", "0", "0"},
         {"size", "4097", "4097"},

@@ -48,7 +48,40 @@ static int replace_world(cmd_context *ctx, world *w) {
     return 0;
 }
 
+// `new planet preset=NAME`: bodies a person recognises, every value a parameter the
+// World panel shows (all but earth have no sea: ocean_level 0 is a radius of 0).
+typedef struct planet_preset {
+    const char *name;
+    double radius, max_height, ocean_level, omega, atmosphere, spacing;
+} planet_preset;
+
+static const planet_preset PRESETS[] = {
+    {"earth", 6371000, 8848, 6371000, 7.2921e-5, 1.0, 100},
+    {"mars", 3389500, 10000, 0, 7.088e-5, 0.3, 100},
+    {"moon", 1737400, 6000, 0, 2.6617e-6, 0.0, 100},
+    {"asteroid", 50000, 4000, 0, 1e-3, 0.0, 10},
+};
+
+static int apply_preset(world_params *p, const char *name, og_error *err) {
+    for (size_t i = 0; i < sizeof PRESETS / sizeof PRESETS[0]; i++)
+        if (strcmp(PRESETS[i].name, name) == 0) {
+            p->radius = PRESETS[i].radius, p->max_height = PRESETS[i].max_height;
+            p->ocean_level = PRESETS[i].ocean_level, p->omega = PRESETS[i].omega;
+            p->atmosphere = PRESETS[i].atmosphere, p->spacing = PRESETS[i].spacing;
+            return 0;
+        }
+    return og_error_set(err, "preset: unknown planet '%s' (earth, mars, moon, asteroid)", name);
+}
+
 static int c_new(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    if (argc == 3 && strcmp(argv[1], "planet") == 0 && strncmp(argv[2], "preset=", 7) == 0) {
+        world_params p;
+        world_params_default(&p, WORLD_PLANET);
+        if (apply_preset(&p, argv[2] + 7, err) != 0 || world_params_validate(&p, err) != 0)
+            return -1;
+        world *w = world_create(&p, &ctx->settings, err);
+        return w ? replace_world(ctx, w) : -1;
+    }
     if (argc > 2) {
         if (strcmp(argv[1], "flat") != 0 || strncmp(argv[2], "from=", 5) != 0 || !argv[2][5])
             return og_error_set(err,
@@ -304,8 +337,12 @@ static int c_cmdlist(cmd_context *ctx, int argc, char **argv, og_error *err);
     { key, key " [" arg "]", text " Without a value, prints it.", 0, 1, c_param, 0 }
 
 static const cmd_def commands[] = {
-    {"new", "new flat|planet | new flat from=FILE [import options]",
-     "Replaces the current world with a new one of that kind, with default parameters; 'from=' "
+    {"new",
+     "new flat|planet | new planet preset=earth|mars|moon|asteroid | new flat from=FILE "
+     "[import options]",
+     "Replaces the current world with a new one of that kind, with default parameters (a "
+     "planet preset sets radius, max_height, ocean_level, omega, atmosphere and spacing for an "
+     "Earth-, Mars- or Moon-like body or a small asteroid); 'from=' "
      "makes a bounded flat world sized and spaced by a heightmap or elevation raster and imports "
      "it (see import for the options).",
      1, 12, c_new, CMD_ENDS_STROKE},

@@ -42,6 +42,24 @@ void world_grid_face_direction_warped(int face, double a, double b, double dir[3
         dir[k] = v[k] / len;
 }
 
+void world_grid_direction_face(const double dir[3], int *face, double *s, double *t) {
+    const double x = dir[0], y = dir[1], z = dir[2];
+    const double ax = fabs(x), ay = fabs(y), az = fabs(z);
+    double a, b; // the inverse of world_grid_face_direction_warped's axes
+    if (ax >= ay && ax >= az) {
+        *face = x >= 0 ? 0 : 1;
+        a = (x >= 0 ? -z : z) / ax, b = y / ax;
+    } else if (ay >= az) {
+        *face = y >= 0 ? 2 : 3;
+        a = x / ay, b = (y >= 0 ? -z : z) / ay;
+    } else {
+        *face = z >= 0 ? 4 : 5;
+        a = (z >= 0 ? x : -x) / az, b = y / az;
+    }
+    *s = atan(a) * (4.0 / M_PI);
+    *t = atan(b) * (4.0 / M_PI);
+}
+
 double world_grid_face_coord(const world_params *p, int level, int64_t i) {
     double n = (double)world_grid_face_samples(p);
     double cell = (double)((int64_t)1 << level);

@@ -55,6 +55,9 @@ static const key_def KEYS[] = {
      "planets: metres from the centre to the datum, 0 < radius <= 1e9"},
     {"omega", V_F64, F(omega), 0, 0, NO_LO | NO_HI,
      "planets: angular velocity in radians per second (turns the light)"},
+    {"atmosphere", V_F64, F(atmosphere), 0, 100, 0,
+     "planets: how much air, relative to Earth's (its scale height follows the radius): 1 "
+     "Earth-like, 0 none (the sky is black), 0 .. 100"},
     {"spacing", V_F64, F(spacing), 0, 1e5, LO_OPEN,
      "metres between coarse height samples, 0 < spacing <= 1e5"},
     {"size", V_I64, F(size), 0, (double)WORLD_SIZE_MAX, 0,
@@ -108,6 +111,7 @@ void world_params_default(world_params *p, world_kind kind) {
         .ocean_level = -400,
         .radius = 6371000,
         .omega = 0, // a still sun: an editor wants steady light
+        .atmosphere = 1,
         .spacing = 2,
         .size = 0,
         .detail_ratio = 4,

@@ -38,6 +38,7 @@ typedef struct world_params {
     double ocean_level;   // flat: metres above the datum; planets: the sea's radius (seed 004)
     double radius;        // planets: metres from the centre to the datum
     double omega;         // planets: angular velocity, radians per second (Kahoun 2010)
+    double atmosphere;    // planets: air relative to Earth's (1), 0 = none
     double spacing;       // metres between coarse samples
     int64_t size;         // flat worlds: coarse samples per side; 0 = unbounded
     int32_t detail_ratio; // detail samples per coarse sample, per side

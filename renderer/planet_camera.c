@@ -1,0 +1,108 @@
+#include "renderer/planet_camera.h"
+
+#include "editor/params/world_grid.h"
+
+#include <math.h>
+
+static const double DEG = 3.14159265358979323846 / 180.0;
+
+static void normalize(double v[3]) {
+    double len = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    if (len > 0)
+        for (int k = 0; k < 3; k++)
+            v[k] /= len;
+}
+
+static void cross(const double a[3], const double b[3], double out[3]) {
+    out[0] = a[1] * b[2] - a[2] * b[1];
+    out[1] = a[2] * b[0] - a[0] * b[2];
+    out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+void planet_local_frame(const double pos[3], double east[3], double north[3], double up[3]) {
+    for (int k = 0; k < 3; k++)
+        up[k] = pos[k];
+    normalize(up);
+    if (!(up[0] * up[0] + up[1] * up[1] + up[2] * up[2] > 0.5)) up[0] = 0, up[1] = 1, up[2] = 0;
+    // North: the +Y axis projected on the tangent plane; -Z at the poles.
+    double axis[3] = {0, 1, 0};
+    if (fabs(up[1]) > 0.999999) axis[0] = 0, axis[1] = 0, axis[2] = up[1] > 0 ? -1 : 1;
+    double d = axis[0] * up[0] + axis[1] * up[1] + axis[2] * up[2];
+    for (int k = 0; k < 3; k++)
+        north[k] = axis[k] - d * up[k];
+    normalize(north);
+    cross(north, up, east);
+}
+
+void planet_camera_basis(const camera *c, double forward[3], double right[3], double up[3]) {
+    double e[3], n[3], u[3];
+    planet_local_frame(c->pos, e, n, u);
+    double pitch = c->pitch;
+    if (!(pitch > -CAMERA_PITCH_LIMIT)) pitch = -CAMERA_PITCH_LIMIT;
+    if (pitch > CAMERA_PITCH_LIMIT) pitch = CAMERA_PITCH_LIMIT;
+    double y = c->yaw * DEG, p = pitch * DEG;
+    for (int k = 0; k < 3; k++) {
+        double level = cos(y) * n[k] + sin(y) * e[k];
+        forward[k] = cos(p) * level + sin(p) * u[k];
+        right[k] = cos(y) * e[k] - sin(y) * n[k];
+    }
+    cross(right, forward, up);
+}
+
+void planet_camera_view_projection(const camera *c, double aspect, float m[16]) {
+    double f[3], r[3], u[3];
+    planet_camera_basis(c, f, r, u);
+    double v[16] = {0};
+    for (int i = 0; i < 3; i++) { // rows: right, up, -forward
+        v[i * 4 + 0] = r[i];
+        v[i * 4 + 1] = u[i];
+        v[i * 4 + 2] = -f[i];
+    }
+    v[15] = 1;
+    float p[16];
+    camera_projection_matrix(c, aspect, p);
+    for (int col = 0; col < 4; col++)
+        for (int row = 0; row < 4; row++) {
+            double s = 0;
+            for (int k = 0; k < 4; k++)
+                s += (double)p[k * 4 + row] * v[col * 4 + k];
+            m[col * 4 + row] = (float)s;
+        }
+}
+
+void planet_camera_ray(const camera *c, double aspect, double sx, double sy, double dir[3]) {
+    double f[3], r[3], u[3];
+    planet_camera_basis(c, f, r, u);
+    double fov = c->fov_y >= 1 && c->fov_y <= 170 ? c->fov_y : 60;
+    double t = tan(0.5 * fov * DEG), a = aspect > 0 && isfinite(aspect) ? aspect : 1;
+    double vx = (2.0 * sx - 1.0) * t * a, vy = (1.0 - 2.0 * sy) * t;
+    for (int k = 0; k < 3; k++)
+        dir[k] = f[k] + vx * r[k] + vy * u[k];
+    normalize(dir);
+}
+
+void planet_position(double lat, double lon, double distance, double pos[3]) {
+    double la = lat * DEG, lo = lon * DEG;
+    pos[0] = distance * cos(la) * sin(lo);
+    pos[1] = distance * sin(la);
+    pos[2] = distance * cos(la) * cos(lo);
+}
+
+void planet_lat_lon(const double pos[3], double *lat, double *lon) {
+    double horizontal = sqrt(pos[0] * pos[0] + pos[2] * pos[2]);
+    *lat = atan2(pos[1], horizontal) / DEG;
+    *lon = horizontal > 0 ? atan2(pos[0], pos[2]) / DEG : 0.0;
+}
+
+int planet_ground_height(world *w, const double pos[3], double *height, og_error *err) {
+    const world_params *p = world_get_params(w);
+    int face;
+    double s, t;
+    world_grid_direction_face(pos, &face, &s, &t);
+    // Sample i's centre sits at face coordinate (i + 0.5) / n x 2 - 1; world_sample takes
+    // face-local metres i x spacing.
+    const double n = (double)world_grid_face_samples(p), last = (n - 1.0) * p->spacing;
+    double x = ((s + 1.0) * 0.5 * n - 0.5) * p->spacing,
+           z = ((t + 1.0) * 0.5 * n - 0.5) * p->spacing;
+    return world_sample(w, face, fmin(fmax(x, 0.0), last), fmin(fmax(z, 0.0), last), height, err);
+}

@@ -1,0 +1,673 @@
+#include "renderer/planet_renderer.h"
+
+#include "editor/params/world_grid.h"
+#include "io/tile_cache.h"
+#include "renderer/frustum.h"
+#include "renderer/lighting.h"
+#include "renderer/planet_camera.h"
+#include "renderer/shader.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#define BLOCK 32 // samples (quads) per chunk side
+#define BLOCKS_PER_TILE (TILE_SIZE / BLOCK)
+#define GRID_VERTS ((BLOCK + 1) * (BLOCK + 1))
+#define CHUNK_VERTS (GRID_VERTS + 4 * (BLOCK + 1))
+#define CHUNK_INDICES (BLOCK * BLOCK * 6 + 4 * BLOCK * 6)
+#define VERTEX_FLOATS 12 // position 3 (from the chunk's origin), normal 3, up 3, height, uv 2
+#define MAX_CHUNKS 1536  // resident meshes (~90 MB): several views' worth
+#define TABLE_SIZE 4096  // open addressing, power of two, > 2 x MAX_CHUNKS
+#define BUILD_BUDGET_MS 10.0
+#define SPLIT_PIXELS 6.0       // a sample wider than this on screen: the chunk splits
+#define TEX_PERIOD_NEAR 4.0    // metres per repeat of the material textures
+#define TEX_PERIOD_FAR 64.0    // the larger scale that breaks up repetition (a multiple)
+#define EARTH_RADIUS 6371000.0 // the atmosphere scales with the planet from Earth's
+#define EARTH_SCALE_HEIGHT 8000.0
+
+typedef struct chunk {
+    uint64_t key; // 0: free
+    GLuint vbo;
+    double origin[3]; // planet coordinates of the vertices' origin
+    float hmin, hmax; // metres above the datum
+    int level;
+    uint64_t used; // frame it was last selected
+} chunk;
+
+typedef struct node {
+    int face, level;
+    int64_t bx, by;
+} node;
+
+struct planet_renderer {
+    GLuint prog_planet, prog_sky, vao, empty_vao, ibo, albedo;
+    chunk chunks[MAX_CHUNKS];
+    int table[TABLE_SIZE]; // chunk index or -1
+    int resident;
+    // The world this frame.
+    world *world;
+    world_params params;
+    int64_t face_samples;
+    double cell_arc; // metres of the datum's arc per level-0 cell (spacing or a little less)
+    int root_level;
+    uint64_t frame;
+    double update_start_ms;
+    int all_current;
+    // Selection.
+    const camera *cam;
+    frustum fr;
+    double pixels_per_radian; // screen height / (2 tan(fov/2))
+    double occluder_radius;   // a sphere inside all the ground, for horizon culling
+    int draw_count;
+    int draw_list[MAX_CHUNKS];
+    planet_stats stats;
+};
+
+static double now_ms(void) {
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
+}
+
+// ---- chunk table ----------------------------------------------------------------
+
+static uint64_t node_key(const node *n) {
+    return ((uint64_t)n->face | (uint64_t)n->level << 3 | (uint64_t)n->bx << 8 |
+            (uint64_t)n->by << 34) +
+           1;
+}
+
+static size_t slot_of(uint64_t key) {
+    return (size_t)((key * 0x9E3779B97F4A7C15ull) >> 52) & (TABLE_SIZE - 1);
+}
+
+static chunk *find_chunk(planet_renderer *r, uint64_t key) {
+    for (size_t s = slot_of(key);; s = (s + 1) & (TABLE_SIZE - 1)) {
+        if (r->table[s] < 0) return NULL;
+        if (r->chunks[r->table[s]].key == key) return &r->chunks[r->table[s]];
+    }
+}
+
+static void table_insert(planet_renderer *r, int index) {
+    size_t s = slot_of(r->chunks[index].key);
+    while (r->table[s] >= 0)
+        s = (s + 1) & (TABLE_SIZE - 1);
+    r->table[s] = index;
+}
+
+// Linear probing's backward-shift deletion: no tombstones.
+static void table_remove(planet_renderer *r, uint64_t key) {
+    size_t s = slot_of(key);
+    while (r->chunks[r->table[s]].key != key)
+        s = (s + 1) & (TABLE_SIZE - 1);
+    r->table[s] = -1;
+    for (size_t j = (s + 1) & (TABLE_SIZE - 1); r->table[j] >= 0; j = (j + 1) & (TABLE_SIZE - 1)) {
+        size_t home = slot_of(r->chunks[r->table[j]].key);
+        // Move j back into the hole when its home is not in (s, j] cyclically.
+        int between = s <= j ? (home > s && home <= j) : (home > s || home <= j);
+        if (!between) {
+            r->table[s] = r->table[j];
+            r->table[j] = -1;
+            s = j;
+        }
+    }
+}
+
+static void drop_all(planet_renderer *r) {
+    for (int i = 0; i < MAX_CHUNKS; i++)
+        r->chunks[i].key = 0;
+    for (int i = 0; i < TABLE_SIZE; i++)
+        r->table[i] = -1;
+    r->resident = 0;
+}
+
+// A free chunk slot, evicting the least recently selected chunk not used this frame.
+static int take_slot(planet_renderer *r) {
+    int best = -1;
+    for (int i = 0; i < MAX_CHUNKS; i++) {
+        if (r->chunks[i].key == 0) return i;
+        if (r->chunks[i].used < r->frame && (best < 0 || r->chunks[i].used < r->chunks[best].used))
+            best = i;
+    }
+    if (best >= 0) {
+        table_remove(r, r->chunks[best].key);
+        r->chunks[best].key = 0;
+        r->resident--;
+    }
+    return best;
+}
+
+// ---- geometry -------------------------------------------------------------------
+
+// Level-L samples per face side (the last one may reach past the face's edge).
+static int64_t level_samples(const planet_renderer *r, int level) {
+    return (r->face_samples + ((int64_t)1 << level) - 1) >> level;
+}
+
+static int node_exists(const planet_renderer *r, const node *n) {
+    int64_t m = level_samples(r, n->level);
+    return n->bx >= 0 && n->by >= 0 && n->bx * BLOCK < m && n->by * BLOCK < m;
+}
+
+// Face coordinate of level-L cell edge e (clipped to the face).
+static double edge_coord(const planet_renderer *r, int level, int64_t e) {
+    int64_t cells = e << level;
+    if (cells > r->face_samples) cells = r->face_samples;
+    return (double)cells / (double)r->face_samples * 2.0 - 1.0;
+}
+
+static void surface_point(const planet_renderer *r, int face, double s, double t, double h,
+                          double out[3]) {
+    double d[3];
+    world_grid_face_direction(face, s, t, d);
+    for (int k = 0; k < 3; k++)
+        out[k] = d[k] * (r->params.radius + h);
+}
+
+// Horizon culling, conservative for any chunk size: a point at radius rq is hidden by
+// the occluder sphere (radius ro) from the camera at distance d exactly when its angle
+// from the camera's direction exceeds acos(ro / d) + acos(ro / rq); a chunk is hidden
+// when even its bounding cap's nearest edge is.
+static int behind_horizon(const planet_renderer *r, const double centre[3], double radius,
+                          double top) {
+    const double *c = r->cam->pos, ro = r->occluder_radius;
+    double d = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+    double rc = sqrt(centre[0] * centre[0] + centre[1] * centre[1] + centre[2] * centre[2]);
+    if (d <= ro || rc <= radius) return 0;
+    double cosang = (c[0] * centre[0] + c[1] * centre[1] + c[2] * centre[2]) / (d * rc);
+    double angle = acos(fmax(-1.0, fmin(1.0, cosang))) - asin(fmin(1.0, radius / rc));
+    double rq = fmax(top, ro);
+    return angle > acos(ro / d) + acos(ro / rq);
+}
+
+typedef struct node_bounds {
+    double centre[3], radius; // bounding sphere, planet coordinates
+    double cell;              // metres per sample at this level
+} node_bounds;
+
+// Returns 1 when the node is visible (not behind the horizon, in the view).
+static int node_visible(planet_renderer *r, const node *n, double hmin, double hmax,
+                        node_bounds *b) {
+    const int64_t e0x = n->bx * BLOCK, e0y = n->by * BLOCK;
+    double s0 = edge_coord(r, n->level, e0x), s1 = edge_coord(r, n->level, e0x + BLOCK);
+    double t0 = edge_coord(r, n->level, e0y), t1 = edge_coord(r, n->level, e0y + BLOCK);
+    double pts[10][3];
+    const double ss[5] = {s0, s1, s0, s1, 0.5 * (s0 + s1)};
+    const double ts[5] = {t0, t0, t1, t1, 0.5 * (t0 + t1)};
+    for (int k = 0; k < 5; k++) {
+        surface_point(r, n->face, ss[k], ts[k], hmax, pts[k]);
+        surface_point(r, n->face, ss[k], ts[k], hmin, pts[5 + k]);
+    }
+    // Sphere around the midpoint of the centre's top and bottom.
+    for (int k = 0; k < 3; k++)
+        b->centre[k] = 0.5 * (pts[4][k] + pts[9][k]);
+    b->radius = 0;
+    for (int k = 0; k < 10; k++) {
+        double d = sqrt((pts[k][0] - b->centre[0]) * (pts[k][0] - b->centre[0]) +
+                        (pts[k][1] - b->centre[1]) * (pts[k][1] - b->centre[1]) +
+                        (pts[k][2] - b->centre[2]) * (pts[k][2] - b->centre[2]));
+        if (d > b->radius) b->radius = d;
+    }
+    // The faces bulge between the corners: a chunk's arc adds up to ~1/8 of its width.
+    b->radius *= 1.15;
+    b->cell = ldexp(r->cell_arc, n->level);
+    if (behind_horizon(r, b->centre, b->radius, r->params.radius + hmax)) return 0;
+    float mn[3], mx[3];
+    for (int k = 0; k < 3; k++) {
+        mn[k] = (float)(b->centre[k] - b->radius - r->cam->pos[k]);
+        mx[k] = (float)(b->centre[k] + b->radius - r->cam->pos[k]);
+    }
+    return frustum_test_aabb(&r->fr, mn, mx);
+}
+
+static int wants_split(const planet_renderer *r, const node *n, const node_bounds *b) {
+    if (n->level == 0) return 0;
+    double d[3] = {b->centre[0] - r->cam->pos[0], b->centre[1] - r->cam->pos[1],
+                   b->centre[2] - r->cam->pos[2]};
+    double dist = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) - b->radius;
+    if (dist < b->cell) dist = b->cell;
+    return b->cell * r->pixels_per_radian / dist > SPLIT_PIXELS;
+}
+
+// ---- chunk meshes ---------------------------------------------------------------
+
+static float sample_bilinear(const float *tile, double u, double v) {
+    int i = (int)u, j = (int)v;
+    int i1 = i + 1 < TILE_SIZE ? i + 1 : i, j1 = j + 1 < TILE_SIZE ? j + 1 : j;
+    double fu = u - i, fv = v - j;
+    double top =
+        tile[j * TILE_SIZE + i] + (tile[j * TILE_SIZE + i1] - tile[j * TILE_SIZE + i]) * fu;
+    double bottom =
+        tile[j1 * TILE_SIZE + i] + (tile[j1 * TILE_SIZE + i1] - tile[j1 * TILE_SIZE + i]) * fu;
+    return (float)(top + (bottom - top) * fv);
+}
+
+// Vertices at the block's cell edges (so neighbours share their edge positions and
+// the outermost reach the face's edge), heights interpolated between sample centres.
+static void build_vertices(const planet_renderer *r, const node *n, const float *tile, float *out,
+                           chunk *c) {
+    static double pos[GRID_VERTS][3];
+    static float heights[GRID_VERTS];
+    static double metres[BLOCK + 1][2];
+    const int64_t m = level_samples(r, n->level);
+    const int64_t tx = n->bx / BLOCKS_PER_TILE, ty = n->by / BLOCKS_PER_TILE;
+    const int ox = (int)(n->bx % BLOCKS_PER_TILE) * BLOCK,
+              oy = (int)(n->by % BLOCKS_PER_TILE) * BLOCK;
+    const double hi_u = fmin(TILE_SIZE - 1, (double)(m - 1 - tx * TILE_SIZE));
+    const double hi_v = fmin(TILE_SIZE - 1, (double)(m - 1 - ty * TILE_SIZE));
+    double tan_s[BLOCK + 1], tan_t[BLOCK + 1];
+    for (int g = 0; g <= BLOCK; g++) {
+        double s = edge_coord(r, n->level, n->bx * BLOCK + g);
+        double t = edge_coord(r, n->level, n->by * BLOCK + g);
+        tan_s[g] = tan(s * (M_PI / 4.0));
+        tan_t[g] = tan(t * (M_PI / 4.0));
+        // Face-local metres, for the material textures' coordinates.
+        metres[g][0] = (s + 1.0) * 0.5 * (double)r->face_samples * r->cell_arc;
+        metres[g][1] = (t + 1.0) * 0.5 * (double)r->face_samples * r->cell_arc;
+    }
+    const double base_u = floor(metres[0][0] / TEX_PERIOD_FAR) * TEX_PERIOD_FAR;
+    const double base_v = floor(metres[0][1] / TEX_PERIOD_FAR) * TEX_PERIOD_FAR;
+    c->hmin = INFINITY, c->hmax = -INFINITY;
+    for (int gj = 0; gj <= BLOCK; gj++)
+        for (int gi = 0; gi <= BLOCK; gi++) {
+            double u = fmin(fmax(ox + gi - 0.5, 0.0), hi_u);
+            double v = fmin(fmax(oy + gj - 0.5, 0.0), hi_v);
+            float h = sample_bilinear(tile, u, v);
+            double d[3];
+            world_grid_face_direction_warped(n->face, tan_s[gi], tan_t[gj], d);
+            const int k = gj * (BLOCK + 1) + gi;
+            for (int a = 0; a < 3; a++)
+                pos[k][a] = d[a] * (r->params.radius + h);
+            heights[k] = h;
+            c->hmin = fminf(c->hmin, h), c->hmax = fmaxf(c->hmax, h);
+        }
+    const int centre = (BLOCK / 2) * (BLOCK + 1) + BLOCK / 2;
+    memcpy(c->origin, pos[centre], sizeof c->origin);
+    for (int gj = 0; gj <= BLOCK; gj++)
+        for (int gi = 0; gi <= BLOCK; gi++) {
+            const int k = gj * (BLOCK + 1) + gi;
+            const double *l = pos[gj * (BLOCK + 1) + (gi > 0 ? gi - 1 : gi)];
+            const double *rt = pos[gj * (BLOCK + 1) + (gi < BLOCK ? gi + 1 : gi)];
+            const double *dn = pos[(gj > 0 ? gj - 1 : gj) * (BLOCK + 1) + gi];
+            const double *upp = pos[(gj < BLOCK ? gj + 1 : gj) * (BLOCK + 1) + gi];
+            double du[3] = {rt[0] - l[0], rt[1] - l[1], rt[2] - l[2]};
+            double dv[3] = {upp[0] - dn[0], upp[1] - dn[1], upp[2] - dn[2]};
+            double nn[3] = {du[1] * dv[2] - du[2] * dv[1], du[2] * dv[0] - du[0] * dv[2],
+                            du[0] * dv[1] - du[1] * dv[0]};
+            double up[3],
+                len_p = sqrt(pos[k][0] * pos[k][0] + pos[k][1] * pos[k][1] + pos[k][2] * pos[k][2]);
+            for (int a = 0; a < 3; a++)
+                up[a] = pos[k][a] / len_p;
+            double len = sqrt(nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2]);
+            double sign = nn[0] * up[0] + nn[1] * up[1] + nn[2] * up[2] < 0 ? -1.0 : 1.0;
+            float *o = out + (size_t)k * VERTEX_FLOATS;
+            for (int a = 0; a < 3; a++) {
+                o[a] = (float)(pos[k][a] - c->origin[a]);
+                o[3 + a] = (float)(len > 0 ? sign * nn[a] / len : up[a]);
+                o[6 + a] = (float)up[a];
+            }
+            o[9] = heights[k];
+            o[10] = (float)(metres[gi][0] - base_u);
+            o[11] = (float)(metres[gj][1] - base_v);
+        }
+    // Skirts: each edge's vertices again, lowered far enough to hide the cracks between
+    // levels and faces (a level's samples differ from the next one's by about a cell).
+    const double depth =
+        fmin(ldexp(r->cell_arc, n->level), 2.0 * r->params.max_height) + 0.25 * r->cell_arc;
+    for (int e = 0; e < 4; e++)
+        for (int g = 0; g <= BLOCK; g++) {
+            int gi = e < 2 ? g : (e == 2 ? 0 : BLOCK), gj = e < 2 ? (e == 0 ? 0 : BLOCK) : g;
+            const float *top = out + (size_t)(gj * (BLOCK + 1) + gi) * VERTEX_FLOATS;
+            float *o = out + (size_t)(GRID_VERTS + e * (BLOCK + 1) + g) * VERTEX_FLOATS;
+            memcpy(o, top, sizeof(float) * VERTEX_FLOATS);
+            for (int a = 0; a < 3; a++)
+                o[a] -= (float)(top[6 + a] * depth);
+        }
+}
+
+// Builds the node's chunk when its tile is resident and the frame's budget allows.
+static chunk *try_build(planet_renderer *r, const node *n) {
+    if (now_ms() - r->update_start_ms > BUILD_BUDGET_MS) {
+        r->all_current = 0;
+        return NULL;
+    }
+    tile_cache *cache = world_cache(r->world);
+    tile_key key = {TILE_LAYER_COARSE, n->face, n->level, (int32_t)(n->bx / BLOCKS_PER_TILE),
+                    (int32_t)(n->by / BLOCKS_PER_TILE)};
+    tile_view view;
+    tile_status st = tile_cache_request(cache, key, &view);
+    if (st != TILE_READY) {
+        if (view.data) tile_cache_release(cache, &view);
+        r->all_current = 0;
+        return NULL;
+    }
+    int slot = take_slot(r);
+    if (slot < 0) { // every chunk is in use this frame
+        tile_cache_release(cache, &view);
+        r->all_current = 0;
+        return NULL;
+    }
+    static float verts[CHUNK_VERTS * VERTEX_FLOATS];
+    chunk *c = &r->chunks[slot];
+    build_vertices(r, n, view.data, verts, c);
+    tile_cache_release(cache, &view);
+    if (!c->vbo) {
+        glCreateBuffers(1, &c->vbo);
+        glNamedBufferStorage(c->vbo, sizeof verts, NULL, GL_DYNAMIC_STORAGE_BIT);
+    }
+    glNamedBufferSubData(c->vbo, 0, sizeof verts, verts);
+    c->key = node_key(n);
+    c->level = n->level;
+    c->used = r->frame;
+    table_insert(r, slot);
+    r->resident++;
+    r->stats.chunks_built++;
+    r->stats.vertices_uploaded += CHUNK_VERTS;
+    return c;
+}
+
+// ---- selection ------------------------------------------------------------------
+
+static void children_of(const node *n, node out[4]) {
+    for (int k = 0; k < 4; k++)
+        out[k] = (node){n->face, n->level - 1, 2 * n->bx + (k & 1), 2 * n->by + (k >> 1)};
+}
+
+static void bounds_heights(planet_renderer *r, const node *n, double *lo, double *hi) {
+    chunk *c = find_chunk(r, node_key(n));
+    // Unbuilt: the generator's range, with room for edits beyond it.
+    *lo = c ? c->hmin : -1.5 * r->params.max_height;
+    *hi = c ? c->hmax : 1.5 * r->params.max_height;
+}
+
+// 0: the node is drawn (itself or its children) or culled; 1: it could not be drawn.
+static int select_node(planet_renderer *r, const node *n) {
+    double lo, hi;
+    bounds_heights(r, n, &lo, &hi);
+    node_bounds b;
+    if (!node_visible(r, n, lo, hi, &b)) {
+        r->stats.chunks_culled++;
+        return 0;
+    }
+    chunk *c = find_chunk(r, node_key(n));
+    if (!c && !(c = try_build(r, n))) return 1;
+    c->used = r->frame;
+    if (wants_split(r, n, &b)) {
+        node kids[4];
+        children_of(n, kids);
+        int ready = 1;
+        for (int k = 0; k < 4; k++) {
+            if (!node_exists(r, &kids[k]) || find_chunk(r, node_key(&kids[k]))) continue;
+            double klo, khi;
+            bounds_heights(r, &kids[k], &klo, &khi);
+            node_bounds kb;
+            if (node_visible(r, &kids[k], klo, khi, &kb) && !try_build(r, &kids[k])) ready = 0;
+        }
+        if (ready) {
+            int missing = 0;
+            for (int k = 0; k < 4; k++)
+                if (node_exists(r, &kids[k])) missing |= select_node(r, &kids[k]);
+            if (!missing) return 0;
+        }
+        r->all_current = 0;
+    }
+    if (r->draw_count < MAX_CHUNKS) r->draw_list[r->draw_count++] = (int)(c - r->chunks);
+    return 0;
+}
+
+// ---- the renderer ---------------------------------------------------------------
+
+static GLuint make_indices(void) {
+    static uint16_t idx[CHUNK_INDICES];
+    int k = 0;
+    for (int j = 0; j < BLOCK; j++)
+        for (int i = 0; i < BLOCK; i++) {
+            uint16_t a = (uint16_t)(j * (BLOCK + 1) + i), b = a + 1, c = a + BLOCK + 1, d = c + 1;
+            uint16_t quad[6] = {a, c, b, b, c, d};
+            memcpy(idx + k, quad, sizeof quad);
+            k += 6;
+        }
+    for (int e = 0; e < 4; e++)
+        for (int g = 0; g < BLOCK; g++) {
+            int gi0 = e < 2 ? g : (e == 2 ? 0 : BLOCK), gj0 = e < 2 ? (e == 0 ? 0 : BLOCK) : g;
+            int gi1 = e < 2 ? g + 1 : gi0, gj1 = e < 2 ? gj0 : g + 1;
+            uint16_t t0 = (uint16_t)(gj0 * (BLOCK + 1) + gi0),
+                     t1 = (uint16_t)(gj1 * (BLOCK + 1) + gi1);
+            uint16_t b0 = (uint16_t)(GRID_VERTS + e * (BLOCK + 1) + g), b1 = b0 + 1;
+            uint16_t quad[6] = {t0, b0, t1, t1, b0, b1};
+            memcpy(idx + k, quad, sizeof quad);
+            k += 6;
+        }
+    GLuint ibo;
+    glCreateBuffers(1, &ibo);
+    glNamedBufferStorage(ibo, sizeof idx, idx, 0);
+    return ibo;
+}
+
+planet_renderer *planet_renderer_create(const char *resource_dir, GLuint albedo, og_error *err) {
+    planet_renderer *r = calloc(1, sizeof *r);
+    if (!r) {
+        og_error_set(err, "out of memory for the planet renderer");
+        return NULL;
+    }
+    char dir[4200];
+    snprintf(dir, sizeof dir, "%s/shaders", resource_dir);
+    r->prog_planet = shader_program_load(dir, "planet.vert", "planet.frag", err);
+    if (r->prog_planet)
+        r->prog_sky = shader_program_load(dir, "fullscreen.vert", "planet_sky.frag", err);
+    if (!r->prog_sky) {
+        planet_renderer_destroy(r);
+        return NULL;
+    }
+    r->albedo = albedo;
+    r->ibo = make_indices();
+    glCreateVertexArrays(1, &r->vao);
+    glCreateVertexArrays(1, &r->empty_vao);
+    glVertexArrayElementBuffer(r->vao, r->ibo);
+    const int sizes[5] = {3, 3, 3, 1, 2}, offsets[5] = {0, 3, 6, 9, 10};
+    for (int a = 0; a < 5; a++) {
+        glEnableVertexArrayAttrib(r->vao, a);
+        glVertexArrayAttribFormat(r->vao, a, sizes[a], GL_FLOAT, GL_FALSE,
+                                  (GLuint)(offsets[a] * sizeof(float)));
+        glVertexArrayAttribBinding(r->vao, a, 0);
+    }
+    drop_all(r);
+    return r;
+}
+
+void planet_renderer_destroy(planet_renderer *r) {
+    if (!r) return;
+    for (int i = 0; i < MAX_CHUNKS; i++)
+        if (r->chunks[i].vbo) glDeleteBuffers(1, &r->chunks[i].vbo);
+    if (r->ibo) glDeleteBuffers(1, &r->ibo);
+    if (r->vao) glDeleteVertexArrays(1, &r->vao);
+    if (r->empty_vao) glDeleteVertexArrays(1, &r->empty_vao);
+    if (r->prog_planet) glDeleteProgram(r->prog_planet);
+    if (r->prog_sky) glDeleteProgram(r->prog_sky);
+    free(r);
+}
+
+int planet_renderer_update(planet_renderer *r, world *w, const camera *cam,
+                           const render_settings *s, double aspect, int height_px, og_error *err) {
+    (void)s;
+    r->update_start_ms = now_ms();
+    const world_params *p = world_get_params(w);
+    if (p->kind != WORLD_PLANET) return og_error_set(err, "planet renderer: not a planet");
+    if (r->world != w || memcmp(&r->params, p, sizeof *p) != 0) drop_all(r);
+    r->world = w;
+    r->params = *p;
+    r->face_samples = world_grid_face_samples(p);
+    r->cell_arc = (M_PI / 2.0) * p->radius / (double)r->face_samples;
+    r->root_level = 0;
+    while (level_samples(r, r->root_level) > BLOCK)
+        r->root_level++;
+    r->frame++;
+    r->cam = cam;
+    r->all_current = 1;
+    r->draw_count = 0;
+    memset(&r->stats, 0, sizeof r->stats);
+    float vp[16];
+    planet_camera_view_projection(cam, aspect, vp);
+    frustum_from_matrix(&r->fr, vp);
+    double fov = cam->fov_y >= 1 && cam->fov_y <= 170 ? cam->fov_y : 60;
+    r->pixels_per_radian = (height_px > 0 ? height_px : 720) / (2.0 * tan(fov * M_PI / 360.0));
+    r->occluder_radius = p->radius - 1.5 * p->max_height;
+    if (r->occluder_radius < 0.5 * p->radius) r->occluder_radius = 0.5 * p->radius;
+    for (int f = 0; f < 6; f++) {
+        node root = {f, r->root_level, 0, 0};
+        if (select_node(r, &root)) r->all_current = 0;
+    }
+    r->stats.chunks_resident = r->resident;
+    r->stats.finest_level = 99, r->stats.coarsest_level = -1;
+    for (int i = 0; i < r->draw_count; i++) {
+        int l = r->chunks[r->draw_list[i]].level;
+        if (l < r->stats.finest_level) r->stats.finest_level = l;
+        if (l > r->stats.coarsest_level) r->stats.coarsest_level = l;
+    }
+    r->stats.cpu_ms = now_ms() - r->update_start_ms;
+    return r->all_current;
+}
+
+// Atmosphere and light uniforms shared by the sky and the ground.
+static void set_common(const planet_renderer *r, GLuint prog, const camera *cam,
+                       const render_settings *s) {
+    const world_params *p = &r->params;
+    double cam_r =
+        sqrt(cam->pos[0] * cam->pos[0] + cam->pos[1] * cam->pos[1] + cam->pos[2] * cam->pos[2]);
+    double e[3], n[3], up[3];
+    planet_local_frame(cam->pos, e, n, up);
+    float sun[3];
+    render_sun_direction(s, sun);
+    // Earth's Rayleigh scattering, its scale height scaled with the radius and the
+    // coefficients scaled inversely, so any planet's sky is as thick as Earth's.
+    const double hs = EARTH_SCALE_HEIGHT * p->radius / EARTH_RADIUS;
+    double k = EARTH_SCALE_HEIGHT / hs;
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "u_radius"), (float)p->radius);
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "u_scale_height"), (float)hs);
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "u_atm_top"), (float)(hs * 10.0));
+    k *= p->atmosphere; // 0: no air at all
+    glProgramUniform3f(prog, glGetUniformLocation(prog, "u_beta"), (float)(5.8e-6 * k),
+                       (float)(13.5e-6 * k), (float)(33.1e-6 * k));
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "u_cam_r"), (float)cam_r);
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "u_cam_alt"), (float)(cam_r - p->radius));
+    glProgramUniform3f(prog, glGetUniformLocation(prog, "u_cam_up"), (float)up[0], (float)up[1],
+                       (float)up[2]);
+    glProgramUniform3fv(prog, glGetUniformLocation(prog, "u_sun_dir"), 1, sun);
+    glProgramUniform3f(prog, glGetUniformLocation(prog, "u_sun_colour"), 1.05f, 1.0f, 0.95f);
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "u_view_mode"), s->view);
+}
+
+int planet_renderer_draw(planet_renderer *r, const camera *cam, const render_settings *s, int width,
+                         int height, og_error *err) {
+    double t0 = now_ms();
+    double aspect = (double)width / (double)(height > 0 ? height : 1);
+    float vp[16];
+    planet_camera_view_projection(cam, aspect, vp);
+    glViewport(0, 0, width, height);
+    glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_GREATER);
+    glClearDepth(0.0);
+    glDisable(GL_CULL_FACE);
+    const int wire = s->view == VIEW_WIREFRAME;
+    glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    r->stats.triangles = 0;
+    r->stats.draw_calls = 0;
+    if (!wire) { // space, the sun and the sky
+        double f[3], rt[3], up[3];
+        planet_camera_basis(cam, f, rt, up);
+        GLuint prog = r->prog_sky;
+        set_common(r, prog, cam, s);
+        glProgramUniform3f(prog, glGetUniformLocation(prog, "u_cam_forward"), (float)f[0],
+                           (float)f[1], (float)f[2]);
+        glProgramUniform3f(prog, glGetUniformLocation(prog, "u_cam_right"), (float)rt[0],
+                           (float)rt[1], (float)rt[2]);
+        glProgramUniform3f(prog, glGetUniformLocation(prog, "u_cam_upv"), (float)up[0],
+                           (float)up[1], (float)up[2]);
+        double ty = tan((cam->fov_y >= 1 && cam->fov_y <= 170 ? cam->fov_y : 60) * M_PI / 360.0);
+        glProgramUniform2f(prog, glGetUniformLocation(prog, "u_tan_half"), (float)(ty * aspect),
+                           (float)ty);
+        glUseProgram(prog);
+        glBindVertexArray(r->empty_vao);
+        glDepthMask(GL_FALSE);
+        glDisable(GL_DEPTH_TEST);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        glEnable(GL_DEPTH_TEST);
+        glDepthMask(GL_TRUE);
+        r->stats.draw_calls++;
+    }
+    GLuint prog = r->prog_planet;
+    set_common(r, prog, cam, s);
+    const world_params *p = &r->params;
+    glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "u_view_proj"), 1, GL_FALSE, vp);
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "u_ocean_h"),
+                       (float)world_params_ocean_height(p));
+    // The material rules' sea level: a planet without a sea (its radius under all the
+    // ground) keeps its beaches and snow line where the ground is.
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "u_ocean_level"),
+                       (float)fmax(world_params_ocean_height(p), -p->max_height));
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "u_max_height"), (float)p->max_height);
+    const int sea = world_params_ocean_height(p) > -p->max_height;
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "u_palette"),
+                       sea ? 0 : (p->atmosphere < 0.05 ? 1 : 2));
+    glProgramUniform2f(prog, glGetUniformLocation(prog, "u_tex_period"), (float)TEX_PERIOD_NEAR,
+                       (float)TEX_PERIOD_FAR);
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "u_albedo"), 0);
+    glBindTextureUnit(0, r->albedo);
+    GLint offset_loc = glGetUniformLocation(prog, "u_offset");
+    GLint level_loc = glGetUniformLocation(prog, "u_level");
+    glUseProgram(prog);
+    glBindVertexArray(r->vao);
+    if (wire) glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+    for (int i = 0; i < r->draw_count; i++) {
+        const chunk *c = &r->chunks[r->draw_list[i]];
+        glProgramUniform3f(prog, offset_loc, (float)(c->origin[0] - cam->pos[0]),
+                           (float)(c->origin[1] - cam->pos[1]),
+                           (float)(c->origin[2] - cam->pos[2]));
+        glProgramUniform1i(prog, level_loc, c->level);
+        glVertexArrayVertexBuffer(r->vao, 0, c->vbo, 0, VERTEX_FLOATS * sizeof(float));
+        glDrawElements(GL_TRIANGLES, CHUNK_INDICES, GL_UNSIGNED_SHORT, NULL);
+        r->stats.triangles += CHUNK_INDICES / 3;
+        r->stats.draw_calls++;
+    }
+    if (wire) glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    r->stats.chunks_drawn = r->draw_count;
+    glBindVertexArray(0);
+    glUseProgram(0);
+    r->stats.cpu_ms += now_ms() - t0;
+    GLenum e = glGetError();
+    if (e != GL_NO_ERROR) return og_error_set(err, "planet_renderer_draw: GL error 0x%x", e);
+    return 0;
+}
+
+void planet_renderer_forget(planet_renderer *r) {
+    drop_all(r);
+}
+
+void planet_renderer_touched(planet_renderer *r, int face, grid_rect rect) {
+    for (int i = 0; i < MAX_CHUNKS; i++) {
+        chunk *c = &r->chunks[i];
+        if (!c->key) continue;
+        uint64_t k = c->key - 1;
+        int cf = (int)(k & 7), level = (int)((k >> 3) & 31);
+        int64_t bx = (int64_t)((k >> 8) & ((1u << 26) - 1)), by = (int64_t)(k >> 34);
+        if (cf != face) continue;
+        // The level-0 cells the chunk's vertices interpolate from, a sample's margin
+        // around (mips are box filtered; vertices blend neighbouring samples).
+        const int64_t cell = (int64_t)1 << level;
+        const int64_t x0 = (bx * BLOCK - 1) * cell, x1 = ((bx + 1) * BLOCK + 1) * cell;
+        const int64_t z0 = (by * BLOCK - 1) * cell, z1 = ((by + 1) * BLOCK + 1) * cell;
+        if (rect.x1 <= x0 || rect.x0 >= x1 || rect.z1 <= z0 || rect.z0 >= z1) continue;
+        table_remove(r, c->key);
+        c->key = 0;
+        r->resident--;
+    }
+}
+
+void planet_renderer_stats(const planet_renderer *r, planet_stats *out) {
+    *out = r->stats;
+}

@@ -1,0 +1,74 @@
+#version 450 core
+// A planet's ground and sea with the flat worlds' shading: the automatic material
+// rules by height above the datum and slope, the sun, the sea by Fresnel, and the
+// atmosphere between the camera and the ground.
+#include "materials.glsl"
+#include "planet_atmosphere.glsl"
+in vec3 v_rel, v_normal, v_up;
+in float v_height, v_depth;
+in vec2 v_metres;
+out vec4 o_colour;
+uniform int u_view_mode; // VIEW_SHADED 0, WIREFRAME 1, LEVELS 2, HEIGHT 3, SLOPE 4
+uniform int u_level;
+uniform vec2 u_tex_period; // metres per repeat: near, far
+uniform int u_palette;     // 0: the automatic rules; 1 airless and dry (rock, gravel); 2 dry
+                           // with air (sand, dirt, rock)
+
+vec3 level_colour(int l) {
+    const vec3 c[6] = vec3[6](vec3(0.9, 0.3, 0.3), vec3(0.9, 0.7, 0.2), vec3(0.4, 0.8, 0.3),
+                              vec3(0.2, 0.7, 0.8), vec3(0.4, 0.4, 0.9), vec3(0.8, 0.4, 0.8));
+    return c[l % 6];
+}
+
+void main() {
+    vec3 n = normalize(v_normal), up = normalize(v_up);
+    float dist = length(v_rel);
+    vec3 view_dir = v_rel / max(dist, 1e-6);
+    float cos_slope = clamp(dot(n, up), 0.05, 1.0);
+    float slope = sqrt(max(1.0 - cos_slope * cos_slope, 0.0)) / cos_slope; // rise over run
+    float diffuse = max(dot(n, u_sun_dir), 0.0);
+    float day = smoothstep(-0.1, 0.2, dot(up, u_sun_dir));
+    vec3 ambient = vec3(0.10, 0.13, 0.18) * (0.25 + 0.75 * day);
+    if (u_view_mode == 1) {
+        o_colour = vec4(0.75, 0.85, 0.95, 1.0);
+        return;
+    }
+    vec3 base;
+    if (u_view_mode == 3) {
+        base = vec3(clamp(v_height / (2.0 * u_max_height) + 0.5, 0.0, 1.0));
+    } else if (u_view_mode == 4) {
+        base = mix(vec3(0.2, 0.6, 0.3), vec3(0.8, 0.2, 0.1), clamp(slope, 0.0, 1.5) / 1.5);
+    } else if (u_view_mode == 2) {
+        base = level_colour(u_level);
+    } else if (u_palette == 0) {
+        base = automatic(v_height, slope, v_metres / u_tex_period.x, v_metres / u_tex_period.y);
+    } else { // no sea: bare ground by slope (and height, for dust in the lowlands)
+        vec2 uv = v_metres / u_tex_period.x, uv_far = v_metres / u_tex_period.y;
+        vec4 low = albedo(u_palette == 1 ? 5 : 0, uv, uv_far), mid = albedo(u_palette == 1 ? 2 : 4, uv, uv_far);
+        vec4 steep = albedo(7, uv, uv_far);
+        float lowland = 1.0 - smoothstep(-0.4, 0.2, v_height / max(u_max_height, 1e-6));
+        vec3 c0 = blend2(mid, low, lowland);
+        base = blend2(vec4(c0, 0.5), steep, smoothstep(0.5, 1.0, slope));
+        if (u_palette == 2) base *= vec3(1.15, 0.78, 0.58); // iron-red dust
+        else base = vec3(dot(base, vec3(0.3, 0.5, 0.2))) * 0.9; // grey regolith
+    }
+    vec3 c = base * (ambient + u_sun_colour * diffuse);
+    if (u_view_mode == 0 && v_depth > 0.0) { // the sea
+        vec3 to_eye = -view_dir;
+        float fresnel = 0.02 + 0.98 * pow(1.0 - max(dot(up, to_eye), 0.0), 5.0);
+        vec3 deep = mix(vec3(0.03, 0.16, 0.22), vec3(0.01, 0.05, 0.10),
+                        clamp(v_depth / max(u_max_height * 0.3, 1e-3), 0.0, 1.0));
+        vec3 t;
+        vec3 sky = atmosphere(reflect(view_dir, up), 1e30, t) + vec3(0.02, 0.03, 0.05) * day;
+        c = mix(deep * (0.3 + 0.7 * day), sky, fresnel);
+        vec3 h = normalize(u_sun_dir + to_eye);
+        c += u_sun_colour * pow(max(dot(up, h), 0.0), 800.0) * 0.8 * day;
+    }
+    if (u_view_mode == 0) { // the air between the camera and the ground
+        vec3 transmittance;
+        vec3 air = atmosphere(view_dir, dist, transmittance);
+        c = c * transmittance + air * 0.6; // the sky's light, less bright over ground
+        c = 1.0 - exp(-c * 1.8); // exposure (the sky uses the same curve)
+    }
+    o_colour = vec4(c, 1.0);
+}

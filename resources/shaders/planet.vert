@@ -1,0 +1,26 @@
+#version 450 core
+// A planet chunk: vertices relative to the chunk's origin, placed relative to the
+// camera by u_offset (computed in double on the CPU). Ground below the sea is raised
+// to the sea's surface (seed 004's ocean), keeping its depth for the water's colour.
+layout(location = 0) in vec3 a_pos;
+layout(location = 1) in vec3 a_normal;
+layout(location = 2) in vec3 a_up;
+layout(location = 3) in float a_height;
+layout(location = 4) in vec2 a_metres;
+uniform mat4 u_view_proj;
+uniform vec3 u_offset;
+uniform float u_ocean_h; // the sea's height above the datum
+out vec3 v_rel, v_normal, v_up;
+out float v_height, v_depth;
+out vec2 v_metres;
+void main() {
+    vec3 rel = a_pos + u_offset;
+    v_depth = u_ocean_h - a_height;
+    if (v_depth > 0.0) rel += a_up * v_depth;
+    v_rel = rel;
+    v_normal = a_normal;
+    v_up = a_up;
+    v_height = a_height;
+    v_metres = a_metres;
+    gl_Position = u_view_proj * vec4(rel, 1.0);
+}

@@ -1,0 +1,110 @@
+#!/usr/bin/env bash
+# End-to-end: planets in the viewport, offscreen in batch mode (headless EGL). An
+# Earth-radius planet at 1 m spacing from orbit, from 10 km up and from 2 m above the
+# ground against golden images (RMSE tolerance, as e2e_render); a descent from
+# 40,000 km to 2 m where each small step of the camera changes the picture only a
+# little (no precision jitter); an edit shows and its undo restores the picture; the
+# seed-004 planet and the airless preset render; bad camera input fails clearly.
+# Usage: e2e_planet_render.sh OROGEN TESTS_DIR
+# Regenerate the goldens after a deliberate change: tests/golden_update.sh
+set -u
+orogen=$1
+tests=$2
+golden="$tests/data/golden"
+rmse_tool="$(dirname "$orogen")/image_rmse"
+work=$(mktemp -d "${TMPDIR:-/tmp}/orogen-planet-render-XXXXXX")
+failed_dir="${TMPDIR:-/tmp}/orogen-render-failures"
+failures=0
+passes=0
+check() { if [ "$2" = 0 ]; then passes=$((passes + 1)); else echo "FAIL: $1"; failures=$((failures + 1)); fi; }
+trap 'rm -rf "$work"' EXIT
+[ -x "$rmse_tool" ] || { echo "FAIL: $rmse_tool is missing (it is built with orogen)"; exit 1; }
+if [ -n "${ASAN_OPTIONS:-}" ]; then export ASAN_OPTIONS="$ASAN_OPTIONS:detect_leaks=0"; fi
+
+run() { "$orogen" -c "$1" >"$work/out" 2>"$work/err"; }
+rmse() { "$rmse_tool" "$1" "$2" | sed -n 's/^rmse=//p'; }
+less() {
+    awk -v a="$1" -v b="$2" 'BEGIN { n = "^[-+]?[0-9.]+([eE][-+]?[0-9]+)?$"
+                                     exit !(a ~ n && b ~ n && a + 0 < b + 0) }'
+}
+size="320 180"
+earth="new planet; spacing 1; generate"
+# A land spot of that planet (ground ~1700 m above the datum).
+spot="40 -30"
+
+# --- goldens ---------------------------------------------------------------------
+run "$earth; camera_geo $spot 15000000; screenshot $work/planet_orbit.png $size;
+     camera_geo $spot 10000 0 -15 ground; screenshot $work/planet_10km.png $size;
+     camera_geo $spot 2 0 -5 ground; screenshot $work/planet_2m.png $size;
+     camera_geo $spot 15000000; view wireframe; screenshot $work/planet_wire.png $size"
+check "Earth-radius planet renders from orbit, 10 km and 2 m ($(cat "$work/err"))" $?
+run "load $tests/data/params/seed004.planet; screenshot $work/planet_seed004.png $size"
+check "the seed-004 planet renders ($(cat "$work/err"))" $?
+run "new planet preset=moon; screenshot $work/planet_moon.png $size"
+check "the moon preset renders ($(cat "$work/err"))" $?
+max_golden=2.0
+mkdir -p "$failed_dir"
+for name in planet_orbit planet_10km planet_2m planet_wire planet_seed004 planet_moon; do
+    if [ -n "${OROGEN_UPDATE_GOLDEN:-}" ]; then
+        mkdir -p "$golden" && cp "$work/$name.png" "$golden/$name.png"
+        echo "updated $golden/$name.png"
+        continue
+    fi
+    if [ ! -f "$golden/$name.png" ]; then
+        check "golden $name.png exists (OROGEN_UPDATE_GOLDEN=1 makes it)" 1
+        continue
+    fi
+    "$rmse_tool" "$golden/$name.png" "$work/$name.png" --max $max_golden \
+        --diff "$failed_dir/$name-diff.png" >"$work/rmse" 2>&1
+    status=$?
+    if [ $status != 0 ]; then
+        cp "$golden/$name.png" "$failed_dir/$name-golden.png" && cp "$work/$name.png" "$failed_dir/$name-got.png"
+    fi
+    check "$name matches its golden within RMSE $max_golden ($(cat "$work/rmse"); on failure see $failed_dir)" $status
+done
+# Not blank: the planet from orbit differs from black space, the ground from the sky.
+black=$(rmse "$work/planet_orbit.png" "$work/planet_wire.png")
+less 1 "$black"; check "the shaded and wireframe orbit views differ (rmse $black)" $?
+
+# --- a descent: every small step of the camera moves the picture only a little ------
+# Altitudes above the ground from 40,000 km to 2 m; at each, a second frame 0.1% lower.
+# In single precision at Earth's radius (0.5 m steps) the 2 m views would jump.
+cmds="$earth"
+alts="40000000 4000000 400000 40000 4000 400 40 2"
+for a in $alts; do
+    b=$(awk -v a="$a" 'BEGIN { printf "%.6f", a * 0.999 }')
+    cmds="$cmds; camera_geo $spot $a 0 -20 ground; screenshot $work/d_$a.png $size"
+    cmds="$cmds; camera_geo $spot $b 0 -20 ground; screenshot $work/e_$a.png $size"
+done
+run "$cmds"
+check "the descent renders ($(cat "$work/err"))" $?
+for a in $alts; do
+    r=$(rmse "$work/d_$a.png" "$work/e_$a.png")
+    less "$r" 3.0; check "a 0.1% step at ${a} m changes the frame by rmse $r < 3" $?
+done
+# And the frames differ from one altitude to the next (the camera did move).
+r=$(rmse "$work/d_40.png" "$work/d_2.png")
+less 1 "$r"; check "40 m and 2 m views differ (rmse $r)" $?
+
+# --- an edit shows, its undo restores the picture ----------------------------------
+# Face 4 (+Z) centre is latitude 0, longitude 0; face-local metres of its centre.
+centre=5004750
+run "new planet; camera_geo 0 0 30000 0 -70 ground; screenshot $work/edit0.png $size;
+     tool raise radius=6000 amount=3000 strength=1 face=4; dab $centre $centre;
+     screenshot $work/edit1.png $size; undo; screenshot $work/edit2.png $size"
+check "edit on a planet face, then undo ($(cat "$work/err"))" $?
+r1=$(rmse "$work/edit0.png" "$work/edit1.png")
+r2=$(rmse "$work/edit0.png" "$work/edit2.png")
+less 1 "$r1"; check "the dab shows in the view (rmse $r1)" $?
+less "$r2" 0.3; check "undo restores the view (rmse $r2)" $?
+
+# --- bad input ---------------------------------------------------------------------
+run "new planet; camera_geo 91 0 100"
+grep -q "LAT: expected degrees in \[-90, 90\]" "$work/err"; check "latitude over 90 refused" $?
+run "camera_geo 10 10 100"
+grep -q "camera_geo: planets only" "$work/err"; check "camera_geo on a flat world refused" $?
+run "new planet; camera_geo 10 10 nan"
+grep -q "ALT" "$work/err"; check "NaN altitude refused" $?
+
+echo "$passes passed, $failures failed"
+[ "$failures" = 0 ]
