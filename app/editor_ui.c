@@ -824,7 +824,13 @@ static void world_panel(editor_ui *e, ui_context *ui, cmd_context *ctx) {
         param_slider(e, ui, ctx, "Octaves", "octaves", next->octaves, 1, 16, "%.1f");
     }
     if (next->kind == WORLD_PLANET) { // a radius there (seed 004)
-        param_slider(e, ui, ctx, "Radius", "radius", next->radius, 1000, 1e7, "%.0f m");
+        // The sea keeps its height above the datum when the radius changes (ocean_level
+        // is a radius on planets): both commands run, both are echoed.
+        double radius = next->radius;
+        if (ui_slider(ui, "Radius", &radius, 1000, 1e7, "%.0f m"))
+            runf(e, ctx, "set radius %.6g; set ocean_level %.9g", radius,
+                 next->ocean_level + (radius - next->radius));
+        ui_tooltip(ui, world_params_key_help("radius"));
         param_slider(e, ui, ctx, "Sea radius", "ocean_level", next->ocean_level,
                      next->radius - next->max_height, next->radius + next->max_height, "%.0f m");
         param_slider(e, ui, ctx, "Atmosphere", "atmosphere", next->atmosphere, 0, 3, "%.2f");

@@ -1769,7 +1769,8 @@ static void test_planet_face_edit(void **state) {
     (void)state;
     world_params p;
     world_params_default(&p, WORLD_PLANET);
-    p.radius = 20000; // a face of 314 cells at 100 m: 2 x 2 tiles
+    p.radius = 20000;         // a face of 314 cells at 100 m: 2 x 2 tiles
+    p.ocean_level = p.radius; // a radius on planets: the sea at the datum
     p.octaves = 5;
     world *w = open_world(&p);
     int64_t n = world_grid_face_samples(&p);

@@ -1,0 +1,196 @@
+// Planet viewport benchmarks, offscreen on one headless context, an Earth-radius
+// planet at 1 m coarse spacing (the case), 640 x 360:
+//  1. frame cost (update + draw + glFinish, median of settled frames) and triangles
+//     from orbit (15,000 km), 10 km and 2 m above the ground (goal: the three within
+//     1.5x of each other);
+//  2. chunk vertices uploaded per frame during a descent from 40,000 km to 2 m at a
+//     constant rate of altitude change (a factor 0.97 a frame, 60 frames a second of
+//     simulated time), tiles resident afterwards;
+//  3. CPU per frame (update + draw submission) against a flat unbounded world at the
+//     same altitudes above its ground (10 km and 2 m).
+// Goals are reported (PASS/MISS), not asserted.
+#include "bench/bench_timing.h"
+
+#include "editor/world/world.h"
+#include "io/tile_cache.h"
+#include "renderer/camera.h"
+#include "renderer/gl_context.h"
+#include "renderer/gl_target.h"
+#include "renderer/planet_camera.h"
+#include "renderer/terrain_renderer.h"
+
+#include <epoxy/gl.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <time.h>
+
+#define WIDTH 640
+#define HEIGHT 360
+#define FRAMES 7
+
+static void check(int rc, const og_error *err, const char *what) {
+    if (rc == 0) return;
+    fprintf(stderr, "bench_planet_render: %s: %s\n", what, err->msg);
+    exit(1);
+}
+
+static void quiet(void *u, const char *m) {
+    (void)u, (void)m;
+}
+
+typedef struct bench {
+    terrain_renderer *r;
+    gl_target target;
+} bench;
+
+static void settle(bench *b, world *w, const camera *c, const render_settings *s) {
+    og_error err;
+    double t0 = bench_now();
+    for (;;) {
+        int rc = terrain_renderer_update(b->r, w, c, s, &err);
+        check(rc < 0 ? -1 : 0, &err, "update");
+        if (rc == 1 && terrain_renderer_update(b->r, w, c, s, &err) == 1) return;
+        if (bench_now() - t0 > 600) {
+            fprintf(stderr, "bench_planet_render: tiles did not arrive\n");
+            exit(1);
+        }
+        struct timespec nap = {0, 2000000};
+        nanosleep(&nap, NULL);
+    }
+}
+
+typedef struct frame {
+    double wall_ms, cpu_ms;
+    render_stats st;
+} frame;
+
+static frame one_frame(bench *b, world *w, const camera *c, const render_settings *s) {
+    og_error err;
+    frame f;
+    double t0 = bench_now();
+    check(terrain_renderer_update(b->r, w, c, s, &err) < 0 ? -1 : 0, &err, "update");
+    render_stats up;
+    terrain_renderer_stats(b->r, &up);
+    glBindFramebuffer(GL_FRAMEBUFFER, b->target.fbo);
+    check(terrain_renderer_draw(b->r, w, c, s, NULL, WIDTH, HEIGHT, &err), &err, "draw");
+    terrain_renderer_stats(b->r, &f.st);
+    f.cpu_ms = up.cpu_ms + f.st.cpu_ms;
+    glFinish();
+    f.wall_ms = (bench_now() - t0) * 1e3;
+    return f;
+}
+
+// Settled frames at one camera: medians of wall and CPU time, the triangles.
+static frame settled(bench *b, world *w, const camera *c, const render_settings *s) {
+    settle(b, w, c, s);
+    double wall[FRAMES], cpu[FRAMES];
+    frame f = {0};
+    for (int i = 0; i < FRAMES; i++) {
+        f = one_frame(b, w, c, s);
+        wall[i] = f.wall_ms, cpu[i] = f.cpu_ms;
+    }
+    f.wall_ms = bench_median(wall, FRAMES);
+    f.cpu_ms = bench_median(cpu, FRAMES);
+    return f;
+}
+
+static camera geo(world *w, double lat, double lon, double above_ground, double pitch) {
+    const world_params *p = world_get_params(w);
+    camera c;
+    camera_default(&c);
+    planet_position(lat, lon, p->radius, c.pos);
+    double ground = 0;
+    og_error err;
+    check(planet_ground_height(w, c.pos, &ground, &err), &err, "ground");
+    planet_position(lat, lon, p->radius + ground + above_ground, c.pos);
+    c.pitch = pitch;
+    return c;
+}
+
+int main(void) {
+    og_error err;
+    bench b = {0};
+    gl_headless *ctx = gl_headless_create(&err);
+    if (!ctx) check(-1, &err, "headless GL");
+    check(gl_require_features(&err), &err, "GL features");
+    check(gl_target_create(&b.target, WIDTH, HEIGHT, &err), &err, "target");
+    b.r = terrain_renderer_create(OROGEN_RESOURCE_DIR, &err);
+    if (!b.r) check(-1, &err, "renderer");
+    terrain_renderer_set_view_size(b.r, WIDTH, HEIGHT);
+    world_settings ws = {.cache_budget_bytes = (size_t)2 << 30, .workers = 2, .warn = quiet};
+    world_params pp;
+    world_params_default(&pp, WORLD_PLANET);
+    pp.spacing = 1;
+    world *planet = world_create(&pp, &ws, &err);
+    if (!planet) check(-1, &err, "planet");
+    render_settings s;
+    render_settings_default(&s);
+    printf("bench_planet_render: %s, %dx%d, Earth radius at 1 m spacing\n",
+           (const char *)glGetString(GL_RENDERER), WIDTH, HEIGHT);
+
+    // 1. Three altitudes.
+    const double lat = 40, lon = -30;
+    const char *names[3] = {"orbit 15,000 km", "10 km", "2 m"};
+    camera cams[3] = {geo(planet, lat, lon, 15e6, -89.9), geo(planet, lat, lon, 1e4, -15),
+                      geo(planet, lat, lon, 2, -5)};
+    frame pf[3];
+    double lo = 1e30, hi = 0, tlo = 1e30, thi = 0;
+    for (int i = 0; i < 3; i++) {
+        pf[i] = settled(&b, planet, &cams[i], &s);
+        lo = fmin(lo, pf[i].wall_ms), hi = fmax(hi, pf[i].wall_ms);
+        tlo = fmin(tlo, (double)pf[i].st.triangles), thi = fmax(thi, (double)pf[i].st.triangles);
+        printf("  %-16s frame %7.1f ms (CPU %6.2f ms), %8llu triangles, %4d chunks\n", names[i],
+               pf[i].wall_ms, pf[i].cpu_ms, (unsigned long long)pf[i].st.triangles,
+               pf[i].st.levels_drawn);
+    }
+    printf("  frame cost spread %.2fx, triangles spread %.2fx (goal <= 1.5x: %s)\n", hi / lo,
+           thi / tlo, hi / lo <= 1.5 && thi / tlo <= 1.5 ? "PASS" : "MISS");
+
+    // 2. A descent: altitude x 0.97 a frame from 40,000 km to 2 m.
+    camera c = geo(planet, lat, lon, 4e7, -60);
+    double alt = 4e7;
+    uint64_t total = 0, most = 0;
+    int frames = 0;
+    double cpu[2048];
+    while (alt > 2 && frames < 2048) {
+        c = geo(planet, lat, lon, alt, alt > 1e5 ? -60 : -15);
+        frame f = one_frame(&b, planet, &c, &s);
+        total += f.st.texels_uploaded;
+        if (f.st.texels_uploaded > most) most = f.st.texels_uploaded;
+        cpu[frames++] = f.cpu_ms;
+        alt *= 0.97;
+    }
+    printf("descent 40,000 km -> 2 m in %d frames: %.0f chunk vertices uploaded a frame on "
+           "average (%.1f KiB), at most %llu; CPU median %.2f ms a frame\n",
+           frames, (double)total / frames, (double)total / frames * 48 / 1024.0,
+           (unsigned long long)most, bench_median(cpu, frames));
+
+    // 3. Against a flat unbounded world at the same heights above the ground.
+    world_params fp;
+    world_params_default(&fp, WORLD_FLAT);
+    fp.spacing = 1;
+    world *flat = world_create(&fp, &ws, &err);
+    if (!flat) check(-1, &err, "flat world");
+    const double heights[2] = {1e4, 2};
+    for (int i = 0; i < 2; i++) {
+        double ground = 0;
+        check(world_sample(flat, 0, 2000, 0, &ground, &err), &err, "sample");
+        camera fc;
+        camera_default(&fc);
+        fc.pos[0] = 2000, fc.pos[2] = 0, fc.pos[1] = ground + heights[i];
+        fc.pitch = i == 0 ? -15 : -5;
+        frame ff = settled(&b, flat, &fc, &s);
+        frame pl = pf[i + 1];
+        printf("  %-5s above the ground: planet CPU %.2f ms, wall %.1f ms; flat unbounded CPU "
+               "%.2f ms, wall %.1f ms: %.2fx the flat CPU\n",
+               i == 0 ? "10 km" : "2 m", pl.cpu_ms, pl.wall_ms, ff.cpu_ms, ff.wall_ms,
+               pl.cpu_ms / ff.cpu_ms);
+    }
+    world_close(flat);
+    world_close(planet);
+    terrain_renderer_destroy(b.r);
+    gl_target_destroy(&b.target);
+    gl_headless_destroy(ctx);
+    return 0;
+}
