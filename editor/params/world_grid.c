@@ -42,22 +42,47 @@ void world_grid_face_direction_warped(int face, double a, double b, double dir[3
         dir[k] = v[k] / len;
 }
 
-void world_grid_direction_face(const double dir[3], int *face, double *s, double *t) {
-    const double x = dir[0], y = dir[1], z = dir[2];
-    const double ax = fabs(x), ay = fabs(y), az = fabs(z);
+int world_grid_face_coords_on(int face, const double dir[3], double *s, double *t) {
+    static const double axes[6][3] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},
+                                      {0, -1, 0}, {0, 0, 1},  {0, 0, -1}};
+    const double *ax = axes[face < 0 || face > 5 ? 0 : face];
+    const double along = dir[0] * ax[0] + dir[1] * ax[1] + dir[2] * ax[2];
+    if (!(along > 1e-12)) return 0;
     double a, b; // the inverse of world_grid_face_direction_warped's axes
-    if (ax >= ay && ax >= az) {
-        *face = x >= 0 ? 0 : 1;
-        a = (x >= 0 ? -z : z) / ax, b = y / ax;
-    } else if (ay >= az) {
-        *face = y >= 0 ? 2 : 3;
-        a = x / ay, b = (y >= 0 ? -z : z) / ay;
-    } else {
-        *face = z >= 0 ? 4 : 5;
-        a = (z >= 0 ? x : -x) / az, b = y / az;
+    switch (face) {
+    case 0:
+        a = -dir[2] / along, b = dir[1] / along;
+        break;
+    case 1:
+        a = dir[2] / along, b = dir[1] / along;
+        break;
+    case 2:
+        a = dir[0] / along, b = -dir[2] / along;
+        break;
+    case 3:
+        a = dir[0] / along, b = dir[2] / along;
+        break;
+    case 4:
+        a = dir[0] / along, b = dir[1] / along;
+        break;
+    default:
+        a = -dir[0] / along, b = dir[1] / along;
+        break;
     }
     *s = atan(a) * (4.0 / M_PI);
     *t = atan(b) * (4.0 / M_PI);
+    return 1;
+}
+
+void world_grid_direction_face(const double dir[3], int *face, double *s, double *t) {
+    const double ax = fabs(dir[0]), ay = fabs(dir[1]), az = fabs(dir[2]);
+    if (ax >= ay && ax >= az)
+        *face = dir[0] >= 0 ? 0 : 1;
+    else if (ay >= az)
+        *face = dir[1] >= 0 ? 2 : 3;
+    else
+        *face = dir[2] >= 0 ? 4 : 5;
+    if (!world_grid_face_coords_on(*face, dir, s, t)) *s = *t = 0; // a zero vector
 }
 
 double world_grid_face_coord(const world_params *p, int level, int64_t i) {

@@ -28,6 +28,10 @@ void world_grid_face_direction_warped(int face, double a, double b, double dir[3
 // The inverse: the face a direction (any length > 0) passes through and its face-local
 // coordinates s, t in [-1, 1].
 void world_grid_direction_face(const double dir[3], int *face, double *s, double *t);
+// Face `face`'s coordinates of any direction on its side of the centre (past [-1, 1]
+// beyond its edges: the face's coordinates extend onto its neighbours). 0 when dir
+// points away from the face's axis.
+int world_grid_face_coords_on(int face, const double dir[3], double *s, double *t);
 
 // Face-local coordinate in [-1, 1] of the centre of level-L sample index i (any tile).
 double world_grid_face_coord(const world_params *p, int level, int64_t i);

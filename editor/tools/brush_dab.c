@@ -57,7 +57,33 @@ static double ramp_distance(const brush_dab *d, double x, double z, double *alon
     return sqrt(px * px + pz * pz);
 }
 
+static double face_coord(const brush_dab *d, double i) {
+    return (i * d->index_scale + 0.5) / (double)d->face_samples * 2.0 - 1.0;
+}
+
+void brush_dab_sample_direction(const brush_dab *d, double x, double z, double dir[3]) {
+    world_grid_face_direction_warped(d->face, tan(face_coord(d, x) * (M_PI / 4.0)),
+                                     tan(face_coord(d, z) * (M_PI / 4.0)), dir);
+}
+
+// Planets: weights by great-circle distance (the chord turned into the angle).
+static void sphere_weights(const brush_dab *d, int64_t z, int64_t x0, int64_t x1, float *w) {
+    const double tb = tan(face_coord(d, (double)z) * (M_PI / 4.0));
+    const double k = d->planet_radius / (d->radius * d->spacing); // radians to radii
+    const double *c = d->centre_dir;
+    for (int64_t x = x0; x < x1; x++) {
+        double dir[3];
+        world_grid_face_direction_warped(d->face, tan(face_coord(d, (double)x) * (M_PI / 4.0)), tb,
+                                         dir);
+        double dx = dir[0] - c[0], dy = dir[1] - c[1], dz = dir[2] - c[2];
+        double chord = sqrt(dx * dx + dy * dy + dz * dz);
+        double angle = 2.0 * asin(fmin(1.0, 0.5 * chord));
+        w[x - x0] = brush_falloff_weight(d->brush, (float)(angle * k)) * d->strength;
+    }
+}
+
 grid_rect brush_dab_rect(const brush_dab *d) {
+    if (d->sphere) return d->rect;
     double r = d->radius;
     if (is_ramp(d)) {
         return (grid_rect){
@@ -72,6 +98,10 @@ grid_rect brush_dab_rect(const brush_dab *d) {
 static void row_weights(const brush_dab *d, int64_t z, int64_t x0, int64_t x1, float *w) {
     const brush *b = d->brush;
     float inv_r = (float)(1.0 / d->radius);
+    if (d->sphere && !is_ramp(d)) {
+        sphere_weights(d, z, x0, x1, w);
+        return;
+    }
     if (is_ramp(d)) {
         for (int64_t x = x0; x < x1; x++) {
             double along;
@@ -139,7 +169,14 @@ static void height_row(const brush_dab *d, float *row, int64_t z, int64_t x0, in
         float a = (float)(b->invert ? -b->amount : b->amount);
         for (int64_t i = 0; i < n; i++) {
             if (w[i] <= 0.0f) continue;
-            float v = gen_fractal2(&f, (double)(x0 + i) * k, zz);
+            float v;
+            if (d->sphere) { // 3D on the sphere: the same pattern on every face
+                double dir[3], m = d->planet_radius / b->noise_scale;
+                brush_dab_sample_direction(d, (double)(x0 + i), (double)z, dir);
+                v = gen_fractal3(&f, dir[0] * m, dir[1] * m, dir[2] * m);
+            } else {
+                v = gen_fractal2(&f, (double)(x0 + i) * k, zz);
+            }
             row[i] = keep_finite(row[i] + w[i] * a * v, row[i]);
         }
         break;
@@ -413,20 +450,82 @@ int brush_dab_apply_array(const brush_dab *d, tile_layer layer, void *data, grid
 typedef struct world_source {
     world *w;
     const layer_grid *g;
+    const brush_dab *d;
 } world_source;
+
+// Planets: a sample past the face's edge reads the neighbouring face where its
+// direction lands (bilinear there), so neighbourhood tools see the surface go on.
+static int read_ghost(world_source *s, double x, double z, float *out, og_error *err) {
+    double dir[3], fs, ft;
+    int face;
+    brush_dab_sample_direction(s->d, x, z, dir);
+    world_grid_direction_face(dir, &face, &fs, &ft);
+    layer_grid g = *s->g;
+    g.face = face;
+    const double n = (double)s->d->face_samples, k = s->d->index_scale;
+    double u = ((fs + 1.0) * 0.5 * n - 0.5) / k, v = ((ft + 1.0) * 0.5 * n - 0.5) / k;
+    int64_t i = (int64_t)floor(u), j = (int64_t)floor(v);
+    float q[4];
+    if (layer_grid_read(s->w, &g, (grid_rect){i, j, i + 2, j + 2}, q, err) != 0) return -1;
+    double a = u - (double)i, b = v - (double)j;
+    *out = (float)((q[0] * (1 - a) + q[1] * a) * (1 - b) + (q[2] * (1 - a) + q[3] * a) * b);
+    return 0;
+}
 
 static int read_world(void *src, grid_rect r, float *out, og_error *err) {
     world_source *s = src;
-    return layer_grid_read(s->w, s->g, r, out, err);
+    if (layer_grid_read(s->w, s->g, r, out, err) != 0) return -1;
+    if (!s->d->sphere || s->g->extent <= 0) return 0;
+    const int64_t n = s->g->extent, w = r.x1 - r.x0;
+    for (int64_t z = r.z0; z < r.z1; z++)
+        for (int64_t x = r.x0; x < r.x1; x++)
+            if ((x < 0 || z < 0 || x >= n || z >= n) &&
+                read_ghost(s, (double)x, (double)z, &out[(z - r.z0) * w + (x - r.x0)], err) != 0)
+                return -1;
+    return 0;
+}
+
+struct brush_dab_job {
+    edit *e;
+    layer_grid g;
+    brush_dab d;
+    grid_rect r;
+    dab_rows rows;
+};
+
+int brush_dab_begin(edit *e, const layer_grid *g, const brush_dab *d, brush_dab_job **out,
+                    og_error *err) {
+    *out = NULL;
+    grid_rect r = layer_grid_clip(g, brush_dab_rect(d));
+    if (grid_rect_empty(r)) return 0;
+    brush_dab_job *j = calloc(1, sizeof *j);
+    if (!j) return og_error_set(err, "out of memory");
+    *j = (brush_dab_job){.e = e, .g = *g, .d = *d, .r = r};
+    world_source src = {edit_world(e), &j->g, &j->d};
+    if (prepare(&j->d, g->layer, r, read_world, &src, &j->rows, err) != 0) {
+        free(j);
+        return -1;
+    }
+    j->rows.d = &j->d;
+    *out = j;
+    return 0;
+}
+
+int brush_dab_finish(brush_dab_job *j, og_error *err) {
+    if (!j) return 0;
+    int rc = edit_rows_apply(j->e, &j->g, j->r, dab_row, dab_wanted, &j->rows, err);
+    brush_dab_discard(j);
+    return rc;
+}
+
+void brush_dab_discard(brush_dab_job *j) {
+    if (!j) return;
+    release(&j->rows);
+    free(j);
 }
 
 int brush_dab_apply(edit *e, const layer_grid *g, const brush_dab *d, og_error *err) {
-    grid_rect r = layer_grid_clip(g, brush_dab_rect(d));
-    if (grid_rect_empty(r)) return 0;
-    world_source src = {edit_world(e), g};
-    dab_rows rows;
-    if (prepare(d, g->layer, r, read_world, &src, &rows, err) != 0) return -1;
-    int rc = edit_rows_apply(e, g, r, dab_row, dab_wanted, &rows, err);
-    release(&rows);
-    return rc;
+    brush_dab_job *j;
+    if (brush_dab_begin(e, g, d, &j, err) != 0) return -1;
+    return brush_dab_finish(j, err);
 }

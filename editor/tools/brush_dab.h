@@ -7,6 +7,7 @@
 #include "editor/tools/brush.h"
 #include "editor/edit/edit.h"
 #include "editor/world/layer_grid.h"
+#include "editor/params/world_grid.h"
 
 typedef struct brush_dab {
     const brush *brush;
@@ -19,13 +20,38 @@ typedef struct brush_dab {
     double ax, az, bx, bz;
     float ha, hb;
     uint64_t seed; // hydraulic: this dab's droplets
+    // Planets (editor/tools/planet_dab.h): the dab measured on the sphere. A sample's
+    // weight comes from its great-circle distance to centre_dir, so a dab goes on over
+    // face edges and corners as over a continuous surface; noise is 3D; rect (the
+    // samples of this face the dab's cap covers) replaces the disc's rectangle.
+    int sphere;
+    int face;
+    int64_t face_samples; // coarse samples per face side
+    double index_scale;   // coarse samples per sample of the edited layer (1 / detail ratio)
+    double planet_radius; // metres to the datum
+    double centre_dir[3];
+    grid_rect rect;
 } brush_dab;
+
+// Planets: the unit direction of sample (x, z) of the dab's face (any index, past the
+// face's edges too: the face's coordinates extend beyond it).
+void brush_dab_sample_direction(const brush_dab *d, double x, double z, double dir[3]);
 
 // The samples a dab can change (before clipping to the world).
 grid_rect brush_dab_rect(const brush_dab *d);
 
 // Applies the dab to the world (edits the tiles of g's layer through e).
 int brush_dab_apply(edit *e, const layer_grid *g, const brush_dab *d, og_error *err);
+
+// The same in two steps, for a dab over several planet faces: begin reads what the
+// dab needs (and runs a neighbourhood tool on it), finish writes it and frees the job,
+// so no face reads samples another face's part has already changed. *job is NULL
+// when the dab misses g; discard drops a job unapplied.
+typedef struct brush_dab_job brush_dab_job;
+int brush_dab_begin(edit *e, const layer_grid *g, const brush_dab *d, brush_dab_job **job,
+                    og_error *err);
+int brush_dab_finish(brush_dab_job *job, og_error *err);
+void brush_dab_discard(brush_dab_job *job);
 
 // Applies the dab to a plain row-major array holding the samples of `area` (floats
 // for coarse/detail, TILE_MATERIALS bytes per sample for the material layer).

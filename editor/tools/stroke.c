@@ -1,6 +1,7 @@
 #include "editor/tools/stroke.h"
 
 #include "editor/tools/brush_dab.h"
+#include "editor/tools/planet_dab.h"
 #include "editor/tools/volume_brush.h"
 #include "editor/edit/edit.h"
 #include "editor/edit/edit_commit.h"
@@ -96,11 +97,26 @@ static int dab_at(stroke *s, double x, double z, double pressure, og_error *err)
         .seed = s->brush.hydraulic.seed + 0x9E3779B97F4A7C15ULL * (uint64_t)(s->dabs + 1),
     };
     s->dabs++;
+    const world_params *p = world_get_params(s->world);
+    if (p->kind == WORLD_PLANET) // on the sphere, over the face's edges
+        return planet_dab_apply(s->edit, p, s->grid.layer, s->grid.face, &d, err);
     return brush_dab_apply(s->edit, &s->grid, &d, err);
 }
 
 static int check_point(stroke *s, double x, double z, double pressure, og_error *err) {
-    if (layer_grid_check_position(&s->grid, x, z, err) != 0) return -1;
+    if (world_get_params(s->world)->kind == WORLD_PLANET) {
+        // A planet's face coordinates go on past its edges onto the neighbours: a stroke
+        // may cross them (up to half a face beyond).
+        double n = (double)s->grid.extent * s->grid.spacing;
+        if (!isfinite(x) || !isfinite(z) || x < -0.5 * n || z < -0.5 * n || x > 1.5 * n ||
+            z > 1.5 * n)
+            return og_error_set(err,
+                                "position (%g, %g) m lies too far past face %d (-%g to %g m: "
+                                "half a face beyond its edges)",
+                                x, z, s->grid.face, 0.5 * n, 1.5 * n);
+    } else if (layer_grid_check_position(&s->grid, x, z, err) != 0) {
+        return -1;
+    }
     if (!(pressure >= 0.0 && pressure <= 1.0))
         return og_error_set(err, "pressure: expected a number in [0, 1], got '%g'", pressure);
     return 0;

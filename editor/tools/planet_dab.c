@@ -1,0 +1,96 @@
+#include "editor/tools/planet_dab.h"
+
+#include "editor/world/layer_grid.h"
+
+#include <math.h>
+#include <string.h>
+
+static int64_t layer_ratio(const world_params *p, tile_layer layer) {
+    return layer == TILE_LAYER_DETAIL || layer == TILE_LAYER_DETAIL_PD ? p->detail_ratio : 1;
+}
+
+void planet_dab_prepare(brush_dab *d, const world_params *p, tile_layer layer, int face) {
+    d->sphere = 1;
+    d->face = face;
+    d->face_samples = world_grid_face_samples(p);
+    d->index_scale = 1.0 / (double)layer_ratio(p, layer);
+    d->planet_radius = p->radius;
+    brush_dab_sample_direction(d, d->cx, d->cz, d->centre_dir);
+}
+
+grid_rect planet_dab_face_rect(const brush_dab *d, int target, int64_t layer_samples) {
+    const double angle = d->radius * d->spacing / d->planet_radius;
+    const double *c = d->centre_dir;
+    // An orthonormal pair across the centre, to walk the cap's rim.
+    double u[3] = {0, 0, 0};
+    u[fabs(c[0]) < 0.6 ? 0 : fabs(c[1]) < 0.6 ? 1 : 2] = 1;
+    double dot = u[0] * c[0] + u[1] * c[1] + u[2] * c[2];
+    for (int k = 0; k < 3; k++)
+        u[k] -= dot * c[k];
+    double len = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    for (int k = 0; k < 3; k++)
+        u[k] /= len;
+    double v[3] = {c[1] * u[2] - c[2] * u[1], c[2] * u[0] - c[0] * u[2], c[0] * u[1] - c[1] * u[0]};
+    double smin = INFINITY, smax = -INFINITY, tmin = INFINITY, tmax = -INFINITY;
+    const int rim = 96;
+    for (int k = -1; k < rim; k++) { // the centre, then the rim
+        double p[3], s, t;
+        double ca = k < 0 ? 1.0 : cos(angle), sa = k < 0 ? 0.0 : sin(angle);
+        double phi = 2.0 * M_PI * k / rim;
+        for (int a = 0; a < 3; a++)
+            p[a] = ca * c[a] + sa * (cos(phi) * u[a] + sin(phi) * v[a]);
+        if (!world_grid_face_coords_on(target, p, &s, &t)) continue;
+        smin = fmin(smin, s), smax = fmax(smax, s), tmin = fmin(tmin, t), tmax = fmax(tmax, t);
+    }
+    grid_rect none = {0, 0, 0, 0};
+    if (!(smin <= smax) || smax < -1.0 || smin > 1.0 || tmax < -1.0 || tmin > 1.0) return none;
+    // Sample index of a face coordinate (sample i's centre sits at (i k + 0.5) / n x 2 - 1),
+    // a sample's margin for the rim between the walked points.
+    const double n = (double)d->face_samples, k = d->index_scale;
+    int64_t x0 = (int64_t)floor(((smin + 1.0) * 0.5 * n - 0.5) / k) - 1;
+    int64_t x1 = (int64_t)ceil(((smax + 1.0) * 0.5 * n - 0.5) / k) + 2;
+    int64_t z0 = (int64_t)floor(((tmin + 1.0) * 0.5 * n - 0.5) / k) - 1;
+    int64_t z1 = (int64_t)ceil(((tmax + 1.0) * 0.5 * n - 0.5) / k) + 2;
+    grid_rect r = {x0 < 0 ? 0 : x0, z0 < 0 ? 0 : z0, x1 > layer_samples ? layer_samples : x1,
+                   z1 > layer_samples ? layer_samples : z1};
+    return grid_rect_empty(r) ? none : r;
+}
+
+int planet_dab_apply(edit *e, const world_params *p, tile_layer layer, int face, const brush_dab *d,
+                     og_error *err) {
+    brush_dab base = *d;
+    planet_dab_prepare(&base, p, layer, face);
+    if (d->radius * d->spacing / p->radius > PLANET_DAB_MAX_ANGLE)
+        return og_error_set(err,
+                            "radius: %g m is more than 1/16 of this planet's circumference; a "
+                            "dab may reach at most %g m",
+                            d->radius * d->spacing, PLANET_DAB_MAX_ANGLE * p->radius);
+    brush_dab_job *jobs[6] = {0};
+    int rc = 0;
+    for (int g = 0; g < 6 && rc == 0; g++) {
+        layer_grid grid;
+        if (layer_grid_init(&grid, p, layer, g, err) != 0) {
+            rc = -1;
+            break;
+        }
+        brush_dab fd = base;
+        fd.face = g;
+        fd.rect = planet_dab_face_rect(&base, g, grid.extent);
+        if (grid_rect_empty(fd.rect)) continue;
+        // The centre in this face's own (extended) samples, for tools that use it.
+        double s, t;
+        int64_t ratio = layer_ratio(p, layer);
+        if (world_grid_face_coords_on(g, base.centre_dir, &s, &t)) {
+            fd.cx = ((s + 1.0) * 0.5 * (double)base.face_samples - 0.5) * (double)ratio;
+            fd.cz = ((t + 1.0) * 0.5 * (double)base.face_samples - 0.5) * (double)ratio;
+        }
+        rc = brush_dab_begin(e, &grid, &fd, &jobs[g], err);
+    }
+    // Every face read before any is written.
+    for (int g = 0; g < 6; g++)
+        if (rc == 0)
+            rc = brush_dab_finish(jobs[g], err);
+        else
+            brush_dab_discard(jobs[g]);
+    return rc;
+}

@@ -1,0 +1,315 @@
+// Editing a planet across its cube faces: a dab at a face's edge and at a corner where
+// three faces meet changes every face its cap reaches exactly as the same operation
+// evaluated on the sphere directly (each sample's great-circle distance to the dab's
+// centre through the falloff), for every pointwise tool; the neighbourhood tools
+// (smooth, erosion) reach over the edge too; one undo restores all faces; the change
+// notifications name each face.
+#include "editor/edit/edit.h"
+#include "editor/gen/gen_noise.h"
+#include "editor/params/world_grid.h"
+#include "editor/tools/brush.h"
+#include "editor/tools/stroke.h"
+#include "editor/world/layer_grid.h"
+#include "editor/world/world.h"
+#include "editor/world/world_events.h"
+
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <cmocka.h>
+
+#define N 512         // samples per face side (radius 20 km at 100 m: 2 x 2 tiles)
+#define SPACING 100.0 // metres per sample (face-local)
+#define RADIUS 20000.0
+
+static void silent(void *u, const char *m) {
+    (void)u, (void)m;
+}
+
+static world *planet(void) {
+    world_params p;
+    world_params_default(&p, WORLD_PLANET);
+    p.radius = RADIUS;
+    p.ocean_level = RADIUS;
+    p.octaves = 5;
+    world_settings s = {.cache_budget_bytes = (size_t)256 << 20, .workers = 2, .warn = silent};
+    og_error err;
+    world *w = world_create(&p, &s, &err);
+    if (!w) fail_msg("world_create: %s", err.msg);
+    assert_int_equal(world_grid_face_samples(&p), N);
+    return w;
+}
+
+// All six faces' coarse heights.
+static float *read_faces(world *w) {
+    float *h = malloc(sizeof(float) * 6 * N * N);
+    og_error err;
+    for (int f = 0; f < 6; f++) {
+        layer_grid g;
+        assert_int_equal(layer_grid_init(&g, world_get_params(w), TILE_LAYER_COARSE, f, &err), 0);
+        assert_int_equal(
+            layer_grid_read(w, &g, (grid_rect){0, 0, N, N}, h + (size_t)f * N * N, &err), 0);
+    }
+    return h;
+}
+
+static void direction(int face, double i, double j, double d[3]) {
+    world_grid_face_direction(face, (i + 0.5) / N * 2.0 - 1.0, (j + 0.5) / N * 2.0 - 1.0, d);
+}
+
+static double angle_between(const double a[3], const double b[3]) {
+    double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
+    return 2.0 * asin(fmin(1.0, 0.5 * sqrt(dx * dx + dy * dy + dz * dz)));
+}
+
+static void one_dab(world *w, const brush *b, double x, double z) {
+    og_error err;
+    stroke *s = stroke_begin(w, b, &err);
+    if (!s) fail_msg("stroke_begin: %s", err.msg);
+    if (stroke_to(s, x, z, 1.0, &err) != 0) fail_msg("stroke_to: %s", err.msg);
+    if (stroke_end(s, &err) != 0) fail_msg("stroke_end: %s", err.msg);
+}
+
+static double terrace_of(const brush *b, double h) {
+    double step = b->terrace_step, k = floor(h / step), f = h / step - k;
+    double p = 1.0 + 15.0 * b->terrace_sharpness * b->terrace_sharpness;
+    return (k + pow(f, p)) * step;
+}
+
+// The operation on the sphere: what sample h at direction d becomes.
+static double reference(const brush *b, const double centre[3], const double d[3], double h) {
+    double t = angle_between(d, centre) * RADIUS / b->radius;
+    double w = brush_falloff_weight(b, (float)t) * b->strength;
+    if (w <= 0) return h;
+    switch (b->tool) {
+    case BRUSH_RAISE:
+        return h + w * (b->invert ? -b->amount : b->amount);
+    case BRUSH_SET:
+    case BRUSH_FLATTEN:
+        return h + w * (b->height - h);
+    case BRUSH_TERRACE:
+        return h + w * (terrace_of(b, h) - h);
+    case BRUSH_NOISE: {
+        gen_fractal f = {GEN_FRACTAL_FBM, b->seed, b->noise_octaves, 0.5, 2.0, 1.0};
+        double m = RADIUS / b->noise_scale;
+        return h + w * b->amount * gen_fractal3(&f, d[0] * m, d[1] * m, d[2] * m);
+    }
+    default:
+        return h;
+    }
+}
+
+typedef struct place {
+    const char *name;
+    double x, z; // face 4's face-local metres: on its +s edge, and at its (+s, +t) corner
+    int faces;   // faces the cap must reach
+} place;
+
+static const place PLACES[2] = {{"edge", (N - 0.5) * SPACING, 0.5 * N *SPACING, 2},
+                                {"corner", (N - 0.5) * SPACING, (N - 0.5) * SPACING, 3}};
+
+static void check_tool(brush_tool tool, const char *key, const char *value) {
+    for (int k = 0; k < 2; k++) {
+        world *w = planet();
+        brush b;
+        brush_defaults(&b, tool);
+        og_error err;
+        assert_int_equal(brush_set(&b, "face", "4", &err), 0);
+        if (key) assert_int_equal(brush_set(&b, key, value, &err), 0);
+        b.radius = 2500; // 25 samples
+        b.strength = 0.8;
+        if (tool == BRUSH_RAISE || tool == BRUSH_NOISE) b.amount = 40;
+        float *before = read_faces(w);
+        one_dab(w, &b, PLACES[k].x, PLACES[k].z);
+        float *after = read_faces(w);
+        double centre[3];
+        direction(4, PLACES[k].x / SPACING, PLACES[k].z / SPACING, centre);
+        double worst = 0;
+        int touched[6] = {0};
+        for (int f = 0; f < 6; f++)
+            for (int j = 0; j < N; j++)
+                for (int i = 0; i < N; i++) {
+                    double d[3];
+                    direction(f, i, j, d);
+                    size_t at = (size_t)f * N * N + (size_t)j * N + i;
+                    double want = reference(&b, centre, d, before[at]);
+                    worst = fmax(worst, fabs(want - after[at]));
+                    if (after[at] != before[at]) touched[f] = 1;
+                }
+        int faces = 0;
+        for (int f = 0; f < 6; f++)
+            faces += touched[f];
+        print_message("%s at the %s: %d faces changed, largest difference from the sphere "
+                      "reference %.3g m\n",
+                      brush_tool_name(tool), PLACES[k].name, faces, worst);
+        assert_int_equal(faces, PLACES[k].faces);
+        assert_true(worst < 2e-3); // float heights of a few hundred metres
+        free(before);
+        free(after);
+        world_close(w);
+    }
+}
+
+static void test_raise(void **state) {
+    (void)state;
+    check_tool(BRUSH_RAISE, NULL, NULL);
+}
+
+static void test_lower(void **state) {
+    (void)state;
+    check_tool(BRUSH_RAISE, "invert", "1");
+}
+
+static void test_set(void **state) {
+    (void)state;
+    check_tool(BRUSH_SET, "height", "150");
+}
+
+static void test_flatten(void **state) {
+    (void)state;
+    check_tool(BRUSH_FLATTEN, "height", "-75");
+}
+
+static void test_terrace(void **state) {
+    (void)state;
+    check_tool(BRUSH_TERRACE, "step", "40");
+}
+
+static void test_noise(void **state) {
+    (void)state;
+    check_tool(BRUSH_NOISE, "scale", "300");
+}
+
+// Smoothing and erosion have no closed form to compare with, but they must reach over
+// the edge: a dab at the corner changes all three faces, and the seam stays continuous
+// (the samples either side of an edge move by about the same amount).
+static void test_neighbourhood_tools_cross(void **state) {
+    (void)state;
+    const brush_tool tools[3] = {BRUSH_SMOOTH, BRUSH_THERMAL, BRUSH_HYDRAULIC};
+    for (int k = 0; k < 3; k++) {
+        world *w = planet();
+        brush b;
+        brush_defaults(&b, tools[k]);
+        og_error err;
+        assert_int_equal(brush_set(&b, "face", "4", &err), 0);
+        b.radius = 2500;
+        b.strength = 1;
+        brush bump; // a steep hill on the corner first, for them to work on
+        brush_defaults(&bump, BRUSH_RAISE);
+        assert_int_equal(brush_set(&bump, "face", "4", &err), 0);
+        bump.radius = 1800;
+        bump.amount = 1500;
+        bump.strength = 1;
+        one_dab(w, &bump, PLACES[1].x, PLACES[1].z);
+        float *before = read_faces(w);
+        one_dab(w, &b, PLACES[1].x, PLACES[1].z);
+        float *after = read_faces(w);
+        int touched[6] = {0};
+        for (size_t at = 0; at < (size_t)6 * N * N; at++)
+            if (after[at] != before[at]) touched[at / ((size_t)N * N)] = 1;
+        print_message("%s at the corner: faces 0 %d, 2 %d, 4 %d changed\n",
+                      brush_tool_name(tools[k]), touched[0], touched[2], touched[4]);
+        assert_true(touched[4] && touched[0] && touched[2]);
+        assert_false(touched[1] || touched[3] || touched[5]);
+        // The seam between faces 4 and 0 (face 4's last column meets face 0's first,
+        // row for row): the change either side of it differs by no more than it does
+        // between two neighbouring samples inside face 4.
+        double seam = 0, inside = 0;
+        for (int j = N - 60; j < N; j++) {
+            size_t a = (size_t)4 * N * N + (size_t)j * N + (N - 1), c = (size_t)j * N;
+            double d4 = after[a] - before[a], d0 = after[c] - before[c];
+            double d4b = after[a - 1] - before[a - 1];
+            seam = fmax(seam, fabs(d4 - d0));
+            inside = fmax(inside, fabs(d4 - d4b));
+        }
+        print_message("  seam step %.3g m, step inside the face %.3g m\n", seam, inside);
+        if (tools[k] == BRUSH_SMOOTH) assert_true(seam <= 2.0 * inside + 1e-3);
+        free(before);
+        free(after);
+        world_close(w);
+    }
+}
+
+// One undo step over three faces, and a change notification for each.
+static void test_undo_and_notifications(void **state) {
+    (void)state;
+    world *w = planet();
+    world_subscription *sub = world_events_subscribe(world_event_hub(w), NULL, NULL);
+    brush b;
+    brush_defaults(&b, BRUSH_RAISE);
+    og_error err;
+    assert_int_equal(brush_set(&b, "face", "4", &err), 0);
+    b.radius = 2500;
+    b.amount = 30;
+    float *before = read_faces(w);
+    world_event e[64];
+    while (world_subscription_take(sub, e, 64) > 0) {
+    }
+    one_dab(w, &b, PLACES[1].x, PLACES[1].z);
+    int seen[6] = {0};
+    size_t n;
+    while ((n = world_subscription_take(sub, e, 64)) > 0)
+        for (size_t i = 0; i < n; i++)
+            if (e[i].kind == WORLD_EVENT_AREA && e[i].layer == TILE_LAYER_COARSE && e[i].level == 0)
+                seen[e[i].face] = 1;
+    assert_true(seen[0] && seen[2] && seen[4]);
+    assert_false(seen[1] || seen[3] || seen[5]);
+    assert_int_equal(edit_undo(w, &err), 1);
+    float *undone = read_faces(w);
+    assert_memory_equal(before, undone, sizeof(float) * 6 * N * N);
+    free(before);
+    free(undone);
+    world_events_unsubscribe(sub);
+    world_close(w);
+}
+
+// A stroke may run over the edge (positions past the face are its neighbours').
+static void test_stroke_over_the_edge(void **state) {
+    (void)state;
+    world *w = planet();
+    brush b;
+    brush_defaults(&b, BRUSH_RAISE);
+    og_error err;
+    assert_int_equal(brush_set(&b, "face", "4", &err), 0);
+    b.radius = 1500;
+    b.amount = 25;
+    float *before = read_faces(w);
+    stroke *s = stroke_begin(w, &b, &err);
+    assert_non_null(s);
+    assert_int_equal(stroke_to(s, (N - 40) * SPACING, 0.5 * N * SPACING, 1.0, &err), 0);
+    assert_int_equal(stroke_to(s, (N + 40) * SPACING, 0.5 * N * SPACING, 1.0, &err), 0);
+    assert_int_equal(stroke_end(s, &err), 0);
+    float *after = read_faces(w);
+    // 30 samples into face 0 (its x runs away from face 4's +s edge), mid height: raised.
+    size_t at = (size_t)0 * N * N + (size_t)(N / 2) * N + 30;
+    print_message("30 samples into face 0: %.2f -> %.2f m\n", before[at], after[at]);
+    assert_true(after[at] - before[at] > 10);
+    // Too far past the face is refused by name.
+    s = stroke_begin(w, &b, &err);
+    assert_non_null(s);
+    assert_int_equal(stroke_to(s, 2.0 * N * SPACING, 0, 1.0, &err), -1);
+    assert_non_null(strstr(err.msg, "too far past face 4"));
+    stroke_cancel(s);
+    free(before);
+    free(after);
+    world_close(w);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_raise),
+        cmocka_unit_test(test_lower),
+        cmocka_unit_test(test_set),
+        cmocka_unit_test(test_flatten),
+        cmocka_unit_test(test_terrace),
+        cmocka_unit_test(test_noise),
+        cmocka_unit_test(test_neighbourhood_tools_cross),
+        cmocka_unit_test(test_undo_and_notifications),
+        cmocka_unit_test(test_stroke_over_the_edge),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
