@@ -8,6 +8,8 @@
 #include "editor/gen/gen_noise.h"
 #include "editor/params/world_grid.h"
 #include "editor/tools/brush.h"
+#include "editor/tools/stamp.h"
+#include "editor/tools/stamp_shapes.h"
 #include "editor/tools/stroke.h"
 #include "editor/world/layer_grid.h"
 #include "editor/world/world.h"
@@ -299,6 +301,53 @@ static void test_stroke_over_the_edge(void **state) {
     world_close(w);
 }
 
+// A stamp over the corner: laid on the sphere around its centre (metres along great
+// circles), so inside its inscribed circle a radial shape is the sphere reference.
+static void test_stamp_over_the_corner(void **state) {
+    (void)state;
+    world *w = planet();
+    stamp_source src;
+    og_error err;
+    assert_int_equal(stamp_find("gaussian", OROGEN_RESOURCE_DIR, NULL, &src, &err), 0);
+    stamp_placement p;
+    stamp_placement_defaults(&p);
+    p.x = PLACES[1].x, p.z = PLACES[1].z, p.face = 4, p.scale = 0.5, p.intensity = 60;
+    float *before = read_faces(w);
+    if (stamp_apply(w, &src, &p, &err) != 0) fail_msg("stamp_apply: %s", err.msg);
+    float *after = read_faces(w);
+    const double half = 0.5 * STAMP_FUNCTIONAL_SAMPLES * p.scale * SPACING;
+    double centre[3], worst = 0;
+    direction(4, PLACES[1].x / SPACING, PLACES[1].z / SPACING, centre);
+    int touched[6] = {0}, checked = 0;
+    for (int f = 0; f < 6; f++)
+        for (int j = 0; j < N; j++)
+            for (int i = 0; i < N; i++) {
+                size_t at = (size_t)f * N * N + (size_t)j * N + i;
+                if (after[at] != before[at]) touched[f] = 1;
+                double d[3];
+                direction(f, i, j, d);
+                double u = angle_between(d, centre) * RADIUS / half;
+                if (u >= 0.98) continue; // the square's corners: not radial
+                double want = before[at] + p.intensity * stamp_shape_value(src.shape, (float)u, 0);
+                worst = fmax(worst, fabs(want - after[at]));
+                checked++;
+            }
+    print_message("stamp at the corner: faces 0 %d, 2 %d, 4 %d; %d samples inside its circle, "
+                  "largest difference from the sphere reference %.3g m\n",
+                  touched[0], touched[2], touched[4], checked, worst);
+    assert_true(touched[0] && touched[2] && touched[4]);
+    assert_true(checked > 1000);
+    assert_true(worst < 1e-3);
+    assert_int_equal(edit_undo(w, &err), 1);
+    float *undone = read_faces(w);
+    assert_memory_equal(before, undone, sizeof(float) * 6 * N * N);
+    free(before);
+    free(after);
+    free(undone);
+    stamp_source_free(&src);
+    world_close(w);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_raise),
@@ -310,6 +359,7 @@ int main(void) {
         cmocka_unit_test(test_neighbourhood_tools_cross),
         cmocka_unit_test(test_undo_and_notifications),
         cmocka_unit_test(test_stroke_over_the_edge),
+        cmocka_unit_test(test_stamp_over_the_corner),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -18,6 +18,16 @@ void planet_dab_prepare(brush_dab *d, const world_params *p, tile_layer layer, i
     brush_dab_sample_direction(d, d->cx, d->cz, d->centre_dir);
 }
 
+int planet_dab_check_position(const layer_grid *g, double x, double z, og_error *err) {
+    const double n = (double)g->extent * g->spacing;
+    if (!isfinite(x) || !isfinite(z) || x < -0.5 * n || z < -0.5 * n || x > 1.5 * n || z > 1.5 * n)
+        return og_error_set(err,
+                            "position (%g, %g) m lies too far past face %d (-%g to %g m: half a "
+                            "face beyond its edges)",
+                            x, z, g->face, 0.5 * n, 1.5 * n);
+    return 0;
+}
+
 grid_rect planet_dab_face_rect(const brush_dab *d, int target, int64_t layer_samples) {
     const double angle = d->radius * d->spacing / d->planet_radius;
     const double *c = d->centre_dir;

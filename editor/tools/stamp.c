@@ -1,6 +1,7 @@
 #include "editor/tools/stamp.h"
 
 #include "editor/tools/brush.h"
+#include "editor/tools/planet_dab.h"
 #include "editor/edit/edit.h"
 #include "editor/edit/edit_commit.h"
 #include "editor/edit/edit_rows.h"
@@ -197,11 +198,35 @@ typedef struct stamp_op {
     double cos_r, sin_r;
     double half_w, half_h; // metres
     float base;            // max: lowest, min: highest, blend: centre height
+    // Planets: the footprint laid on the sphere around its centre (azimuthal
+    // equidistant: metres along great circles, in the directions the stamp's face's x and
+    // z run at the centre), on whichever face `geo.face` is being written.
+    int sphere;
+    brush_dab geo;       // the face, its samples and the centre direction
+    double ex[3], ez[3]; // the stamp's x and z directions at its centre
 } stamp_op;
+
+// Metres from the stamp's centre to sample (x, z), along the stamp's x and z.
+static void sample_offset(const stamp_op *o, int64_t x, int64_t z, double *dx, double *dz) {
+    if (!o->sphere) {
+        *dx = (double)x * o->spacing - o->p->x, *dz = (double)z * o->spacing - o->p->z;
+        return;
+    }
+    double d[3];
+    brush_dab_sample_direction(&o->geo, (double)x, (double)z, d);
+    const double *c = o->geo.centre_dir;
+    double along = d[0] * c[0] + d[1] * c[1] + d[2] * c[2];
+    double q[3] = {d[0] - along * c[0], d[1] - along * c[1], d[2] - along * c[2]};
+    double sin_a = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+    double metres = atan2(sin_a, along) * o->geo.planet_radius, k = sin_a > 0 ? metres / sin_a : 0;
+    *dx = k * (q[0] * o->ex[0] + q[1] * o->ex[1] + q[2] * o->ex[2]);
+    *dz = k * (q[0] * o->ez[0] + q[1] * o->ez[1] + q[2] * o->ez[2]);
+}
 
 // Stamp value at sample (x, z), and whether the sample lies inside the footprint.
 static float stamp_value(const stamp_op *o, int64_t x, int64_t z, double *edge) {
-    double dx = (double)x * o->spacing - o->p->x, dz = (double)z * o->spacing - o->p->z;
+    double dx, dz;
+    sample_offset(o, x, z, &dx, &dz);
     double u = (o->cos_r * dx + o->sin_r * dz) / o->half_w;
     double v = (-o->sin_r * dx + o->cos_r * dz) / o->half_h;
     *edge = fmax(fabs(u), fabs(v));
@@ -258,7 +283,9 @@ static void stamp_row(void *user, void *row, int64_t z, int64_t x0, int64_t x1) 
 static int make_op(const world_params *params, const stamp_source *s, const stamp_placement *p,
                    layer_grid *g, stamp_op *o, grid_rect *rect, og_error *err) {
     if (layer_grid_init(g, params, p->layer, p->face, err) != 0) return -1;
-    if (layer_grid_check_position(g, p->x, p->z, err) != 0) return -1;
+    if (params->kind == WORLD_PLANET ? planet_dab_check_position(g, p->x, p->z, err) != 0
+                                     : layer_grid_check_position(g, p->x, p->z, err) != 0)
+        return -1;
     if (s->shape < 0 && (!s->pixels || s->width < 1 || s->height < 1))
         return og_error_set(err, "stamp '%s' has no image", s->name);
     o->s = s;
@@ -284,38 +311,129 @@ static int make_op(const world_params *params, const stamp_source *s, const stam
     return 0;
 }
 
-// The base height the max, min and blend modes work from, over the footprint's heights.
-static void find_base(stamp_op *o, const float *h, grid_rect r) {
+// The base height the max, min and blend modes work from, over the footprint's heights
+// (gathered over every face a planet's footprint covers, then settled).
+typedef struct base_scan {
+    float lo, hi, centre;
+    double best;
+} base_scan;
+
+static void scan_base(const stamp_op *o, const float *h, grid_rect r, base_scan *b) {
     int64_t w = r.x1 - r.x0;
-    float lo = INFINITY, hi = -INFINITY, centre = 0;
-    double best = INFINITY;
     for (int64_t z = r.z0; z < r.z1; z++)
         for (int64_t x = r.x0; x < r.x1; x++) {
-            double edge;
+            double edge, dx, dz;
             stamp_value(o, x, z, &edge);
             float v = h[(z - r.z0) * w + (x - r.x0)];
             if (edge < 1.0) {
-                lo = fminf(lo, v);
-                hi = fmaxf(hi, v);
+                b->lo = fminf(b->lo, v);
+                b->hi = fmaxf(b->hi, v);
             }
-            double dx = x * o->spacing - o->p->x, dz = z * o->spacing - o->p->z;
-            if (dx * dx + dz * dz < best) {
-                best = dx * dx + dz * dz;
-                centre = v;
+            sample_offset(o, x, z, &dx, &dz);
+            if (dx * dx + dz * dz < b->best) {
+                b->best = dx * dx + dz * dz;
+                b->centre = v;
             }
         }
-    o->base = o->p->mode == STAMP_MAX   ? (isfinite(lo) ? lo : 0)
-              : o->p->mode == STAMP_MIN ? (isfinite(hi) ? hi : 0)
-                                        : centre;
+}
+
+static void settle_base(stamp_op *o, const base_scan *b) {
+    o->base = o->p->mode == STAMP_MAX   ? (isfinite(b->lo) ? b->lo : 0)
+              : o->p->mode == STAMP_MIN ? (isfinite(b->hi) ? b->hi : 0)
+                                        : b->centre;
+}
+
+static void find_base(stamp_op *o, const float *h, grid_rect r) {
+    base_scan b = {INFINITY, -INFINITY, 0, INFINITY};
+    scan_base(o, h, r, &b);
+    settle_base(o, &b);
+}
+
+static int needs_base(const stamp_placement *p) {
+    return p->mode == STAMP_MAX || p->mode == STAMP_MIN || p->mode == STAMP_BLEND;
+}
+
+// Planets: the footprint's directions at its centre and each face's samples under it.
+static void sphere_setup(stamp_op *o, const world_params *params, const layer_grid *g) {
+    o->sphere = 1;
+    o->geo =
+        (brush_dab){.cx = o->p->x / g->spacing, .cz = o->p->z / g->spacing, .spacing = g->spacing};
+    planet_dab_prepare(&o->geo, params, g->layer, g->face);
+    // The face's x and z directions at the centre, made orthonormal on the tangent plane.
+    double a[3], b[3];
+    brush_dab_sample_direction(&o->geo, o->geo.cx + 0.5, o->geo.cz, a);
+    brush_dab_sample_direction(&o->geo, o->geo.cx - 0.5, o->geo.cz, b);
+    const double *c = o->geo.centre_dir;
+    for (int k = 0; k < 3; k++)
+        o->ex[k] = a[k] - b[k];
+    double d = o->ex[0] * c[0] + o->ex[1] * c[1] + o->ex[2] * c[2], len;
+    for (int k = 0; k < 3; k++)
+        o->ex[k] -= d * c[k];
+    len = sqrt(o->ex[0] * o->ex[0] + o->ex[1] * o->ex[1] + o->ex[2] * o->ex[2]);
+    for (int k = 0; k < 3; k++)
+        o->ex[k] /= len;
+    // z = c x ex or ex x c: whichever agrees with the face's own z direction.
+    double ez[3] = {c[1] * o->ex[2] - c[2] * o->ex[1], c[2] * o->ex[0] - c[0] * o->ex[2],
+                    c[0] * o->ex[1] - c[1] * o->ex[0]};
+    brush_dab_sample_direction(&o->geo, o->geo.cx, o->geo.cz + 0.5, a);
+    brush_dab_sample_direction(&o->geo, o->geo.cx, o->geo.cz - 0.5, b);
+    double sign =
+        (a[0] - b[0]) * ez[0] + (a[1] - b[1]) * ez[1] + (a[2] - b[2]) * ez[2] < 0 ? -1 : 1;
+    for (int k = 0; k < 3; k++)
+        o->ez[k] = sign * ez[k];
+    // The cap around the footprint's corners, for each face's rectangle.
+    o->geo.radius = sqrt(o->half_w * o->half_w + o->half_h * o->half_h) / g->spacing + 2.0;
+}
+
+// A stamp on a planet: one edit over every face its footprint reaches.
+static int stamp_apply_planet(world *w, stamp_op *o, const layer_grid *g, edit *e, og_error *err) {
+    grid_rect rects[6];
+    layer_grid grids[6];
+    base_scan b = {INFINITY, -INFINITY, 0, INFINITY};
+    for (int f = 0; f < 6; f++) {
+        grids[f] = *g;
+        grids[f].face = f;
+        rects[f] = planet_dab_face_rect(&o->geo, f, g->extent);
+        if (grid_rect_empty(rects[f]) || !needs_base(o->p)) continue;
+        o->geo.face = f;
+        float *h =
+            malloc((size_t)((rects[f].x1 - rects[f].x0) * (rects[f].z1 - rects[f].z0)) * sizeof *h);
+        if (!h) return og_error_set(err, "out of memory reading under the stamp");
+        int rc = layer_grid_read(w, &grids[f], rects[f], h, err);
+        if (rc == 0) scan_base(o, h, rects[f], &b);
+        free(h);
+        if (rc != 0) return -1;
+    }
+    if (needs_base(o->p)) settle_base(o, &b);
+    for (int f = 0; f < 6; f++) {
+        if (grid_rect_empty(rects[f])) continue;
+        o->geo.face = f;
+        if (edit_rows_apply(e, &grids[f], rects[f], stamp_row, NULL, o, err) != 0) return -1;
+    }
+    return 0;
 }
 
 int stamp_apply(world *w, const stamp_source *s, const stamp_placement *p, og_error *err) {
     layer_grid g;
-    stamp_op o;
+    stamp_op o = {0};
     grid_rect r;
     if (make_op(world_get_params(w), s, p, &g, &o, &r, err) != 0) return -1;
+    if (world_get_params(w)->kind == WORLD_PLANET) {
+        sphere_setup(&o, world_get_params(w), &g);
+        if (o.geo.radius * g.spacing / world_get_params(w)->radius > PLANET_DAB_MAX_ANGLE)
+            return og_error_set(err, "scale: the stamp would cover more than 1/16 of the planet");
+        char label[300];
+        snprintf(label, sizeof label, "stamp %s", s->name);
+        edit *e = edit_begin(w, label, err);
+        if (!e) return -1;
+        if (stamp_apply_planet(w, &o, &g, e, err) != 0) {
+            edit_abort(e);
+            return -1;
+        }
+        return edit_commit(e, err);
+    }
     if (grid_rect_empty(r)) return 0;
-    if (p->mode == STAMP_MAX || p->mode == STAMP_MIN || p->mode == STAMP_BLEND) {
+    if (needs_base(p)) {
         float *h = malloc((size_t)((r.x1 - r.x0) * (r.z1 - r.z0)) * sizeof *h);
         if (!h) return og_error_set(err, "out of memory reading under the stamp");
         int rc = layer_grid_read(w, &g, r, h, err);
@@ -338,7 +456,7 @@ int stamp_apply_array(const world_params *params, const stamp_source *s, const s
                       float *data, int64_t area_x0, int64_t area_z0, int64_t width, int64_t height,
                       og_error *err) {
     layer_grid g;
-    stamp_op o;
+    stamp_op o = {0};
     grid_rect r;
     if (make_op(params, s, p, &g, &o, &r, err) != 0) return -1;
     grid_rect area = {area_x0, area_z0, area_x0 + width, area_z0 + height};

@@ -104,16 +104,8 @@ static int dab_at(stroke *s, double x, double z, double pressure, og_error *err)
 }
 
 static int check_point(stroke *s, double x, double z, double pressure, og_error *err) {
-    if (world_get_params(s->world)->kind == WORLD_PLANET) {
-        // A planet's face coordinates go on past its edges onto the neighbours: a stroke
-        // may cross them (up to half a face beyond).
-        double n = (double)s->grid.extent * s->grid.spacing;
-        if (!isfinite(x) || !isfinite(z) || x < -0.5 * n || z < -0.5 * n || x > 1.5 * n ||
-            z > 1.5 * n)
-            return og_error_set(err,
-                                "position (%g, %g) m lies too far past face %d (-%g to %g m: "
-                                "half a face beyond its edges)",
-                                x, z, s->grid.face, 0.5 * n, 1.5 * n);
+    if (world_get_params(s->world)->kind == WORLD_PLANET) { // strokes may cross face edges
+        if (planet_dab_check_position(&s->grid, x, z, err) != 0) return -1;
     } else if (layer_grid_check_position(&s->grid, x, z, err) != 0) {
         return -1;
     }
