@@ -927,14 +927,20 @@ static void status_bar(ui_context *ui, cmd_context *ctx, viewport *v, const edit
                        const stamp_browser *stamps, ui_rect r) {
     ui_panel_begin(ui, "Status", r);
     char cursor[128] = "", cam[128], tool[96], frame[128], cache[160];
-    if (info->cursor_valid)
+    const world_params *wp = world_get_params(ctx->world);
+    if (info->cursor_valid && wp->kind == WORLD_PLANET) { // where on the globe, how high
+        const double *c = info->cursor;
+        double lat, lon, r = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+        planet_lat_lon(c, &lat, &lon);
+        snprintf(cursor, sizeof cursor, "%.5f%c %.5f%c  height %.2f m", fabs(lat),
+                 lat < 0 ? 'S' : 'N', fabs(lon), lon < 0 ? 'W' : 'E', r - wp->radius);
+    } else if (info->cursor_valid)
         snprintf(cursor, sizeof cursor, "x %.1f  z %.1f  height %.2f m", info->cursor[0],
                  info->cursor[2], info->cursor[1]);
     else
         snprintf(cursor, sizeof cursor, "no terrain under the pointer");
     snprintf(cam, sizeof cam, "camera %.0f, %.0f, %.0f", v->cam.pos[0], v->cam.pos[1],
              v->cam.pos[2]);
-    const world_params *wp = world_get_params(ctx->world);
     if (wp->kind == WORLD_PLANET) { // latitude, longitude, altitude above the datum
         double lat, lon,
             r = sqrt(v->cam.pos[0] * v->cam.pos[0] + v->cam.pos[1] * v->cam.pos[1] +

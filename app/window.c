@@ -1,6 +1,7 @@
 #include "app/window.h"
 
 #include "editor/edit/recover.h"
+#include "editor/params/world_grid.h"
 
 #include "app/camera_controls.h"
 #include "app/dynamic_resolution.h"
@@ -101,6 +102,7 @@ typedef struct window_state {
     int world_changed;     // change notifications since the terrain image
     int stroke_points;     // stroke_to commands of the current drag
     int stroke_volume;     // the drag is a volume tool's: 3D points
+    int stroke_face;       // a planet's stroke: the face its points are given on (else -1)
     double stroke_plane_y; // a volume drag locked to a plane: its height
     double px_scale;       // framebuffer pixels per window unit (HiDPI)
     app_settings settings;
@@ -180,11 +182,27 @@ static int volume_point(window_state *st, double x, double y, const double hit[3
     return 0;
 }
 
+// Planets: a picked point in face-local metres of face `face` (past its edges when the
+// point lies on a neighbour: strokes may cross an edge). 0, or -1 when it points away.
+static int planet_face_metres(window_state *st, int face, const double hit[3], double *x,
+                              double *z) {
+    const world_params *p = world_get_params(st->ctx->world);
+    double s, t, n = (double)world_grid_face_samples(p);
+    if (!world_grid_face_coords_on(face, hit, &s, &t)) return -1;
+    *x = ((s + 1.0) * 0.5 * n - 0.5) * p->spacing;
+    *z = ((t + 1.0) * 0.5 * n - 0.5) * p->spacing;
+    return 0;
+}
+
 static void sculpt_to(window_state *st, double x, double y) {
     double hit[3];
     if (st->drag != DRAG_SCULPT || pick_at(st, x, y, hit) != 0) return; // off the terrain
     char text[160];
-    if (st->stroke_volume) {
+    if (st->stroke_face >= 0) { // a planet: the stroke's face, in its metres
+        double fx, fz;
+        if (planet_face_metres(st, st->stroke_face, hit, &fx, &fz) != 0) return;
+        snprintf(text, sizeof text, "stroke_to %.17g %.17g", fx, fz);
+    } else if (st->stroke_volume) {
         double p[3];
         if (volume_point(st, x, y, hit, p, 1) != 0) return;
         snprintf(text, sizeof text, "stroke_to %.17g %.17g %.17g", p[0], p[1], p[2]);
@@ -201,7 +219,24 @@ static void sculpt_begin(window_state *st, int mods) {
     st->stroke_points = 0;
     const brush *b = &st->ctx->brush;
     st->stroke_volume = brush_tool_is_volume(b->tool);
-    char cmd[64] = "stroke_begin";
+    char cmd[96] = "stroke_begin";
+    st->stroke_face = -1;
+    double hit[3];
+    if (world_get_params(st->ctx->world)->kind == WORLD_PLANET && !st->stroke_volume &&
+        pick_at(st, st->mouse_x, st->mouse_y, hit) == 0) {
+        // The stroke's face is where it starts; it may run over the edges from there.
+        double s, t;
+        world_grid_direction_face(hit, &st->stroke_face, &s, &t);
+        char face[32];
+        snprintf(face, sizeof face, "face=%d", st->stroke_face);
+        snprintf(cmd, sizeof cmd, "stroke_begin %s%s", face,
+                 (mods & GLFW_MOD_SHIFT)     ? " tool=smooth"
+                 : (mods & GLFW_MOD_CONTROL) ? (b->invert ? " invert=0" : " invert=1")
+                                             : "");
+        sculpt_add(st, cmd);
+        sculpt_to(st, st->mouse_x, st->mouse_y);
+        return;
+    }
     if (st->stroke_volume) {
         if (mods & GLFW_MOD_SHIFT)
             snprintf(cmd, sizeof cmd, "stroke_begin tool=vsmooth");

@@ -123,9 +123,36 @@ static int shown_height(void *user, double x, double z, double *h) {
     return volume_renderer_replaces(terrain_renderer_volume(r), x, *h, z) ? -1 : 0;
 }
 
+// Planets: the ray against the sphere of the ground's height, that height re-read where
+// it lands until it settles (a few steps for any view that looks down at the ground).
+static int planet_pick(viewport *v, world *w, double sx, double sy, double aspect, double hit[3]) {
+    const world_params *p = world_get_params(w);
+    double dir[3], ground = 0, t = -1;
+    planet_camera_ray(&v->cam, aspect, sx, sy, dir);
+    const double *c = v->cam.pos;
+    for (int i = 0; i < 12; i++) {
+        double r = p->radius + ground, b = c[0] * dir[0] + c[1] * dir[1] + c[2] * dir[2];
+        double cc = c[0] * c[0] + c[1] * c[1] + c[2] * c[2] - r * r, disc = b * b - cc;
+        if (disc < 0) return -1; // past the limb
+        double nt = -b - sqrt(disc);
+        if (nt < 0) return -1; // behind the camera (or inside the ground)
+        for (int k = 0; k < 3; k++)
+            hit[k] = c[k] + nt * dir[k];
+        og_error err;
+        if (planet_ground_height(w, hit, &ground, &err) != 0) return -1;
+        if (t >= 0 && fabs(nt - t) < 1e-3 * fmax(1.0, p->spacing)) break;
+        t = nt;
+    }
+    double len = sqrt(hit[0] * hit[0] + hit[1] * hit[1] + hit[2] * hit[2]);
+    for (int k = 0; k < 3; k++)
+        hit[k] *= (p->radius + ground) / len;
+    return 0;
+}
+
 int viewport_pick_loaded(viewport *v, world *w, double sx, double sy, double aspect,
                          double hit[3]) {
     if (!v->renderer) return -1;
+    if (world_get_params(w)->kind == WORLD_PLANET) return planet_pick(v, w, sx, sy, aspect, hit);
     double dir[3];
     camera_ray(&v->cam, aspect, sx, sy, dir);
     const world_params *p = world_get_params(w);

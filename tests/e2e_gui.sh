@@ -539,6 +539,19 @@ check "Ctrl+S on it asks first, saying why" $?
 import -window "$wid" "$art/gui_read_only.png" 2>/dev/null
 click "Replace file/Cancel"
 widget_gone "Replace file/Cancel" && [ ! -s "$work/ro.tiles" ]; check "Cancel leaves the store as it was" $?
+
+# 7f. A planet: File > New planet: moon, then a drag on the ground sculpts it (one step
+# on the face under the mouse).
+click "Menu/File"
+click "Menu/File/New planet: moon"
+line=$(ask_until params '^radius = ' '^radius = 1737400;$'); check "File > New planet: moon makes a moon ($line)" $?
+echo "camera_geo 10 20 3000 0 -60 ground" >&3
+echo "tool raise radius=500 amount=300 strength=1" >&3
+ask "window_screenshot $work/moon.png" '^window_screenshot' >/dev/null
+sculpt
+line=$(ask_until history '^steps=' '^steps=1 '); check "a drag on the moon sculpts it: one undo step ($line)" $?
+line=$(ask history 'raise stroke'); check "the step is the raise stroke ($line)" $?
+import -window "$wid" "$art/gui_planet.png" 2>/dev/null
 ask "load $work/gui.world" '^loaded' >/dev/null
 wait_title "gui.world - "; check "back to gui.world ($(title))" $?
 # Section 8 drags where the terrain was: wait until every tile in view is there again

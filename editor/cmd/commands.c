@@ -432,12 +432,12 @@ static const cmd_def commands[] = {
      "distance metres out (8), thickness metres thick (4), its top level with the ground at the "
      "edge. One undo step.",
      4, 6, cmd_overhang, CMD_ENDS_STROKE},
-    {"stroke_begin", "stroke_begin [invert=0|1] [tool=NAME]",
+    {"stroke_begin", "stroke_begin [invert=0|1] [tool=NAME] [face=F]",
      "Starts a stroke with the current tool (as a drag in the viewport does); stroke_to extends "
-     "it, stroke_end makes it one undo step. invert= and tool= change this stroke only (the "
-     "viewport's Ctrl and Shift). Commands that change the world (dab, stamp, undo, save, load, "
-     "...) end it first.",
-     0, 2, cmd_stroke_begin, CMD_ENDS_STROKE},
+     "it, stroke_end makes it one undo step. invert=, tool= and face= (a planet's face the "
+     "points are given on) change this stroke only (the viewport's Ctrl and Shift). Commands "
+     "that change the world (dab, stamp, undo, save, load, ...) end it first.",
+     0, 3, cmd_stroke_begin, CMD_ENDS_STROKE},
     {"stroke_to", "stroke_to X Z [PRESSURE] | stroke_to X Y Z [PRESSURE]",
      "Drags the open stroke to X, Z (metres), dabbing every spacing x radius; PRESSURE 0-1 (1). "
      "A volume tool's stroke takes X Y Z (Y up).",

@@ -146,10 +146,15 @@ int cmd_stroke(cmd_context *ctx, int argc, char **argv, og_error *err) {
 int cmd_stroke_begin(cmd_context *ctx, int argc, char **argv, og_error *err) {
     // Overrides for this stroke only (the viewport's Ctrl and Shift): the tool stays.
     brush b = ctx->brush;
+    int face = -1;
     for (int i = 1; i < argc; i++) {
         char buf[256], *key = NULL, *value = NULL;
         if (parse_setting(argv[i], buf, sizeof buf, &key, &value, err) != 0) return -1;
-        if (strcmp(key, "invert") == 0) {
+        if (strcmp(key, "face") == 0) { // a planet's stroke from the viewport: where it starts
+            brush probe = b;
+            if (brush_set(&probe, "face", value, err) != 0) return -1;
+            face = probe.face;
+        } else if (strcmp(key, "invert") == 0) {
             int inv;
             if (parse_switch(value, key, &inv, err) != 0) return -1;
             b.invert = inv;
@@ -162,9 +167,11 @@ int cmd_stroke_begin(cmd_context *ctx, int argc, char **argv, og_error *err) {
             b.radius = radius;
             if (t == BRUSH_RAISE) b.invert = strcmp(value, "lower") == 0;
         } else {
-            return og_error_set(err, "stroke_begin: unknown setting '%s' (invert, tool)", key);
+            return og_error_set(err, "stroke_begin: unknown setting '%s' (invert, tool, face)",
+                                key);
         }
     }
+    if (face >= 0) b.face = face;
     stroke *s = stroke_begin(ctx->world, &b, err);
     if (!s) return -1;
     ctx->stroke = s;
