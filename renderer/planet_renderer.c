@@ -61,6 +61,7 @@ struct planet_renderer {
     frustum fr;
     double pixels_per_radian; // screen height / (2 tan(fov/2))
     double occluder_radius;   // a sphere inside all the ground, for horizon culling
+    double camera_altitude;   // metres above the datum
     int draw_count;
     int draw_list[MAX_CHUNKS];
     planet_stats stats;
@@ -154,7 +155,7 @@ static int node_exists(const planet_renderer *r, const node *n) {
 
 // Face coordinate of level-L cell edge e (clipped to the face).
 static double edge_coord(const planet_renderer *r, int level, int64_t e) {
-    int64_t cells = e << level;
+    int64_t cells = e < 0 ? 0 : e << level;
     if (cells > r->face_samples) cells = r->face_samples;
     return (double)cells / (double)r->face_samples * 2.0 - 1.0;
 }
@@ -227,9 +228,23 @@ static int wants_split(const planet_renderer *r, const node *n, const node_bound
     if (n->level == 0) return 0;
     double d[3] = {b->centre[0] - r->cam->pos[0], b->centre[1] - r->cam->pos[1],
                    b->centre[2] - r->cam->pos[2]};
-    double dist = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) - b->radius;
+    double centre_dist = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    double dist = centre_dist - b->radius;
     if (dist < b->cell) dist = b->cell;
-    return b->cell * r->pixels_per_radian / dist > SPLIT_PIXELS;
+    double pixels = b->cell * r->pixels_per_radian / dist;
+    // Seen at a grazing angle a sample covers fewer pixels (foreshortened one way):
+    // the geometric mean of its two projected sides, for chunks clearly apart from the
+    // camera (the view across a chunk one stands in varies too much to judge).
+    // Only near the ground: from high up the coarser chunks show the sky's per-pixel
+    // haze quad by quad.
+    if (centre_dist > 2.0 * b->radius && r->camera_altitude < 0.01 * r->params.radius) {
+        double rc = sqrt(b->centre[0] * b->centre[0] + b->centre[1] * b->centre[1] +
+                         b->centre[2] * b->centre[2]);
+        double cosv = fabs(d[0] * b->centre[0] + d[1] * b->centre[1] + d[2] * b->centre[2]) /
+                      (centre_dist * rc);
+        pixels *= fmax(sqrt(cosv), 0.3);
+    }
+    return pixels > SPLIT_PIXELS;
 }
 
 // ---- chunk meshes ---------------------------------------------------------------
@@ -249,50 +264,52 @@ static float sample_bilinear(const float *tile, double u, double v) {
 // the outermost reach the face's edge), heights interpolated between sample centres.
 static void build_vertices(const planet_renderer *r, const node *n, const float *tile, float *out,
                            chunk *c) {
-    static double pos[GRID_VERTS][3];
-    static float heights[GRID_VERTS];
-    static double metres[BLOCK + 1][2];
+    // Positions with a ring one cell wider than the block, so every vertex's normal is
+    // a central difference and neighbouring chunks shade their shared edge alike.
+    enum { RING = BLOCK + 3 };
+    static double pos[RING * RING][3];
+    static float heights[RING * RING];
+    static double metres[RING][2];
     const int64_t m = level_samples(r, n->level);
     const int64_t tx = n->bx / BLOCKS_PER_TILE, ty = n->by / BLOCKS_PER_TILE;
     const int ox = (int)(n->bx % BLOCKS_PER_TILE) * BLOCK,
               oy = (int)(n->by % BLOCKS_PER_TILE) * BLOCK;
     const double hi_u = fmin(TILE_SIZE - 1, (double)(m - 1 - tx * TILE_SIZE));
     const double hi_v = fmin(TILE_SIZE - 1, (double)(m - 1 - ty * TILE_SIZE));
-    double tan_s[BLOCK + 1], tan_t[BLOCK + 1];
-    for (int g = 0; g <= BLOCK; g++) {
+    double tan_s[RING], tan_t[RING];
+    for (int g = -1; g <= BLOCK + 1; g++) {
         double s = edge_coord(r, n->level, n->bx * BLOCK + g);
         double t = edge_coord(r, n->level, n->by * BLOCK + g);
-        tan_s[g] = tan(s * (M_PI / 4.0));
-        tan_t[g] = tan(t * (M_PI / 4.0));
+        tan_s[g + 1] = tan(s * (M_PI / 4.0));
+        tan_t[g + 1] = tan(t * (M_PI / 4.0));
         // Face-local metres, for the material textures' coordinates.
-        metres[g][0] = (s + 1.0) * 0.5 * (double)r->face_samples * r->cell_arc;
-        metres[g][1] = (t + 1.0) * 0.5 * (double)r->face_samples * r->cell_arc;
+        metres[g + 1][0] = (s + 1.0) * 0.5 * (double)r->face_samples * r->cell_arc;
+        metres[g + 1][1] = (t + 1.0) * 0.5 * (double)r->face_samples * r->cell_arc;
     }
-    const double base_u = floor(metres[0][0] / TEX_PERIOD_FAR) * TEX_PERIOD_FAR;
-    const double base_v = floor(metres[0][1] / TEX_PERIOD_FAR) * TEX_PERIOD_FAR;
+    const double base_u = floor(metres[1][0] / TEX_PERIOD_FAR) * TEX_PERIOD_FAR;
+    const double base_v = floor(metres[1][1] / TEX_PERIOD_FAR) * TEX_PERIOD_FAR;
     c->hmin = INFINITY, c->hmax = -INFINITY;
-    for (int gj = 0; gj <= BLOCK; gj++)
-        for (int gi = 0; gi <= BLOCK; gi++) {
+    for (int gj = -1; gj <= BLOCK + 1; gj++)
+        for (int gi = -1; gi <= BLOCK + 1; gi++) {
             double u = fmin(fmax(ox + gi - 0.5, 0.0), hi_u);
             double v = fmin(fmax(oy + gj - 0.5, 0.0), hi_v);
             float h = sample_bilinear(tile, u, v);
             double d[3];
-            world_grid_face_direction_warped(n->face, tan_s[gi], tan_t[gj], d);
-            const int k = gj * (BLOCK + 1) + gi;
+            world_grid_face_direction_warped(n->face, tan_s[gi + 1], tan_t[gj + 1], d);
+            const int k = (gj + 1) * RING + gi + 1;
             for (int a = 0; a < 3; a++)
                 pos[k][a] = d[a] * (r->params.radius + h);
             heights[k] = h;
-            c->hmin = fminf(c->hmin, h), c->hmax = fmaxf(c->hmax, h);
+            if (gi >= 0 && gj >= 0 && gi <= BLOCK && gj <= BLOCK)
+                c->hmin = fminf(c->hmin, h), c->hmax = fmaxf(c->hmax, h);
         }
-    const int centre = (BLOCK / 2) * (BLOCK + 1) + BLOCK / 2;
+    const int centre = (BLOCK / 2 + 1) * RING + BLOCK / 2 + 1;
     memcpy(c->origin, pos[centre], sizeof c->origin);
     for (int gj = 0; gj <= BLOCK; gj++)
         for (int gi = 0; gi <= BLOCK; gi++) {
-            const int k = gj * (BLOCK + 1) + gi;
-            const double *l = pos[gj * (BLOCK + 1) + (gi > 0 ? gi - 1 : gi)];
-            const double *rt = pos[gj * (BLOCK + 1) + (gi < BLOCK ? gi + 1 : gi)];
-            const double *dn = pos[(gj > 0 ? gj - 1 : gj) * (BLOCK + 1) + gi];
-            const double *upp = pos[(gj < BLOCK ? gj + 1 : gj) * (BLOCK + 1) + gi];
+            const int k = (gj + 1) * RING + gi + 1;
+            const double *l = pos[k - 1], *rt = pos[k + 1], *dn = pos[k - RING],
+                         *upp = pos[k + RING];
             double du[3] = {rt[0] - l[0], rt[1] - l[1], rt[2] - l[2]};
             double dv[3] = {upp[0] - dn[0], upp[1] - dn[1], upp[2] - dn[2]};
             double nn[3] = {du[1] * dv[2] - du[2] * dv[1], du[2] * dv[0] - du[0] * dv[2],
@@ -303,15 +320,15 @@ static void build_vertices(const planet_renderer *r, const node *n, const float 
                 up[a] = pos[k][a] / len_p;
             double len = sqrt(nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2]);
             double sign = nn[0] * up[0] + nn[1] * up[1] + nn[2] * up[2] < 0 ? -1.0 : 1.0;
-            float *o = out + (size_t)k * VERTEX_FLOATS;
+            float *o = out + (size_t)(gj * (BLOCK + 1) + gi) * VERTEX_FLOATS;
             for (int a = 0; a < 3; a++) {
                 o[a] = (float)(pos[k][a] - c->origin[a]);
                 o[3 + a] = (float)(len > 0 ? sign * nn[a] / len : up[a]);
                 o[6 + a] = (float)up[a];
             }
             o[9] = heights[k];
-            o[10] = (float)(metres[gi][0] - base_u);
-            o[11] = (float)(metres[gj][1] - base_v);
+            o[10] = (float)(metres[gi + 1][0] - base_u);
+            o[11] = (float)(metres[gj + 1][1] - base_v);
         }
     // Skirts: each edge's vertices again, lowered far enough to hide the cracks between
     // levels and faces (a level's samples differ from the next one's by about a cell).
@@ -514,6 +531,9 @@ int planet_renderer_update(planet_renderer *r, world *w, const camera *cam,
     frustum_from_matrix(&r->fr, vp);
     double fov = cam->fov_y >= 1 && cam->fov_y <= 170 ? cam->fov_y : 60;
     r->pixels_per_radian = (height_px > 0 ? height_px : 720) / (2.0 * tan(fov * M_PI / 360.0));
+    r->camera_altitude =
+        sqrt(cam->pos[0] * cam->pos[0] + cam->pos[1] * cam->pos[1] + cam->pos[2] * cam->pos[2]) -
+        p->radius;
     r->occluder_radius = p->radius - 1.5 * p->max_height;
     if (r->occluder_radius < 0.5 * p->radius) r->occluder_radius = 0.5 * p->radius;
     for (int f = 0; f < 6; f++) {
