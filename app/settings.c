@@ -17,6 +17,8 @@ void app_settings_default(app_settings *s) {
     s->field_of_view = 60.0;
     s->frame_target_ms = 50.0;
     s->fly_speed = 50.0;
+    s->dynamic_lod = 1;
+    s->lod_pixels = 6.0;
 }
 
 void app_settings_path(char *buf, size_t size, const char *file) {
@@ -85,6 +87,10 @@ void app_settings_load(app_settings *s, const char *path) {
             read_number(path, e, 5, 1000, &s->frame_target_ms);
         else if (strcmp(e->key, "fly_speed") == 0)
             read_number(path, e, 0.01, 1e7, &s->fly_speed);
+        else if (strcmp(e->key, "enable_dynamic_LOD") == 0)
+            read_int(path, e, 0, 1, &s->dynamic_lod);
+        else if (strcmp(e->key, "lod_pixels") == 0)
+            read_number(path, e, 1, 64, &s->lod_pixels);
         else if (strcmp(e->key, "tool") == 0)
             snprintf(s->tool, sizeof s->tool, "%.31s", e->value);
         else if (strncmp(e->key, "tool_", 5) == 0) {
@@ -135,6 +141,9 @@ int app_settings_save(const app_settings *s, const char *path, og_error *err) {
     PUT("frame_target_ms = %s;\n", num);
     parse_format_f64(num, sizeof num, s->fly_speed);
     PUT("fly_speed = %s;\n", num);
+    PUT("enable_dynamic_LOD = %d;\n", s->dynamic_lod);
+    parse_format_f64(num, sizeof num, s->lod_pixels);
+    PUT("lod_pixels = %s;\n", num);
     for (int i = 0; i < s->recent_count; i++)
         if (!strpbrk(s->recent[i], ";#\n")) PUT("recent_%d = %s;\n", i, s->recent[i]);
     if (s->tool[0] && !strpbrk(s->tool, ";#\n= ")) PUT("tool = %s;\n", s->tool);

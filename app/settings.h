@@ -2,7 +2,8 @@
 // (default ~/.config/orogen/settings) in the parameter-file syntax: window size and
 // position, the UI scale, the frame-time goal while moving, recent files, each tool's
 // settings, and Kahoun
-// 2010's configuration keys (width, height, field_of_view, enable_fullscreen). The
+// 2010's configuration keys (width, height, field_of_view, enable_fullscreen,
+// enable_dynamic_LOD and, for its thresholds, lod_pixels). The
 // console's history is kept beside it in console_history, one command a line.
 // A broken file gives warnings naming its lines and the defaults, never a failure.
 #ifndef OROGEN_APP_SETTINGS_H
@@ -23,6 +24,12 @@ typedef struct app_settings {
     double field_of_view;   // degrees (60)
     double frame_target_ms; // dynamic resolution's goal while moving (50)
     double fly_speed;       // the camera's flying speed, m/s (50)
+    // Kahoun 2010's level-of-detail keys, in this program's terms: enable_dynamic_LOD
+    // (1) lowers the viewport's resolution while moving to hold frame_target_ms;
+    // lod_pixels (6, 1 .. 64) is the planet's split threshold, the pixels a sample may
+    // cover before its chunk splits (seed 004's default_threshold).
+    int dynamic_lod;
+    double lod_pixels;
     char recent[SETTINGS_RECENT][1024];
     int recent_count;
     // Each tool's settings as last used, "NAME key=value ..." (tool_NAME in the file),

@@ -540,9 +540,21 @@ static void on_mouse_button(GLFWwindow *win, int button, int action, int mods) {
     } else if (st->ed.stamps.active && button == GLFW_MOUSE_BUTTON_LEFT) {
         double hit[3]; // the stamp tool: one click, one stamp at the picked point
         char cmd[512];
-        if (pick_at(st, st->mouse_x, st->mouse_y, hit) == 0 &&
-            stamp_browser_command(&st->ed.stamps, hit[0], hit[2], cmd, sizeof cmd) == 0)
-            run_commands(st, cmd, "stamp");
+        if (pick_at(st, st->mouse_x, st->mouse_y, hit) == 0) {
+            double x = hit[0], z = hit[2], s, t;
+            int face = -1;
+            if (world_get_params(st->ctx->world)->kind == WORLD_PLANET) { // that face's metres
+                world_grid_direction_face(hit, &face, &s, &t);
+                planet_face_metres(st, face, hit, &x, &z);
+            }
+            if (stamp_browser_command(&st->ed.stamps, x, z, cmd, sizeof cmd) == 0) {
+                if (face >= 0) {
+                    size_t used = strlen(cmd);
+                    snprintf(cmd + used, sizeof cmd - used, " face=%d", face);
+                }
+                run_commands(st, cmd, "stamp");
+            }
+        }
     } else {
         st->drag = DRAG_SCULPT;
         sculpt_begin(st, mods);
@@ -997,7 +1009,7 @@ static void update_cursor(window_state *st) {
                   (st->drag == DRAG_RESIZE || pick_at(st, st->mouse_x, st->mouse_y, hit) == 0);
     if (!bc->visible) return;
     if (st->drag == DRAG_RESIZE) memcpy(hit, st->resize_at, sizeof hit);
-    bc->x = hit[0], bc->z = hit[2];
+    bc->x = hit[0], bc->y = hit[1], bc->z = hit[2]; // y: planets drape it in 3D
     if (st->ed.stamps.active) { // the stamp's footprint: its half size, no falloff
         bc->radius =
             stamp_browser_half_size(&st->ed.stamps, world_get_params(st->ctx->world)->spacing);
@@ -1442,6 +1454,8 @@ static void save_settings(window_state *st) {
     app_settings_add_recent(s, world_path(st->ctx->world));
     tool_settings_capture(st->ctx, s);
     s->fly_speed = st->cc.fly_speed;
+    s->dynamic_lod = st->dynamic_res;
+    s->lod_pixels = st->v->settings.lod_pixels;
     og_error err = {{0}};
     if (app_settings_save(s, st->settings_path, &err) != 0)
         fprintf(stderr, "orogen: settings not saved: %s\n", err.msg);
@@ -1526,6 +1540,7 @@ int window_run(cmd_context *ctx, og_error *err) {
     st.ed.recent_count = settings.recent_count;
     st.target_ms = settings.frame_target_ms;
     st.cc.fly_speed = settings.fly_speed; // the wheel with the right button held changes it
+    st.dynamic_res = settings.dynamic_lod;
     st.ed.glfw_version = glfwGetVersionString();
     st.ed.ui_scale = settings.ui_scale;
     st.drawn_scale = 1.0f;
@@ -1570,6 +1585,7 @@ int window_run(cmd_context *ctx, og_error *err) {
     }
     if (!v->cam_set) reset_camera(&st);
     if (!v->cam_set) v->cam.fov_y = settings.field_of_view;
+    v->settings.lod_pixels = settings.lod_pixels;
     glfwGetCursorPos(win, &st.mouse_x, &st.mouse_y);
     glfwSetWindowUserPointer(win, &st);
     glfwSetMouseButtonCallback(win, on_mouse_button);

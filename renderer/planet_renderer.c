@@ -18,11 +18,12 @@
 #define GRID_VERTS ((BLOCK + 1) * (BLOCK + 1))
 #define CHUNK_VERTS (GRID_VERTS + 4 * (BLOCK + 1))
 #define CHUNK_INDICES (BLOCK * BLOCK * 6 + 4 * BLOCK * 6)
-#define VERTEX_FLOATS 12 // position 3 (from the chunk's origin), normal 3, up 3, height, uv 2
-#define MAX_CHUNKS 1536  // resident meshes (~90 MB): several views' worth
-#define TABLE_SIZE 4096  // open addressing, power of two, > 2 x MAX_CHUNKS
+// Position 3 (from the chunk's origin), normal 3, up 3, height, uv 2, and the morph
+// target: where the vertex sits in the parent level's mesh (position 3, height).
+#define VERTEX_FLOATS 16
+#define MAX_CHUNKS 1536 // resident meshes (~90 MB): several views' worth
+#define TABLE_SIZE 4096 // open addressing, power of two, > 2 x MAX_CHUNKS
 #define BUILD_BUDGET_MS 10.0
-#define SPLIT_PIXELS 6.0       // a sample wider than this on screen: the chunk splits
 #define TEX_PERIOD_NEAR 4.0    // metres per repeat of the material textures
 #define TEX_PERIOD_FAR 64.0    // the larger scale that breaks up repetition (a multiple)
 #define EARTH_RADIUS 6371000.0 // the atmosphere scales with the planet from Earth's
@@ -34,7 +35,8 @@ typedef struct chunk {
     double origin[3]; // planet coordinates of the vertices' origin
     float hmin, hmax; // metres above the datum
     int level;
-    uint64_t used; // frame it was last selected
+    double morph_reach; // this frame: where the parent level would take over (metres)
+    uint64_t used;      // frame it was last selected
 } chunk;
 
 typedef struct node {
@@ -43,7 +45,7 @@ typedef struct node {
 } node;
 
 struct planet_renderer {
-    GLuint prog_planet, prog_sky, vao, empty_vao, ibo, albedo;
+    GLuint prog_planet, prog_sky, vao, empty_vao, ibo, albedo, falloff;
     chunk chunks[MAX_CHUNKS];
     int table[TABLE_SIZE]; // chunk index or -1
     int resident;
@@ -62,6 +64,7 @@ struct planet_renderer {
     double pixels_per_radian; // screen height / (2 tan(fov/2))
     double occluder_radius;   // a sphere inside all the ground, for horizon culling
     double camera_altitude;   // metres above the datum
+    double split_pixels;      // a sample wider than this on screen: its chunk splits
     int draw_count;
     int draw_list[MAX_CHUNKS];
     planet_stats stats;
@@ -224,27 +227,38 @@ static int node_visible(planet_renderer *r, const node *n, double hmin, double h
     return frustum_test_aabb(&r->fr, mn, mx);
 }
 
-static int wants_split(const planet_renderer *r, const node *n, const node_bounds *b) {
-    if (n->level == 0) return 0;
+// How much a sample's projected size shrinks seen at a grazing angle near the ground:
+// the geometric mean of its two projected sides (1 when not judged). Only near the
+// ground: from high up the coarser chunks would show the sky's per-pixel haze quad by
+// quad; and not for a chunk the camera stands in (the view across it varies too much).
+static int near_ground(const planet_renderer *r) {
+    return r->camera_altitude < 0.01 * r->params.radius;
+}
+
+static double grazing(const planet_renderer *r, const node_bounds *b, double centre_dist,
+                      const double d[3]) {
+    if (!(centre_dist > 2.0 * b->radius && near_ground(r))) return 1.0;
+    double rc = sqrt(b->centre[0] * b->centre[0] + b->centre[1] * b->centre[1] +
+                     b->centre[2] * b->centre[2]);
+    double cosv =
+        fabs(d[0] * b->centre[0] + d[1] * b->centre[1] + d[2] * b->centre[2]) / (centre_dist * rc);
+    return fmax(sqrt(cosv), 0.3);
+}
+
+// The distance at which a sample of `cell` metres covers split_pixels, and the node's.
+static double split_distance(const planet_renderer *r, const node_bounds *b, double cell,
+                             double *node_dist) {
     double d[3] = {b->centre[0] - r->cam->pos[0], b->centre[1] - r->cam->pos[1],
                    b->centre[2] - r->cam->pos[2]};
     double centre_dist = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    double dist = centre_dist - b->radius;
-    if (dist < b->cell) dist = b->cell;
-    double pixels = b->cell * r->pixels_per_radian / dist;
-    // Seen at a grazing angle a sample covers fewer pixels (foreshortened one way):
-    // the geometric mean of its two projected sides, for chunks clearly apart from the
-    // camera (the view across a chunk one stands in varies too much to judge).
-    // Only near the ground: from high up the coarser chunks show the sky's per-pixel
-    // haze quad by quad.
-    if (centre_dist > 2.0 * b->radius && r->camera_altitude < 0.01 * r->params.radius) {
-        double rc = sqrt(b->centre[0] * b->centre[0] + b->centre[1] * b->centre[1] +
-                         b->centre[2] * b->centre[2]);
-        double cosv = fabs(d[0] * b->centre[0] + d[1] * b->centre[1] + d[2] * b->centre[2]) /
-                      (centre_dist * rc);
-        pixels *= fmax(sqrt(cosv), 0.3);
-    }
-    return pixels > SPLIT_PIXELS;
+    *node_dist = fmax(centre_dist - b->radius, b->cell);
+    return cell * r->pixels_per_radian * grazing(r, b, centre_dist, d) / r->split_pixels;
+}
+
+static int wants_split(const planet_renderer *r, const node *n, const node_bounds *b) {
+    if (n->level == 0) return 0;
+    double dist;
+    return split_distance(r, b, b->cell, &dist) > dist;
 }
 
 // ---- chunk meshes ---------------------------------------------------------------
@@ -262,8 +276,60 @@ static float sample_bilinear(const float *tile, double u, double v) {
 
 // Vertices at the block's cell edges (so neighbours share their edge positions and
 // the outermost reach the face's edge), heights interpolated between sample centres.
-static void build_vertices(const planet_renderer *r, const node *n, const float *tile, float *out,
-                           chunk *c) {
+// The parent level's mesh under a chunk: the vertices both levels share take the parent's
+// heights; the others sit on the parent's edges and diagonals between them, so a chunk
+// morphed all the way is exactly its parent (no pop when the parent takes over).
+static void morph_targets(const planet_renderer *r, const node *n, const float *parent,
+                          double (*pos)[3], const float *heights, int ring, double (*coarse)[3],
+                          float *coarse_h) {
+    for (int gj = 0; gj <= BLOCK; gj++)
+        for (int gi = 0; gi <= BLOCK; gi++) {
+            const int k = gj * (BLOCK + 1) + gi, f = (gj + 1) * ring + gi + 1;
+            memcpy(coarse[k], pos[f], sizeof coarse[k]);
+            coarse_h[k] = heights[f];
+        }
+    if (!parent) return;
+    const int64_t pm = level_samples(r, n->level + 1);
+    const int64_t pbx = n->bx / 2, pby = n->by / 2;
+    const int64_t ptx = pbx / BLOCKS_PER_TILE, pty = pby / BLOCKS_PER_TILE;
+    const double hi_u = fmin(TILE_SIZE - 1, (double)(pm - 1 - ptx * TILE_SIZE));
+    const double hi_v = fmin(TILE_SIZE - 1, (double)(pm - 1 - pty * TILE_SIZE));
+    // This block's first parent cell edge inside the parent's tile.
+    const double ou = (double)((pbx % BLOCKS_PER_TILE) * BLOCK + (n->bx % 2) * (BLOCK / 2));
+    const double ov = (double)((pby % BLOCKS_PER_TILE) * BLOCK + (n->by % 2) * (BLOCK / 2));
+    for (int gj = 0; gj <= BLOCK; gj += 2)
+        for (int gi = 0; gi <= BLOCK; gi += 2) {
+            const int k = gj * (BLOCK + 1) + gi;
+            double u = fmin(fmax(ou + gi / 2 - 0.5, 0.0), hi_u);
+            double v = fmin(fmax(ov + gj / 2 - 0.5, 0.0), hi_v);
+            float h = sample_bilinear(parent, u, v);
+            double len = sqrt(coarse[k][0] * coarse[k][0] + coarse[k][1] * coarse[k][1] +
+                              coarse[k][2] * coarse[k][2]);
+            double scale = (r->params.radius + h) / len;
+            for (int a = 0; a < 3; a++)
+                coarse[k][a] *= scale;
+            coarse_h[k] = h;
+        }
+    for (int gj = 0; gj <= BLOCK; gj++)
+        for (int gi = 0; gi <= BLOCK; gi++) {
+            if (gi % 2 == 0 && gj % 2 == 0) continue;
+            int a, b; // the two parent vertices whose edge (or diagonal) this one halves
+            const int row = BLOCK + 1;
+            if (gj % 2 == 0)
+                a = gj * row + gi - 1, b = gj * row + gi + 1;
+            else if (gi % 2 == 0)
+                a = (gj - 1) * row + gi, b = (gj + 1) * row + gi;
+            else // the parent's quads split along (i + 1, j) - (i, j + 1)
+                a = (gj - 1) * row + gi + 1, b = (gj + 1) * row + gi - 1;
+            const int k = gj * row + gi;
+            for (int c = 0; c < 3; c++)
+                coarse[k][c] = 0.5 * (coarse[a][c] + coarse[b][c]);
+            coarse_h[k] = 0.5f * (coarse_h[a] + coarse_h[b]);
+        }
+}
+
+static void build_vertices(const planet_renderer *r, const node *n, const float *tile,
+                           const float *parent, float *out, chunk *c) {
     // Positions with a ring one cell wider than the block, so every vertex's normal is
     // a central difference and neighbouring chunks shade their shared edge alike.
     enum { RING = BLOCK + 3 };
@@ -305,6 +371,9 @@ static void build_vertices(const planet_renderer *r, const node *n, const float 
         }
     const int centre = (BLOCK / 2 + 1) * RING + BLOCK / 2 + 1;
     memcpy(c->origin, pos[centre], sizeof c->origin);
+    static double coarse[GRID_VERTS][3];
+    static float coarse_h[GRID_VERTS];
+    morph_targets(r, n, parent, pos, heights, RING, coarse, coarse_h);
     for (int gj = 0; gj <= BLOCK; gj++)
         for (int gi = 0; gi <= BLOCK; gi++) {
             const int k = (gj + 1) * RING + gi + 1;
@@ -329,6 +398,10 @@ static void build_vertices(const planet_renderer *r, const node *n, const float 
             o[9] = heights[k];
             o[10] = (float)(metres[gi + 1][0] - base_u);
             o[11] = (float)(metres[gj + 1][1] - base_v);
+            const int q = gj * (BLOCK + 1) + gi;
+            for (int a = 0; a < 3; a++)
+                o[12 + a] = (float)(coarse[q][a] - c->origin[a]);
+            o[15] = coarse_h[q];
         }
     // Skirts: each edge's vertices again, lowered far enough to hide the cracks between
     // levels and faces (a level's samples differ from the next one's by about a cell).
@@ -340,8 +413,10 @@ static void build_vertices(const planet_renderer *r, const node *n, const float 
             const float *top = out + (size_t)(gj * (BLOCK + 1) + gi) * VERTEX_FLOATS;
             float *o = out + (size_t)(GRID_VERTS + e * (BLOCK + 1) + g) * VERTEX_FLOATS;
             memcpy(o, top, sizeof(float) * VERTEX_FLOATS);
-            for (int a = 0; a < 3; a++)
+            for (int a = 0; a < 3; a++) {
                 o[a] -= (float)(top[6 + a] * depth);
+                o[12 + a] -= (float)(top[6 + a] * depth);
+            }
         }
 }
 
@@ -367,10 +442,22 @@ static chunk *try_build(planet_renderer *r, const node *n) {
         r->all_current = 0;
         return NULL;
     }
+    // The parent level's tile, for the morph targets (none yet: the chunk does not morph).
+    tile_view parent = {0};
+    if (n->level < r->root_level) {
+        tile_key pk = {TILE_LAYER_COARSE, n->face, n->level + 1,
+                       (int32_t)(n->bx / 2 / BLOCKS_PER_TILE),
+                       (int32_t)(n->by / 2 / BLOCKS_PER_TILE)};
+        if (tile_cache_request(cache, pk, &parent) != TILE_READY && parent.data) {
+            tile_cache_release(cache, &parent);
+            parent.data = NULL;
+        }
+    }
     static float verts[CHUNK_VERTS * VERTEX_FLOATS];
     chunk *c = &r->chunks[slot];
-    build_vertices(r, n, view.data, verts, c);
+    build_vertices(r, n, view.data, parent.data, verts, c);
     tile_cache_release(cache, &view);
+    if (parent.data) tile_cache_release(cache, &parent);
     if (!c->vbo) {
         glCreateBuffers(1, &c->vbo);
         glNamedBufferStorage(c->vbo, sizeof verts, NULL, GL_DYNAMIC_STORAGE_BIT);
@@ -431,6 +518,8 @@ static int select_node(planet_renderer *r, const node *n) {
         }
         r->all_current = 0;
     }
+    double dist;
+    c->morph_reach = split_distance(r, &b, 2.0 * b.cell, &dist);
     if (r->draw_count < MAX_CHUNKS) r->draw_list[r->draw_count++] = (int)(c - r->chunks);
     return 0;
 }
@@ -464,7 +553,8 @@ static GLuint make_indices(void) {
     return ibo;
 }
 
-planet_renderer *planet_renderer_create(const char *resource_dir, GLuint albedo, og_error *err) {
+planet_renderer *planet_renderer_create(const char *resource_dir, GLuint albedo, GLuint falloff,
+                                        og_error *err) {
     planet_renderer *r = calloc(1, sizeof *r);
     if (!r) {
         og_error_set(err, "out of memory for the planet renderer");
@@ -480,12 +570,13 @@ planet_renderer *planet_renderer_create(const char *resource_dir, GLuint albedo,
         return NULL;
     }
     r->albedo = albedo;
+    r->falloff = falloff;
     r->ibo = make_indices();
     glCreateVertexArrays(1, &r->vao);
     glCreateVertexArrays(1, &r->empty_vao);
     glVertexArrayElementBuffer(r->vao, r->ibo);
-    const int sizes[5] = {3, 3, 3, 1, 2}, offsets[5] = {0, 3, 6, 9, 10};
-    for (int a = 0; a < 5; a++) {
+    const int sizes[6] = {3, 3, 3, 1, 2, 4}, offsets[6] = {0, 3, 6, 9, 10, 12};
+    for (int a = 0; a < 6; a++) {
         glEnableVertexArrayAttrib(r->vao, a);
         glVertexArrayAttribFormat(r->vao, a, sizes[a], GL_FLOAT, GL_FALSE,
                                   (GLuint)(offsets[a] * sizeof(float)));
@@ -509,7 +600,7 @@ void planet_renderer_destroy(planet_renderer *r) {
 
 int planet_renderer_update(planet_renderer *r, world *w, const camera *cam,
                            const render_settings *s, double aspect, int height_px, og_error *err) {
-    (void)s;
+    r->split_pixels = s->lod_pixels >= 1 ? s->lod_pixels : 6.0; // render lod_pixels=
     r->update_start_ms = now_ms();
     const world_params *p = world_get_params(w);
     if (p->kind != WORLD_PLANET) return og_error_set(err, "planet renderer: not a planet");
@@ -580,8 +671,38 @@ static void set_common(const planet_renderer *r, GLuint prog, const camera *cam,
     glProgramUniform1i(prog, glGetUniformLocation(prog, "u_view_mode"), s->view);
 }
 
-int planet_renderer_draw(planet_renderer *r, const camera *cam, const render_settings *s, int width,
-                         int height, og_error *err) {
+// The brush cursor: its centre relative to the camera, the local up there, the falloff
+// curve and the tool's colours (as the flat viewport draws them).
+static void set_cursor(planet_renderer *r, GLuint prog, const camera *cam,
+                       const brush_cursor *cursor) {
+    float brush[4] = {0, 0, 0, 0}, up[3] = {0, 1, 0};
+    if (cursor && cursor->visible && cursor->radius > 0 && !cursor->sphere) {
+        const double c[3] = {cursor->x, cursor->y, cursor->z};
+        double len = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+        for (int k = 0; k < 3; k++) {
+            brush[k] = (float)(c[k] - cam->pos[k]);
+            up[k] = len > 0 ? (float)(c[k] / len) : 0.0f;
+        }
+        brush[3] = (float)cursor->radius;
+        glTextureSubImage2D(r->falloff, 0, 0, 0, BRUSH_FALLOFF_SAMPLES, 1, GL_RED, GL_FLOAT,
+                            cursor->falloff);
+    }
+    glProgramUniform4fv(prog, glGetUniformLocation(prog, "u_brush"), 1, brush);
+    glProgramUniform3fv(prog, glGetUniformLocation(prog, "u_brush_up"), 1, up);
+    float tint[4] = {1.0f, 0.55f, 0.1f, 0.35f}, ring[3] = {1.0f, 0.9f, 0.3f}; // default: orange
+    if (cursor && cursor->opacity > 0) {
+        for (int i = 0; i < 3; i++)
+            tint[i] = cursor->color[i], ring[i] = 0.65f * cursor->color[i] + 0.35f;
+        tint[3] = cursor->opacity;
+    }
+    glProgramUniform4fv(prog, glGetUniformLocation(prog, "u_brush_tint"), 1, tint);
+    glProgramUniform3fv(prog, glGetUniformLocation(prog, "u_brush_ring"), 1, ring);
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "u_falloff"), 1);
+    glBindTextureUnit(1, r->falloff);
+}
+
+int planet_renderer_draw(planet_renderer *r, const camera *cam, const render_settings *s,
+                         const brush_cursor *cursor, int width, int height, og_error *err) {
     double t0 = now_ms();
     double aspect = (double)width / (double)(height > 0 ? height : 1);
     float vp[16];
@@ -638,8 +759,10 @@ int planet_renderer_draw(planet_renderer *r, const camera *cam, const render_set
                        (float)TEX_PERIOD_FAR);
     glProgramUniform1i(prog, glGetUniformLocation(prog, "u_albedo"), 0);
     glBindTextureUnit(0, r->albedo);
+    set_cursor(r, prog, cam, cursor);
     GLint offset_loc = glGetUniformLocation(prog, "u_offset");
     GLint level_loc = glGetUniformLocation(prog, "u_level");
+    GLint morph_loc = glGetUniformLocation(prog, "u_morph");
     glUseProgram(prog);
     glBindVertexArray(r->vao);
     if (wire) glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
@@ -649,6 +772,12 @@ int planet_renderer_draw(planet_renderer *r, const camera *cam, const render_set
                            (float)(c->origin[1] - cam->pos[1]),
                            (float)(c->origin[2] - cam->pos[2]));
         glProgramUniform1i(prog, level_loc, c->level);
+        // Fully the parent's mesh where the parent would be drawn instead: at the
+        // distance its samples shrink to split_pixels. Near the ground only, where a
+        // pop is seen (from high up the morphed, coarser mesh shows the sky's haze quad
+        // by quad, the same limit as the grazing split's).
+        const int morph = s->morph && c->level < r->root_level && near_ground(r);
+        glProgramUniform1f(prog, morph_loc, morph ? (float)(1.0 / c->morph_reach) : 0.0f);
         glVertexArrayVertexBuffer(r->vao, 0, c->vbo, 0, VERTEX_FLOATS * sizeof(float));
         glDrawElements(GL_TRIANGLES, CHUNK_INDICES, GL_UNSIGNED_SHORT, NULL);
         r->stats.triangles += CHUNK_INDICES / 3;

@@ -32,8 +32,10 @@ typedef struct planet_stats {
     double cpu_ms;
 } planet_stats;
 
-// albedo: the terrain renderer's material texture array (shared, not owned).
-planet_renderer *planet_renderer_create(const char *resource_dir, GLuint albedo, og_error *err);
+// albedo: the terrain renderer's material texture array; falloff: its brush falloff
+// texture (64 x 1 R32F), both shared, not owned.
+planet_renderer *planet_renderer_create(const char *resource_dir, GLuint albedo, GLuint falloff,
+                                        og_error *err);
 void planet_renderer_destroy(planet_renderer *r);
 
 // Chooses the chunks for this camera and builds those whose tiles are resident (a
@@ -41,8 +43,10 @@ void planet_renderer_destroy(planet_renderer *r);
 // 1 when every chunk wanted is drawn at its own level, 0 while some wait, -1 on error.
 int planet_renderer_update(planet_renderer *r, world *w, const camera *cam,
                            const render_settings *s, double aspect, int height_px, og_error *err);
-int planet_renderer_draw(planet_renderer *r, const camera *cam, const render_settings *s, int width,
-                         int height, og_error *err);
+// cursor (may be NULL): the brush draped on the ground around (x, y, z), planet
+// coordinates, the disc measured on the local level.
+int planet_renderer_draw(planet_renderer *r, const camera *cam, const render_settings *s,
+                         const brush_cursor *cursor, int width, int height, og_error *err);
 void planet_renderer_stats(const planet_renderer *r, planet_stats *out);
 
 // Change notifications: a coarse edit on a face (level-0 sample rectangle) rebuilds the

@@ -26,5 +26,6 @@ void render_settings_default(render_settings *s) {
                            .fog_density = 0.0,
                            .culling = 1,
                            .morph = 1,
-                           .auto_materials = 1};
+                           .auto_materials = 1,
+                           .lod_pixels = 6};
 }

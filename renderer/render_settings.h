@@ -35,6 +35,7 @@ typedef struct render_settings {
     int level_grid;            // each clipmap level's vertex grid in its level's colour (0)
     int auto_materials;        // the automatic material rules (grass, rock, snow by height and
                                // slope) colour unpainted ground; off: a neutral clay (1)
+    double lod_pixels;         // planets: pixels a sample may cover before its chunk splits (6)
 } render_settings;
 
 void render_settings_default(render_settings *s);

@@ -375,8 +375,8 @@ int terrain_renderer_update(terrain_renderer *r, world *w, const camera *cam,
     double t0 = now_ms();
     const world_params *p = world_get_params(w);
     if (p->kind == WORLD_PLANET) {
-        if (!r->planet &&
-            !(r->planet = planet_renderer_create(r->resource_dir, r->tex_albedo, err)))
+        if (!r->planet && !(r->planet = planet_renderer_create(r->resource_dir, r->tex_albedo,
+                                                               r->tex_falloff, err)))
             return -1;
         if (apply_changes(r, w, err) != 0) return -1;
         r->params = *p;
@@ -780,7 +780,7 @@ int terrain_renderer_draw(terrain_renderer *r, world *w, const camera *cam,
     if (r->world != w) return og_error_set(err, "terrain_renderer_draw: update first");
     r->width = width, r->height = height;
     if (r->params.kind == WORLD_PLANET && r->planet) {
-        int rc = planet_renderer_draw(r->planet, cam, s, width, height, err);
+        int rc = planet_renderer_draw(r->planet, cam, s, cursor, width, height, err);
         copy_planet_stats(r);
         return rc;
     }

@@ -142,11 +142,11 @@ static void print_settings(cmd_context *ctx, const render_settings *s) {
     fprintf(ctx->out,
             "render levels=%d parallax=%s quality=%d detail_distance=%g culling=%s morph=%s "
             "sun=%g,%g sun_rotation=%g fog=%g contours=%g tile_grid=%s level_grid=%s "
-            "auto_materials=%s view=%s\n",
+            "auto_materials=%s lod_pixels=%g view=%s\n",
             s->levels, s->parallax ? "on" : "off", s->parallax_steps, s->detail_distance,
             s->culling ? "on" : "off", s->morph ? "on" : "off", s->sun_yaw, s->sun_pitch,
             s->sun_rotation, s->fog_density, s->contours, s->tile_grid ? "on" : "off",
-            s->level_grid ? "on" : "off", s->auto_materials ? "on" : "off",
+            s->level_grid ? "on" : "off", s->auto_materials ? "on" : "off", s->lod_pixels,
             view_mode_name(s->view));
 }
 
@@ -178,6 +178,8 @@ static int cmd_render(cmd_context *ctx, int argc, char **argv, og_error *err) {
             rc = parse_switch(value, key, &s.level_grid, err);
         else if (strcmp(key, "auto_materials") == 0)
             rc = parse_switch(value, key, &s.auto_materials, err);
+        else if (strcmp(key, "lod_pixels") == 0)
+            rc = parse_number_in(value, key, 1, 64, &s.lod_pixels, err);
         else if (strcmp(key, "sun_rotation") == 0)
             rc = parse_number_in(value, key, -360, 360, &s.sun_rotation, err);
         else if (strcmp(key, "fog") == 0)
@@ -264,8 +266,8 @@ static const cmd_def view_commands[] = {
      "sun=YAW,PITCH, sun_rotation (degrees a second the editor turns the sun; R toggles it), "
      "contours (metres between contour lines, 0 = none), tile_grid=on|off (the tiles' edges), "
      "level_grid=on|off (each clipmap level's vertex grid), auto_materials=on|off (the "
-     "automatic material rules on unpainted ground). Without arguments, prints "
-     "them.",
+     "automatic material rules on unpainted ground), lod_pixels (planets: pixels a sample may "
+     "cover before its chunk splits, 1-64, 6). Without arguments, prints them.",
      0, 10, cmd_render, 0},
     {"screenshot", "screenshot FILE [W H]",
      "Renders the viewport offscreen (no display needed) to an RGB PNG, W x H pixels (1280 x 720), "

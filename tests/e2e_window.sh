@@ -215,6 +215,16 @@ printf 'tool\ntool smooth; tool\nexit\n' | "$orogen" >"$work/rerun.out" 2>"$work
 grep -q '^radius=12$' "$work/rerun.out" && grep -q '^radius=33$' "$work/rerun.out" &&
     grep -q '^falloff=tip$' "$work/rerun.out"
 check "the next run starts with each tool as it was left ($(grep -E '^(tool|radius|falloff)=' "$work/rerun.out" | tr '\n' ' '); $(head -c 200 "$work/rerun.err"))" $?
+# Seed 004's level-of-detail keys in the settings: enable_dynamic_LOD and the planet's
+# split threshold (lod_pixels) are written, and read by the next run.
+grep -q '^enable_dynamic_LOD = 1;$' "$work/config/orogen/settings" &&
+    grep -q '^lod_pixels = 6;$' "$work/config/orogen/settings"
+check "the level-of-detail keys are written with their defaults" $?
+sed -i 's/^lod_pixels = .*/lod_pixels = 12;/; s/^enable_dynamic_LOD = .*/enable_dynamic_LOD = 0;/' \
+    "$work/config/orogen/settings"
+printf 'render\ndynamic_resolution\nexit\n' | "$orogen" >"$work/rerun2.out" 2>"$work/rerun2.err"
+grep -q 'lod_pixels=12 ' "$work/rerun2.out" && grep -q '^dynamic_resolution off' "$work/rerun2.out"
+check "enable_dynamic_LOD = 0 and lod_pixels = 12 are honoured ($(grep -E '^(render|dynamic)' "$work/rerun2.out" | tr '\n' ' '))" $?
 cp "$work/session.og" "$work/replay.og"
 echo "hash $(awk -v x="$px" -v z="$pz" 'BEGIN { print x - 150, z - 150, x + 150, z + 150 }')" >>"$work/replay.og"
 "$orogen" --batch "$work/replay.og" >"$work/replay.out" 2>"$work/replay.err"

@@ -11,6 +11,11 @@ out vec4 o_colour;
 uniform int u_view_mode; // VIEW_SHADED 0, WIREFRAME 1, LEVELS 2, HEIGHT 3, SLOPE 4
 uniform int u_level;
 uniform vec2 u_tex_period; // metres per repeat: near, far
+uniform vec4 u_brush;      // the cursor's centre relative to the camera, radius (0: none)
+uniform vec3 u_brush_up;   // the local vertical at the cursor
+uniform sampler2D u_falloff;
+uniform vec4 u_brush_tint; // the tool's colour and opacity
+uniform vec3 u_brush_ring;
 uniform int u_palette;     // 0: the automatic rules; 1 airless and dry (rock, gravel); 2 dry
                            // with air (sand, dirt, rock)
 
@@ -63,6 +68,15 @@ void main() {
         c = mix(deep * (0.3 + 0.7 * day), sky, fresnel);
         vec3 h = normalize(u_sun_dir + to_eye);
         c += u_sun_colour * pow(max(dot(up, h), 0.0), 800.0) * 0.8 * day;
+    }
+    if (u_brush.w > 0.0) { // the brush, draped: distance on the local level
+        vec3 d = v_rel - u_brush.xyz;
+        d -= u_brush_up * dot(d, u_brush_up);
+        float r = length(d) / u_brush.w, fw = max(fwidth(r), 1e-4);
+        if (r < 1.0) c = mix(c, u_brush_tint.rgb, u_brush_tint.a * texture(u_falloff, vec2(r, 0.5)).r);
+        float ring = 1.0 - smoothstep(0.0, 1.5 * fw, abs(r - 1.0));
+        float centre = 1.0 - smoothstep(0.0, 1.5 * fw, r - 0.02);
+        c = mix(c, u_brush_ring, max(ring, centre));
     }
     if (u_view_mode == 0) { // the air between the camera and the ground
         vec3 transmittance;

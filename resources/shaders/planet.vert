@@ -7,20 +7,25 @@ layout(location = 1) in vec3 a_normal;
 layout(location = 2) in vec3 a_up;
 layout(location = 3) in float a_height;
 layout(location = 4) in vec2 a_metres;
+layout(location = 5) in vec4 a_coarse; // the vertex in the parent level's mesh, and its height
 uniform mat4 u_view_proj;
 uniform vec3 u_offset;
 uniform float u_ocean_h; // the sea's height above the datum
+uniform float u_morph;   // 1 / the distance where the parent level takes over (0: no morph)
 out vec3 v_rel, v_normal, v_up;
 out float v_height, v_depth;
 out vec2 v_metres;
 void main() {
-    vec3 rel = a_pos + u_offset;
-    v_depth = u_ocean_h - a_height;
+    // Geomorphing: from half that distance on, the vertex slides onto the parent's mesh.
+    float m = clamp(2.0 * length(a_pos + u_offset) * u_morph - 1.0, 0.0, 1.0);
+    vec3 rel = mix(a_pos, a_coarse.xyz, m) + u_offset;
+    float height = mix(a_height, a_coarse.w, m);
+    v_depth = u_ocean_h - height;
     if (v_depth > 0.0) rel += a_up * v_depth;
     v_rel = rel;
     v_normal = a_normal;
     v_up = a_up;
-    v_height = a_height;
+    v_height = height;
     v_metres = a_metres;
     gl_Position = u_view_proj * vec4(rel, 1.0);
 }
