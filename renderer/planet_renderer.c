@@ -20,7 +20,8 @@
 #define CHUNK_INDICES (BLOCK * BLOCK * 6 + 4 * BLOCK * 6)
 // Position 3 (from the chunk's origin), normal 3, up 3, height, uv 2, and the morph
 // target: where the vertex sits in the parent level's mesh (position 3, height).
-#define VERTEX_FLOATS 16
+// Then the 8 painted material weights (uint8 each, packed in two 32-bit slots).
+#define VERTEX_FLOATS 18
 #define MAX_CHUNKS 1536 // resident meshes (~90 MB): several views' worth
 #define TABLE_SIZE 4096 // open addressing, power of two, > 2 x MAX_CHUNKS
 #define BUILD_BUDGET_MS 10.0
@@ -328,8 +329,30 @@ static void morph_targets(const planet_renderer *r, const node *n, const float *
         }
 }
 
+// The painted weights at each grid vertex: the nearest material sample's (level-0
+// chunks; coarser ones show the automatic rules alone, as the flat viewport's far
+// levels do).
+static void painted_weights(const node *n, const uint8_t *material, float *out) {
+    const int ox = (int)(n->bx % BLOCKS_PER_TILE) * BLOCK,
+              oy = (int)(n->by % BLOCKS_PER_TILE) * BLOCK;
+    for (int gj = 0; gj <= BLOCK; gj++)
+        for (int gi = 0; gi <= BLOCK; gi++) {
+            uint8_t w[TILE_MATERIALS] = {255};
+            if (material) {
+                int u = ox + gi < TILE_SIZE ? ox + gi : TILE_SIZE - 1;
+                int v = oy + gj < TILE_SIZE ? oy + gj : TILE_SIZE - 1;
+                memcpy(w, material + ((size_t)v * TILE_SIZE + u) * TILE_MATERIALS, sizeof w);
+            }
+            uint32_t packed[2] = {0, 0};
+            for (int k = 0; k < TILE_MATERIALS; k++)
+                packed[k / 4] |= (uint32_t)w[k] << (8 * (k % 4));
+            memcpy(out + (size_t)(gj * (BLOCK + 1) + gi) * VERTEX_FLOATS + 16, packed,
+                   sizeof packed);
+        }
+}
+
 static void build_vertices(const planet_renderer *r, const node *n, const float *tile,
-                           const float *parent, float *out, chunk *c) {
+                           const float *parent, const uint8_t *material, float *out, chunk *c) {
     // Positions with a ring one cell wider than the block, so every vertex's normal is
     // a central difference and neighbouring chunks shade their shared edge alike.
     enum { RING = BLOCK + 3 };
@@ -403,6 +426,7 @@ static void build_vertices(const planet_renderer *r, const node *n, const float 
                 o[12 + a] = (float)(coarse[q][a] - c->origin[a]);
             o[15] = coarse_h[q];
         }
+    painted_weights(n, material, out);
     // Skirts: each edge's vertices again, lowered far enough to hide the cracks between
     // levels and faces (a level's samples differ from the next one's by about a cell).
     const double depth =
@@ -436,9 +460,22 @@ static chunk *try_build(planet_renderer *r, const node *n) {
         r->all_current = 0;
         return NULL;
     }
+    // Level 0 shows the paint: its material tile must be there too.
+    tile_view material = {0};
+    if (n->level == 0) {
+        tile_key mk = key;
+        mk.layer = TILE_LAYER_MATERIAL;
+        if (tile_cache_request(cache, mk, &material) != TILE_READY) {
+            if (material.data) tile_cache_release(cache, &material);
+            tile_cache_release(cache, &view);
+            r->all_current = 0;
+            return NULL;
+        }
+    }
     int slot = take_slot(r);
     if (slot < 0) { // every chunk is in use this frame
         tile_cache_release(cache, &view);
+        if (material.data) tile_cache_release(cache, &material);
         r->all_current = 0;
         return NULL;
     }
@@ -455,8 +492,9 @@ static chunk *try_build(planet_renderer *r, const node *n) {
     }
     static float verts[CHUNK_VERTS * VERTEX_FLOATS];
     chunk *c = &r->chunks[slot];
-    build_vertices(r, n, view.data, parent.data, verts, c);
+    build_vertices(r, n, view.data, parent.data, material.data, verts, c);
     tile_cache_release(cache, &view);
+    if (material.data) tile_cache_release(cache, &material);
     if (parent.data) tile_cache_release(cache, &parent);
     if (!c->vbo) {
         glCreateBuffers(1, &c->vbo);
@@ -582,6 +620,9 @@ planet_renderer *planet_renderer_create(const char *resource_dir, GLuint albedo,
                                   (GLuint)(offsets[a] * sizeof(float)));
         glVertexArrayAttribBinding(r->vao, a, 0);
     }
+    glEnableVertexArrayAttrib(r->vao, 6); // the painted weights, as integers
+    glVertexArrayAttribIFormat(r->vao, 6, 2, GL_UNSIGNED_INT, (GLuint)(16 * sizeof(float)));
+    glVertexArrayAttribBinding(r->vao, 6, 0);
     drop_all(r);
     return r;
 }

@@ -344,8 +344,8 @@ static int apply_changes(terrain_renderer *r, world *w, og_error *err) {
             const world_event *e = &events[i];
             if (r->planet && (e->kind == WORLD_EVENT_PARAMS || e->kind == WORLD_EVENT_REPLACED))
                 planet_renderer_forget(r->planet);
-            else if (r->planet && e->kind == WORLD_EVENT_AREA && e->layer == TILE_LAYER_COARSE &&
-                     e->level == 0)
+            else if (r->planet && e->kind == WORLD_EVENT_AREA && e->level == 0 &&
+                     (e->layer == TILE_LAYER_COARSE || e->layer == TILE_LAYER_MATERIAL))
                 planet_renderer_touched(r->planet, e->face, e->rect);
             if (events[i].kind == WORLD_EVENT_PARAMS || events[i].kind == WORLD_EVENT_REPLACED)
                 invalidate_all(r);

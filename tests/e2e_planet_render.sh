@@ -98,6 +98,23 @@ r2=$(rmse "$work/edit0.png" "$work/edit2.png")
 less 1 "$r1"; check "the dab shows in the view (rmse $r1)" $?
 less "$r2" 0.3; check "undo restores the view (rmse $r2)" $?
 
+# --- paint shows on the planet too (level-0 chunks blend the painted weights) -------
+# Face 4's metres of latitude 20, longitude -30 (land on the default planet).
+read -r px pz < <(python3 -c "
+import math
+la, lo = math.radians(20), math.radians(-30)
+x, y, z = math.cos(la) * math.sin(lo), math.sin(la), math.cos(la) * math.cos(lo)
+s, t = math.atan(x / z) * 4 / math.pi, math.atan(y / z) * 4 / math.pi
+print(((s + 1) / 2 * 100096 - 0.5) * 100, ((t + 1) / 2 * 100096 - 0.5) * 100)")
+run "new planet; camera_geo 20 -30 2500 0 -89 ground; screenshot $work/paint0.png $size;
+     tool paint radius=800 strength=1 material=4 face=4; dab $px $pz;
+     screenshot $work/paint1.png $size; undo; screenshot $work/paint2.png $size"
+check "paint on a planet, then undo ($(cat "$work/err"))" $?
+r1=$(rmse "$work/paint0.png" "$work/paint1.png")
+r2=$(rmse "$work/paint0.png" "$work/paint2.png")
+less 5 "$r1"; check "the painted snow shows (rmse $r1)" $?
+less "$r2" 0.3; check "undo takes it away (rmse $r2)" $?
+
 # --- bad input ---------------------------------------------------------------------
 run "new planet; camera_geo 91 0 100"
 grep -q "LAT: expected degrees in \[-90, 90\]" "$work/err"; check "latitude over 90 refused" $?

@@ -7,6 +7,8 @@
 in vec3 v_rel, v_normal, v_up;
 in float v_height, v_depth;
 in vec2 v_metres;
+in vec4 v_paint0, v_paint1; // painted weights: 0 automatic, 1-7 sand, grass, rock, snow, dirt,
+                            // gravel, moss
 out vec4 o_colour;
 uniform int u_view_mode; // VIEW_SHADED 0, WIREFRAME 1, LEVELS 2, HEIGHT 3, SLOPE 4
 uniform int u_level;
@@ -45,8 +47,15 @@ void main() {
         base = mix(vec3(0.2, 0.6, 0.3), vec3(0.8, 0.2, 0.1), clamp(slope, 0.0, 1.5) / 1.5);
     } else if (u_view_mode == 2) {
         base = level_colour(u_level);
-    } else if (u_palette == 0) {
-        base = automatic(v_height, slope, v_metres / u_tex_period.x, v_metres / u_tex_period.y);
+    } else if (u_palette == 0 || v_paint0.x < 0.999) {
+        vec2 uv = v_metres / u_tex_period.x, uv_far = v_metres / u_tex_period.y;
+        base = u_palette == 0 ? automatic(v_height, slope, uv, uv_far) : vec3(0.5);
+        if (v_paint0.x < 0.999) { // painted: as the flat viewport blends the weights
+            base = base * v_paint0.x + albedo(0, uv, uv_far).rgb * v_paint0.y +
+                   albedo(1, uv, uv_far).rgb * v_paint0.z + albedo(2, uv, uv_far).rgb * v_paint0.w +
+                   albedo(3, uv, uv_far).rgb * v_paint1.x + albedo(4, uv, uv_far).rgb * v_paint1.y +
+                   albedo(5, uv, uv_far).rgb * v_paint1.z + albedo(6, uv, uv_far).rgb * v_paint1.w;
+        }
     } else { // no sea: bare ground by slope (and height, for dust in the lowlands)
         vec2 uv = v_metres / u_tex_period.x, uv_far = v_metres / u_tex_period.y;
         vec4 low = albedo(u_palette == 1 ? 5 : 0, uv, uv_far), mid = albedo(u_palette == 1 ? 2 : 4, uv, uv_far);

@@ -8,6 +8,7 @@ layout(location = 2) in vec3 a_up;
 layout(location = 3) in float a_height;
 layout(location = 4) in vec2 a_metres;
 layout(location = 5) in vec4 a_coarse; // the vertex in the parent level's mesh, and its height
+layout(location = 6) in uvec2 a_paint; // the 8 painted weights, a byte each
 uniform mat4 u_view_proj;
 uniform vec3 u_offset;
 uniform float u_ocean_h; // the sea's height above the datum
@@ -15,6 +16,7 @@ uniform float u_morph;   // 1 / the distance where the parent level takes over (
 out vec3 v_rel, v_normal, v_up;
 out float v_height, v_depth;
 out vec2 v_metres;
+out vec4 v_paint0, v_paint1; // weights 0-3 and 4-7, 0..1
 void main() {
     // Geomorphing: from half that distance on, the vertex slides onto the parent's mesh.
     float m = clamp(2.0 * length(a_pos + u_offset) * u_morph - 1.0, 0.0, 1.0);
@@ -27,5 +29,9 @@ void main() {
     v_up = a_up;
     v_height = height;
     v_metres = a_metres;
+    v_paint0 = vec4(a_paint.x & 255u, (a_paint.x >> 8) & 255u, (a_paint.x >> 16) & 255u,
+                    a_paint.x >> 24) / 255.0;
+    v_paint1 = vec4(a_paint.y & 255u, (a_paint.y >> 8) & 255u, (a_paint.y >> 16) & 255u,
+                    a_paint.y >> 24) / 255.0;
     gl_Position = u_view_proj * vec4(rel, 1.0);
 }
