@@ -220,12 +220,14 @@ static int node_visible(planet_renderer *r, const node *n, double hmin, double h
     b->radius *= 1.15;
     b->cell = ldexp(r->cell_arc, n->level);
     if (behind_horizon(r, b->centre, b->radius, r->params.radius + hmax)) return 0;
-    float mn[3], mx[3];
-    for (int k = 0; k < 3; k++) {
-        mn[k] = (float)(b->centre[k] - b->radius - r->cam->pos[k]);
-        mx[k] = (float)(b->centre[k] + b->radius - r->cam->pos[k]);
+    // The bounding sphere against each plane (tighter than its box).
+    const double rel[3] = {b->centre[0] - r->cam->pos[0], b->centre[1] - r->cam->pos[1],
+                           b->centre[2] - r->cam->pos[2]};
+    for (int k = 0; k < 6; k++) {
+        const float *pl = r->fr.planes[k];
+        if (pl[0] * rel[0] + pl[1] * rel[1] + pl[2] * rel[2] + pl[3] < -b->radius) return 0;
     }
-    return frustum_test_aabb(&r->fr, mn, mx);
+    return 1;
 }
 
 // How much a sample's projected size shrinks seen at a grazing angle near the ground:
@@ -639,6 +641,32 @@ void planet_renderer_destroy(planet_renderer *r) {
     free(r);
 }
 
+// Near the ground the horizon is the ground's own: the sphere under all the ground
+// between the camera and its horizon (from the last frame's chunks there, a margin
+// below their lowest height) hides what lies past it, instead of a sphere under the
+// whole planet's lowest point (whose horizon, a few metres up, is hundreds of km out).
+// The horizon distance and the ground it spans depend on each other: a few rounds.
+static void tighten_occluder(planet_renderer *r) {
+    if (!near_ground(r) || r->draw_count == 0) return;
+    const double R = r->params.radius, margin = 0.05 * r->params.max_height + r->cell_arc;
+    double h = r->camera_altitude; // the occluder's height above the datum
+    for (int round = 0; round < 4; round++) {
+        double reach = sqrt(fmax(2.0 * R * (r->camera_altitude - h + margin), 0.0));
+        double lowest = r->camera_altitude;
+        for (int i = 0; i < r->draw_count; i++) {
+            const chunk *c = &r->chunks[r->draw_list[i]];
+            if (!c->key) continue; // dropped since (new parameters, another world)
+            double d[3] = {c->origin[0] - r->cam->pos[0], c->origin[1] - r->cam->pos[1],
+                           c->origin[2] - r->cam->pos[2]};
+            double chunk_reach = ldexp(r->cell_arc, c->level) * BLOCK; // its width
+            if (sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) - chunk_reach > reach) continue;
+            lowest = fmin(lowest, c->hmin);
+        }
+        h = lowest - margin;
+    }
+    r->occluder_radius = fmax(r->occluder_radius, R + h);
+}
+
 int planet_renderer_update(planet_renderer *r, world *w, const camera *cam,
                            const render_settings *s, double aspect, int height_px, og_error *err) {
     r->split_pixels = s->lod_pixels >= 1 ? s->lod_pixels : 6.0; // render lod_pixels=
@@ -656,7 +684,6 @@ int planet_renderer_update(planet_renderer *r, world *w, const camera *cam,
     r->frame++;
     r->cam = cam;
     r->all_current = 1;
-    r->draw_count = 0;
     memset(&r->stats, 0, sizeof r->stats);
     float vp[16];
     planet_camera_view_projection(cam, aspect, vp);
@@ -668,6 +695,8 @@ int planet_renderer_update(planet_renderer *r, world *w, const camera *cam,
         p->radius;
     r->occluder_radius = p->radius - 1.5 * p->max_height;
     if (r->occluder_radius < 0.5 * p->radius) r->occluder_radius = 0.5 * p->radius;
+    tighten_occluder(r); // from the last frame's chunks
+    r->draw_count = 0;
     for (int f = 0; f < 6; f++) {
         node root = {f, r->root_level, 0, 0};
         if (select_node(r, &root)) r->all_current = 0;
