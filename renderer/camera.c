@@ -91,9 +91,26 @@ void camera_projection_matrix(const camera *c, double aspect, float m[16]) {
 }
 
 void camera_view_projection(const camera *c, double aspect, float m[16]) {
+    double r[3], u[3], f[3];
+    camera_right(c, r);
+    camera_up(c, u);
+    camera_forward(c, f);
+    camera_basis_view_projection(c, r, u, f, aspect, m);
+}
+
+void camera_basis_view_projection(const camera *c, const double right[3], const double up[3],
+                                  const double forward[3], double aspect, float m[16]) {
     float p[16], v[16];
     camera_projection_matrix(c, aspect, p);
-    camera_view_matrix(c, v);
+    // Rows: right, up, -forward (view space looks down -Z). Column-major storage.
+    for (int i = 0; i < 3; i++) {
+        v[i * 4 + 0] = (float)right[i];
+        v[i * 4 + 1] = (float)up[i];
+        v[i * 4 + 2] = (float)-forward[i];
+        v[i * 4 + 3] = 0.0f;
+    }
+    v[12] = v[13] = v[14] = 0.0f;
+    v[15] = 1.0f;
     for (int col = 0; col < 4; col++)
         for (int row = 0; row < 4; row++) {
             double s = 0;
@@ -104,13 +121,19 @@ void camera_view_projection(const camera *c, double aspect, float m[16]) {
 }
 
 void camera_ray(const camera *c, double aspect, double sx, double sy, double dir[3]) {
-    double t = tan(0.5 * fov_of(c) * DEG);
-    double vx = (2.0 * sx - 1.0) * t * aspect_ok(aspect);
-    double vy = (1.0 - 2.0 * sy) * t; // sy grows downward
-    double r[3], u[3], f[3], len = 0;
+    double r[3], u[3], f[3];
     camera_right(c, r);
     camera_up(c, u);
     camera_forward(c, f);
+    camera_basis_ray(c, r, u, f, aspect, sx, sy, dir);
+}
+
+void camera_basis_ray(const camera *c, const double r[3], const double u[3], const double f[3],
+                      double aspect, double sx, double sy, double dir[3]) {
+    double t = tan(0.5 * fov_of(c) * DEG);
+    double vx = (2.0 * sx - 1.0) * t * aspect_ok(aspect);
+    double vy = (1.0 - 2.0 * sy) * t; // sy grows downward
+    double len = 0;
     for (int i = 0; i < 3; i++) {
         dir[i] = r[i] * vx + u[i] * vy + f[i];
         len += dir[i] * dir[i];

@@ -35,6 +35,12 @@ void camera_view_projection(const camera *c, double aspect, float m[16]);
 // centre). dir is unit, world space; the ray starts at c->pos.
 void camera_ray(const camera *c, double aspect, double sx, double sy, double dir[3]);
 
+// The same two from any unit basis (a planet's camera turns in its local frame).
+void camera_basis_view_projection(const camera *c, const double right[3], const double up[3],
+                                  const double forward[3], double aspect, float m[16]);
+void camera_basis_ray(const camera *c, const double right[3], const double up[3],
+                      const double forward[3], double aspect, double sx, double sy, double dir[3]);
+
 // Controls. All keep pitch within +-CAMERA_PITCH_LIMIT and yaw in [0, 360).
 // Fly mode mouse look.
 void camera_look(camera *c, double dyaw, double dpitch);

@@ -52,33 +52,13 @@ void planet_camera_basis(const camera *c, double forward[3], double right[3], do
 void planet_camera_view_projection(const camera *c, double aspect, float m[16]) {
     double f[3], r[3], u[3];
     planet_camera_basis(c, f, r, u);
-    double v[16] = {0};
-    for (int i = 0; i < 3; i++) { // rows: right, up, -forward
-        v[i * 4 + 0] = r[i];
-        v[i * 4 + 1] = u[i];
-        v[i * 4 + 2] = -f[i];
-    }
-    v[15] = 1;
-    float p[16];
-    camera_projection_matrix(c, aspect, p);
-    for (int col = 0; col < 4; col++)
-        for (int row = 0; row < 4; row++) {
-            double s = 0;
-            for (int k = 0; k < 4; k++)
-                s += (double)p[k * 4 + row] * v[col * 4 + k];
-            m[col * 4 + row] = (float)s;
-        }
+    camera_basis_view_projection(c, r, u, f, aspect, m);
 }
 
 void planet_camera_ray(const camera *c, double aspect, double sx, double sy, double dir[3]) {
     double f[3], r[3], u[3];
     planet_camera_basis(c, f, r, u);
-    double fov = c->fov_y >= 1 && c->fov_y <= 170 ? c->fov_y : 60;
-    double t = tan(0.5 * fov * DEG), a = aspect > 0 && isfinite(aspect) ? aspect : 1;
-    double vx = (2.0 * sx - 1.0) * t * a, vy = (1.0 - 2.0 * sy) * t;
-    for (int k = 0; k < 3; k++)
-        dir[k] = f[k] + vx * r[k] + vy * u[k];
-    normalize(dir);
+    camera_basis_ray(c, r, u, f, aspect, sx, sy, dir);
 }
 
 void planet_position(double lat, double lon, double distance, double pos[3]) {
