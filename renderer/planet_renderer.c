@@ -4,6 +4,7 @@
 #include "io/tile_cache.h"
 #include "renderer/frustum.h"
 #include "renderer/lighting.h"
+#include "renderer/planet_detail.h"
 #include "renderer/planet_camera.h"
 #include "renderer/shader.h"
 
@@ -36,8 +37,9 @@ typedef struct chunk {
     double origin[3]; // planet coordinates of the vertices' origin
     float hmin, hmax; // metres above the datum
     int level;
-    double morph_reach; // this frame: where the parent level would take over (metres)
-    uint64_t used;      // frame it was last selected
+    double morph_reach;    // this frame: where the parent level would take over (metres)
+    double metres_base[2]; // face-local metres the vertices' texture metres are relative to
+    uint64_t used;         // frame it was last selected
 } chunk;
 
 typedef struct node {
@@ -47,6 +49,7 @@ typedef struct node {
 
 struct planet_renderer {
     GLuint prog_planet, prog_sky, vao, empty_vao, ibo, albedo, falloff;
+    planet_detail *detail; // the detail layer around the camera, for parallax
     chunk chunks[MAX_CHUNKS];
     int table[TABLE_SIZE]; // chunk index or -1
     int resident;
@@ -83,6 +86,10 @@ static uint64_t node_key(const node *n) {
     return ((uint64_t)n->face | (uint64_t)n->level << 3 | (uint64_t)n->bx << 8 |
             (uint64_t)n->by << 34) +
            1;
+}
+
+static int chunk_face(const chunk *c) {
+    return (int)((c->key - 1) & 7);
 }
 
 static size_t slot_of(uint64_t key) {
@@ -379,6 +386,7 @@ static void build_vertices(const planet_renderer *r, const node *n, const float 
     }
     const double base_u = floor(metres[1][0] / TEX_PERIOD_FAR) * TEX_PERIOD_FAR;
     const double base_v = floor(metres[1][1] / TEX_PERIOD_FAR) * TEX_PERIOD_FAR;
+    c->metres_base[0] = base_u, c->metres_base[1] = base_v;
     c->hmin = INFINITY, c->hmax = -INFINITY;
     for (int gj = -1; gj <= BLOCK + 1; gj++)
         for (int gi = -1; gi <= BLOCK + 1; gi++) {
@@ -611,6 +619,10 @@ planet_renderer *planet_renderer_create(const char *resource_dir, GLuint albedo,
     }
     r->albedo = albedo;
     r->falloff = falloff;
+    if (!(r->detail = planet_detail_create(err))) {
+        planet_renderer_destroy(r);
+        return NULL;
+    }
     r->ibo = make_indices();
     glCreateVertexArrays(1, &r->vao);
     glCreateVertexArrays(1, &r->empty_vao);
@@ -638,6 +650,7 @@ void planet_renderer_destroy(planet_renderer *r) {
     if (r->empty_vao) glDeleteVertexArrays(1, &r->empty_vao);
     if (r->prog_planet) glDeleteProgram(r->prog_planet);
     if (r->prog_sky) glDeleteProgram(r->prog_sky);
+    planet_detail_destroy(r->detail);
     free(r);
 }
 
@@ -667,13 +680,36 @@ static void tighten_occluder(planet_renderer *r) {
     r->occluder_radius = fmax(r->occluder_radius, R + h);
 }
 
+// The detail window follows the camera near the ground; the ground under the camera is
+// the top of the nearest chunk drawn (no tile is read here).
+static int update_detail(planet_renderer *r, const render_settings *s, og_error *err) {
+    double nearest = INFINITY, ground = r->camera_altitude;
+    for (int i = 0; i < r->draw_count; i++) {
+        const chunk *c = &r->chunks[r->draw_list[i]];
+        double d[3] = {c->origin[0] - r->cam->pos[0], c->origin[1] - r->cam->pos[1],
+                       c->origin[2] - r->cam->pos[2]};
+        double dist = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        if (dist < nearest) nearest = dist, ground = c->hmax;
+    }
+    int rc = planet_detail_update(r->detail, world_cache(r->world), r->cam->pos,
+                                  r->camera_altitude - ground, r->face_samples, r->cell_arc,
+                                  r->params.detail_ratio, s);
+    if (rc < 0) return og_error_set(err, "the planet's detail window could not read its tiles");
+    if (rc == 0) r->all_current = 0;
+    r->stats.detail_texels_uploaded = planet_detail_take_uploads(r->detail);
+    return 0;
+}
+
 int planet_renderer_update(planet_renderer *r, world *w, const camera *cam,
                            const render_settings *s, double aspect, int height_px, og_error *err) {
     r->split_pixels = s->lod_pixels >= 1 ? s->lod_pixels : 6.0; // render lod_pixels=
     r->update_start_ms = now_ms();
     const world_params *p = world_get_params(w);
     if (p->kind != WORLD_PLANET) return og_error_set(err, "planet renderer: not a planet");
-    if (r->world != w || memcmp(&r->params, p, sizeof *p) != 0) drop_all(r);
+    if (r->world != w || memcmp(&r->params, p, sizeof *p) != 0) {
+        drop_all(r);
+        planet_detail_forget(r->detail);
+    }
     r->world = w;
     r->params = *p;
     r->face_samples = world_grid_face_samples(p);
@@ -701,6 +737,7 @@ int planet_renderer_update(planet_renderer *r, world *w, const camera *cam,
         node root = {f, r->root_level, 0, 0};
         if (select_node(r, &root)) r->all_current = 0;
     }
+    if (update_detail(r, s, err) < 0) return -1;
     r->stats.chunks_resident = r->resident;
     r->stats.finest_level = 99, r->stats.coarsest_level = -1;
     for (int i = 0; i < r->draw_count; i++) {
@@ -830,6 +867,8 @@ int planet_renderer_draw(planet_renderer *r, const camera *cam, const render_set
     glProgramUniform1i(prog, glGetUniformLocation(prog, "u_albedo"), 0);
     glBindTextureUnit(0, r->albedo);
     set_cursor(r, prog, cam, cursor);
+    planet_detail_bind(r->detail, prog, s, 2, 3);
+    GLint detail_loc = glGetUniformLocation(prog, "u_chunk_detail");
     GLint offset_loc = glGetUniformLocation(prog, "u_offset");
     GLint level_loc = glGetUniformLocation(prog, "u_level");
     GLint morph_loc = glGetUniformLocation(prog, "u_morph");
@@ -842,6 +881,10 @@ int planet_renderer_draw(planet_renderer *r, const camera *cam, const render_set
                            (float)(c->origin[1] - cam->pos[1]),
                            (float)(c->origin[2] - cam->pos[2]));
         glProgramUniform1i(prog, level_loc, c->level);
+        float detail[4];
+        planet_detail_chunk(r->detail, chunk_face(c), c->level, c->metres_base[0],
+                            c->metres_base[1], detail);
+        glProgramUniform4fv(prog, detail_loc, 1, detail);
         // Fully the parent's mesh where the parent would be drawn instead: at the
         // distance its samples shrink to split_pixels. Near the ground only, where a
         // pop is seen (from high up the morphed, coarser mesh shows the sky's haze quad
@@ -865,6 +908,12 @@ int planet_renderer_draw(planet_renderer *r, const camera *cam, const render_set
 
 void planet_renderer_forget(planet_renderer *r) {
     drop_all(r);
+    planet_detail_forget(r->detail);
+}
+
+void planet_renderer_detail_touched(planet_renderer *r, tile_cache *cache, int face,
+                                    grid_rect rect) {
+    planet_detail_touched(r->detail, cache, face, rect);
 }
 
 void planet_renderer_touched(planet_renderer *r, int face, grid_rect rect) {

@@ -26,9 +26,10 @@ typedef struct planet_stats {
     uint64_t triangles;
     int draw_calls;
     int chunks_drawn, chunks_resident, finest_level, coarsest_level;
-    uint64_t vertices_uploaded; // this frame (chunk meshes built from tiles)
-    int chunks_built;           // this frame
-    int chunks_culled;          // behind the horizon or outside the view, this frame
+    uint64_t vertices_uploaded;      // this frame (chunk meshes built from tiles)
+    uint64_t detail_texels_uploaded; // this frame (the detail window near the ground)
+    int chunks_built;                // this frame
+    int chunks_culled;               // behind the horizon or outside the view, this frame
     double cpu_ms;
 } planet_stats;
 
@@ -53,6 +54,9 @@ void planet_renderer_stats(const planet_renderer *r, planet_stats *out);
 // chunks over it; forget drops every chunk (new parameters, another world).
 void planet_renderer_touched(planet_renderer *r, int face, grid_rect rect);
 void planet_renderer_forget(planet_renderer *r);
+// A detail-layer edit on a face (detail-sample rectangle): the parallax window re-reads it.
+void planet_renderer_detail_touched(planet_renderer *r, tile_cache *cache, int face,
+                                    grid_rect rect);
 
 // The sun: render_sun_direction's vector read in planet coordinates (sun_yaw turns it
 // around the +Y axis; the light's rotation, seed 004's omega, turns sun_yaw).

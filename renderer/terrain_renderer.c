@@ -347,6 +347,9 @@ static int apply_changes(terrain_renderer *r, world *w, og_error *err) {
             else if (r->planet && e->kind == WORLD_EVENT_AREA && e->level == 0 &&
                      (e->layer == TILE_LAYER_COARSE || e->layer == TILE_LAYER_MATERIAL))
                 planet_renderer_touched(r->planet, e->face, e->rect);
+            else if (r->planet && e->kind == WORLD_EVENT_AREA && e->level == 0 &&
+                     (e->layer == TILE_LAYER_DETAIL || e->layer == TILE_LAYER_DETAIL_PD))
+                planet_renderer_detail_touched(r->planet, cache, e->face, e->rect);
             if (events[i].kind == WORLD_EVENT_PARAMS || events[i].kind == WORLD_EVENT_REPLACED)
                 invalidate_all(r);
             else if (events[i].kind == WORLD_EVENT_AREA)

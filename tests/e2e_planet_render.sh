@@ -3,8 +3,9 @@
 # Earth-radius planet at 1 m spacing from orbit, from 10 km up and from 2 m above the
 # ground against golden images (RMSE tolerance, as e2e_render); a descent from
 # 40,000 km to 2 m where each small step of the camera changes the picture only a
-# little (no precision jitter); an edit shows and its undo restores the picture; the
-# seed-004 planet and the airless preset render; bad camera input fails clearly.
+# little (no precision jitter); an edit, paint and the detail layer's parallax show and
+# their undo restores the picture; the seed-004 planet and the airless preset render;
+# bad camera input fails clearly.
 # Usage: e2e_planet_render.sh OROGEN TESTS_DIR
 # Regenerate the goldens after a deliberate change: tests/golden_update.sh
 set -u
@@ -114,6 +115,33 @@ r1=$(rmse "$work/paint0.png" "$work/paint1.png")
 r2=$(rmse "$work/paint0.png" "$work/paint2.png")
 less 5 "$r1"; check "the painted snow shows (rmse $r1)" $?
 less "$r2" 0.3; check "undo takes it away (rmse $r2)" $?
+
+# --- detail near the camera: the detail layer's relief by parallax and normals -----
+# Face 4's metres of latitude 40, longitude -30 on the 1 m Earth, 12 m north of it.
+read -r dx dz < <(python3 -c "
+import math
+la, lo = math.radians(40), math.radians(-30)
+x, y, z = math.cos(la) * math.sin(lo), math.sin(la), math.cos(la) * math.cos(lo)
+s, t = math.atan(x / z) * 4 / math.pi, math.atan(y / z) * 4 / math.pi
+n = 10007552
+print(((s + 1) / 2 * n - 0.5), ((t + 1) / 2 * n - 0.5) + 12)")
+run "$earth; camera_geo 40 -30 3 0 -35 ground; screenshot $work/detail0.png $size;
+     tool noise target=detail radius=60 strength=1 scale=3 face=4; dab $dx $dz;
+     render parallax=on; screenshot $work/detail_on.png $size;
+     render parallax=off; screenshot $work/detail_off.png $size; render parallax=on;
+     camera_geo 40 -30 400 0 -35 ground; screenshot $work/detail_far.png $size;
+     camera_geo 40 -30 3 0 -35 ground; undo; screenshot $work/detail_undone.png $size"
+check "detail sculpted on a planet, parallax on and off, undo ($(cat "$work/err"))" $?
+r=$(rmse "$work/detail_on.png" "$work/detail_off.png")
+less 3 "$r"; check "parallax changes the planet's picture (rmse $r)" $?
+r=$(rmse "$work/detail0.png" "$work/detail_off.png")
+less 3 "$r"; check "the detail's normals show without parallax (rmse $r)" $?
+r=$(rmse "$work/detail0.png" "$work/detail_undone.png")
+less "$r" 0.3; check "undo takes the detail away (rmse $r)" $?
+# Seen from 400 m (past the fade distance) the edit does not show.
+run "$earth; camera_geo 40 -30 400 0 -35 ground; screenshot $work/detail_far0.png $size"
+r=$(rmse "$work/detail_far0.png" "$work/detail_far.png")
+less "$r" 0.3; check "detail fades out with distance (rmse $r)" $?
 
 # --- bad input ---------------------------------------------------------------------
 run "new planet; camera_geo 91 0 100"

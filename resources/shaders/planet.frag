@@ -1,9 +1,10 @@
 #version 450 core
 // A planet's ground and sea with the flat worlds' shading: the automatic material
-// rules by height above the datum and slope, the sun, the sea by Fresnel, and the
-// atmosphere between the camera and the ground.
+// rules by height above the datum and slope, parallax-mapped detail near the camera,
+// the sun, the sea by Fresnel, and the atmosphere between the camera and the ground.
 #include "materials.glsl"
 #include "planet_atmosphere.glsl"
+#include "detail_parallax.glsl"
 in vec3 v_rel, v_normal, v_up;
 in float v_height, v_depth;
 in vec2 v_metres;
@@ -18,6 +19,8 @@ uniform vec3 u_brush_up;   // the local vertical at the cursor
 uniform sampler2D u_falloff;
 uniform vec4 u_brush_tint; // the tool's colour and opacity
 uniform vec3 u_brush_ring;
+uniform vec4 u_chunk_detail; // this chunk's detail samples at v_metres (0, 0), samples per
+                             // metre, valid (0: no detail window over it)
 uniform int u_palette;     // 0: the automatic rules; 1 airless and dry (rock, gravel); 2 dry
                            // with air (sand, dirt, rock)
 
@@ -27,12 +30,44 @@ vec3 level_colour(int l) {
     return c[l % 6];
 }
 
+// The surface's unit directions of growing face-local metres u and v, perpendicular to
+// n, from the screen-space derivatives of the position and the metres (a cotangent
+// frame): no per-vertex tangents are stored.
+void metre_axes(vec3 n, out vec3 t_axis, out vec3 b_axis) {
+    vec3 dp1 = dFdx(v_rel), dp2 = dFdy(v_rel);
+    vec2 duv1 = dFdx(v_metres), duv2 = dFdy(v_metres);
+    vec3 dp2perp = cross(dp2, n), dp1perp = cross(n, dp1);
+    vec3 t = dp2perp * duv1.x + dp1perp * duv2.x;
+    vec3 b = dp2perp * duv1.y + dp1perp * duv2.y;
+    t = t - n * dot(n, t);
+    t_axis = t * inversesqrt(max(dot(t, t), 1e-30));
+    b = b - n * dot(n, b) - t_axis * dot(t_axis, b);
+    b_axis = b * inversesqrt(max(dot(b, b), 1e-30));
+}
+
 void main() {
     vec3 n = normalize(v_normal), up = normalize(v_up);
     float dist = length(v_rel);
     vec3 view_dir = v_rel / max(dist, 1e-6);
     float cos_slope = clamp(dot(n, up), 0.05, 1.0);
     float slope = sqrt(max(1.0 - cos_slope * cos_slope, 0.0)) / cos_slope; // rise over run
+    // Detail near the camera: parallax shifts the texture lookups, the detail's slopes
+    // tilt the normal (the slope rules keep the coarse surface's, as on flat worlds).
+    vec2 shift_m = vec2(0.0);
+    if (u_chunk_detail.w > 0.0) { // uniform per draw: the derivatives stay defined
+        vec3 t_axis, b_axis;
+        metre_axes(n, t_axis, b_axis);
+        float fade = detail_fade(dist);
+        vec2 dt = u_chunk_detail.xy + v_metres * u_chunk_detail.z;
+        if (fade > 0.0 && in_detail_window(dt)) {
+            vec3 to_eye = -view_dir;
+            vec3 v = vec3(dot(to_eye, t_axis), dot(to_eye, b_axis), dot(to_eye, n));
+            vec2 tc = detail_parallax(dt, v, fade);
+            shift_m = (tc - dt) / u_chunk_detail.z;
+            vec2 ds = detail_slopes(tc, fade);
+            n = normalize(n - t_axis * ds.x - b_axis * ds.y);
+        }
+    }
     float diffuse = max(dot(n, u_sun_dir), 0.0);
     float day = smoothstep(-0.1, 0.2, dot(up, u_sun_dir));
     vec3 ambient = vec3(0.10, 0.13, 0.18) * (0.25 + 0.75 * day);
@@ -48,7 +83,7 @@ void main() {
     } else if (u_view_mode == 2) {
         base = level_colour(u_level);
     } else if (u_palette == 0 || v_paint0.x < 0.999) {
-        vec2 uv = v_metres / u_tex_period.x, uv_far = v_metres / u_tex_period.y;
+        vec2 uv = (v_metres + shift_m) / u_tex_period.x, uv_far = v_metres / u_tex_period.y;
         base = u_palette == 0 ? automatic(v_height, slope, uv, uv_far) : vec3(0.5);
         if (v_paint0.x < 0.999) { // painted: as the flat viewport blends the weights
             base = base * v_paint0.x + albedo(0, uv, uv_far).rgb * v_paint0.y +
@@ -57,7 +92,7 @@ void main() {
                    albedo(5, uv, uv_far).rgb * v_paint1.z + albedo(6, uv, uv_far).rgb * v_paint1.w;
         }
     } else { // no sea: bare ground by slope (and height, for dust in the lowlands)
-        vec2 uv = v_metres / u_tex_period.x, uv_far = v_metres / u_tex_period.y;
+        vec2 uv = (v_metres + shift_m) / u_tex_period.x, uv_far = v_metres / u_tex_period.y;
         vec4 low = albedo(u_palette == 1 ? 5 : 0, uv, uv_far), mid = albedo(u_palette == 1 ? 2 : 4, uv, uv_far);
         vec4 steep = albedo(7, uv, uv_far);
         float lowland = 1.0 - smoothstep(-0.4, 0.2, v_height / max(u_max_height, 1e-6));

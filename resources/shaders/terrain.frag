@@ -1,13 +1,14 @@
 #version 450 core
 // Terrain shading: normals from the heights' partial derivatives (Crause 2010's PD
 // normals), 8-layer material splatting over automatic sand/grass/rock/snow rules
-// (Harris 2011), parallax-mapped detail near the camera, sun, fog, the brush cursor and
-// the debug views.
+// (Harris 2011), parallax-mapped detail near the camera (detail_parallax.glsl), sun,
+// fog, the brush cursor and the debug views.
 #include "terrain_common.glsl"
 #include "lighting.glsl"
 #include "colour_ramp.glsl"
 #include "materials.glsl"
 #include "volume_mask.glsl"
+#include "detail_parallax.glsl"
 
 in vec2 v_local;
 in vec3 v_rel;
@@ -32,14 +33,6 @@ uniform vec2 u_tex_period;             // metres per repeat: near texture, far v
 
 uniform usampler2D u_material;         // 8 x uint8 weights per texel (RG32UI), toroidal
 uniform ivec2 u_mat_wrap;              // texel of the window's origin sample
-uniform sampler2D u_detail;            // detail heights (metres), toroidal
-uniform sampler2D u_detail_pd;         // detail slopes (RG16 snorm, x 8)
-uniform vec2 u_detail_wrap;            // texel of the detail window's origin sample
-uniform float u_detail_spacing;        // metres between detail samples
-uniform int u_detail_size;
-uniform int u_parallax;                // on/off
-uniform int u_parallax_steps;          // iterations (the quality setting)
-uniform float u_parallax_fade;         // metres: detail fades out by this distance
 uniform vec4 u_brush;                  // centre relative to the camera (xz), radius, visible
 uniform sampler2D u_falloff;           // the brush's falloff curve over 0..1 of the radius (64x1)
 uniform vec4 u_brush_tint;              // the tool's colour, and its opacity (follows strength)
@@ -126,36 +119,21 @@ void main() {
         return;
     }
 
-    // Detail: iterative parallax with offset limiting (Crause 2010 4.4.3) over the detail
-    // window, faded out with distance.
+    // Detail: parallax over the detail window, faded out with distance.
     vec2 detail_slope = vec2(0.0);
     vec2 shift_m = vec2(0.0); // parallax shift of the texture lookups, metres
     vec4 ld = u_lvl_detail[u_level];
-    float fade = 1.0 - smoothstep(u_parallax_fade * 0.6, u_parallax_fade, dist);
+    float fade = detail_fade(dist);
     if (ld.w > 0.0 && fade > 0.0) {
         vec2 dt = ld.xy + v_local * ld.z; // detail samples from the window's origin
-        float size = float(u_detail_size);
-        if (all(greaterThanEqual(dt, vec2(1.0))) && all(lessThan(dt, vec2(size - 2.0)))) {
-            vec2 tc = dt;
-            if (u_parallax != 0) {
-                vec3 n0 = normalize(vec3(-g.x, 1.0, -g.y));
-                vec3 t_axis = normalize(vec3(1.0, 0.0, 0.0) - n0 * n0.x);
-                vec3 b_axis = cross(t_axis, n0);
-                vec3 v = vec3(dot(view_dir, t_axis), dot(view_dir, b_axis), dot(view_dir, n0));
-                vec3 p = vec3(dt, 0.0);
-                float limit = 6.0; // offset limiting: at most this many detail samples
-                for (int i = 0; i < u_parallax_steps; i++) {
-                    float dh = texture(u_detail, (p.xy + u_detail_wrap + 0.5) / size).r * fade;
-                    vec3 step_v = (dh - p.z) * vec3(v.xy / u_detail_spacing, v.z);
-                    p += step_v;
-                    vec2 o = p.xy - dt;
-                    float len = length(o);
-                    if (len > limit) p.xy = dt + o * (limit / len);
-                }
-                tc = p.xy;
-            }
+        if (in_detail_window(dt)) {
+            vec3 n0 = normalize(vec3(-g.x, 1.0, -g.y));
+            vec3 t_axis = normalize(vec3(1.0, 0.0, 0.0) - n0 * n0.x);
+            vec3 b_axis = cross(t_axis, n0);
+            vec3 v = vec3(dot(view_dir, t_axis), dot(view_dir, b_axis), dot(view_dir, n0));
+            vec2 tc = detail_parallax(dt, v, fade);
             shift_m = (tc - dt) * u_detail_spacing;
-            detail_slope = texture(u_detail_pd, (tc + u_detail_wrap + 0.5) / size).rg * 8.0 * fade;
+            detail_slope = detail_slopes(tc, fade);
         }
     }
     vec3 n = normalize(vec3(-(g.x + detail_slope.x), 1.0, -(g.y + detail_slope.y)));
