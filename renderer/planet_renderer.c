@@ -808,6 +808,34 @@ static void set_cursor(planet_renderer *r, GLuint prog, const camera *cam,
     glBindTextureUnit(1, r->falloff);
 }
 
+// Space, the sun and the sky, drawn after the ground where nothing was drawn: the
+// fullscreen triangle lies on the far plane (depth 0) and passes only where the depth
+// buffer still holds its clear value, so ground pixels never run the sky's integral.
+static void draw_sky(planet_renderer *r, const camera *cam, const render_settings *s,
+                     double aspect) {
+    double f[3], rt[3], up[3];
+    planet_camera_basis(cam, f, rt, up);
+    GLuint prog = r->prog_sky;
+    set_common(r, prog, cam, s);
+    glProgramUniform3f(prog, glGetUniformLocation(prog, "u_cam_forward"), (float)f[0], (float)f[1],
+                       (float)f[2]);
+    glProgramUniform3f(prog, glGetUniformLocation(prog, "u_cam_right"), (float)rt[0], (float)rt[1],
+                       (float)rt[2]);
+    glProgramUniform3f(prog, glGetUniformLocation(prog, "u_cam_upv"), (float)up[0], (float)up[1],
+                       (float)up[2]);
+    double ty = tan((cam->fov_y >= 1 && cam->fov_y <= 170 ? cam->fov_y : 60) * M_PI / 360.0);
+    glProgramUniform2f(prog, glGetUniformLocation(prog, "u_tan_half"), (float)(ty * aspect),
+                       (float)ty);
+    glUseProgram(prog);
+    glBindVertexArray(r->empty_vao);
+    glDepthMask(GL_FALSE);
+    glDepthFunc(GL_GEQUAL);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDepthFunc(GL_GREATER);
+    glDepthMask(GL_TRUE);
+    r->stats.draw_calls++;
+}
+
 int planet_renderer_draw(planet_renderer *r, const camera *cam, const render_settings *s,
                          const brush_cursor *cursor, int width, int height, og_error *err) {
     double t0 = now_ms();
@@ -825,29 +853,6 @@ int planet_renderer_draw(planet_renderer *r, const camera *cam, const render_set
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     r->stats.triangles = 0;
     r->stats.draw_calls = 0;
-    if (!wire) { // space, the sun and the sky
-        double f[3], rt[3], up[3];
-        planet_camera_basis(cam, f, rt, up);
-        GLuint prog = r->prog_sky;
-        set_common(r, prog, cam, s);
-        glProgramUniform3f(prog, glGetUniformLocation(prog, "u_cam_forward"), (float)f[0],
-                           (float)f[1], (float)f[2]);
-        glProgramUniform3f(prog, glGetUniformLocation(prog, "u_cam_right"), (float)rt[0],
-                           (float)rt[1], (float)rt[2]);
-        glProgramUniform3f(prog, glGetUniformLocation(prog, "u_cam_upv"), (float)up[0],
-                           (float)up[1], (float)up[2]);
-        double ty = tan((cam->fov_y >= 1 && cam->fov_y <= 170 ? cam->fov_y : 60) * M_PI / 360.0);
-        glProgramUniform2f(prog, glGetUniformLocation(prog, "u_tan_half"), (float)(ty * aspect),
-                           (float)ty);
-        glUseProgram(prog);
-        glBindVertexArray(r->empty_vao);
-        glDepthMask(GL_FALSE);
-        glDisable(GL_DEPTH_TEST);
-        glDrawArrays(GL_TRIANGLES, 0, 3);
-        glEnable(GL_DEPTH_TEST);
-        glDepthMask(GL_TRUE);
-        r->stats.draw_calls++;
-    }
     GLuint prog = r->prog_planet;
     set_common(r, prog, cam, s);
     const world_params *p = &r->params;
@@ -897,6 +902,7 @@ int planet_renderer_draw(planet_renderer *r, const camera *cam, const render_set
         r->stats.draw_calls++;
     }
     if (wire) glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    if (!wire) draw_sky(r, cam, s, aspect);
     r->stats.chunks_drawn = r->draw_count;
     glBindVertexArray(0);
     glUseProgram(0);
