@@ -70,7 +70,7 @@ static void remember_recent(editor_ui *e, const char *path) {
 
 static void do_action(editor_ui *e, cmd_context *ctx, editor_pending action) {
     if (action == PENDING_NEW_FLAT) editor_ui_run(e, ctx, "new flat");
-    if (action == PENDING_NEW_PLANET) runf(e, ctx, "new planet preset=%s", e->planet_preset);
+    if (action == PENDING_NEW_PLANET) editor_ui_run(e, ctx, e->planet_command);
     if (action == PENDING_OPEN) {
         char arg[1100], cmd[1200];
         cmd_quote_arg(arg, sizeof arg, e->open_path);
@@ -100,15 +100,7 @@ static void menus(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v, u
     if (ui_menu_begin(ui, "File")) {
         if (ui_menu_item(ui, "New flat world", "Ctrl+N", 1))
             editor_ui_request(e, ctx, PENDING_NEW_FLAT);
-        static const char *const presets[4][2] = {{"New planet: Earth-like", "earth"},
-                                                  {"New planet: Mars-like", "mars"},
-                                                  {"New planet: moon", "moon"},
-                                                  {"New planet: small asteroid", "asteroid"}};
-        for (int i = 0; i < 4; i++)
-            if (ui_menu_item(ui, presets[i][0], NULL, 1)) {
-                snprintf(e->planet_preset, sizeof e->planet_preset, "%s", presets[i][1]);
-                editor_ui_request(e, ctx, PENDING_NEW_PLANET);
-            }
+        if (ui_menu_item(ui, "New planet...", NULL, 1)) new_planet_dialog_show(&e->new_planet);
         if (ui_menu_item(ui, "Open...", "Ctrl+O", 1)) editor_ui_open(e, ctx);
         for (int i = 0; i < e->recent_count; i++) {
             char label[1100];
@@ -1253,6 +1245,11 @@ static ui_rect dialog_rect(const editor_ui *e, const ui_context *ui, float width
             width, height, fminf(width * 0.9f, ui_em(ui, 24)),
             fminf(height * 0.9f,
                   ui_em(ui, 1.7f * (float)interchange_dialog_rows(&e->interchange) + 1.5f)));
+    if (e->new_planet.open)
+        return centred(
+            width, height, fminf(width * 0.9f, ui_em(ui, 24)),
+            fminf(height * 0.9f,
+                  ui_em(ui, 1.7f * (float)new_planet_dialog_rows(&e->new_planet) + 1.5f)));
     if (e->offer_recovery) return centred(width, height, ui_em(ui, 26), ui_em(ui, 6.5f));
     if (e->confirm_replace)
         return centred(width, height, fminf(width * 0.9f, ui_em(ui, 30)),
@@ -1337,6 +1334,10 @@ ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport
         char cmd[4600];
         if (interchange_dialog_draw(&e->interchange, ui, modal, cmd, sizeof cmd))
             editor_ui_run(e, ctx, cmd);
+    } else if (e->new_planet.open) {
+        if (new_planet_dialog_draw(&e->new_planet, ui, modal, e->planet_command,
+                                   sizeof e->planet_command))
+            editor_ui_request(e, ctx, PENDING_NEW_PLANET);
     } else if (e->offer_recovery) {
         recover_dialog(e, ui, ctx, modal);
     } else if (e->confirm_replace) {
@@ -1352,6 +1353,8 @@ ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport
             e->files.open = 0;
         else if (e->interchange.open)
             e->interchange.open = 0;
+        else if (e->new_planet.open)
+            e->new_planet.open = 0;
         else if (e->offer_recovery) {
             size_t steps;
             int64_t when;

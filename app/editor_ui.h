@@ -8,6 +8,7 @@
 #include "app/console.h"
 #include "app/file_browser.h"
 #include "app/interchange_dialog.h"
+#include "app/new_planet_dialog.h"
 #include "app/stamp_browser.h"
 #include "app/work_queue.h"
 #include "editor/cmd/commands.h"
@@ -29,7 +30,7 @@ typedef struct editor_frame_info {
 typedef enum editor_pending {
     PENDING_NONE,
     PENDING_NEW_FLAT,
-    PENDING_NEW_PLANET, // planet_preset
+    PENDING_NEW_PLANET, // planet_command
     PENDING_OPEN,       // open_path
     PENDING_QUIT,
 } editor_pending;
@@ -51,7 +52,8 @@ typedef struct editor_ui {
     size_t unsaved_journal_steps;
     int64_t unsaved_journal_when;
     char open_path[1024];
-    char planet_preset[16]; // PENDING_NEW_PLANET: the preset (earth, mars, moon, asteroid)
+    new_planet_dialog new_planet;     // File > New planet...
+    char planet_command[1024];        // PENDING_NEW_PLANET: the dialog's new planet command
     char recent[EDITOR_RECENT][1024]; // worlds opened or saved lately, newest first
     int recent_count;
     double ui_scale, ui_scale_request; // the current scale; a new one asked for (0: none)

@@ -107,20 +107,11 @@ static void mapping_preview(interchange_dialog *d, ui_context *ui) {
 
 // A label and its text field in one row; the field is named `name` (labels are listed
 // by their text, so the field needs a name of its own for tests to find it).
-static void labelled_field(ui_context *ui, const char *label, const char *name, char *buf,
-                           size_t size, const char *tip) {
-    float w[2] = {ui_em(ui, 7), 0};
-    ui_row(ui, 2, w, 0);
-    ui_label(ui, label);
-    ui_textbox_flags(ui, name, buf, size, UI_TEXTBOX_SELECT_ALL);
-    ui_tooltip(ui, tip);
-}
-
 static void import_fields(interchange_dialog *d, ui_context *ui) {
-    labelled_field(ui, "X (m)", "x", d->x, sizeof d->x,
-                   "Where the first sample (row 0, column 0) goes");
-    labelled_field(ui, "Z (m)", "z", d->z, sizeof d->z,
-                   "Where the first sample goes (rows run toward +Z)");
+    ui_form_field(ui, "X (m)", "x", d->x, sizeof d->x,
+                  "Where the first sample (row 0, column 0) goes");
+    ui_form_field(ui, "Z (m)", "z", d->z, sizeof d->z,
+                  "Where the first sample goes (rows run toward +Z)");
     ui_row(ui, 1, NULL, 0);
     ui_checkbox(ui, "Centre it on X, Z##centre", &d->centre);
     ui_tooltip(ui, "Put the heightmap's middle at X, Z, not its first corner");
@@ -130,10 +121,10 @@ static void import_fields(interchange_dialog *d, ui_context *ui) {
     ui_checkbox(ui, "Map 8/16-bit values to heights##map", &d->map_heights);
     ui_tooltip(ui, "8/16-bit files: lowest and highest value in metres");
     if (d->map_heights) {
-        labelled_field(ui, "Lowest (m)", "min", d->min, sizeof d->min,
-                       "Height in metres of the lowest stored value (0)");
-        labelled_field(ui, "Highest (m)", "max", d->max, sizeof d->max,
-                       "Height in metres of the highest stored value (65535 in 16-bit)");
+        ui_form_field(ui, "Lowest (m)", "min", d->min, sizeof d->min,
+                      "Height in metres of the lowest stored value (0)");
+        ui_form_field(ui, "Highest (m)", "max", d->max, sizeof d->max,
+                      "Height in metres of the highest stored value (65535 in 16-bit)");
     }
     mapping_preview(d, ui);
     ui_row(ui, 1, NULL, 0);
@@ -159,7 +150,7 @@ static void export_fields(interchange_dialog *d, ui_context *ui) {
             "The region's west edge, metres", "The region's north edge (smaller Z), metres",
             "The region's east edge, metres", "The region's south edge, metres"};
         for (int i = 0; i < 4; i++)
-            labelled_field(ui, labels[i], names[i], d->region[i], sizeof d->region[i], tips[i]);
+            ui_form_field(ui, labels[i], names[i], d->region[i], sizeof d->region[i], tips[i]);
     }
     ui_row(ui, 1, NULL, 0);
     static const char *const presets[] = {"None",    "Unreal", "Unity", "Godot Terrain3D",

@@ -76,6 +76,18 @@ run -c 'new planet; radius 3389500; generate'
 check "a planet's ocean_level beyond radius + max_height is refused by name" $?
 run -c 'new planet; radius 3389500; ocean_level 3389500; generate'
 check "a planet's ocean_level set as a radius generates" $status
+# new planet: a preset, then any parameter (File > New planet... sends every field).
+run -c 'new planet preset=moon radius=2000000 seed=7 ocean_level=2000010; params'
+[ $status = 0 ] && grep -q '^radius = 2000000;$' "$work/out" && grep -q '^seed = 7;$' "$work/out" &&
+    grep -q '^ocean_level = 2000010;$' "$work/out" && grep -q '^max_height = 6000;$' "$work/out"
+check "new planet preset=moon with parameters over the preset" $?
+run -c 'new planet seed=4x2'
+[ $status = 1 ] && grep -q "seed: expected an integer, got '4x2'" "$work/err"
+check "new planet names a bad parameter" $?
+run -c 'new planet radius=1000 preset=earth'
+[ $status = 1 ] && grep -q "preset= must come first" "$work/err"; check "new planet: preset first" $?
+run -c 'new planet preset=moon ocean_level=9000000'
+[ $status = 1 ] && grep -q "ocean_level" "$work/err"; check "new planet validates the whole set" $?
 
 # 7. a parameter file with a bad value and an unknown key: reported with lines, rest read
 printf 'seed = 12;\noctaves = lots;\ncolour = blue;\nmax_height = 900;\n' >"$work/bad.world"

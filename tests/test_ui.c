@@ -1788,6 +1788,48 @@ static void test_combo(void **state) {
     drv_free(&d);
 }
 
+// A dialog: a modal rectangle just tall enough for a combo box, whose list falls below
+// it, and a button outside the dialog.
+typedef struct dialog_combo {
+    int index, behind_clicks;
+} dialog_combo;
+
+static void build_dialog_combo(drv *d) {
+    dialog_combo *m = d->user;
+    ui_rect dialog = {100, 100, 200, 40};
+    ui_modal(d->ui, dialog);
+    ui_panel_begin(d->ui, "Behind", (ui_rect){0, 300, 200, 40});
+    ui_row(d->ui, 1, NULL, 0);
+    m->behind_clicks += ui_button(d->ui, "Button");
+    ui_panel_end(d->ui);
+    ui_panel_begin(d->ui, "Dialog", dialog);
+    ui_row(d->ui, 1, NULL, 0);
+    static const char *const items[] = {"One", "Two", "Three", "Four", "Five", "Six"};
+    ui_combo(d->ui, "Pick", &m->index, items, 6);
+    ui_panel_end(d->ui);
+}
+
+// A combo box in a modal dialog stays open and its items answer, though they lie past
+// the dialog's rectangle; what lies outside the dialog still does not.
+static void test_combo_in_a_modal_dialog(void **state) {
+    (void)state;
+    dialog_combo m = {0};
+    drv d;
+    drv_init(&d, build_dialog_combo, &m);
+    click_widget(&d, "Dialog/Pick");
+    frame(&d);
+    frame(&d);
+    ui_rect six = rect_of(&d, "Dialog/Pick/Six");
+    assert_true(six.y > 140); // below the dialog
+    click_widget(&d, "Dialog/Pick/Six");
+    assert_int_equal(m.index, 5);
+    frame(&d);
+    assert_null(ui_widget_find(d.ui, "Dialog/Pick/Six")); // closed
+    click_widget(&d, "Behind/Button");
+    assert_int_equal(m.behind_clicks, 0);
+    drv_free(&d);
+}
+
 // ---- tooltips ---------------------------------------------------------------------------
 
 static void build_tooltip(drv *d) {
@@ -1869,6 +1911,7 @@ int main(void) {
         T(test_menu_click_outside),
         T(test_menu_escape_after_text_focus_moved),
         T(test_combo),
+        T(test_combo_in_a_modal_dialog),
         T(test_tooltip),
     };
     return cmocka_run_group_tests(tests, load_font, free_font);

@@ -101,7 +101,8 @@ struct ui_context {
     float menubar_x;
     int popup_just_opened;
 
-    ui_rect modal; // w > 0: only widgets inside it take the pointer this frame
+    ui_rect modal;    // w > 0: only widgets inside it take the pointer this frame
+    int modal_before; // a modal dialog was up last frame
     ui_rect panel_rects[2][64];
     int panel_count[2];
 
@@ -165,7 +166,8 @@ static int over(const ui_context *ui, ui_rect r) {
     if (!ui->in_popup && ui->open_popup &&
         ui_rect_contains(ui->popup_rect_prev, ui->in.mouse_x, ui->in.mouse_y))
         return 0;
-    if (ui->modal.w > 0 &&
+    // A popup open during a dialog was opened from it (a combo box) and belongs to it.
+    if (ui->modal.w > 0 && !ui->in_popup &&
         !(r.x >= ui->modal.x && r.y >= ui->modal.y && r.x + r.w <= ui->modal.x + ui->modal.w &&
           r.y + r.h <= ui->modal.y + ui->modal.h))
         return 0;
@@ -299,6 +301,7 @@ void ui_begin(ui_context *ui, const ui_input *in, float width, float height) {
     ui->in_popup = 0;
     ui->focusable_count = 0;
     ui->focus_seen = 0;
+    ui->modal_before = ui->modal.w > 0;
     ui->modal = (ui_rect){0, 0, 0, 0};
     ui->last_id = 0;
     ui->last_hovered = 0;
@@ -397,7 +400,7 @@ int ui_needs_frame(const ui_context *ui) {
 
 void ui_modal(ui_context *ui, ui_rect r) {
     ui->modal = r;
-    ui->open_popup = 0;
+    if (!ui->modal_before) ui->open_popup = 0; // a menu open when the dialog came up
 }
 
 void ui_dim(ui_context *ui) {
@@ -1250,6 +1253,15 @@ int ui_last_focused(const ui_context *ui) {
 }
 const ui_input *ui_get_input(const ui_context *ui) {
     return &ui->in;
+}
+
+void ui_form_field(ui_context *ui, const char *label, const char *name, char *buf, size_t size,
+                   const char *tip) {
+    float w[2] = {ui_em(ui, 7), 0};
+    ui_row(ui, 2, w, 0);
+    ui_label(ui, label);
+    ui_textbox_flags(ui, name, buf, size, UI_TEXTBOX_SELECT_ALL);
+    ui_tooltip(ui, tip);
 }
 
 int ui_textbox_flags(ui_context *ui, const char *label, char *buf, size_t size, int flags) {

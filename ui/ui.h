@@ -158,6 +158,10 @@ int ui_textbox(ui_context *ui, const char *label, char *buf, size_t size);
 // selects all its text, so typing replaces it (number fields, paths, as an address bar).
 enum { UI_TEXTBOX_OWN_TAB = 1, UI_TEXTBOX_SELECT_ALL = 2 };
 int ui_textbox_flags(ui_context *ui, const char *label, char *buf, size_t size, int flags);
+// A row of a form: the label in a fixed column, then a text box (named name, clicking
+// selects its text) filling the rest, with a tooltip.
+void ui_form_field(ui_context *ui, const char *label, const char *name, char *buf, size_t size,
+                   const char *tip);
 // Whether the last widget has the keyboard focus.
 int ui_last_focused(const ui_context *ui);
 // This frame's input (for widgets built on top of the library).

@@ -7,6 +7,7 @@
 #include "editor/cmd/volume_commands.h"
 #include "editor/cmd/tokenize.h"
 #include "editor/gen/gen.h"
+#include "editor/params/planet_presets.h"
 #include "editor/world/volume_grid.h"
 #include "io/parse.h"
 
@@ -48,40 +49,33 @@ static int replace_world(cmd_context *ctx, world *w) {
     return 0;
 }
 
-// `new planet preset=NAME`: bodies a person recognises, every value a parameter the
-// World panel shows (all but earth have no sea: ocean_level 0 is a radius of 0).
-typedef struct planet_preset {
-    const char *name;
-    double radius, max_height, ocean_level, omega, atmosphere, spacing;
-} planet_preset;
-
-static const planet_preset PRESETS[] = {
-    {"earth", 6371000, 8848, 6371000, 7.2921e-5, 1.0, 100},
-    {"mars", 3389500, 10000, 0, 7.088e-5, 0.3, 100},
-    {"moon", 1737400, 6000, 0, 2.6617e-6, 0.0, 100},
-    {"asteroid", 50000, 4000, 0, 1e-3, 0.0, 10},
-};
-
-static int apply_preset(world_params *p, const char *name, og_error *err) {
-    for (size_t i = 0; i < sizeof PRESETS / sizeof PRESETS[0]; i++)
-        if (strcmp(PRESETS[i].name, name) == 0) {
-            p->radius = PRESETS[i].radius, p->max_height = PRESETS[i].max_height;
-            p->ocean_level = PRESETS[i].ocean_level, p->omega = PRESETS[i].omega;
-            p->atmosphere = PRESETS[i].atmosphere, p->spacing = PRESETS[i].spacing;
-            return 0;
+// `new planet [preset=NAME] [KEY=VALUE ...]`: the preset first, then any world
+// parameter (the New planet dialog sends every field it shows).
+static int new_planet(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    world_params p;
+    world_params_default(&p, WORLD_PLANET);
+    for (int i = 2; i < argc; i++) {
+        const char *eq = strchr(argv[i], '=');
+        if (!eq || eq == argv[i])
+            return og_error_set(err, "new planet: expected KEY=VALUE, got '%s'", argv[i]);
+        char key[64];
+        snprintf(key, sizeof key, "%.*s", (int)(eq - argv[i]), argv[i]);
+        if (strcmp(key, "preset") == 0) {
+            if (i != 2) return og_error_set(err, "new planet: preset= must come first");
+            if (planet_preset_apply(&p, eq + 1, err) != 0) return -1;
+        } else if (strcmp(key, "kind") == 0) {
+            return og_error_set(err, "new planet: kind is planet here");
+        } else if (world_params_set(&p, key, eq + 1, err) != 0) {
+            return -1;
         }
-    return og_error_set(err, "preset: unknown planet '%s' (earth, mars, moon, asteroid)", name);
+    }
+    if (world_params_validate(&p, err) != 0) return -1;
+    world *w = world_create(&p, &ctx->settings, err);
+    return w ? replace_world(ctx, w) : -1;
 }
 
 static int c_new(cmd_context *ctx, int argc, char **argv, og_error *err) {
-    if (argc == 3 && strcmp(argv[1], "planet") == 0 && strncmp(argv[2], "preset=", 7) == 0) {
-        world_params p;
-        world_params_default(&p, WORLD_PLANET);
-        if (apply_preset(&p, argv[2] + 7, err) != 0 || world_params_validate(&p, err) != 0)
-            return -1;
-        world *w = world_create(&p, &ctx->settings, err);
-        return w ? replace_world(ctx, w) : -1;
-    }
+    if (argc >= 3 && strcmp(argv[1], "planet") == 0) return new_planet(ctx, argc, argv, err);
     if (argc > 2) {
         if (strcmp(argv[1], "flat") != 0 || strncmp(argv[2], "from=", 5) != 0 || !argv[2][5])
             return og_error_set(err,
@@ -338,14 +332,15 @@ static int c_cmdlist(cmd_context *ctx, int argc, char **argv, og_error *err);
 
 static const cmd_def commands[] = {
     {"new",
-     "new flat|planet | new planet preset=earth|mars|moon|asteroid | new flat from=FILE "
-     "[import options]",
+     "new flat|planet | new planet [preset=earth|mars|moon|asteroid] [KEY=VALUE ...] | new "
+     "flat from=FILE [import options]",
      "Replaces the current world with a new one of that kind, with default parameters (a "
      "planet preset sets radius, max_height, ocean_level, omega, atmosphere and spacing for an "
-     "Earth-, Mars- or Moon-like body or a small asteroid); 'from=' "
+     "Earth-, Mars- or Moon-like body or a small asteroid; KEY=VALUE then sets any world "
+     "parameter, as set does, e.g. radius=2000000 seed=7); 'from=' "
      "makes a bounded flat world sized and spaced by a heightmap or elevation raster and imports "
      "it (see import for the options).",
-     1, 12, c_new, CMD_ENDS_STROKE},
+     1, 24, c_new, CMD_ENDS_STROKE},
     {"load", "load FILE",
      "Loads a world (.world) or planet (.planet) parameter file and its tile store.", 1, 1, c_load,
      CMD_ENDS_STROKE},
