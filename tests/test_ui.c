@@ -1827,6 +1827,12 @@ static void test_combo_in_a_modal_dialog(void **state) {
     assert_null(ui_widget_find(d.ui, "Dialog/Pick/Six")); // closed
     click_widget(&d, "Behind/Button");
     assert_int_equal(m.behind_clicks, 0);
+    // Esc closes the open list and is spent there (the dialog would close on the next).
+    click_widget(&d, "Dialog/Pick");
+    frame(&d);
+    key(&d, UI_KEY_ESCAPE, 0);
+    assert_null(ui_widget_find(d.ui, "Dialog/Pick/Six"));
+    assert_int_equal(ui_get_input(d.ui)->key_pressed[UI_KEY_ESCAPE], 0);
     drv_free(&d);
 }
 

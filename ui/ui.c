@@ -309,7 +309,10 @@ void ui_begin(ui_context *ui, const ui_input *in, float width, float height) {
     ui_draw_reset(&ui->overlay, ui->font, width, height);
     ui->target = &ui->dl;
     // A click that lands on no widget drops the keyboard focus (checked in ui_end).
-    if (in->key_pressed[UI_KEY_ESCAPE] && ui->open_popup && !ui->edit_id) ui->open_popup = 0;
+    if (in->key_pressed[UI_KEY_ESCAPE] && ui->open_popup && !ui->edit_id) {
+        ui->open_popup = 0;
+        ui->in.key_pressed[UI_KEY_ESCAPE] = 0; // spent: the dialog under the popup stays
+    }
     ui->tab_pending = in->key_pressed[UI_KEY_TAB] && ui->focus;
 }
 
