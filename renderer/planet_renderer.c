@@ -239,8 +239,9 @@ static int node_visible(planet_renderer *r, const node *n, double hmin, double h
 
 // How much a sample's projected size shrinks seen at a grazing angle near the ground:
 // the geometric mean of its two projected sides (1 when not judged). Only near the
-// ground: from high up the coarser chunks would show the sky's per-pixel haze quad by
-// quad; and not for a chunk the camera stands in (the view across it varies too much).
+// ground: from high up the coarser chunks would draw coastlines (the sea is per vertex)
+// in visibly large steps; and not for a chunk the camera stands in (the view across it
+// varies too much).
 static int near_ground(const planet_renderer *r) {
     return r->camera_altitude < 0.01 * r->params.radius;
 }
@@ -891,10 +892,10 @@ int planet_renderer_draw(planet_renderer *r, const camera *cam, const render_set
                             c->metres_base[1], detail);
         glProgramUniform4fv(prog, detail_loc, 1, detail);
         // Fully the parent's mesh where the parent would be drawn instead: at the
-        // distance its samples shrink to split_pixels. Near the ground only, where a
-        // pop is seen (from high up the morphed, coarser mesh shows the sky's haze quad
-        // by quad, the same limit as the grazing split's).
-        const int morph = s->morph && c->level < r->root_level && near_ground(r);
+        // distance its samples shrink to split_pixels. (The haze is measured to the
+        // sphere through each fragment's height, not along the morphed chords, so
+        // coarse quads do not show in it.)
+        const int morph = s->morph && c->level < r->root_level;
         glProgramUniform1f(prog, morph_loc, morph ? (float)(1.0 / c->morph_reach) : 0.0f);
         glVertexArrayVertexBuffer(r->vao, 0, c->vbo, 0, VERTEX_FLOATS * sizeof(float));
         glDrawElements(GL_TRIANGLES, CHUNK_INDICES, GL_UNSIGNED_SHORT, NULL);

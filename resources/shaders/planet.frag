@@ -13,6 +13,7 @@ in vec4 v_paint0, v_paint1; // painted weights: 0 automatic, 1-7 sand, grass, ro
 out vec4 o_colour;
 uniform int u_view_mode; // VIEW_SHADED 0, WIREFRAME 1, LEVELS 2, HEIGHT 3, SLOPE 4
 uniform int u_level;
+uniform float u_ocean_h; // the sea's height above the datum
 uniform vec2 u_tex_period; // metres per repeat: near, far
 uniform vec4 u_brush;      // the cursor's centre relative to the camera, radius (0: none)
 uniform vec3 u_brush_up;   // the local vertical at the cursor
@@ -124,7 +125,8 @@ void main() {
     }
     if (u_view_mode == 0) { // the air between the camera and the ground
         vec3 transmittance;
-        vec3 air = atmosphere(view_dir, dist, transmittance);
+        float surface_h = v_depth > 0.0 ? u_ocean_h : v_height;
+        vec3 air = atmosphere(view_dir, ray_to_height(view_dir, surface_h, dist), transmittance);
         c = c * transmittance + air * 0.6; // the sky's light, less bright over ground
         c = 1.0 - exp(-c * 1.8); // exposure (the sky uses the same curve)
     }

@@ -37,6 +37,20 @@ bool air_span(float mu, out float t0, out float t1) {
     return t1 > 0.0;
 }
 
+// Where the ray first meets the sphere h metres above the datum (the ground seen at a
+// fragment, free of the sag of the triangle's chords, which the haze would show quad by
+// quad from afar); fallback when it never does. The stable root: no cancellation a
+// few metres above the ground.
+float ray_to_height(vec3 dir, float h, float fallback) {
+    float mu = dot(dir, u_cam_up), rm = u_cam_r * mu;
+    float c = (u_cam_alt - h) * (2.0 * u_radius + u_cam_alt + h); // |cam|^2 - (R + h)^2
+    float disc = rm * rm - c;
+    if (disc < 0.0) return fallback;
+    float q = sqrt(disc);
+    if (c > 0.0) return rm < 0.0 ? c / (q - rm) : fallback; // outside: the near root
+    return q - rm;                                          // inside: the far one
+}
+
 // In-scattered light along the ray up to t_end, and what of the light behind is left.
 vec3 atmosphere(vec3 dir, float t_end, out vec3 transmittance) {
     transmittance = vec3(1.0);
