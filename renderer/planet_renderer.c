@@ -875,6 +875,10 @@ int planet_renderer_draw(planet_renderer *r, const camera *cam, const render_set
     set_cursor(r, prog, cam, cursor);
     planet_detail_bind(r->detail, prog, s, 2, 3);
     GLint detail_loc = glGetUniformLocation(prog, "u_chunk_detail");
+    GLint tile_loc = glGetUniformLocation(prog, "u_chunk_tile");
+    GLint cell_loc = glGetUniformLocation(prog, "u_chunk_cell");
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "u_overlays"),
+                       (s->tile_grid ? 1 : 0) | (s->level_grid ? 2 : 0));
     GLint offset_loc = glGetUniformLocation(prog, "u_offset");
     GLint level_loc = glGetUniformLocation(prog, "u_level");
     GLint morph_loc = glGetUniformLocation(prog, "u_morph");
@@ -891,6 +895,13 @@ int planet_renderer_draw(planet_renderer *r, const camera *cam, const render_set
         planet_detail_chunk(r->detail, chunk_face(c), c->level, c->metres_base[0],
                             c->metres_base[1], detail);
         glProgramUniform4fv(prog, detail_loc, 1, detail);
+        if (s->tile_grid || s->level_grid) { // where the chunk's metres meet the grids
+            const double tile = TILE_SIZE * r->cell_arc, cell = ldexp(r->cell_arc, c->level);
+            glProgramUniform3f(prog, tile_loc, (float)fmod(c->metres_base[0], tile),
+                               (float)fmod(c->metres_base[1], tile), (float)tile);
+            glProgramUniform3f(prog, cell_loc, (float)fmod(c->metres_base[0], cell),
+                               (float)fmod(c->metres_base[1], cell), (float)cell);
+        }
         // Fully the parent's mesh where the parent would be drawn instead: at the
         // distance its samples shrink to split_pixels. (The haze is measured to the
         // sphere through each fragment's height, not along the morphed chords, so

@@ -143,6 +143,16 @@ run "$earth; camera_geo 40 -30 400 0 -35 ground; screenshot $work/detail_far0.pn
 r=$(rmse "$work/detail_far0.png" "$work/detail_far.png")
 less "$r" 0.3; check "detail fades out with distance (rmse $r)" $?
 
+# --- the debug overlays: the face's tile grid and the chunks' vertex grids ---------
+run "$earth; camera_geo $spot 3000 0 -40 ground; view levels; screenshot $work/grid0.png $size;
+     render tile_grid=on; screenshot $work/grid_tiles.png $size;
+     render tile_grid=off level_grid=on; screenshot $work/grid_levels.png $size"
+check "the overlays render on a planet ($(cat "$work/err"))" $?
+r=$(rmse "$work/grid0.png" "$work/grid_tiles.png")
+less 1 "$r"; check "the tile grid shows on a planet (rmse $r)" $?
+r=$(rmse "$work/grid_tiles.png" "$work/grid_levels.png")
+less 1 "$r"; check "the level grid shows on a planet, and differs from the tile grid (rmse $r)" $?
+
 # --- bad input ---------------------------------------------------------------------
 run "new planet; camera_geo 91 0 100"
 grep -q "LAT: expected degrees in \[-90, 90\]" "$work/err"; check "latitude over 90 refused" $?

@@ -5,6 +5,7 @@
 #include "materials.glsl"
 #include "planet_atmosphere.glsl"
 #include "detail_parallax.glsl"
+#include "grid_lines.glsl"
 in vec3 v_rel, v_normal, v_up;
 in float v_height, v_depth;
 in vec2 v_metres;
@@ -22,6 +23,9 @@ uniform vec4 u_brush_tint; // the tool's colour and opacity
 uniform vec3 u_brush_ring;
 uniform vec4 u_chunk_detail; // this chunk's detail samples at v_metres (0, 0), samples per
                              // metre, valid (0: no detail window over it)
+uniform int u_overlays;    // 1: the tile grid, 2: the chunks' vertex grids
+uniform vec3 u_chunk_tile;  // the face's tiles: v_metres (0, 0) modulo a tile (xy), a tile (z)
+uniform vec3 u_chunk_cell;  // the chunk's vertex cells: the same for a cell of its level
 uniform int u_palette;     // 0: the automatic rules; 1 airless and dry (rock, gravel); 2 dry
                            // with air (sand, dirt, rock)
 
@@ -44,6 +48,18 @@ void metre_axes(vec3 n, out vec3 t_axis, out vec3 b_axis) {
     t_axis = t * inversesqrt(max(dot(t, t), 1e-30));
     b = b - n * dot(n, b) - t_axis * dot(t_axis, b);
     b_axis = b * inversesqrt(max(dot(b, b), 1e-30));
+}
+
+// The View menu's overlays, as on flat worlds: the face's tile edges in white, the
+// chunk's vertex grid in its level's colour (every cell close up, every eighth farther).
+vec3 with_grids(vec3 c) {
+    if ((u_overlays & 2) != 0) {
+        vec2 k = (v_metres + u_chunk_cell.xy) / u_chunk_cell.z;
+        c = mix(c, level_colour(u_level), 0.7 * max(grid_lines(k), grid_lines(k / 8.0)));
+    }
+    if ((u_overlays & 1) != 0)
+        c = mix(c, vec3(1.0), 0.8 * grid_lines((v_metres + u_chunk_tile.xy) / u_chunk_tile.z));
+    return c;
 }
 
 void main() {
@@ -123,6 +139,7 @@ void main() {
         float centre = 1.0 - smoothstep(0.0, 1.5 * fw, r - 0.02);
         c = mix(c, u_brush_ring, max(ring, centre));
     }
+    c = with_grids(c);
     if (u_view_mode == 0) { // the air between the camera and the ground
         vec3 transmittance;
         float surface_h = v_depth > 0.0 ? u_ocean_h : v_height;

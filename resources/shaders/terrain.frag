@@ -9,6 +9,7 @@
 #include "materials.glsl"
 #include "volume_mask.glsl"
 #include "detail_parallax.glsl"
+#include "grid_lines.glsl"
 
 in vec2 v_local;
 in vec3 v_rel;
@@ -49,13 +50,6 @@ vec3 with_contours(vec3 c, float h) {
     float line = 1.0 - smoothstep(0.0, 1.2 * fw, abs(fract(k + 0.5) - 0.5));
     float crowd = 1.0 - smoothstep(0.15, 0.35, fw);
     return mix(c, vec3(0.06, 0.05, 0.04), 0.65 * line * crowd);
-}
-
-// Lines about a pixel wide where k crosses an integer, faded where they would crowd.
-float grid_lines(vec2 k) {
-    vec2 fw = max(fwidth(k), vec2(1e-5));
-    vec2 d = abs(fract(k + 0.5) - 0.5) / fw;
-    return (1.0 - smoothstep(0.0, 1.5, min(d.x, d.y))) * (1.0 - smoothstep(0.12, 0.3, max(fw.x, fw.y)));
 }
 
 // The View menu's overlays: the world's tile edges in white, each clipmap level's vertex
