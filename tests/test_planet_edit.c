@@ -32,18 +32,24 @@ static void silent(void *u, const char *m) {
     (void)u, (void)m;
 }
 
-static world *planet(void) {
+static world *planet_of(const char *generator) {
     world_params p;
     world_params_default(&p, WORLD_PLANET);
     p.radius = RADIUS;
     p.ocean_level = RADIUS;
     p.octaves = 5;
+    og_error e;
+    if (world_params_set(&p, "generator", generator, &e) != 0) fail_msg("%s", e.msg);
     world_settings s = {.cache_budget_bytes = (size_t)256 << 20, .workers = 2, .warn = silent};
     og_error err;
     world *w = world_create(&p, &s, &err);
     if (!w) fail_msg("world_create: %s", err.msg);
     assert_int_equal(world_grid_face_samples(&p), N);
     return w;
+}
+
+static world *planet(void) {
+    return planet_of("fbm_advanced");
 }
 
 // All six faces' coarse heights.
@@ -236,6 +242,63 @@ static void test_neighbourhood_tools_cross(void **state) {
     }
 }
 
+// Erosion is one simulation over every face its cap reaches: thermal erosion of a
+// cliff that runs across the edge between faces 4 and 0 moves material over the
+// edge, conserving it (the heights' sum, cells being of nearly equal area there), and
+// the change is as continuous across the seam as inside a face.
+static void test_erosion_flows_across_the_edge(void **state) {
+    (void)state;
+    const brush_tool tools[2] = {BRUSH_THERMAL, BRUSH_HYDRAULIC};
+    for (int k = 0; k < 2; k++) {
+        world *w = planet_of("flat"); // the cliff alone
+        og_error err;
+        brush cliff; // a plateau on face 4 whose wall crosses the edge into face 0
+        brush_defaults(&cliff, BRUSH_RAISE);
+        assert_int_equal(brush_set(&cliff, "face", "4", &err), 0);
+        assert_int_equal(brush_set(&cliff, "falloff", "constant", &err), 0);
+        cliff.radius = 3000;
+        cliff.amount = 400;
+        cliff.strength = 1;
+        one_dab(w, &cliff, (N - 40.5) * SPACING, 0.5 * N * SPACING);
+        brush b;
+        brush_defaults(&b, tools[k]);
+        assert_int_equal(brush_set(&b, "face", "4", &err), 0);
+        b.radius = 2500;
+        b.strength = 1;
+        float *before = read_faces(w);
+        one_dab(w, &b, PLACES[0].x, PLACES[0].z);
+        float *after = read_faces(w);
+        double sum = 0, moved = 0, onto0 = 0;
+        for (size_t at = 0; at < (size_t)6 * N * N; at++) {
+            double d = (double)after[at] - (double)before[at];
+            sum += d, moved += fabs(d);
+            if (at < (size_t)N * N) onto0 += d;
+        }
+        // The eroded surface across the seam (face 4's last column against face 0's
+        // first, row for row) against the step between face 4's last two columns, over
+        // the rows where the cliff stood: as smooth across the edge as inside the face.
+        double seam = 0, inside = 0;
+        for (int j = N / 2 - 45; j < N / 2 + 45; j++) {
+            size_t a = (size_t)4 * N * N + (size_t)j * N + (N - 1), c = (size_t)j * N;
+            if (after[a] == before[a] && after[c] == before[c]) continue;
+            seam = fmax(seam, fabs(after[a] - after[c]));
+            inside = fmax(inside, fabs(after[a] - after[a - 1]));
+        }
+        print_message("%s across the edge: net %.3g of %.3g m moved, face 0 gains %.3g; the "
+                      "eroded surface's step across the seam %.3g m, inside %.3g m\n",
+                      brush_tool_name(tools[k]), sum, moved, onto0, seam, inside);
+        assert_true(moved > 1.0);
+        if (tools[k] == BRUSH_THERMAL) {
+            assert_true(fabs(sum) < 0.02 * moved);
+            assert_true(onto0 > 0.01 * moved); // material came down over the edge
+        }
+        assert_true(seam <= 2.0 * inside + 1e-3);
+        free(before);
+        free(after);
+        world_close(w);
+    }
+}
+
 // One undo step over three faces, and a change notification for each.
 static void test_undo_and_notifications(void **state) {
     (void)state;
@@ -357,6 +420,7 @@ int main(void) {
         cmocka_unit_test(test_terrace),
         cmocka_unit_test(test_noise),
         cmocka_unit_test(test_neighbourhood_tools_cross),
+        cmocka_unit_test(test_erosion_flows_across_the_edge),
         cmocka_unit_test(test_undo_and_notifications),
         cmocka_unit_test(test_stroke_over_the_edge),
         cmocka_unit_test(test_stamp_over_the_corner),

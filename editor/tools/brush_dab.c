@@ -524,6 +524,31 @@ void brush_dab_discard(brush_dab_job *j) {
     free(j);
 }
 
+int brush_dab_compute_area(edit *e, const layer_grid *g, const brush_dab *d, grid_rect r,
+                           brush_dab_area *out, og_error *err) {
+    *out = (brush_dab_area){0};
+    world_source src = {edit_world(e), g, d};
+    dab_rows rows;
+    if (prepare(d, g->layer, r, read_world, &src, &rows, err) != 0) return -1;
+    const grid_rect a = rows.area;
+    float *before = malloc((size_t)((a.x1 - a.x0) * (a.z1 - a.z0)) * sizeof *before);
+    if (!before || read_world(&src, a, before, err) != 0) {
+        if (!before) og_error_set(err, "out of memory for an erosion area");
+        free(before);
+        release(&rows);
+        return -1;
+    }
+    *out = (brush_dab_area){a, before, (float *)rows.heights, (float *)rows.weight};
+    return 0;
+}
+
+void brush_dab_area_free(brush_dab_area *a) {
+    free(a->before);
+    free(a->after);
+    free(a->weight);
+    *a = (brush_dab_area){0};
+}
+
 int brush_dab_apply(edit *e, const layer_grid *g, const brush_dab *d, og_error *err) {
     brush_dab_job *j;
     if (brush_dab_begin(e, g, d, &j, err) != 0) return -1;

@@ -53,6 +53,18 @@ int brush_dab_begin(edit *e, const layer_grid *g, const brush_dab *d, brush_dab_
 int brush_dab_finish(brush_dab_job *job, og_error *err);
 void brush_dab_discard(brush_dab_job *job);
 
+// Planets' erosion tools, run once over the whole cap: the neighbourhood tool over
+// area r (plus its halo) of g's face in that face's extended samples (past its edges
+// the neighbouring faces are read), leaving the heights before and after it and the
+// weights, row-major over `area`, for the caller to write onto every face.
+typedef struct brush_dab_area {
+    grid_rect area;
+    float *before, *after, *weight;
+} brush_dab_area;
+int brush_dab_compute_area(edit *e, const layer_grid *g, const brush_dab *d, grid_rect r,
+                           brush_dab_area *out, og_error *err);
+void brush_dab_area_free(brush_dab_area *a);
+
 // Applies the dab to a plain row-major array holding the samples of `area` (floats
 // for coarse/detail, TILE_MATERIALS bytes per sample for the material layer).
 // Samples outside `area` read as its nearest edge sample, as outside a bounded world.

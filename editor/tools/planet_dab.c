@@ -1,5 +1,6 @@
 #include "editor/tools/planet_dab.h"
 
+#include "editor/edit/edit_rows.h"
 #include "editor/world/layer_grid.h"
 
 #include <math.h>
@@ -28,7 +29,9 @@ int planet_dab_check_position(const layer_grid *g, double x, double z, og_error 
     return 0;
 }
 
-grid_rect planet_dab_face_rect(const brush_dab *d, int target, int64_t layer_samples) {
+// The samples of face target's (extended) grid within the dab's cap; clipped to the
+// face when clip is set.
+static grid_rect cap_rect(const brush_dab *d, int target, int64_t layer_samples, int clip) {
     const double angle = d->radius * d->spacing / d->planet_radius;
     const double *c = d->centre_dir;
     // An orthonormal pair across the centre, to walk the cap's rim.
@@ -53,7 +56,8 @@ grid_rect planet_dab_face_rect(const brush_dab *d, int target, int64_t layer_sam
         smin = fmin(smin, s), smax = fmax(smax, s), tmin = fmin(tmin, t), tmax = fmax(tmax, t);
     }
     grid_rect none = {0, 0, 0, 0};
-    if (!(smin <= smax) || smax < -1.0 || smin > 1.0 || tmax < -1.0 || tmin > 1.0) return none;
+    if (!(smin <= smax)) return none;
+    if (clip && (smax < -1.0 || smin > 1.0 || tmax < -1.0 || tmin > 1.0)) return none;
     // Sample index of a face coordinate (sample i's centre sits at (i k + 0.5) / n x 2 - 1),
     // a sample's margin for the rim between the walked points.
     const double n = (double)d->face_samples, k = d->index_scale;
@@ -61,9 +65,102 @@ grid_rect planet_dab_face_rect(const brush_dab *d, int target, int64_t layer_sam
     int64_t x1 = (int64_t)ceil(((smax + 1.0) * 0.5 * n - 0.5) / k) + 2;
     int64_t z0 = (int64_t)floor(((tmin + 1.0) * 0.5 * n - 0.5) / k) - 1;
     int64_t z1 = (int64_t)ceil(((tmax + 1.0) * 0.5 * n - 0.5) / k) + 2;
-    grid_rect r = {x0 < 0 ? 0 : x0, z0 < 0 ? 0 : z0, x1 > layer_samples ? layer_samples : x1,
-                   z1 > layer_samples ? layer_samples : z1};
+    grid_rect r = {x0, z0, x1, z1};
+    if (clip)
+        r = (grid_rect){x0 < 0 ? 0 : x0, z0 < 0 ? 0 : z0, x1 > layer_samples ? layer_samples : x1,
+                        z1 > layer_samples ? layer_samples : z1};
     return grid_rect_empty(r) ? none : r;
+}
+
+grid_rect planet_dab_face_rect(const brush_dab *d, int target, int64_t layer_samples) {
+    return cap_rect(d, target, layer_samples, 1);
+}
+
+// ---- erosion: one simulation over the whole cap --------------------------------
+
+// The dab placed on face g: its samples and its centre in g's own (extended) samples.
+static brush_dab on_face(const brush_dab *base, const world_params *p, tile_layer layer, int g,
+                         int64_t layer_samples) {
+    brush_dab fd = *base;
+    fd.face = g;
+    fd.rect = cap_rect(base, g, layer_samples, 1);
+    double s, t;
+    int64_t ratio = layer_ratio(p, layer);
+    if (world_grid_face_coords_on(g, base->centre_dir, &s, &t)) {
+        fd.cx = ((s + 1.0) * 0.5 * (double)base->face_samples - 0.5) * (double)ratio;
+        fd.cz = ((t + 1.0) * 0.5 * (double)base->face_samples - 0.5) * (double)ratio;
+    }
+    return fd;
+}
+
+typedef struct flow_rows {
+    const brush_dab_area *a;
+    const brush_dab *home, *face; // the dab on the face simulated, and on the face written
+} flow_rows;
+
+// A face's samples take the simulation's change where they lie in it: exactly on the
+// face it ran on, bilinear elsewhere (where the grids' samples nearly align), wherever
+// the weight there is > 0.
+static void flow_row(void *user, void *row, int64_t z, int64_t x0, int64_t x1) {
+    const flow_rows *f = user;
+    const brush_dab_area *a = f->a;
+    const int64_t aw = a->area.x1 - a->area.x0, ah = a->area.z1 - a->area.z0;
+    const double n = (double)f->home->face_samples, k = f->home->index_scale;
+    float *dst = row;
+    for (int64_t x = x0; x < x1; x++) {
+        double u = (double)x, v = (double)z;
+        if (f->face->face != f->home->face) {
+            double dir[3], s, t;
+            brush_dab_sample_direction(f->face, (double)x, (double)z, dir);
+            if (!world_grid_face_coords_on(f->home->face, dir, &s, &t)) continue;
+            u = ((s + 1.0) * 0.5 * n - 0.5) / k, v = ((t + 1.0) * 0.5 * n - 0.5) / k;
+        }
+        u -= (double)a->area.x0, v -= (double)a->area.z0;
+        int64_t i = (int64_t)floor(u), j = (int64_t)floor(v);
+        if (i < 0 || j < 0 || i >= aw || j >= ah) continue;
+        const int64_t i1 = i + 1 < aw ? i + 1 : i, j1 = j + 1 < ah ? j + 1 : j;
+        const double fu = u - (double)i, fv = v - (double)j;
+        const int64_t at[4] = {j * aw + i, j * aw + i1, j1 * aw + i, j1 * aw + i1};
+        const double wt[4] = {(1 - fu) * (1 - fv), fu * (1 - fv), (1 - fu) * fv, fu * fv};
+        double weight = 0, delta = 0;
+        for (int q = 0; q < 4; q++) {
+            weight += wt[q] * a->weight[at[q]];
+            delta += wt[q] * ((double)a->after[at[q]] - (double)a->before[at[q]]);
+        }
+        if (weight > 0 && isfinite(delta)) dst[x - x0] += (float)delta;
+    }
+}
+
+// Thermal and hydraulic erosion move material: run on each face apart, what flows
+// toward an edge would stop there. So they run once, on the face under the dab's
+// centre, over its samples extended past its edges to the whole cap (one-to-one: the
+// cap lies well inside that face's hemisphere), and every face takes the change.
+static int flow_apply(edit *e, const world_params *p, tile_layer layer, const brush_dab *base,
+                      og_error *err) {
+    int home;
+    double s, t;
+    world_grid_direction_face(base->centre_dir, &home, &s, &t);
+    layer_grid hg;
+    if (layer_grid_init(&hg, p, layer, home, err) != 0) return -1;
+    brush_dab hd = on_face(base, p, layer, home, hg.extent);
+    hd.rect = cap_rect(base, home, hg.extent, 0);
+    if (grid_rect_empty(hd.rect)) return 0;
+    brush_dab_area a;
+    if (brush_dab_compute_area(e, &hg, &hd, hd.rect, &a, err) != 0) return -1;
+    int rc = 0;
+    for (int g = 0; g < 6 && rc == 0; g++) {
+        layer_grid grid;
+        if (layer_grid_init(&grid, p, layer, g, err) != 0) {
+            rc = -1;
+            break;
+        }
+        brush_dab fd = on_face(base, p, layer, g, grid.extent);
+        if (grid_rect_empty(fd.rect)) continue;
+        flow_rows rows = {&a, &hd, &fd};
+        rc = edit_rows_apply(e, &grid, fd.rect, flow_row, NULL, &rows, err);
+    }
+    brush_dab_area_free(&a);
+    return rc;
 }
 
 int planet_dab_apply(edit *e, const world_params *p, tile_layer layer, int face, const brush_dab *d,
@@ -75,6 +172,9 @@ int planet_dab_apply(edit *e, const world_params *p, tile_layer layer, int face,
                             "radius: %g m is more than 1/16 of this planet's circumference; a "
                             "dab may reach at most %g m",
                             d->radius * d->spacing, PLANET_DAB_MAX_ANGLE * p->radius);
+    if (layer != TILE_LAYER_MATERIAL &&
+        (d->brush->tool == BRUSH_THERMAL || d->brush->tool == BRUSH_HYDRAULIC))
+        return flow_apply(e, p, layer, &base, err);
     brush_dab_job *jobs[6] = {0};
     int rc = 0;
     for (int g = 0; g < 6 && rc == 0; g++) {
@@ -83,17 +183,8 @@ int planet_dab_apply(edit *e, const world_params *p, tile_layer layer, int face,
             rc = -1;
             break;
         }
-        brush_dab fd = base;
-        fd.face = g;
-        fd.rect = planet_dab_face_rect(&base, g, grid.extent);
+        brush_dab fd = on_face(&base, p, layer, g, grid.extent); // centre in g's samples
         if (grid_rect_empty(fd.rect)) continue;
-        // The centre in this face's own (extended) samples, for tools that use it.
-        double s, t;
-        int64_t ratio = layer_ratio(p, layer);
-        if (world_grid_face_coords_on(g, base.centre_dir, &s, &t)) {
-            fd.cx = ((s + 1.0) * 0.5 * (double)base.face_samples - 0.5) * (double)ratio;
-            fd.cz = ((t + 1.0) * 0.5 * (double)base.face_samples - 0.5) * (double)ratio;
-        }
         rc = brush_dab_begin(e, &grid, &fd, &jobs[g], err);
     }
     // Every face read before any is written.
