@@ -1,9 +1,9 @@
 // Editing a planet across its cube faces: a dab at a face's edge and at a corner where
 // three faces meet changes every face its cap reaches exactly as the same operation
 // evaluated on the sphere directly (each sample's great-circle distance to the dab's
-// centre through the falloff), for every pointwise tool; the neighbourhood tools
-// (smooth, erosion) reach over the edge too; one undo restores all faces; the change
-// notifications name each face.
+// centre through the falloff), for every pointwise tool and the ramp; smoothing reaches
+// over the edge and erosion flows over it as one simulation; one undo restores all
+// faces; the change notifications name each face.
 #include "editor/edit/edit.h"
 #include "editor/gen/gen_noise.h"
 #include "editor/params/world_grid.h"
@@ -242,6 +242,105 @@ static void test_neighbourhood_tools_cross(void **state) {
     }
 }
 
+// The height at direction d from the faces' samples (bilinear on the face it lands on).
+static double height_at(const float *faces, const double d[3]) {
+    int f;
+    double s, t;
+    world_grid_direction_face(d, &f, &s, &t);
+    double u = (s + 1.0) * 0.5 * N - 0.5, v = (t + 1.0) * 0.5 * N - 0.5;
+    int i = (int)floor(u), j = (int)floor(v);
+    assert_true(i >= 0 && j >= 0 && i + 1 < N && j + 1 < N);
+    const float *h = faces + (size_t)f * N * N;
+    double a = u - i, b = v - j;
+    return (h[j * N + i] * (1 - a) + h[j * N + i + 1] * a) * (1 - b) +
+           (h[(j + 1) * N + i] * (1 - a) + h[(j + 1) * N + i + 1] * a) * b;
+}
+
+// The point a fraction f of the way from a to b along their great circle.
+static void slerp(const double a[3], const double b[3], double f, double out[3]) {
+    double ang = acos(fmin(1.0, a[0] * b[0] + a[1] * b[1] + a[2] * b[2]));
+    double wa = sin((1 - f) * ang) / sin(ang), wb = sin(f * ang) / sin(ang);
+    for (int k = 0; k < 3; k++)
+        out[k] = wa * a[k] + wb * b[k];
+}
+
+// The ramp on the sphere, over an edge (face 4 onto face 0) and over a corner: the
+// great-circle segment between its ends at the heights there, each sample weighted by
+// its angle from the segment through the falloff. The reference finds the nearest
+// point of the segment by walking it, then a golden-section search.
+static void test_ramp_over_the_edge_and_corner(void **state) {
+    (void)state;
+    for (int k = 0; k < 2; k++) {
+        world *w = planet();
+        og_error err;
+        brush b;
+        brush_defaults(&b, BRUSH_RAMP);
+        assert_int_equal(brush_set(&b, "face", "4", &err), 0);
+        b.radius = 1500;
+        b.strength = 0.8;
+        const double ai = N - 40.5, aj = k ? N - 40.5 : 0.5 * N;
+        const double bi = N + 25.5, bj = k ? N + 12.5 : 0.5 * N + 12;
+        float *before = read_faces(w);
+        stroke *st = stroke_begin(w, &b, &err);
+        if (!st) fail_msg("stroke_begin: %s", err.msg);
+        if (stroke_to(st, ai * SPACING, aj * SPACING, 1.0, &err) != 0 ||
+            stroke_to(st, bi * SPACING, bj * SPACING, 1.0, &err) != 0 || stroke_end(st, &err) != 0)
+            fail_msg("ramp: %s", err.msg);
+        float *after = read_faces(w);
+        double A[3], B[3];
+        direction(4, ai, aj, A);
+        direction(4, bi, bj, B);
+        const double ha = height_at(before, A), hb = height_at(before, B);
+        double worst = 0;
+        int touched[6] = {0};
+        for (int f = 0; f < 6; f++)
+            for (int j = 0; j < N; j++)
+                for (int i = 0; i < N; i++) {
+                    double d[3], p[3];
+                    direction(f, i, j, d);
+                    size_t at = (size_t)f * N * N + (size_t)j * N + i;
+                    if (after[at] != before[at]) touched[f] = 1;
+                    if (angle_between(d, A) > 0.4) { // far away: unchanged
+                        if (after[at] != before[at]) fail_msg("face %d (%d, %d) changed", f, i, j);
+                        continue;
+                    }
+                    int best = 0;
+                    double best_ang = 10;
+                    for (int m = 0; m <= 200; m++) {
+                        slerp(A, B, m / 200.0, p);
+                        double ang = angle_between(d, p);
+                        if (ang < best_ang) best_ang = ang, best = m;
+                    }
+                    double lo = fmax(0.0, (best - 1) / 200.0), hi = fmin(1.0, (best + 1) / 200.0);
+                    for (int it = 0; it < 60; it++) {
+                        double m1 = hi - (hi - lo) * 0.618, m2 = lo + (hi - lo) * 0.618, p2[3];
+                        slerp(A, B, m1, p);
+                        slerp(A, B, m2, p2);
+                        if (angle_between(d, p) < angle_between(d, p2))
+                            hi = m2;
+                        else
+                            lo = m1;
+                    }
+                    const double along = 0.5 * (lo + hi);
+                    slerp(A, B, along, p);
+                    double t = angle_between(d, p) * RADIUS / b.radius;
+                    double wgt = brush_falloff_weight(&b, (float)t) * b.strength;
+                    double h = before[at];
+                    double want = wgt > 0 ? h + wgt * (ha + along * (hb - ha) - h) : h;
+                    worst = fmax(worst, fabs(want - after[at]));
+                }
+        int faces = touched[0] + touched[1] + touched[2] + touched[3] + touched[4] + touched[5];
+        print_message("ramp over the %s: %d faces changed, largest difference from the sphere "
+                      "reference %.3g m\n",
+                      k ? "corner" : "edge", faces, worst);
+        assert_int_equal(faces, k ? 3 : 2);
+        assert_true(worst < 2e-3);
+        free(before);
+        free(after);
+        world_close(w);
+    }
+}
+
 // Erosion is one simulation over every face its cap reaches: thermal erosion of a
 // cliff that runs across the edge between faces 4 and 0 moves material over the
 // edge, conserving it (the heights' sum, cells being of nearly equal area there), and
@@ -421,6 +520,7 @@ int main(void) {
         cmocka_unit_test(test_noise),
         cmocka_unit_test(test_neighbourhood_tools_cross),
         cmocka_unit_test(test_erosion_flows_across_the_edge),
+        cmocka_unit_test(test_ramp_over_the_edge_and_corner),
         cmocka_unit_test(test_undo_and_notifications),
         cmocka_unit_test(test_stroke_over_the_edge),
         cmocka_unit_test(test_stamp_over_the_corner),

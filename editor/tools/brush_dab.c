@@ -47,8 +47,43 @@ static int is_ramp(const brush_dab *d) {
     return d->brush->tool == BRUSH_RAMP;
 }
 
+static double angle_between(const double a[3], const double b[3]) {
+    double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
+    return 2.0 * asin(fmin(1.0, 0.5 * sqrt(dx * dx + dy * dy + dz * dz)));
+}
+
+// Planets: the ramp is the great-circle segment between its ends; the angle from it
+// (and where along it, 0-1, the sample's direction projects) in samples on the sphere.
+static double sphere_ramp_distance(const brush_dab *d, double x, double z, double *along) {
+    double p[3];
+    brush_dab_sample_direction(d, x, z, p);
+    const double *a = d->ramp_a, *b = d->ramp_b;
+    const double to_samples = d->planet_radius / d->spacing;
+    double n[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+    double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    double ab = atan2(len, a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
+    if (len > 1e-15 && ab > 0) {
+        for (int k = 0; k < 3; k++)
+            n[k] /= len;
+        double off = p[0] * n[0] + p[1] * n[1] + p[2] * n[2];
+        double q[3] = {p[0] - n[0] * off, p[1] - n[1] * off, p[2] - n[2] * off};
+        double c[3] = {a[1] * q[2] - a[2] * q[1], a[2] * q[0] - a[0] * q[2],
+                       a[0] * q[1] - a[1] * q[0]};
+        double t =
+            atan2(c[0] * n[0] + c[1] * n[1] + c[2] * n[2], a[0] * q[0] + a[1] * q[1] + a[2] * q[2]);
+        if (t >= 0 && t <= ab) {
+            *along = t / ab;
+            return asin(fmin(1.0, fabs(off))) * to_samples;
+        }
+    }
+    double da = angle_between(p, a), db = angle_between(p, b); // past an end
+    *along = da <= db ? 0.0 : 1.0;
+    return fmin(da, db) * to_samples;
+}
+
 // Distance (samples) from the ramp's segment, and where along it (0-1) x, z projects.
 static double ramp_distance(const brush_dab *d, double x, double z, double *along) {
+    if (d->sphere) return sphere_ramp_distance(d, x, z, along);
     double ux = d->bx - d->ax, uz = d->bz - d->az, len2 = ux * ux + uz * uz;
     double t = len2 > 0 ? ((x - d->ax) * ux + (z - d->az) * uz) / len2 : 0.0;
     t = t < 0 ? 0 : t > 1 ? 1 : t;
@@ -453,23 +488,28 @@ typedef struct world_source {
     const brush_dab *d;
 } world_source;
 
-// Planets: a sample past the face's edge reads the neighbouring face where its
-// direction lands (bilinear there), so neighbourhood tools see the surface go on.
-static int read_ghost(world_source *s, double x, double z, float *out, og_error *err) {
+int brush_dab_read_sphere(world *w, const layer_grid *grid, const brush_dab *d, double x, double z,
+                          float *out, og_error *err) {
     double dir[3], fs, ft;
     int face;
-    brush_dab_sample_direction(s->d, x, z, dir);
+    brush_dab_sample_direction(d, x, z, dir);
     world_grid_direction_face(dir, &face, &fs, &ft);
-    layer_grid g = *s->g;
+    layer_grid g = *grid;
     g.face = face;
-    const double n = (double)s->d->face_samples, k = s->d->index_scale;
+    const double n = (double)d->face_samples, k = d->index_scale;
     double u = ((fs + 1.0) * 0.5 * n - 0.5) / k, v = ((ft + 1.0) * 0.5 * n - 0.5) / k;
     int64_t i = (int64_t)floor(u), j = (int64_t)floor(v);
     float q[4];
-    if (layer_grid_read(s->w, &g, (grid_rect){i, j, i + 2, j + 2}, q, err) != 0) return -1;
+    if (layer_grid_read(w, &g, (grid_rect){i, j, i + 2, j + 2}, q, err) != 0) return -1;
     double a = u - (double)i, b = v - (double)j;
     *out = (float)((q[0] * (1 - a) + q[1] * a) * (1 - b) + (q[2] * (1 - a) + q[3] * a) * b);
     return 0;
+}
+
+// Planets: a sample past the face's edge reads the neighbouring face where its
+// direction lands (bilinear there), so neighbourhood tools see the surface go on.
+static int read_ghost(world_source *s, double x, double z, float *out, og_error *err) {
+    return brush_dab_read_sphere(s->w, s->g, s->d, x, z, out, err);
 }
 
 static int read_world(void *src, grid_rect r, float *out, og_error *err) {

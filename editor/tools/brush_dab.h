@@ -30,12 +30,18 @@ typedef struct brush_dab {
     double index_scale;   // coarse samples per sample of the edited layer (1 / detail ratio)
     double planet_radius; // metres to the datum
     double centre_dir[3];
+    double ramp_a[3], ramp_b[3]; // ramp: its ends' directions (a great-circle segment)
     grid_rect rect;
 } brush_dab;
 
 // Planets: the unit direction of sample (x, z) of the dab's face (any index, past the
 // face's edges too: the face's coordinates extend beyond it).
 void brush_dab_sample_direction(const brush_dab *d, double x, double z, double dir[3]);
+
+// Planets: the height at sample (x, z) of d's face in its extended samples (past the
+// face's edges, on the neighbouring face where that direction lands), bilinear.
+int brush_dab_read_sphere(world *w, const layer_grid *g, const brush_dab *d, double x, double z,
+                          float *out, og_error *err);
 
 // The samples a dab can change (before clipping to the world).
 grid_rect brush_dab_rect(const brush_dab *d);

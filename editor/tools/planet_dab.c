@@ -17,6 +17,27 @@ void planet_dab_prepare(brush_dab *d, const world_params *p, tile_layer layer, i
     d->index_scale = 1.0 / (double)layer_ratio(p, layer);
     d->planet_radius = p->radius;
     brush_dab_sample_direction(d, d->cx, d->cz, d->centre_dir);
+    if (d->brush && d->brush->tool == BRUSH_RAMP) { // its cap: around the segment's middle
+        brush_dab_sample_direction(d, d->ax, d->az, d->ramp_a);
+        brush_dab_sample_direction(d, d->bx, d->bz, d->ramp_b);
+        double len = 0;
+        for (int k = 0; k < 3; k++)
+            d->centre_dir[k] = d->ramp_a[k] + d->ramp_b[k],
+            len += d->centre_dir[k] * d->centre_dir[k];
+        for (int k = 0; k < 3; k++)
+            d->centre_dir[k] = len > 0 ? d->centre_dir[k] / sqrt(len) : d->ramp_a[k];
+    }
+}
+
+// The cap's angle: the dab's radius, and for a ramp half its length more.
+static double cap_angle(const brush_dab *d) {
+    double angle = d->radius * d->spacing / d->planet_radius;
+    if (d->brush && d->brush->tool == BRUSH_RAMP) {
+        const double *a = d->ramp_a, *b = d->ramp_b;
+        double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
+        angle += asin(fmin(1.0, 0.5 * sqrt(dx * dx + dy * dy + dz * dz)));
+    }
+    return angle;
 }
 
 int planet_dab_check_position(const layer_grid *g, double x, double z, og_error *err) {
@@ -32,7 +53,7 @@ int planet_dab_check_position(const layer_grid *g, double x, double z, og_error 
 // The samples of face target's (extended) grid within the dab's cap; clipped to the
 // face when clip is set.
 static grid_rect cap_rect(const brush_dab *d, int target, int64_t layer_samples, int clip) {
-    const double angle = d->radius * d->spacing / d->planet_radius;
+    const double angle = cap_angle(d);
     const double *c = d->centre_dir;
     // An orthonormal pair across the centre, to walk the cap's rim.
     double u[3] = {0, 0, 0};
@@ -172,6 +193,11 @@ int planet_dab_apply(edit *e, const world_params *p, tile_layer layer, int face,
                             "radius: %g m is more than 1/16 of this planet's circumference; a "
                             "dab may reach at most %g m",
                             d->radius * d->spacing, PLANET_DAB_MAX_ANGLE * p->radius);
+    if (cap_angle(&base) > 2.0 * PLANET_DAB_MAX_ANGLE)
+        return og_error_set(err,
+                            "ramp: from end to end and its width it reaches %g m from its middle; "
+                            "on this planet a ramp may reach at most %g m",
+                            cap_angle(&base) * p->radius, 2.0 * PLANET_DAB_MAX_ANGLE * p->radius);
     if (layer != TILE_LAYER_MATERIAL &&
         (d->brush->tool == BRUSH_THERMAL || d->brush->tool == BRUSH_HYDRAULIC))
         return flow_apply(e, p, layer, &base, err);

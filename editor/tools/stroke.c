@@ -178,11 +178,28 @@ static int lay_to(stroke *s, double x, double z, double pressure, og_error *err)
 }
 
 static int apply_ramp(stroke *s, og_error *err) {
+    const world_params *p = world_get_params(s->world);
+    double k = 1.0 / s->grid.spacing;
+    if (p->kind == WORLD_PLANET) { // the great-circle segment, over face edges
+        brush_dab d = {.brush = &s->brush,
+                       .radius = s->brush.radius * k,
+                       .strength = (float)s->brush.strength,
+                       .spacing = s->grid.spacing,
+                       .ax = s->first_x * k,
+                       .az = s->first_z * k,
+                       .bx = s->last_x * k,
+                       .bz = s->last_z * k};
+        planet_dab_prepare(&d, p, s->grid.layer, s->grid.face);
+        if (brush_dab_read_sphere(s->world, &s->grid, &d, d.ax, d.az, &d.ha, err) != 0 ||
+            brush_dab_read_sphere(s->world, &s->grid, &d, d.bx, d.bz, &d.hb, err) != 0)
+            return -1;
+        s->dabs++;
+        return planet_dab_apply(s->edit, p, s->grid.layer, s->grid.face, &d, err);
+    }
     float ha, hb;
     if (layer_height(s, s->first_x, s->first_z, &ha, err) != 0 ||
         layer_height(s, s->last_x, s->last_z, &hb, err) != 0)
         return -1;
-    double k = 1.0 / s->grid.spacing;
     brush_dab d = {.brush = &s->brush,
                    .radius = s->brush.radius * k,
                    .strength = (float)s->brush.strength,
