@@ -14,7 +14,10 @@
 #include <string.h>
 #include <time.h>
 
-#define BLOCK 32 // samples (quads) per chunk side
+// Samples (quads) per chunk side. 16 rather than 32: the same bound on a sample's size
+// on screen with a third of the triangles near the ground (a chunk splits as a whole
+// for its nearest point), no visible change; 8 costs more in draw calls than it saves.
+#define BLOCK 16
 #define BLOCKS_PER_TILE (TILE_SIZE / BLOCK)
 #define GRID_VERTS ((BLOCK + 1) * (BLOCK + 1))
 #define CHUNK_VERTS (GRID_VERTS + 4 * (BLOCK + 1))
@@ -23,8 +26,8 @@
 // target: where the vertex sits in the parent level's mesh (position 3, height).
 // Then the 8 painted material weights (uint8 each, packed in two 32-bit slots).
 #define VERTEX_FLOATS 18
-#define MAX_CHUNKS 1536 // resident meshes (~90 MB): several views' worth
-#define TABLE_SIZE 4096 // open addressing, power of two, > 2 x MAX_CHUNKS
+#define MAX_CHUNKS 3072 // resident meshes (~80 MB): several views' worth
+#define TABLE_SIZE 8192 // open addressing, power of two, > 2 x MAX_CHUNKS
 #define BUILD_BUDGET_MS 10.0
 #define TEX_PERIOD_NEAR 4.0    // metres per repeat of the material textures
 #define TEX_PERIOD_FAR 64.0    // the larger scale that breaks up repetition (a multiple)
@@ -84,7 +87,7 @@ static double now_ms(void) {
 
 static uint64_t node_key(const node *n) {
     return ((uint64_t)n->face | (uint64_t)n->level << 3 | (uint64_t)n->bx << 8 |
-            (uint64_t)n->by << 34) +
+            (uint64_t)n->by << 36) +
            1;
 }
 
@@ -714,6 +717,11 @@ int planet_renderer_update(planet_renderer *r, world *w, const camera *cam,
     r->world = w;
     r->params = *p;
     r->face_samples = world_grid_face_samples(p);
+    if (r->face_samples / BLOCK >= ((int64_t)1 << 28)) // the chunk keys' block indices
+        return og_error_set(err,
+                            "planet renderer: %lld samples per face side (radius %g m at %g m "
+                            "spacing) is more than the viewport addresses (2^32)",
+                            (long long)r->face_samples, p->radius, p->spacing);
     r->cell_arc = (M_PI / 2.0) * p->radius / (double)r->face_samples;
     r->root_level = 0;
     while (level_samples(r, r->root_level) > BLOCK)
@@ -940,7 +948,7 @@ void planet_renderer_touched(planet_renderer *r, int face, grid_rect rect) {
         if (!c->key) continue;
         uint64_t k = c->key - 1;
         int cf = (int)(k & 7), level = (int)((k >> 3) & 31);
-        int64_t bx = (int64_t)((k >> 8) & ((1u << 26) - 1)), by = (int64_t)(k >> 34);
+        int64_t bx = (int64_t)((k >> 8) & ((1u << 28) - 1)), by = (int64_t)(k >> 36);
         if (cf != face) continue;
         // The level-0 cells the chunk's vertices interpolate from, a sample's margin
         // around (mips are box filtered; vertices blend neighbouring samples).

@@ -1,6 +1,6 @@
 // The planet viewport: a chunked quadtree per cube face over the same tile cache the
 // editor writes (Ulrich 2002's chunked LOD, with the world's own mip tiles as the
-// levels). A chunk is a 32 x 32-sample block of one face at one mip level, meshed on
+// levels). A chunk is a 16 x 16-sample block of one face at one mip level, meshed on
 // the CPU in double precision around its own origin and drawn camera-relative, so an
 // Earth-sized planet holds still from 40,000 km out down to metres above the ground.
 // Chunks split where a sample would cover more than a few pixels; those behind the
