@@ -421,21 +421,27 @@ static int dab_wanted(void *user, grid_rect part) {
 // Gathers the area around r (r + halo) and runs the neighbourhood tool on it.
 typedef int (*area_reader)(void *src, grid_rect area, float *out, og_error *err);
 
+// before (may be NULL): also a copy of the heights as read, before the tool ran.
 static int prepare(const brush_dab *d, tile_layer layer, grid_rect r, area_reader read, void *src,
-                   dab_rows *rows, og_error *err) {
+                   dab_rows *rows, float **before, og_error *err) {
     *rows = (dab_rows){.d = d};
     if (layer == TILE_LAYER_MATERIAL || is_pointwise(d->brush)) return 0;
     int halo = halo_of(d);
     grid_rect area = {r.x0 - halo, r.z0 - halo, r.x1 + halo, r.z1 + halo};
     size_t n = (size_t)((area.x1 - area.x0) * (area.z1 - area.z0));
     float *heights = malloc(n * sizeof *heights), *weight = malloc(n * sizeof *weight);
-    if (!heights || !weight || read(src, area, heights, err) != 0 ||
-        neighbourhood(d, heights, weight, area, err) != 0) {
-        if (!heights || !weight) og_error_set(err, "out of memory for a brush of %zu samples", n);
+    float *copy = before ? malloc(n * sizeof *copy) : NULL;
+    int ok = heights && weight && (!before || copy);
+    if (!ok) og_error_set(err, "out of memory for a brush of %zu samples", n);
+    if (ok && (ok = read(src, area, heights, err) == 0) && copy)
+        memcpy(copy, heights, n * sizeof *copy);
+    if (!ok || neighbourhood(d, heights, weight, area, err) != 0) {
         free(heights);
         free(weight);
+        free(copy);
         return -1;
     }
+    if (before) *before = copy;
     rows->heights = heights;
     rows->weight = weight;
     rows->area = area;
@@ -474,7 +480,7 @@ int brush_dab_apply_array(const brush_dab *d, tile_layer layer, void *data, grid
     if (grid_rect_empty(r)) return 0;
     array_source src = {data, area};
     dab_rows rows;
-    if (prepare(d, layer, r, read_array, &src, &rows, err) != 0) return -1;
+    if (prepare(d, layer, r, read_array, &src, &rows, NULL, err) != 0) return -1;
     edit_rows_apply_array(layer, data, area, r, dab_row, &rows);
     release(&rows);
     return 0;
@@ -542,7 +548,7 @@ int brush_dab_begin(edit *e, const layer_grid *g, const brush_dab *d, brush_dab_
     if (!j) return og_error_set(err, "out of memory");
     *j = (brush_dab_job){.e = e, .g = *g, .d = *d, .r = r};
     world_source src = {edit_world(e), &j->g, &j->d};
-    if (prepare(&j->d, g->layer, r, read_world, &src, &j->rows, err) != 0) {
+    if (prepare(&j->d, g->layer, r, read_world, &src, &j->rows, NULL, err) != 0) {
         free(j);
         return -1;
     }
@@ -569,16 +575,9 @@ int brush_dab_compute_area(edit *e, const layer_grid *g, const brush_dab *d, gri
     *out = (brush_dab_area){0};
     world_source src = {edit_world(e), g, d};
     dab_rows rows;
-    if (prepare(d, g->layer, r, read_world, &src, &rows, err) != 0) return -1;
-    const grid_rect a = rows.area;
-    float *before = malloc((size_t)((a.x1 - a.x0) * (a.z1 - a.z0)) * sizeof *before);
-    if (!before || read_world(&src, a, before, err) != 0) {
-        if (!before) og_error_set(err, "out of memory for an erosion area");
-        free(before);
-        release(&rows);
-        return -1;
-    }
-    *out = (brush_dab_area){a, before, (float *)rows.heights, (float *)rows.weight};
+    float *before = NULL;
+    if (prepare(d, g->layer, r, read_world, &src, &rows, &before, err) != 0) return -1;
+    *out = (brush_dab_area){rows.area, before, (float *)rows.heights, (float *)rows.weight};
     return 0;
 }
 

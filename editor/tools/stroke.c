@@ -180,26 +180,6 @@ static int lay_to(stroke *s, double x, double z, double pressure, og_error *err)
 static int apply_ramp(stroke *s, og_error *err) {
     const world_params *p = world_get_params(s->world);
     double k = 1.0 / s->grid.spacing;
-    if (p->kind == WORLD_PLANET) { // the great-circle segment, over face edges
-        brush_dab d = {.brush = &s->brush,
-                       .radius = s->brush.radius * k,
-                       .strength = (float)s->brush.strength,
-                       .spacing = s->grid.spacing,
-                       .ax = s->first_x * k,
-                       .az = s->first_z * k,
-                       .bx = s->last_x * k,
-                       .bz = s->last_z * k};
-        planet_dab_prepare(&d, p, s->grid.layer, s->grid.face);
-        if (brush_dab_read_sphere(s->world, &s->grid, &d, d.ax, d.az, &d.ha, err) != 0 ||
-            brush_dab_read_sphere(s->world, &s->grid, &d, d.bx, d.bz, &d.hb, err) != 0)
-            return -1;
-        s->dabs++;
-        return planet_dab_apply(s->edit, p, s->grid.layer, s->grid.face, &d, err);
-    }
-    float ha, hb;
-    if (layer_height(s, s->first_x, s->first_z, &ha, err) != 0 ||
-        layer_height(s, s->last_x, s->last_z, &hb, err) != 0)
-        return -1;
     brush_dab d = {.brush = &s->brush,
                    .radius = s->brush.radius * k,
                    .strength = (float)s->brush.strength,
@@ -207,10 +187,18 @@ static int apply_ramp(stroke *s, og_error *err) {
                    .ax = s->first_x * k,
                    .az = s->first_z * k,
                    .bx = s->last_x * k,
-                   .bz = s->last_z * k,
-                   .ha = ha,
-                   .hb = hb};
+                   .bz = s->last_z * k};
     s->dabs++;
+    if (p->kind == WORLD_PLANET) { // the great-circle segment, over face edges
+        planet_dab_prepare(&d, p, s->grid.layer, s->grid.face);
+        if (brush_dab_read_sphere(s->world, &s->grid, &d, d.ax, d.az, &d.ha, err) != 0 ||
+            brush_dab_read_sphere(s->world, &s->grid, &d, d.bx, d.bz, &d.hb, err) != 0)
+            return -1;
+        return planet_dab_apply(s->edit, p, s->grid.layer, s->grid.face, &d, err);
+    }
+    if (layer_height(s, s->first_x, s->first_z, &d.ha, err) != 0 ||
+        layer_height(s, s->last_x, s->last_z, &d.hb, err) != 0)
+        return -1;
     return brush_dab_apply(s->edit, &s->grid, &d, err);
 }
 
