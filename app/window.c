@@ -311,6 +311,7 @@ static void reset_camera(window_state *st) {
     st->cc.planet_user = st;
     st->render_failed = 0;
     if (viewport_default_camera(st->v, st->ctx->world, &err) != 0) report("camera", &err);
+    st->v->cam_world_serial = st->ctx->world_serial;
     st->dirty = 1;
 }
 
@@ -936,7 +937,8 @@ static void wake_window(void *user) {
     glfwPostEmptyEvent();
 }
 
-// Any change redraws; another world (new, load) gets its default camera.
+// Any change redraws; another world (new, load) gets its default camera unless a
+// command placed the camera after it came (`new planet; camera_geo ...`).
 static void take_changes(window_state *st) {
     world_event e[32];
     size_t n;
@@ -947,7 +949,9 @@ static void take_changes(window_state *st) {
             st->world_changed |= e[i].kind == WORLD_EVENT_AREA || e[i].kind == WORLD_EVENT_PARAMS ||
                                  e[i].kind == WORLD_EVENT_REPLACED;
         for (size_t i = 0; i < n; i++)
-            if (e[i].kind == WORLD_EVENT_REPLACED) reset_camera(st);
+            if (e[i].kind == WORLD_EVENT_REPLACED &&
+                st->v->cam_world_serial != st->ctx->world_serial)
+                reset_camera(st);
         if (n < 32) break;
     }
 }
@@ -1402,6 +1406,7 @@ static viewport *attach_viewport(cmd_context *ctx, og_error *err) {
     if (batch_view) { // made by a batch command: keep its camera and settings
         v->cam = batch_view->cam;
         v->cam_set = batch_view->cam_set;
+        v->cam_world_serial = batch_view->cam_world_serial;
         v->settings = batch_view->settings;
         viewport_destroy(batch_view);
     }

@@ -39,11 +39,32 @@ typedef struct chunk {
     GLuint vbo;
     double origin[3]; // planet coordinates of the vertices' origin
     float hmin, hmax; // metres above the datum
+    float lowest;     // under hmin where the morph targets are lower
+    float reach;      // metres from the origin to the farthest vertex (skirts aside)
+    int painted;      // some vertex has painted weights
     int level;
     double morph_reach;    // this frame: where the parent level would take over (metres)
     double metres_base[2]; // face-local metres the vertices' texture metres are relative to
     uint64_t used;         // frame it was last selected
 } chunk;
+
+// The ground program's variants (see planet.frag): what a chunk can show.
+enum {
+    V_SHADED = 1,
+    V_DETAIL = 2,
+    V_SEA = 4,
+    V_PAINTED = 8,
+    V_BARE = 16,
+    V_BRUSH = 32,
+    V_OVERLAYS = 64,
+    VARIANTS = 128
+};
+
+typedef struct ground_program {
+    GLuint prog;
+    GLint offset, level, morph, detail, tile, cell; // the per-chunk uniforms
+    uint64_t frame;                                 // its frame uniforms were set for
+} ground_program;
 
 typedef struct node {
     int face, level;
@@ -51,7 +72,10 @@ typedef struct node {
 } node;
 
 struct planet_renderer {
-    GLuint prog_planet, prog_sky, vao, empty_vao, ibo, albedo, falloff;
+    char shader_dir[4200];
+    ground_program ground[VARIANTS]; // built when first needed
+    GLuint prog_sky, vao, empty_vao, ibo, albedo, falloff;
+    GLenum front[6];       // each face's winding seen from outside
     planet_detail *detail; // the detail layer around the camera, for parallax
     chunk chunks[MAX_CHUNKS];
     int table[TABLE_SIZE]; // chunk index or -1
@@ -345,7 +369,8 @@ static void morph_targets(const planet_renderer *r, const node *n, const float *
 // The painted weights at each grid vertex: the nearest material sample's (level-0
 // chunks; coarser ones show the automatic rules alone, as the flat viewport's far
 // levels do).
-static void painted_weights(const node *n, const uint8_t *material, float *out) {
+static int painted_weights(const node *n, const uint8_t *material, float *out) {
+    int painted = 0;
     const int ox = (int)(n->bx % BLOCKS_PER_TILE) * BLOCK,
               oy = (int)(n->by % BLOCKS_PER_TILE) * BLOCK;
     for (int gj = 0; gj <= BLOCK; gj++)
@@ -356,12 +381,14 @@ static void painted_weights(const node *n, const uint8_t *material, float *out) 
                 int v = oy + gj < TILE_SIZE ? oy + gj : TILE_SIZE - 1;
                 memcpy(w, material + ((size_t)v * TILE_SIZE + u) * TILE_MATERIALS, sizeof w);
             }
+            painted |= w[0] != 255;
             uint32_t packed[2] = {0, 0};
             for (int k = 0; k < TILE_MATERIALS; k++)
                 packed[k / 4] |= (uint32_t)w[k] << (8 * (k % 4));
             memcpy(out + (size_t)(gj * (BLOCK + 1) + gi) * VERTEX_FLOATS + 16, packed,
                    sizeof packed);
         }
+    return painted;
 }
 
 static void build_vertices(const planet_renderer *r, const node *n, const float *tile,
@@ -440,7 +467,14 @@ static void build_vertices(const planet_renderer *r, const node *n, const float 
                 o[12 + a] = (float)(coarse[q][a] - c->origin[a]);
             o[15] = coarse_h[q];
         }
-    painted_weights(n, material, out);
+    c->painted = painted_weights(n, material, out);
+    c->lowest = c->hmin, c->reach = 0;
+    for (int q = 0; q < GRID_VERTS; q++) {
+        const float *o = out + (size_t)q * VERTEX_FLOATS;
+        c->lowest = fminf(c->lowest, o[15]);
+        c->reach = fmaxf(c->reach, sqrtf(o[0] * o[0] + o[1] * o[1] + o[2] * o[2]));
+        c->reach = fmaxf(c->reach, sqrtf(o[12] * o[12] + o[13] * o[13] + o[14] * o[14]));
+    }
     // Skirts: each edge's vertices again, lowered far enough to hide the cracks between
     // levels and faces (a level's samples differ from the next one's by about a cell).
     const double depth =
@@ -578,13 +612,59 @@ static int select_node(planet_renderer *r, const node *n) {
 
 // ---- the renderer ---------------------------------------------------------------
 
+// A chunk vertex's place in the block's own frame: across (i), along (j) and up (h;
+// -1 for a skirt's lowered copy). Used to wind every triangle alike.
+static void block_coords(uint16_t index, double out[3]) {
+    if (index < GRID_VERTS) {
+        out[0] = index % (BLOCK + 1), out[1] = index / (BLOCK + 1), out[2] = 0;
+        return;
+    }
+    int e = (index - GRID_VERTS) / (BLOCK + 1), g = (index - GRID_VERTS) % (BLOCK + 1);
+    out[0] = e < 2 ? g : (e == 2 ? 0 : BLOCK);
+    out[1] = e < 2 ? (e == 0 ? 0 : BLOCK) : g;
+    out[2] = -1;
+}
+
+// Winds the triangle counter-clockwise seen from `outward` (in the block's frame), so
+// back faces can be culled: the ground from below, a skirt from inside its chunk.
+static void wind(uint16_t tri[3], const double outward[3]) {
+    double p[3][3];
+    for (int v = 0; v < 3; v++)
+        block_coords(tri[v], p[v]);
+    double e1[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
+    double e2[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
+    double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                   e1[0] * e2[1] - e1[1] * e2[0]};
+    if (n[0] * outward[0] + n[1] * outward[1] + n[2] * outward[2] < 0) {
+        uint16_t t = tri[1];
+        tri[1] = tri[2], tri[2] = t;
+    }
+}
+
+// The winding a face's chunks show from outside the planet: counter-clockwise where the
+// face's s, t and the outward direction make a right-handed frame.
+static GLenum face_front(int face) {
+    double o[3], ds[3], dt[3];
+    world_grid_face_direction_warped(face, 0, 0, o);
+    world_grid_face_direction_warped(face, 0.01, 0, ds);
+    world_grid_face_direction_warped(face, 0, 0.01, dt);
+    for (int a = 0; a < 3; a++)
+        ds[a] -= o[a], dt[a] -= o[a];
+    double n[3] = {ds[1] * dt[2] - ds[2] * dt[1], ds[2] * dt[0] - ds[0] * dt[2],
+                   ds[0] * dt[1] - ds[1] * dt[0]};
+    return n[0] * o[0] + n[1] * o[1] + n[2] * o[2] > 0 ? GL_CCW : GL_CW;
+}
+
 static GLuint make_indices(void) {
     static uint16_t idx[CHUNK_INDICES];
+    const double up[3] = {0, 0, 1};
+    const double skirt_out[4][3] = {{0, -1, 0}, {0, 1, 0}, {-1, 0, 0}, {1, 0, 0}}; // edges 0-3
     int k = 0;
     for (int j = 0; j < BLOCK; j++)
         for (int i = 0; i < BLOCK; i++) {
             uint16_t a = (uint16_t)(j * (BLOCK + 1) + i), b = a + 1, c = a + BLOCK + 1, d = c + 1;
             uint16_t quad[6] = {a, c, b, b, c, d};
+            wind(quad, up), wind(quad + 3, up);
             memcpy(idx + k, quad, sizeof quad);
             k += 6;
         }
@@ -596,6 +676,7 @@ static GLuint make_indices(void) {
                      t1 = (uint16_t)(gj1 * (BLOCK + 1) + gi1);
             uint16_t b0 = (uint16_t)(GRID_VERTS + e * (BLOCK + 1) + g), b1 = b0 + 1;
             uint16_t quad[6] = {t0, b0, t1, t1, b0, b1};
+            wind(quad, skirt_out[e]), wind(quad + 3, skirt_out[e]);
             memcpy(idx + k, quad, sizeof quad);
             k += 6;
         }
@@ -605,6 +686,30 @@ static GLuint make_indices(void) {
     return ibo;
 }
 
+// The ground program for a variant (V_* bits), built on first use.
+static ground_program *ground_variant(planet_renderer *r, int variant, og_error *err) {
+    ground_program *g = &r->ground[variant];
+    if (g->prog) return g;
+    static const char *const names[] = {"SHADED", "DETAIL", "SEA",     "PAINTED",
+                                        "BARE",   "BRUSH",  "OVERLAYS"};
+    char defines[256] = "";
+    for (int b = 0; b < 7; b++)
+        if (variant & (1 << b))
+            snprintf(defines + strlen(defines), sizeof defines - strlen(defines), "#define %s\n",
+                     names[b]);
+    g->prog =
+        shader_program_load_variant(r->shader_dir, "planet.vert", "planet.frag", defines, err);
+    if (!g->prog) return NULL;
+    g->offset = glGetUniformLocation(g->prog, "u_offset");
+    g->level = glGetUniformLocation(g->prog, "u_level");
+    g->morph = glGetUniformLocation(g->prog, "u_morph");
+    g->detail = glGetUniformLocation(g->prog, "u_chunk_detail");
+    g->tile = glGetUniformLocation(g->prog, "u_chunk_tile");
+    g->cell = glGetUniformLocation(g->prog, "u_chunk_cell");
+    g->frame = 0;
+    return g;
+}
+
 planet_renderer *planet_renderer_create(const char *resource_dir, GLuint albedo, GLuint falloff,
                                         og_error *err) {
     planet_renderer *r = calloc(1, sizeof *r);
@@ -612,11 +717,11 @@ planet_renderer *planet_renderer_create(const char *resource_dir, GLuint albedo,
         og_error_set(err, "out of memory for the planet renderer");
         return NULL;
     }
-    char dir[4200];
-    snprintf(dir, sizeof dir, "%s/shaders", resource_dir);
-    r->prog_planet = shader_program_load(dir, "planet.vert", "planet.frag", err);
-    if (r->prog_planet)
-        r->prog_sky = shader_program_load(dir, "fullscreen.vert", "planet_sky.frag", err);
+    snprintf(r->shader_dir, sizeof r->shader_dir, "%s/shaders", resource_dir);
+    // The plain shaded ground now, so a broken shader shows at once; other variants
+    // when a chunk first needs them.
+    if (ground_variant(r, V_SHADED, err))
+        r->prog_sky = shader_program_load(r->shader_dir, "fullscreen.vert", "planet_sky.frag", err);
     if (!r->prog_sky) {
         planet_renderer_destroy(r);
         return NULL;
@@ -628,6 +733,8 @@ planet_renderer *planet_renderer_create(const char *resource_dir, GLuint albedo,
         return NULL;
     }
     r->ibo = make_indices();
+    for (int f = 0; f < 6; f++)
+        r->front[f] = face_front(f);
     glCreateVertexArrays(1, &r->vao);
     glCreateVertexArrays(1, &r->empty_vao);
     glVertexArrayElementBuffer(r->vao, r->ibo);
@@ -652,7 +759,8 @@ void planet_renderer_destroy(planet_renderer *r) {
     if (r->ibo) glDeleteBuffers(1, &r->ibo);
     if (r->vao) glDeleteVertexArrays(1, &r->vao);
     if (r->empty_vao) glDeleteVertexArrays(1, &r->empty_vao);
-    if (r->prog_planet) glDeleteProgram(r->prog_planet);
+    for (int v = 0; v < VARIANTS; v++)
+        if (r->ground[v].prog) glDeleteProgram(r->ground[v].prog);
     if (r->prog_sky) glDeleteProgram(r->prog_sky);
     planet_detail_destroy(r->detail);
     free(r);
@@ -787,34 +895,97 @@ static void set_common(const planet_renderer *r, GLuint prog, const camera *cam,
     glProgramUniform1i(prog, glGetUniformLocation(prog, "u_view_mode"), s->view);
 }
 
+// What every ground program gets this frame.
+typedef struct ground_frame {
+    const camera *cam;
+    const render_settings *s;
+    float view_proj[16];
+    float brush[4], brush_up[3]; // the cursor's centre relative to the camera, radius (0: none)
+    float tint[4], ring[3];      // the tool's colours
+} ground_frame;
+
 // The brush cursor: its centre relative to the camera, the local up there, the falloff
-// curve and the tool's colours (as the flat viewport draws them).
-static void set_cursor(planet_renderer *r, GLuint prog, const camera *cam,
-                       const brush_cursor *cursor) {
-    float brush[4] = {0, 0, 0, 0}, up[3] = {0, 1, 0};
+// curve (uploaded once) and the tool's colours (as the flat viewport draws them).
+static void cursor_frame(planet_renderer *r, const brush_cursor *cursor, ground_frame *f) {
+    const camera *cam = f->cam;
+    memset(f->brush, 0, sizeof f->brush);
+    f->brush_up[0] = 0, f->brush_up[1] = 1, f->brush_up[2] = 0;
     if (cursor && cursor->visible && cursor->radius > 0 && !cursor->sphere) {
         const double c[3] = {cursor->x, cursor->y, cursor->z};
         double len = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
         for (int k = 0; k < 3; k++) {
-            brush[k] = (float)(c[k] - cam->pos[k]);
-            up[k] = len > 0 ? (float)(c[k] / len) : 0.0f;
+            f->brush[k] = (float)(c[k] - cam->pos[k]);
+            f->brush_up[k] = len > 0 ? (float)(c[k] / len) : 0.0f;
         }
-        brush[3] = (float)cursor->radius;
+        f->brush[3] = (float)cursor->radius;
         glTextureSubImage2D(r->falloff, 0, 0, 0, BRUSH_FALLOFF_SAMPLES, 1, GL_RED, GL_FLOAT,
                             cursor->falloff);
     }
-    glProgramUniform4fv(prog, glGetUniformLocation(prog, "u_brush"), 1, brush);
-    glProgramUniform3fv(prog, glGetUniformLocation(prog, "u_brush_up"), 1, up);
-    float tint[4] = {1.0f, 0.55f, 0.1f, 0.35f}, ring[3] = {1.0f, 0.9f, 0.3f}; // default: orange
+    const float tint[4] = {1.0f, 0.55f, 0.1f, 0.35f}, ring[3] = {1.0f, 0.9f, 0.3f}; // orange
+    memcpy(f->tint, tint, sizeof tint);
+    memcpy(f->ring, ring, sizeof ring);
     if (cursor && cursor->opacity > 0) {
         for (int i = 0; i < 3; i++)
-            tint[i] = cursor->color[i], ring[i] = 0.65f * cursor->color[i] + 0.35f;
-        tint[3] = cursor->opacity;
+            f->tint[i] = cursor->color[i], f->ring[i] = 0.65f * cursor->color[i] + 0.35f;
+        f->tint[3] = cursor->opacity;
     }
-    glProgramUniform4fv(prog, glGetUniformLocation(prog, "u_brush_tint"), 1, tint);
-    glProgramUniform3fv(prog, glGetUniformLocation(prog, "u_brush_ring"), 1, ring);
+}
+
+// A ground program's uniforms for this frame, once per frame and program.
+static void ground_frame_uniforms(planet_renderer *r, GLuint prog, const ground_frame *f) {
+    const world_params *p = &r->params;
+    const render_settings *s = f->s;
+    set_common(r, prog, f->cam, s);
+    glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "u_view_proj"), 1, GL_FALSE,
+                              f->view_proj);
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "u_ocean_h"),
+                       (float)world_params_ocean_height(p));
+    // The material rules' sea level: a planet without a sea (its radius under all the
+    // ground) keeps its beaches and snow line where the ground is.
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "u_ocean_level"),
+                       (float)fmax(world_params_ocean_height(p), -p->max_height));
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "u_max_height"), (float)p->max_height);
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "u_palette"),
+                       p->atmosphere < 0.05 ? 1 : 2); // used by the BARE variants
+    glProgramUniform2f(prog, glGetUniformLocation(prog, "u_tex_period"), (float)TEX_PERIOD_NEAR,
+                       (float)TEX_PERIOD_FAR);
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "u_albedo"), 0);
+    glProgramUniform4fv(prog, glGetUniformLocation(prog, "u_brush"), 1, f->brush);
+    glProgramUniform3fv(prog, glGetUniformLocation(prog, "u_brush_up"), 1, f->brush_up);
+    glProgramUniform4fv(prog, glGetUniformLocation(prog, "u_brush_tint"), 1, f->tint);
+    glProgramUniform3fv(prog, glGetUniformLocation(prog, "u_brush_ring"), 1, f->ring);
     glProgramUniform1i(prog, glGetUniformLocation(prog, "u_falloff"), 1);
-    glBindTextureUnit(1, r->falloff);
+    planet_detail_bind(r->detail, prog, s, 2, 3);
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "u_overlays"),
+                       (s->tile_grid ? 1 : 0) | (s->level_grid ? 2 : 0));
+}
+
+// The variant a chunk is drawn with: only what it can show this frame.
+static int chunk_variant(const planet_renderer *r, const chunk *c, const ground_frame *f,
+                         const float detail[4]) {
+    const render_settings *s = f->s;
+    if (s->view == VIEW_WIREFRAME) return 0;
+    const double ocean = world_params_ocean_height(&r->params);
+    const int has_sea = ocean > -r->params.max_height;
+    int v = detail[3] > 0 ? V_DETAIL : 0;
+    if (s->tile_grid || s->level_grid) v |= V_OVERLAYS;
+    if (f->brush[3] > 0) { // the cursor reaches the chunk (raised to the sea where under it)
+        double d2 = 0;
+        for (int k = 0; k < 3; k++) {
+            double dk = c->origin[k] - f->cam->pos[k] - f->brush[k];
+            d2 += dk * dk;
+        }
+        double reach = c->reach + fmax(ocean - c->lowest, 0.0) + 1.1 * f->brush[3];
+        if (d2 < reach * reach) v |= V_BRUSH;
+    }
+    if (s->view != VIEW_SHADED) return v;
+    v |= V_SHADED;
+    if (!has_sea)
+        v |= V_BARE;
+    else if (c->lowest < ocean)
+        v |= V_SEA;
+    if (c->painted) v |= V_PAINTED;
+    return v;
 }
 
 // Space, the sun and the sky, drawn after the ground where nothing was drawn: the
@@ -849,84 +1020,90 @@ int planet_renderer_draw(planet_renderer *r, const camera *cam, const render_set
                          const brush_cursor *cursor, int width, int height, og_error *err) {
     double t0 = now_ms();
     double aspect = (double)width / (double)(height > 0 ? height : 1);
-    float vp[16];
-    planet_camera_view_projection(cam, aspect, vp);
+    ground_frame f = {.cam = cam, .s = s};
+    planet_camera_view_projection(cam, aspect, f.view_proj);
     glViewport(0, 0, width, height);
     glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_GREATER);
     glClearDepth(0.0);
-    glDisable(GL_CULL_FACE);
     const int wire = s->view == VIEW_WIREFRAME;
+    // Back faces cost llvmpipe as much as the ground: the skirts seen from inside their
+    // chunks, slopes facing away, the ground past the horizon. The wireframe shows all.
+    if (wire)
+        glDisable(GL_CULL_FACE);
+    else
+        glEnable(GL_CULL_FACE), glCullFace(GL_BACK);
     glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     r->stats.triangles = 0;
     r->stats.draw_calls = 0;
-    GLuint prog = r->prog_planet;
-    set_common(r, prog, cam, s);
-    const world_params *p = &r->params;
-    glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "u_view_proj"), 1, GL_FALSE, vp);
-    glProgramUniform1f(prog, glGetUniformLocation(prog, "u_ocean_h"),
-                       (float)world_params_ocean_height(p));
-    // The material rules' sea level: a planet without a sea (its radius under all the
-    // ground) keeps its beaches and snow line where the ground is.
-    glProgramUniform1f(prog, glGetUniformLocation(prog, "u_ocean_level"),
-                       (float)fmax(world_params_ocean_height(p), -p->max_height));
-    glProgramUniform1f(prog, glGetUniformLocation(prog, "u_max_height"), (float)p->max_height);
-    const int sea = world_params_ocean_height(p) > -p->max_height;
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "u_palette"),
-                       sea ? 0 : (p->atmosphere < 0.05 ? 1 : 2));
-    glProgramUniform2f(prog, glGetUniformLocation(prog, "u_tex_period"), (float)TEX_PERIOD_NEAR,
-                       (float)TEX_PERIOD_FAR);
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "u_albedo"), 0);
+    cursor_frame(r, cursor, &f);
     glBindTextureUnit(0, r->albedo);
-    set_cursor(r, prog, cam, cursor);
-    planet_detail_bind(r->detail, prog, s, 2, 3);
-    GLint detail_loc = glGetUniformLocation(prog, "u_chunk_detail");
-    GLint tile_loc = glGetUniformLocation(prog, "u_chunk_tile");
-    GLint cell_loc = glGetUniformLocation(prog, "u_chunk_cell");
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "u_overlays"),
-                       (s->tile_grid ? 1 : 0) | (s->level_grid ? 2 : 0));
-    GLint offset_loc = glGetUniformLocation(prog, "u_offset");
-    GLint level_loc = glGetUniformLocation(prog, "u_level");
-    GLint morph_loc = glGetUniformLocation(prog, "u_morph");
-    glUseProgram(prog);
-    glBindVertexArray(r->vao);
-    if (wire) glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+    glBindTextureUnit(1, r->falloff);
+    // Each chunk's variant, then the chunks drawn variant by variant.
+    static float details[MAX_CHUNKS][4];
+    static unsigned char variants[MAX_CHUNKS];
+    int used[VARIANTS] = {0};
     for (int i = 0; i < r->draw_count; i++) {
         const chunk *c = &r->chunks[r->draw_list[i]];
-        glProgramUniform3f(prog, offset_loc, (float)(c->origin[0] - cam->pos[0]),
-                           (float)(c->origin[1] - cam->pos[1]),
-                           (float)(c->origin[2] - cam->pos[2]));
-        glProgramUniform1i(prog, level_loc, c->level);
-        float detail[4];
         planet_detail_chunk(r->detail, chunk_face(c), c->level, c->metres_base[0],
-                            c->metres_base[1], detail);
-        glProgramUniform4fv(prog, detail_loc, 1, detail);
-        if (s->tile_grid || s->level_grid) { // where the chunk's metres meet the grids
-            const double tile = TILE_SIZE * r->cell_arc, cell = ldexp(r->cell_arc, c->level);
-            glProgramUniform3f(prog, tile_loc, (float)fmod(c->metres_base[0], tile),
-                               (float)fmod(c->metres_base[1], tile), (float)tile);
-            glProgramUniform3f(prog, cell_loc, (float)fmod(c->metres_base[0], cell),
-                               (float)fmod(c->metres_base[1], cell), (float)cell);
+                            c->metres_base[1], details[i]);
+        variants[i] = (unsigned char)chunk_variant(r, c, &f, details[i]);
+        used[variants[i]] = 1;
+    }
+    glBindVertexArray(r->vao);
+    if (wire) glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+    int rc = 0;
+    for (int v = 0; v < VARIANTS && rc == 0; v++) {
+        if (!used[v]) continue;
+        ground_program *g = ground_variant(r, v, err);
+        if (!g) {
+            rc = -1;
+            break;
         }
-        // Fully the parent's mesh where the parent would be drawn instead: at the
-        // distance its samples shrink to split_pixels. (The haze is measured to the
-        // sphere through each fragment's height, not along the morphed chords, so
-        // coarse quads do not show in it.)
-        const int morph = s->morph && c->level < r->root_level;
-        glProgramUniform1f(prog, morph_loc, morph ? (float)(1.0 / c->morph_reach) : 0.0f);
-        glVertexArrayVertexBuffer(r->vao, 0, c->vbo, 0, VERTEX_FLOATS * sizeof(float));
-        glDrawElements(GL_TRIANGLES, CHUNK_INDICES, GL_UNSIGNED_SHORT, NULL);
-        r->stats.triangles += CHUNK_INDICES / 3;
-        r->stats.draw_calls++;
+        if (g->frame != r->frame) {
+            ground_frame_uniforms(r, g->prog, &f);
+            g->frame = r->frame;
+        }
+        glUseProgram(g->prog);
+        for (int i = 0; i < r->draw_count; i++) {
+            if (variants[i] != v) continue;
+            const chunk *c = &r->chunks[r->draw_list[i]];
+            glProgramUniform3f(g->prog, g->offset, (float)(c->origin[0] - cam->pos[0]),
+                               (float)(c->origin[1] - cam->pos[1]),
+                               (float)(c->origin[2] - cam->pos[2]));
+            glProgramUniform1i(g->prog, g->level, c->level);
+            glProgramUniform4fv(g->prog, g->detail, 1, details[i]);
+            if (v & V_OVERLAYS) { // where the chunk's metres meet the grids
+                const double tile = TILE_SIZE * r->cell_arc, cell = ldexp(r->cell_arc, c->level);
+                glProgramUniform3f(g->prog, g->tile, (float)fmod(c->metres_base[0], tile),
+                                   (float)fmod(c->metres_base[1], tile), (float)tile);
+                glProgramUniform3f(g->prog, g->cell, (float)fmod(c->metres_base[0], cell),
+                                   (float)fmod(c->metres_base[1], cell), (float)cell);
+            }
+            // Fully the parent's mesh where the parent would be drawn instead: at the
+            // distance its samples shrink to split_pixels. (The haze is measured to the
+            // sphere through each fragment's height, not along the morphed chords, so
+            // coarse quads do not show in it.)
+            const int morph = s->morph && c->level < r->root_level;
+            glProgramUniform1f(g->prog, g->morph, morph ? (float)(1.0 / c->morph_reach) : 0.0f);
+            glFrontFace(r->front[chunk_face(c)]);
+            glVertexArrayVertexBuffer(r->vao, 0, c->vbo, 0, VERTEX_FLOATS * sizeof(float));
+            glDrawElements(GL_TRIANGLES, CHUNK_INDICES, GL_UNSIGNED_SHORT, NULL);
+            r->stats.triangles += CHUNK_INDICES / 3;
+            r->stats.draw_calls++;
+        }
     }
     if (wire) glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
-    if (!wire) draw_sky(r, cam, s, aspect);
+    glDisable(GL_CULL_FACE);
+    glFrontFace(GL_CCW);
+    if (!wire && rc == 0) draw_sky(r, cam, s, aspect);
     r->stats.chunks_drawn = r->draw_count;
     glBindVertexArray(0);
     glUseProgram(0);
     r->stats.cpu_ms += now_ms() - t0;
+    if (rc < 0) return -1;
     GLenum e = glGetError();
     if (e != GL_NO_ERROR) return og_error_set(err, "planet_renderer_draw: GL error 0x%x", e);
     return 0;

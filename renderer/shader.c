@@ -287,14 +287,34 @@ static int report_compile_error(const char *log, const source_files *files, og_e
                         *first ? first : "(no log)");
 }
 
-static GLuint compile_stage(const char *dir, const char *name, GLenum stage, og_error *err) {
+// Puts the defines right after the #version line (the first), before the #line that
+// keeps the file's own numbering.
+static int insert_defines(text *source, const char *defines, og_error *err) {
+    if (!defines || !*defines) return 0;
+    const char *nl = strchr(source->data, '\n');
+    size_t head = nl ? (size_t)(nl - source->data) + 1 : source->len;
+    size_t extra = strlen(defines), total = source->len + extra + 2;
+    char *data = malloc(total);
+    if (!data) return og_error_set(err, "shader: out of memory");
+    int n = snprintf(data, total, "%.*s%s%s%s", (int)head, source->data, defines,
+                     defines[extra - 1] == '\n' ? "" : "\n", source->data + head);
+    free(source->data);
+    source->data = data;
+    source->len = (size_t)n;
+    source->cap = total;
+    return 0;
+}
+
+static GLuint compile_stage(const char *dir, const char *name, GLenum stage, const char *defines,
+                            og_error *err) {
     char *path = join_path(dir, name);
     if (!path) return og_error_set(err, "shader: out of memory"), 0;
     include_frame stack[INCLUDE_DEPTH_MAX + 1];
     source_files files = {0};
     text source = {0};
     GLuint shader = 0;
-    if (expand_file(dir, path, 0, stack, &files, &source, err) == 0) {
+    if (expand_file(dir, path, 0, stack, &files, &source, err) == 0 &&
+        insert_defines(&source, defines, err) == 0) {
         shader = glCreateShader(stage);
         if (!shader) og_error_set(err, "%s: glCreateShader failed (no current GL context?)", path);
     }
@@ -353,22 +373,33 @@ static GLuint link_program(const char *dir, const char *names[3], const GLuint s
     return 0;
 }
 
-GLuint shader_program_load_gs(const char *dir, const char *vs_name, const char *gs_name,
-                              const char *fs_name, og_error *err) {
+static GLuint load_program(const char *dir, const char *vs_name, const char *gs_name,
+                           const char *fs_name, const char *defines, og_error *err) {
     const char *names[3] = {vs_name, gs_name, fs_name};
     const GLenum stages[3] = {GL_VERTEX_SHADER, GL_GEOMETRY_SHADER, GL_FRAGMENT_SHADER};
     GLuint shaders[3] = {0, 0, 0};
     GLuint program = 0;
     bool compiled = true;
     for (int i = 0; i < 3 && compiled; i++)
-        if (names[i]) compiled = (shaders[i] = compile_stage(dir, names[i], stages[i], err)) != 0;
+        if (names[i])
+            compiled = (shaders[i] = compile_stage(dir, names[i], stages[i], defines, err)) != 0;
     if (compiled) program = link_program(dir, names, shaders, err);
     for (int i = 0; i < 3; i++)
         if (shaders[i]) glDeleteShader(shaders[i]);
     return program;
 }
 
+GLuint shader_program_load_gs(const char *dir, const char *vs_name, const char *gs_name,
+                              const char *fs_name, og_error *err) {
+    return load_program(dir, vs_name, gs_name, fs_name, NULL, err);
+}
+
 GLuint shader_program_load(const char *dir, const char *vs_name, const char *fs_name,
                            og_error *err) {
-    return shader_program_load_gs(dir, vs_name, NULL, fs_name, err);
+    return load_program(dir, vs_name, NULL, fs_name, NULL, err);
+}
+
+GLuint shader_program_load_variant(const char *dir, const char *vs_name, const char *fs_name,
+                                   const char *defines, og_error *err) {
+    return load_program(dir, vs_name, NULL, fs_name, defines, err);
 }

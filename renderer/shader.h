@@ -20,5 +20,11 @@ GLuint shader_program_load(const char *dir, const char *vs_name, const char *fs_
 // The same with a geometry shader between (gs_name NULL: none).
 GLuint shader_program_load_gs(const char *dir, const char *vs_name, const char *gs_name,
                               const char *fs_name, og_error *err);
+// The same with `defines` (e.g. "#define SEA\n#define BRUSH\n") after both stages'
+// #version line: variants of one source without the branches a software renderer
+// would run for every fragment (llvmpipe executes both sides of an `if`, masked).
+// Errors keep the files' own line numbers.
+GLuint shader_program_load_variant(const char *dir, const char *vs_name, const char *fs_name,
+                                   const char *defines, og_error *err);
 
 #endif

@@ -75,6 +75,7 @@ static int cmd_camera_geo(cmd_context *ctx, int argc, char **argv, og_error *err
     c.fov_y = val[5];
     v->cam = c;
     v->cam_set = 1;
+    v->cam_world_serial = ctx->world_serial;
     return 0;
 }
 
@@ -88,6 +89,7 @@ static int cmd_camera(cmd_context *ctx, int argc, char **argv, og_error *err) {
     }
     if (argc == 2 && strcmp(argv[1], "default") == 0) {
         if (viewport_default_camera(v, ctx->world, err) != 0) return -1;
+        v->cam_world_serial = ctx->world_serial;
         print_camera(ctx, &v->cam);
         return 0;
     }
@@ -111,6 +113,7 @@ static int cmd_camera(cmd_context *ctx, int argc, char **argv, og_error *err) {
     c.fov_y = val[5];
     v->cam = c;
     v->cam_set = 1;
+    v->cam_world_serial = ctx->world_serial;
     return 0;
 }
 

@@ -10,9 +10,14 @@
 #include "renderer/gl_context.h"
 #include "renderer/terrain_renderer.h"
 
+#include <stdint.h>
+
 typedef struct viewport {
     camera cam;
     int cam_set; // the camera was placed (else the first render places it)
+    // The world (cmd_context world_serial) a command placed the camera for: a window
+    // that sees the world replaced keeps a camera placed after the replacement.
+    uint64_t cam_world_serial;
     render_settings settings;
     brush_cursor cursor;
     gl_headless *headless; // owned; NULL when a window's context is used

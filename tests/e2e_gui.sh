@@ -564,6 +564,12 @@ sculpt
 line=$(ask_until history '^steps=' '^steps=1 '); check "a drag on the moon sculpts it: one undo step ($line)" $?
 line=$(ask history 'raise stroke'); check "the step is the raise stroke ($line)" $?
 import -window "$wid" "$art/gui_planet.png" 2>/dev/null
+# A camera placed on the same line as the new world is kept (the window gives a new
+# world its default camera only when no command placed one after it came).
+echo "new planet preset=moon; camera_geo 10 20 3000 0 -60" >&3
+ask "window_screenshot $work/moon2.png" '^window_screenshot' >/dev/null
+line=$(ask camera '^camera_geo '); case "$line" in "camera_geo 10.000000 20.000000 3000.000 "*) true ;; *) false ;; esac
+check "camera_geo right after new planet keeps its place ($line)" $?
 ask "load $work/gui.world" '^loaded' >/dev/null
 wait_title "gui.world - "; check "back to gui.world ($(title))" $?
 # Section 8 drags where the terrain was: wait until every tile in view is there again

@@ -183,6 +183,64 @@ static void test_error_in_main_file_after_include_has_main_line(void **state) {
     assert_starts_with(msg, want);
 }
 
+// Defines land after #version in both stages; errors keep the files' own lines.
+static void test_variant_defines(void **state) {
+    (void)state;
+    write_shader("variant.frag", "#version 450 core\n"
+                                 "out vec4 colour;\n"
+                                 "void main() {\n"
+                                 "#if defined(RED) && defined(STAGE_SEEN)\n"
+                                 "    colour = vec4(1.0, 0.0, 0.0, 1.0);\n"
+                                 "#else\n"
+                                 "    colour = not_red;\n" // line 7
+                                 "#endif\n"
+                                 "}\n");
+    write_shader("variant.vert", "#version 450 core\n"
+                                 "#ifndef RED\n"
+                                 "#error the vertex stage lacks the define\n"
+                                 "#endif\n"
+                                 "void main() { gl_Position = vec4(0.0, 0.0, 0.0, 1.0); }\n");
+    write_shader("ok.vert", plain_vert);
+    write_shader("ok.frag", "#version 450 core\nout vec4 c;\nvoid main() { c = vec4(1.0); }\n");
+    og_error err = {{0}};
+    GLuint program = shader_program_load_variant(dir, "variant.vert", "variant.frag",
+                                                 "#define RED\n#define STAGE_SEEN", &err);
+    if (!program) fail_msg("%s", err.msg);
+    glDeleteProgram(program);
+    memset(&err, 0, sizeof err);
+    program = shader_program_load_variant(dir, "ok.vert", "variant.frag", "#define RED\n", &err);
+    assert_int_equal(program, 0);
+    char want[4300];
+    snprintf(want, sizeof want, "%s:7: error", path_in_dir("variant.frag"));
+    assert_starts_with(err.msg, want);
+    memset(&err, 0, sizeof err);
+    program = shader_program_load_variant(dir, "variant.vert", "ok.frag", NULL, &err);
+    assert_int_equal(program, 0);
+    snprintf(want, sizeof want, "%s:3: ", path_in_dir("variant.vert"));
+    assert_starts_with(err.msg, want);
+}
+
+// The planet's ground program compiles in every variant the renderer can ask for.
+static void test_planet_ground_variants_compile(void **state) {
+    (void)state;
+    static const char *const names[] = {"SHADED", "DETAIL", "SEA",     "PAINTED",
+                                        "BARE",   "BRUSH",  "OVERLAYS"};
+    char shaders[4200];
+    snprintf(shaders, sizeof shaders, "%s/shaders", OROGEN_RESOURCE_DIR);
+    for (int v = 0; v < 128; v++) {
+        char defines[256] = "";
+        for (int b = 0; b < 7; b++)
+            if (v & (1 << b))
+                snprintf(defines + strlen(defines), sizeof defines - strlen(defines),
+                         "#define %s\n", names[b]);
+        og_error err = {{0}};
+        GLuint program =
+            shader_program_load_variant(shaders, "planet.vert", "planet.frag", defines, &err);
+        if (!program) fail_msg("variant %d (%s): %s", v, defines, err.msg);
+        glDeleteProgram(program);
+    }
+}
+
 static void test_missing_files(void **state) {
     (void)state;
     write_shader("ok.frag", "#version 450 core\nout vec4 c;\nvoid main() { c = vec4(1.0); }\n");
@@ -426,6 +484,8 @@ int main(void) {
         cmocka_unit_test(test_valid_program_with_nested_includes),
         cmocka_unit_test(test_error_in_included_file_names_that_file_and_line),
         cmocka_unit_test(test_error_in_main_file_after_include_has_main_line),
+        cmocka_unit_test(test_variant_defines),
+        cmocka_unit_test(test_planet_ground_variants_compile),
         cmocka_unit_test(test_missing_files),
         cmocka_unit_test(test_include_cycle_and_depth),
         cmocka_unit_test(test_link_error_names_both_files),

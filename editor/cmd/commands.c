@@ -44,6 +44,7 @@ static void print_params(FILE *out, const world_params *p) {
 static int replace_world(cmd_context *ctx, world *w) {
     world_close(ctx->world);
     ctx->world = w;
+    ctx->world_serial++;
     ctx->next = *world_get_params(w);
     world_publish(w, &(world_event){.kind = WORLD_EVENT_REPLACED});
     return 0;

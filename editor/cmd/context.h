@@ -7,10 +7,12 @@
 #include "editor/world/world.h"
 #include "io/err.h"
 
+#include <stdint.h>
 #include <stdio.h>
 
 typedef struct cmd_context {
     world *world;            // the current world (replaced by new/load)
+    uint64_t world_serial;   // counts those replacements
     world_params next;       // parameters for the next `generate` (nparams)
     world_settings settings; // used for worlds created by new/load
     FILE *out;               // where commands print results

@@ -2,6 +2,12 @@
 // A planet's ground and sea with the flat worlds' shading: the automatic material
 // rules by height above the datum and slope, parallax-mapped detail near the camera,
 // the sun, the sea by Fresnel, and the atmosphere between the camera and the ground.
+// Built in variants (renderer/planet_renderer.c picks one per chunk): SHADED (else the
+// debug view modes), DETAIL (the detail window covers the chunk), SEA (some of it is
+// under the sea), PAINTED (painted weights), BARE (a planet without a sea: bare
+// ground), BRUSH (the cursor reaches it), OVERLAYS (a View menu grid is on). A software
+// renderer runs every branch of an `if` for every fragment, so what a chunk cannot show
+// is left out of its program rather than skipped at run time.
 #include "materials.glsl"
 #include "planet_atmosphere.glsl"
 #include "detail_parallax.glsl"
@@ -71,7 +77,8 @@ void main() {
     // Detail near the camera: parallax shifts the texture lookups, the detail's slopes
     // tilt the normal (the slope rules keep the coarse surface's, as on flat worlds).
     vec2 shift_m = vec2(0.0);
-    if (u_chunk_detail.w > 0.0) { // uniform per draw: the derivatives stay defined
+#ifdef DETAIL
+    {
         vec3 t_axis, b_axis;
         metre_axes(n, t_axis, b_axis);
         float fade = detail_fade(dist);
@@ -85,41 +92,42 @@ void main() {
             n = normalize(n - t_axis * ds.x - b_axis * ds.y);
         }
     }
+#endif
     float diffuse = max(dot(n, u_sun_dir), 0.0);
     float day = smoothstep(-0.1, 0.2, dot(up, u_sun_dir));
     vec3 ambient = vec3(0.10, 0.13, 0.18) * (0.25 + 0.75 * day);
+#ifndef SHADED
     if (u_view_mode == 1) {
         o_colour = vec4(0.75, 0.85, 0.95, 1.0);
         return;
     }
-    vec3 base;
-    if (u_view_mode == 3) {
-        base = vec3(clamp(v_height / (2.0 * u_max_height) + 0.5, 0.0, 1.0));
-    } else if (u_view_mode == 4) {
-        base = mix(vec3(0.2, 0.6, 0.3), vec3(0.8, 0.2, 0.1), clamp(slope, 0.0, 1.5) / 1.5);
-    } else if (u_view_mode == 2) {
-        base = level_colour(u_level);
-    } else if (u_palette == 0 || v_paint0.x < 0.999) {
-        vec2 uv = (v_metres + shift_m) / u_tex_period.x, uv_far = v_metres / u_tex_period.y;
-        base = u_palette == 0 ? automatic(v_height, slope, uv, uv_far) : vec3(0.5);
-        if (v_paint0.x < 0.999) { // painted: as the flat viewport blends the weights
-            base = base * v_paint0.x + albedo(0, uv, uv_far).rgb * v_paint0.y +
-                   albedo(1, uv, uv_far).rgb * v_paint0.z + albedo(2, uv, uv_far).rgb * v_paint0.w +
-                   albedo(3, uv, uv_far).rgb * v_paint1.x + albedo(4, uv, uv_far).rgb * v_paint1.y +
-                   albedo(5, uv, uv_far).rgb * v_paint1.z + albedo(6, uv, uv_far).rgb * v_paint1.w;
-        }
-    } else { // no sea: bare ground by slope (and height, for dust in the lowlands)
-        vec2 uv = (v_metres + shift_m) / u_tex_period.x, uv_far = v_metres / u_tex_period.y;
-        vec4 low = albedo(u_palette == 1 ? 5 : 0, uv, uv_far), mid = albedo(u_palette == 1 ? 2 : 4, uv, uv_far);
-        vec4 steep = albedo(7, uv, uv_far);
-        float lowland = 1.0 - smoothstep(-0.4, 0.2, v_height / max(u_max_height, 1e-6));
-        vec3 c0 = blend2(mid, low, lowland);
-        base = blend2(vec4(c0, 0.5), steep, smoothstep(0.5, 1.0, slope));
-        if (u_palette == 2) base *= vec3(1.15, 0.78, 0.58); // iron-red dust
-        else base = vec3(dot(base, vec3(0.3, 0.5, 0.2))) * 0.9; // grey regolith
-    }
+    vec3 base = u_view_mode == 3 ? vec3(clamp(v_height / (2.0 * u_max_height) + 0.5, 0.0, 1.0))
+              : u_view_mode == 4
+                  ? mix(vec3(0.2, 0.6, 0.3), vec3(0.8, 0.2, 0.1), clamp(slope, 0.0, 1.5) / 1.5)
+                  : level_colour(u_level);
     vec3 c = base * (ambient + u_sun_colour * diffuse);
-    if (u_view_mode == 0 && v_depth > 0.0) { // the sea
+#else
+    vec2 uv = (v_metres + shift_m) / u_tex_period.x, uv_far = v_metres / u_tex_period.y;
+#ifdef BARE // no sea: bare ground by slope (and height, for dust in the lowlands)
+    vec4 low = albedo(u_palette == 1 ? 5 : 0, uv, uv_far), mid = albedo(u_palette == 1 ? 2 : 4, uv, uv_far);
+    vec4 steep = albedo(7, uv, uv_far);
+    float lowland = 1.0 - smoothstep(-0.4, 0.2, v_height / max(u_max_height, 1e-6));
+    vec3 c0 = blend2(mid, low, lowland);
+    vec3 base = blend2(vec4(c0, 0.5), steep, smoothstep(0.5, 1.0, slope));
+    if (u_palette == 2) base *= vec3(1.15, 0.78, 0.58); // iron-red dust
+    else base = vec3(dot(base, vec3(0.3, 0.5, 0.2))) * 0.9; // grey regolith
+#else
+    vec3 base = automatic(v_height, slope, uv, uv_far);
+#endif
+#ifdef PAINTED // as the flat viewport blends the weights
+    base = base * v_paint0.x + albedo(0, uv, uv_far).rgb * v_paint0.y +
+           albedo(1, uv, uv_far).rgb * v_paint0.z + albedo(2, uv, uv_far).rgb * v_paint0.w +
+           albedo(3, uv, uv_far).rgb * v_paint1.x + albedo(4, uv, uv_far).rgb * v_paint1.y +
+           albedo(5, uv, uv_far).rgb * v_paint1.z + albedo(6, uv, uv_far).rgb * v_paint1.w;
+#endif
+    vec3 c = base * (ambient + u_sun_colour * diffuse);
+#ifdef SEA
+    if (v_depth > 0.0) {
         vec3 to_eye = -view_dir;
         float fresnel = 0.02 + 0.98 * pow(1.0 - max(dot(up, to_eye), 0.0), 5.0);
         vec3 deep = mix(vec3(0.03, 0.16, 0.22), vec3(0.01, 0.05, 0.10),
@@ -130,7 +138,10 @@ void main() {
         vec3 h = normalize(u_sun_dir + to_eye);
         c += u_sun_colour * pow(max(dot(up, h), 0.0), 800.0) * 0.8 * day;
     }
-    if (u_brush.w > 0.0) { // the brush, draped: distance on the local level
+#endif
+#endif
+#ifdef BRUSH // the brush, draped: distance on the local level
+    {
         vec3 d = v_rel - u_brush.xyz;
         d -= u_brush_up * dot(d, u_brush_up);
         float r = length(d) / u_brush.w, fw = max(fwidth(r), 1e-4);
@@ -139,13 +150,18 @@ void main() {
         float centre = 1.0 - smoothstep(0.0, 1.5 * fw, r - 0.02);
         c = mix(c, u_brush_ring, max(ring, centre));
     }
+#endif
+#ifdef OVERLAYS
     c = with_grids(c);
-    if (u_view_mode == 0) { // the air between the camera and the ground
+#endif
+#ifdef SHADED // the air between the camera and the ground
+    {
         vec3 transmittance;
         float surface_h = v_depth > 0.0 ? u_ocean_h : v_height;
         vec3 air = atmosphere(view_dir, ray_to_height(view_dir, surface_h, dist), transmittance);
         c = c * transmittance + air * 0.6; // the sky's light, less bright over ground
         c = 1.0 - exp(-c * 1.8); // exposure (the sky uses the same curve)
     }
+#endif
     o_colour = vec4(c, 1.0);
 }
