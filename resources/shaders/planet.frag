@@ -17,6 +17,7 @@ in float v_height, v_depth;
 in vec2 v_metres;
 in vec4 v_paint0, v_paint1; // painted weights: 0 automatic, 1-7 sand, grass, rock, snow, dirt,
                             // gravel, moss
+in vec3 v_air, v_transmittance, v_sky_reflected; // the atmosphere, per vertex (planet.vert)
 out vec4 o_colour;
 uniform int u_view_mode; // VIEW_SHADED 0, WIREFRAME 1, LEVELS 2, HEIGHT 3, SLOPE 4
 uniform int u_level;
@@ -132,8 +133,7 @@ void main() {
         float fresnel = 0.02 + 0.98 * pow(1.0 - max(dot(up, to_eye), 0.0), 5.0);
         vec3 deep = mix(vec3(0.03, 0.16, 0.22), vec3(0.01, 0.05, 0.10),
                         clamp(v_depth / max(u_max_height * 0.3, 1e-3), 0.0, 1.0));
-        vec3 t;
-        vec3 sky = atmosphere(reflect(view_dir, up), 1e30, t) + vec3(0.02, 0.03, 0.05) * day;
+        vec3 sky = v_sky_reflected + vec3(0.02, 0.03, 0.05) * day;
         c = mix(deep * (0.3 + 0.7 * day), sky, fresnel);
         vec3 h = normalize(u_sun_dir + to_eye);
         c += u_sun_colour * pow(max(dot(up, h), 0.0), 800.0) * 0.8 * day;
@@ -156,10 +156,7 @@ void main() {
 #endif
 #ifdef SHADED // the air between the camera and the ground
     {
-        vec3 transmittance;
-        float surface_h = v_depth > 0.0 ? u_ocean_h : v_height;
-        vec3 air = atmosphere(view_dir, ray_to_height(view_dir, surface_h, dist), transmittance);
-        c = c * transmittance + air * 0.6; // the sky's light, less bright over ground
+        c = c * v_transmittance + v_air * 0.6; // the sky's light, less bright over ground
         c = 1.0 - exp(-c * 1.8); // exposure (the sky uses the same curve)
     }
 #endif
