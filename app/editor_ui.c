@@ -385,7 +385,16 @@ int editor_ui_tool_for_key(int letter) {
     return letter == STAMP_KEY ? (int)TOOL_COUNT : -1;
 }
 
+// The volume tools (caves, overhangs) work on flat worlds only: on a planet they are
+// not in the palette and their keys do nothing.
+static int tool_available(const cmd_context *ctx, size_t index) {
+    if (index >= TOOL_COUNT || world_get_params(ctx->world)->kind != WORLD_PLANET) return 1;
+    int tool = brush_tool_parse(tools[index].name);
+    return tool < 0 || !brush_tool_is_volume((brush_tool)tool);
+}
+
 void editor_ui_pick_tool(editor_ui *e, cmd_context *ctx, int index) {
+    if (index >= 0 && !tool_available(ctx, (size_t)index)) return;
     if (index >= 0 && index < (int)TOOL_COUNT) {
         runf(e, ctx, "tool %s", tools[index].name);
         e->stamps.active = 0;
@@ -415,6 +424,7 @@ static void palette(editor_ui *e, ui_context *ui, cmd_context *ctx, ui_rect r) {
     ui_row(ui, columns, columns == 2 ? halves : NULL, ui_em(ui, 1.6f));
     char tip[300];
     for (size_t i = 0; i <= TOOL_COUNT; i++) {
+        if (!tool_available(ctx, i)) continue;
         int stamp = i == TOOL_COUNT;
         const char *label = stamp ? "Stamp" : tools[i].label;
         int on = stamp ? e->stamps.active

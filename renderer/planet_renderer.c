@@ -967,7 +967,13 @@ static int chunk_variant(const planet_renderer *r, const chunk *c, const ground_
     if (s->view == VIEW_WIREFRAME) return 0;
     const double ocean = world_params_ocean_height(&r->params);
     const int has_sea = ocean > -r->params.max_height;
-    int v = detail[3] > 0 ? V_DETAIL : 0;
+    double to_chunk = 0; // metres from the camera to the chunk's origin
+    for (int k = 0; k < 3; k++)
+        to_chunk += (c->origin[k] - f->cam->pos[k]) * (c->origin[k] - f->cam->pos[k]);
+    to_chunk = sqrt(to_chunk);
+    // Detail where it shows: the detail window covers the chunk and some of it is
+    // nearer than the detail's fade-out distance.
+    int v = detail[3] > 0 && to_chunk - c->reach < s->detail_distance ? V_DETAIL : 0;
     if (s->tile_grid || s->level_grid) v |= V_OVERLAYS;
     if (f->brush[3] > 0) { // the cursor reaches the chunk (raised to the sea where under it)
         double d2 = 0;

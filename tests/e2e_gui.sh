@@ -570,6 +570,8 @@ echo "new planet preset=moon; camera_geo 10 20 3000 0 -60" >&3
 ask "window_screenshot $work/moon2.png" '^window_screenshot' >/dev/null
 line=$(ask camera '^camera_geo '); case "$line" in "camera_geo 10.000000 20.000000 3000.000 "*) true ;; *) false ;; esac
 check "camera_geo right after new planet keeps its place ($line)" $?
+widget_gone "Tools/Carve" && widget "Tools/Raise" >/dev/null
+check "the palette leaves out the volume tools on a planet (caves are for flat worlds)" $?
 ask "load $work/gui.world" '^loaded' >/dev/null
 wait_title "gui.world - "; check "back to gui.world ($(title))" $?
 # Section 8 drags where the terrain was: wait until every tile in view is there again
