@@ -25,8 +25,23 @@
 #define TEX_PERIOD_FAR 97.0 // metres per repeat of the variation layer
 #define UNBOUNDED 1e9f
 
+// The terrain program's variants (see terrain.frag): what a level can show.
+enum {
+    TV_SHADED = 1,
+    TV_DETAIL = 2,
+    TV_PAINTED = 4,
+    TV_BRUSH = 8,
+    TV_OVERLAYS = 16,
+    TV_CONTOURS = 32,
+    TERRAIN_VARIANTS = 64
+};
+
 struct terrain_renderer {
-    GLuint prog_terrain, prog_sky, prog_water, prog_cursor;
+    char shader_dir[4200];
+    GLuint prog_terrain[TERRAIN_VARIANTS]; // built when first needed
+    uint64_t prog_frame[TERRAIN_VARIANTS]; // the frame its uniforms were set for
+    uint64_t frame;
+    GLuint prog_sky, prog_water, prog_cursor;
     GLuint vao, vbo, ebo, empty_vao;
     clipmap_mesh mesh;
     GLuint tex_heights, tex_material, tex_albedo, tex_detail, tex_detail_pd, tex_falloff;
@@ -45,6 +60,7 @@ struct terrain_renderer {
     int64_t origin[RENDER_MAX_LEVELS][2]; // level sample index of local vertex (0, 0)
     int src[RENDER_MAX_LEVELS];           // level whose texture draws level l (-1: none)
     int material_current, detail_current;
+    int material_painted; // the material window holds paint (else the automatic rules only)
     int64_t detail_origin[2];
 
     volume_renderer *volume; // caves, overhangs and arches near the camera
@@ -136,17 +152,35 @@ static int create_windows(terrain_renderer *r, og_error *err) {
     return 0;
 }
 
+// The terrain program for a variant (TV_* bits), built on first use.
+static GLuint terrain_program(terrain_renderer *r, int variant, og_error *err) {
+    if (r->prog_terrain[variant]) return r->prog_terrain[variant];
+    static const char *const names[] = {"SHADED", "DETAIL",   "PAINTED",
+                                        "BRUSH",  "OVERLAYS", "CONTOURS"};
+    char defines[256] = "";
+    for (int b = 0; b < 6; b++)
+        if (variant & (1 << b))
+            snprintf(defines + strlen(defines), sizeof defines - strlen(defines), "#define %s\n",
+                     names[b]);
+    r->prog_terrain[variant] =
+        shader_program_load_variant(r->shader_dir, "terrain.vert", "terrain.frag", defines, err);
+    r->prog_frame[variant] = 0;
+    return r->prog_terrain[variant];
+}
+
 terrain_renderer *terrain_renderer_create(const char *resource_dir, og_error *err) {
     terrain_renderer *r = calloc(1, sizeof *r);
     if (!r) {
         og_error_set(err, "out of memory");
         return NULL;
     }
-    char dir[4200];
-    snprintf(dir, sizeof dir, "%s/shaders", resource_dir);
+    char *dir = r->shader_dir;
+    snprintf(dir, sizeof r->shader_dir, "%s/shaders", resource_dir);
     snprintf(r->resource_dir, sizeof r->resource_dir, "%s", resource_dir);
     r->width = 1280, r->height = 720;
-    if (!(r->prog_terrain = shader_program_load(dir, "terrain.vert", "terrain.frag", err)) ||
+    // The plain shaded terrain now, so a broken shader shows at once; other variants
+    // when a level first needs them.
+    if (!terrain_program(r, TV_SHADED, err) ||
         !(r->prog_sky = shader_program_load(dir, "fullscreen.vert", "sky.frag", err)) ||
         !(r->prog_water = shader_program_load(dir, "water.vert", "water.frag", err)) ||
         !(r->prog_cursor = shader_program_load(dir, "cursor.vert", "cursor.frag", err)) ||
@@ -186,7 +220,8 @@ void terrain_renderer_destroy(terrain_renderer *r) {
     world_events_unsubscribe(r->changes);
     volume_renderer_destroy(r->volume);
     planet_renderer_destroy(r->planet);
-    glDeleteProgram(r->prog_terrain);
+    for (int v = 0; v < TERRAIN_VARIANTS; v++)
+        if (r->prog_terrain[v]) glDeleteProgram(r->prog_terrain[v]);
     glDeleteProgram(r->prog_sky);
     glDeleteProgram(r->prog_water);
     glDeleteProgram(r->prog_cursor);
@@ -278,6 +313,15 @@ static void upload_window(terrain_renderer *r, clip_window *w, GLuint tex, int l
         scan_bounds(r, layer, rects, count, w->upload_all);
     w->upload_all = 0;
     w->upload_count = 0;
+}
+
+// Whether any texel of the material window holds paint (weight 0, "automatic", under
+// 255): the levels then draw with the painted variant.
+static int window_has_paint(const clip_window *w) {
+    size_t n = (size_t)w->size * (size_t)w->size;
+    for (size_t i = 0; i < n; i++)
+        if (w->mirror[i * w->texel_bytes] != 255) return 1;
+    return 0;
 }
 
 static void invalidate_all(terrain_renderer *r) {
@@ -438,6 +482,8 @@ int terrain_renderer_update(terrain_renderer *r, world *w, const camera *cam,
     // Uploads, and which level each level draws from while its own is not current.
     for (int l = r->finest; l < r->levels; l++)
         upload_window(r, &r->heights[l], r->tex_heights, l, GL_RED, GL_FLOAT);
+    if (r->material.upload_all || r->material.upload_count > 0)
+        r->material_painted = window_has_paint(&r->material);
     upload_window(r, &r->material, r->tex_material, -1, GL_RG_INTEGER, GL_UNSIGNED_INT);
     upload_window(r, &r->detail, r->tex_detail, -1, GL_RED, GL_FLOAT);
     upload_window(r, &r->detail_pd, r->tex_detail_pd, -1, GL_RG, GL_SHORT);
@@ -518,9 +564,9 @@ static const float level_tints[RENDER_MAX_LEVELS][3] = {
     {0.25f, 0.80f, 0.70f}, {0.30f, 0.55f, 0.95f}, {0.55f, 0.35f, 0.90f}, {0.90f, 0.40f, 0.80f},
     {0.75f, 0.75f, 0.75f}, {0.60f, 0.45f, 0.30f}, {0.35f, 0.60f, 0.45f}, {0.40f, 0.40f, 0.65f}};
 
-static void set_terrain_uniforms(terrain_renderer *r, const camera *cam, const render_settings *s,
-                                 const brush_cursor *cursor, const float view_proj[16]) {
-    GLuint prog = r->prog_terrain;
+static void set_terrain_uniforms(terrain_renderer *r, GLuint prog, const camera *cam,
+                                 const render_settings *s, const brush_cursor *cursor,
+                                 const float view_proj[16]) {
     const world_params *p = &r->params;
     float offset[RENDER_MAX_LEVELS][4] = {{0}}, view[RENDER_MAX_LEVELS][4] = {{0}};
     float src_a[RENDER_MAX_LEVELS][4] = {{0}}, src_b[RENDER_MAX_LEVELS][4] = {{0}};
@@ -625,8 +671,6 @@ static void set_terrain_uniforms(terrain_renderer *r, const camera *cam, const r
         brush[1] = (float)(cursor->z - cam->pos[2]);
         brush[2] = (float)cursor->radius;
         brush[3] = 1;
-        glTextureSubImage2D(r->tex_falloff, 0, 0, 0, BRUSH_FALLOFF_SAMPLES, 1, GL_RED, GL_FLOAT,
-                            cursor->falloff);
     }
     glProgramUniform4fv(prog, glGetUniformLocation(prog, "u_brush"), 1, brush);
     float tint[4] = {1.0f, 0.55f, 0.1f, 0.35f}, ring[3] = {1.0f, 0.9f, 0.3f}; // default: orange
@@ -661,16 +705,35 @@ static void piece_box(const terrain_renderer *r, int l, const clip_piece *pc, co
     mn[2] = (float)(z0 + pc->z0 * ls), mx[2] = (float)(z0 + pc->z1 * ls);
 }
 
-static void draw_terrain(terrain_renderer *r, const camera *cam, const render_settings *s,
-                         const float view_proj[16]) {
+static int cursor_drapes(const brush_cursor *cursor) {
+    return cursor && cursor->visible && cursor->radius > 0 && !cursor->sphere;
+}
+
+// The variant level l is drawn with: only what it can show this frame.
+static int level_variant(const terrain_renderer *r, const render_settings *s,
+                         const brush_cursor *cursor, int l) {
+    int v = (s->tile_grid || s->level_grid ? TV_OVERLAYS : 0) | (s->contours > 0 ? TV_CONTOURS : 0);
+    if (r->detail_current && l <= 3) v |= TV_DETAIL; // as set_terrain_uniforms places it
+    if (s->view != VIEW_SHADED) return v;
+    v |= TV_SHADED;
+    if (r->material_current && r->material_painted) v |= TV_PAINTED;
+    if (cursor_drapes(cursor)) v |= TV_BRUSH;
+    return v;
+}
+
+static int draw_terrain(terrain_renderer *r, const camera *cam, const render_settings *s,
+                        const brush_cursor *cursor, const float view_proj[16], og_error *err) {
     frustum f;
     frustum_from_matrix(&f, view_proj);
     int m = r->mesh.m;
     GLsizei counts[64];
     const void *offsets[64];
-    glUseProgram(r->prog_terrain);
     glBindVertexArray(r->vao);
-    GLint level_loc = glGetUniformLocation(r->prog_terrain, "u_level");
+    r->frame++;
+    if (cursor_drapes(cursor)) // the falloff curve, once a frame
+        glTextureSubImage2D(r->tex_falloff, 0, 0, 0, BRUSH_FALLOFF_SAMPLES, 1, GL_RED, GL_FLOAT,
+                            cursor->falloff);
+    GLuint current = 0;
     for (int l = r->finest; l < r->levels; l++) {
         if (r->src[l] < 0) continue;
         clip_trim trims[2] = {CLIP_TRIM_COUNT, CLIP_TRIM_COUNT};
@@ -707,11 +770,20 @@ static void draw_terrain(terrain_renderer *r, const camera *cam, const render_se
             n++;
         }
         if (n == 0) continue;
-        glProgramUniform1i(r->prog_terrain, level_loc, l);
+        int v = level_variant(r, s, cursor, l);
+        GLuint prog = terrain_program(r, v, err);
+        if (!prog) return -1;
+        if (r->prog_frame[v] != r->frame) {
+            set_terrain_uniforms(r, prog, cam, s, cursor, view_proj);
+            r->prog_frame[v] = r->frame;
+        }
+        if (prog != current) glUseProgram(current = prog);
+        glProgramUniform1i(prog, glGetUniformLocation(prog, "u_level"), l);
         glMultiDrawElements(GL_TRIANGLES, counts, GL_UNSIGNED_SHORT, offsets, n);
         r->stats.draw_calls++;
         r->stats.levels_drawn++;
     }
+    return 0;
 }
 
 // A volume tool's cursor: a sphere's three great circles, faint where the ground hides
@@ -808,9 +880,13 @@ int terrain_renderer_draw(terrain_renderer *r, world *w, const camera *cam,
         r->stats.draw_calls++;
     }
     if (r->levels > 0 && r->src[r->levels - 1] >= 0) {
-        set_terrain_uniforms(r, cam, s, cursor, view_proj);
         if (wire) glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
-        draw_terrain(r, cam, s, view_proj);
+        if (draw_terrain(r, cam, s, cursor, view_proj, err) != 0) {
+            glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+            glBindVertexArray(0);
+            glUseProgram(0);
+            return -1;
+        }
         if (s->view != VIEW_LEVELS) {
             float period[2] = {(float)TEX_PERIOD_NEAR, (float)TEX_PERIOD_FAR};
             uint64_t t = volume_renderer_draw(

@@ -121,6 +121,13 @@ r=$(rmse "$work/no_detail.png" "$work/parallax_off.png"); less 1 "$r"; check "de
 for v in wireframe levels height slope; do
     r=$(rmse "$work/default.png" "$work/$v.png"); less 5 "$r"; check "view $v differs from shaded (RMSE $r)" $?
 done
+# Paint shows (the levels switch to the program that blends painted weights once the
+# material window holds paint), and undo takes it away again.
+run "camera $spot_x 250 $spot_z 0 -89; screenshot $work/paint0.png $size; tool paint material=3 radius=60 strength=1;
+     dab $spot_x $spot_z; screenshot $work/paint1.png $size; undo; screenshot $work/paint2.png $size"
+check "paint and undo render ($(cat "$work/err"))" $?
+r=$(rmse "$work/paint0.png" "$work/paint1.png"); less 2 "$r"; check "the painted rock shows (RMSE $r)" $?
+r=$(rmse "$work/paint0.png" "$work/paint2.png"); less "$r" 0.5; check "undo takes the paint away (RMSE $r)" $?
 # A stroke shows while it goes on (the coarser levels follow each stroke_to), and its
 # end changes nothing more on screen.
 run "$crater_cam; screenshot $work/open0.png $size; tool raise radius=60 amount=40 strength=1;

@@ -220,25 +220,34 @@ static void test_variant_defines(void **state) {
     assert_starts_with(err.msg, want);
 }
 
-// The planet's ground program compiles in every variant the renderer can ask for.
-static void test_planet_ground_variants_compile(void **state) {
-    (void)state;
-    static const char *const names[] = {"SHADED", "DETAIL", "SEA",     "PAINTED",
-                                        "BARE",   "BRUSH",  "OVERLAYS"};
+// Builds vs + fs with every combination of the defines (one per bit of the variant).
+static void compile_all_variants(const char *vs, const char *fs, const char *const *names,
+                                 int count) {
     char shaders[4200];
     snprintf(shaders, sizeof shaders, "%s/shaders", OROGEN_RESOURCE_DIR);
-    for (int v = 0; v < 128; v++) {
+    for (int v = 0; v < 1 << count; v++) {
         char defines[256] = "";
-        for (int b = 0; b < 7; b++)
+        for (int b = 0; b < count; b++)
             if (v & (1 << b))
                 snprintf(defines + strlen(defines), sizeof defines - strlen(defines),
                          "#define %s\n", names[b]);
         og_error err = {{0}};
-        GLuint program =
-            shader_program_load_variant(shaders, "planet.vert", "planet.frag", defines, &err);
-        if (!program) fail_msg("variant %d (%s): %s", v, defines, err.msg);
+        GLuint program = shader_program_load_variant(shaders, vs, fs, defines, &err);
+        if (!program) fail_msg("%s variant %d (%s): %s", fs, v, defines, err.msg);
         glDeleteProgram(program);
     }
+}
+
+// The planet's ground and the flat terrain compile in every variant their renderers
+// can ask for (renderer/planet_renderer.c, renderer/terrain_renderer.c).
+static void test_shader_variants_compile(void **state) {
+    (void)state;
+    static const char *const planet[] = {"SHADED", "DETAIL", "SEA",     "PAINTED",
+                                         "BARE",   "BRUSH",  "OVERLAYS"};
+    compile_all_variants("planet.vert", "planet.frag", planet, 7);
+    static const char *const terrain[] = {"SHADED", "DETAIL",   "PAINTED",
+                                          "BRUSH",  "OVERLAYS", "CONTOURS"};
+    compile_all_variants("terrain.vert", "terrain.frag", terrain, 6);
 }
 
 static void test_missing_files(void **state) {
@@ -485,7 +494,7 @@ int main(void) {
         cmocka_unit_test(test_error_in_included_file_names_that_file_and_line),
         cmocka_unit_test(test_error_in_main_file_after_include_has_main_line),
         cmocka_unit_test(test_variant_defines),
-        cmocka_unit_test(test_planet_ground_variants_compile),
+        cmocka_unit_test(test_shader_variants_compile),
         cmocka_unit_test(test_missing_files),
         cmocka_unit_test(test_include_cycle_and_depth),
         cmocka_unit_test(test_link_error_names_both_files),

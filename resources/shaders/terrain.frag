@@ -3,6 +3,11 @@
 // normals), 8-layer material splatting over automatic sand/grass/rock/snow rules
 // (Harris 2011), parallax-mapped detail near the camera (detail_parallax.glsl), sun,
 // fog, the brush cursor and the debug views.
+// Built in variants (renderer/terrain_renderer.c picks one per clipmap level): SHADED
+// (else the debug views), DETAIL (the level has detail), PAINTED (paint near the
+// camera), BRUSH (the cursor shows), OVERLAYS (a View menu grid), CONTOURS. A software
+// renderer runs every branch of an `if` for every fragment, so what a level cannot show
+// is left out of its program rather than skipped at run time.
 #include "terrain_common.glsl"
 #include "lighting.glsl"
 #include "colour_ramp.glsl"
@@ -44,6 +49,9 @@ uniform float u_contour;               // metres between contour lines; 0: none
 // Contour lines every u_contour metres of height, one pixel or so wide; faded out where
 // they would crowd (a steep slope seen from afar).
 vec3 with_contours(vec3 c, float h) {
+#ifndef CONTOURS
+    return c;
+#endif
     if (u_contour <= 0.0) return c;
     float k = h / u_contour;
     float fw = max(fwidth(k), 1e-5);
@@ -56,6 +64,9 @@ vec3 with_contours(vec3 c, float h) {
 // grid in its level's colour (Terrain3D's region and vertex grids), so the rings where
 // the level (and the vertex spacing) changes show.
 vec3 with_grids(vec3 c) {
+#ifndef OVERLAYS
+    return c;
+#endif
     if ((u_overlays & 2) != 0) // every vertex close up, every eighth farther out
         c = mix(c, u_level_tint[u_level], 0.7 * max(grid_lines(v_local), grid_lines(v_local / 8.0)));
     vec4 g = u_lvl_grid[u_level];
@@ -108,14 +119,17 @@ void main() {
     float dist = length(v_rel);
     vec3 view_dir = v_rel / -max(dist, 1e-6);
 
+#ifndef SHADED
     if (u_view_mode == VIEW_WIREFRAME) {
         o_colour = vec4(u_level_tint[u_level], 1.0);
         return;
     }
+#endif
 
     // Detail: parallax over the detail window, faded out with distance.
     vec2 detail_slope = vec2(0.0);
     vec2 shift_m = vec2(0.0); // parallax shift of the texture lookups, metres
+#ifdef DETAIL
     vec4 ld = u_lvl_detail[u_level];
     float fade = detail_fade(dist);
     if (ld.w > 0.0 && fade > 0.0) {
@@ -130,9 +144,11 @@ void main() {
             detail_slope = detail_slopes(tc, fade);
         }
     }
+#endif
     vec3 n = normalize(vec3(-(g.x + detail_slope.x), 1.0, -(g.y + detail_slope.y)));
     float slope = sqrt(dot(g, g)); // rise over run of the coarse surface
 
+#ifndef SHADED
     if (u_view_mode == VIEW_LEVELS) {
         vec3 c = u_level_tint[u_level] * (0.35 + 0.65 * max(dot(n, u_sun_dir), 0.0));
         o_colour = vec4(with_grids(c), 1.0);
@@ -143,11 +159,12 @@ void main() {
         o_colour = vec4(with_grids(with_contours(ramp(t) * (0.55 + 0.45 * max(dot(n, u_sun_dir), 0.0)), h)), 1.0);
         return;
     }
-    if (u_view_mode == VIEW_SLOPE) {
+    { // VIEW_SLOPE
         float degrees_ = degrees(atan(slope));
         o_colour = vec4(with_grids(with_contours(ramp(degrees_ / 60.0) * (0.55 + 0.45 * max(dot(n, u_sun_dir), 0.0)), h)), 1.0);
         return;
     }
+#else
 
     vec4 luv = u_lvl_uv[u_level];
     vec2 metres_near = luv.xy + v_local * spacing + shift_m;
@@ -157,6 +174,7 @@ void main() {
     // Unpainted ground: the automatic rules, or a neutral clay when they are hidden.
     vec3 auto_c = u_auto_materials != 0 ? automatic(h, slope, uv, uv_far) : vec3(0.45, 0.42, 0.38);
     vec3 c = auto_c;
+#ifdef PAINTED
     vec4 lm = u_lvl_mat[u_level];
     if (lm.w > 0.0) {
         vec2 mt = lm.xy + v_local * lm.z;
@@ -171,9 +189,11 @@ void main() {
                + albedo(6, uv, uv_far).rgb * w1.w;
         }
     }
+#endif
     vec3 lit = sunlit(c, n, view_dir, 24.0, 0.04);
 
-    if (u_brush.w > 0.0) {
+#ifdef BRUSH
+    {
         float d = length(v_rel.xz - u_brush.xy) / u_brush.z;
         float fw = max(fwidth(d), 1e-4);
         if (d < 1.0) {
@@ -184,5 +204,7 @@ void main() {
         float centre = 1.0 - smoothstep(0.0, 1.5 * fw, d - 0.02);
         lit = mix(lit, u_brush_ring, max(ring, centre));
     }
+#endif
     o_colour = vec4(apply_fog(with_grids(with_contours(lit, h)), v_rel), 1.0);
+#endif
 }
