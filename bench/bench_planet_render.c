@@ -129,9 +129,6 @@ int main(int argc, char **argv) {
     if (!planet) check(-1, &err, "planet");
     render_settings s;
     render_settings_default(&s);
-    if (getenv("NOPAR")) s.parallax = 0;
-    if (getenv("DETD")) s.detail_distance = atof(getenv("DETD"));
-    if (getenv("LODPX")) s.lod_pixels = atof(getenv("LODPX"));
     printf("bench_planet_render: %s, %dx%d, Earth radius at 1 m spacing\n",
            (const char *)glGetString(GL_RENDERER), WIDTH, HEIGHT);
 
