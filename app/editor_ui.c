@@ -1260,7 +1260,8 @@ static ui_rect dialog_rect(const editor_ui *e, const ui_context *ui, float width
             width, height, fminf(width * 0.9f, ui_em(ui, 24)),
             fminf(height * 0.9f,
                   ui_em(ui, 1.7f * (float)new_planet_dialog_rows(&e->new_planet) + 1.5f)));
-    if (e->offer_recovery) return centred(width, height, ui_em(ui, 26), ui_em(ui, 6.5f));
+    if (e->offer_recovery) // wide enough for its first line in full
+        return centred(width, height, fminf(width * 0.9f, ui_em(ui, 32)), ui_em(ui, 6.5f));
     if (e->confirm_replace)
         return centred(width, height, fminf(width * 0.9f, ui_em(ui, 30)),
                        fminf(height * 0.9f, ui_em(ui, 1.45f * (float)(e->replace_lines + 2) + 1)));
