@@ -1836,6 +1836,79 @@ static void test_combo_in_a_modal_dialog(void **state) {
     drv_free(&d);
 }
 
+typedef struct list_over_button {
+    int index, button_clicks, menu_picks;
+} list_over_button;
+
+// A combo box and a menu whose lists open over a button drawn after them.
+static void build_list_over_button(drv *d) {
+    list_over_button *m = d->user;
+    ui_menubar_begin(d->ui, (ui_rect){0, 0, 400, 24});
+    if (ui_menu_begin(d->ui, "File")) {
+        m->menu_picks += ui_menu_item(d->ui, "Open", NULL, 1);
+        m->menu_picks += ui_menu_item(d->ui, "Save", NULL, 1);
+        ui_menu_end(d->ui);
+    }
+    ui_menubar_end(d->ui);
+    ui_panel_begin(d->ui, "Panel", (ui_rect){0, 30, 200, 200});
+    ui_row(d->ui, 1, NULL, 0);
+    static const char *const items[] = {"One", "Two", "Three", "Four"};
+    ui_combo(d->ui, "Pick", &m->index, items, 4);
+    for (int i = 0; i < 6; i++) {
+        char name[16];
+        snprintf(name, sizeof name, "Under %d", i);
+        m->button_clicks += ui_button(d->ui, name);
+    }
+    ui_panel_end(d->ui);
+}
+
+// A press and its release in one frame (a slow frame, a quick click): the list item
+// takes the click and nothing under it sees it, though the list closes before the
+// widgets below are drawn; the viewport is told the mouse was the UI's.
+static void quick_click(drv *d, ui_rect item) {
+    ui_rect r = {0, 0, 0, 0}; // where the item covers one of the buttons
+    for (int i = 0; i < 6 && r.h <= 2; i++) {
+        char name[32];
+        snprintf(name, sizeof name, "Panel/Under %d", i);
+        r = ui_rect_intersect(item, rect_of(d, name));
+    }
+    assert_true(r.h > 2);
+    d->in.mouse_x = r.x + r.w * 0.5f;
+    d->in.mouse_y = r.y + r.h * 0.5f;
+    d->in.mouse_pressed[0] = 1;
+    d->in.mouse_released[0] = 1;
+    d->in.mouse_down[0] = 0;
+    frame(d);
+}
+
+static void test_quick_click_on_a_list_over_a_button(void **state) {
+    (void)state;
+    list_over_button m = {0};
+    drv d;
+    drv_init(&d, build_list_over_button, &m);
+    click_widget(&d, "Panel/Pick");
+    frame(&d);
+    ui_rect four = rect_of(&d, "Panel/Pick/Four");
+    quick_click(&d, four);
+    assert_int_equal(m.index, 3);
+    assert_int_equal(m.button_clicks, 0);
+    assert_int_equal(ui_wants_mouse(d.ui), 1);
+    frame(&d);
+    assert_null(ui_widget_find(d.ui, "Panel/Pick/Four")); // closed
+    // The same with a menu item over the panel's buttons.
+    click_widget(&d, "Menu/File");
+    frame(&d);
+    quick_click(&d, rect_of(&d, "Menu/File/Save"));
+    assert_int_equal(m.menu_picks, 1);
+    assert_int_equal(m.button_clicks, 0);
+    assert_int_equal(ui_wants_mouse(d.ui), 1);
+    // A quick click on a button itself still counts.
+    frame(&d);
+    quick_click(&d, rect_of(&d, "Panel/Under 2"));
+    assert_int_equal(m.button_clicks, 1);
+    drv_free(&d);
+}
+
 // ---- tooltips ---------------------------------------------------------------------------
 
 static void build_tooltip(drv *d) {
@@ -1918,6 +1991,7 @@ int main(void) {
         T(test_menu_escape_after_text_focus_moved),
         T(test_combo),
         T(test_combo_in_a_modal_dialog),
+        T(test_quick_click_on_a_list_over_a_button),
         T(test_tooltip),
     };
     return cmocka_run_group_tests(tests, load_font, free_font);

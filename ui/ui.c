@@ -100,6 +100,10 @@ struct ui_context {
     ui_rect menubar;
     float menubar_x;
     int popup_just_opened;
+    // A list item took this frame's click: what was under the list (drawn after it,
+    // once the list closed) does not see the click too (a press and its release in one
+    // slow frame), nor does the viewport.
+    int press_taken;
 
     ui_rect modal;    // w > 0: only widgets inside it take the pointer this frame
     int modal_before; // a modal dialog was up last frame
@@ -160,6 +164,7 @@ static int press_for(const ui_context *ui, ui_id id) {
 
 // The pointer is over r and nothing covers it (an open popup over a base widget).
 static int over(const ui_context *ui, ui_rect r) {
+    if (ui->press_taken && !ui->in_popup) return 0;
     if (!ui_rect_contains(ui_rect_intersect(r, ui_draw_clip(ui->target)), ui->in.mouse_x,
                           ui->in.mouse_y))
         return 0;
@@ -299,6 +304,7 @@ void ui_begin(ui_context *ui, const ui_input *in, float width, float height) {
     ui->popup_rect_prev = ui->popup_rect;
     ui->popup_rect = (ui_rect){0, 0, 0, 0};
     ui->in_popup = 0;
+    ui->press_taken = 0;
     ui->focusable_count = 0;
     ui->focus_seen = 0;
     ui->modal_before = ui->modal.w > 0;
@@ -376,7 +382,7 @@ const ui_draw_list *ui_end(ui_context *ui) {
         over_panel |= ui_rect_contains(ui->panel_rects[ui->cur][i], ui->in.mouse_x, ui->in.mouse_y);
     over_panel |=
         ui->open_popup && ui_rect_contains(ui->popup_rect, ui->in.mouse_x, ui->in.mouse_y);
-    ui->wants_mouse = over_panel || ui->active != 0;
+    ui->wants_mouse = over_panel || ui->active != 0 || ui->press_taken;
     ui->wants_keyboard = ui->focus != 0;
     ui->shown = ui->cur;
     append_overlay(ui);
@@ -916,6 +922,7 @@ static int popup_item(ui_context *ui, const char *label, const char *right, int 
     ui_rect r = {ui->popup_rect.x + 1, ui->popup_y, ui->popup_rect.w - 2, h};
     ui->popup_y += h;
     int clicked = enabled && behave(ui, id, r);
+    if (clicked) ui->press_taken = 1;
     if (enabled && ui->hot == id) ui_draw_rect(ui->target, r, ui->theme.selection);
     ui_color c = enabled ? ui->theme.text : ui->theme.text_dim;
     if (checked)
