@@ -949,12 +949,18 @@ static void status_bar(ui_context *ui, cmd_context *ctx, viewport *v, const edit
                      v->cam.pos[2] * v->cam.pos[2]);
         planet_lat_lon(v->cam.pos, &lat, &lon);
         double alt = r - wp->radius;
-        if (fabs(alt) >= 10000)
-            snprintf(cam, sizeof cam, "%.4f%c %.4f%c  alt %.1f km", fabs(lat), lat < 0 ? 'S' : 'N',
-                     fabs(lon), lon < 0 ? 'W' : 'E', alt / 1000.0);
+        // As many digits as tell places apart from this high (0.001 degrees: ~100 m),
+        // so the whole line fits its column.
+        int far = fabs(alt) >= 10000, digits = far ? 3 : 5;
+        char height[48];
+        if (fabs(alt) >= 1e6)
+            snprintf(height, sizeof height, "%.0f km", alt / 1000.0);
+        else if (far)
+            snprintf(height, sizeof height, "%.1f km", alt / 1000.0);
         else
-            snprintf(cam, sizeof cam, "%.4f%c %.4f%c  alt %.1f m", fabs(lat), lat < 0 ? 'S' : 'N',
-                     fabs(lon), lon < 0 ? 'W' : 'E', alt);
+            snprintf(height, sizeof height, "%.1f m", alt);
+        snprintf(cam, sizeof cam, "%.*f%c %.*f%c  alt %s", digits, fabs(lat), lat < 0 ? 'S' : 'N',
+                 digits, fabs(lon), lon < 0 ? 'W' : 'E', height);
     }
     snprintf(tool, sizeof tool, "%s r %.1f m", current_tool(&ctx->brush), ctx->brush.radius);
     if (info->resizing)
@@ -972,21 +978,34 @@ static void status_bar(ui_context *ui, cmd_context *ctx, viewport *v, const edit
     snprintf(cache, sizeof cache, "cache %.0f / %.0f MiB, undo %.1f MiB",
              s.resident_bytes / 1048576.0, s.budget_bytes / 1048576.0,
              history_bytes(world_history(ctx->world)) / 1048576.0);
-    float cols[5] = {-0.3f, -0.2f, -0.15f, -0.15f, 0};
-    ui_row(ui, 5, cols, r.h - 2 * ui_em(ui, 0.3f)); // the panel's padding above and below
-    ui_label(ui, cursor);
-    ui_tooltip(ui, "The terrain point under the pointer");
-    ui_label(ui, cam);
-    ui_tooltip(ui, wp->kind == WORLD_PLANET
-                       ? "The camera's latitude, longitude and altitude above the datum"
-                       : "The camera's position in metres");
-    ui_label(ui, tool);
-    ui_tooltip(ui, "The current tool and its radius");
-    ui_label(ui, frame);
-    ui_tooltip(ui, "The last terrain frame's time, its resolution (lowered while moving) and "
-                   "its triangles");
-    ui_label(ui, cache);
-    ui_tooltip(ui, "Tile cache memory in use against its budget, and the undo history's");
+    // Each item as wide as its text, the rest shared out; in a narrow window (or at a
+    // large UI scale) the least important go first: the cache, the frame time, the tool.
+    const char *texts[5] = {cursor, cam, tool, frame, cache};
+    const char *tips[5] = {
+        "The terrain point under the pointer",
+        wp->kind == WORLD_PLANET ? "The camera's latitude, longitude and altitude above the datum"
+                                 : "The camera's position in metres",
+        "The current tool and its radius",
+        "The last terrain frame's time, its resolution (lowered while moving) and its "
+        "triangles",
+        "Tile cache memory in use against its budget, and the undo history's"};
+    float need[5], sum = 0, room = r.w - ui_em(ui, 0.6f);
+    for (int i = 0; i < 5; i++)
+        need[i] = ui_font_text_width(ui_get_font(ui), UI_FACE_SANS, texts[i], strlen(texts[i])) +
+                  ui_em(ui, 1.2f);
+    int shown = 5;
+    for (int i = 0; i < 5; i++)
+        sum += need[i];
+    while (shown > 2 && sum > room)
+        sum -= need[--shown];
+    float cols[5] = {0};
+    for (int i = 0; i + 1 < shown; i++)
+        cols[i] = need[i] + fmaxf(room - sum, 0) / (float)shown;
+    ui_row(ui, shown, cols, r.h - 2 * ui_em(ui, 0.3f)); // the panel's padding above and below
+    for (int i = 0; i < shown; i++) {
+        ui_label(ui, texts[i]);
+        ui_tooltip(ui, tips[i]);
+    }
     ui_panel_end(ui);
 }
 
