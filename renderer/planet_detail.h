@@ -1,8 +1,7 @@
-// Fine relief near the camera on a planet: the detail layer's offsets and slopes of the
-// face under the camera, in a window around it (as the flat viewport's detail window),
-// for the parallax and the normals of that face's finest chunks. Ground on the other
-// faces within the fade distance (the camera within ~150 m of a face edge) shows the
-// coarse relief only.
+// Fine relief near the camera on a planet: the detail layer's offsets and slopes in a
+// window around the camera (as the flat viewport's detail window) on the face under it
+// and, when a face edge or corner is within the fade distance, on the neighbouring
+// faces too (a window each), for the parallax and the normals of the finest chunks.
 #ifndef OROGEN_RENDERER_PLANET_DETAIL_H
 #define OROGEN_RENDERER_PLANET_DETAIL_H
 
@@ -32,14 +31,17 @@ int planet_detail_update(planet_detail *d, tile_cache *cache, const double cam_p
                          int detail_ratio, const render_settings *s);
 
 // The chunk's mapping from its vertices' metres (face-local, less base_u, base_v) to
-// detail samples from the window's origin: (offset u, offset v, samples per metre,
-// valid); valid 0 when the chunk is on another face or the window is not current.
-void planet_detail_chunk(const planet_detail *d, int face, int level, double base_u, double base_v,
-                         float out[4]);
+// detail samples from its face's window's origin: (offset u, offset v, samples per
+// metre, valid), and the window's u_detail_wrap. Returns the window (for
+// planet_detail_use), or -1 when no current window covers the chunk's face (valid 0).
+int planet_detail_chunk(const planet_detail *d, int face, int level, double base_u, double base_v,
+                        float out[4], float wrap[2]);
 
-// Sets the detail uniforms of detail_parallax.glsl and binds the two textures.
+// Sets the detail uniforms of detail_parallax.glsl but u_detail_wrap (per chunk).
 void planet_detail_bind(planet_detail *d, GLuint prog, const render_settings *s, int unit_heights,
                         int unit_slopes);
+// Binds a window's two textures to the units planet_detail_bind named.
+void planet_detail_use(const planet_detail *d, int window, int unit_heights, int unit_slopes);
 
 // Detail texels uploaded since the last call.
 uint64_t planet_detail_take_uploads(planet_detail *d);

@@ -62,8 +62,8 @@ enum {
 
 typedef struct ground_program {
     GLuint prog;
-    GLint offset, level, morph, detail, tile, cell; // the per-chunk uniforms
-    uint64_t frame;                                 // its frame uniforms were set for
+    GLint offset, level, morph, detail, wrap, tile, cell; // the per-chunk uniforms
+    uint64_t frame;                                       // its frame uniforms were set for
 } ground_program;
 
 typedef struct node {
@@ -704,6 +704,7 @@ static ground_program *ground_variant(planet_renderer *r, int variant, og_error 
     g->level = glGetUniformLocation(g->prog, "u_level");
     g->morph = glGetUniformLocation(g->prog, "u_morph");
     g->detail = glGetUniformLocation(g->prog, "u_chunk_detail");
+    g->wrap = glGetUniformLocation(g->prog, "u_detail_wrap");
     g->tile = glGetUniformLocation(g->prog, "u_chunk_tile");
     g->cell = glGetUniformLocation(g->prog, "u_chunk_cell");
     g->frame = 0;
@@ -1035,8 +1036,10 @@ int planet_renderer_draw(planet_renderer *r, const camera *cam, const render_set
     glClearDepth(0.0);
     const int wire = s->view == VIEW_WIREFRAME;
     // Back faces cost llvmpipe as much as the ground: the skirts seen from inside their
-    // chunks, slopes facing away, the ground past the horizon. The wireframe shows all.
-    if (wire)
+    // chunks, slopes facing away, the ground past the horizon. The wireframe shows all,
+    // and under the sea its surface is seen from below.
+    const int under_sea = r->camera_altitude < world_params_ocean_height(&r->params);
+    if (wire || under_sea)
         glDisable(GL_CULL_FACE);
     else
         glEnable(GL_CULL_FACE), glCullFace(GL_BACK);
@@ -1048,19 +1051,21 @@ int planet_renderer_draw(planet_renderer *r, const camera *cam, const render_set
     glBindTextureUnit(0, r->albedo);
     glBindTextureUnit(1, r->falloff);
     // Each chunk's variant, then the chunks drawn variant by variant.
-    static float details[MAX_CHUNKS][4];
+    static float details[MAX_CHUNKS][4], wraps[MAX_CHUNKS][2];
+    static signed char windows[MAX_CHUNKS]; // each chunk's detail window (-1: none)
     static unsigned char variants[MAX_CHUNKS];
     int used[VARIANTS] = {0};
     for (int i = 0; i < r->draw_count; i++) {
         const chunk *c = &r->chunks[r->draw_list[i]];
-        planet_detail_chunk(r->detail, chunk_face(c), c->level, c->metres_base[0],
-                            c->metres_base[1], details[i]);
+        windows[i] =
+            (signed char)planet_detail_chunk(r->detail, chunk_face(c), c->level, c->metres_base[0],
+                                             c->metres_base[1], details[i], wraps[i]);
         variants[i] = (unsigned char)chunk_variant(r, c, &f, details[i]);
         used[variants[i]] = 1;
     }
     glBindVertexArray(r->vao);
     if (wire) glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
-    int rc = 0;
+    int rc = 0, bound_window = -1;
     for (int v = 0; v < VARIANTS && rc == 0; v++) {
         if (!used[v]) continue;
         ground_program *g = ground_variant(r, v, err);
@@ -1081,6 +1086,11 @@ int planet_renderer_draw(planet_renderer *r, const camera *cam, const render_set
                                (float)(c->origin[2] - cam->pos[2]));
             glProgramUniform1i(g->prog, g->level, c->level);
             glProgramUniform4fv(g->prog, g->detail, 1, details[i]);
+            if (v & V_DETAIL) { // the window of the chunk's face
+                if (windows[i] != bound_window)
+                    planet_detail_use(r->detail, bound_window = windows[i], 2, 3);
+                glProgramUniform2fv(g->prog, g->wrap, 1, wraps[i]);
+            }
             if (v & V_OVERLAYS) { // where the chunk's metres meet the grids
                 const double tile = TILE_SIZE * r->cell_arc, cell = ldexp(r->cell_arc, c->level);
                 glProgramUniform3f(g->prog, g->tile, (float)fmod(c->metres_base[0], tile),

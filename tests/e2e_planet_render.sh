@@ -143,6 +143,28 @@ run "$earth; camera_geo 40 -30 400 0 -35 ground; screenshot $work/detail_far0.pn
 r=$(rmse "$work/detail_far0.png" "$work/detail_far.png")
 less "$r" 0.3; check "detail fades out with distance (rmse $r)" $?
 
+# --- detail across a face edge: the neighbouring face shows it too ------------------
+# Face 4's top edge at longitude -30 (latitude 40.8934), the camera 10 m south of it
+# looking north: the ground past the edge (the image's upper left) is face 2's. A noise
+# dab on the detail layer at the edge reaches both faces.
+read -r ex ez < <(python3 -c "
+import math
+lo = math.radians(-30.0)
+la = math.atan(math.cos(lo))
+x, y, z = math.cos(la) * math.sin(lo), math.sin(la), math.cos(la) * math.cos(lo)
+s, t = math.atan(x / z) * 4 / math.pi, math.atan(y / z) * 4 / math.pi
+n = 10007552
+print(((s + 1) / 2 * n - 0.5), ((t + 1) / 2 * n - 0.5) - 0.6)")
+run "$earth; camera_geo 40.8933 -30 3 0 -20 ground; screenshot $work/edge0.png $size;
+     tool noise target=detail radius=60 strength=1 scale=3 face=4; dab $ex $ez;
+     screenshot $work/edge1.png $size; undo; screenshot $work/edge2.png $size"
+check "detail sculpted at a face edge ($(cat "$work/err"))" $?
+for i in 0 1 2; do convert "$work/edge$i.png" -crop 160x40+0+38 +repage "$work/edge_past$i.png"; done
+r=$(rmse "$work/edge_past0.png" "$work/edge_past1.png")
+less 3 "$r"; check "the detail shows past the face edge, on the neighbouring face (rmse $r)" $?
+r=$(rmse "$work/edge_past0.png" "$work/edge_past2.png")
+less "$r" 0.3; check "undo takes it away there too (rmse $r)" $?
+
 # --- the debug overlays: the face's tile grid and the chunks' vertex grids ---------
 run "$earth; camera_geo $spot 3000 0 -40 ground; view levels; screenshot $work/grid0.png $size;
      render tile_grid=on; screenshot $work/grid_tiles.png $size;
