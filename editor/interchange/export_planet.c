@@ -131,36 +131,36 @@ static double image_coord(int size, double i) {
     return (i + 0.5) / size * 2.0 - 1.0;
 }
 
-// Point of image sample (i, j) on the surface; warped[] holds tan(coord x pi/4) per index.
-static void surface_point(const face_images *fi, int face, const double *warped, int i, int j,
-                          double out[3]) {
-    double d[3];
-    world_grid_face_direction_warped(face, warped[i], warped[j], d);
-    double r = fi->p->radius + fi->heights[face][(size_t)j * fi->size + i];
-    for (int k = 0; k < 3; k++)
-        out[k] = d[k] * r;
-}
-
 static int write_normal_map(const face_images *fi, int face, const char *path, og_error *err) {
     const int n = fi->size;
     unsigned char *rgb = malloc((size_t)n * n * 3);
     double *warped = malloc(sizeof(double) * (size_t)n);
-    if (!rgb || !warped) {
+    double(*pos)[3] = malloc(sizeof *pos * (size_t)n * n); // each sample's surface point
+    if (!rgb || !warped || !pos) {
         free(rgb);
         free(warped);
+        free(pos);
         return og_error_set(err, "%s: out of memory", path);
     }
     for (int i = 0; i < n; i++)
         warped[i] = tan(image_coord(n, i) * (M_PI / 4.0));
     for (int j = 0; j < n; j++)
         for (int i = 0; i < n; i++) {
+            const size_t k = (size_t)j * n + i;
+            double d[3];
+            world_grid_face_direction_warped(face, warped[i], warped[j], d);
+            const double r = fi->p->radius + fi->heights[face][k];
+            for (int c = 0; c < 3; c++)
+                pos[k][c] = d[c] * r;
+        }
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
             // Central differences on the sphere (one-sided at the face's border).
-            double a[3], b[3], c[3], d[3], centre[3];
-            surface_point(fi, face, warped, i > 0 ? i - 1 : i, j, a);
-            surface_point(fi, face, warped, i < n - 1 ? i + 1 : i, j, b);
-            surface_point(fi, face, warped, i, j > 0 ? j - 1 : j, c);
-            surface_point(fi, face, warped, i, j < n - 1 ? j + 1 : j, d);
-            surface_point(fi, face, warped, i, j, centre);
+            const double *a = pos[(size_t)j * n + (i > 0 ? i - 1 : i)];
+            const double *b = pos[(size_t)j * n + (i < n - 1 ? i + 1 : i)];
+            const double *c = pos[(size_t)(j > 0 ? j - 1 : j) * n + i];
+            const double *d = pos[(size_t)(j < n - 1 ? j + 1 : j) * n + i];
+            const double *centre = pos[(size_t)j * n + i];
             double du[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
             double dv[3] = {d[0] - c[0], d[1] - c[1], d[2] - c[2]};
             double m[3] = {du[1] * dv[2] - du[2] * dv[1], du[2] * dv[0] - du[0] * dv[2],
@@ -174,6 +174,7 @@ static int write_normal_map(const face_images *fi, int face, const char *path, o
                 px[k] = (unsigned char)lround((v * 0.5 + 0.5) * 255.0);
             }
         }
+    free(pos);
     int rc = image_write_u8(path, rgb, n, n, 3, err);
     free(rgb);
     free(warped);
