@@ -1278,7 +1278,8 @@ static ui_rect dialog_rect(const editor_ui *e, const ui_context *ui, float width
         return centred(
             width, height, fminf(width * 0.9f, ui_em(ui, 24)),
             fminf(height * 0.9f,
-                  ui_em(ui, 1.7f * (float)new_planet_dialog_rows(&e->new_planet) + 1.5f)));
+                  // rows of 1.4 em and their 0.2 em gaps, the panel's padding
+                  ui_em(ui, 1.6f * (float)new_planet_dialog_rows(&e->new_planet) + 0.8f)));
     if (e->offer_recovery) // wide enough for its first line in full
         return centred(width, height, fminf(width * 0.9f, ui_em(ui, 32)), ui_em(ui, 6.5f));
     if (e->confirm_replace)
