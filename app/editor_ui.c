@@ -828,13 +828,18 @@ static void world_panel(editor_ui *e, ui_context *ui, cmd_context *ctx) {
     if (next->kind == WORLD_PLANET) { // a radius there (seed 004)
         // The sea keeps its height above the datum when the radius changes (ocean_level
         // is a radius on planets): both commands run, both are echoed.
-        double radius = next->radius;
-        if (ui_slider(ui, "Radius", &radius, 1000, 1e7, "%.0f m"))
-            runf(e, ctx, "set radius %.6g; set ocean_level %.9g", radius,
-                 next->ocean_level + (radius - next->radius));
+        // Both shown as a person thinks of them: the radius in km, the sea by its height
+        // above the datum (the command still sets ocean_level, the sea's radius).
+        double km = next->radius / 1000.0;
+        if (ui_slider(ui, "Radius", &km, 1, 10000, "%.1f km"))
+            runf(e, ctx, "set radius %.9g; set ocean_level %.9g", km * 1000.0,
+                 next->ocean_level + (km * 1000.0 - next->radius));
         ui_tooltip(ui, world_params_key_help("radius"));
-        param_slider(e, ui, ctx, "Sea radius", "ocean_level", next->ocean_level,
-                     next->radius - next->max_height, next->radius + next->max_height, "%.0f m");
+        double sea = next->ocean_level - next->radius;
+        if (ui_slider(ui, "Sea level", &sea, -next->max_height, next->max_height, "%.0f m"))
+            runf(e, ctx, "set ocean_level %.9g", next->radius + sea);
+        ui_tooltip(ui, "The sea's surface, metres above the datum (set ocean_level: the sea's "
+                       "radius, seed 004's way; under all the ground: no sea)");
         param_slider(e, ui, ctx, "Atmosphere", "atmosphere", next->atmosphere, 0, 3, "%.2f");
     } else
         param_slider(e, ui, ctx, "Ocean level", "ocean_level", next->ocean_level, -1000, 3000,

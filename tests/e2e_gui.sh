@@ -572,6 +572,33 @@ line=$(ask camera '^camera_geo '); case "$line" in "camera_geo 10.000000 20.0000
 check "camera_geo right after new planet keeps its place ($line)" $?
 widget_gone "Tools/Carve" && widget "Tools/Raise" >/dev/null
 check "the palette leaves out the volume tools on a planet (caves are for flat worlds)" $?
+# The World panel shows a planet's sea by its height above the datum: a drag to the
+# slider's right quarter puts the sea above the datum (ocean_level, its radius, > radius).
+read -r x y w h <<<"$(widget "Dock/Sea level")"
+for _ in $(seq 12); do # below the window's bottom: the wheel scrolls the dock down to it
+    [ -n "${h:-}" ] && [ $((y + h)) -lt $((WIN_H - 40)) ] && break
+    [ -n "${h:-}" ] && xdotool mousemove --window "$wid" $((x + w / 2)) $((WIN_H / 2)) click 5
+    sleep 0.3
+    read -r x y w h <<<"$(widget "Dock/Sea level")"
+done
+if [ -n "${h:-}" ]; then
+    cy=$((y + h / 2))
+    xdotool mousemove --window "$wid" $((x + w / 2)) $cy mousedown 1
+    sleep 0.15
+    xdotool mousemove --window "$wid" $((x + 3 * w / 4)) $cy
+    sleep 0.15
+    xdotool mouseup 1
+    sleep 0.3
+fi
+rad=$(ask nparams '^radius = ')
+sea=""
+for _ in $(seq 30); do
+    sea=$(ask nparams '^ocean_level = ')
+    awk -v r="${rad#radius = }" -v o="${sea#ocean_level = }" 'BEGIN { exit !(o + 0 > r + 0) }' && break
+    sleep 0.3
+done
+awk -v r="${rad#radius = }" -v o="${sea#ocean_level = }" 'BEGIN { exit !(o + 0 > r + 0) }'
+check "Dock/Sea level dragged right puts the sea above the datum ($rad, $sea; slider at ${x:-?} ${y:-?} ${w:-?} ${h:-?})" $?
 ask "load $work/gui.world" '^loaded' >/dev/null
 wait_title "gui.world - "; check "back to gui.world ($(title))" $?
 # Section 8 drags where the terrain was: wait until every tile in view is there again
