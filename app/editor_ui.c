@@ -776,6 +776,7 @@ static void world_more(editor_ui *e, ui_context *ui, cmd_context *ctx, const wor
                      "%.0f per 64 km");
     }
     param_slider(e, ui, ctx, "Spacing", "spacing", next->spacing, 0.25, 100, "%.2f m");
+    if (next->kind == WORLD_PLANET) return; // a planet's faces follow its radius and spacing
     static const char *const sizes[] = {"unbounded", "512",  "1024", "2048",
                                         "4096",      "8192", "16384"};
     static const long long size_values[] = {0, 512, 1024, 2048, 4096, 8192, 16384};

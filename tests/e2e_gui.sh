@@ -599,6 +599,10 @@ for _ in $(seq 30); do
 done
 awk -v r="${rad#radius = }" -v o="${sea#ocean_level = }" 'BEGIN { exit !(o + 0 > r + 0) }'
 check "Dock/Sea level dragged right puts the sea above the datum ($rad, $sea; slider at ${x:-?} ${y:-?} ${w:-?} ${h:-?})" $?
+click "Dock/More parameters"
+widget "Dock/Spacing" >/dev/null && widget_gone "Dock/Size"
+check "a planet's More parameters leave out Size (its faces follow radius and spacing)" $?
+click "Dock/More parameters"
 ask "load $work/gui.world" '^loaded' >/dev/null
 wait_title "gui.world - "; check "back to gui.world ($(title))" $?
 # Section 8 drags where the terrain was: wait until every tile in view is there again
