@@ -837,11 +837,18 @@ static void world_panel(editor_ui *e, ui_context *ui, cmd_context *ctx) {
                  next->ocean_level + (km * 1000.0 - next->radius));
         ui_tooltip(ui, world_params_key_help("radius"));
         double sea = next->ocean_level - next->radius;
-        if (ui_slider(ui, "Sea level", &sea, -next->max_height, next->max_height, "%.0f m"))
+        const char *sea_fmt = sea < -next->max_height ? "no sea" : "%.0f m"; // all under ground
+        if (ui_slider(ui, "Sea level", &sea, -next->max_height, next->max_height, sea_fmt))
             runf(e, ctx, "set ocean_level %.9g", next->radius + sea);
         ui_tooltip(ui, "The sea's surface, metres above the datum (set ocean_level: the sea's "
                        "radius, seed 004's way; under all the ground: no sea)");
         param_slider(e, ui, ctx, "Atmosphere", "atmosphere", next->atmosphere, 0, 3, "%.2f");
+        // The light's rotation as a day's length (omega = 2 pi / day); 0: it does not turn.
+        double day = next->omega > 0 ? 2.0 * M_PI / next->omega / 3600.0 : 1000.0;
+        if (ui_slider(ui, "Day", &day, 1, 1000, next->omega > 0 ? "%.1f h" : "not turning"))
+            runf(e, ctx, "set omega %.9g", 2.0 * M_PI / (day * 3600.0));
+        ui_tooltip(ui, "Hours per turn of the light (R in the view toggles the turning; set "
+                       "omega 0: it does not turn)");
     } else
         param_slider(e, ui, ctx, "Ocean level", "ocean_level", next->ocean_level, -1000, 3000,
                      "%.0f m");

@@ -574,14 +574,19 @@ widget_gone "Tools/Carve" && widget "Tools/Raise" >/dev/null
 check "the palette leaves out the volume tools on a planet (caves are for flat worlds)" $?
 # The World panel shows a planet's sea by its height above the datum: a drag to the
 # slider's right quarter puts the sea above the datum (ocean_level, its radius, > radius).
-read -r x y w h <<<"$(widget "Dock/Sea level")"
-for _ in $(seq 12); do # below the window's bottom: the wheel scrolls the dock down to it
-    [ -n "${h:-}" ] && [ $((y + h)) -lt $((WIN_H - 40)) ] && break
-    [ -n "${h:-}" ] && xdotool mousemove --window "$wid" $((x + w / 2)) $((WIN_H / 2)) click 5
-    sleep 0.3
-    read -r x y w h <<<"$(widget "Dock/Sea level")"
-done
-if [ -n "${h:-}" ]; then
+# Finds the dock widget NAME (x y w h), the wheel scrolling the dock down to it while it
+# lies below the window's bottom.
+dock_widget() {
+    read -r x y w h <<<"$(widget "$1")"
+    for _ in $(seq 12); do
+        [ -n "${h:-}" ] && [ $((y + h)) -lt $((WIN_H - 40)) ] && return 0
+        [ -n "${h:-}" ] && xdotool mousemove --window "$wid" $((x + w / 2)) $((WIN_H / 2)) click 5
+        sleep 0.3
+        read -r x y w h <<<"$(widget "$1")"
+    done
+    return 1
+}
+if dock_widget "Dock/Sea level"; then
     cy=$((y + h / 2))
     xdotool mousemove --window "$wid" $((x + w / 2)) $cy mousedown 1
     sleep 0.15
@@ -599,6 +604,21 @@ for _ in $(seq 30); do
 done
 awk -v r="${rad#radius = }" -v o="${sea#ocean_level = }" 'BEGIN { exit !(o + 0 > r + 0) }'
 check "Dock/Sea level dragged right puts the sea above the datum ($rad, $sea; slider at ${x:-?} ${y:-?} ${w:-?} ${h:-?})" $?
+# The day's length (the light's rotation, omega = 2 pi / day).
+o0=$(ask nparams '^omega = ')
+if dock_widget "Dock/Day"; then
+    cy=$((y + h / 2))
+    xdotool mousemove --window "$wid" $((x + w / 2)) $cy mousedown 1
+    sleep 0.15
+    xdotool mousemove --window "$wid" $((x + w / 4)) $cy
+    sleep 0.15
+    xdotool mouseup 1
+    sleep 0.3
+fi
+o1=$o0
+for _ in $(seq 30); do o1=$(ask nparams '^omega = '); [ "$o1" != "$o0" ] && break; sleep 0.3; done
+[ -n "$o1" ] && [ "$o1" != "$o0" ]
+check "Dock/Day dragged left sets a shorter day ($o0 -> $o1; slider at ${x:-?} ${y:-?})" $?
 click "Dock/More parameters"
 widget "Dock/Spacing" >/dev/null && widget_gone "Dock/Size"
 check "a planet's More parameters leave out Size (its faces follow radius and spacing)" $?
