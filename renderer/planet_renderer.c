@@ -692,13 +692,8 @@ static ground_program *ground_variant(planet_renderer *r, int variant, og_error 
     if (g->prog) return g;
     static const char *const names[] = {"SHADED", "DETAIL", "SEA",     "PAINTED",
                                         "BARE",   "BRUSH",  "OVERLAYS"};
-    char defines[256] = "";
-    for (int b = 0; b < 7; b++)
-        if (variant & (1 << b))
-            snprintf(defines + strlen(defines), sizeof defines - strlen(defines), "#define %s\n",
-                     names[b]);
-    g->prog =
-        shader_program_load_variant(r->shader_dir, "planet.vert", "planet.frag", defines, err);
+    g->prog = shader_program_load_flags(r->shader_dir, "planet.vert", "planet.frag", names, 7,
+                                        (unsigned)variant, err);
     if (!g->prog) return NULL;
     g->offset = glGetUniformLocation(g->prog, "u_offset");
     g->level = glGetUniformLocation(g->prog, "u_level");

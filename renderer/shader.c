@@ -403,3 +403,16 @@ GLuint shader_program_load_variant(const char *dir, const char *vs_name, const c
                                    const char *defines, og_error *err) {
     return load_program(dir, vs_name, NULL, fs_name, defines, err);
 }
+
+GLuint shader_program_load_flags(const char *dir, const char *vs_name, const char *fs_name,
+                                 const char *const *names, int count, unsigned flags,
+                                 og_error *err) {
+    char defines[1024] = "";
+    size_t used = 0;
+    for (int b = 0; b < count && used < sizeof defines; b++)
+        if (flags & (1u << b))
+            used +=
+                (size_t)snprintf(defines + used, sizeof defines - used, "#define %s\n", names[b]);
+    if (used >= sizeof defines) return og_error_set(err, "%s: too many defines", fs_name), 0;
+    return load_program(dir, vs_name, NULL, fs_name, defines, err);
+}

@@ -26,5 +26,9 @@ GLuint shader_program_load_gs(const char *dir, const char *vs_name, const char *
 // Errors keep the files' own line numbers.
 GLuint shader_program_load_variant(const char *dir, const char *vs_name, const char *fs_name,
                                    const char *defines, og_error *err);
+// The variant whose bits are set in `flags`: bit b defines names[b] (count names).
+GLuint shader_program_load_flags(const char *dir, const char *vs_name, const char *fs_name,
+                                 const char *const *names, int count, unsigned flags,
+                                 og_error *err);
 
 #endif

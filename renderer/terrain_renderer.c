@@ -157,13 +157,8 @@ static GLuint terrain_program(terrain_renderer *r, int variant, og_error *err) {
     if (r->prog_terrain[variant]) return r->prog_terrain[variant];
     static const char *const names[] = {"SHADED", "DETAIL",   "PAINTED",
                                         "BRUSH",  "OVERLAYS", "CONTOURS"};
-    char defines[256] = "";
-    for (int b = 0; b < 6; b++)
-        if (variant & (1 << b))
-            snprintf(defines + strlen(defines), sizeof defines - strlen(defines), "#define %s\n",
-                     names[b]);
-    r->prog_terrain[variant] =
-        shader_program_load_variant(r->shader_dir, "terrain.vert", "terrain.frag", defines, err);
+    r->prog_terrain[variant] = shader_program_load_flags(
+        r->shader_dir, "terrain.vert", "terrain.frag", names, 6, (unsigned)variant, err);
     r->prog_frame[variant] = 0;
     return r->prog_terrain[variant];
 }

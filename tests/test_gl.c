@@ -226,14 +226,10 @@ static void compile_all_variants(const char *vs, const char *fs, const char *con
     char shaders[4200];
     snprintf(shaders, sizeof shaders, "%s/shaders", OROGEN_RESOURCE_DIR);
     for (int v = 0; v < 1 << count; v++) {
-        char defines[256] = "";
-        for (int b = 0; b < count; b++)
-            if (v & (1 << b))
-                snprintf(defines + strlen(defines), sizeof defines - strlen(defines),
-                         "#define %s\n", names[b]);
         og_error err = {{0}};
-        GLuint program = shader_program_load_variant(shaders, vs, fs, defines, &err);
-        if (!program) fail_msg("%s variant %d (%s): %s", fs, v, defines, err.msg);
+        GLuint program =
+            shader_program_load_flags(shaders, vs, fs, names, count, (unsigned)v, &err);
+        if (!program) fail_msg("%s variant %d: %s", fs, v, err.msg);
         glDeleteProgram(program);
     }
 }
