@@ -138,6 +138,13 @@ static int in_view(const window_state *st, double x, double y) {
     return ui_rect_contains(st->view_rect, (float)x, (float)y);
 }
 
+// Whether a cursor position (window coordinates) lies inside the window.
+static int in_window(GLFWwindow *win, double x, double y) {
+    int w, h;
+    glfwGetWindowSize(win, &w, &h);
+    return x >= 0 && y >= 0 && x < w && y < h;
+}
+
 // A point along the ray under (x, y) when no terrain is there: `dist` metres out.
 static void point_along_ray(window_state *st, double x, double y, double dist, double out[3]) {
     ui_rect r = st->view_rect;
@@ -586,8 +593,13 @@ static void on_cursor(GLFWwindow *win, double x, double y) {
 
 static void on_cursor_enter(GLFWwindow *win, int entered) {
     window_state *st = glfwGetWindowUserPointer(win);
-    st->mouse_in = entered;
     st->dirty = 1;
+    // A pointer that left (with no button held) hovers nothing: no widget stays lit and no
+    // tooltip comes up for a place the pointer no longer is.
+    if (!entered && !st->in.mouse_down[0] && !st->in.mouse_down[1] && !st->in.mouse_down[2]) {
+        st->in.mouse_x = st->in.mouse_y = -1e6f;
+        st->ui_dirty = 1;
+    }
 }
 
 static void on_scroll(GLFWwindow *win, double dx, double dy) {
@@ -1592,6 +1604,9 @@ int window_run(cmd_context *ctx, og_error *err) {
     if (!v->cam_set) v->cam.fov_y = settings.field_of_view;
     v->settings.lod_pixels = settings.lod_pixels;
     glfwGetCursorPos(win, &st.mouse_x, &st.mouse_y);
+    st.mouse_in = in_window(win, st.mouse_x, st.mouse_y);
+    st.in.mouse_x = st.mouse_in ? ui_px(&st, st.mouse_x) : -1e6f; // not (0, 0): File's place
+    st.in.mouse_y = st.mouse_in ? ui_px(&st, st.mouse_y) : -1e6f;
     glfwSetWindowUserPointer(win, &st);
     glfwSetMouseButtonCallback(win, on_mouse_button);
     glfwSetCursorPosCallback(win, on_cursor);

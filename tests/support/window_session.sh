@@ -13,7 +13,9 @@ require_tools() {
 # start_xvfb WxH: a private X server on a free display number ($xvfb is its pid).
 start_xvfb() {
     exec 5>"$work/display"
-    Xvfb -displayfd 5 -screen 0 "$1x24" -nolisten tcp >"$work/xvfb.log" 2>&1 &
+    # -noreset: the server keeps its state (the pointer's place) when its last client goes,
+    # so a pointer moved off the window before the editor starts stays there.
+    Xvfb -displayfd 5 -screen 0 "$1x24" -nolisten tcp -noreset >"$work/xvfb.log" 2>&1 &
     xvfb=$!
     for _ in $(seq 100); do [ -s "$work/display" ] && break; sleep 0.1; done
     export DISPLAY=":$(head -n 1 "$work/display")"
