@@ -44,6 +44,7 @@ typedef struct chunk {
     int painted;      // some vertex has painted weights
     int level;
     double morph_reach;    // this frame: where the parent level would take over (metres)
+    double near_dist;      // this frame: from the camera to its bounding sphere (drawing order)
     double metres_base[2]; // face-local metres the vertices' texture metres are relative to
     uint64_t used;         // frame it was last selected
 } chunk;
@@ -606,6 +607,7 @@ static int select_node(planet_renderer *r, const node *n) {
     }
     double dist;
     c->morph_reach = split_distance(r, &b, 2.0 * b.cell, &dist);
+    c->near_dist = dist;
     if (r->draw_count < MAX_CHUNKS) r->draw_list[r->draw_count++] = (int)(c - r->chunks);
     return 0;
 }
@@ -862,6 +864,25 @@ int planet_renderer_update(planet_renderer *r, world *w, const camera *cam,
     return r->all_current;
 }
 
+// Nearest chunks first: the depth test then rejects what they hide before it is shaded
+// (a software renderer shades every fragment that passes).
+typedef struct draw_key {
+    double dist;
+    int chunk;
+} draw_key;
+static int nearer(const void *a, const void *b) {
+    double da = ((const draw_key *)a)->dist, db = ((const draw_key *)b)->dist;
+    return (da > db) - (da < db);
+}
+static void sort_near_first(planet_renderer *r) {
+    static draw_key keys[MAX_CHUNKS];
+    for (int i = 0; i < r->draw_count; i++)
+        keys[i] = (draw_key){r->chunks[r->draw_list[i]].near_dist, r->draw_list[i]};
+    qsort(keys, (size_t)r->draw_count, sizeof keys[0], nearer);
+    for (int i = 0; i < r->draw_count; i++)
+        r->draw_list[i] = keys[i].chunk;
+}
+
 // Atmosphere and light uniforms shared by the sky and the ground.
 static void set_common(const planet_renderer *r, GLuint prog, const camera *cam,
                        const render_settings *s) {
@@ -1045,66 +1066,65 @@ int planet_renderer_draw(planet_renderer *r, const camera *cam, const render_set
     cursor_frame(r, cursor, &f);
     glBindTextureUnit(0, r->albedo);
     glBindTextureUnit(1, r->falloff);
-    // Each chunk's variant, then the chunks drawn variant by variant.
+    // Each chunk's variant and detail window, the nearest chunk first.
     static float details[MAX_CHUNKS][4], wraps[MAX_CHUNKS][2];
     static signed char windows[MAX_CHUNKS]; // each chunk's detail window (-1: none)
     static unsigned char variants[MAX_CHUNKS];
-    int used[VARIANTS] = {0};
+    sort_near_first(r);
     for (int i = 0; i < r->draw_count; i++) {
         const chunk *c = &r->chunks[r->draw_list[i]];
         windows[i] =
             (signed char)planet_detail_chunk(r->detail, chunk_face(c), c->level, c->metres_base[0],
                                              c->metres_base[1], details[i], wraps[i]);
         variants[i] = (unsigned char)chunk_variant(r, c, &f, details[i]);
-        used[variants[i]] = 1;
     }
     glBindVertexArray(r->vao);
     if (wire) glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
     int rc = 0, bound_window = -1;
-    for (int v = 0; v < VARIANTS && rc == 0; v++) {
-        if (!used[v]) continue;
-        ground_program *g = ground_variant(r, v, err);
-        if (!g) {
-            rc = -1;
-            break;
-        }
-        if (g->frame != r->frame) {
-            ground_frame_uniforms(r, g->prog, &f);
-            g->frame = r->frame;
-        }
-        glUseProgram(g->prog);
-        for (int i = 0; i < r->draw_count; i++) {
-            if (variants[i] != v) continue;
-            const chunk *c = &r->chunks[r->draw_list[i]];
-            glProgramUniform3f(g->prog, g->offset, (float)(c->origin[0] - cam->pos[0]),
-                               (float)(c->origin[1] - cam->pos[1]),
-                               (float)(c->origin[2] - cam->pos[2]));
-            glProgramUniform1i(g->prog, g->level, c->level);
-            glProgramUniform4fv(g->prog, g->detail, 1, details[i]);
-            if (v & V_DETAIL) { // the window of the chunk's face
-                if (windows[i] != bound_window)
-                    planet_detail_use(r->detail, bound_window = windows[i], 2, 3);
-                glProgramUniform2fv(g->prog, g->wrap, 1, wraps[i]);
+    ground_program *g = NULL;
+    // Nearest first, the program switched where the variant changes.
+    for (int i = 0, v = -1; i < r->draw_count && rc == 0; i++) {
+        if (variants[i] != v) {
+            v = variants[i];
+            if (!(g = ground_variant(r, v, err))) {
+                rc = -1;
+                break;
             }
-            if (v & V_OVERLAYS) { // where the chunk's metres meet the grids
-                const double tile = TILE_SIZE * r->cell_arc, cell = ldexp(r->cell_arc, c->level);
-                glProgramUniform3f(g->prog, g->tile, (float)fmod(c->metres_base[0], tile),
-                                   (float)fmod(c->metres_base[1], tile), (float)tile);
-                glProgramUniform3f(g->prog, g->cell, (float)fmod(c->metres_base[0], cell),
-                                   (float)fmod(c->metres_base[1], cell), (float)cell);
+            if (g->frame != r->frame) {
+                ground_frame_uniforms(r, g->prog, &f);
+                g->frame = r->frame;
             }
-            // Fully the parent's mesh where the parent would be drawn instead: at the
-            // distance its samples shrink to split_pixels. (The haze is measured to the
-            // sphere through each fragment's height, not along the morphed chords, so
-            // coarse quads do not show in it.)
-            const int morph = s->morph && c->level < r->root_level;
-            glProgramUniform1f(g->prog, g->morph, morph ? (float)(1.0 / c->morph_reach) : 0.0f);
-            glFrontFace(r->front[chunk_face(c)]);
-            glVertexArrayVertexBuffer(r->vao, 0, c->vbo, 0, VERTEX_FLOATS * sizeof(float));
-            glDrawElements(GL_TRIANGLES, CHUNK_INDICES, GL_UNSIGNED_SHORT, NULL);
-            r->stats.triangles += CHUNK_INDICES / 3;
-            r->stats.draw_calls++;
+            glUseProgram(g->prog);
         }
+        const chunk *c = &r->chunks[r->draw_list[i]];
+        glProgramUniform3f(g->prog, g->offset, (float)(c->origin[0] - cam->pos[0]),
+                           (float)(c->origin[1] - cam->pos[1]),
+                           (float)(c->origin[2] - cam->pos[2]));
+        glProgramUniform1i(g->prog, g->level, c->level);
+        glProgramUniform4fv(g->prog, g->detail, 1, details[i]);
+        if (v & V_DETAIL) { // the window of the chunk's face
+            if (windows[i] != bound_window)
+                planet_detail_use(r->detail, bound_window = windows[i], 2, 3);
+            glProgramUniform2fv(g->prog, g->wrap, 1, wraps[i]);
+        }
+        if (v & V_OVERLAYS) { // where the chunk's metres meet the grids
+            const double tile = TILE_SIZE * r->cell_arc, cell = ldexp(r->cell_arc, c->level);
+            glProgramUniform3f(g->prog, g->tile, (float)fmod(c->metres_base[0], tile),
+                               (float)fmod(c->metres_base[1], tile), (float)tile);
+            glProgramUniform3f(g->prog, g->cell, (float)fmod(c->metres_base[0], cell),
+                               (float)fmod(c->metres_base[1], cell), (float)cell);
+        }
+        // Fully the parent's mesh where the parent would be drawn instead: at the
+        // distance its samples shrink to split_pixels. (The haze is measured to the
+        // sphere through each fragment's height, not along the morphed chords, so
+        // coarse quads do not show in it.)
+        const int morph = s->morph && c->level < r->root_level;
+        glProgramUniform1f(g->prog, g->morph, morph ? (float)(1.0 / c->morph_reach) : 0.0f);
+        glFrontFace(r->front[chunk_face(c)]);
+        glVertexArrayVertexBuffer(r->vao, 0, c->vbo, 0, VERTEX_FLOATS * sizeof(float));
+        glDrawElements(GL_TRIANGLES, CHUNK_INDICES, GL_UNSIGNED_SHORT, NULL);
+        r->stats.triangles += CHUNK_INDICES / 3;
+        r->stats.draw_calls++;
     }
     if (wire) glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
     glDisable(GL_CULL_FACE);
