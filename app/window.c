@@ -1355,6 +1355,7 @@ static int cmd_window_screenshot(cmd_context *ctx, int argc, char **argv, og_err
     glfwGetFramebufferSize(st->win, &w, &h);
     if (w <= 0 || h <= 0) return og_error_set(err, "window_screenshot: the window has no area");
     float k = ui_px(st, 1.0);
+    take_changes(st); // a world made earlier in the same batch of commands gets its camera
     for (int i = 0; i < 60000 && !st->render_failed; i++) { // tiles: at most ~60 s
         update_view(st);
         if (st->settled >= 2) break;
@@ -1367,6 +1368,7 @@ static int cmd_window_screenshot(cmd_context *ctx, int argc, char **argv, og_err
     st->res_scale = 1.0f;
     render_terrain(st, (int)roundf(st->view_rect.w * k), (int)roundf(st->view_rect.h * k), 1);
     st->res_scale = keep;
+    dl = build_ui(st, w, h); // the status bar with this frame's figures
     compose(st, dl, w, h);
     unsigned char *rgba = malloc((size_t)w * h * 4), *rgb = malloc((size_t)w * h * 3);
     if (!rgba || !rgb) {

@@ -835,7 +835,12 @@ int planet_renderer_update(planet_renderer *r, world *w, const camera *cam,
     r->frame++;
     r->cam = cam;
     r->all_current = 1;
-    memset(&r->stats, 0, sizeof r->stats);
+    { // the last draw's figures stand until the next draw (the status bar shows them)
+        uint64_t triangles = r->stats.triangles;
+        int draw_calls = r->stats.draw_calls;
+        memset(&r->stats, 0, sizeof r->stats);
+        r->stats.triangles = triangles, r->stats.draw_calls = draw_calls;
+    }
     float vp[16];
     planet_camera_view_projection(cam, aspect, vp);
     frustum_from_matrix(&r->fr, vp);

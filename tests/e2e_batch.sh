@@ -179,7 +179,7 @@ cp "$work/bad.world" "$work/bad.orig"
 run -c "load $work/bad.world; save"
 [ $status = 1 ] && grep -q "bad.world had 1 error when loaded (2: error: octaves" "$work/err" &&
     cmp -s "$work/bad.world" "$work/bad.orig"
-check "a file that loaded with an error is not saved over ($(tail -n 1 "$work/err" | head -c 300))" $?
+rc=$?; check "a file that loaded with an error is not saved over ($(tail -n 1 "$work/err" | head -c 300))" $rc
 run -c "load $work/bad.world; save force=1"
 grep -q "^saved $work/bad.world$" "$work/out" && ! cmp -s "$work/bad.world" "$work/bad.orig" &&
     grep -q '^octaves = 8;$' "$work/bad.world"
@@ -191,7 +191,7 @@ check "warnings stay warnings: exit 0, and the file saves" $?
 run -c "dab 10 10; save $work/named.world"
 grep -q "^saved $work/named.world$" "$work/out" &&
     grep -q "^  and its tile store $work/named.tiles ([1-9][0-9]* tiles)$" "$work/out"
-check "save names the parameter file and the tile store it wrote ($(head -c 300 "$work/out"))" $?
+rc=$?; check "save names the parameter file and the tile store it wrote ($(head -c 300 "$work/out"))" $rc
 printf 'seed = 3;\noctaves = lots;\n' >"$work/arg.world"
 run "$work/arg.world" -c 'info'
 [ $status = 1 ]; check "a world given on the command line with errors fails the batch too" $?

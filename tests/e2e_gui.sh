@@ -312,11 +312,11 @@ check "Set height's Pick, then a click, takes the height there ($line, the terra
 [ "$(ask history '^steps=')" = "$(ask history '^steps=')" ]
 key u
 key c
-wait_title " orbit "; check "C switches the camera to orbit ($(title))" $?
+wait_title " orbit "; rc=$?; check "C switches the camera to orbit ($(title))" $rc
 key c
-wait_title " walk "; check "C again: walk ($(title))" $?
+wait_title " walk "; rc=$?; check "C again: walk ($(title))" $rc
 key c
-wait_title " fly "; check "C again: fly ($(title))" $?
+wait_title " fly "; rc=$?; check "C again: fly ($(title))" $rc
 key r
 line=$(ask_until render '^render ' 'sun_rotation=20 '); check "R sets the light turning ($line)" $?
 key r
@@ -532,7 +532,7 @@ check "File > Save, Replace: saved over, the bad line as its default" $?
 "$orogen" -c "tool raise radius=30 strength=1; dab 100 100; save $work/ro.world" >/dev/null 2>&1
 : >"$work/ro.tiles"
 ask "load $work/ro.world" '^loaded' >/dev/null
-wait_title "ro.world (read-only) - "; check "an emptied tile store opens read-only ($(title))" $?
+wait_title "ro.world (read-only) - "; rc=$?; check "an emptied tile store opens read-only ($(title))" $rc
 key ctrl+s
 widget "Replace file/ro.world was opened read-only:" >/dev/null
 check "Ctrl+S on it asks first, saying why" $?
@@ -624,7 +624,7 @@ widget "Dock/Spacing" >/dev/null && widget_gone "Dock/Size"
 check "a planet's More parameters leave out Size (its faces follow radius and spacing)" $?
 click "Dock/More parameters"
 ask "load $work/gui.world" '^loaded' >/dev/null
-wait_title "gui.world - "; check "back to gui.world ($(title))" $?
+wait_title "gui.world - "; rc=$?; check "back to gui.world ($(title))" $rc
 # Section 8 drags where the terrain was: wait until every tile in view is there again
 # (window_screenshot answers once they are), or a busy machine picks a coarser surface.
 ask "window_screenshot $work/back.png" '^window_screenshot' >/dev/null

@@ -239,7 +239,7 @@ grep -q "Maximum point *(512.000000 " <(assimp info "$work/m.glb" 2>&1); check "
 validator_dir=$(cd "$tests/.." && pwd)/.cache/npm
 for f in m.glb s.glb c.glb; do
     node "$tests/support/validate_gltf.js" "$validator_dir" "$work/$f" >"$work/validator" 2>&1
-    check "glTF validator: $f has no errors and no warnings ($(head -n 1 "$work/validator"))" $?
+    rc=$?; check "glTF validator: $f has no errors and no warnings ($(head -n 1 "$work/validator"))" $rc
 done
 line=$(grep "exported $work/s.glb:" "$work/out")
 tris=$(echo "$line" | sed -E 's/.* ([0-9]+) triangles.*/\1/')
@@ -272,7 +272,7 @@ o = [x for x in bpy.context.scene.objects if x.type == 'MESH'][0]
 vs = [o.matrix_world @ mathutils.Vector(c) for c in o.bound_box]
 print('BBOX %.3f %.3f %.3f %.3f' % (min(v.x for v in vs), max(v.x for v in vs), min(v.z for v in vs), max(v.z for v in vs)))
 " >"$work/blender" 2>&1
-    grep -q "^BBOX 0.000 512.000 " "$work/blender"; check "Blender imports the glb at true size, Z up ($(grep BBOX "$work/blender"))" $?
+    grep -q "^BBOX 0.000 512.000 " "$work/blender"; rc=$?; check "Blender imports the glb at true size, Z up ($(grep BBOX "$work/blender"))" $rc
 else
     echo "SKIP: Blender is not installed: the headless Blender import check did not run"
 fi

@@ -145,7 +145,7 @@ mkdir -p "$work/full"
 if mount -t tmpfs -o size=200k tmpfs "$work/full" 2>/dev/null; then
     echo old >"$work/full/p.obj"
     run -c "load $seed004; export 6 $work/full/p.obj size=256"
-    [ $status = 1 ] && grep -q "$work/full" "$work/err"; check "a full disk is reported ($(cat "$work/err"))" $?
+    [ $status = 1 ] && grep -q "$work/full" "$work/err"; rc=$?; check "a full disk is reported ($(cat "$work/err"))" $rc
     [ "$(cat "$work/full/p.obj")" = old ] && [ -z "$(ls -A "$work/full" | grep -v '^p.obj$')" ]
     check "after a failed export only the old file is there" $?
     umount "$work/full"

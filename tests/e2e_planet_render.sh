@@ -38,11 +38,11 @@ run "$earth; camera_geo $spot 15000000; screenshot $work/planet_orbit.png $size;
      camera_geo $spot 10000 0 -15 ground; screenshot $work/planet_10km.png $size;
      camera_geo $spot 2 0 -5 ground; screenshot $work/planet_2m.png $size;
      camera_geo $spot 15000000; view wireframe; screenshot $work/planet_wire.png $size"
-check "Earth-radius planet renders from orbit, 10 km and 2 m ($(cat "$work/err"))" $?
+rc=$?; check "Earth-radius planet renders from orbit, 10 km and 2 m ($(cat "$work/err"))" $rc
 run "load $tests/data/params/seed004.planet; screenshot $work/planet_seed004.png $size"
-check "the seed-004 planet renders ($(cat "$work/err"))" $?
+rc=$?; check "the seed-004 planet renders ($(cat "$work/err"))" $rc
 run "new planet preset=moon; screenshot $work/planet_moon.png $size"
-check "the moon preset renders ($(cat "$work/err"))" $?
+rc=$?; check "the moon preset renders ($(cat "$work/err"))" $rc
 max_golden=2.0
 mkdir -p "$failed_dir"
 for name in planet_orbit planet_10km planet_2m planet_wire planet_seed004 planet_moon; do
@@ -78,7 +78,7 @@ for a in $alts; do
     cmds="$cmds; camera_geo $spot $b 0 -20 ground; screenshot $work/e_$a.png $size"
 done
 run "$cmds"
-check "the descent renders ($(cat "$work/err"))" $?
+rc=$?; check "the descent renders ($(cat "$work/err"))" $rc
 for a in $alts; do
     r=$(rmse "$work/d_$a.png" "$work/e_$a.png")
     less "$r" 3.0; check "a 0.1% step at ${a} m changes the frame by rmse $r < 3" $?
@@ -93,7 +93,7 @@ centre=5004750
 run "new planet; camera_geo 0 0 30000 0 -70 ground; screenshot $work/edit0.png $size;
      tool raise radius=6000 amount=3000 strength=1 face=4; dab $centre $centre;
      screenshot $work/edit1.png $size; undo; screenshot $work/edit2.png $size"
-check "edit on a planet face, then undo ($(cat "$work/err"))" $?
+rc=$?; check "edit on a planet face, then undo ($(cat "$work/err"))" $rc
 r1=$(rmse "$work/edit0.png" "$work/edit1.png")
 r2=$(rmse "$work/edit0.png" "$work/edit2.png")
 less 1 "$r1"; check "the dab shows in the view (rmse $r1)" $?
@@ -110,7 +110,7 @@ print(((s + 1) / 2 * 100096 - 0.5) * 100, ((t + 1) / 2 * 100096 - 0.5) * 100)")
 run "new planet; camera_geo 20 -30 2500 0 -89 ground; screenshot $work/paint0.png $size;
      tool paint radius=800 strength=1 material=4 face=4; dab $px $pz;
      screenshot $work/paint1.png $size; undo; screenshot $work/paint2.png $size"
-check "paint on a planet, then undo ($(cat "$work/err"))" $?
+rc=$?; check "paint on a planet, then undo ($(cat "$work/err"))" $rc
 r1=$(rmse "$work/paint0.png" "$work/paint1.png")
 r2=$(rmse "$work/paint0.png" "$work/paint2.png")
 less 5 "$r1"; check "the painted snow shows (rmse $r1)" $?
@@ -131,7 +131,7 @@ run "$earth; camera_geo 40 -30 3 0 -35 ground; screenshot $work/detail0.png $siz
      render parallax=off; screenshot $work/detail_off.png $size; render parallax=on;
      camera_geo 40 -30 400 0 -35 ground; screenshot $work/detail_far.png $size;
      camera_geo 40 -30 3 0 -35 ground; undo; screenshot $work/detail_undone.png $size"
-check "detail sculpted on a planet, parallax on and off, undo ($(cat "$work/err"))" $?
+rc=$?; check "detail sculpted on a planet, parallax on and off, undo ($(cat "$work/err"))" $rc
 r=$(rmse "$work/detail_on.png" "$work/detail_off.png")
 less 3 "$r"; check "parallax changes the planet's picture (rmse $r)" $?
 r=$(rmse "$work/detail0.png" "$work/detail_off.png")
@@ -158,7 +158,7 @@ print(((s + 1) / 2 * n - 0.5), ((t + 1) / 2 * n - 0.5) - 0.6)")
 run "$earth; camera_geo 40.8933 -30 3 0 -20 ground; screenshot $work/edge0.png $size;
      tool noise target=detail radius=60 strength=1 scale=3 face=4; dab $ex $ez;
      screenshot $work/edge1.png $size; undo; screenshot $work/edge2.png $size"
-check "detail sculpted at a face edge ($(cat "$work/err"))" $?
+rc=$?; check "detail sculpted at a face edge ($(cat "$work/err"))" $rc
 for i in 0 1 2; do convert "$work/edge$i.png" -crop 160x40+0+38 +repage "$work/edge_past$i.png"; done
 r=$(rmse "$work/edge_past0.png" "$work/edge_past1.png")
 less 3 "$r"; check "the detail shows past the face edge, on the neighbouring face (rmse $r)" $?
@@ -169,7 +169,7 @@ less "$r" 0.3; check "undo takes it away there too (rmse $r)" $?
 run "$earth; camera_geo $spot 3000 0 -40 ground; view levels; screenshot $work/grid0.png $size;
      render tile_grid=on; screenshot $work/grid_tiles.png $size;
      render tile_grid=off level_grid=on; screenshot $work/grid_levels.png $size"
-check "the overlays render on a planet ($(cat "$work/err"))" $?
+rc=$?; check "the overlays render on a planet ($(cat "$work/err"))" $rc
 r=$(rmse "$work/grid0.png" "$work/grid_tiles.png")
 less 1 "$r"; check "the tile grid shows on a planet (rmse $r)" $?
 r=$(rmse "$work/grid_tiles.png" "$work/grid_levels.png")

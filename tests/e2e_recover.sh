@@ -113,7 +113,7 @@ last=${hashes[$n]}
 line=$(recovered)
 [ "$line" = "$last" ]; check "kill -9 after the last step: recover gives the exact terrain ($line, wanted $last)" $?
 grep -q "unsaved edits from .* ($((n + 0)) steps) can be recovered: 'recover' restores them" "$work/recover.err"
-check "loading says what can be recovered ($(head -c 300 "$work/recover.err"))" $?
+rc=$?; check "loading says what can be recovered ($(head -c 300 "$work/recover.err"))" $rc
 
 # A prefix: the hash is one of those after 0..k steps.
 in_prefix() { # hash k
@@ -222,7 +222,7 @@ step 0 >/dev/null
 status=$?
 [ $status = 1 ] && grep -q "w.world is open in process $app: opened read-only" "$work/second.err" &&
     grep -q "save: $work/w.world is open in process $app; save to another file" "$work/second.err"
-check "a second process opens the world read-only and cannot save over it ($(tail -n 1 "$work/second.err" | head -c 200))" $?
+rc=$?; check "a second process opens the world read-only and cannot save over it ($(tail -n 1 "$work/second.err" | head -c 200))" $rc
 "$orogen" "$work/w.world" -c "dab 10 10; save $work/copy.world" >/dev/null 2>&1
 [ -s "$work/copy.world" ]; check "it saves to another file" $?
 kill9

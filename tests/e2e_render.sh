@@ -125,7 +125,7 @@ done
 # material window holds paint), and undo takes it away again.
 run "camera $spot_x 250 $spot_z 0 -89; screenshot $work/paint0.png $size; tool paint material=3 radius=60 strength=1;
      dab $spot_x $spot_z; screenshot $work/paint1.png $size; undo; screenshot $work/paint2.png $size"
-check "paint and undo render ($(cat "$work/err"))" $?
+rc=$?; check "paint and undo render ($(cat "$work/err"))" $rc
 r=$(rmse "$work/paint0.png" "$work/paint1.png"); less 2 "$r"; check "the painted rock shows (RMSE $r)" $?
 r=$(rmse "$work/paint0.png" "$work/paint2.png"); less "$r" 0.5; check "undo takes the paint away (RMSE $r)" $?
 # A stroke shows while it goes on (the coarser levels follow each stroke_to), and its

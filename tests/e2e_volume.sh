@@ -153,7 +153,7 @@ print('edges not paired inside the region:', open_inside, 'ray hits:', hits(620.
 sys.exit(0 if open_inside == 0 and hits(620.3, 600.2) >= 3 else 1)
 EOF
 $py rays.py >rays.txt 2>&1
-check "arch.obj is closed inside the region and a vertical ray meets the arch twice and the ground ($(cat rays.txt))" $?
+rc=$?; check "arch.obj is closed inside the region and a vertical ray meets the arch twice and the ground ($(cat rays.txt))" $rc
 
 # The saved world keeps its volume edits.
 run -c "load caves.world; vsample 330 $in_cave 300"

@@ -214,7 +214,7 @@ check "each tool's settings are written to the settings" $?
 printf 'tool\ntool smooth; tool\nexit\n' | "$orogen" >"$work/rerun.out" 2>"$work/rerun.err"
 grep -q '^radius=12$' "$work/rerun.out" && grep -q '^radius=33$' "$work/rerun.out" &&
     grep -q '^falloff=tip$' "$work/rerun.out"
-check "the next run starts with each tool as it was left ($(grep -E '^(tool|radius|falloff)=' "$work/rerun.out" | tr '\n' ' '); $(head -c 200 "$work/rerun.err"))" $?
+rc=$?; check "the next run starts with each tool as it was left ($(grep -E '^(tool|radius|falloff)=' "$work/rerun.out" | tr '\n' ' '); $(head -c 200 "$work/rerun.err"))" $rc
 # Seed 004's level-of-detail keys in the settings: enable_dynamic_LOD and the planet's
 # split threshold (lod_pixels) are written, and read by the next run.
 grep -q '^enable_dynamic_LOD = 1;$' "$work/config/orogen/settings" &&
@@ -224,7 +224,25 @@ sed -i 's/^lod_pixels = .*/lod_pixels = 12;/; s/^enable_dynamic_LOD = .*/enable_
     "$work/config/orogen/settings"
 printf 'render\ndynamic_resolution\nexit\n' | "$orogen" >"$work/rerun2.out" 2>"$work/rerun2.err"
 grep -q 'lod_pixels=12 ' "$work/rerun2.out" && grep -q '^dynamic_resolution off' "$work/rerun2.out"
-check "enable_dynamic_LOD = 0 and lod_pixels = 12 are honoured ($(grep -E '^(render|dynamic)' "$work/rerun2.out" | tr '\n' ' '))" $?
+rc=$?; check "enable_dynamic_LOD = 0 and lod_pixels = 12 are honoured ($(grep -E '^(render|dynamic)' "$work/rerun2.out" | tr '\n' ' '))" $rc
+# Commands that arrive together: the screenshot after `new planet` shows the new world
+# from its own camera (it showed the planet from the old world's camera, at its centre).
+mkfifo "$work/batch-in"
+"$orogen" <"$work/batch-in" >"$work/out" 2>"$work/batch.err" &
+app=$!
+exec 3>"$work/batch-in"
+ask "camera" '^camera ' >/dev/null
+line=$(ask "$(printf 'new planet preset=moon\nwindow_screenshot %s\nui_widgets Viewport' "$work/batch.png")" '^Viewport ')
+echo "exit" >&3
+exec 3>&-
+wait $app
+read -r _ vx vy vw vh <<<"$line"
+centre=$(convert "$work/batch.png" -crop "40x40+$((vx + vw / 2 - 20))+$((vy + vh / 2 - 20))" +repage \
+    -colorspace gray -format '%[fx:int(255*mean)]' info: 2>&1)
+corner=$(convert "$work/batch.png" -crop "40x40+$((vx + 4))+$((vy + 4))" +repage \
+    -colorspace gray -format '%[fx:int(255*mean)]' info: 2>&1)
+[ -n "$vw" ] && [ "$centre" -gt 40 ] 2>/dev/null && [ "$corner" -lt 15 ] 2>/dev/null
+rc=$?; check "a screenshot in the same batch as 'new planet' shows the globe in space (centre $centre, corner $corner; $(head -c 200 "$work/batch.err"))" $rc
 cp "$work/session.og" "$work/replay.og"
 echo "hash $(awk -v x="$px" -v z="$pz" 'BEGIN { print x - 150, z - 150, x + 150, z + 150 }')" >>"$work/replay.og"
 "$orogen" --batch "$work/replay.og" >"$work/replay.out" 2>"$work/replay.err"

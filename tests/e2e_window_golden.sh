@@ -48,7 +48,7 @@ shoot() { # scale, output png
 for scale in 1 1.5; do
     name="window_${scale}x.png"
     shoot "$scale" "$work/$name"
-    [ -s "$work/$name" ]; check "the window at UI scale $scale is captured ($(tail -n 2 "$work/err-$scale" | tr '\n' ' '))" $?
+    [ -s "$work/$name" ]; rc=$?; check "the window at UI scale $scale is captured ($(tail -n 2 "$work/err-$scale" | tr '\n' ' '))" $rc
     cp "$work/$name" "$shots/$name" 2>/dev/null
     if [ -n "${OROGEN_UPDATE_GOLDEN:-}" ]; then
         cp "$work/$name" "$golden/$name" && echo "updated $golden/$name"
