@@ -593,6 +593,7 @@ static void on_cursor(GLFWwindow *win, double x, double y) {
 
 static void on_cursor_enter(GLFWwindow *win, int entered) {
     window_state *st = glfwGetWindowUserPointer(win);
+    st->mouse_in = entered;
     st->dirty = 1;
     // A pointer that left (with no button held) hovers nothing: no widget stays lit and no
     // tooltip comes up for a place the pointer no longer is.

@@ -80,6 +80,23 @@ xdotool windowfocus --sync "$wid" 2>/dev/null
 home() { echo "camera 0 -100 0 30 -40" >&3; wait_title "cam (0.0, -100.0, 0.0) yaw 30.0 pitch -40.0" && settle; }
 settle; rc=$?; check "every tile of the first view arrives (title says pending 0): $(title)" $rc
 home; check "console 'camera' places the camera (title shows it)" $?
+# The pointer leaves the window and comes back over the terrain: the status bar names the
+# ground under it only while it is there.
+status_item() { # PATTERN: the status bar's item matching it, within about 6 s
+    local l
+    for _ in $(seq 30); do
+        l=$(ask "ui_widgets Status/" '^Status/ ' >/dev/null; sleep 0.1; grep '^Status/' "$work/out" | tail -n 5 | grep -m 1 -- "$1")
+        [ -n "$l" ] && { echo "$l"; return 0; }
+        sleep 0.1
+    done
+    return 1
+}
+xdotool mousemove --window "$wid" $((VX + 100)) $((VY + 100)) sleep 0.3 mousemove 1399 899
+line=$(status_item '^Status/no terrain under the pointer ')
+rc=$?; check "the pointer off the window: no point in the status bar ($line)" $rc
+xdotool mousemove --window "$wid" $((VX + 200)) $((VY + 200))
+line=$(status_item '^Status/x ')
+rc=$?; check "the pointer over the terrain shows where it is in the status bar ($line)" $rc
 hash_box() { ask "hash $(awk -v x="$1" -v z="$2" 'BEGIN { print x - 150, z - 150, x + 150, z + 150 }')" '^[0-9a-f]\{16\}$'; }
 
 # Fly: right button held, W held for about a second: forward along the view (yaw 30,
