@@ -156,6 +156,11 @@ static void menus(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v, u
                                               : "Parallax detail: off##Parallax",
                          NULL, 1))
             runf(e, ctx, "render parallax=%s", v->settings.parallax ? "off" : "on");
+        if (ui_menu_item(ui,
+                         v->settings.antialias ? "Smooth edges: on##Antialias"
+                                               : "Smooth edges: off##Antialias",
+                         NULL, 1))
+            runf(e, ctx, "render antialias=%s", v->settings.antialias ? "off" : "on");
         static const double contours[] = {0, 10, 50, 100};
         for (int i = 0; i < 4; i++) {
             char label[64];

@@ -90,6 +90,10 @@ typedef struct window_state {
     // The terrain image, reused while only the UI changes; rendered at a lower
     // resolution while the camera moves or a stroke is drawn (dynamic resolution).
     gl_target terrain;
+    gl_target terrain_smooth; // the terrain image with its edges smoothed (full-size frames)
+    int smooth_shown;         // compose shows terrain_smooth
+    int smooth_owed;          // the image wants smoothing once the view is still
+    int smooth_failed;        // the pass failed once (reported): not tried again
     int terrain_valid;
     float res_scale;
     double terrain_ms; // wall time of the last terrain frame
@@ -1170,6 +1174,27 @@ static double now_ms(void) {
     return glfwGetTime() * 1e3;
 }
 
+// The still, full-size terrain image with its edges smoothed into terrain_smooth: one
+// pass over the image, never a new render (and never while moving, where it would
+// cost every frame). Returns 1 when compose shows the smoothed image.
+static int smooth_terrain(window_state *st) {
+    og_error err = {{0}};
+    const gl_target *t = &st->terrain;
+    if (st->terrain_smooth.width != t->width || st->terrain_smooth.height != t->height) {
+        gl_target_destroy(&st->terrain_smooth);
+        if (gl_target_create(&st->terrain_smooth, t->width, t->height, &err) != 0) goto failed;
+    }
+    if (viewport_antialias(st->v, t, &st->terrain_smooth, &err) != 0) goto failed;
+    st->smooth_shown = 1;
+    st->smooth_owed = 0;
+    return 1;
+failed:
+    report("viewport", &err);
+    st->smooth_failed = 1;
+    st->smooth_owed = 0;
+    return 0;
+}
+
 // Renders the terrain into its own image when something it shows changed: the camera,
 // the world, the view settings, the brush cursor, the viewport's size, or newly
 // arrived tiles. While the camera moves or a stroke is drawn the image is rendered
@@ -1191,7 +1216,13 @@ static int render_terrain(window_state *st, int vw, int vh, int arrived) {
                   memcmp(&v->settings, &st->drawn_settings, sizeof v->settings) != 0 ||
                   memcmp(&v->cursor, &st->drawn_cursor, sizeof v->cursor) != 0 ||
                   w != st->drawn_w || h != st->drawn_h;
-    if (!changed) return 0;
+    int wants_smooth = render_settings_smooth_edges(&v->settings) && !st->render_failed &&
+                       !st->smooth_failed && scale == 1.0f;
+    if (!changed) { // the view came to rest on a full-size image: smooth it now
+        if (wants_smooth && !moving && !st->smooth_shown && st->terrain_valid)
+            return smooth_terrain(st);
+        return 0;
+    }
     og_error err = {{0}};
     if (st->terrain.width != w || st->terrain.height != h) {
         gl_target_destroy(&st->terrain);
@@ -1210,6 +1241,9 @@ static int render_terrain(window_state *st, int vw, int vh, int arrived) {
                                      w, h, &err) != 0) {
         report("viewport", &err);
     }
+    st->smooth_shown = 0;
+    st->smooth_owed = wants_smooth;
+    if (wants_smooth && !moving) smooth_terrain(st);
     glFinish(); // the frame's real cost, for the resolution controller
     st->terrain_ms = now_ms() - t0;
     if (moving)
@@ -1235,9 +1269,10 @@ static void compose(window_state *st, const ui_draw_list *dl, int fw, int fh) {
     float k = ui_px(st, 1.0);
     int vx = (int)roundf(st->view_rect.x * k), vy = (int)roundf(st->view_rect.y * k);
     int vw = (int)roundf(st->view_rect.w * k), vh = (int)roundf(st->view_rect.h * k);
+    const gl_target *image = st->smooth_shown ? &st->terrain_smooth : &st->terrain;
     if (st->terrain_valid && vw > 0 && vh > 0)
-        glBlitNamedFramebuffer(st->terrain.fbo, 0, 0, 0, st->terrain.width, st->terrain.height, vx,
-                               fh - (vy + vh), vx + vw, fh - vy, GL_COLOR_BUFFER_BIT, GL_LINEAR);
+        glBlitNamedFramebuffer(image->fbo, 0, 0, 0, image->width, image->height, vx, fh - (vy + vh),
+                               vx + vw, fh - vy, GL_COLOR_BUFFER_BIT, GL_LINEAR);
     og_error err = {{0}};
     if (dl && ui_renderer_draw(st->uir, dl, st->font, fw, fh, &err) != 0) report("ui", &err);
 }
@@ -1368,6 +1403,7 @@ static int cmd_window_screenshot(cmd_context *ctx, int argc, char **argv, og_err
     float keep = st->res_scale;
     st->res_scale = 1.0f;
     render_terrain(st, (int)roundf(st->view_rect.w * k), (int)roundf(st->view_rect.h * k), 1);
+    if (st->smooth_owed) smooth_terrain(st); // as the view shows once it is still
     st->res_scale = keep;
     dl = build_ui(st, w, h); // the status bar with this frame's figures
     compose(st, dl, w, h);
@@ -1707,7 +1743,8 @@ int window_run(cmd_context *ctx, og_error *err) {
                 drawn = 1;
                 st.ui_dirty = 1; // the status bar shows the new frame's figures
             }
-            st.dirty = st.drawn_scale < 1.0f; // a lowered frame: full size once all is still
+            // A lowered frame: full size once all is still; a full-size one: smoothed then.
+            st.dirty = st.drawn_scale < 1.0f || st.smooth_owed;
         }
         if (drawn) {
             compose(&st, dl, w, h);
@@ -1734,6 +1771,7 @@ int window_run(cmd_context *ctx, og_error *err) {
     world_events_unsubscribe(st.changes);
     current_window = NULL;
     gl_target_destroy(&st.terrain);
+    gl_target_destroy(&st.terrain_smooth);
     for (int i = 0; i < st.ed.stamps.count; i++)
         ui_renderer_delete_texture(st.ed.stamps.entries[i].texture);
     for (int i = 0; i < 8; i++)

@@ -14,7 +14,8 @@
 //  6. clipmap levels 3, 5, 7, 9, 11 against frames per second (Crause 2010's Table 10);
 //  7. visual accuracy: Tabakovic 2024's RMSE between the clipmap and the naive mesh in the
 //     height view (same camera, projection, sun, sky and fog), goal <= 3, from three
-//     cameras; both images and an amplified difference are written as PNGs.
+//     cameras; both images and an amplified difference are written as PNGs;
+//  8. the anti-aliasing pass (renderer/antialias.h) against the shaded frame it smooths.
 // Usage: bench_render [OUT_DIR [SECTIONS]]: images go to OUT_DIR (default $TMPDIR, else
 // /tmp; created if missing); SECTIONS picks sections, e.g. "7" or "345" (default all).
 // llvmpipe on two cores is slow (the naive mesh's 33M triangles take seconds a frame,
@@ -22,6 +23,7 @@
 // interleaved passes (the machine is noisy); goals are reported (PASS/MISS), not asserted.
 #include "bench/bench_timing.h"
 #include "bench/naive_mesh.h"
+#include "renderer/antialias.h"
 
 #include "editor/cmd/commands.h"
 #include "editor/world/layer_grid.h"
@@ -629,6 +631,44 @@ static void bench_levels(bench *b, world *w1024, world *winf) {
     }
 }
 
+// 8. The anti-aliasing pass on the finished image against the shaded frame it smooths,
+// interleaved (same camera as 6, 8 levels).
+static void bench_antialias(bench *b, world *w1024, world *winf) {
+    (void)w1024;
+    og_error err;
+    char dir[4200];
+    snprintf(dir, sizeof dir, "%s/shaders", OROGEN_RESOURCE_DIR);
+    antialias *aa = antialias_create(dir, &err);
+    if (!aa) check(-1, &err, "anti-aliasing pass");
+    gl_target smooth;
+    check(gl_target_create(&smooth, WIDTH, HEIGHT, &err), &err, "second target");
+    camera c;
+    camera_default(&c);
+    c.pos[0] = 1200, c.pos[2] = -800;
+    c.pos[1] = surface_at(winf, c.pos[0], c.pos[2]) + 150;
+    c.yaw = 30, c.pitch = -8;
+    render_settings s;
+    render_settings_default(&s);
+    progress("8. anti-aliasing");
+    settle(b, winf, &c, &s);
+    clip_frame(b, winf, &c, &s);
+    enum { N = 9 };
+    double frame[N], pass[N];
+    for (int i = 0; i < N; i++) {
+        frame[i] = clip_frame(b, winf, &c, &s).wall_ms;
+        double t0 = bench_now();
+        check(antialias_apply(aa, &b->target, &smooth, &err), &err, "anti-aliasing");
+        glFinish();
+        pass[i] = (bench_now() - t0) * 1e3;
+    }
+    double f = bench_median(frame, N), a = bench_median(pass, N);
+    printf("\n8. Anti-aliasing pass at %dx%d: %.1f ms against the shaded frame's %.1f ms "
+           "(%.0f%% more)\n",
+           WIDTH, HEIGHT, a, f, 100.0 * a / f);
+    gl_target_destroy(&smooth);
+    antialias_destroy(aa);
+}
+
 static int wanted(const char *sections, char c) {
     return strchr(sections, c) != NULL;
 }
@@ -638,7 +678,7 @@ int main(int argc, char **argv) {
     const char *tmp = getenv("TMPDIR");
     b.out_dir = argc > 1 ? argv[1] : tmp && *tmp ? tmp : "/tmp";
     // Optional second argument: the sections to run, e.g. "7" or "356" (default all).
-    const char *sections = argc > 2 ? argv[2] : "1234567";
+    const char *sections = argc > 2 ? argv[2] : "12345678";
     if (mkdir(b.out_dir, 0777) != 0 && errno != EEXIST) {
         fprintf(stderr, "bench_render: cannot create %s: %s\n", b.out_dir, strerror(errno));
         return 1;
@@ -656,7 +696,7 @@ int main(int argc, char **argv) {
            (const char *)glGetString(GL_RENDERER), WIDTH, HEIGHT, b.out_dir);
 
     world *w4096 = make_world(4096), *w1024 = make_world(1024), *winf = make_world(0);
-    double times[8] = {0};
+    double times[9] = {0};
     if (wanted(sections, '1') || wanted(sections, '2') || wanted(sections, '7')) {
         naive_mesh m;
         double t0 = bench_now();
@@ -675,8 +715,12 @@ int main(int argc, char **argv) {
     struct {
         char id;
         void (*run)(bench *, world *, world *);
-    } rest[] = {{'3', bench_cpu}, {'4', bench_uploads}, {'5', bench_parallax}, {'6', bench_levels}};
-    for (int i = 0; i < 4; i++) {
+    } rest[] = {{'3', bench_cpu},
+                {'4', bench_uploads},
+                {'5', bench_parallax},
+                {'6', bench_levels},
+                {'8', bench_antialias}};
+    for (int i = 0; i < 5; i++) {
         if (!wanted(sections, rest[i].id)) continue;
         double t0 = bench_now();
         rest[i].run(&b, w1024, winf);
@@ -686,8 +730,10 @@ int main(int argc, char **argv) {
     printf("\nSummary\n");
     for (int i = 0; i < goal_count; i++)
         printf("   %s %s\n", goals[i].pass ? "PASS" : "MISS", goals[i].text);
-    printf("time: 1+2 %.0f s, 3 %.0f s, 4 %.0f s, 5 %.0f s, 6 %.0f s, 7 %.0f s; total %.0f s\n",
-           times[1], times[3], times[4], times[5], times[6], times[7], bench_now() - b.t_start);
+    printf("time: 1+2 %.0f s, 3 %.0f s, 4 %.0f s, 5 %.0f s, 6 %.0f s, 7 %.0f s, 8 %.0f s; total "
+           "%.0f s\n",
+           times[1], times[3], times[4], times[5], times[6], times[7], times[8],
+           bench_now() - b.t_start);
 
     terrain_renderer_destroy(b.r);
     gl_target_destroy(&b.target);

@@ -31,7 +31,10 @@ static const char *status_name(GLenum status) {
 int gl_target_create(gl_target *t, int width, int height, og_error *err) {
     memset(t, 0, sizeof *t);
     GLint max_size = 0;
+    GLint max_texture = 0;
     glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_size);
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_texture);
+    if (max_texture < max_size) max_size = max_texture;
     if (max_size > TARGET_SIZE_MAX) max_size = TARGET_SIZE_MAX;
     if (width < 1 || height < 1 || width > max_size || height > max_size)
         return og_error_set(err, "render target %dx%d: sizes must be 1..%d", width, height,
@@ -41,11 +44,11 @@ int gl_target_create(gl_target *t, int width, int height, og_error *err) {
     }
 
     glCreateFramebuffers(1, &t->fbo);
-    glCreateRenderbuffers(1, &t->colour);
+    glCreateTextures(GL_TEXTURE_2D, 1, &t->colour); // a texture: a later pass may read it
     glCreateRenderbuffers(1, &t->depth);
-    glNamedRenderbufferStorage(t->colour, GL_RGBA8, width, height);
+    glTextureStorage2D(t->colour, 1, GL_RGBA8, width, height);
     glNamedRenderbufferStorage(t->depth, GL_DEPTH_COMPONENT32F, width, height);
-    glNamedFramebufferRenderbuffer(t->fbo, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, t->colour);
+    glNamedFramebufferTexture(t->fbo, GL_COLOR_ATTACHMENT0, t->colour, 0);
     glNamedFramebufferRenderbuffer(t->fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, t->depth);
     glNamedFramebufferDrawBuffer(t->fbo, GL_COLOR_ATTACHMENT0);
     glNamedFramebufferReadBuffer(t->fbo, GL_COLOR_ATTACHMENT0);
@@ -70,7 +73,7 @@ int gl_target_create(gl_target *t, int width, int height, og_error *err) {
 
 void gl_target_destroy(gl_target *t) {
     if (t->fbo) glDeleteFramebuffers(1, &t->fbo);
-    if (t->colour) glDeleteRenderbuffers(1, &t->colour);
+    if (t->colour) glDeleteTextures(1, &t->colour);
     if (t->depth) glDeleteRenderbuffers(1, &t->depth);
     memset(t, 0, sizeof *t);
 }

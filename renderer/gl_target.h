@@ -1,4 +1,4 @@
-// An offscreen render target (framebuffer with colour and depth renderbuffers):
+// An offscreen render target (framebuffer with a colour texture and a depth renderbuffer):
 // what screenshots, golden-image tests and benchmarks render into, with or without a window.
 #ifndef OROGEN_RENDERER_GL_TARGET_H
 #define OROGEN_RENDERER_GL_TARGET_H

@@ -27,5 +27,10 @@ void render_settings_default(render_settings *s) {
                            .culling = 1,
                            .morph = 1,
                            .auto_materials = 1,
+                           .antialias = 1,
                            .lod_pixels = 6};
+}
+
+int render_settings_smooth_edges(const render_settings *s) {
+    return s->antialias && s->view == VIEW_SHADED;
 }

@@ -36,9 +36,13 @@ typedef struct render_settings {
     int auto_materials;        // the automatic material rules (grass, rock, snow by height and
                                // slope) colour unpainted ground; off: a neutral clay (1)
     double lod_pixels;         // planets: pixels a sample may cover before its chunk splits (6)
+    int antialias;             // edges smoothed in the finished image (renderer/antialias.h) (1)
 } render_settings;
 
 void render_settings_default(render_settings *s);
+// Whether the finished image gets its edges smoothed: antialias on, in the shaded view
+// (the debug views show their lines and colours pixel for pixel).
+int render_settings_smooth_edges(const render_settings *s);
 
 typedef struct brush_cursor {
     int visible;

@@ -22,7 +22,18 @@ void view_commands_set_viewport(cmd_context *ctx, viewport *v) {
 
 static viewport *get_viewport(cmd_context *ctx, og_error *err) {
     viewport *v = view_commands_viewport(ctx);
-    if (!v) og_error_set(err, "out of memory");
+    if (!v) {
+        og_error_set(err, "out of memory");
+        return NULL;
+    }
+    // A camera placed for an earlier world (`new` or `load` came since) is not this one's:
+    // the next picture places the new world's default camera, as the window does.
+    // (The window keeps cam_world_serial for its own reset: only commands placing the
+    // camera set it there.)
+    if (!v->window_context && v->cam_world_serial != ctx->world_serial) {
+        v->cam_set = 0;
+        v->cam_world_serial = ctx->world_serial;
+    }
     return v;
 }
 
@@ -145,12 +156,12 @@ static void print_settings(cmd_context *ctx, const render_settings *s) {
     fprintf(ctx->out,
             "render levels=%d parallax=%s quality=%d detail_distance=%g culling=%s morph=%s "
             "sun=%g,%g sun_rotation=%g fog=%g contours=%g tile_grid=%s level_grid=%s "
-            "auto_materials=%s lod_pixels=%g view=%s\n",
+            "auto_materials=%s antialias=%s lod_pixels=%g view=%s\n",
             s->levels, s->parallax ? "on" : "off", s->parallax_steps, s->detail_distance,
             s->culling ? "on" : "off", s->morph ? "on" : "off", s->sun_yaw, s->sun_pitch,
             s->sun_rotation, s->fog_density, s->contours, s->tile_grid ? "on" : "off",
-            s->level_grid ? "on" : "off", s->auto_materials ? "on" : "off", s->lod_pixels,
-            view_mode_name(s->view));
+            s->level_grid ? "on" : "off", s->auto_materials ? "on" : "off",
+            s->antialias ? "on" : "off", s->lod_pixels, view_mode_name(s->view));
 }
 
 static int cmd_render(cmd_context *ctx, int argc, char **argv, og_error *err) {
@@ -181,6 +192,8 @@ static int cmd_render(cmd_context *ctx, int argc, char **argv, og_error *err) {
             rc = parse_switch(value, key, &s.level_grid, err);
         else if (strcmp(key, "auto_materials") == 0)
             rc = parse_switch(value, key, &s.auto_materials, err);
+        else if (strcmp(key, "antialias") == 0)
+            rc = parse_switch(value, key, &s.antialias, err);
         else if (strcmp(key, "lod_pixels") == 0)
             rc = parse_number_in(value, key, 1, 64, &s.lod_pixels, err);
         else if (strcmp(key, "sun_rotation") == 0)
@@ -201,7 +214,7 @@ static int cmd_render(cmd_context *ctx, int argc, char **argv, og_error *err) {
                 err,
                 "render: unknown setting '%s' (levels parallax quality "
                 "detail_distance culling morph fog sun sun_rotation contours tile_grid "
-                "level_grid)",
+                "level_grid auto_materials antialias lod_pixels)",
                 key);
         if (rc != 0) return -1;
     }
@@ -270,8 +283,9 @@ static const cmd_def view_commands[] = {
      "contours (metres between contour lines, 0 = none), tile_grid=on|off (the tiles' edges), "
      "level_grid=on|off (each clipmap level's vertex grid), auto_materials=on|off (the "
      "automatic material rules on unpainted ground), lod_pixels (planets: pixels a sample may "
-     "cover before its chunk splits, 1-64, 6). Without arguments, prints them.",
-     0, 10, cmd_render, 0},
+     "cover before its chunk splits, 1-64, 6), antialias=on|off (edges smoothed in the finished "
+     "image). Without arguments, prints them.",
+     0, 16, cmd_render, 0},
     {"screenshot", "screenshot FILE [W H]",
      "Renders the viewport offscreen (no display needed) to an RGB PNG, W x H pixels (1280 x 720), "
      "once every visible tile is loaded.",

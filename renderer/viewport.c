@@ -1,5 +1,6 @@
 #include "renderer/viewport.h"
 
+#include "renderer/antialias.h"
 #include "renderer/gl_target.h"
 #include "renderer/planet_camera.h"
 #include "renderer/pick.h"
@@ -26,6 +27,7 @@ viewport *viewport_create(const char *resource_dir) {
 void viewport_destroy(viewport *v) {
     if (!v) return;
     terrain_renderer_destroy(v->renderer);
+    antialias_destroy(v->aa);
     gl_headless_destroy(v->headless);
     free(v);
 }
@@ -91,12 +93,21 @@ int viewport_settle(viewport *v, world *w, og_error *err) {
     }
 }
 
+int viewport_antialias(viewport *v, const gl_target *src, const gl_target *dst, og_error *err) {
+    if (!v->aa) {
+        char dir[sizeof v->resource_dir + 16];
+        snprintf(dir, sizeof dir, "%s/shaders", v->resource_dir);
+        if (!(v->aa = antialias_create(dir, err))) return -1;
+    }
+    return antialias_apply(v->aa, src, dst, err);
+}
+
 int viewport_screenshot(viewport *v, world *w, const char *path, int width, int height,
                         og_error *err) {
     if (viewport_prepare(v, err) != 0) return -1;
     terrain_renderer_set_view_size(v->renderer, width, height);
     if (viewport_settle(v, w, err) != 0) return -1;
-    gl_target target;
+    gl_target target, smooth = {0};
     if (gl_target_create(&target, width, height, err) != 0) return -1;
     unsigned char *rgb = malloc((size_t)width * height * 3);
     int rc = -1;
@@ -106,12 +117,19 @@ int viewport_screenshot(viewport *v, world *w, const char *path, int width, int 
         glBindFramebuffer(GL_FRAMEBUFFER, target.fbo);
         rc = terrain_renderer_draw(v->renderer, w, &v->cam, &v->settings, &v->cursor, width, height,
                                    err);
-        if (rc == 0) rc = gl_target_read_rgb(&target, rgb, err);
+        const gl_target *shown = &target;
+        if (rc == 0 && render_settings_smooth_edges(&v->settings)) {
+            rc = gl_target_create(&smooth, width, height, err);
+            if (rc == 0) rc = viewport_antialias(v, &target, &smooth, err);
+            shown = &smooth;
+        }
+        if (rc == 0) rc = gl_target_read_rgb(shown, rgb, err);
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
         if (rc == 0) rc = image_write_rgb8(path, rgb, width, height, err);
     }
     free(rgb);
     gl_target_destroy(&target);
+    gl_target_destroy(&smooth);
     return rc;
 }
 

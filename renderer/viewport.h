@@ -6,8 +6,10 @@
 
 #include "editor/world/world.h"
 #include "io/err.h"
+#include "renderer/antialias.h"
 #include "renderer/camera.h"
 #include "renderer/gl_context.h"
+#include "renderer/gl_target.h"
 #include "renderer/terrain_renderer.h"
 
 #include <stdint.h>
@@ -23,6 +25,7 @@ typedef struct viewport {
     gl_headless *headless; // owned; NULL when a window's context is used
     int window_context;    // a window made its context current: never make a headless one
     terrain_renderer *renderer;
+    antialias *aa; // made when first used
     char resource_dir[4096];
     double wait_seconds; // how long a screenshot waits for tiles (default 600)
 } viewport;
@@ -40,7 +43,11 @@ int viewport_prepare(viewport *v, og_error *err);
 // Updates the clipmaps until every level is current (at most wait_seconds).
 int viewport_settle(viewport *v, world *w, og_error *err);
 
-// Renders width x height pixels offscreen and writes them to path as an RGB PNG.
+// Draws src with its edges smoothed into dst (the same size; renderer/antialias.h).
+int viewport_antialias(viewport *v, const gl_target *src, const gl_target *dst, og_error *err);
+
+// Renders width x height pixels offscreen and writes them to path as an RGB PNG (edges
+// smoothed when the settings' antialias is on, as the window shows them).
 int viewport_screenshot(viewport *v, world *w, const char *path, int width, int height,
                         og_error *err);
 

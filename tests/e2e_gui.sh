@@ -231,6 +231,14 @@ click "Dock/History" && widget_gone "Dock/Steps/1 raise stroke"
 click "Menu/Edit" && click "Menu/Edit/History"
 widget "Dock/Steps/1 raise stroke" >/dev/null; check "Edit > History opens the History section" $?
 
+# 4c. View > Smooth edges turns the anti-aliasing off and on (render antialias=).
+click "Menu/View" && click "Menu/View/Smooth edges: on"
+line=$(ask_until render '^render ' 'antialias=off'); rc=$?
+check "View > Smooth edges: on turns it off ($line)" $rc
+click "Menu/View" && click "Menu/View/Smooth edges: off"
+line=$(ask_until render '^render ' 'antialias=on'); rc=$?
+check "View > Smooth edges: off turns it back on ($line)" $rc
+
 # 5. The World panel: Random picks another seed for the next Generate; Generate applies it.
 s0=$(ask nparams '^seed = ')
 click "Dock/Random"

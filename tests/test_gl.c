@@ -1,12 +1,14 @@
 // The renderer's GL foundations on a headless context: the context and feature
 // check, shader loading with #include and errors at the original file:line, and
-// offscreen targets read back top row first.
+// offscreen targets read back top row first, the anti-aliasing pass.
+#include "renderer/antialias.h"
 #include "renderer/gl_context.h"
 #include "renderer/gl_target.h"
 #include "renderer/shader.h"
 #include "support/test_support.h"
 
 #include <stdarg.h>
+#include <math.h>
 #include <setjmp.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -406,6 +408,78 @@ static void test_target_reads_top_row_first(void **state) {
     assert_int_equal(gl_check_error("scissor clears", &err), 0);
 }
 
+// Fills rows [0, below) of columns [x0, x1) white, as GL counts rows (bottom up).
+static void white_below(int x0, int x1, int below) {
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(x0, 0, x1 - x0, below);
+    glClearColor(1, 1, 1, 1);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glDisable(GL_SCISSOR_TEST);
+}
+
+// A nearly horizontal edge with a one-pixel step (as the horizon makes): the pass turns
+// the step into a ramp of greys along the edge, leaves flat areas exactly as they were
+// and keeps the image's mean; a flat image comes out unchanged.
+static void test_antialias_smooths_a_stepped_edge(void **state) {
+    (void)state;
+    enum { W = 64, H = 32 };
+    og_error err = {{0}};
+    char shaders[4200];
+    snprintf(shaders, sizeof shaders, "%s/shaders", OROGEN_RESOURCE_DIR);
+    antialias *aa = antialias_create(shaders, &err);
+    if (!aa) fail_msg("%s", err.msg);
+    gl_target src, dst;
+    if (gl_target_create(&src, W, H, &err) != 0 || gl_target_create(&dst, W, H, &err) != 0)
+        fail_msg("%s", err.msg);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, src.fbo);
+    glViewport(0, 0, W, H);
+    glClearColor(0, 0, 0, 1);
+    glClear(GL_COLOR_BUFFER_BIT);
+    white_below(0, W / 2, 12);
+    white_below(W / 2, W, 13);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    if (antialias_apply(aa, &src, &dst, &err) != 0) fail_msg("%s", err.msg);
+    static unsigned char before[W * H * 3], after[W * H * 3];
+    if (gl_target_read_rgb(&src, before, &err) != 0 || gl_target_read_rgb(&dst, after, &err) != 0)
+        fail_msg("%s", err.msg);
+    long sum_before = 0, sum_after = 0;
+    int greys = 0;
+    for (int i = 0; i < W * H * 3; i++)
+        sum_before += before[i], sum_after += after[i];
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            int v = after[(y * W + x) * 3];
+            int rows_from_edge = abs((H - 1 - y) - 12); // the edge lies between rows 11 and 13
+            if (rows_from_edge > 2 && v != before[(y * W + x) * 3])
+                fail_msg("pixel (%d, %d) far from the edge changed: %d", x, y, v);
+            if (v > 20 && v < 235 && abs(x - W / 2) <= 16) greys++;
+        }
+    if (greys < 8) fail_msg("only %d grey pixels along the step", greys);
+    double drift = fabs((double)(sum_after - sum_before)) / (double)sum_before;
+    if (drift > 0.02) fail_msg("the image's mean moved by %.1f%%", 100 * drift);
+
+    // A flat image: nothing to smooth.
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, src.fbo);
+    glClearColor(0.3f, 0.5f, 0.7f, 1);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    if (antialias_apply(aa, &src, &dst, &err) != 0) fail_msg("%s", err.msg);
+    if (gl_target_read_rgb(&src, before, &err) != 0 || gl_target_read_rgb(&dst, after, &err) != 0)
+        fail_msg("%s", err.msg);
+    assert_memory_equal(before, after, sizeof before);
+
+    // Targets of different sizes are refused by name.
+    gl_target small;
+    if (gl_target_create(&small, 8, 8, &err) != 0) fail_msg("%s", err.msg);
+    assert_int_equal(antialias_apply(aa, &src, &small, &err), -1);
+    assert_starts_with(err.msg, "anti-aliasing: the images must");
+    gl_target_destroy(&small);
+    gl_target_destroy(&src);
+    gl_target_destroy(&dst);
+    antialias_destroy(aa);
+    assert_int_equal(gl_check_error("anti-aliasing", &err), 0);
+}
+
 // A green triangle over the lower-left half at depth 0.75, then a red full-screen
 // triangle behind it (reversed-Z: 0.25 is farther): red must only fill the rest.
 static void test_target_renders_triangle_with_reversed_z(void **state) {
@@ -497,6 +571,7 @@ int main(void) {
         cmocka_unit_test(test_geometry_stage),
         cmocka_unit_test(test_target_rejects_bad_sizes),
         cmocka_unit_test(test_target_reads_top_row_first),
+        cmocka_unit_test(test_antialias_smooths_a_stepped_edge),
         cmocka_unit_test(test_target_renders_triangle_with_reversed_z),
     };
     return cmocka_run_group_tests(tests, setup_context, teardown_context);
