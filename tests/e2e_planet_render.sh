@@ -183,5 +183,11 @@ grep -q "camera_geo: planets only" "$work/err"; check "camera_geo on a flat worl
 run "new planet; camera_geo 10 10 nan"
 grep -q "ALT" "$work/err"; check "NaN altitude refused" $?
 
+# A camera placed for the flat world before `new planet` is not the planet's: the batch
+# shows the new world from its default camera (from orbit), not from the planet's centre.
+run "camera 400 -50 600 30 -25; new planet preset=moon; screenshot $work/after_new.png 64 36; camera"
+grep -q '^camera_geo 20.000000 30.000000 [0-9]' "$work/out"
+rc=$?; check "after new planet a batch screenshot places the planet's own camera ($(grep '^camera' "$work/out" | tr '\n' ' '))" $rc
+
 echo "$passes passed, $failures failed"
 [ "$failures" = 0 ]
