@@ -119,9 +119,11 @@ static void menus(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v, u
         int flat = world_get_params(ctx->world)->kind == WORLD_FLAT;
         if (ui_menu_item(ui, "Import heightmap...", NULL, flat))
             file_browser_show(&e->files, FILE_BROWSER_IMPORT, e->interchange.path);
-        if (ui_menu_item(ui, "Export heightmap...", NULL, flat))
+        if (flat && ui_menu_item(ui, "Export heightmap...", NULL, 1))
             file_browser_show(&e->files, FILE_BROWSER_EXPORT,
                               e->interchange.path[0] ? e->interchange.path : "heightmap.exr");
+        if (!flat && ui_menu_item(ui, "Export planet...", NULL, 1)) // seed 004's export N FILE
+            file_browser_show(&e->files, FILE_BROWSER_EXPORT_PLANET, "planet.obj");
         ui_menu_separator(ui);
         if (ui_menu_item(ui, "Quit", "Ctrl+Q", 1)) editor_ui_request(e, ctx, PENDING_QUIT);
         ui_menu_end(ui);
@@ -1215,11 +1217,15 @@ static void files_dialog(editor_ui *e, ui_context *ui, cmd_context *ctx, ui_rect
         editor_ui_request(e, ctx, PENDING_OPEN);
         return;
     }
-    if (e->files.mode == FILE_BROWSER_IMPORT || e->files.mode == FILE_BROWSER_EXPORT) {
+    if (e->files.mode == FILE_BROWSER_IMPORT || e->files.mode == FILE_BROWSER_EXPORT ||
+        e->files.mode == FILE_BROWSER_EXPORT_PLANET) {
         const world_params *p = world_get_params(ctx->world);
         double bounded = p->size > 0 ? (double)(p->size - 1) * p->spacing : 0.0;
-        interchange_dialog_show(&e->interchange, e->files.mode == FILE_BROWSER_EXPORT,
+        interchange_dialog_show(&e->interchange, e->files.mode != FILE_BROWSER_IMPORT,
                                 e->files.path, bounded, p->max_height, e->view_x, e->view_z);
+        e->interchange.planet = e->files.mode == FILE_BROWSER_EXPORT_PLANET;
+        if (!e->interchange.subdivision[0])
+            snprintf(e->interchange.subdivision, sizeof e->interchange.subdivision, "8");
         return;
     }
     char arg[4200], cmd[4300];

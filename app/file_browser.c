@@ -14,6 +14,7 @@ static int listed_file(file_browser_mode mode, const char *name) {
     const char *dot = strrchr(name, '.');
     if (!dot) return 0;
     if (mode == FILE_BROWSER_SCRIPT) return strcmp(dot, ".og") == 0 || strcmp(dot, ".txt") == 0;
+    if (mode == FILE_BROWSER_EXPORT_PLANET) return strcasecmp(dot, ".obj") == 0;
     if (mode == FILE_BROWSER_IMPORT || mode == FILE_BROWSER_EXPORT) {
         static const char *const rasters[] = {".png", ".tif", ".tiff", ".exr", ".r16", ".raw",
                                               ".hgt", ".asc", ".pgm",  ".pfm", ".dem", ".bil"};
@@ -27,14 +28,17 @@ static int listed_file(file_browser_mode mode, const char *name) {
     return strcmp(dot, ".world") == 0 || strcmp(dot, ".planet") == 0;
 }
 
-static const char *const titles[] = {"Open", "Save as", "Save session script", "Import heightmap",
-                                     "Export heightmap"};
+static const char *const titles[] = {
+    "Open",         "Save as", "Save session script", "Import heightmap", "Export heightmap",
+    "Export planet"};
 static const char *const intros[] = {
     "Open a world (.world or .planet)",
     "Save the world as (a .world file; its tiles go beside it as NAME.tiles)",
     "Save this session's commands as a script (.og) that replays it on the starting world",
     "Import a heightmap: PNG, TIFF, EXR, RAW/R16, SRTM .hgt, GeoTIFF, ASCII grid",
-    "Export a heightmap: .png (16-bit), .tif (float GeoTIFF), .exr (float), .r16"};
+    "Export a heightmap: .png (16-bit), .tif (float GeoTIFF), .exr (float), .r16",
+    "Export the planet: an .obj of the subdivided cube, its face height and normal maps beside "
+    "it"};
 
 static int sort_mode; // qsort has no user pointer
 
@@ -168,12 +172,14 @@ int file_browser_draw(file_browser *b, ui_context *ui, ui_rect r) {
     ui_tooltip(ui, "The file: type a path, or pick one above");
     float bottom[2] = {-0.5f, 0};
     ui_row(ui, 2, bottom, line);
-    static const char *const go_labels[] = {"Open##go", "Save##go", "Save##go", "Next##go",
-                                            "Next##go"};
-    static const char *const go_tips[] = {"Open the chosen world", "Save the world there",
+    static const char *const go_labels[] = {"Open##go", "Save##go", "Save##go",
+                                            "Next##go", "Next##go", "Next##go"};
+    static const char *const go_tips[] = {"Open the chosen world",
+                                          "Save the world there",
                                           "Write the script there",
                                           "Choose how to import it (next: the import options)",
-                                          "Choose what to export there (next: the export options)"};
+                                          "Choose what to export there (next: the export options)",
+                                          "Export the planet there (next: its subdivision)"};
     int go = ui_button(ui, b->confirm_overwrite ? "Overwrite##go" : go_labels[b->mode]) ||
              (rc & UI_TEXT_SUBMIT);
     ui_tooltip(ui, go_tips[b->mode]);

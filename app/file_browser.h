@@ -13,11 +13,12 @@
 #define FILE_BROWSER_MAX 512
 
 typedef enum file_browser_mode {
-    FILE_BROWSER_OPEN,   // a world to open
-    FILE_BROWSER_SAVE,   // where to save the world
-    FILE_BROWSER_SCRIPT, // where to save the session as a script (.og)
-    FILE_BROWSER_IMPORT, // a heightmap or elevation raster to import
-    FILE_BROWSER_EXPORT, // where to export a heightmap
+    FILE_BROWSER_OPEN,          // a world to open
+    FILE_BROWSER_SAVE,          // where to save the world
+    FILE_BROWSER_SCRIPT,        // where to save the session as a script (.og)
+    FILE_BROWSER_IMPORT,        // a heightmap or elevation raster to import
+    FILE_BROWSER_EXPORT,        // where to export a heightmap
+    FILE_BROWSER_EXPORT_PLANET, // where to export a planet's mesh and face images (.obj)
 } file_browser_mode;
 
 typedef struct file_browser_entry {

@@ -138,7 +138,30 @@ static void import_fields(interchange_dialog *d, ui_context *ui) {
     ui_tooltip(ui, "Fade the edges into the terrain over this distance");
 }
 
+// Seed 004's export: the cube's subdivision (with what it makes) and the face images.
+static void planet_fields(interchange_dialog *d, ui_context *ui) {
+    ui_form_field(ui, "Subdivision", "subdivision", d->subdivision, sizeof d->subdivision,
+                  "N: the cube's faces split until there are 12 x 2^N triangles (0 .. 20)");
+    ui_row(ui, 1, NULL, 0);
+    char *end;
+    long n = strtol(d->subdivision, &end, 10);
+    char line[160];
+    if (end != d->subdivision && !*end && n >= 0 && n <= 20)
+        snprintf(line, sizeof line, "%zu vertices, %zu triangles", ((size_t)6 << n) + 2,
+                 (size_t)12 << n);
+    else
+        snprintf(line, sizeof line, "the subdivision is a whole number 0 .. 20");
+    ui_label(ui, line);
+    ui_form_field(ui, "Image size", "image_size", d->image_size, sizeof d->image_size,
+                  "Pixels per side of the six height and six normal maps (blank: the face "
+                  "grid's own, up to 8192)");
+}
+
 static void export_fields(interchange_dialog *d, ui_context *ui) {
+    if (d->planet) {
+        planet_fields(d, ui);
+        return;
+    }
     ui_row(ui, 1, NULL, 0);
     ui_checkbox(ui, "The whole world##whole", &d->whole);
     ui_tooltip(ui, "Every sample of a bounded world (else the region below)");
@@ -166,6 +189,7 @@ static void export_fields(interchange_dialog *d, ui_context *ui) {
 
 int interchange_dialog_rows(const interchange_dialog *d) {
     // The most it can show (ticking a box must not push the buttons out of view).
+    if (d->exporting && d->planet) return 5; // title, subdivision, counts, images, buttons
     if (d->exporting) return 9; // title, whole, 4 region edges, preset, 16-bit TIFF, buttons
     // title x z centre layer map min max, file, histogram (about 1.5 rows), heights,
     // blend resample falloff buttons
@@ -188,8 +212,9 @@ int interchange_dialog_draw(interchange_dialog *d, ui_context *ui, ui_rect r, ch
     float bottom[2] = {-0.5f, 0};
     ui_row(ui, 2, bottom, 0);
     int go = ui_button(ui, d->exporting ? "Export##go" : "Import##go");
-    ui_tooltip(ui, d->exporting ? "Write the file (and its .json sidecar)"
-                                : "Import it as one undo step");
+    ui_tooltip(ui, !d->exporting ? "Import it as one undo step"
+                   : d->planet   ? "Write the mesh and its twelve face images"
+                                 : "Write the file (and its .json sidecar)");
     if (ui_button(ui, "Cancel")) d->open = 0;
     ui_tooltip(ui, "Close without doing anything (Esc)");
     ui_panel_end(ui);
@@ -199,7 +224,10 @@ int interchange_dialog_draw(interchange_dialog *d, ui_context *ui, ui_rect r, ch
     static const char *const blends[] = {"replace", "add", "max", "min"};
     static const char *const resamples[] = {"nearest", "bilinear", "bicubic"};
     static const char *const presets[] = {"none", "unreal", "unity", "godot", "houdini", "blender"};
-    if (d->exporting) {
+    if (d->exporting && d->planet) {
+        snprintf(cmd, cmd_len, "export %s %s%s%s", d->subdivision, path,
+                 d->image_size[0] ? " size=" : "", d->image_size);
+    } else if (d->exporting) {
         char region[200] = "";
         if (!d->whole)
             snprintf(region, sizeof region, " region=%s,%s,%s,%s", d->region[0], d->region[1],

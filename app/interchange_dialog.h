@@ -1,7 +1,8 @@
-// The options dialogs of File > Import heightmap and Export heightmap: after the
-// file browser chose the file, where and how to import it (placement, layer, height
-// mapping, blending) or what to export (region, engine preset, 16-bit TIFF). The
-// dialog only builds the import / export command; the editor runs it.
+// The options dialogs of File > Import heightmap, Export heightmap and Export planet:
+// after the file browser chose the file, where and how to import it (placement, layer,
+// height mapping, blending), what to export (region, engine preset, 16-bit TIFF), or a
+// planet's mesh (seed 004's `export N FILE`: the cube's subdivision, the face images'
+// size). The dialog only builds the import / export command; the editor runs it.
 #ifndef OROGEN_APP_INTERCHANGE_DIALOG_H
 #define OROGEN_APP_INTERCHANGE_DIALOG_H
 
@@ -34,6 +35,10 @@ typedef struct interchange_dialog {
     char region[4][32]; // X0 Z0 X1 Z1 metres
     int preset;         // none unreal unity godot houdini blender
     int bits16;         // .tif as 16-bit
+    // export of a planet (set after interchange_dialog_show)
+    int planet;
+    char subdivision[16]; // N: 12 x 2^N triangles
+    char image_size[16];  // face images' pixels per side ("": the face grid's own)
 } interchange_dialog;
 
 // Opens the dialog for path with defaults: bounded (world size in metres, 0 when

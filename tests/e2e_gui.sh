@@ -580,6 +580,22 @@ line=$(ask camera '^camera_geo '); case "$line" in "camera_geo 10.000000 20.0000
 check "camera_geo right after new planet keeps its place ($line)" $?
 widget_gone "Tools/Carve" && widget "Tools/Raise" >/dev/null
 check "the palette leaves out the volume tools on a planet (caves are for flat worlds)" $?
+# File > Export planet...: seed 004's export N FILE through the file browser and a
+# dialog that shows what the subdivision makes.
+click "Menu/File" && widget_gone "Menu/File/Export heightmap..." && click "Menu/File/Export planet..."
+fill "Export planet/Path" "$work/moon.obj"
+click "Export planet/Next"
+fill "Export options/subdivision" "5"
+widget "Export options/194 vertices, 384 triangles" >/dev/null
+rc=$?; check "the export dialog counts the subdivision's vertices and triangles" $rc
+fill "Export options/image_size" "128"
+import -window "$wid" "$art/gui_export_planet.png" 2>/dev/null
+click "Export options/Export"
+for _ in $(seq 100); do [ -s "$work/moon_normal_5.png" ] && [ -s "$work/moon.obj" ] && break; sleep 0.1; done
+sleep 0.2
+[ "$(grep -c '^v ' "$work/moon.obj" 2>/dev/null)" = 194 ] && [ "$(grep -c '^f ' "$work/moon.obj")" = 384 ] &&
+    ls "$work"/moon_height_*.png >/dev/null 2>&1
+rc=$?; check "File > Export planet... writes the OBJ (194 vertices, 384 faces) and its face images ($(ls "$work" | grep -c '^moon_') files)" $rc
 # The World panel shows a planet's sea by its height above the datum: a drag to the
 # slider's right quarter puts the sea above the datum (ocean_level, its radius, > radius).
 # Finds the dock widget NAME (x y w h), the wheel scrolling the dock down to it while it
