@@ -1202,7 +1202,10 @@ static void replace_dialog(editor_ui *e, ui_context *ui, cmd_context *ctx, ui_re
 }
 
 void editor_ui_save_as(editor_ui *e, cmd_context *ctx) {
-    file_browser_show(&e->files, FILE_BROWSER_SAVE, world_path(ctx->world));
+    const char *path = world_path(ctx->world);
+    // A planet never saved: seed 004's extension, so Open lists it with the planets.
+    if (!path[0] && world_get_params(ctx->world)->kind == WORLD_PLANET) path = "planet.planet";
+    file_browser_show(&e->files, FILE_BROWSER_SAVE, path);
 }
 
 void editor_ui_open(editor_ui *e, cmd_context *ctx) {

@@ -33,7 +33,7 @@ static const char *const titles[] = {
     "Export planet"};
 static const char *const intros[] = {
     "Open a world (.world or .planet)",
-    "Save the world as (a .world file; its tiles go beside it as NAME.tiles)",
+    "Save the world as (a .world or .planet file; its tiles go beside it as NAME.tiles)",
     "Save this session's commands as a script (.og) that replays it on the starting world",
     "Import a heightmap: PNG, TIFF, EXR, RAW/R16, SRTM .hgt, GeoTIFF, ASCII grid",
     "Export a heightmap: .png (16-bit), .tif (float GeoTIFF), .exr (float), .r16",
