@@ -1296,6 +1296,9 @@ static ui_rect dialog_rect(const editor_ui *e, const ui_context *ui, float width
     if (e->files.open)
         return centred(width, height, fminf(width * 0.9f, ui_em(ui, 34)),
                        fminf(height * 0.85f, ui_em(ui, 24)));
+    if (e->interchange.open && e->interchange.planet) // rows of 1.4 em, 0.2 em gaps, padding
+        return centred(width, height, fminf(width * 0.9f, ui_em(ui, 24)),
+                       ui_em(ui, 1.6f * (float)interchange_dialog_rows(&e->interchange) + 0.8f));
     if (e->interchange.open)
         return centred(
             width, height, fminf(width * 0.9f, ui_em(ui, 24)),

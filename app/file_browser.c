@@ -37,8 +37,7 @@ static const char *const intros[] = {
     "Save this session's commands as a script (.og) that replays it on the starting world",
     "Import a heightmap: PNG, TIFF, EXR, RAW/R16, SRTM .hgt, GeoTIFF, ASCII grid",
     "Export a heightmap: .png (16-bit), .tif (float GeoTIFF), .exr (float), .r16",
-    "Export the planet: an .obj of the subdivided cube, its face height and normal maps beside "
-    "it"};
+    "Export the planet: an .obj and its face height and normal maps"};
 
 static int sort_mode; // qsort has no user pointer
 
