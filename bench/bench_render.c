@@ -591,13 +591,19 @@ static void bench_parallax(bench *b, world *w1024, world *winf) {
 
 // ---- 6: levels against FPS ------------------------------------------------------------
 
-static void bench_levels(bench *b, world *w1024, world *winf) {
-    (void)w1024;
+// Sections 6 and 8: 150 m above the unbounded world's ground, looking 8 degrees down.
+static camera levels_camera(world *winf) {
     camera c;
     camera_default(&c);
     c.pos[0] = 1200, c.pos[2] = -800;
     c.pos[1] = surface_at(winf, c.pos[0], c.pos[2]) + 150;
     c.yaw = 30, c.pitch = -8;
+    return c;
+}
+
+static void bench_levels(bench *b, world *w1024, world *winf) {
+    (void)w1024;
+    camera c = levels_camera(winf);
     render_settings s;
     render_settings_default(&s);
     enum { NL = 5 };            // 3, 5, 7, 9, 11 as in Crause 2010's Table 10
@@ -642,11 +648,7 @@ static void bench_antialias(bench *b, world *w1024, world *winf) {
     if (!aa) check(-1, &err, "anti-aliasing pass");
     gl_target smooth;
     check(gl_target_create(&smooth, WIDTH, HEIGHT, &err), &err, "second target");
-    camera c;
-    camera_default(&c);
-    c.pos[0] = 1200, c.pos[2] = -800;
-    c.pos[1] = surface_at(winf, c.pos[0], c.pos[2]) + 150;
-    c.yaw = 30, c.pitch = -8;
+    camera c = levels_camera(winf);
     render_settings s;
     render_settings_default(&s);
     progress("8. anti-aliasing");
