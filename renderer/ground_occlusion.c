@@ -1,0 +1,131 @@
+#include "renderer/ground_occlusion.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+enum { COLUMNS = GROUND_OCCLUSION_COLUMNS, BANDS = GROUND_OCCLUSION_BANDS, MAX_POINTS = 8 };
+
+static double dot(const double a[3], const double b[3]) {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+void ground_occlusion_begin(ground_occlusion *o, const double eye[3], const double forward[3],
+                            const double right[3], const double up[3], double tan_half_x,
+                            double tan_half_y) {
+    for (int k = 0; k < 3; k++)
+        o->eye[k] = eye[k], o->forward[k] = forward[k], o->right[k] = right[k], o->up[k] = up[k];
+    o->tan_half_x = tan_half_x, o->tan_half_y = tan_half_y;
+    for (int b = 0; b < BANDS; b++)
+        for (int i = 0; i < COLUMNS; i++)
+            o->lo[b][i] = INFINITY, o->hi[b][i] = -INFINITY;
+}
+
+// Screen points: x in columns (0 at the left edge), y from -1 (bottom) to 1 (top); the
+// nearest and farthest points' depths along the view (what orders two points on one
+// pixel's ray). 0 when a point is not in front of the camera.
+static int project(const ground_occlusion *o, const double (*pts)[3], int n, double out[][2],
+                   double *nearest, double *farthest) {
+    *nearest = INFINITY, *farthest = 0;
+    for (int k = 0; k < n; k++) {
+        const double d[3] = {pts[k][0] - o->eye[0], pts[k][1] - o->eye[1], pts[k][2] - o->eye[2]};
+        const double z = dot(d, o->forward), dist = sqrt(dot(d, d));
+        if (!(z > 1e-6 * dist)) return 0;
+        out[k][0] = (dot(d, o->right) / (z * o->tan_half_x) + 1.0) * 0.5 * COLUMNS;
+        out[k][1] = dot(d, o->up) / (z * o->tan_half_y);
+        *nearest = fmin(*nearest, z), *farthest = fmax(*farthest, z);
+    }
+    return 1;
+}
+
+static int by_x(const void *a, const void *b) {
+    const double *p = a, *q = b;
+    return p[0] < q[0] ? -1 : p[0] > q[0] ? 1 : (p[1] > q[1]) - (p[1] < q[1]);
+}
+
+static double cross(const double o[2], const double a[2], const double b[2]) {
+    return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+}
+
+// The convex hull, counter-clockwise (Andrew's monotone chain); returns its size.
+static int hull(double p[][2], int n, double out[][2]) {
+    qsort(p, (size_t)n, sizeof p[0], by_x);
+    int k = 0;
+    for (int i = 0; i < n; i++) {
+        while (k >= 2 && cross(out[k - 2], out[k - 1], p[i]) <= 0)
+            k--;
+        out[k][0] = p[i][0], out[k][1] = p[i][1], k++;
+    }
+    for (int i = n - 2, lower = k + 1; i >= 0; i--) {
+        while (k >= lower && cross(out[k - 2], out[k - 1], p[i]) <= 0)
+            k--;
+        out[k][0] = p[i][0], out[k][1] = p[i][1], k++;
+    }
+    return k - 1;
+}
+
+// The hull's vertical extent at x; 0 when the line misses it.
+static int span_at(const double h[][2], int n, double x, double *lo, double *hi) {
+    *lo = INFINITY, *hi = -INFINITY;
+    for (int k = 0; k < n; k++) {
+        const double *a = h[k], *b = h[(k + 1) % n];
+        if ((x < a[0] && x < b[0]) || (x > a[0] && x > b[0])) continue;
+        double y = a[0] == b[0] ? a[1] : a[1] + (b[1] - a[1]) * (x - a[0]) / (b[0] - a[0]);
+        if (a[0] == b[0]) *lo = fmin(*lo, fmin(a[1], b[1])), *hi = fmax(*hi, fmax(a[1], b[1]));
+        *lo = fmin(*lo, y), *hi = fmax(*hi, y);
+    }
+    return *lo <= *hi;
+}
+
+// The first band whose depth holds `depth` (BANDS when none does).
+static int band_holding(double depth) {
+    int b = depth <= 1.0 ? 0 : (int)ceil(log2(depth) * GROUND_OCCLUSION_BANDS_PER_OCTAVE);
+    return b < BANDS ? b : BANDS;
+}
+
+void ground_occlusion_add_solid(ground_occlusion *o, const double (*pts)[3], int n) {
+    double p[MAX_POINTS][2], h[MAX_POINTS + 1][2], nearest, farthest;
+    if (n < 3 || n > MAX_POINTS || !project(o, pts, n, p, &nearest, &farthest)) return;
+    const int m = hull(p, n, h);
+    if (m < 3) return;
+    const int first = band_holding(farthest);
+    if (first >= BANDS) return;
+    double minx = INFINITY, maxx = -INFINITY;
+    for (int k = 0; k < m; k++)
+        minx = fmin(minx, h[k][0]), maxx = fmax(maxx, h[k][0]);
+    // Column i spans [i, i + 1]: covered where the hull holds both of its edges (and so,
+    // being convex, everything between).
+    const int i0 = (int)fmax(ceil(minx), 0), i1 = (int)fmin(floor(maxx), COLUMNS) - 1;
+    for (int i = i0; i <= i1; i++) {
+        double lo0, hi0, lo1, hi1;
+        if (!span_at(h, m, i, &lo0, &hi0) || !span_at(h, m, i + 1, &lo1, &hi1)) continue;
+        const float lo = (float)fmax(lo0, lo1), hi = (float)fmin(hi0, hi1);
+        if (!(lo < hi)) continue;
+        for (int b = first; b < BANDS; b++) {
+            float *cl = &o->lo[b][i], *ch = &o->hi[b][i];
+            if (*cl <= *ch && lo <= *ch && hi >= *cl) // overlapping the run: one run
+                *cl = fminf(*cl, lo), *ch = fmaxf(*ch, hi);
+            else if (*cl > *ch || hi > *ch) // none yet, or apart and higher: the horizon's side
+                *cl = lo, *ch = hi;
+        }
+    }
+}
+
+int ground_occlusion_hidden(const ground_occlusion *o, const double (*pts)[3], int n) {
+    double p[MAX_POINTS][2], nearest, farthest;
+    if (n < 1 || n > MAX_POINTS || !project(o, pts, n, p, &nearest, &farthest)) return 0;
+    double minx = INFINITY, maxx = -INFINITY, miny = INFINITY, maxy = -INFINITY;
+    for (int k = 0; k < n; k++) {
+        minx = fmin(minx, p[k][0]), maxx = fmax(maxx, p[k][0]);
+        miny = fmin(miny, p[k][1]), maxy = fmax(maxy, p[k][1]);
+    }
+    if (maxx < 0 || minx >= COLUMNS || maxy < -1 || miny > 1) return 0;
+    // Covered nearer than the hull's nearest point: the last band wholly nearer.
+    const int band = band_holding(nearest) - 1;
+    if (band < 0) return 0;
+    const int b = band < BANDS ? band : BANDS - 1;
+    const int i0 = (int)fmax(floor(minx), 0), i1 = (int)fmin(floor(maxx), COLUMNS - 1);
+    const float lo = (float)fmax(miny, -1.0), hi = (float)fmin(maxy, 1.0); // what is on screen
+    for (int i = i0; i <= i1; i++)
+        if (!(o->lo[b][i] <= lo && hi <= o->hi[b][i])) return 0;
+    return 1;
+}
