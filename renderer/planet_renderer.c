@@ -3,6 +3,7 @@
 #include "editor/params/world_grid.h"
 #include "io/tile_cache.h"
 #include "renderer/frustum.h"
+#include "renderer/ground_occlusion.h"
 #include "renderer/lighting.h"
 #include "renderer/planet_detail.h"
 #include "renderer/planet_camera.h"
@@ -33,6 +34,7 @@
 #define TEX_PERIOD_FAR 64.0    // the larger scale that breaks up repetition (a multiple)
 #define EARTH_RADIUS 6371000.0 // the atmosphere scales with the planet from Earth's
 #define EARTH_SCALE_HEIGHT 8000.0
+#define TOP_CELLS 8 // the tops of a chunk's 2 x 2 cell squares, for the ground under the camera
 
 typedef struct chunk {
     uint64_t key; // 0: free
@@ -43,6 +45,8 @@ typedef struct chunk {
     float reach;      // metres from the origin to the farthest vertex (skirts aside)
     int painted;      // some vertex has painted weights
     int level;
+    float top[TOP_CELLS]
+             [TOP_CELLS];  // the highest the mesh reaches over each square (morphed or not)
     double morph_reach;    // this frame: where the parent level would take over (metres)
     double near_dist;      // this frame: from the camera to its bounding sphere (drawing order)
     double metres_base[2]; // face-local metres the vertices' texture metres are relative to
@@ -99,6 +103,10 @@ struct planet_renderer {
     double split_pixels;      // a sample wider than this on screen: its chunk splits
     int draw_count;
     int draw_list[MAX_CHUNKS];
+    // Drawing: the chosen chunks nearest first, those hidden by nearer ground left out.
+    int shown_count;
+    int shown[MAX_CHUNKS];
+    ground_occlusion occlusion;
     planet_stats stats;
 };
 
@@ -226,6 +234,7 @@ static int behind_horizon(const planet_renderer *r, const double centre[3], doub
 typedef struct node_bounds {
     double centre[3], radius; // bounding sphere, planet coordinates
     double cell;              // metres per sample at this level
+    double hmin, hmax;        // metres above the datum (the generator's range when unbuilt)
 } node_bounds;
 
 // Returns 1 when the node is visible (not behind the horizon, in the view).
@@ -254,6 +263,7 @@ static int node_visible(planet_renderer *r, const node *n, double hmin, double h
     // The faces bulge between the corners: a chunk's arc adds up to ~1/8 of its width.
     b->radius *= 1.15;
     b->cell = ldexp(r->cell_arc, n->level);
+    b->hmin = hmin, b->hmax = hmax;
     if (behind_horizon(r, b->centre, b->radius, r->params.radius + hmax)) return 0;
     // The bounding sphere against each plane (tighter than its box).
     const double rel[3] = {b->centre[0] - r->cam->pos[0], b->centre[1] - r->cam->pos[1],
@@ -265,10 +275,10 @@ static int node_visible(planet_renderer *r, const node *n, double hmin, double h
     return 1;
 }
 
-// How much a sample's projected size shrinks seen at a grazing angle near the ground:
-// the geometric mean of its two projected sides (1 when not judged). Only near the
-// ground: from high up the coarser chunks would draw coastlines (the sea is per vertex)
-// in visibly large steps; and not for a chunk the camera stands in (the view across it
+// How much a sample's projected size shrinks seen at a grazing angle: the geometric mean
+// of its two projected sides (1 when not judged). From high up, not where the chunk has
+// a coast: coarser chunks would draw coastlines (the sea is per vertex) in visibly large
+// steps toward the limb. Not for a chunk the camera stands in (the view across it
 // varies too much).
 static int near_ground(const planet_renderer *r) {
     return r->camera_altitude < 0.01 * r->params.radius;
@@ -276,7 +286,10 @@ static int near_ground(const planet_renderer *r) {
 
 static double grazing(const planet_renderer *r, const node_bounds *b, double centre_dist,
                       const double d[3]) {
-    if (!(centre_dist > 2.0 * b->radius && near_ground(r))) return 1.0;
+    if (!(centre_dist > 2.0 * b->radius)) return 1.0;
+    const double ocean = world_params_ocean_height(&r->params);
+    const int coast = b->hmin <= ocean && ocean <= b->hmax;
+    if (!near_ground(r) && coast) return 1.0;
     double rc = sqrt(b->centre[0] * b->centre[0] + b->centre[1] * b->centre[1] +
                      b->centre[2] * b->centre[2]);
     double cosv =
@@ -392,6 +405,12 @@ static int painted_weights(const node *n, const uint8_t *material, float *out) {
     return painted;
 }
 
+// How far a chunk's skirts hang: enough to hide the cracks between levels and faces (a
+// level's samples differ from the next one's by about a cell).
+static double skirt_depth(const planet_renderer *r, int level) {
+    return fmin(ldexp(r->cell_arc, level), 2.0 * r->params.max_height) + 0.25 * r->cell_arc;
+}
+
 static void build_vertices(const planet_renderer *r, const node *n, const float *tile,
                            const float *parent, const uint8_t *material, float *out, chunk *c) {
     // Positions with a ring one cell wider than the block, so every vertex's normal is
@@ -469,6 +488,19 @@ static void build_vertices(const planet_renderer *r, const node *n, const float 
             o[15] = coarse_h[q];
         }
     c->painted = painted_weights(n, material, out);
+    // A square's top: its vertices' heights and morph targets (the triangles between
+    // them are chords, under their corners; the targets between parent vertices sit on
+    // the parent's chords, under the heights given).
+    for (int sj = 0; sj < TOP_CELLS; sj++)
+        for (int si = 0; si < TOP_CELLS; si++) {
+            float top = -INFINITY;
+            const int step = BLOCK / TOP_CELLS;
+            for (int gj = sj * step; gj <= (sj + 1) * step; gj++)
+                for (int gi = si * step; gi <= (si + 1) * step; gi++)
+                    top = fmaxf(top, fmaxf(heights[(gj + 1) * RING + gi + 1],
+                                           coarse_h[gj * (BLOCK + 1) + gi]));
+            c->top[sj][si] = top;
+        }
     c->lowest = c->hmin, c->reach = 0;
     for (int q = 0; q < GRID_VERTS; q++) {
         const float *o = out + (size_t)q * VERTEX_FLOATS;
@@ -476,10 +508,8 @@ static void build_vertices(const planet_renderer *r, const node *n, const float 
         c->reach = fmaxf(c->reach, sqrtf(o[0] * o[0] + o[1] * o[1] + o[2] * o[2]));
         c->reach = fmaxf(c->reach, sqrtf(o[12] * o[12] + o[13] * o[13] + o[14] * o[14]));
     }
-    // Skirts: each edge's vertices again, lowered far enough to hide the cracks between
-    // levels and faces (a level's samples differ from the next one's by about a cell).
-    const double depth =
-        fmin(ldexp(r->cell_arc, n->level), 2.0 * r->params.max_height) + 0.25 * r->cell_arc;
+    // Skirts: each edge's vertices again, lowered (skirt_depth).
+    const double depth = skirt_depth(r, n->level);
     for (int e = 0; e < 4; e++)
         for (int g = 0; g <= BLOCK; g++) {
             int gi = e < 2 ? g : (e == 2 ? 0 : BLOCK), gj = e < 2 ? (e == 0 ? 0 : BLOCK) : g;
@@ -888,6 +918,131 @@ static void sort_near_first(planet_renderer *r) {
         r->draw_list[i] = keys[i].chunk;
 }
 
+// ---- occlusion by nearer ground -------------------------------------------------
+
+static node chunk_node(const chunk *c) {
+    const uint64_t k = c->key - 1;
+    return (node){(int)(k & 7), (int)((k >> 3) & 31), (int64_t)((k >> 8) & ((1ull << 28) - 1)),
+                  (int64_t)(k >> 36)};
+}
+
+// Whether the camera is above the ground drawn under it (ground_occlusion.h's argument
+// needs it): the top of the square under it in the drawn chunk there, or the sea's
+// surface. Not known (0) when that chunk is not drawn (outside the view).
+static int camera_above_ground(const planet_renderer *r) {
+    int face;
+    double s, t;
+    world_grid_direction_face(r->cam->pos, &face, &s, &t);
+    for (int i = 0; i < r->draw_count; i++) {
+        const chunk *c = &r->chunks[r->draw_list[i]];
+        const node n = chunk_node(c);
+        if (n.face != face) continue;
+        const double s0 = edge_coord(r, n.level, n.bx * BLOCK),
+                     s1 = edge_coord(r, n.level, n.bx * BLOCK + BLOCK);
+        const double t0 = edge_coord(r, n.level, n.by * BLOCK),
+                     t1 = edge_coord(r, n.level, n.by * BLOCK + BLOCK);
+        if (s < s0 || s > s1 || t < t0 || t > t1) continue;
+        float top = -INFINITY;
+        const int64_t full = (int64_t)BLOCK << n.level; // cells: a chunk at a face's end is cut
+        if (((n.bx + 1) * full > r->face_samples) || ((n.by + 1) * full > r->face_samples)) {
+            for (int sj = 0; sj < TOP_CELLS; sj++)
+                for (int si = 0; si < TOP_CELLS; si++)
+                    top = fmaxf(top, c->top[sj][si]);
+        } else {
+            int si = (int)((s - s0) / (s1 - s0) * TOP_CELLS),
+                sj = (int)((t - t0) / (t1 - t0) * TOP_CELLS);
+            si = si < 0 ? 0 : si >= TOP_CELLS ? TOP_CELLS - 1 : si;
+            sj = sj < 0 ? 0 : sj >= TOP_CELLS ? TOP_CELLS - 1 : sj;
+            top = c->top[sj][si];
+        }
+        const double ground = fmax(top, world_params_ocean_height(&r->params));
+        return r->camera_altitude > ground + 0.01 + 1e-7 * r->params.radius;
+    }
+    return 0;
+}
+
+// The directions of a chunk's footprint corners; returns the cosine of the widest angle
+// between them and the footprint's middle direction. The footprint is the cone of these
+// four directions: the cube's grid lines are great circles.
+static double footprint_corners(const planet_renderer *r, const node *n, double dir[4][3]) {
+    const double s0 = edge_coord(r, n->level, n->bx * BLOCK),
+                 s1 = edge_coord(r, n->level, n->bx * BLOCK + BLOCK);
+    const double t0 = edge_coord(r, n->level, n->by * BLOCK),
+                 t1 = edge_coord(r, n->level, n->by * BLOCK + BLOCK);
+    world_grid_face_direction(n->face, s0, t0, dir[0]);
+    world_grid_face_direction(n->face, s1, t0, dir[1]);
+    world_grid_face_direction(n->face, s0, t1, dir[2]);
+    world_grid_face_direction(n->face, s1, t1, dir[3]);
+    double mid[3] = {0, 0, 0};
+    for (int k = 0; k < 4; k++)
+        for (int a = 0; a < 3; a++)
+            mid[a] += dir[k][a];
+    const double len = sqrt(mid[0] * mid[0] + mid[1] * mid[1] + mid[2] * mid[2]);
+    double cos_widest = 1.0;
+    for (int k = 0; k < 4; k++)
+        cos_widest =
+            fmin(cos_widest, (dir[k][0] * mid[0] + dir[k][1] * mid[1] + dir[k][2] * mid[2]) / len);
+    return cos_widest;
+}
+
+// Is everything the chunk draws hidden? The hull of its corners at the bottom (the
+// skirts, the chords' sag) and at the top divided by the widest angle's cosine holds
+// every point of its cone between those heights.
+static int chunk_hidden(planet_renderer *r, const chunk *c, const node *n) {
+    float top = -INFINITY;
+    for (int j = 0; j < TOP_CELLS; j++)
+        for (int i = 0; i < TOP_CELLS; i++)
+            top = fmaxf(top, c->top[j][i]);
+    const double cell = ldexp(r->cell_arc, n->level), R = r->params.radius;
+    double dir[4][3], pts[8][3];
+    const double cos_widest = footprint_corners(r, n, dir);
+    const double high = (R + fmax(top, world_params_ocean_height(&r->params)) + 0.01) / cos_widest;
+    const double low = R + c->lowest - skirt_depth(r, n->level) - cell * cell / R - 0.01;
+    for (int k = 0; k < 4; k++)
+        for (int a = 0; a < 3; a++)
+            pts[k][a] = dir[k][a] * low, pts[4 + k][a] = dir[k][a] * high;
+    return ground_occlusion_hidden(&r->occlusion, (const double(*)[3])pts, 8);
+}
+
+// The solid under a chunk's ground: its footprint from its lowest point (less the sag of
+// the chords between vertices, and a margin for their float precision) as deep again as
+// the chunk is wide (so the solids of rising ground overlap on the screen).
+static void add_solid_under(planet_renderer *r, const chunk *c, const node *n) {
+    const double cell = ldexp(r->cell_arc, n->level), R = r->params.radius;
+    const double floor_r = R + c->lowest - cell * cell / R - 1e-6 * BLOCK * cell - 0.01;
+    double dir[4][3], pts[8][3];
+    footprint_corners(r, n, dir);
+    for (int k = 0; k < 4; k++)
+        for (int a = 0; a < 3; a++)
+            pts[k][a] = dir[k][a] * floor_r, pts[4 + k][a] = dir[k][a] * (floor_r - BLOCK * cell);
+    ground_occlusion_add_solid(&r->occlusion, (const double(*)[3])pts, 8);
+}
+
+// The chunks to draw, nearest first: a few metres up most of the chosen ones lie past the
+// horizon the nearby ground makes. Not in the wireframe (it shows everything), nor with
+// `render culling=off`.
+static void choose_shown(planet_renderer *r, const camera *cam, const render_settings *s,
+                         double aspect) {
+    r->shown_count = 0;
+    const int occlude = s->culling && s->view != VIEW_WIREFRAME && camera_above_ground(r);
+    if (occlude) {
+        double forward[3], right[3], up[3];
+        planet_camera_basis(cam, forward, right, up);
+        const double ty =
+            tan((cam->fov_y >= 1 && cam->fov_y <= 170 ? cam->fov_y : 60) * M_PI / 360.0);
+        ground_occlusion_begin(&r->occlusion, cam->pos, forward, right, up, ty * aspect, ty);
+    }
+    for (int i = 0; i < r->draw_count; i++) {
+        const chunk *c = &r->chunks[r->draw_list[i]];
+        if (occlude) {
+            const node n = chunk_node(c);
+            if (chunk_hidden(r, c, &n)) continue;
+            add_solid_under(r, c, &n);
+        }
+        r->shown[r->shown_count++] = r->draw_list[i];
+    }
+}
+
 // Atmosphere and light uniforms shared by the sky and the ground.
 static void set_common(const planet_renderer *r, GLuint prog, const camera *cam,
                        const render_settings *s) {
@@ -1044,6 +1199,38 @@ static void draw_sky(planet_renderer *r, const camera *cam, const render_setting
     r->stats.draw_calls++;
 }
 
+// The index ranges to draw for a chunk: its grid, and the skirts the camera can see the
+// front of. A skirt hangs straight down from its edge, which lies on a great circle,
+// so the whole skirt lies in that circle's plane through the centre and shows its front
+// (it faces away from its chunk) only to a camera on the outer side of that plane; the
+// others would all be culled as back faces, after their vertices were shaded.
+static int index_ranges(const planet_renderer *r, const chunk *c, const camera *cam, int all_skirts,
+                        GLsizei counts[5], const void *offsets[5]) {
+    enum { GRID = BLOCK * BLOCK * 6, EDGE = BLOCK * 6 };
+    counts[0] = GRID, offsets[0] = NULL;
+    int n = 1;
+    const node nd = chunk_node(c);
+    double dir[4][3];
+    footprint_corners(r, &nd, dir);
+    // Edges 0-3 (make_indices): t = t0, t = t1, s = s0, s = s1; their corners and a
+    // corner across the chunk from them.
+    static const int ends[4][3] = {{0, 1, 2}, {2, 3, 0}, {0, 2, 1}, {1, 3, 0}};
+    for (int e = 0; e < 4; e++) {
+        const double *a = dir[ends[e][0]], *b = dir[ends[e][1]], *across = dir[ends[e][2]];
+        double plane[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+                           a[0] * b[1] - a[1] * b[0]};
+        const double inward = plane[0] * across[0] + plane[1] * across[1] + plane[2] * across[2];
+        const double camera_side =
+            plane[0] * cam->pos[0] + plane[1] * cam->pos[1] + plane[2] * cam->pos[2];
+        if (all_skirts || (inward > 0 ? camera_side <= 0 : camera_side >= 0)) {
+            counts[n] = EDGE;
+            offsets[n] = (const void *)(uintptr_t)((GRID + e * EDGE) * sizeof(uint16_t));
+            n++;
+        }
+    }
+    return n;
+}
+
 int planet_renderer_draw(planet_renderer *r, const camera *cam, const render_settings *s,
                          const brush_cursor *cursor, int width, int height, og_error *err) {
     double t0 = now_ms();
@@ -1076,8 +1263,9 @@ int planet_renderer_draw(planet_renderer *r, const camera *cam, const render_set
     static signed char windows[MAX_CHUNKS]; // each chunk's detail window (-1: none)
     static unsigned char variants[MAX_CHUNKS];
     sort_near_first(r);
-    for (int i = 0; i < r->draw_count; i++) {
-        const chunk *c = &r->chunks[r->draw_list[i]];
+    choose_shown(r, cam, s, aspect);
+    for (int i = 0; i < r->shown_count; i++) {
+        const chunk *c = &r->chunks[r->shown[i]];
         windows[i] =
             (signed char)planet_detail_chunk(r->detail, chunk_face(c), c->level, c->metres_base[0],
                                              c->metres_base[1], details[i], wraps[i]);
@@ -1088,7 +1276,7 @@ int planet_renderer_draw(planet_renderer *r, const camera *cam, const render_set
     int rc = 0, bound_window = -1;
     ground_program *g = NULL;
     // Nearest first, the program switched where the variant changes.
-    for (int i = 0, v = -1; i < r->draw_count && rc == 0; i++) {
+    for (int i = 0, v = -1; i < r->shown_count && rc == 0; i++) {
         if (variants[i] != v) {
             v = variants[i];
             if (!(g = ground_variant(r, v, err))) {
@@ -1101,7 +1289,7 @@ int planet_renderer_draw(planet_renderer *r, const camera *cam, const render_set
             }
             glUseProgram(g->prog);
         }
-        const chunk *c = &r->chunks[r->draw_list[i]];
+        const chunk *c = &r->chunks[r->shown[i]];
         glProgramUniform3f(g->prog, g->offset, (float)(c->origin[0] - cam->pos[0]),
                            (float)(c->origin[1] - cam->pos[1]),
                            (float)(c->origin[2] - cam->pos[2]));
@@ -1127,15 +1315,20 @@ int planet_renderer_draw(planet_renderer *r, const camera *cam, const render_set
         glProgramUniform1f(g->prog, g->morph, morph ? (float)(1.0 / c->morph_reach) : 0.0f);
         glFrontFace(r->front[chunk_face(c)]);
         glVertexArrayVertexBuffer(r->vao, 0, c->vbo, 0, VERTEX_FLOATS * sizeof(float));
-        glDrawElements(GL_TRIANGLES, CHUNK_INDICES, GL_UNSIGNED_SHORT, NULL);
-        r->stats.triangles += CHUNK_INDICES / 3;
+        GLsizei counts[5];
+        const void *offsets[5];
+        const int ranges = index_ranges(r, c, cam, wire || under_sea, counts, offsets);
+        glMultiDrawElements(GL_TRIANGLES, counts, GL_UNSIGNED_SHORT, offsets, ranges);
+        for (int k = 0; k < ranges; k++)
+            r->stats.triangles += (uint64_t)counts[k] / 3;
         r->stats.draw_calls++;
     }
     if (wire) glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
     glDisable(GL_CULL_FACE);
     glFrontFace(GL_CCW);
     if (!wire && rc == 0) draw_sky(r, cam, s, aspect);
-    r->stats.chunks_drawn = r->draw_count;
+    r->stats.chunks_drawn = r->shown_count;
+    r->stats.chunks_occluded = r->draw_count - r->shown_count;
     glBindVertexArray(0);
     glUseProgram(0);
     r->stats.cpu_ms += now_ms() - t0;

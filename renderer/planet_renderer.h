@@ -30,6 +30,7 @@ typedef struct planet_stats {
     uint64_t detail_texels_uploaded; // this frame (the detail window near the ground)
     int chunks_built;                // this frame
     int chunks_culled;               // behind the horizon or outside the view, this frame
+    int chunks_occluded;             // chosen but hidden by nearer ground, this frame
     double cpu_ms;
 } planet_stats;
 

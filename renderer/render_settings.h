@@ -27,7 +27,8 @@ typedef struct render_settings {
     view_mode view;
     double sun_yaw, sun_pitch; // degrees (135, 35)
     double fog_density;        // per metre (0: automatic from the clipmap's reach)
-    int culling;               // per-block frustum culling (1)
+    int culling;               // per-block frustum culling; planets: also occlusion by nearer
+                               // ground (1)
     int morph;                 // transition morphing between levels (1)
     double contours;           // metres between contour lines drawn over the terrain; 0: none
     double sun_rotation;       // degrees a second the editor window turns the sun (0: still)

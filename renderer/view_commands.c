@@ -278,7 +278,8 @@ static const cmd_def view_commands[] = {
      0, 1, cmd_view, 0},
     {"render", "render [KEY=VALUE ...]",
      "Viewport settings: levels (3-12 clipmap levels), parallax (on/off), quality (parallax steps "
-     "1-32), detail_distance (m), culling, morph (on/off), fog (per metre, 0 = automatic), "
+     "1-32), detail_distance (m), culling (on/off: skip what is outside the view; on planets also "
+     "the ground hidden behind nearer ground), morph (on/off), fog (per metre, 0 = automatic), "
      "sun=YAW,PITCH, sun_rotation (degrees a second the editor turns the sun; R toggles it), "
      "contours (metres between contour lines, 0 = none), tile_grid=on|off (the tiles' edges), "
      "level_grid=on|off (each clipmap level's vertex grid), auto_materials=on|off (the "

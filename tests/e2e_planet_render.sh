@@ -4,7 +4,8 @@
 # ground against golden images (RMSE tolerance, as e2e_render); a descent from
 # 40,000 km to 2 m where each small step of the camera changes the picture only a
 # little (no precision jitter); an edit, paint and the detail layer's parallax show and
-# their undo restores the picture; the seed-004 planet and the airless preset render;
+# their undo restores the picture; ground hidden behind nearer ground is left out with
+# the picture unchanged; the seed-004 planet and the airless preset render;
 # bad camera input fails clearly.
 # Usage: e2e_planet_render.sh OROGEN TESTS_DIR
 # Regenerate the goldens after a deliberate change: tests/golden_update.sh
@@ -86,6 +87,19 @@ done
 # And the frames differ from one altitude to the next (the camera did move).
 r=$(rmse "$work/d_40.png" "$work/d_2.png")
 less 1 "$r"; check "40 m and 2 m views differ (rmse $r)" $?
+
+# --- ground hidden behind nearer ground is left out, and the picture is the same ----
+# 2 m up, the chunks past the horizon the nearby ground makes pass the frustum and
+# horizon tests; `render culling=off` draws them too.
+run "$earth; camera_geo $spot 2 90 -5 ground; screenshot $work/occ_on.png $size;
+     render culling=off; screenshot $work/occ_off.png $size"
+rc=$?; check "2 m views with and without occlusion culling ($(cat "$work/err"))" $rc
+tris_on=$(sed -n 's/^screenshot .*occ_on.* triangles=\([0-9]*\).*/\1/p' "$work/out")
+tris_off=$(sed -n 's/^screenshot .*occ_off.* triangles=\([0-9]*\).*/\1/p' "$work/out")
+less "${tris_on:-x}" "${tris_off:-x}"
+check "occlusion culling draws fewer triangles ($tris_on against $tris_off)" $?
+r=$(rmse "$work/occ_on.png" "$work/occ_off.png")
+less "$r" 0.001; check "and the same picture (rmse $r)" $?
 
 # --- an edit shows, its undo restores the picture ----------------------------------
 # Face 4 (+Z) centre is latitude 0, longitude 0; face-local metres of its centre.
