@@ -5,6 +5,7 @@
 #include "renderer/frustum.h"
 #include "renderer/ground_occlusion.h"
 #include "renderer/lighting.h"
+#include "renderer/material_textures.h"
 #include "renderer/planet_detail.h"
 #include "renderer/planet_camera.h"
 #include "renderer/shader.h"
@@ -62,7 +63,8 @@ enum {
     V_BARE = 16,
     V_BRUSH = 32,
     V_OVERLAYS = 64,
-    VARIANTS = 128
+    V_MINIFIED = 128,
+    VARIANTS = 256
 };
 
 typedef struct ground_program {
@@ -80,6 +82,8 @@ struct planet_renderer {
     char shader_dir[4200];
     ground_program ground[VARIANTS]; // built when first needed
     GLuint prog_sky, vao, empty_vao, ibo, albedo, falloff;
+    float albedo_mean[MATERIAL_TEXTURE_COUNT][4]; // each material texture's mean colour
+    int has_albedo_mean;
     GLenum front[6];       // each face's winding seen from outside
     planet_detail *detail; // the detail layer around the camera, for parallax
     chunk chunks[MAX_CHUNKS];
@@ -718,13 +722,24 @@ static GLuint make_indices(void) {
     return ibo;
 }
 
+// Each material texture's 1 x 1 level: what a fully minified lookup returns (the
+// MINIFIED variant's albedo, materials.glsl).
+static void albedo_means(planet_renderer *r) {
+    GLint levels = 0;
+    glGetTextureParameteriv(r->albedo, GL_TEXTURE_IMMUTABLE_LEVELS, &levels);
+    if (levels < 1) return; // not an immutable texture: the MINIFIED variant is never chosen
+    glGetTextureImage(r->albedo, levels - 1, GL_RGBA, GL_FLOAT, sizeof r->albedo_mean,
+                      r->albedo_mean);
+    r->has_albedo_mean = 1;
+}
+
 // The ground program for a variant (V_* bits), built on first use.
 static ground_program *ground_variant(planet_renderer *r, int variant, og_error *err) {
     ground_program *g = &r->ground[variant];
     if (g->prog) return g;
-    static const char *const names[] = {"SHADED", "DETAIL", "SEA",     "PAINTED",
-                                        "BARE",   "BRUSH",  "OVERLAYS"};
-    g->prog = shader_program_load_flags(r->shader_dir, "planet.vert", "planet.frag", names, 7,
+    static const char *const names[] = {"SHADED", "DETAIL", "SEA",      "PAINTED",
+                                        "BARE",   "BRUSH",  "OVERLAYS", "MINIFIED"};
+    g->prog = shader_program_load_flags(r->shader_dir, "planet.vert", "planet.frag", names, 8,
                                         (unsigned)variant, err);
     if (!g->prog) return NULL;
     g->offset = glGetUniformLocation(g->prog, "u_offset");
@@ -756,6 +771,7 @@ planet_renderer *planet_renderer_create(const char *resource_dir, GLuint albedo,
     }
     r->albedo = albedo;
     r->falloff = falloff;
+    albedo_means(r);
     if (!(r->detail = planet_detail_create(err))) {
         planet_renderer_destroy(r);
         return NULL;
@@ -1127,6 +1143,8 @@ static void ground_frame_uniforms(planet_renderer *r, GLuint prog, const ground_
     glProgramUniform2f(prog, glGetUniformLocation(prog, "u_tex_period"), (float)TEX_PERIOD_NEAR,
                        (float)TEX_PERIOD_FAR);
     glProgramUniform1i(prog, glGetUniformLocation(prog, "u_albedo"), 0);
+    glProgramUniform4fv(prog, glGetUniformLocation(prog, "u_albedo_mean"), MATERIAL_TEXTURE_COUNT,
+                        &r->albedo_mean[0][0]);
     glProgramUniform4fv(prog, glGetUniformLocation(prog, "u_brush"), 1, f->brush);
     glProgramUniform3fv(prog, glGetUniformLocation(prog, "u_brush_up"), 1, f->brush_up);
     glProgramUniform4fv(prog, glGetUniformLocation(prog, "u_brush_tint"), 1, f->tint);
@@ -1163,6 +1181,15 @@ static int chunk_variant(const planet_renderer *r, const chunk *c, const ground_
     }
     if (s->view != VIEW_SHADED) return v;
     v |= V_SHADED;
+    // Far enough that the material textures' near scale is smaller than a pixel all
+    // over the chunk: every lookup would return the texture's 1 x 1 level. A pixel's
+    // footprint shrinks toward the screen's corners and filtering measures it roughly,
+    // hence the factor 4.
+    const double nearest =
+        to_chunk - c->reach - skirt_depth(r, c->level) - fmax(ocean - c->lowest, 0.0);
+    if (!(v & V_DETAIL) && r->has_albedo_mean &&
+        nearest > 4.0 * TEX_PERIOD_NEAR * r->pixels_per_radian)
+        v |= V_MINIFIED;
     if (!has_sea)
         v |= V_BARE;
     else if (c->lowest < ocean)

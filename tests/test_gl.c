@@ -240,9 +240,9 @@ static void compile_all_variants(const char *vs, const char *fs, const char *con
 // can ask for (renderer/planet_renderer.c, renderer/terrain_renderer.c).
 static void test_shader_variants_compile(void **state) {
     (void)state;
-    static const char *const planet[] = {"SHADED", "DETAIL", "SEA",     "PAINTED",
-                                         "BARE",   "BRUSH",  "OVERLAYS"};
-    compile_all_variants("planet.vert", "planet.frag", planet, 7);
+    static const char *const planet[] = {"SHADED", "DETAIL", "SEA",      "PAINTED",
+                                         "BARE",   "BRUSH",  "OVERLAYS", "MINIFIED"};
+    compile_all_variants("planet.vert", "planet.frag", planet, 8);
     static const char *const terrain[] = {"SHADED", "DETAIL",   "PAINTED",
                                           "BRUSH",  "OVERLAYS", "CONTOURS"};
     compile_all_variants("terrain.vert", "terrain.frag", terrain, 6);

@@ -3,8 +3,18 @@
 uniform sampler2DArray u_albedo; // the 8 procedural material textures
 uniform float u_ocean_level, u_max_height;
 
+#ifdef MINIFIED
+// Ground so far away that the near scale's texels are all smaller than a pixel: a
+// lookup would return the texture's 1 x 1 level, its mean, read once on the CPU.
+uniform vec4 u_albedo_mean[8];
+#endif
+
 vec4 albedo(int layer, vec2 uv, vec2 uv_far) {
+#ifdef MINIFIED
+    vec4 near_c = u_albedo_mean[layer];
+#else
     vec4 near_c = texture(u_albedo, vec3(uv, float(layer)));
+#endif
     // A second, much larger scale breaks up the repetition.
     float v = texture(u_albedo, vec3(uv_far, float(layer))).g;
     return vec4(near_c.rgb * (0.82 + 0.36 * v), near_c.a);

@@ -5,7 +5,8 @@
 // Built in variants (renderer/planet_renderer.c picks one per chunk): SHADED (else the
 // debug view modes), DETAIL (the detail window covers the chunk), SEA (some of it is
 // under the sea), PAINTED (painted weights), BARE (a planet without a sea: bare
-// ground), BRUSH (the cursor reaches it), OVERLAYS (a View menu grid is on). A software
+// ground), BRUSH (the cursor reaches it), OVERLAYS (a View menu grid is on), MINIFIED
+// (so far that the material textures' near scale is below a pixel). A software
 // renderer runs every branch of an `if` for every fragment, so what a chunk cannot show
 // is left out of its program rather than skipped at run time.
 #include "materials.glsl"
