@@ -79,10 +79,25 @@ int planet_ground_height(world *w, const double pos[3], double *height, og_error
     int face;
     double s, t;
     world_grid_direction_face(pos, &face, &s, &t);
-    // Sample i's centre sits at face coordinate (i + 0.5) / n x 2 - 1; world_sample takes
-    // face-local metres i x spacing.
+    // The finest level's mesh (renderer/planet_renderer.c): vertices on the cells'
+    // corners, each the bilinear height between the samples around it (sample i's centre
+    // sits at face-local metres i x spacing, corner e at e - 1/2 samples), two triangles
+    // a cell split along (e + 1, f) - (e, f + 1). Where the ground is rough the mesh and
+    // the bilinear samples differ by metres: the camera and the brush stand on the mesh.
     const double n = (double)world_grid_face_samples(p), last = (n - 1.0) * p->spacing;
-    double x = ((s + 1.0) * 0.5 * n - 0.5) * p->spacing,
-           z = ((t + 1.0) * 0.5 * n - 0.5) * p->spacing;
-    return world_sample(w, face, fmin(fmax(x, 0.0), last), fmin(fmax(z, 0.0), last), height, err);
+    const double es = (s + 1.0) * 0.5 * n, et = (t + 1.0) * 0.5 * n;
+    const double i = fmin(floor(es), n - 1.0), j = fmin(floor(et), n - 1.0);
+    const double fu = es - i, fv = et - j;
+    double corner[4]; // (i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1)
+    for (int k = 0; k < 4; k++) {
+        const double x = (i + (k & 1) - 0.5) * p->spacing, z = (j + (k >> 1) - 0.5) * p->spacing;
+        if (world_sample(w, face, fmin(fmax(x, 0.0), last), fmin(fmax(z, 0.0), last), &corner[k],
+                         err) != 0)
+            return -1;
+    }
+    *height = fu + fv <= 1.0
+                  ? corner[0] + (corner[1] - corner[0]) * fu + (corner[2] - corner[0]) * fv
+                  : corner[3] + (corner[2] - corner[3]) * (1.0 - fu) +
+                        (corner[1] - corner[3]) * (1.0 - fv);
+    return 0;
 }

@@ -29,8 +29,9 @@ void planet_position(double lat, double lon, double distance, double pos[3]);
 // Latitude and longitude (degrees) of a position.
 void planet_lat_lon(const double pos[3], double *lat, double *lon);
 
-// The ground's height above the datum (metres, bilinear between the face's samples)
-// straight below pos.
+// The ground's height above the datum straight below pos (metres) as the viewport draws
+// it: the finest level's triangles, whose corners are bilinear between the face's
+// samples.
 int planet_ground_height(world *w, const double pos[3], double *height, og_error *err);
 
 #endif
