@@ -79,8 +79,12 @@ check "a planet's ocean_level set as a radius generates" $status
 # new planet: a preset, then any parameter (File > New planet... sends every field).
 run -c 'new planet preset=moon radius=2000000 seed=7 ocean_level=2000010; params'
 [ $status = 0 ] && grep -q '^radius = 2000000;$' "$work/out" && grep -q '^seed = 7;$' "$work/out" &&
-    grep -q '^ocean_level = 2000010;$' "$work/out" && grep -q '^max_height = 6000;$' "$work/out"
-check "new planet preset=moon with parameters over the preset" $?
+    grep -q '^ocean_level = 2000010;$' "$work/out" && grep -q '^max_height = 6000;$' "$work/out" &&
+    grep -q '^w_factor = 0.7;$' "$work/out" && grep -q '^octaves = 18;$' "$work/out"
+check "new planet preset=moon with parameters over the preset (and the preset's relief)" $?
+run -c 'new planet; params'
+[ $status = 0 ] && grep -q '^w_factor = 0.5;$' "$work/out" && grep -q '^octaves = 12.5;$' "$work/out"
+check "new planet without a preset keeps seed 004's gain and octaves" $?
 run -c 'new planet seed=4x2'
 [ $status = 1 ] && grep -q "seed: expected an integer, got '4x2'" "$work/err"
 check "new planet names a bad parameter" $?

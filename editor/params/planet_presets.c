@@ -5,14 +5,24 @@
 typedef struct planet_preset {
     const char *name;
     double radius, max_height, ocean_level, omega, atmosphere, spacing;
+    double w_factor, octaves; // the generator's gain and octaves (seed 004: 0.5 and 12.5)
 } planet_preset;
 
 // All but earth have no sea (ocean_level 0 is a radius of 0).
+//
+// Seed 004's gain of 0.5 keeps every octave's slope the same, the mountains' height over
+// the planet's radius: its planets had a radius of 10 and heights of 0.1, but at Earth's
+// proportions (8.8 km over 6,371 km) that is ground sloping at 1% at every scale, a
+// smooth ball from 10 km up and a plain from 2 m. A gain of 0.7 (amplitude growing with
+// the square root of the wavelength, as Earth's relief roughly does from 1 to 100 km)
+// and octaves down to the samples give hills and valleys at every altitude with the same
+// continents from orbit. The asteroid, whose heights are large for its size, is rough
+// already at 0.55.
 static const planet_preset PRESETS[] = {
-    {"earth", 6371000, 8848, 6371000, 7.2921e-5, 1.0, 100},
-    {"mars", 3389500, 10000, 0, 7.088e-5, 0.3, 100},
-    {"moon", 1737400, 6000, 0, 2.6617e-6, 0.0, 100},
-    {"asteroid", 50000, 4000, 0, 1e-3, 0.0, 10},
+    {"earth", 6371000, 8848, 6371000, 7.2921e-5, 1.0, 100, 0.7, 18},
+    {"mars", 3389500, 10000, 0, 7.088e-5, 0.3, 100, 0.7, 18},
+    {"moon", 1737400, 6000, 0, 2.6617e-6, 0.0, 100, 0.7, 18},
+    {"asteroid", 50000, 4000, 0, 1e-3, 0.0, 10, 0.55, 18},
 };
 
 size_t planet_preset_count(void) {
@@ -29,6 +39,7 @@ int planet_preset_apply(world_params *p, const char *name, og_error *err) {
             p->radius = PRESETS[i].radius, p->max_height = PRESETS[i].max_height;
             p->ocean_level = PRESETS[i].ocean_level, p->omega = PRESETS[i].omega;
             p->atmosphere = PRESETS[i].atmosphere, p->spacing = PRESETS[i].spacing;
+            p->w_factor = PRESETS[i].w_factor, p->octaves = PRESETS[i].octaves;
             return 0;
         }
     return og_error_set(err, "preset: unknown planet '%s' (earth, mars, moon, asteroid)", name);
