@@ -830,8 +830,10 @@ static void world_panel(editor_ui *e, ui_context *ui, cmd_context *ctx) {
     ui_tooltip(ui, "Pick another seed (applied by Generate)");
     ui_row(ui, 1, NULL, 0);
     if (next->generator != GEN_FLAT) {
-        param_slider(e, ui, ctx, "Max height", "max_height", next->max_height, 10, 9000, "%.0f m");
-        param_slider(e, ui, ctx, "Octaves", "octaves", next->octaves, 1, 16, "%.1f");
+        // Up to Mars-like relief (10 km) and octaves down to 1 m samples on an Earth-sized
+        // planet (the presets use 18).
+        param_slider(e, ui, ctx, "Max height", "max_height", next->max_height, 10, 12000, "%.0f m");
+        param_slider(e, ui, ctx, "Octaves", "octaves", next->octaves, 1, 24, "%.1f");
     }
     if (next->kind == WORLD_PLANET) { // a radius there (seed 004)
         // The sea keeps its height above the datum when the radius changes (ocean_level
