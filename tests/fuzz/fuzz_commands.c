@@ -4,6 +4,7 @@
 // long runs are by design, are left out; every input is tokenized all the same.
 #include "editor/cmd/commands.h"
 #include "editor/cmd/context.h"
+#include "editor/cmd/edit_commands.h"
 #include "editor/cmd/tokenize.h"
 
 #include <stdio.h>
