@@ -47,11 +47,14 @@ typedef struct chunk {
     int painted;      // some vertex has painted weights
     int level;
     float top[TOP_CELLS]
-             [TOP_CELLS];  // the highest the mesh reaches over each square (morphed or not)
-    double morph_reach;    // this frame: where the parent level would take over (metres)
-    double near_dist;      // this frame: from the camera to its bounding sphere (drawing order)
-    double metres_base[2]; // face-local metres the vertices' texture metres are relative to
-    uint64_t used;         // frame it was last selected
+             [TOP_CELLS];    // the highest the mesh reaches over each square (morphed or not)
+    float top_max;           // and over the whole chunk
+    double corner_dir[4][3]; // its footprint's corner directions (footprint_corners)
+    double cos_widest;       // the cosine of the widest angle from their middle
+    double morph_reach;      // this frame: where the parent level would take over (metres)
+    double near_dist;        // this frame: from the camera to its bounding sphere (drawing order)
+    double metres_base[2];   // face-local metres the vertices' texture metres are relative to
+    uint64_t used;           // frame it was last selected
 } chunk;
 
 // The ground program's variants (see planet.frag): what a chunk can show.
@@ -504,6 +507,7 @@ static void build_vertices(const planet_renderer *r, const node *n, const float 
                     top = fmaxf(top, fmaxf(heights[(gj + 1) * RING + gi + 1],
                                            coarse_h[gj * (BLOCK + 1) + gi]));
             c->top[sj][si] = top;
+            c->top_max = sj == 0 && si == 0 ? top : fmaxf(c->top_max, top);
         }
     c->lowest = c->hmin, c->reach = 0;
     for (int q = 0; q < GRID_VERTS; q++) {
@@ -525,6 +529,30 @@ static void build_vertices(const planet_renderer *r, const node *n, const float 
                 o[12 + a] -= (float)(top[6 + a] * depth);
             }
         }
+}
+
+// The directions of a chunk's footprint corners; returns the cosine of the widest angle
+// between them and the footprint's middle direction. The footprint is the cone of these
+// four directions: the cube's grid lines are great circles.
+static double footprint_corners(const planet_renderer *r, const node *n, double dir[4][3]) {
+    const double s0 = edge_coord(r, n->level, n->bx * BLOCK),
+                 s1 = edge_coord(r, n->level, n->bx * BLOCK + BLOCK);
+    const double t0 = edge_coord(r, n->level, n->by * BLOCK),
+                 t1 = edge_coord(r, n->level, n->by * BLOCK + BLOCK);
+    world_grid_face_direction(n->face, s0, t0, dir[0]);
+    world_grid_face_direction(n->face, s1, t0, dir[1]);
+    world_grid_face_direction(n->face, s0, t1, dir[2]);
+    world_grid_face_direction(n->face, s1, t1, dir[3]);
+    double mid[3] = {0, 0, 0};
+    for (int k = 0; k < 4; k++)
+        for (int a = 0; a < 3; a++)
+            mid[a] += dir[k][a];
+    const double len = sqrt(mid[0] * mid[0] + mid[1] * mid[1] + mid[2] * mid[2]);
+    double cos_widest = 1.0;
+    for (int k = 0; k < 4; k++)
+        cos_widest =
+            fmin(cos_widest, (dir[k][0] * mid[0] + dir[k][1] * mid[1] + dir[k][2] * mid[2]) / len);
+    return cos_widest;
 }
 
 // Builds the node's chunk when its tile is resident and the frame's budget allows.
@@ -576,6 +604,7 @@ static chunk *try_build(planet_renderer *r, const node *n) {
     static float verts[CHUNK_VERTS * VERTEX_FLOATS];
     chunk *c = &r->chunks[slot];
     build_vertices(r, n, view.data, parent.data, material.data, verts, c);
+    c->cos_widest = footprint_corners(r, n, c->corner_dir);
     tile_cache_release(cache, &view);
     if (material.data) tile_cache_release(cache, &material);
     if (parent.data) tile_cache_release(cache, &parent);
@@ -958,13 +987,9 @@ static int camera_above_ground(const planet_renderer *r) {
         const double t0 = edge_coord(r, n.level, n.by * BLOCK),
                      t1 = edge_coord(r, n.level, n.by * BLOCK + BLOCK);
         if (s < s0 || s > s1 || t < t0 || t > t1) continue;
-        float top = -INFINITY;
+        float top = c->top_max;
         const int64_t full = (int64_t)BLOCK << n.level; // cells: a chunk at a face's end is cut
-        if (((n.bx + 1) * full > r->face_samples) || ((n.by + 1) * full > r->face_samples)) {
-            for (int sj = 0; sj < TOP_CELLS; sj++)
-                for (int si = 0; si < TOP_CELLS; si++)
-                    top = fmaxf(top, c->top[sj][si]);
-        } else {
+        if ((n.bx + 1) * full <= r->face_samples && (n.by + 1) * full <= r->face_samples) {
             int si = (int)((s - s0) / (s1 - s0) * TOP_CELLS),
                 sj = (int)((t - t0) / (t1 - t0) * TOP_CELLS);
             si = si < 0 ? 0 : si >= TOP_CELLS ? TOP_CELLS - 1 : si;
@@ -977,57 +1002,29 @@ static int camera_above_ground(const planet_renderer *r) {
     return 0;
 }
 
-// The directions of a chunk's footprint corners; returns the cosine of the widest angle
-// between them and the footprint's middle direction. The footprint is the cone of these
-// four directions: the cube's grid lines are great circles.
-static double footprint_corners(const planet_renderer *r, const node *n, double dir[4][3]) {
-    const double s0 = edge_coord(r, n->level, n->bx * BLOCK),
-                 s1 = edge_coord(r, n->level, n->bx * BLOCK + BLOCK);
-    const double t0 = edge_coord(r, n->level, n->by * BLOCK),
-                 t1 = edge_coord(r, n->level, n->by * BLOCK + BLOCK);
-    world_grid_face_direction(n->face, s0, t0, dir[0]);
-    world_grid_face_direction(n->face, s1, t0, dir[1]);
-    world_grid_face_direction(n->face, s0, t1, dir[2]);
-    world_grid_face_direction(n->face, s1, t1, dir[3]);
-    double mid[3] = {0, 0, 0};
-    for (int k = 0; k < 4; k++)
-        for (int a = 0; a < 3; a++)
-            mid[a] += dir[k][a];
-    const double len = sqrt(mid[0] * mid[0] + mid[1] * mid[1] + mid[2] * mid[2]);
-    double cos_widest = 1.0;
-    for (int k = 0; k < 4; k++)
-        cos_widest =
-            fmin(cos_widest, (dir[k][0] * mid[0] + dir[k][1] * mid[1] + dir[k][2] * mid[2]) / len);
-    return cos_widest;
-}
-
 // Is everything the chunk draws hidden? The hull of its corners at the bottom (the
 // skirts, the chords' sag) and at the top divided by the widest angle's cosine holds
 // every point of its cone between those heights.
-static int chunk_hidden(planet_renderer *r, const chunk *c, const node *n) {
-    float top = -INFINITY;
-    for (int j = 0; j < TOP_CELLS; j++)
-        for (int i = 0; i < TOP_CELLS; i++)
-            top = fmaxf(top, c->top[j][i]);
-    const double cell = ldexp(r->cell_arc, n->level), R = r->params.radius;
-    double dir[4][3], pts[8][3];
-    const double cos_widest = footprint_corners(r, n, dir);
-    const double high = (R + fmax(top, world_params_ocean_height(&r->params)) + 0.01) / cos_widest;
-    const double low = R + c->lowest - skirt_depth(r, n->level) - cell * cell / R - 0.01;
+static int chunk_hidden(planet_renderer *r, const chunk *c) {
+    const double cell = ldexp(r->cell_arc, c->level), R = r->params.radius;
+    const double high =
+        (R + fmax(c->top_max, world_params_ocean_height(&r->params)) + 0.01) / c->cos_widest;
+    const double low = R + c->lowest - skirt_depth(r, c->level) - cell * cell / R - 0.01;
+    double pts[8][3];
     for (int k = 0; k < 4; k++)
         for (int a = 0; a < 3; a++)
-            pts[k][a] = dir[k][a] * low, pts[4 + k][a] = dir[k][a] * high;
+            pts[k][a] = c->corner_dir[k][a] * low, pts[4 + k][a] = c->corner_dir[k][a] * high;
     return ground_occlusion_hidden(&r->occlusion, (const double(*)[3])pts, 8);
 }
 
 // The solid under a chunk's ground: its footprint from its lowest point (less the sag of
 // the chords between vertices, and a margin for their float precision) as deep again as
 // the chunk is wide (so the solids of rising ground overlap on the screen).
-static void add_solid_under(planet_renderer *r, const chunk *c, const node *n) {
-    const double cell = ldexp(r->cell_arc, n->level), R = r->params.radius;
+static void add_solid_under(planet_renderer *r, const chunk *c) {
+    const double cell = ldexp(r->cell_arc, c->level), R = r->params.radius;
     const double floor_r = R + c->lowest - cell * cell / R - 1e-6 * BLOCK * cell - 0.01;
-    double dir[4][3], pts[8][3];
-    footprint_corners(r, n, dir);
+    const double(*dir)[3] = c->corner_dir;
+    double pts[8][3];
     for (int k = 0; k < 4; k++)
         for (int a = 0; a < 3; a++)
             pts[k][a] = dir[k][a] * floor_r, pts[4 + k][a] = dir[k][a] * (floor_r - BLOCK * cell);
@@ -1051,9 +1048,8 @@ static void choose_shown(planet_renderer *r, const camera *cam, const render_set
     for (int i = 0; i < r->draw_count; i++) {
         const chunk *c = &r->chunks[r->draw_list[i]];
         if (occlude) {
-            const node n = chunk_node(c);
-            if (chunk_hidden(r, c, &n)) continue;
-            add_solid_under(r, c, &n);
+            if (chunk_hidden(r, c)) continue;
+            add_solid_under(r, c);
         }
         r->shown[r->shown_count++] = r->draw_list[i];
     }
@@ -1231,14 +1227,12 @@ static void draw_sky(planet_renderer *r, const camera *cam, const render_setting
 // so the whole skirt lies in that circle's plane through the centre and shows its front
 // (it faces away from its chunk) only to a camera on the outer side of that plane; the
 // others would all be culled as back faces, after their vertices were shaded.
-static int index_ranges(const planet_renderer *r, const chunk *c, const camera *cam, int all_skirts,
-                        GLsizei counts[5], const void *offsets[5]) {
+static int index_ranges(const chunk *c, const camera *cam, int all_skirts, GLsizei counts[5],
+                        const void *offsets[5]) {
     enum { GRID = BLOCK * BLOCK * 6, EDGE = BLOCK * 6 };
     counts[0] = GRID, offsets[0] = NULL;
     int n = 1;
-    const node nd = chunk_node(c);
-    double dir[4][3];
-    footprint_corners(r, &nd, dir);
+    const double(*dir)[3] = c->corner_dir;
     // Edges 0-3 (make_indices): t = t0, t = t1, s = s0, s = s1; their corners and a
     // corner across the chunk from them.
     static const int ends[4][3] = {{0, 1, 2}, {2, 3, 0}, {0, 2, 1}, {1, 3, 0}};
@@ -1344,7 +1338,7 @@ int planet_renderer_draw(planet_renderer *r, const camera *cam, const render_set
         glVertexArrayVertexBuffer(r->vao, 0, c->vbo, 0, VERTEX_FLOATS * sizeof(float));
         GLsizei counts[5];
         const void *offsets[5];
-        const int ranges = index_ranges(r, c, cam, wire || under_sea, counts, offsets);
+        const int ranges = index_ranges(c, cam, wire || under_sea, counts, offsets);
         glMultiDrawElements(GL_TRIANGLES, counts, GL_UNSIGNED_SHORT, offsets, ranges);
         for (int k = 0; k < ranges; k++)
             r->stats.triangles += (uint64_t)counts[k] / 3;
