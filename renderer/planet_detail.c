@@ -2,6 +2,7 @@
 
 #include "renderer/clip_window.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 
@@ -9,6 +10,8 @@
 #define DETAIL_SNAP 16    // the window moves in steps of this many samples
 #define DETAIL_LEVELS 3   // chunks of levels 0-2 show it (coarser ones lie past the fade)
 #define DETAIL_WINDOWS 3  // the camera's face and, near an edge or corner, its neighbours
+#define DETAIL_BLOCKS (DETAIL_TEXELS / DETAIL_SNAP) // blocks per window side
+#define DETAIL_MARGIN 8 // samples around a chunk the parallax (6) and the filters can reach
 
 // One face's window: the detail samples around the camera (or, on a neighbouring face,
 // around the camera's place extended onto it), kept inside the face.
@@ -18,6 +21,10 @@ typedef struct detail_window {
     int face;          // -1: unused
     int64_t origin[2]; // detail sample of the window's first texel
     int current;       // this frame: the window holds the samples around origin
+    // The largest |offset| (metres) in each DETAIL_SNAP-square block of texels, laid out
+    // toroidally as the texture (FLT_MIN for slopes without offsets). The detail layer is
+    // zero until edited: chunks over blocks of zeros skip the detail's shading.
+    float block_max[DETAIL_BLOCKS][DETAIL_BLOCKS];
 } detail_window;
 
 struct planet_detail {
@@ -112,6 +119,30 @@ static void upload(planet_detail *d, clip_window *w, GLuint tex, GLenum format, 
     w->upload_count = 0;
 }
 
+// Re-measures the blocks that the rectangles (texels, not wrapping) touch.
+static void measure_blocks(detail_window *w, const clip_window *changed) {
+    texel_rect whole = {0, 0, changed->size, changed->size};
+    const texel_rect *rects = changed->upload_all ? &whole : changed->uploads;
+    int count = changed->upload_all ? 1 : changed->upload_count;
+    const float *heights = (const float *)w->heights.mirror;
+    const short *slopes = (const short *)w->slopes.mirror;
+    for (int k = 0; k < count; k++)
+        for (int bz = rects[k].z / DETAIL_SNAP; bz <= (rects[k].z + rects[k].h - 1) / DETAIL_SNAP;
+             bz++)
+            for (int bx = rects[k].x / DETAIL_SNAP;
+                 bx <= (rects[k].x + rects[k].w - 1) / DETAIL_SNAP; bx++) {
+                float most = 0.0f;
+                int sloped = 0;
+                for (int z = bz * DETAIL_SNAP; z < (bz + 1) * DETAIL_SNAP; z++)
+                    for (int x = bx * DETAIL_SNAP; x < (bx + 1) * DETAIL_SNAP; x++) {
+                        const size_t i = (size_t)z * DETAIL_TEXELS + x;
+                        most = fmaxf(most, fabsf(heights[i]));
+                        sloped |= slopes[2 * i] != 0 || slopes[2 * i + 1] != 0;
+                    }
+                w->block_max[bz][bx] = most > 0.0f ? most : sloped ? FLT_MIN : 0.0f;
+            }
+}
+
 // Follows (s, t) on `face` (past [-1, 1] on a neighbouring face: the camera's place
 // extended onto it), the window kept inside the face.
 static int follow(planet_detail *d, detail_window *w, tile_cache *cache, const double st[2],
@@ -126,6 +157,8 @@ static int follow(planet_detail *d, detail_window *w, tile_cache *cache, const d
     int a = clip_window_update(&w->heights, cache, w->origin);
     int b = clip_window_update(&w->slopes, cache, w->origin);
     if (a < 0 || b < 0) return -1;
+    measure_blocks(w, &w->heights); // both mirrors, where either changed
+    measure_blocks(w, &w->slopes);
     upload(d, &w->heights, w->tex_heights, GL_RED, GL_FLOAT);
     upload(d, &w->slopes, w->tex_slopes, GL_RG, GL_SHORT);
     w->current = a == 1 && b == 1;
@@ -181,8 +214,28 @@ int planet_detail_update(planet_detail *d, tile_cache *cache, const double cam_p
     return all;
 }
 
-int planet_detail_chunk(const planet_detail *d, int face, int level, double base_u, double base_v,
-                        float out[4], float wrap[2]) {
+// The largest |offset| within DETAIL_MARGIN samples of samples [lo, hi] (from the
+// window's origin, both axes), 0 outside the window.
+static float window_max(const detail_window *w, const double lo[2], const double hi[2]) {
+    int b0[2], b1[2];
+    for (int a = 0; a < 2; a++) {
+        double l = fmax(lo[a] - DETAIL_MARGIN, 0.0),
+               h = fmin(hi[a] + DETAIL_MARGIN, DETAIL_TEXELS - 1);
+        if (l > h) return 0.0f;
+        b0[a] = (int)l / DETAIL_SNAP, b1[a] = (int)h / DETAIL_SNAP;
+    }
+    // The origin is a whole number of blocks: block b from it is texture block b + o.
+    const int ox = (int)(w->origin[0] / DETAIL_SNAP), oz = (int)(w->origin[1] / DETAIL_SNAP);
+    float most = 0.0f;
+    for (int bz = b0[1]; bz <= b1[1]; bz++)
+        for (int bx = b0[0]; bx <= b1[0]; bx++)
+            most = fmaxf(most, w->block_max[(bz + oz) % DETAIL_BLOCKS][(bx + ox) % DETAIL_BLOCKS]);
+    return most;
+}
+
+int planet_detail_chunk(const planet_detail *d, int face, int level, const double lo_m[2],
+                        const double hi_m[2], double base_u, double base_v, float out[4],
+                        float wrap[2]) {
     out[0] = out[1] = out[2] = out[3] = 0.0f;
     wrap[0] = wrap[1] = 0.0f;
     if (level >= DETAIL_LEVELS) return -1;
@@ -190,10 +243,15 @@ int planet_detail_chunk(const planet_detail *d, int face, int level, double base
         const detail_window *w = &d->w[i];
         if (!w->current || face != w->face) continue;
         // Detail sample index of face-local metres m: m x samples_per_metre - half a cell.
+        double lo[2], hi[2];
+        for (int a = 0; a < 2; a++) {
+            lo[a] = lo_m[a] * d->samples_per_metre - d->half_cell - (double)w->origin[a];
+            hi[a] = hi_m[a] * d->samples_per_metre - d->half_cell - (double)w->origin[a];
+        }
         out[0] = (float)(base_u * d->samples_per_metre - d->half_cell - (double)w->origin[0]);
         out[1] = (float)(base_v * d->samples_per_metre - d->half_cell - (double)w->origin[1]);
         out[2] = (float)d->samples_per_metre;
-        out[3] = 1.0f;
+        out[3] = window_max(w, lo, hi);
         wrap[0] = (float)(w->origin[0] & (DETAIL_TEXELS - 1));
         wrap[1] = (float)(w->origin[1] & (DETAIL_TEXELS - 1));
         return i;

@@ -32,10 +32,13 @@ int planet_detail_update(planet_detail *d, tile_cache *cache, const double cam_p
 
 // The chunk's mapping from its vertices' metres (face-local, less base_u, base_v) to
 // detail samples from its face's window's origin: (offset u, offset v, samples per
-// metre, valid), and the window's u_detail_wrap. Returns the window (for
-// planet_detail_use), or -1 when no current window covers the chunk's face (valid 0).
-int planet_detail_chunk(const planet_detail *d, int face, int level, double base_u, double base_v,
-                        float out[4], float wrap[2]);
+// metre, the largest |offset| in metres around the chunk's face-local metres [lo_m,
+// hi_m]: 0 where the detail is zero, as it is until edited), and the window's
+// u_detail_wrap. Returns the window (for planet_detail_use), or -1 when no current
+// window covers the chunk's face (all 0).
+int planet_detail_chunk(const planet_detail *d, int face, int level, const double lo_m[2],
+                        const double hi_m[2], double base_u, double base_v, float out[4],
+                        float wrap[2]);
 
 // Sets the detail uniforms of detail_parallax.glsl but u_detail_wrap (per chunk).
 void planet_detail_bind(planet_detail *d, GLuint prog, const render_settings *s, int unit_heights,

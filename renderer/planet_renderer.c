@@ -54,8 +54,16 @@ typedef struct chunk {
     double morph_reach;      // this frame: where the parent level would take over (metres)
     double near_dist;        // this frame: from the camera to its bounding sphere (drawing order)
     double metres_base[2];   // face-local metres the vertices' texture metres are relative to
-    uint64_t used;           // frame it was last selected
+    double metres_lo[2], metres_hi[2]; // its footprint in face-local metres
+    uint64_t used;                     // frame it was last selected
 } chunk;
+
+// How a shown chunk is drawn this frame: its program variant and detail window.
+typedef struct chunk_look {
+    float detail[4], wrap[2]; // planet_detail_chunk's
+    signed char window;       // its detail window (-1: none)
+    unsigned char variant;
+} chunk_look;
 
 // The ground program's variants (see planet.frag): what a chunk can show.
 enum {
@@ -113,6 +121,7 @@ struct planet_renderer {
     // Drawing: the chosen chunks nearest first, those hidden by nearer ground left out.
     int shown_count;
     int shown[MAX_CHUNKS];
+    chunk_look looks[MAX_CHUNKS]; // of shown[i]
     ground_occlusion occlusion;
     planet_stats stats;
 };
@@ -445,6 +454,8 @@ static void build_vertices(const planet_renderer *r, const node *n, const float 
     const double base_u = floor(metres[1][0] / TEX_PERIOD_FAR) * TEX_PERIOD_FAR;
     const double base_v = floor(metres[1][1] / TEX_PERIOD_FAR) * TEX_PERIOD_FAR;
     c->metres_base[0] = base_u, c->metres_base[1] = base_v;
+    for (int a = 0; a < 2; a++)
+        c->metres_lo[a] = metres[1][a], c->metres_hi[a] = metres[BLOCK + 1][a];
     c->hmin = INFINITY, c->hmax = -INFINITY;
     for (int gj = -1; gj <= BLOCK + 1; gj++)
         for (int gi = -1; gi <= BLOCK + 1; gi++) {
@@ -1162,8 +1173,9 @@ static int chunk_variant(const planet_renderer *r, const chunk *c, const ground_
     for (int k = 0; k < 3; k++)
         to_chunk += (c->origin[k] - f->cam->pos[k]) * (c->origin[k] - f->cam->pos[k]);
     to_chunk = sqrt(to_chunk);
-    // Detail where it shows: the detail window covers the chunk and some of it is
-    // nearer than the detail's fade-out distance.
+    // Detail where it shows: the detail window covers the chunk, holds some detail
+    // there (it is zero until edited) and some of the chunk is nearer than the
+    // detail's fade-out distance.
     int v = detail[3] > 0 && to_chunk - c->reach < s->detail_distance ? V_DETAIL : 0;
     if (s->tile_grid || s->level_grid) v |= V_OVERLAYS;
     if (f->brush[3] > 0) { // the cursor reaches the chunk (raised to the sea where under it)
@@ -1252,6 +1264,64 @@ static int index_ranges(const chunk *c, const camera *cam, int all_skirts, GLsiz
     return n;
 }
 
+// What stays bound from one chunk's draw to the next.
+typedef struct chunk_pass {
+    ground_frame *f;
+    int all_skirts;
+    ground_program *g;
+    int variant, window; // bound (-1: none yet)
+} chunk_pass;
+
+// Draws shown chunk i, switching the program where the variant changes.
+static int draw_chunk(planet_renderer *r, int i, chunk_pass *p, og_error *err) {
+    const chunk_look *l = &r->looks[i];
+    const int v = l->variant;
+    const camera *cam = p->f->cam;
+    const render_settings *s = p->f->s;
+    if (v != p->variant) {
+        p->variant = v;
+        if (!(p->g = ground_variant(r, v, err))) return -1;
+        if (p->g->frame != r->frame) {
+            ground_frame_uniforms(r, p->g->prog, p->f);
+            p->g->frame = r->frame;
+        }
+        glUseProgram(p->g->prog);
+    }
+    ground_program *g = p->g;
+    const chunk *c = &r->chunks[r->shown[i]];
+    glProgramUniform3f(g->prog, g->offset, (float)(c->origin[0] - cam->pos[0]),
+                       (float)(c->origin[1] - cam->pos[1]), (float)(c->origin[2] - cam->pos[2]));
+    glProgramUniform1i(g->prog, g->level, c->level);
+    glProgramUniform4fv(g->prog, g->detail, 1, l->detail);
+    if (v & V_DETAIL) { // the window of the chunk's face
+        if (l->window != p->window) planet_detail_use(r->detail, p->window = l->window, 2, 3);
+        glProgramUniform2fv(g->prog, g->wrap, 1, l->wrap);
+    }
+    if (v & V_OVERLAYS) { // where the chunk's metres meet the grids
+        const double tile = TILE_SIZE * r->cell_arc, cell = ldexp(r->cell_arc, c->level);
+        glProgramUniform3f(g->prog, g->tile, (float)fmod(c->metres_base[0], tile),
+                           (float)fmod(c->metres_base[1], tile), (float)tile);
+        glProgramUniform3f(g->prog, g->cell, (float)fmod(c->metres_base[0], cell),
+                           (float)fmod(c->metres_base[1], cell), (float)cell);
+    }
+    // Fully the parent's mesh where the parent would be drawn instead: at the
+    // distance its samples shrink to split_pixels. (The haze is measured to the
+    // sphere through each fragment's height, not along the morphed chords, so
+    // coarse quads do not show in it.)
+    const int morph = s->morph && c->level < r->root_level;
+    glProgramUniform1f(g->prog, g->morph, morph ? (float)(1.0 / c->morph_reach) : 0.0f);
+    glFrontFace(r->front[chunk_face(c)]);
+    glVertexArrayVertexBuffer(r->vao, 0, c->vbo, 0, VERTEX_FLOATS * sizeof(float));
+    GLsizei counts[5];
+    const void *offsets[5];
+    const int ranges = index_ranges(c, cam, p->all_skirts, counts, offsets);
+    glMultiDrawElements(GL_TRIANGLES, counts, GL_UNSIGNED_SHORT, offsets, ranges);
+    for (int k = 0; k < ranges; k++)
+        r->stats.triangles += (uint64_t)counts[k] / 3;
+    r->stats.draw_calls++;
+    return 0;
+}
+
 int planet_renderer_draw(planet_renderer *r, const camera *cam, const render_settings *s,
                          const brush_cursor *cursor, int width, int height, og_error *err) {
     double t0 = now_ms();
@@ -1279,71 +1349,23 @@ int planet_renderer_draw(planet_renderer *r, const camera *cam, const render_set
     cursor_frame(r, cursor, &f);
     glBindTextureUnit(0, r->albedo);
     glBindTextureUnit(1, r->falloff);
-    // Each chunk's variant and detail window, the nearest chunk first.
-    static float details[MAX_CHUNKS][4], wraps[MAX_CHUNKS][2];
-    static signed char windows[MAX_CHUNKS]; // each chunk's detail window (-1: none)
-    static unsigned char variants[MAX_CHUNKS];
     sort_near_first(r);
     choose_shown(r, cam, s, aspect);
+    // Each chunk's variant and detail window, the nearest chunk first.
     for (int i = 0; i < r->shown_count; i++) {
         const chunk *c = &r->chunks[r->shown[i]];
-        windows[i] =
-            (signed char)planet_detail_chunk(r->detail, chunk_face(c), c->level, c->metres_base[0],
-                                             c->metres_base[1], details[i], wraps[i]);
-        variants[i] = (unsigned char)chunk_variant(r, c, &f, details[i]);
+        chunk_look *l = &r->looks[i];
+        l->window = (signed char)planet_detail_chunk(r->detail, chunk_face(c), c->level,
+                                                     c->metres_lo, c->metres_hi, c->metres_base[0],
+                                                     c->metres_base[1], l->detail, l->wrap);
+        l->variant = (unsigned char)chunk_variant(r, c, &f, l->detail);
     }
     glBindVertexArray(r->vao);
     if (wire) glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
-    int rc = 0, bound_window = -1;
-    ground_program *g = NULL;
-    // Nearest first, the program switched where the variant changes.
-    for (int i = 0, v = -1; i < r->shown_count && rc == 0; i++) {
-        if (variants[i] != v) {
-            v = variants[i];
-            if (!(g = ground_variant(r, v, err))) {
-                rc = -1;
-                break;
-            }
-            if (g->frame != r->frame) {
-                ground_frame_uniforms(r, g->prog, &f);
-                g->frame = r->frame;
-            }
-            glUseProgram(g->prog);
-        }
-        const chunk *c = &r->chunks[r->shown[i]];
-        glProgramUniform3f(g->prog, g->offset, (float)(c->origin[0] - cam->pos[0]),
-                           (float)(c->origin[1] - cam->pos[1]),
-                           (float)(c->origin[2] - cam->pos[2]));
-        glProgramUniform1i(g->prog, g->level, c->level);
-        glProgramUniform4fv(g->prog, g->detail, 1, details[i]);
-        if (v & V_DETAIL) { // the window of the chunk's face
-            if (windows[i] != bound_window)
-                planet_detail_use(r->detail, bound_window = windows[i], 2, 3);
-            glProgramUniform2fv(g->prog, g->wrap, 1, wraps[i]);
-        }
-        if (v & V_OVERLAYS) { // where the chunk's metres meet the grids
-            const double tile = TILE_SIZE * r->cell_arc, cell = ldexp(r->cell_arc, c->level);
-            glProgramUniform3f(g->prog, g->tile, (float)fmod(c->metres_base[0], tile),
-                               (float)fmod(c->metres_base[1], tile), (float)tile);
-            glProgramUniform3f(g->prog, g->cell, (float)fmod(c->metres_base[0], cell),
-                               (float)fmod(c->metres_base[1], cell), (float)cell);
-        }
-        // Fully the parent's mesh where the parent would be drawn instead: at the
-        // distance its samples shrink to split_pixels. (The haze is measured to the
-        // sphere through each fragment's height, not along the morphed chords, so
-        // coarse quads do not show in it.)
-        const int morph = s->morph && c->level < r->root_level;
-        glProgramUniform1f(g->prog, g->morph, morph ? (float)(1.0 / c->morph_reach) : 0.0f);
-        glFrontFace(r->front[chunk_face(c)]);
-        glVertexArrayVertexBuffer(r->vao, 0, c->vbo, 0, VERTEX_FLOATS * sizeof(float));
-        GLsizei counts[5];
-        const void *offsets[5];
-        const int ranges = index_ranges(c, cam, wire || under_sea, counts, offsets);
-        glMultiDrawElements(GL_TRIANGLES, counts, GL_UNSIGNED_SHORT, offsets, ranges);
-        for (int k = 0; k < ranges; k++)
-            r->stats.triangles += (uint64_t)counts[k] / 3;
-        r->stats.draw_calls++;
-    }
+    chunk_pass pass = {.f = &f, .all_skirts = wire || under_sea, .variant = -1, .window = -1};
+    int rc = 0;
+    for (int i = 0; i < r->shown_count && rc == 0; i++)
+        rc = draw_chunk(r, i, &pass, err);
     if (wire) glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
     glDisable(GL_CULL_FACE);
     glFrontFace(GL_CCW);

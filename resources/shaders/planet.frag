@@ -30,7 +30,7 @@ uniform sampler2D u_falloff;
 uniform vec4 u_brush_tint; // the tool's colour and opacity
 uniform vec3 u_brush_ring;
 uniform vec4 u_chunk_detail; // this chunk's detail samples at v_metres (0, 0), samples per
-                             // metre, valid (0: no detail window over it)
+                             // metre, the largest |offset| around it (metres)
 uniform int u_overlays;    // 1: the tile grid, 2: the chunks' vertex grids
 uniform vec3 u_chunk_tile;  // the face's tiles: v_metres (0, 0) modulo a tile (xy), a tile (z)
 uniform vec3 u_chunk_cell;  // the chunk's vertex cells: the same for a cell of its level
