@@ -37,8 +37,9 @@ void ground_occlusion_begin(ground_occlusion *o, const double eye[3], const doub
                             const double right[3], const double up[3], double tan_half_x,
                             double tan_half_y);
 
-// Adds the convex hull of n points (n <= 8) lying under the drawn ground, inside the
-// footprint of ground that is drawn. Ignored when a point is not in front of the camera.
+// Adds the convex hull of n points (n <= 8) lying under the ground, inside the footprint
+// of ground that is drawn or was found hidden (a ray meeting hidden ground has met drawn
+// ground before it). Ignored when a point is not in front of the camera.
 void ground_occlusion_add_solid(ground_occlusion *o, const double (*pts)[3], int n);
 
 // Whether everything inside the convex hull of n points (n <= 8) is hidden by the solids

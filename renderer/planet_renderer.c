@@ -3,6 +3,7 @@
 #include "editor/params/world_grid.h"
 #include "io/tile_cache.h"
 #include "renderer/frustum.h"
+#include "renderer/ground_horizon.h"
 #include "renderer/ground_occlusion.h"
 #include "renderer/lighting.h"
 #include "renderer/material_textures.h"
@@ -35,7 +36,8 @@
 #define TEX_PERIOD_FAR 64.0    // the larger scale that breaks up repetition (a multiple)
 #define EARTH_RADIUS 6371000.0 // the atmosphere scales with the planet from Earth's
 #define EARTH_SCALE_HEIGHT 8000.0
-#define TOP_CELLS 8 // the tops of a chunk's 2 x 2 cell squares, for the ground under the camera
+#define TOP_CELLS 8     // the tops of a chunk's 2 x 2 cell squares, for the ground under the camera
+#define CREST_SQUARES 8 // a chunk's floors for occlusion by the horizon: its 2 x 2 cell squares
 
 typedef struct chunk {
     uint64_t key; // 0: free
@@ -50,10 +52,14 @@ typedef struct chunk {
              [TOP_CELLS];    // the highest the mesh reaches over each square (morphed or not)
     float top_max;           // and over the whole chunk
     double corner_dir[4][3]; // its footprint's corner directions (footprint_corners)
-    double cos_widest;       // the cosine of the widest angle from their middle
-    double morph_reach;      // this frame: where the parent level would take over (metres)
-    double near_dist;        // this frame: from the camera to its bounding sphere (drawing order)
-    double metres_base[2];   // face-local metres the vertices' texture metres are relative to
+    // Its squares' corner directions and the lowest the mesh reaches over each (the
+    // chords' sag and float precision allowed for): ground_horizon.h's patches.
+    double square_dir[CREST_SQUARES + 1][CREST_SQUARES + 1][3];
+    float bottom[CREST_SQUARES][CREST_SQUARES];
+    double cos_widest;     // the cosine of the widest angle from their middle
+    double morph_reach;    // this frame: where the parent level would take over (metres)
+    double near_dist;      // this frame: from the camera to its bounding sphere (drawing order)
+    double metres_base[2]; // face-local metres the vertices' texture metres are relative to
     double metres_lo[2], metres_hi[2]; // its footprint in face-local metres
     uint64_t used;                     // frame it was last selected
 } chunk;
@@ -123,6 +129,7 @@ struct planet_renderer {
     int shown[MAX_CHUNKS];
     chunk_look looks[MAX_CHUNKS]; // of shown[i]
     ground_occlusion occlusion;
+    ground_horizon horizon;
     planet_stats stats;
 };
 
@@ -427,6 +434,13 @@ static double skirt_depth(const planet_renderer *r, int level) {
     return fmin(ldexp(r->cell_arc, level), 2.0 * r->params.max_height) + 0.25 * r->cell_arc;
 }
 
+// How far a level's drawn triangles can lie under their corners: the sag of chords as
+// long as a parent cell's diagonal, and the vertices' float precision.
+static double chord_sag(const planet_renderer *r, int level) {
+    const double cell = ldexp(r->cell_arc, level);
+    return cell * cell / r->params.radius + 1e-6 * BLOCK * cell + 0.01;
+}
+
 static void build_vertices(const planet_renderer *r, const node *n, const float *tile,
                            const float *parent, const uint8_t *material, float *out, chunk *c) {
     // Positions with a ring one cell wider than the block, so every vertex's normal is
@@ -519,6 +533,20 @@ static void build_vertices(const planet_renderer *r, const node *n, const float 
                                            coarse_h[gj * (BLOCK + 1) + gi]));
             c->top[sj][si] = top;
             c->top_max = sj == 0 && si == 0 ? top : fmaxf(c->top_max, top);
+        }
+    // A square's bottom: the lowest of its vertices and morph targets, less the sag of
+    // the chords between them (the parent's are twice as long) and the vertices' float
+    // precision.
+    const double sag = chord_sag(r, n->level);
+    for (int sj = 0; sj < CREST_SQUARES; sj++)
+        for (int si = 0; si < CREST_SQUARES; si++) {
+            float bottom = INFINITY;
+            const int step = BLOCK / CREST_SQUARES;
+            for (int gj = sj * step; gj <= (sj + 1) * step; gj++)
+                for (int gi = si * step; gi <= (si + 1) * step; gi++)
+                    bottom = fminf(bottom, fminf(heights[(gj + 1) * RING + gi + 1],
+                                                 coarse_h[gj * (BLOCK + 1) + gi]));
+            c->bottom[sj][si] = (float)(bottom - sag);
         }
     c->lowest = c->hmin, c->reach = 0;
     for (int q = 0; q < GRID_VERTS; q++) {
@@ -616,6 +644,13 @@ static chunk *try_build(planet_renderer *r, const node *n) {
     chunk *c = &r->chunks[slot];
     build_vertices(r, n, view.data, parent.data, material.data, verts, c);
     c->cos_widest = footprint_corners(r, n, c->corner_dir);
+    for (int j = 0; j <= CREST_SQUARES; j++)
+        for (int i = 0; i <= CREST_SQUARES; i++) {
+            const int step = BLOCK / CREST_SQUARES;
+            world_grid_face_direction(n->face, edge_coord(r, n->level, n->bx * BLOCK + i * step),
+                                      edge_coord(r, n->level, n->by * BLOCK + j * step),
+                                      c->square_dir[j][i]);
+        }
     tile_cache_release(cache, &view);
     if (material.data) tile_cache_release(cache, &material);
     if (parent.data) tile_cache_release(cache, &parent);
@@ -1033,13 +1068,53 @@ static int chunk_hidden(planet_renderer *r, const chunk *c) {
 // the chunk is wide (so the solids of rising ground overlap on the screen).
 static void add_solid_under(planet_renderer *r, const chunk *c) {
     const double cell = ldexp(r->cell_arc, c->level), R = r->params.radius;
-    const double floor_r = R + c->lowest - cell * cell / R - 1e-6 * BLOCK * cell - 0.01;
+    const double floor_r = R + c->lowest - chord_sag(r, c->level);
     const double(*dir)[3] = c->corner_dir;
     double pts[8][3];
     for (int k = 0; k < 4; k++)
         for (int a = 0; a < 3; a++)
             pts[k][a] = dir[k][a] * floor_r, pts[4 + k][a] = dir[k][a] * (floor_r - BLOCK * cell);
     ground_occlusion_add_solid(&r->occlusion, (const double(*)[3])pts, 8);
+}
+
+// A chunk's g x g squares from square (si, sj) as a ground_horizon.h patch.
+static void square_patch(const chunk *c, int si, int sj, int g, double out[4][3]) {
+    for (int a = 0; a < 3; a++) {
+        out[0][a] = c->square_dir[sj][si][a], out[1][a] = c->square_dir[sj][si + g][a];
+        out[2][a] = c->square_dir[sj + g][si][a], out[3][a] = c->square_dir[sj + g][si + g][a];
+    }
+}
+
+// Is the chunk behind the horizon of nearer ground (ground_horizon.h)? As a whole under
+// its highest point, else square by square under each one's.
+static int behind_crest(planet_renderer *r, const chunk *c) {
+    const double R = r->params.radius, sea = world_params_ocean_height(&r->params);
+    if (ground_horizon_hidden(&r->horizon, (const double(*)[3])c->corner_dir,
+                              R + fmax(c->top_max, sea) + 0.01))
+        return 1;
+    enum { PER = CREST_SQUARES / TOP_CELLS };
+    for (int j = 0; j < TOP_CELLS; j++)
+        for (int i = 0; i < TOP_CELLS; i++) {
+            double patch[4][3];
+            square_patch(c, i * PER, j * PER, PER, patch);
+            if (!ground_horizon_hidden(&r->horizon, (const double(*)[3])patch,
+                                       R + fmax(c->top[j][i], sea) + 0.01))
+                return 0;
+        }
+    return 1;
+}
+
+// A chunk's squares as floors of the horizon (the sea's surface where it is higher: the
+// ground under it is drawn raised to it).
+static void add_floors(planet_renderer *r, const chunk *c) {
+    const double sea = world_params_ocean_height(&r->params) - chord_sag(r, c->level);
+    for (int sj = 0; sj < CREST_SQUARES; sj++)
+        for (int si = 0; si < CREST_SQUARES; si++) {
+            double patch[4][3];
+            square_patch(c, si, sj, 1, patch);
+            ground_horizon_add_floor(&r->horizon, (const double(*)[3])patch,
+                                     r->params.radius + fmax(c->bottom[sj][si], sea));
+        }
 }
 
 // The chunks to draw, nearest first: a few metres up most of the chosen ones lie past the
@@ -1055,14 +1130,16 @@ static void choose_shown(planet_renderer *r, const camera *cam, const render_set
         const double ty =
             tan((cam->fov_y >= 1 && cam->fov_y <= 170 ? cam->fov_y : 60) * M_PI / 360.0);
         ground_occlusion_begin(&r->occlusion, cam->pos, forward, right, up, ty * aspect, ty);
+        ground_horizon_begin(&r->horizon, cam->pos);
     }
     for (int i = 0; i < r->draw_count; i++) {
         const chunk *c = &r->chunks[r->draw_list[i]];
-        if (occlude) {
-            if (chunk_hidden(r, c)) continue;
+        const int hidden = occlude && (chunk_hidden(r, c) || behind_crest(r, c));
+        if (occlude) { // hidden ground occludes too: what lies under it is behind drawn ground
             add_solid_under(r, c);
+            add_floors(r, c);
         }
-        r->shown[r->shown_count++] = r->draw_list[i];
+        if (!hidden) r->shown[r->shown_count++] = r->draw_list[i];
     }
 }
 

@@ -100,6 +100,18 @@ less "${tris_on:-x}" "${tris_off:-x}"
 check "occlusion culling draws fewer triangles ($tris_on against $tris_off)" $?
 r=$(rmse "$work/occ_on.png" "$work/occ_off.png")
 less "$r" 0.001; check "and the same picture (rmse $r)" $?
+# In rough hills (the moon preset at 1 m) the horizon of nearer ground hides most of
+# the rest, past crests too: 28 of 197 chunks here (the solids under nearer ground alone
+# leave 89), and the same picture.
+run "new planet preset=moon; spacing 1; generate; camera_geo 40 -30 2 240 -5 ground;
+     screenshot $work/hills_on.png $size; render culling=off; screenshot $work/hills_off.png $size"
+rc=$?; check "2 m in the moon's hills with and without culling ($(cat "$work/err"))" $rc
+tris_on=$(sed -n 's/^screenshot .*hills_on.* triangles=\([0-9]*\).*/\1/p' "$work/out")
+tris_off=$(sed -n 's/^screenshot .*hills_off.* triangles=\([0-9]*\).*/\1/p' "$work/out")
+less "$((${tris_on:-0} * 4))" "${tris_off:-0}"
+check "culling in hills draws under a quarter of the triangles ($tris_on against $tris_off)" $?
+r=$(rmse "$work/hills_on.png" "$work/hills_off.png")
+less "$r" 0.001; check "and the same picture (rmse $r)" $?
 
 # --- on rough ground the camera stands on the ground that is drawn ----------------
 # The moon preset's relief at 100 m spacing: the drawn mesh (corners bilinear between
