@@ -132,6 +132,38 @@ static camera geo(world *w, double lat, double lon, double above_ground, double 
     return c;
 }
 
+// A planet with relief (File > New planet's Earth-like preset, at 1 m spacing), 2 m up
+// in its hills, with and without culling: nearer ground hides much of the rest.
+static void hills(bench *b, const world_settings *ws, const render_settings *s) {
+    og_error err;
+    world_params ep;
+    world_params_default(&ep, WORLD_PLANET);
+    check(planet_preset_apply(&ep, "earth", &err), &err, "preset");
+    ep.spacing = 1; // as the views above
+    world *earth = world_create(&ep, ws, &err);
+    if (!earth) check(-1, &err, "Earth-like planet");
+    // The first of a few places that is land, 100 m or more above the sea.
+    double elat = 0, elon = 0;
+    for (int k = 0; k < 64; k++) {
+        double pos[3], ground = 0;
+        elat = -60 + 120.0 * ((k * 37) % 64) / 64, elon = -180 + 360.0 * ((k * 23) % 64) / 64;
+        planet_position(elat, elon, ep.radius, pos);
+        check(planet_ground_height(earth, pos, &ground, &err), &err, "ground");
+        if (ground > world_params_ocean_height(&ep) + 100) break;
+    }
+    const camera ec = geo(earth, elat, elon, 2, -5);
+    for (int culling = 1; culling >= 0; culling--) {
+        render_settings es = *s;
+        es.culling = culling;
+        frame f = settled(b, earth, &ec, &es);
+        printf("  %-16s frame %6.1f ms (CPU %5.2f ms), %7llu triangles, %3d chunks (Earth-like "
+               "preset, 2 m up at %.1f, %.1f%s)\n",
+               "hills", f.wall_ms, f.cpu_ms, (unsigned long long)f.st.triangles, f.st.levels_drawn,
+               elat, elon, culling ? "" : ", culling=off");
+    }
+    world_close(earth);
+}
+
 int main(int argc, char **argv) {
     const int views_only = argc > 1 && strcmp(argv[1], "views") == 0; // part 1 alone
     og_error err;
@@ -213,38 +245,10 @@ int main(int argc, char **argv) {
                sculpted.wall_ms / pf[TWO_M].wall_ms, sculpted.wall_ms / pf[LOW_ORBIT].wall_ms);
     }
 
-    // A planet with relief (File > New planet's Earth-like preset, at 1 m spacing), 2 m up
-    // in its hills: nearer ground hides much of the rest.
-    {
-        world_params ep;
-        world_params_default(&ep, WORLD_PLANET);
-        check(planet_preset_apply(&ep, "earth", &err), &err, "preset");
-        ep.spacing = 1; // as the views above
-        world *earth = world_create(&ep, &ws, &err);
-        if (!earth) check(-1, &err, "Earth-like planet");
-        // The first of a few places that is land, 100 m or more above the sea.
-        double elat = lat, elon = lon;
-        for (int k = 0; k < 64; k++) {
-            double pos[3], ground = 0;
-            elat = -60 + 120.0 * ((k * 37) % 64) / 64, elon = -180 + 360.0 * ((k * 23) % 64) / 64;
-            planet_position(elat, elon, ep.radius, pos);
-            check(planet_ground_height(earth, pos, &ground, &err), &err, "ground");
-            if (ground > world_params_ocean_height(&ep) + 100) break;
-        }
-        const camera ec = geo(earth, elat, elon, 2, -5);
-        for (int culling = 1; culling >= 0; culling--) {
-            render_settings es = s;
-            es.culling = culling;
-            frame f = settled(&b, earth, &ec, &es);
-            printf("  %-16s frame %6.1f ms (CPU %5.2f ms), %7llu triangles, %3d chunks (Earth-like "
-                   "preset, 2 m up at %.1f, %.1f%s)\n",
-                   "hills", f.wall_ms, f.cpu_ms, (unsigned long long)f.st.triangles,
-                   f.st.levels_drawn, elat, elon, culling ? "" : ", culling=off");
-        }
-        world_close(earth);
+    if (views_only) {
+        hills(&b, &ws, &s);
+        return 0;
     }
-
-    if (views_only) return 0;
     // 2. A descent: altitude x 0.97 a frame from 40,000 km to 2 m.
     camera c = geo(planet, lat, lon, 4e7, -60);
     double alt = 4e7;
@@ -285,6 +289,7 @@ int main(int argc, char **argv) {
                pl.cpu_ms / ff.cpu_ms);
     }
     world_close(flat);
+    hills(&b, &ws, &s);
     world_close(planet);
     terrain_renderer_destroy(b.r);
     gl_target_destroy(&b.target);

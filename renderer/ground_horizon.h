@@ -10,8 +10,7 @@
 // lower elevation than p. Along the ray from the camera to q, the ray's radius at p's
 // angle is below p's (rays from the camera cross a radial line lower the lower their
 // elevation), so below the ground there, while the camera is above the ground: the ray
-// meets the ground before it reaches q, and q is hidden. (The ground met may be ground
-// found hidden itself: then the ray met drawn ground even sooner.)
+// meets the ground before it reaches q, and q is hidden.
 //
 // So per azimuth bin and reach (the angle from the vertical, in bands of an eighth of
 // an octave of its tangent) it keeps the highest elevation promised on or under the

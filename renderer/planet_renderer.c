@@ -1134,12 +1134,12 @@ static void choose_shown(planet_renderer *r, const camera *cam, const render_set
     }
     for (int i = 0; i < r->draw_count; i++) {
         const chunk *c = &r->chunks[r->draw_list[i]];
-        const int hidden = occlude && (chunk_hidden(r, c) || behind_crest(r, c));
-        if (occlude) { // hidden ground occludes too: what lies under it is behind drawn ground
+        if (occlude) {
+            if (chunk_hidden(r, c) || behind_crest(r, c)) continue;
             add_solid_under(r, c);
             add_floors(r, c);
         }
-        if (!hidden) r->shown[r->shown_count++] = r->draw_list[i];
+        r->shown[r->shown_count++] = r->draw_list[i];
     }
 }
 
