@@ -36,8 +36,9 @@
 #define TEX_PERIOD_FAR 64.0    // the larger scale that breaks up repetition (a multiple)
 #define EARTH_RADIUS 6371000.0 // the atmosphere scales with the planet from Earth's
 #define EARTH_SCALE_HEIGHT 8000.0
-#define TOP_CELLS 8     // the tops of a chunk's 2 x 2 cell squares, for the ground under the camera
+#define TOP_CELLS 16    // the tops of a chunk's cells, for the ground under the camera and crests
 #define CREST_SQUARES 8 // a chunk's floors for occlusion by the horizon: its 2 x 2 cell squares
+#define CELLS_PER_SQUARE (TOP_CELLS / CREST_SQUARES) // along a side
 
 typedef struct chunk {
     uint64_t key; // 0: free
@@ -48,9 +49,9 @@ typedef struct chunk {
     float reach;      // metres from the origin to the farthest vertex (skirts aside)
     int painted;      // some vertex has painted weights
     int level;
-    float top[TOP_CELLS]
-             [TOP_CELLS];    // the highest the mesh reaches over each square (morphed or not)
-    float top_max;           // and over the whole chunk
+    float top[TOP_CELLS][TOP_CELLS]; // the highest the mesh reaches over each cell (morphed or not)
+    float top_max;                   // and over the whole chunk
+    float morph_slip; // the farthest a morph target lies from its vertex's direction, in cells
     double corner_dir[4][3]; // its footprint's corner directions (footprint_corners)
     // Its squares' corner directions and the lowest the mesh reaches over each (the
     // chords' sag and float precision allowed for): ground_horizon.h's patches.
@@ -436,6 +437,10 @@ static double skirt_depth(const planet_renderer *r, int level) {
 
 // How far a level's drawn triangles can lie under their corners: the sag of chords as
 // long as a parent cell's diagonal, and the vertices' float precision.
+static double dot3(const double a[3], const double b[3]) {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
 static double chord_sag(const planet_renderer *r, int level) {
     const double cell = ldexp(r->cell_arc, level);
     return cell * cell / r->params.radius + 1e-6 * BLOCK * cell + 0.01;
@@ -490,6 +495,19 @@ static void build_vertices(const planet_renderer *r, const node *n, const float 
     static double coarse[GRID_VERTS][3];
     static float coarse_h[GRID_VERTS];
     morph_targets(r, n, parent, pos, heights, RING, coarse, coarse_h);
+    // How far a morph target lies from its vertex's own direction, in cells (the
+    // midpoint of two parent vertices at different heights leans toward the higher).
+    c->morph_slip = 0;
+    for (int gj = 0; gj <= BLOCK; gj++)
+        for (int gi = 0; gi < BLOCK; gi++) {
+            const double *p = pos[(gj + 1) * RING + gi + 1], *q = coarse[gj * (BLOCK + 1) + gi],
+                         *next = pos[(gj + 1) * RING + gi + 2];
+            const double lp = sqrt(dot3(p, p)), lq = sqrt(dot3(q, q)), ln = sqrt(dot3(next, next));
+            double slip[3], step[3];
+            for (int a = 0; a < 3; a++)
+                slip[a] = q[a] / lq - p[a] / lp, step[a] = next[a] / ln - p[a] / lp;
+            c->morph_slip = fmaxf(c->morph_slip, (float)sqrt(dot3(slip, slip) / dot3(step, step)));
+        }
     for (int gj = 0; gj <= BLOCK; gj++)
         for (int gi = 0; gi <= BLOCK; gi++) {
             const int k = (gj + 1) * RING + gi + 1;
@@ -520,9 +538,9 @@ static void build_vertices(const planet_renderer *r, const node *n, const float 
             o[15] = coarse_h[q];
         }
     c->painted = painted_weights(n, material, out);
-    // A square's top: its vertices' heights and morph targets (the triangles between
-    // them are chords, under their corners; the targets between parent vertices sit on
-    // the parent's chords, under the heights given).
+    // A cell's top: its vertices' heights and morph targets (the triangles between them
+    // are chords, under their corners; the targets between parent vertices sit on the
+    // parent's chords, under the heights given).
     for (int sj = 0; sj < TOP_CELLS; sj++)
         for (int si = 0; si < TOP_CELLS; si++) {
             float top = -INFINITY;
@@ -1036,11 +1054,17 @@ static int camera_above_ground(const planet_renderer *r) {
         float top = c->top_max;
         const int64_t full = (int64_t)BLOCK << n.level; // cells: a chunk at a face's end is cut
         if ((n.bx + 1) * full <= r->face_samples && (n.by + 1) * full <= r->face_samples) {
-            int si = (int)((s - s0) / (s1 - s0) * TOP_CELLS),
-                sj = (int)((t - t0) / (t1 - t0) * TOP_CELLS);
-            si = si < 0 ? 0 : si >= TOP_CELLS ? TOP_CELLS - 1 : si;
-            sj = sj < 0 ? 0 : sj >= TOP_CELLS ? TOP_CELLS - 1 : sj;
-            top = c->top[sj][si];
+            // The top of the 2 x 2 cell square under the camera: the mesh over it stays
+            // over it (a cell's may lean into its neighbours, see behind_crest).
+            enum { PER = CELLS_PER_SQUARE };
+            int si = (int)((s - s0) / (s1 - s0) * CREST_SQUARES),
+                sj = (int)((t - t0) / (t1 - t0) * CREST_SQUARES);
+            si = si < 0 ? 0 : si >= CREST_SQUARES ? CREST_SQUARES - 1 : si;
+            sj = sj < 0 ? 0 : sj >= CREST_SQUARES ? CREST_SQUARES - 1 : sj;
+            top = -INFINITY;
+            for (int j = sj * PER; j < (sj + 1) * PER; j++)
+                for (int i = si * PER; i < (si + 1) * PER; i++)
+                    top = fmaxf(top, c->top[j][i]);
         }
         const double ground = fmax(top, world_params_ocean_height(&r->params));
         return r->camera_altitude > ground + 0.01 + 1e-7 * r->params.radius;
@@ -1086,20 +1110,49 @@ static void square_patch(const chunk *c, int si, int sj, int g, double out[4][3]
 }
 
 // Is the chunk behind the horizon of nearer ground (ground_horizon.h)? As a whole under
-// its highest point, else square by square under each one's.
+// its highest point, else square by square under each one's, else cell by cell. A
+// square's mesh stays over it (morph targets lie on its parent cell's edges and
+// diagonal), but a morphing vertex leaves its own direction by up to morph_slip cells,
+// so a cell's triangles may reach that far into its neighbours in the square, rising
+// there by at most about that share of the square's height range: the cells' margin.
 static int behind_crest(planet_renderer *r, const chunk *c) {
     const double R = r->params.radius, sea = world_params_ocean_height(&r->params);
     if (ground_horizon_hidden(&r->horizon, (const double(*)[3])c->corner_dir,
                               R + fmax(c->top_max, sea) + 0.01))
         return 1;
-    enum { PER = CREST_SQUARES / TOP_CELLS };
-    for (int j = 0; j < TOP_CELLS; j++)
-        for (int i = 0; i < TOP_CELLS; i++) {
+    enum { PER = CELLS_PER_SQUARE };
+    const node n = chunk_node(c);
+    for (int sj = 0; sj < CREST_SQUARES; sj++)
+        for (int si = 0; si < CREST_SQUARES; si++) {
+            float top = -INFINITY;
+            for (int j = sj * PER; j < (sj + 1) * PER; j++)
+                for (int i = si * PER; i < (si + 1) * PER; i++)
+                    top = fmaxf(top, c->top[j][i]);
             double patch[4][3];
-            square_patch(c, i * PER, j * PER, PER, patch);
-            if (!ground_horizon_hidden(&r->horizon, (const double(*)[3])patch,
-                                       R + fmax(c->top[j][i], sea) + 0.01))
-                return 0;
+            square_patch(c, si, sj, 1, patch);
+            if (ground_horizon_hidden(&r->horizon, (const double(*)[3])patch,
+                                      R + fmax(top, sea) + 0.01))
+                continue;
+            // The square's cells: the directions of its (PER + 1)^2 grid points.
+            double dir[PER + 1][PER + 1][3];
+            for (int j = 0; j <= PER; j++)
+                for (int i = 0; i <= PER; i++)
+                    world_grid_face_direction(
+                        n.face, edge_coord(r, n.level, n.bx * BLOCK + si * PER + i),
+                        edge_coord(r, n.level, n.by * BLOCK + sj * PER + j), dir[j][i]);
+            const double margin = 0.01 + 2.0 * c->morph_slip * (top - c->bottom[sj][si]);
+            for (int j = 0; j < PER; j++)
+                for (int i = 0; i < PER; i++) {
+                    double cell[4][3];
+                    for (int a = 0; a < 3; a++) {
+                        cell[0][a] = dir[j][i][a], cell[1][a] = dir[j][i + 1][a];
+                        cell[2][a] = dir[j + 1][i][a], cell[3][a] = dir[j + 1][i + 1][a];
+                    }
+                    if (!ground_horizon_hidden(&r->horizon, (const double(*)[3])cell,
+                                               R + fmax(c->top[sj * PER + j][si * PER + i], sea) +
+                                                   margin))
+                        return 0;
+                }
         }
     return 1;
 }
