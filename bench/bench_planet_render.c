@@ -220,11 +220,9 @@ int main(int argc, char **argv) {
     // detail layer as wide as the detail's fade distance), where every near chunk
     // runs the parallax and the detail's normals.
     {
-        double dir[3], st[2];
+        double st[2];
         int face;
-        for (int k = 0; k < 3; k++)
-            dir[k] = cams[TWO_M].pos[k];
-        world_grid_direction_face(dir, &face, &st[0], &st[1]);
+        world_grid_direction_face(cams[TWO_M].pos, &face, &st[0], &st[1]);
         const world_params *p = world_get_params(planet);
         const double n = (double)world_grid_face_samples(p), cell = p->radius * M_PI / 2 / n;
         cmd_context ctx;

@@ -435,12 +435,12 @@ static double skirt_depth(const planet_renderer *r, int level) {
     return fmin(ldexp(r->cell_arc, level), 2.0 * r->params.max_height) + 0.25 * r->cell_arc;
 }
 
-// How far a level's drawn triangles can lie under their corners: the sag of chords as
-// long as a parent cell's diagonal, and the vertices' float precision.
 static double dot3(const double a[3], const double b[3]) {
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
+// How far a level's drawn triangles can lie under their corners: the sag of chords as
+// long as a parent cell's diagonal, and the vertices' float precision.
 static double chord_sag(const planet_renderer *r, int level) {
     const double cell = ldexp(r->cell_arc, level);
     return cell * cell / r->params.radius + 1e-6 * BLOCK * cell + 0.01;
@@ -499,7 +499,7 @@ static void build_vertices(const planet_renderer *r, const node *n, const float 
     // midpoint of two parent vertices at different heights leans toward the higher).
     c->morph_slip = 0;
     for (int gj = 0; gj <= BLOCK; gj++)
-        for (int gi = 0; gi < BLOCK; gi++) {
+        for (int gi = 0; gi <= BLOCK; gi++) { // the ring holds the next vertex for the last
             const double *p = pos[(gj + 1) * RING + gi + 1], *q = coarse[gj * (BLOCK + 1) + gi],
                          *next = pos[(gj + 1) * RING + gi + 2];
             const double lp = sqrt(dot3(p, p)), lq = sqrt(dot3(q, q)), ln = sqrt(dot3(next, next));
@@ -1101,11 +1101,11 @@ static void add_solid_under(planet_renderer *r, const chunk *c) {
     ground_occlusion_add_solid(&r->occlusion, (const double(*)[3])pts, 8);
 }
 
-// A chunk's g x g squares from square (si, sj) as a ground_horizon.h patch.
-static void square_patch(const chunk *c, int si, int sj, int g, double out[4][3]) {
+// One of a chunk's squares as a ground_horizon.h patch.
+static void square_patch(const chunk *c, int si, int sj, double out[4][3]) {
     for (int a = 0; a < 3; a++) {
-        out[0][a] = c->square_dir[sj][si][a], out[1][a] = c->square_dir[sj][si + g][a];
-        out[2][a] = c->square_dir[sj + g][si][a], out[3][a] = c->square_dir[sj + g][si + g][a];
+        out[0][a] = c->square_dir[sj][si][a], out[1][a] = c->square_dir[sj][si + 1][a];
+        out[2][a] = c->square_dir[sj + 1][si][a], out[3][a] = c->square_dir[sj + 1][si + 1][a];
     }
 }
 
@@ -1129,7 +1129,7 @@ static int behind_crest(planet_renderer *r, const chunk *c) {
                 for (int i = si * PER; i < (si + 1) * PER; i++)
                     top = fmaxf(top, c->top[j][i]);
             double patch[4][3];
-            square_patch(c, si, sj, 1, patch);
+            square_patch(c, si, sj, patch);
             if (ground_horizon_hidden(&r->horizon, (const double(*)[3])patch,
                                       R + fmax(top, sea) + 0.01))
                 continue;
@@ -1164,7 +1164,7 @@ static void add_floors(planet_renderer *r, const chunk *c) {
     for (int sj = 0; sj < CREST_SQUARES; sj++)
         for (int si = 0; si < CREST_SQUARES; si++) {
             double patch[4][3];
-            square_patch(c, si, sj, 1, patch);
+            square_patch(c, si, sj, patch);
             ground_horizon_add_floor(&r->horizon, (const double(*)[3])patch,
                                      r->params.radius + fmax(c->bottom[sj][si], sea));
         }

@@ -94,8 +94,10 @@ less 1 "$r"; check "40 m and 2 m views differ (rmse $r)" $?
 run "$earth; camera_geo $spot 2 90 -5 ground; screenshot $work/occ_on.png $size;
      render culling=off; screenshot $work/occ_off.png $size"
 rc=$?; check "2 m views with and without occlusion culling ($(cat "$work/err"))" $rc
-tris_on=$(sed -n 's/^screenshot .*occ_on.* triangles=\([0-9]*\).*/\1/p' "$work/out")
-tris_off=$(sed -n 's/^screenshot .*occ_off.* triangles=\([0-9]*\).*/\1/p' "$work/out")
+# triangles NAME: the triangles the last run's screenshot NAME.png drew.
+triangles() { sed -n "s/^screenshot .*$1\.png.* triangles=\([0-9]*\).*/\1/p" "$work/out"; }
+tris_on=$(triangles occ_on)
+tris_off=$(triangles occ_off)
 less "${tris_on:-x}" "${tris_off:-x}"
 check "occlusion culling draws fewer triangles ($tris_on against $tris_off)" $?
 r=$(rmse "$work/occ_on.png" "$work/occ_off.png")
@@ -106,8 +108,8 @@ less "$r" 0.001; check "and the same picture (rmse $r)" $?
 run "new planet preset=moon; spacing 1; generate; camera_geo 40 -30 2 240 -5 ground;
      screenshot $work/hills_on.png $size; render culling=off; screenshot $work/hills_off.png $size"
 rc=$?; check "2 m in the moon's hills with and without culling ($(cat "$work/err"))" $rc
-tris_on=$(sed -n 's/^screenshot .*hills_on.* triangles=\([0-9]*\).*/\1/p' "$work/out")
-tris_off=$(sed -n 's/^screenshot .*hills_off.* triangles=\([0-9]*\).*/\1/p' "$work/out")
+tris_on=$(triangles hills_on)
+tris_off=$(triangles hills_off)
 less "$((${tris_on:-0} * 4))" "${tris_off:-0}"
 check "culling in hills draws under a quarter of the triangles ($tris_on against $tris_off)" $?
 r=$(rmse "$work/hills_on.png" "$work/hills_off.png")
