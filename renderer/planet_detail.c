@@ -1,6 +1,7 @@
 #include "renderer/planet_detail.h"
 
 #include "renderer/clip_window.h"
+#include "renderer/clip_window_upload.h"
 
 #include <float.h>
 #include <math.h>
@@ -100,25 +101,6 @@ void planet_detail_touched(planet_detail *d, tile_cache *cache, int face, grid_r
     }
 }
 
-// Sends what changed in a window's mirror to its texture.
-static void upload(planet_detail *d, clip_window *w, GLuint tex, GLenum format, GLenum type) {
-    if (!w->upload_all && w->upload_count == 0) return;
-    texel_rect whole = {0, 0, w->size, w->size};
-    const texel_rect *rects = w->upload_all ? &whole : w->uploads;
-    int count = w->upload_all ? 1 : w->upload_count;
-    glPixelStorei(GL_UNPACK_ROW_LENGTH, w->size);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    for (int k = 0; k < count; k++) {
-        const texel_rect *t = &rects[k];
-        const unsigned char *src = w->mirror + ((size_t)t->z * w->size + t->x) * w->texel_bytes;
-        glTextureSubImage2D(tex, 0, t->x, t->z, t->w, t->h, format, type, src);
-        d->uploads += (uint64_t)t->w * t->h;
-    }
-    glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
-    w->upload_all = 0;
-    w->upload_count = 0;
-}
-
 // Re-measures the blocks that the rectangles (texels, not wrapping) touch.
 static void measure_blocks(detail_window *w, const clip_window *changed) {
     texel_rect whole = {0, 0, changed->size, changed->size};
@@ -159,8 +141,8 @@ static int follow(planet_detail *d, detail_window *w, tile_cache *cache, const d
     if (a < 0 || b < 0) return -1;
     measure_blocks(w, &w->heights); // both mirrors, where either changed
     measure_blocks(w, &w->slopes);
-    upload(d, &w->heights, w->tex_heights, GL_RED, GL_FLOAT);
-    upload(d, &w->slopes, w->tex_slopes, GL_RG, GL_SHORT);
+    d->uploads += clip_window_upload(&w->heights, w->tex_heights, -1, GL_RED, GL_FLOAT);
+    d->uploads += clip_window_upload(&w->slopes, w->tex_slopes, -1, GL_RG, GL_SHORT);
     w->current = a == 1 && b == 1;
     return w->current;
 }

@@ -15,24 +15,13 @@
 #include "editor/world/world.h"
 #include "io/err.h"
 #include "renderer/camera.h"
+#include "renderer/planet_stats.h"
 #include "renderer/render_settings.h"
 
 #include <epoxy/gl.h>
 #include <stdint.h>
 
 typedef struct planet_renderer planet_renderer;
-
-typedef struct planet_stats {
-    uint64_t triangles;
-    int draw_calls;
-    int chunks_drawn, chunks_resident, finest_level, coarsest_level;
-    uint64_t vertices_uploaded;      // this frame (chunk meshes built from tiles)
-    uint64_t detail_texels_uploaded; // this frame (the detail window near the ground)
-    int chunks_built;                // this frame
-    int chunks_culled;               // behind the horizon or outside the view, this frame
-    int chunks_occluded;             // chosen but hidden by nearer ground, this frame
-    double cpu_ms;
-} planet_stats;
 
 // albedo: the terrain renderer's material texture array; falloff: its brush falloff
 // texture (64 x 1 R32F), both shared, not owned.

@@ -2,6 +2,7 @@
 
 #include "editor/world/world_events.h"
 #include "renderer/clip_window.h"
+#include "renderer/clip_window_upload.h"
 #include "renderer/clipmap_mesh.h"
 #include "renderer/frustum.h"
 #include "renderer/lighting.h"
@@ -285,29 +286,13 @@ static void scan_bounds(terrain_renderer *r, int l, const texel_rect *rects, int
             }
 }
 
-// Sends what changed in a window's mirror to its texture (layer for array textures).
+// Sends what changed in a window's mirror to its texture (layer for array textures),
+// the coarse heights' bounds re-measured over it first.
 static void upload_window(terrain_renderer *r, clip_window *w, GLuint tex, int layer, GLenum format,
                           GLenum type) {
-    if (!w->upload_all && w->upload_count == 0) return;
-    texel_rect whole = {0, 0, w->size, w->size};
-    const texel_rect *rects = w->upload_all ? &whole : w->uploads;
-    int count = w->upload_all ? 1 : w->upload_count;
-    glPixelStorei(GL_UNPACK_ROW_LENGTH, w->size);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    for (int k = 0; k < count; k++) {
-        const texel_rect *t = &rects[k];
-        const unsigned char *src = w->mirror + ((size_t)t->z * w->size + t->x) * w->texel_bytes;
-        if (layer >= 0)
-            glTextureSubImage3D(tex, 0, t->x, t->z, layer, t->w, t->h, 1, format, type, src);
-        else
-            glTextureSubImage2D(tex, 0, t->x, t->z, t->w, t->h, format, type, src);
-        r->frame_texels += (uint64_t)t->w * t->h;
-    }
-    glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
-    if (layer >= 0 && w->layer == TILE_LAYER_COARSE)
-        scan_bounds(r, layer, rects, count, w->upload_all);
-    w->upload_all = 0;
-    w->upload_count = 0;
+    if (layer >= 0 && w->layer == TILE_LAYER_COARSE && (w->upload_all || w->upload_count > 0))
+        scan_bounds(r, layer, w->uploads, w->upload_count, w->upload_all);
+    r->frame_texels += clip_window_upload(w, tex, layer, format, type);
 }
 
 // Whether any texel of the material window holds paint (weight 0, "automatic", under
