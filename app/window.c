@@ -948,7 +948,8 @@ static void on_close(GLFWwindow *win) {
 
 // --- changes ------------------------------------------------------------------------
 
-// Edits made by another thread's publish (none today) must not wait for input.
+// Changes published from another thread (a job's edits, work_queue.c) must not wait
+// for input: they wake the event loop.
 static void wake_window(void *user) {
     (void)user;
     glfwPostEmptyEvent();

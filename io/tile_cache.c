@@ -539,17 +539,6 @@ int tile_cache_has_dirty(tile_cache *c) {
     return any;
 }
 
-void tile_cache_drop_clean(tile_cache *c) {
-    pthread_mutex_lock(&c->lock);
-    entry *e = c->lru_head;
-    while (e) {
-        entry *next = e->lnext;
-        if (!e->dirty && e->pins == 0) free_entry(c, e);
-        e = next;
-    }
-    pthread_mutex_unlock(&c->lock);
-}
-
 void tile_cache_stats_get(tile_cache *c, tile_cache_stats *out) {
     pthread_mutex_lock(&c->lock);
     *out = c->counters;

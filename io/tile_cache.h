@@ -88,8 +88,6 @@ size_t tile_cache_edited_keys(tile_cache *cache, int layer, tile_key *out, size_
 int tile_cache_flush(tile_cache *cache, og_error *err);
 // Whether any resident tile has changes not yet written to the store.
 int tile_cache_has_dirty(tile_cache *cache);
-// Drops every clean, unpinned tile (e.g. after the generator parameters changed).
-void tile_cache_drop_clean(tile_cache *cache);
 
 void tile_cache_stats_get(tile_cache *cache, tile_cache_stats *out);
 

@@ -71,7 +71,6 @@ struct terrain_renderer {
 
     render_stats stats;
     uint64_t frame_texels;
-    uint64_t texels_total;
 };
 
 static double now_ms(void) {
@@ -410,7 +409,6 @@ int terrain_renderer_update(terrain_renderer *r, world *w, const camera *cam,
         int rc = planet_renderer_update(r->planet, w, cam, s, (double)r->width / r->height,
                                         r->height, err);
         copy_planet_stats(r);
-        r->texels_total += r->stats.texels_uploaded;
         return rc;
     }
     // Tile coordinates are int32: keep the window's samples addressable (with margin).
@@ -472,7 +470,6 @@ int terrain_renderer_update(terrain_renderer *r, world *w, const camera *cam,
         if (l >= r->finest && clip_window_current(&r->heights[l], r->origin[l])) below = l;
         r->src[l] = l >= r->finest ? below : -1;
     }
-    r->texels_total += r->frame_texels;
     r->stats.texels_uploaded = r->frame_texels;
     r->stats.levels_ready = 0;
     for (int l = r->finest; l < r->levels; l++)
@@ -904,8 +901,4 @@ void terrain_renderer_stats(const terrain_renderer *r, render_stats *out) {
 
 volume_renderer *terrain_renderer_volume(terrain_renderer *r) {
     return r->volume;
-}
-
-uint64_t terrain_renderer_texels_total(const terrain_renderer *r) {
-    return r->texels_total;
 }

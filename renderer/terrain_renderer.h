@@ -47,9 +47,6 @@ void terrain_renderer_set_view_size(terrain_renderer *r, int width, int height);
 typedef struct volume_renderer volume_renderer;
 volume_renderer *terrain_renderer_volume(terrain_renderer *r);
 
-// Texels copied into the level textures since creation (all levels and layers).
-uint64_t terrain_renderer_texels_total(const terrain_renderer *r);
-
 // The ground height at world x, z from the finest current level holding it (what the
 // viewport shows, without morphing). 0 and *h, or -1 when no level holds it.
 int terrain_renderer_height_at(void *renderer, double x, double z, double *h);

@@ -38,9 +38,8 @@ struct volume_renderer {
     size_t touched_count, touched_cap;
     int64_t mask_origin[2]; // brick column of mask texel (0, 0)
     int mask_valid;
-    int32_t *mask; // VOLUME_VIEW_BRICKS^2 x (lowest level, bits)
-    double last_mesh_ms;
-    int last_meshed;
+    int32_t *mask;   // VOLUME_VIEW_BRICKS^2 x (lowest level, bits)
+    int last_meshed; // bricks meshed by the current update
 };
 
 static double now_ms(void) {
@@ -319,7 +318,6 @@ static int mesh_batch(world *w, const volume_grid *g, vbrick **bricks, int count
 int volume_renderer_update(volume_renderer *vr, world *w, const camera *cam, double budget_ms,
                            og_error *err) {
     vr->last_meshed = 0;
-    vr->last_mesh_ms = 0;
     if (vr->world != w) vr->need_list = 1;
     vr->world = w;
     volume_grid g;
@@ -364,7 +362,6 @@ int volume_renderer_update(volume_renderer *vr, world *w, const camera *cam, dou
         }
         vr->last_meshed += n;
     }
-    vr->last_mesh_ms = now_ms() - t0;
     return all;
 }
 
@@ -506,16 +503,4 @@ int volume_renderer_replaces(const volume_renderer *vr, double x, double y, doub
                                     (int64_t)floor(z / v));
     const vbrick *b = find_brick(vr, key);
     return b && in_view(vr, b);
-}
-
-void volume_renderer_counts(const volume_renderer *vr, size_t *bricks, uint64_t *triangles,
-                            double *last_mesh_ms, int *last_meshed) {
-    size_t n = 0;
-    uint64_t t = 0;
-    for (size_t i = 0; i < vr->count; i++)
-        if (vr->bricks[i].mesh.index_count) n++, t += vr->bricks[i].mesh.index_count / 3;
-    if (bricks) *bricks = n;
-    if (triangles) *triangles = t;
-    if (last_mesh_ms) *last_mesh_ms = vr->last_mesh_ms;
-    if (last_meshed) *last_meshed = vr->last_meshed;
 }

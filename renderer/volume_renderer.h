@@ -48,9 +48,4 @@ int volume_renderer_pick(const volume_renderer *vr, const double origin[3], cons
 // Whether the heightfield at (x, y, z) metres is hidden (a mesh draws the ground there).
 int volume_renderer_replaces(const volume_renderer *vr, double x, double y, double z);
 
-// Bricks with a mesh and their triangles (for stats and tests); meshing time of the
-// last update (ms) and bricks meshed in it.
-void volume_renderer_counts(const volume_renderer *vr, size_t *bricks, uint64_t *triangles,
-                            double *last_mesh_ms, int *last_meshed);
-
 #endif

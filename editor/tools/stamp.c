@@ -22,10 +22,6 @@ static const char *image_exts[] = {".png", ".tif",  ".tiff", ".exr",
                                    ".jpg", ".jpeg", ".pgm",  ".hdr"};
 #define IMAGE_EXT_COUNT (sizeof image_exts / sizeof image_exts[0])
 
-const char *stamp_mode_name(stamp_mode m) {
-    return (unsigned)m < STAMP_MODE_COUNT ? mode_names[m] : "unknown";
-}
-
 void stamp_placement_defaults(stamp_placement *p) {
     memset(p, 0, sizeof *p);
     p->scale = 1.0;

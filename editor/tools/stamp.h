@@ -42,7 +42,6 @@ typedef struct stamp_placement {
     int face;
 } stamp_placement;
 
-const char *stamp_mode_name(stamp_mode m);
 // Defaults: scale 1, no rotation or mirroring, intensity 50 m (coarse), add.
 void stamp_placement_defaults(stamp_placement *p);
 // Sets one key=value of a placement (scale rot mirror intensity mode layer face).

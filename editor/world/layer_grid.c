@@ -38,11 +38,6 @@ grid_rect layer_grid_disc_rect(const layer_grid *g, double x, double z, double r
     return layer_grid_clip(g, r);
 }
 
-tile_key layer_grid_tile(const layer_grid *g, int64_t gx, int64_t gz) {
-    return (tile_key){g->layer, g->face, 0, (int32_t)world_grid_floor_div(gx, TILE_SIZE),
-                      (int32_t)world_grid_floor_div(gz, TILE_SIZE)};
-}
-
 int layer_grid_read_samples(world *w, const layer_grid *g, grid_rect r, void *out_bytes,
                             og_error *err) {
     unsigned char *out = out_bytes;

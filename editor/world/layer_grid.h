@@ -27,9 +27,6 @@ grid_rect layer_grid_clip(const layer_grid *g, grid_rect r);
 // Samples within radius metres of (x, z) metres, clipped to the grid.
 grid_rect layer_grid_disc_rect(const layer_grid *g, double x, double z, double radius);
 
-// The tile holding sample (gx, gz), and where the tile's sample (0, 0) is.
-tile_key layer_grid_tile(const layer_grid *g, int64_t gx, int64_t gz);
-
 // Copies the float samples of r (coarse or detail) into out (row-major, r's width).
 // Samples outside a bounded grid read as the nearest edge sample.
 int layer_grid_read(world *w, const layer_grid *g, grid_rect r, float *out, og_error *err);
