@@ -2,7 +2,7 @@
 // command language with no window and no GL; interactive mode opens the editor
 // window on the default world (or the one named), with the console on stdin.
 #include "app/window.h"
-#include "renderer/view_commands.h"
+#include "view/view_commands.h"
 #include "renderer/viewport.h"
 #include "editor/cmd/commands.h"
 #include "editor/cmd/edit_commands.h"

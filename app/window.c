@@ -18,7 +18,7 @@
 #include "renderer/planet_camera.h"
 #include "renderer/ui_renderer.h"
 #include "io/image_read.h"
-#include "renderer/view_commands.h"
+#include "view/view_commands.h"
 #include "renderer/viewport.h"
 #include "io/parse.h"
 #include "ui/ui.h"

@@ -15,7 +15,7 @@
 #include "editor/cmd/commands.h"
 #include "renderer/gl_target.h"
 #include "renderer/ui_renderer.h"
-#include "renderer/view_commands.h"
+#include "view/view_commands.h"
 #include "renderer/viewport.h"
 
 #include <epoxy/gl.h>

@@ -8,7 +8,7 @@ cd "$root" || exit 1
 if git rev-parse --is-inside-work-tree >/dev/null 2>&1; then
     files=$(git ls-files '*.c' '*.h' '*.cpp')
 else
-    files=$(find app bench editor io renderer tests tools ui -name '*.c' -o -name '*.h' -o -name '*.cpp' 2>/dev/null)
+    files=$(find app bench editor io renderer tests tools ui view -name '*.c' -o -name '*.h' -o -name '*.cpp' 2>/dev/null)
 fi
 bad=0
 for f in $files; do

@@ -22,7 +22,11 @@ ALLOWED = {
     "editor/interchange": ["editor/edit", "editor/world", "editor/gen", "editor/params", "io"],
     "editor/cmd": ["editor/interchange", "editor/tools", "editor/edit", "editor/world", "editor/gen", "editor/params",
                    "io"],
-    "renderer": ["editor/cmd", "editor/world", "editor/gen", "editor/params", "io", "ui"],
+    # The renderer reads the world; it knows neither the command language nor the edits.
+    "renderer": ["editor/world", "editor/gen", "editor/params", "io", "ui"],
+    # The viewport's commands sit above both.
+    "view": ["renderer", "editor/cmd", "editor/interchange", "editor/tools", "editor/edit", "editor/world",
+             "editor/gen", "editor/params", "io", "ui"],
     "app": None,  # everything
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')

@@ -44,5 +44,9 @@ expect "\"/*\" in a string or after // hides no include" 1 "folder editor/world 
 clean_tree
 printf '#include "editor/world/w.h"\n' >"$work/tree/io/a.c"
 expect "io may not use the editor" 1 "folder io may not use editor/world"
+clean_tree
+printf '#include "editor/cmd/c.h"\n' >>"$work/tree/renderer/r.c"
+printf '// c\n' >"$work/tree/editor/cmd/c.h"
+expect "the renderer may not use the command language" 1 "folder renderer may not use editor/cmd"
 echo "check_layering_selftest: $failures failed"
 [ $failures = 0 ]

@@ -1,8 +1,8 @@
 // The viewport's commands in the command language: camera, view, render, screenshot,
 // pick. They work with no display: the first render makes a headless EGL context.
 // The command language knows no renderer: app/ registers these at start-up.
-#ifndef OROGEN_RENDERER_VIEW_COMMANDS_H
-#define OROGEN_RENDERER_VIEW_COMMANDS_H
+#ifndef OROGEN_VIEW_VIEW_COMMANDS_H
+#define OROGEN_VIEW_VIEW_COMMANDS_H
 
 #include "editor/cmd/commands.h"
 #include "renderer/viewport.h"

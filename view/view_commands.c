@@ -1,4 +1,4 @@
-#include "renderer/view_commands.h"
+#include "view/view_commands.h"
 
 #include "io/parse.h"
 #include "renderer/planet_camera.h"
