@@ -74,27 +74,51 @@ void planet_lat_lon(const double pos[3], double *lat, double *lon) {
     *lon = horizontal > 0 ? atan2(pos[0], pos[2]) / DEG : 0.0;
 }
 
+// Level-0 mesh vertex (corner e, f of the cells, 0..n) of a face: the bilinear height
+// between the samples around it, and on the face's edge the mean of every face there
+// (renderer/planet_face_edges.c: the same from each side).
+static int corner_height(world *w, int face, double e, double f, double *height, og_error *err) {
+    const world_params *p = world_get_params(w);
+    const double n = (double)world_grid_face_samples(p), last = (n - 1.0) * p->spacing;
+    if (e > 0 && e < n && f > 0 && f < n)
+        return world_sample(w, face, (e - 0.5) * p->spacing, (f - 0.5) * p->spacing, height, err);
+    double dir[3], sum = 0;
+    int faces = 0;
+    world_grid_face_direction(face, e / n * 2.0 - 1.0, f / n * 2.0 - 1.0, dir);
+    for (int g = 0; g < 6; g++) {
+        double s, t, h;
+        if (!world_grid_face_coords_on(g, dir, &s, &t) || fmax(fabs(s), fabs(t)) > 1.0 + 1e-9)
+            continue;
+        const double x = (s + 1.0) * 0.5 * n - 0.5, z = (t + 1.0) * 0.5 * n - 0.5;
+        if (world_sample(w, g, fmin(fmax(x * p->spacing, 0.0), last),
+                         fmin(fmax(z * p->spacing, 0.0), last), &h, err) != 0)
+            return -1;
+        sum += h, faces++;
+    }
+    if (faces == 0)
+        return world_sample(w, face, fmin(fmax((e - 0.5) * p->spacing, 0.0), last),
+                            fmin(fmax((f - 0.5) * p->spacing, 0.0), last), height, err);
+    *height = sum / faces;
+    return 0;
+}
+
 int planet_ground_height(world *w, const double pos[3], double *height, og_error *err) {
     const world_params *p = world_get_params(w);
     int face;
     double s, t;
     world_grid_direction_face(pos, &face, &s, &t);
-    // The finest level's mesh (renderer/planet_renderer.c): vertices on the cells'
+    // The finest level's mesh (renderer/planet_uploads.c): vertices on the cells'
     // corners, each the bilinear height between the samples around it (sample i's centre
     // sits at face-local metres i x spacing, corner e at e - 1/2 samples), two triangles
     // a cell split along (e + 1, f) - (e, f + 1). Where the ground is rough the mesh and
     // the bilinear samples differ by metres: the camera and the brush stand on the mesh.
-    const double n = (double)world_grid_face_samples(p), last = (n - 1.0) * p->spacing;
+    const double n = (double)world_grid_face_samples(p);
     const double es = (s + 1.0) * 0.5 * n, et = (t + 1.0) * 0.5 * n;
     const double i = fmin(floor(es), n - 1.0), j = fmin(floor(et), n - 1.0);
     const double fu = es - i, fv = et - j;
     double corner[4]; // (i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1)
-    for (int k = 0; k < 4; k++) {
-        const double x = (i + (k & 1) - 0.5) * p->spacing, z = (j + (k >> 1) - 0.5) * p->spacing;
-        if (world_sample(w, face, fmin(fmax(x, 0.0), last), fmin(fmax(z, 0.0), last), &corner[k],
-                         err) != 0)
-            return -1;
-    }
+    for (int k = 0; k < 4; k++)
+        if (corner_height(w, face, i + (k & 1), j + (k >> 1), &corner[k], err) != 0) return -1;
     *height = fu + fv <= 1.0
                   ? corner[0] + (corner[1] - corner[0]) * fu + (corner[2] - corner[0]) * fv
                   : corner[3] + (corner[2] - corner[3]) * (1.0 - fu) +

@@ -31,8 +31,10 @@ int planet_node_visible(planet_renderer *r, const node *n, double hmin, double h
     double pts[10][3];
     const double ss[5] = {s0, s1, s0, s1, 0.5 * (s0 + s1)};
     const double ts[5] = {t0, t0, t1, t1, 0.5 * (t0 + t1)};
+    // The ground under the sea is drawn raised to its surface: the top the camera sees.
+    const double top = fmax(hmax, world_params_ocean_height(&r->params));
     for (int k = 0; k < 5; k++) {
-        surface_point(r, n->face, ss[k], ts[k], hmax, pts[k]);
+        surface_point(r, n->face, ss[k], ts[k], top, pts[k]);
         surface_point(r, n->face, ss[k], ts[k], hmin, pts[5 + k]);
     }
     // Sphere around the midpoint of the centre's top and bottom.
@@ -49,7 +51,7 @@ int planet_node_visible(planet_renderer *r, const node *n, double hmin, double h
     b->radius *= 1.15;
     b->cell = ldexp(r->cell_arc, n->level);
     b->hmin = hmin, b->hmax = hmax;
-    if (behind_horizon(r, b->centre, b->radius, r->params.radius + hmax)) return 0;
+    if (behind_horizon(r, b->centre, b->radius, r->params.radius + top)) return 0;
     // The bounding sphere against each plane (tighter than its box).
     const double rel[3] = {b->centre[0] - r->cam->pos[0], b->centre[1] - r->cam->pos[1],
                            b->centre[2] - r->cam->pos[2]};

@@ -239,6 +239,11 @@ void planet_choose_shown(planet_renderer *r, const camera *cam, const render_set
 // resident and the frame's budget allows.
 chunk *planet_try_build(planet_renderer *r, const node *n);
 
+// Where faces meet (planet_face_edges.c): the level's height at a direction on a face's
+// edge or corner (the mean of the faces there) or past it (the neighbouring face's).
+// 1 when read, 0 while a tile is pending.
+int planet_edge_height(planet_renderer *r, int level, const double dir[3], float *out);
+
 // Drawing (planet_draw.c): the ground program for a variant (V_* bits), built on first use.
 ground_program *planet_ground_variant(planet_renderer *r, int variant, og_error *err);
 

@@ -9,6 +9,53 @@
 
 #include <string.h>
 
+// Positions with a ring one cell wider than the block, so every vertex's normal is a
+// central difference and neighbouring chunks shade their shared edge alike.
+#define RING (BLOCK + 3)
+
+// Face coordinate of a chunk's vertex g (-1 to BLOCK + 1, the ring included) along one
+// axis from block edge e0: its cell edge, clipped to the face, except that the ring's
+// vertex past the face's edge lies a cell beyond it, on the neighbouring face. *edge: the
+// vertex lies on the face's edge or past it (planet_face_edges.c gives its height).
+static double vertex_coord(const planet_renderer *r, int level, int64_t e0, int g, int *edge) {
+    const int64_t cells = (e0 + g) << level;
+    const double past = 2.0 * ldexp(1.0, level) / (double)r->face_samples;
+    *edge = cells <= 0 || cells >= r->face_samples;
+    if (g == -1 && cells < 0) return -1.0 - past;
+    if (g == BLOCK + 1 && ((e0 + BLOCK) << level) >= r->face_samples) return 1.0 + past;
+    return edge_coord(r, level, e0 + g);
+}
+
+// The heights of a chunk's vertices on or past its face's edges (NaN elsewhere: its own
+// tile's), at its level and, for the morph targets, at its parent's. 0 while a tile of a
+// neighbouring face is pending.
+static int edge_heights(planet_renderer *r, const node *n, double s[RING], double t[RING],
+                        float *heights, float *parent_heights) {
+    int edge_s[RING], edge_t[RING], any = 0;
+    for (int g = -1; g <= BLOCK + 1; g++) {
+        s[g + 1] = vertex_coord(r, n->level, n->bx * BLOCK, g, &edge_s[g + 1]);
+        t[g + 1] = vertex_coord(r, n->level, n->by * BLOCK, g, &edge_t[g + 1]);
+        any |= edge_s[g + 1] | edge_t[g + 1];
+    }
+    for (int k = 0; k < RING * RING; k++)
+        heights[k] = NAN;
+    for (int k = 0; k < GRID_VERTS; k++)
+        parent_heights[k] = NAN;
+    if (!any) return 1;
+    for (int gj = -1; gj <= BLOCK + 1; gj++)
+        for (int gi = -1; gi <= BLOCK + 1; gi++) {
+            if (!edge_s[gi + 1] && !edge_t[gj + 1]) continue;
+            double d[3];
+            world_grid_face_direction(n->face, s[gi + 1], t[gj + 1], d);
+            if (!planet_edge_height(r, n->level, d, &heights[(gj + 1) * RING + gi + 1])) return 0;
+            const int grid = gi >= 0 && gj >= 0 && gi <= BLOCK && gj <= BLOCK;
+            if (grid && gi % 2 == 0 && gj % 2 == 0 && n->level < r->root_level &&
+                !planet_edge_height(r, n->level + 1, d, &parent_heights[gj * (BLOCK + 1) + gi]))
+                return 0;
+        }
+    return 1;
+}
+
 static float sample_bilinear(const float *tile, double u, double v) {
     int i = (int)u, j = (int)v;
     int i1 = i + 1 < TILE_SIZE ? i + 1 : i, j1 = j + 1 < TILE_SIZE ? j + 1 : j;
@@ -26,8 +73,8 @@ static float sample_bilinear(const float *tile, double u, double v) {
 // heights; the others sit on the parent's edges and diagonals between them, so a chunk
 // morphed all the way is exactly its parent (no pop when the parent takes over).
 static void morph_targets(const planet_renderer *r, const node *n, const float *parent,
-                          double (*pos)[3], const float *heights, int ring, double (*coarse)[3],
-                          float *coarse_h) {
+                          const float *parent_edge, double (*pos)[3], const float *heights,
+                          int ring, double (*coarse)[3], float *coarse_h) {
     for (int gj = 0; gj <= BLOCK; gj++)
         for (int gi = 0; gi <= BLOCK; gi++) {
             const int k = gj * (BLOCK + 1) + gi, f = (gj + 1) * ring + gi + 1;
@@ -48,7 +95,8 @@ static void morph_targets(const planet_renderer *r, const node *n, const float *
             const int k = gj * (BLOCK + 1) + gi;
             double u = fmin(fmax(ou + gi / 2 - 0.5, 0.0), hi_u);
             double v = fmin(fmax(ov + gj / 2 - 0.5, 0.0), hi_v);
-            float h = sample_bilinear(parent, u, v);
+            const float edge = parent_edge[k];
+            float h = isnan(edge) ? sample_bilinear(parent, u, v) : edge;
             double len = sqrt(coarse[k][0] * coarse[k][0] + coarse[k][1] * coarse[k][1] +
                               coarse[k][2] * coarse[k][2]);
             double scale = (r->params.radius + h) / len;
@@ -100,10 +148,9 @@ static int painted_weights(const node *n, const uint8_t *material, float *out) {
 }
 
 static void build_vertices(const planet_renderer *r, const node *n, const float *tile,
-                           const float *parent, const uint8_t *material, float *out, chunk *c) {
-    // Positions with a ring one cell wider than the block, so every vertex's normal is
-    // a central difference and neighbouring chunks shade their shared edge alike.
-    enum { RING = BLOCK + 3 };
+                           const float *parent, const uint8_t *material, const double s[RING],
+                           const double t[RING], const float *edge_h, const float *parent_edge_h,
+                           float *out, chunk *c) {
     static double pos[RING * RING][3];
     static float heights[RING * RING];
     static double metres[RING][2];
@@ -114,14 +161,12 @@ static void build_vertices(const planet_renderer *r, const node *n, const float 
     const double hi_u = fmin(TILE_SIZE - 1, (double)(m - 1 - tx * TILE_SIZE));
     const double hi_v = fmin(TILE_SIZE - 1, (double)(m - 1 - ty * TILE_SIZE));
     double tan_s[RING], tan_t[RING];
-    for (int g = -1; g <= BLOCK + 1; g++) {
-        double s = edge_coord(r, n->level, n->bx * BLOCK + g);
-        double t = edge_coord(r, n->level, n->by * BLOCK + g);
-        tan_s[g + 1] = tan(s * (M_PI / 4.0));
-        tan_t[g + 1] = tan(t * (M_PI / 4.0));
+    for (int g = 0; g < RING; g++) {
+        tan_s[g] = tan(s[g] * (M_PI / 4.0));
+        tan_t[g] = tan(t[g] * (M_PI / 4.0));
         // Face-local metres, for the material textures' coordinates.
-        metres[g + 1][0] = (s + 1.0) * 0.5 * (double)r->face_samples * r->cell_arc;
-        metres[g + 1][1] = (t + 1.0) * 0.5 * (double)r->face_samples * r->cell_arc;
+        metres[g][0] = (s[g] + 1.0) * 0.5 * (double)r->face_samples * r->cell_arc;
+        metres[g][1] = (t[g] + 1.0) * 0.5 * (double)r->face_samples * r->cell_arc;
     }
     const double base_u = floor(metres[1][0] / TEX_PERIOD_FAR) * TEX_PERIOD_FAR;
     const double base_v = floor(metres[1][1] / TEX_PERIOD_FAR) * TEX_PERIOD_FAR;
@@ -133,10 +178,10 @@ static void build_vertices(const planet_renderer *r, const node *n, const float 
         for (int gi = -1; gi <= BLOCK + 1; gi++) {
             double u = fmin(fmax(ox + gi - 0.5, 0.0), hi_u);
             double v = fmin(fmax(oy + gj - 0.5, 0.0), hi_v);
-            float h = sample_bilinear(tile, u, v);
+            const int k = (gj + 1) * RING + gi + 1;
+            float h = isnan(edge_h[k]) ? sample_bilinear(tile, u, v) : edge_h[k];
             double d[3];
             world_grid_face_direction_warped(n->face, tan_s[gi + 1], tan_t[gj + 1], d);
-            const int k = (gj + 1) * RING + gi + 1;
             for (int a = 0; a < 3; a++)
                 pos[k][a] = d[a] * (r->params.radius + h);
             heights[k] = h;
@@ -147,7 +192,7 @@ static void build_vertices(const planet_renderer *r, const node *n, const float 
     memcpy(c->origin, pos[centre], sizeof c->origin);
     static double coarse[GRID_VERTS][3];
     static float coarse_h[GRID_VERTS];
-    morph_targets(r, n, parent, pos, heights, RING, coarse, coarse_h);
+    morph_targets(r, n, parent, parent_edge_h, pos, heights, RING, coarse, coarse_h);
     // How far a morph target lies from its vertex's own direction, in cells (the
     // midpoint of two parent vertices at different heights leans toward the higher).
     c->morph_slip = 0;
@@ -293,6 +338,15 @@ chunk *planet_try_build(planet_renderer *r, const node *n) {
             return NULL;
         }
     }
+    // The vertices on the face's edges, from every face there (planet_face_edges.c).
+    static double s[RING], t[RING];
+    static float edge_h[RING * RING], parent_edge_h[GRID_VERTS];
+    if (!edge_heights(r, n, s, t, edge_h, parent_edge_h)) {
+        tile_cache_release(cache, &view);
+        if (material.data) tile_cache_release(cache, &material);
+        r->all_current = 0;
+        return NULL;
+    }
     int slot = planet_take_slot(r);
     if (slot < 0) { // every chunk is in use this frame
         tile_cache_release(cache, &view);
@@ -313,7 +367,8 @@ chunk *planet_try_build(planet_renderer *r, const node *n) {
     }
     static float verts[CHUNK_VERTS * VERTEX_FLOATS];
     chunk *c = &r->chunks[slot];
-    build_vertices(r, n, view.data, parent.data, material.data, verts, c);
+    build_vertices(r, n, view.data, parent.data, material.data, s, t, edge_h, parent_edge_h, verts,
+                   c);
     c->cos_widest = footprint_corners(r, n, c->corner_dir);
     for (int j = 0; j <= CREST_SQUARES; j++)
         for (int i = 0; i <= CREST_SQUARES; i++) {

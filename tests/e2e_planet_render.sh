@@ -44,9 +44,16 @@ run "load $tests/data/params/seed004.planet; screenshot $work/planet_seed004.png
 rc=$?; check "the seed-004 planet renders ($(cat "$work/err"))" $rc
 run "new planet preset=moon; screenshot $work/planet_moon.png $size"
 rc=$?; check "the moon preset renders ($(cat "$work/err"))" $rc
+# Issue 29's reproducers: the sea 100 m below a camera looking out to the horizon (its
+# near part was left out, black), and a camera 2 m up on a face edge (the neighbouring
+# face's near ground was missing: its edge stood higher than the camera).
+run "new planet preset=earth; camera_geo 0 20 100 90 -10; screenshot $work/planet_sea_low.png $size;
+     camera_geo 10.004 45 2 110 -12 60 ground; screenshot $work/planet_face_edge.png $size"
+rc=$?; check "the issue-29 reproducers render ($(cat "$work/err"))" $rc
 max_golden=2.0
 mkdir -p "$failed_dir"
-for name in planet_orbit planet_10km planet_2m planet_wire planet_seed004 planet_moon; do
+for name in planet_orbit planet_10km planet_2m planet_wire planet_seed004 planet_moon \
+    planet_sea_low planet_face_edge; do
     if [ -n "${OROGEN_UPDATE_GOLDEN:-}" ]; then
         mkdir -p "$golden" && cp "$work/$name.png" "$golden/$name.png"
         echo "updated $golden/$name.png"
