@@ -1,6 +1,7 @@
 // OpenImageIO bridge. Everything C++ stays in this file: every entry point catches
 // all exceptions, and OIIO's own error text goes into the messages.
 #include "io/image_read.h"
+#include "io/file_mode.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -139,7 +140,7 @@ int write_png_atomic(const char *path, const OIIO::ImageSpec &spec, const void *
         return og_error_set(err, "%s: cannot create a temp file beside it: %s", path,
                             strerror(errno));
     tmp.path = name;
-    fchmod(fd, 0644); // mkstemp's 0600 would carry over to the final file
+    fchmod(fd, og_new_file_mode()); // mkstemp's 0600 would carry over to the final file
     close(fd);
 
     // By format name: the temp file's name does not end in .png.
@@ -406,7 +407,7 @@ int write_samples_impl(const char *path, const float *samples, int width, int he
         return og_error_set(err, "%s: cannot create a temp file beside it: %s", path,
                             strerror(errno));
     tmp.path = name;
-    fchmod(fd, 0644);
+    fchmod(fd, og_new_file_mode());
     close(fd);
     auto out = OIIO::ImageOutput::create(oiio_format);
     if (!out)

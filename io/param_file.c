@@ -1,5 +1,7 @@
 #include "io/param_file.h"
 
+#include "io/file_mode.h"
+
 #include <errno.h>
 #include <fcntl.h>
 #include <stdarg.h>
@@ -337,8 +339,8 @@ int param_file_write_atomic(const char *path, const char *text, size_t len, og_e
                      base);
     if (n < 0 || (size_t)n >= sizeof tmp) return og_error_set(err, "%s: path too long", path);
 
-    // Keep the permissions of the file being replaced; new files get the usual 0644.
-    mode_t mode = 0644;
+    // Keep the permissions of the file being replaced; new files get the umask's mode.
+    mode_t mode = og_new_file_mode();
     struct stat st;
     if (stat(path, &st) == 0) {
         if (S_ISDIR(st.st_mode)) return og_error_set(err, "%s: is a folder", path);

@@ -1,5 +1,6 @@
 #include "io/vdb_file.h"
 
+#include "io/file_mode.h"
 #include "io/module_load.h"
 
 #include <dlfcn.h>
@@ -10,12 +11,15 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 typedef void *(*create_fn)(double, float, char *, size_t);
 typedef int (*column_fn)(void *, int, int, int, int, const float *, int);
 typedef int (*merge_fn)(void *, void *);
 typedef long long (*active_fn)(void *);
+typedef int (*fill_fn)(void *, const int *);
+typedef int (*sign_fn)(void *, int (*)(void *, int, int, int), void *);
 typedef int (*write_fn)(void *, const char *, int, const char *const *, int, char *, size_t);
 typedef void (*free_fn)(void *);
 
@@ -25,6 +29,8 @@ static struct {
     column_fn column;
     merge_fn merge;
     active_fn active;
+    fill_fn fill_inside;
+    sign_fn sign;
     write_fn write;
     free_fn release;
     char why[1024];
@@ -43,10 +49,12 @@ static void load_module(void) {
     module.column = (column_fn)dlsym(h, "orogen_vdb_module_set_column");
     module.merge = (merge_fn)dlsym(h, "orogen_vdb_module_merge");
     module.active = (active_fn)dlsym(h, "orogen_vdb_module_active_voxels");
+    module.fill_inside = (fill_fn)dlsym(h, "orogen_vdb_module_fill_inside");
+    module.sign = (sign_fn)dlsym(h, "orogen_vdb_module_sign");
     module.write = (write_fn)dlsym(h, "orogen_vdb_module_write");
     module.release = (free_fn)dlsym(h, "orogen_vdb_module_free");
-    if (module.create && module.column && module.merge && module.active && module.write &&
-        module.release)
+    if (module.create && module.column && module.merge && module.active && module.fill_inside &&
+        module.sign && module.write && module.release)
         return;
     snprintf(module.why, sizeof module.why, "liborogen_vdb.so is not Orogen's OpenVDB module");
     module.create = NULL;
@@ -74,6 +82,22 @@ int vdb_level_set_column(vdb_level_set *ls, int32_t i, int32_t k, int32_t j0, in
 int vdb_level_set_merge(vdb_level_set *dst, vdb_level_set *src, og_error *err) {
     if (module.merge(dst, src) != 0)
         return og_error_set(err, "OpenVDB: out of memory merging level sets");
+    return 0;
+}
+
+int vdb_level_set_fill_inside(vdb_level_set *ls, const int32_t box[6], og_error *err) {
+    int b[6];
+    for (int a = 0; a < 6; a++)
+        b[a] = box[a];
+    if (module.fill_inside(ls, b) != 0)
+        return og_error_set(err, "OpenVDB: out of memory filling the interior");
+    return 0;
+}
+
+int vdb_level_set_sign(vdb_level_set *ls, int (*inside)(void *user, int i, int j, int k),
+                       void *user, og_error *err) {
+    if (module.sign(ls, inside, user) != 0)
+        return og_error_set(err, "OpenVDB: could not sign the level set's inactive values");
     return 0;
 }
 
@@ -105,6 +129,7 @@ int vdb_level_set_write(vdb_level_set *ls, const char *path, int fog, const char
         og_error_set(err, "%s: cannot write there: %s", path, strerror(errno));
         goto done;
     }
+    fchmod(fd, og_new_file_mode()); // mkstemp's 0600 would carry over to the final file
     close(fd);
     char why[512] = "";
     if (module.write(ls, tmp, fog, meta, meta_count, why, sizeof why) != 0) {

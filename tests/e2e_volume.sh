@@ -161,6 +161,60 @@ check "load caves.world" $status
 [ "$(cut -d' ' -f1 "$work/out" | tail -1)" = "${d[0]}" ]
 check "the tunnel is there after save and load" $?
 
+# The reader's side everywhere, not only in the band: pyopenvdb's sign at 1,000 random
+# lattice points from the ground to 200 m above (and a little below) agrees with
+# vsample, over the caves world and over plain ground; the fog's density lies only in
+# the region's solid, down to the stated floor; the file grows with the region.
+cat >signs.py <<'EOF'
+import random, subprocess, sys
+orogen, world, region, out = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4]
+r = [float(v) for v in region.split(',')]
+random.seed(28)
+snap = lambda v: 2.0 * round(v / 2.0) # the 2 m voxel lattice, where values are exact
+pts = [(snap(random.uniform(r[0], r[2])), snap(random.uniform(r[1], r[3]))) for _ in range(1000)]
+def batch(lines):
+    open('signs.txt', 'w').write('\n'.join(([world] if world else []) + lines) + '\n')
+    p = subprocess.run([orogen, '--batch', 'signs.txt'], capture_output=True, text=True)
+    if p.returncode: sys.exit('orogen: ' + p.stderr)
+    return p.stdout.splitlines()
+ground = [float(l.split()[0]) for l in batch(['sample %r %r' % p for p in pts])[-1000:]]
+ys = [snap(g + random.uniform(-4, 200)) for g in ground]
+lines = batch(['vsample %r %r %r' % (x, y, z) for (x, z), y in zip(pts, ys)] +
+              ['export %s.vdb region=%s fog=1' % (out, region)])
+want = [float(l.split()[0]) for l in lines if l.endswith('side')]
+floor = float(next(l for l in lines if l.startswith('exported')).split('solid down to ')[1].split()[0])
+import pyopenvdb as vdb
+g, fog = vdb.read(out + '.vdb', 'surface'), vdb.read(out + '.vdb', 'density')
+acc, facc = g.getConstAccessor(), fog.getConstAccessor()
+at = lambda a, x, y, z: a.getValue(g.transform.worldToIndexNodeCentered((x, y, z)))
+bad = sum((at(acc, x, y, z) < 0) != (w < 0) for ((x, z), y, w) in zip(pts, ys, want))
+fog_bad = sum((at(facc, x, y, z) > 0) != (w < 0) for ((x, z), y, w) in zip(pts, ys, want))
+lo, hi = fog.evalActiveVoxelBoundingBox()
+v = g.transform.voxelSize()[0]
+box = [round(r[0] / v), round(floor / v), round(r[1] / v)], [round(r[2] / v), None, round(r[3] / v)]
+inside_box = lo[0] >= box[0][0] and lo[1] >= box[0][1] and lo[2] >= box[0][2] and \
+    hi[0] <= box[1][0] and hi[2] <= box[1][2]
+mid = (r[0] + r[2]) / 2, (r[1] + r[3]) / 2
+far = [at(facc, r[2] + 3000, 0, r[3] + 3000), at(facc, mid[0], max(ground) + 500, mid[1]),
+       at(facc, mid[0], floor - 20, mid[1])]
+print('%d points, %d level-set signs and %d fog densities disagree with vsample; fog bounds %s..%s '
+      'in columns %s..%s above %g m; fog far out/high/under the floor %s' %
+      (len(want), bad, fog_bad, lo, hi, box[0], box[1], floor, far))
+sys.exit(0 if len(want) == 1000 and bad == 0 and fog_bad == 0 and inside_box and far == [0, 0, 0] else 1)
+EOF
+$py signs.py "$orogen" "load caves.world" 256,256,704,704 signs_caves >signs_caves.txt 2>&1
+check "caves.world: $(cat signs_caves.txt)" $?
+$py signs.py "$orogen" "" 800,60,1000,700 signs_plain >signs_plain.txt 2>&1
+check "default world: $(cat signs_plain.txt)" $?
+run -c "export small.vdb region=800,60,900,380 fog=1; export large.vdb region=800,60,1000,700 fog=1"
+small=$(stat -c %s small.vdb 2>/dev/null || echo 0)
+large=$(stat -c %s large.vdb 2>/dev/null || echo 0)
+[ $status = 0 ] && [ "$small" -gt 0 ] && [ "$large" -gt $((small * 2)) ] && [ "$large" -lt $((small * 6)) ]
+check "the .vdb grows with the region: a quarter of it $small bytes, all of it $large" $?
+(umask 027 && "$orogen" -c "export mode.vdb region=0,0,40,40" >/dev/null 2>&1)
+[ "$(stat -c %a mode.vdb 2>/dev/null)" = 640 ]
+check "the .vdb takes the umask's mode (027: $(stat -c %a mode.vdb 2>/dev/null))" $?
+
 # Refusals name what is wrong.
 run -c "export x.vdb"
 [ $status != 0 ] && grep -q "unbounded world needs region" "$work/err"

@@ -149,12 +149,12 @@ int cmd_export(cmd_context *ctx, int argc, char **argv, og_error *err) {
         if (export_vdb_file(ctx->world, argv[1], &o, &v, err) != 0) return -1;
         fprintf(ctx->out,
                 "exported %s: level set 'surface'%s, voxel %.6g m, band %d voxels, %lld active "
-                "voxels over %lld columns (%lld volume bricks); index bounds %lld,%lld,%lld .. "
-                "%lld,%lld,%lld; %lld bytes; %.2f s\n",
+                "voxels over %lld columns (%lld volume bricks), solid down to %.6g m; index bounds "
+                "%lld,%lld,%lld .. %lld,%lld,%lld; %lld bytes; %.2f s\n",
                 argv[1], o.fog ? " and fog volume 'density'" : "", v.voxel, v.band, v.active_voxels,
-                v.columns, v.bricks, (long long)v.lo[0], (long long)v.lo[1], (long long)v.lo[2],
-                (long long)v.hi[0], (long long)v.hi[1], (long long)v.hi[2], v.bytes,
-                seconds_since(&t0));
+                v.columns, v.bricks, v.floor, (long long)v.lo[0], (long long)v.lo[1],
+                (long long)v.lo[2], (long long)v.hi[0], (long long)v.hi[1], (long long)v.hi[2],
+                v.bytes, seconds_since(&t0));
         return 0;
     }
     if (export_mesh_wanted(argv[1])) {

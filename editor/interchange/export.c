@@ -30,6 +30,7 @@ void export_options_defaults(export_options *o) {
     o->tiles_x = o->tiles_y = 1;
     o->shard_count = 1;
     o->band = 3; // OpenVDB's LEVEL_SET_HALF_WIDTH
+    o->depth = -1;
 }
 
 // "AxB" or "A/B" as two integers.
@@ -99,6 +100,8 @@ int export_options_set(export_options *o, const char *key, const char *value, og
         if (b != floor(b))
             return og_error_set(err, "band: expected a whole number of voxels, got '%s'", value);
         o->band = (int)b;
+    } else if (!strcmp(key, "depth")) {
+        if (parse_number_in(value, key, 0, 1e5, &o->depth, err) != 0) return -1;
     } else if (!strcmp(key, "fog")) {
         if (parse_switch(value, key, &o->fog, err) != 0) return -1;
     } else if (!strcmp(key, "simplify")) {
@@ -126,7 +129,8 @@ int export_options_set(export_options *o, const char *key, const char *value, og
     } else {
         return og_error_set(err,
                             "export: unknown option '%s' (region preset layer bits min max scale "
-                            "offset tiles pattern shard simplify solid centred voxel band fog)",
+                            "offset tiles pattern shard simplify solid centred voxel band fog "
+                            "depth)",
                             key);
     }
     return 0;

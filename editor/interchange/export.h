@@ -46,14 +46,16 @@ typedef struct export_options {
     int solid, centred;
     int image_layer; // layer=normals (1) or materials (2): that layer as images instead
     // .vdb: voxel metres (0 = the world's volume voxel), narrow band half width in
-    // voxels, and a density fog volume beside the level set.
+    // voxels, a density fog volume beside the level set, and how far the solid reaches
+    // below the region's lowest ground (metres; < 0: 16 voxels).
     double voxel;
     int band, fog;
+    double depth;
 } export_options;
 
 void export_options_defaults(export_options *o);
 // region=X0,Z0,X1,Z1 preset= layer= bits= min= max= scale= offset= tiles=CxR pattern=
-// shard=I/N simplify= solid= centred= voxel= band= fog=
+// shard=I/N simplify= solid= centred= voxel= band= fog= depth=
 int export_options_set(export_options *o, const char *key, const char *value, og_error *err);
 const char *export_preset_name(export_preset p);
 

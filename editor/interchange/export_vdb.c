@@ -27,7 +27,29 @@ typedef struct vdb_job {
     int tasks;
     int64_t *jlo, *jhi; // per task: the rows of voxels computed
     long long *written;
+    // Signing the inactive space: the solid reaches down to floor_y (index); per 8 x 8
+    // column block (leaf-aligned, from block i0/k0) the lowest voxel computed and
+    // whether a volume brick lies over it.
+    int64_t floor_y, bi0, bk0, nbi, nbk;
+    int64_t *block_low;
+    unsigned char *block_brick;
+    volume_reader *reader;
+    og_error *err;
 } vdb_job;
+
+static int64_t floor_div8(int64_t v) {
+    return v >= 0 ? v / 8 : -((-v + 7) / 8);
+}
+
+static size_t block_of(const vdb_job *j, int64_t i, int64_t k) {
+    return (size_t)((floor_div8(k) - j->bk0) * j->nbi + (floor_div8(i) - j->bi0));
+}
+
+static void note_low(vdb_job *j, int64_t i, int64_t k, int64_t low, int brick) {
+    size_t b = block_of(j, i, k);
+    if (low < j->block_low[b]) j->block_low[b] = low;
+    if (brick) j->block_brick[b] = 1;
+}
 
 static void note_rows(vdb_job *j, int t, int64_t lo, int64_t hi) {
     if (lo < j->jlo[t]) j->jlo[t] = lo;
@@ -81,6 +103,39 @@ static void export_span(double wv, double ev, int64_t v0, int64_t v1, int64_t *l
     *hi = (int64_t)ceil(v1 * wv / ev - 1e-9);
 }
 
+// The combined field (heights with the volume edits) at export voxel (i, y, k) over a
+// column of height h and slope scale s: trilinear over the world voxel's corners (one
+// corner where the lattices meet).
+static int combined_at(vdb_job *j, volume_reader *r, int64_t i, int64_t y, int64_t k, double h,
+                       double s, float *out, og_error *err) {
+    double wv = j->g.voxel, ev = j->ev;
+    double f[3] = {i * ev / wv, y * ev / wv, k * ev / wv}, t[3];
+    int64_t v[3];
+    for (int a = 0; a < 3; a++) {
+        v[a] = (int64_t)floor(f[a] + 1e-9);
+        t[a] = f[a] - v[a];
+        if (t[a] < 1e-9) t[a] = 0;
+    }
+    double d = 0;
+    for (int corner = 0; corner < 8; corner++) {
+        double weight = 1;
+        int64_t c[3];
+        for (int a = 0; a < 3; a++) {
+            int up = corner >> a & 1;
+            weight *= up ? t[a] : 1 - t[a];
+            c[a] = v[a] + up;
+        }
+        if (weight == 0) continue;
+        const int16_t *pair = volume_reader_pair(r, c[0], c[1], c[2], err);
+        if (!pair) return -1;
+        float dh = (float)((c[1] * wv - h) * s);
+        d += weight *
+             volume_combine(dh, volume_to_metres(pair[0], wv), volume_to_metres(pair[1], wv));
+    }
+    *out = (float)d;
+    return 0;
+}
+
 // The combined field over one brick's voxels: heights with the volume edits.
 static int brick_pass(vdb_job *j, tile_key key, volume_reader *r, float **values, size_t *cap,
                       og_error *err) {
@@ -95,6 +150,9 @@ static int brick_pass(vdb_job *j, tile_key key, volume_reader *r, float **values
     if (i1 > j->c1[0]) i1 = j->c1[0];
     if (k1 > j->c1[1]) k1 = j->c1[1];
     if (i0 >= i1 || k0 >= k1 || y0 >= y1) return 0;
+    for (int64_t bk = floor_div8(k0); bk <= floor_div8(k1 - 1); bk++)
+        for (int64_t bi = floor_div8(i0); bi <= floor_div8(i1 - 1); bi++)
+            note_low(j, bi * 8, bk * 8, y0, 1);
     size_t n = (size_t)(y1 - y0);
     if (n > *cap) {
         float *grown = realloc(*values, n * sizeof *grown);
@@ -106,32 +164,8 @@ static int brick_pass(vdb_job *j, tile_key key, volume_reader *r, float **values
         for (int64_t i = i0; i < i1; i++) {
             size_t c = (size_t)((k - j->vh.k0) * j->vh.w + (i - j->vh.i0));
             double h = j->vh.height[c], s = j->vh.slope_scale[c];
-            double fx = i * ev / wv, fz = k * ev / wv;
-            int64_t vx = (int64_t)floor(fx + 1e-9), vz = (int64_t)floor(fz + 1e-9);
-            double tx = fx - vx, tz = fz - vz;
-            if (tx < 1e-9) tx = 0;
-            if (tz < 1e-9) tz = 0;
-            for (int64_t y = y0; y < y1; y++) {
-                double fy = y * ev / wv;
-                int64_t vy = (int64_t)floor(fy + 1e-9);
-                double ty = fy - vy;
-                if (ty < 1e-9) ty = 0;
-                double d = 0;
-                // Trilinear over the voxel's corners (one corner when the lattices meet).
-                for (int corner = 0; corner < 8; corner++) {
-                    double wx = corner & 1 ? tx : 1 - tx, wy = corner >> 1 & 1 ? ty : 1 - ty,
-                           wz = corner >> 2 & 1 ? tz : 1 - tz, weight = wx * wy * wz;
-                    if (weight == 0) continue;
-                    int64_t ci = vx + (corner & 1), cj = vy + (corner >> 1 & 1),
-                            ck = vz + (corner >> 2 & 1);
-                    const int16_t *pair = volume_reader_pair(r, ci, cj, ck, err);
-                    if (!pair) return -1;
-                    float dh = (float)((cj * wv - h) * s);
-                    d += weight * volume_combine(dh, volume_to_metres(pair[0], wv),
-                                                 volume_to_metres(pair[1], wv));
-                }
-                (*values)[y - y0] = (float)d;
-            }
+            for (int64_t y = y0; y < y1; y++)
+                if (combined_at(j, r, i, y, k, h, s, &(*values)[y - y0], err) != 0) return -1;
             if (vdb_level_set_column(j->sets[0], (int32_t)i, (int32_t)k, (int32_t)y0, (int32_t)n,
                                      *values, 1, err) != 0)
                 return -1;
@@ -139,6 +173,52 @@ static int brick_pass(vdb_job *j, tile_key key, volume_reader *r, float **values
             note_rows(j, 0, y0, y1 - 1);
         }
     return 0;
+}
+
+// Whether export voxel (i, j, k) lies in the solid: within the region's columns, above
+// the floor, and below the ground (with the volume edits where a brick lies over).
+static int inside_at(void *user, int i, int j, int k) {
+    vdb_job *job = user;
+    if (i < job->c0[0] || i >= job->c1[0] || k < job->c0[1] || k >= job->c1[1] || j < job->floor_y)
+        return 0;
+    size_t c = (size_t)((k - job->vh.k0) * job->vh.w + (i - job->vh.i0));
+    double h = job->vh.height[c];
+    if (!job->block_brick[block_of(job, i, k)]) return j * job->ev < h;
+    float d;
+    if (combined_at(job, job->reader, i, j, k, h, job->vh.slope_scale[c], &d, job->err) != 0)
+        return -1;
+    return d < 0;
+}
+
+// The inactive space's signs: the interior under each block's lowest computed voxel
+// down to the floor as tiles, then every value still unsigned asks inside_at.
+static int sign_space(vdb_job *j, const export_options *o, og_error *err) {
+    double depth = o->depth >= 0 ? o->depth : 16 * j->ev, lowest = INFINITY;
+    size_t columns = (size_t)(j->vh.w * j->vh.h);
+    for (size_t c = 0; c < columns; c++)
+        if (j->vh.height[c] < lowest) lowest = j->vh.height[c];
+    j->floor_y = (int64_t)floor((lowest - depth) / j->ev + 1e-9);
+    for (int64_t k = j->c0[1]; k < j->c1[1]; k++)
+        for (int64_t i = j->c0[0]; i < j->c1[0]; i++) {
+            size_t c = (size_t)((k - j->vh.k0) * j->vh.w + (i - j->vh.i0));
+            double h = j->vh.height[c], s = j->vh.slope_scale[c];
+            note_low(j, i, k, (int64_t)floor((h - j->background / s) / j->ev), 0);
+        }
+    for (int64_t bk = 0; bk < j->nbk; bk++)
+        for (int64_t bi = 0; bi < j->nbi; bi++) {
+            int64_t top = floor_div8(j->block_low[bk * j->nbi + bi]) * 8 - 1;
+            int64_t i0 = (j->bi0 + bi) * 8, k0 = (j->bk0 + bk) * 8;
+            int32_t box[6] = {(int32_t)(i0 > j->c0[0] ? i0 : j->c0[0]),
+                              (int32_t)j->floor_y,
+                              (int32_t)(k0 > j->c0[1] ? k0 : j->c0[1]),
+                              (int32_t)(i0 + 7 < j->c1[0] ? i0 + 7 : j->c1[0] - 1),
+                              (int32_t)top,
+                              (int32_t)(k0 + 7 < j->c1[1] ? k0 + 7 : j->c1[1] - 1)};
+            if (top >= j->floor_y && vdb_level_set_fill_inside(j->sets[0], box, err) != 0)
+                return -1;
+        }
+    j->err = err;
+    return vdb_level_set_sign(j->sets[0], inside_at, j, err);
 }
 
 static int region_columns(world *w, const export_options *o, double ev, int64_t c0[2],
@@ -214,8 +294,19 @@ int export_vdb_file(world *w, const char *path, const export_options *o, export_
     for (int t = 1; t < j.tasks; t++)
         if (vdb_level_set_merge(j.sets[0], j.sets[t], err) != 0) goto done;
     // The volume edits replace the heightfield's values over their bricks.
+    j.bi0 = floor_div8(j.c0[0]), j.bk0 = floor_div8(j.c0[1]);
+    j.nbi = floor_div8(j.c1[0] - 1) - j.bi0 + 1, j.nbk = floor_div8(j.c1[1] - 1) - j.bk0 + 1;
+    j.block_low = malloc((size_t)(j.nbi * j.nbk) * sizeof *j.block_low);
+    j.block_brick = calloc((size_t)(j.nbi * j.nbk), 1);
+    if (!j.block_low || !j.block_brick) {
+        og_error_set(err, "out of memory");
+        goto done;
+    }
+    for (int64_t b = 0; b < j.nbi * j.nbk; b++)
+        j.block_low[b] = INT64_MAX;
     volume_reader reader;
     volume_reader_init(&reader, w);
+    j.reader = &reader;
     float *values = NULL;
     size_t cap = 0;
     int brick_rc = 0;
@@ -229,6 +320,7 @@ int export_vdb_file(world *w, const char *path, const export_options *o, export_
         rep->bricks++;
     }
     free(values);
+    if (brick_rc == 0) brick_rc = sign_space(&j, o, err);
     volume_reader_close(&reader);
     if (brick_rc != 0) goto done;
 
@@ -250,6 +342,7 @@ int export_vdb_file(world *w, const char *path, const export_options *o, export_
     rep->bytes = stat(path, &st) == 0 ? (long long)st.st_size : 0;
     rep->voxel = j.ev;
     rep->band = o->band;
+    rep->floor = j.floor_y * j.ev;
     rep->columns = (long long)(j.c1[0] - j.c0[0]) * (j.c1[1] - j.c0[1]);
     rep->lo[0] = j.c0[0], rep->lo[2] = j.c0[1];
     rep->hi[0] = j.c1[0] - 1, rep->hi[2] = j.c1[1] - 1;
@@ -267,6 +360,8 @@ done:
     free(j.jlo);
     free(j.jhi);
     free(j.written);
+    free(j.block_low);
+    free(j.block_brick);
     free(bricks);
     volume_heights_free(&j.vh);
     return rc;

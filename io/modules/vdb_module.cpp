@@ -5,7 +5,6 @@
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/LevelSetUtil.h>
 #include <openvdb/tools/Prune.h>
-#include <openvdb/tools/SignedFloodFill.h>
 
 #include <cstdio>
 #include <cmath>
@@ -53,7 +52,7 @@ OROGEN_EXPORT void *orogen_vdb_module_create(double voxel, float background, cha
 }
 
 // Voxels (i, j0 .. j0 + n - 1, k) take values; those at or beyond the background stay
-// inactive (the flood fill gives them their sign), and with overwrite an active voxel
+// inactive (orogen_vdb_module_sign gives them their sign), and with overwrite an active voxel
 // there is switched off.
 OROGEN_EXPORT int orogen_vdb_module_set_column(void *handle, int i, int k, int j0, int n,
                                                const float *values, int overwrite) {
@@ -91,7 +90,51 @@ OROGEN_EXPORT long long orogen_vdb_module_active_voxels(void *handle) {
     return (long long)static_cast<level_set *>(handle)->grid->activeVoxelCount();
 }
 
-// Finishes the level set (signs of inactive regions, pruning) and writes it, with the
+// Inactive interior over the inclusive index box: -background, as tiles where the box
+// covers whole nodes (the caller keeps the box clear of the voxels it set).
+OROGEN_EXPORT int orogen_vdb_module_fill_inside(void *handle, const int box[6]) {
+    level_set *ls = static_cast<level_set *>(handle);
+    try {
+        ls->acc.clear();
+        ls->grid->tree().fill(openvdb::CoordBBox(openvdb::Coord(box[0], box[1], box[2]),
+                                                 openvdb::Coord(box[3], box[4], box[5])),
+                              -ls->background, false);
+        return 0;
+    } catch (...) {
+        return -1;
+    }
+}
+
+// Every inactive voxel or tile not yet signed (+background) asks inside() at its voxel
+// (a tile at its centre when its corners are inside too; a tile never holds the
+// surface, so that tells). OpenVDB's
+// own signedFloodFill guesses signs along z from neighbouring nodes, which is wrong for
+// an open heightfield band; here the caller's field decides.
+OROGEN_EXPORT int orogen_vdb_module_sign(void *handle, int (*inside)(void *, int, int, int),
+                                         void *user) {
+    level_set *ls = static_cast<level_set *>(handle);
+    try {
+        ls->acc.clear();
+        for (auto it = ls->grid->tree().beginValueOff(); it; ++it) {
+            if (*it != ls->background) continue;
+            openvdb::CoordBBox b;
+            it.getBoundingBox(b);
+            const openvdb::Coord lo = b.min(), hi = b.max(), n = b.dim();
+            // A tile is one sign: where it reaches out of the solid's box it stays outside.
+            int in = inside(user, lo[0], lo[1], lo[2]);
+            if (in > 0 && n[0] > 1) in = inside(user, hi[0], hi[1], hi[2]);
+            if (in > 0 && n[0] > 1)
+                in = inside(user, lo[0] + n[0] / 2, lo[1] + n[1] / 2, lo[2] + n[2] / 2);
+            if (in < 0) return -1;
+            if (in) it.setValue(-ls->background);
+        }
+        return 0;
+    } catch (...) {
+        return -1;
+    }
+}
+
+// Finishes the level set (pruning) and writes it, with the
 // fog volume `density` when fog is set, to path (the caller renames it into place).
 // meta: meta_count key, value pairs of file metadata.
 OROGEN_EXPORT int orogen_vdb_module_write(void *handle, const char *path, int fog,
@@ -100,8 +143,7 @@ OROGEN_EXPORT int orogen_vdb_module_write(void *handle, const char *path, int fo
     level_set *ls = static_cast<level_set *>(handle);
     try {
         ls->acc.clear();
-        openvdb::tools::signedFloodFill(ls->grid->tree());
-        openvdb::tools::pruneLevelSet(ls->grid->tree());
+        openvdb::tools::prune(ls->grid->tree()); // mixed-sign inactive nodes stay
         openvdb::GridPtrVec grids;
         grids.push_back(ls->grid);
         openvdb::MetaMap file_meta;
