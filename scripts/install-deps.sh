@@ -16,6 +16,7 @@ packages=(
   python3 clang-format clang libclang-rt-14-dev
   libnoise-dev
   libgdal-dev gdal-bin parallel
+  blender
 )
 
 sudo=""

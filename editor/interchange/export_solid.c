@@ -1,5 +1,6 @@
 #include "editor/interchange/export_solid.h"
 
+#include "editor/interchange/mesh_manifold.h"
 #include "editor/world/volume_grid.h"
 
 #include <math.h>
@@ -180,6 +181,8 @@ int export_solid_surface(world *w, grid_rect rect, volume_mesh *out, og_error *e
     free(wd.slots);
     free(keys);
     volume_heights_free(&vh);
+    mesh_manifold_report manifold;
+    if (rc == 0) rc = mesh_make_manifold(out, &manifold, err);
     if (rc != 0) volume_mesh_free(out);
     return rc;
 }

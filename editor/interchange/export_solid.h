@@ -13,7 +13,8 @@
 // Whether volume bricks lie over the region (coarse samples [rect)): *has 1 or 0.
 int export_solid_has_volume(world *w, grid_rect rect, int *has, og_error *err);
 // The surface over the region's voxel columns (world metres, origin 0), welded: shared
-// positions are one vertex. Open only at the region's sides.
+// positions are one vertex, then made manifold (mesh_manifold.h). Open only at the
+// region's sides.
 int export_solid_surface(world *w, grid_rect rect, volume_mesh *out, og_error *err);
 
 #endif
