@@ -1,9 +1,9 @@
 // Makes a welded triangle mesh a manifold one, as Blender, Houdini and game engines
-// expect: no degenerate triangles (nor two on the same three vertices), no edge of more than two faces, each edge's two
-// faces wound against each other, no vertex that no face uses. Surface nets give one
-// vertex per cell, so where two sheets of the surface pass through one cell (a thin
-// wall, a tunnel under a thin roof) they share a vertex and four faces share an edge;
-// here each vertex is split into one copy per sheet of faces around it.
+// expect: no degenerate triangles (nor two on the same three vertices), no edge of more than two
+// faces, each edge's two faces wound against each other, no vertex that no face uses. Surface nets
+// give one vertex per cell, so where two sheets of the surface pass through one cell (a thin wall,
+// a tunnel under a thin roof) they share a vertex and four faces share an edge; here each vertex is
+// split into one copy per sheet of faces around it.
 #ifndef OROGEN_EDITOR_INTERCHANGE_MESH_MANIFOLD_H
 #define OROGEN_EDITOR_INTERCHANGE_MESH_MANIFOLD_H
 
