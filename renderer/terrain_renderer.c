@@ -34,7 +34,8 @@ enum {
     TV_BRUSH = 8,
     TV_OVERLAYS = 16,
     TV_CONTOURS = 32,
-    TERRAIN_VARIANTS = 64
+    TV_MINIFIED = 64,
+    TERRAIN_VARIANTS = 128
 };
 
 struct terrain_renderer {
@@ -46,6 +47,8 @@ struct terrain_renderer {
     GLuint vao, vbo, ebo, empty_vao;
     clipmap_mesh mesh;
     GLuint tex_heights, tex_material, tex_albedo, tex_detail, tex_detail_pd, tex_falloff;
+    GLuint tex_albedo_far; // the material textures' green channels, 4 to a layer
+    float albedo_mean[MATERIAL_TEXTURE_COUNT][4]; // each material texture's 1 x 1 level
     clip_window heights[RENDER_MAX_LEVELS];
     clip_window material, detail, detail_pd;
     float hmin[RENDER_MAX_LEVELS], hmax[RENDER_MAX_LEVELS];
@@ -93,6 +96,43 @@ static void set_filter_wrap(GLuint t, GLenum filter, GLenum wrap) {
     glTextureParameteri(t, GL_TEXTURE_WRAP_T, wrap);
 }
 
+// The far scale reads only the green channel of each material texture, at the same
+// coordinates for all of them: packed 4 to a texel (level by level from the textures'
+// own mips, so filtering gives the same values), the automatic rules' five lookups
+// become two. Also keeps each texture's 1 x 1 level (the MINIFIED variant's albedo).
+static int pack_far_variation(terrain_renderer *r, int mips) {
+    const int n = MATERIAL_TEXTURE_COUNT, layers = (n + 3) / 4;
+    r->tex_albedo_far = make_texture(GL_TEXTURE_2D_ARRAY);
+    glTextureStorage3D(r->tex_albedo_far, mips, GL_RGBA8, MATERIAL_TEXTURE_SIZE,
+                       MATERIAL_TEXTURE_SIZE, layers);
+    size_t texels = (size_t)MATERIAL_TEXTURE_SIZE * MATERIAL_TEXTURE_SIZE;
+    unsigned char *src = malloc(texels * 4 * n), *dst = malloc(texels * 4 * layers);
+    if (!src || !dst) {
+        free(src);
+        free(dst);
+        return -1;
+    }
+    for (int lv = 0; lv < mips; lv++) {
+        int side = MATERIAL_TEXTURE_SIZE >> lv;
+        size_t count = (size_t)side * side;
+        glGetTextureImage(r->tex_albedo, lv, GL_RGBA, GL_UNSIGNED_BYTE, (GLsizei)(count * 4 * n),
+                          src);
+        for (int m = 0; m < n; m++)
+            for (size_t i = 0; i < count; i++)
+                dst[((size_t)(m / 4) * count + i) * 4 + m % 4] =
+                    src[((size_t)m * count + i) * 4 + 1];
+        if (lv == mips - 1) // as the sampler reads it
+            glGetTextureImage(r->tex_albedo, lv, GL_RGBA, GL_FLOAT, sizeof r->albedo_mean,
+                              r->albedo_mean);
+        glTextureSubImage3D(r->tex_albedo_far, lv, 0, 0, 0, side, side, layers, GL_RGBA,
+                            GL_UNSIGNED_BYTE, dst);
+    }
+    free(src);
+    free(dst);
+    set_filter_wrap(r->tex_albedo_far, GL_LINEAR_MIPMAP_LINEAR, GL_REPEAT);
+    return 0;
+}
+
 static int create_textures(terrain_renderer *r, og_error *err) {
     r->tex_heights = make_texture(GL_TEXTURE_2D_ARRAY);
     glTextureStorage3D(r->tex_heights, 1, GL_R32F, CLIP_TEXELS, CLIP_TEXELS, RENDER_MAX_LEVELS);
@@ -130,14 +170,18 @@ static int create_textures(terrain_renderer *r, og_error *err) {
     free(rgba);
     glGenerateTextureMipmap(r->tex_albedo);
     set_filter_wrap(r->tex_albedo, GL_LINEAR_MIPMAP_LINEAR, GL_REPEAT);
+    if (pack_far_variation(r, mips) != 0)
+        return og_error_set(err, "out of memory for the material textures");
     // Anisotropic filtering sharpens grazing views on GPUs; on llvmpipe (Mesa 22.3) it
     // made a 320x180 frame take minutes instead of a second, so software renderers skip it.
     const char *renderer_name = (const char *)glGetString(GL_RENDERER);
     int software =
         renderer_name && (strstr(renderer_name, "llvmpipe") || strstr(renderer_name, "softpipe"));
     if (!software && (epoxy_has_gl_extension("GL_EXT_texture_filter_anisotropic") ||
-                      epoxy_has_gl_extension("GL_ARB_texture_filter_anisotropic")))
+                      epoxy_has_gl_extension("GL_ARB_texture_filter_anisotropic"))) {
         glTextureParameterf(r->tex_albedo, GL_TEXTURE_MAX_ANISOTROPY_EXT, 8.0f);
+        glTextureParameterf(r->tex_albedo_far, GL_TEXTURE_MAX_ANISOTROPY_EXT, 8.0f);
+    }
     return 0;
 }
 
@@ -155,10 +199,10 @@ static int create_windows(terrain_renderer *r, og_error *err) {
 // The terrain program for a variant (TV_* bits), built on first use.
 static GLuint terrain_program(terrain_renderer *r, int variant, og_error *err) {
     if (r->prog_terrain[variant]) return r->prog_terrain[variant];
-    static const char *const names[] = {"SHADED", "DETAIL",   "PAINTED",
-                                        "BRUSH",  "OVERLAYS", "CONTOURS"};
+    static const char *const names[] = {"SHADED",   "DETAIL",   "PAINTED", "BRUSH",
+                                        "OVERLAYS", "CONTOURS", "MINIFIED"};
     r->prog_terrain[variant] = shader_program_load_flags(
-        r->shader_dir, "terrain.vert", "terrain.frag", names, 6, (unsigned)variant, err);
+        r->shader_dir, "terrain.vert", "terrain.frag", names, 7, (unsigned)variant, err);
     r->prog_frame[variant] = 0;
     return r->prog_terrain[variant];
 }
@@ -224,9 +268,9 @@ void terrain_renderer_destroy(terrain_renderer *r) {
     glDeleteVertexArrays(1, &r->empty_vao);
     glDeleteBuffers(1, &r->vbo);
     glDeleteBuffers(1, &r->ebo);
-    GLuint tex[] = {r->tex_heights, r->tex_material,  r->tex_albedo,
-                    r->tex_detail,  r->tex_detail_pd, r->tex_falloff};
-    glDeleteTextures(6, tex);
+    GLuint tex[] = {r->tex_heights,   r->tex_material, r->tex_albedo,    r->tex_detail,
+                    r->tex_detail_pd, r->tex_falloff,  r->tex_albedo_far};
+    glDeleteTextures(7, tex);
     clipmap_mesh_free(&r->mesh);
     for (int l = 0; l < RENDER_MAX_LEVELS; l++)
         clip_window_free(&r->heights[l]);
@@ -667,6 +711,10 @@ static void set_terrain_uniforms(terrain_renderer *r, GLuint prog, const camera 
                     r->tex_detail,  r->tex_detail_pd, r->tex_falloff};
     glBindTextures(0, 6, tex);
     volume_renderer_mask_uniforms(r->volume, prog, cam, 6);
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "u_albedo_far"), 7);
+    glBindTextureUnit(7, r->tex_albedo_far);
+    glProgramUniform4fv(prog, glGetUniformLocation(prog, "u_albedo_mean"), MATERIAL_TEXTURE_COUNT,
+                        &r->albedo_mean[0][0]);
 }
 
 // The camera-relative bounding box of a piece of level l, for culling.
@@ -686,8 +734,21 @@ static int cursor_drapes(const brush_cursor *cursor) {
     return cursor && cursor->visible && cursor->radius > 0 && !cursor->sphere;
 }
 
+// Horizontal metres from the camera to the nearest ground level l draws: the edge of
+// the finer level's square, which the camera stands in (0 for the finest level).
+static double level_nearest(const terrain_renderer *r, const camera *cam, int l) {
+    if (l <= r->finest) return 0.0;
+    double ls = r->params.spacing * (double)((int64_t)1 << (l - 1)), nearest = INFINITY;
+    for (int a = 0; a < 2; a++) {
+        double lo = (double)r->origin[l - 1][a] * ls, hi = lo + (CLIP_N - 1) * ls;
+        double c = cam->pos[a == 0 ? 0 : 2];
+        nearest = fmin(nearest, fmin(c - lo, hi - c));
+    }
+    return fmax(nearest, 0.0);
+}
+
 // The variant level l is drawn with: only what it can show this frame.
-static int level_variant(const terrain_renderer *r, const render_settings *s,
+static int level_variant(const terrain_renderer *r, const camera *cam, const render_settings *s,
                          const brush_cursor *cursor, int l) {
     int v = (s->tile_grid || s->level_grid ? TV_OVERLAYS : 0) | (s->contours > 0 ? TV_CONTOURS : 0);
     if (r->detail_current && l <= 3) v |= TV_DETAIL; // as set_terrain_uniforms places it
@@ -695,6 +756,13 @@ static int level_variant(const terrain_renderer *r, const render_settings *s,
     v |= TV_SHADED;
     if (r->material_current && r->material_painted) v |= TV_PAINTED;
     if (cursor_drapes(cursor)) v |= TV_BRUSH;
+    // So far that the material textures' near scale is smaller than a pixel all over
+    // the level: every lookup would return the texture's 1 x 1 level (as the planet's
+    // chunks; the factor 4 for the screen's corners and filtering's rough measure).
+    double pixels_per_radian =
+        (r->height > 0 ? r->height : 720) / (2.0 * tan(cam->fov_y * M_PI / 360.0));
+    if (!(v & TV_DETAIL) && level_nearest(r, cam, l) > 4.0 * TEX_PERIOD_NEAR * pixels_per_radian)
+        v |= TV_MINIFIED;
     return v;
 }
 
@@ -747,7 +815,7 @@ static int draw_terrain(terrain_renderer *r, const camera *cam, const render_set
             n++;
         }
         if (n == 0) continue;
-        int v = level_variant(r, s, cursor, l);
+        int v = level_variant(r, cam, s, cursor, l);
         GLuint prog = terrain_program(r, v, err);
         if (!prog) return -1;
         if (r->prog_frame[v] != r->frame) {

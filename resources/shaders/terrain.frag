@@ -36,6 +36,7 @@ uniform int u_overlays;                // 1: the tile grid, 2: the clipmap level
 uniform int u_auto_materials;          // 0: unpainted ground in a neutral clay
 uniform vec4 u_lvl_detail[MAX_LEVELS]; // detail: sample of local (0,0), samples per unit, valid
 uniform vec2 u_tex_period;             // metres per repeat: near texture, far variation
+uniform sampler2DArray u_albedo_far;   // material m's green channel in component m % 4 of layer m / 4
 
 uniform usampler2D u_material;         // 8 x uint8 weights per texel (RG32UI), toroidal
 uniform ivec2 u_mat_wrap;              // texel of the window's origin sample
@@ -171,8 +172,15 @@ void main() {
     vec2 metres_far = luv.zw + v_local * spacing;
     vec2 uv = metres_near / u_tex_period.x, uv_far = metres_far / u_tex_period.y;
 
+    // The far scale of all eight materials in two lookups (the same values as one
+    // lookup of each texture's green channel: renderer/terrain_renderer.c packs them).
+    vec4 far[2] = vec4[2](texture(u_albedo_far, vec3(uv_far, 0.0)), texture(u_albedo_far, vec3(uv_far, 1.0)));
     // Unpainted ground: the automatic rules, or a neutral clay when they are hidden.
-    vec3 auto_c = u_auto_materials != 0 ? automatic(h, slope, uv, uv_far) : vec3(0.45, 0.42, 0.38);
+    vec3 auto_c = u_auto_materials != 0
+        ? automatic_of(h, slope, albedo_varied(0, uv, far[0].x), albedo_varied(1, uv, far[0].y),
+                       albedo_varied(2, uv, far[0].z), albedo_varied(3, uv, far[0].w),
+                       albedo_varied(7, uv, far[1].w))
+        : vec3(0.45, 0.42, 0.38);
     vec3 c = auto_c;
 #ifdef PAINTED
     vec4 lm = u_lvl_mat[u_level];
@@ -183,10 +191,10 @@ void main() {
             painted_weights(mt, w0, w1);
             // Weight 0 is "automatic"; 1..7 paint sand, grass, rock, snow, dirt, gravel, moss.
             c = auto_c * w0.x;
-            c += albedo(0, uv, uv_far).rgb * w0.y + albedo(1, uv, uv_far).rgb * w0.z
-               + albedo(2, uv, uv_far).rgb * w0.w + albedo(3, uv, uv_far).rgb * w1.x
-               + albedo(4, uv, uv_far).rgb * w1.y + albedo(5, uv, uv_far).rgb * w1.z
-               + albedo(6, uv, uv_far).rgb * w1.w;
+            c += albedo_varied(0, uv, far[0].x).rgb * w0.y + albedo_varied(1, uv, far[0].y).rgb * w0.z
+               + albedo_varied(2, uv, far[0].z).rgb * w0.w + albedo_varied(3, uv, far[0].w).rgb * w1.x
+               + albedo_varied(4, uv, far[1].x).rgb * w1.y + albedo_varied(5, uv, far[1].y).rgb * w1.z
+               + albedo_varied(6, uv, far[1].z).rgb * w1.w;
         }
     }
 #endif
