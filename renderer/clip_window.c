@@ -29,6 +29,7 @@ void clip_window_free(clip_window *w) {
 
 void clip_window_invalidate(clip_window *w) {
     w->has_data = 0;
+    w->partial = 0;
 }
 
 int clip_window_current(const clip_window *w, const int64_t want[2]) {
@@ -149,6 +150,7 @@ static void copy_rect(clip_window *w, const tile_pins *pins, sample_rect r) {
 
 int clip_window_update(clip_window *w, tile_cache *cache, const int64_t want[2]) {
     if (clip_window_current(w, want)) return 1;
+    w->partial = 0; // a whole refill below replaces one under way
     int64_t n = w->size;
     sample_rect rects[2];
     int count = 0;
@@ -181,8 +183,90 @@ int clip_window_update(clip_window *w, tile_cache *cache, const int64_t want[2])
     return 1;
 }
 
+static sample_rect intersect(sample_rect a, sample_rect b) {
+    sample_rect r = {a.x0 > b.x0 ? a.x0 : b.x0, a.z0 > b.z0 ? a.z0 : b.z0,
+                     a.x1 < b.x1 ? a.x1 : b.x1, a.z1 < b.z1 ? a.z1 : b.z1};
+    if (r.x0 >= r.x1 || r.z0 >= r.z1) r.x1 = r.x0, r.z1 = r.z0;
+    return r;
+}
+
+static int64_t area(sample_rect r) {
+    return (r.x1 - r.x0) * (r.z1 - r.z0);
+}
+
+// What the mirror holds: a whole window, the part of one a budgeted fill reached, or nothing.
+static sample_rect valid_rect(const clip_window *w) {
+    if (w->has_data)
+        return (sample_rect){w->have[0], w->have[1], w->have[0] + w->size, w->have[1] + w->size};
+    if (w->partial) return (sample_rect){w->valid[0], w->valid[1], w->valid[2], w->valid[3]};
+    return (sample_rect){0, 0, 0, 0};
+}
+
+// Copies r (pinning its tiles; 0 while some are pending) and queues its upload.
+static int fill(clip_window *w, tile_cache *cache, sample_rect r) {
+    if (area(r) == 0) return 1;
+    tile_pins pins;
+    int ok = pin_tiles(w, cache, &r, 1, &pins);
+    if (ok <= 0) return ok;
+    copy_rect(w, &pins, r);
+    queue_upload(w, r);
+    release_pins(cache, &pins);
+    return 1;
+}
+
+int clip_window_update_within(clip_window *w, tile_cache *cache, const int64_t want[2],
+                              int64_t *budget) {
+    if (clip_window_current(w, want)) return 1;
+    int64_t n = w->size;
+    sample_rect t = {want[0], want[1], want[0] + n, want[1] + n};
+    sample_rect v = intersect(valid_rect(w), t);
+    if (area(v) == 0) { // nothing of it yet: grow from its first row
+        v = (sample_rect){t.x0, t.z0, t.x1, t.z0};
+        w->refill_started = 1;
+    }
+    // Columns beside what is held (over its rows), then whole rows above and below.
+    int64_t left = v.x0 - t.x0, right = t.x1 - v.x1, above = v.z0 - t.z0, below = t.z1 - v.z1;
+    int64_t missing = (left + right) * (v.z1 - v.z0) + (above + below) * n;
+    int64_t allow = missing <= 32 * n ? missing : *budget;
+    int ok = 1;
+    for (int side = 0; side < 4 && ok == 1 && allow > 0; side++) {
+        int64_t *gap = side == 0 ? &left : side == 1 ? &right : side == 2 ? &above : &below;
+        if (*gap == 0) continue;
+        if (side >= 2 && (left > 0 || right > 0)) break; // rows once the columns are whole
+        int64_t across = side < 2 ? v.z1 - v.z0 : n, k = across > 0 ? allow / across : *gap;
+        if (k > *gap) k = *gap;
+        if (k == 0) break;
+        sample_rect r = side == 0   ? (sample_rect){v.x0 - k, v.z0, v.x0, v.z1}
+                        : side == 1 ? (sample_rect){v.x1, v.z0, v.x1 + k, v.z1}
+                        : side == 2 ? (sample_rect){t.x0, v.z0 - k, t.x1, v.z0}
+                                    : (sample_rect){t.x0, v.z1, t.x1, v.z1 + k};
+        if ((ok = fill(w, cache, r)) != 1) break;
+        if (side == 0) v.x0 -= k;
+        if (side == 1) v.x1 += k;
+        if (side == 2) v.z0 -= k;
+        if (side == 3) v.z1 += k;
+        *gap -= k;
+        allow -= area(r);
+        *budget -= area(r);
+    }
+    if (ok < 0) return -1;
+    if (v.x0 == t.x0 && v.z0 == t.z0 && v.x1 == t.x1 && v.z1 == t.z1) {
+        w->have[0] = want[0], w->have[1] = want[1];
+        w->has_data = 1, w->partial = 0;
+        return 1;
+    }
+    w->has_data = 0, w->partial = 1;
+    w->valid[0] = v.x0, w->valid[1] = v.z0, w->valid[2] = v.x1, w->valid[3] = v.z1;
+    return 0;
+}
+
 void clip_window_refresh(clip_window *w, tile_cache *cache, int64_t x0, int64_t z0, int64_t x1,
                          int64_t z1) {
+    if (w->partial) { // a budgeted fill under way: re-read what it already holds
+        sample_rect r = intersect(valid_rect(w), (sample_rect){x0, z0, x1, z1});
+        if (area(r) > 0 && fill(w, cache, r) != 1) w->partial = 0; // tiles gone: start over
+        return;
+    }
     if (!w->has_data) return;
     int64_t n = w->size;
     sample_rect r = {x0 > w->have[0] ? x0 : w->have[0], z0 > w->have[1] ? z0 : w->have[1],

@@ -35,6 +35,12 @@ typedef struct clip_window {
     int upload_count;
     int upload_all;         // the whole texture must be uploaded
     uint64_t texels_copied; // running total (benchmarks: texels uploaded while flying)
+    // Budgeted updates (clip_window_update_within) fill a window over several calls:
+    // meanwhile the samples [valid[0], valid[2]) x [valid[1], valid[3]) of the wanted
+    // window are in the mirror (partial = 1, has_data = 0).
+    int64_t valid[4];
+    int partial;
+    int refill_started; // a fill from nothing began since the owner last looked (owner clears)
 } clip_window;
 
 int clip_window_init(clip_window *w, tile_layer layer, int face, int level, int size);
@@ -46,6 +52,13 @@ void clip_window_invalidate(clip_window *w);
 // mirror holds the window at `want` (current), 0 while tiles are still pending, -1 when a
 // tile cannot be had (err set).
 int clip_window_update(clip_window *w, tile_cache *cache, const int64_t want[2]);
+// The same, copying about *budget texels at most (taken off it): a move that needs more
+// (a jump, a first fill, a level the camera comes down to) is spread over calls, the
+// window growing from what it already holds of the wanted one, not current until it
+// holds all of it (its owner draws something else meanwhile), so that no frame uploads
+// a whole texture. A move needing at most 32 rows or columns is always made at once.
+int clip_window_update_within(clip_window *w, tile_cache *cache, const int64_t want[2],
+                              int64_t *budget);
 
 // Re-reads the samples of rect [x0, x1) x [z0, z1) (sample indices at this level) that
 // lie inside the window, after an edit. If their tiles are not resident the window

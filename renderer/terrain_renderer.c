@@ -25,6 +25,7 @@
 #define TEX_PERIOD_NEAR 6.0 // metres per repeat of the material textures
 #define TEX_PERIOD_FAR 97.0 // metres per repeat of the variation layer
 #define UNBOUNDED 1e9f
+#define UPLOAD_BUDGET_PERCENT 6 // of the level textures, for refills (moves come on top)
 
 // The terrain program's variants (see terrain.frag): what a level can show.
 enum {
@@ -74,6 +75,7 @@ struct terrain_renderer {
 
     render_stats stats;
     uint64_t frame_texels;
+    int whole_uploads; // terrain_renderer_spread_uploads off
 };
 
 static double now_ms(void) {
@@ -315,11 +317,15 @@ static void layout_levels(terrain_renderer *r, const world_params *p, const came
     }
 }
 
-static void scan_bounds(terrain_renderer *r, int l, const texel_rect *rects, int count, int all) {
+// Widens level l's height bounds by the texels of rects (all: the whole window), after
+// forgetting them (reset, or all).
+static void scan_bounds(terrain_renderer *r, int l, const texel_rect *rects, int count, int all,
+                        int reset) {
     const clip_window *w = &r->heights[l];
     const float *h = (const float *)w->mirror;
     texel_rect whole = {0, 0, w->size, w->size};
-    if (all) rects = &whole, count = 1, r->hmin[l] = INFINITY, r->hmax[l] = -INFINITY;
+    if (all) rects = &whole, count = 1, reset = 1;
+    if (reset) r->hmin[l] = INFINITY, r->hmax[l] = -INFINITY;
     for (int k = 0; k < count; k++)
         for (int z = rects[k].z; z < rects[k].z + rects[k].h; z++)
             for (int x = rects[k].x; x < rects[k].x + rects[k].w; x++) {
@@ -333,8 +339,11 @@ static void scan_bounds(terrain_renderer *r, int l, const texel_rect *rects, int
 // the coarse heights' bounds re-measured over it first.
 static void upload_window(terrain_renderer *r, clip_window *w, GLuint tex, int layer, GLenum format,
                           GLenum type) {
-    if (layer >= 0 && w->layer == TILE_LAYER_COARSE && (w->upload_all || w->upload_count > 0))
-        scan_bounds(r, layer, w->uploads, w->upload_count, w->upload_all);
+    // A whole upload or the first band of a fill from nothing starts the bounds afresh.
+    if (layer >= 0 && w->layer == TILE_LAYER_COARSE && (w->upload_all || w->upload_count > 0)) {
+        scan_bounds(r, layer, w->uploads, w->upload_count, w->upload_all, w->refill_started);
+        w->refill_started = 0;
+    }
     r->frame_texels += clip_window_upload(w, tex, layer, format, type);
 }
 
@@ -471,16 +480,26 @@ int terrain_renderer_update(terrain_renderer *r, world *w, const camera *cam,
     if (volume_ok < 0) return -1;
     tile_cache *cache = world_cache(w);
     int all = 1;
+    // Texels this frame may copy beyond small moves: a jump or a level the camera comes
+    // down to refills over a few frames (the next coarser level stands in meanwhile), so
+    // no frame uploads more than a tenth of the level textures. Only the coarsest
+    // level's first fill, which nothing can stand in for, is made at once.
+    int64_t budget = r->whole_uploads ? INT64_MAX / 2
+                                      : (int64_t)r->levels * CLIP_TEXELS * CLIP_TEXELS *
+                                            UPLOAD_BUDGET_PERCENT / 100;
     // Finest first: the cache serves the last request first, so the coarsest level,
     // which stands in for all the others, arrives first.
     for (int l = r->finest; l < r->levels; l++) {
-        int ok = clip_window_update(&r->heights[l], cache, r->origin[l]);
+        clip_window *hw = &r->heights[l];
+        int first_fill = l == r->levels - 1 && !hw->has_data && !hw->partial;
+        int ok = first_fill ? clip_window_update(hw, cache, r->origin[l])
+                            : clip_window_update_within(hw, cache, r->origin[l], &budget);
         if (ok < 0) return og_error_set(err, "the clipmap could not read level %d", l);
         if (!ok) all = 0;
     }
     r->material_current = 0;
     if (r->finest == 0) {
-        int ok = clip_window_update(&r->material, cache, r->origin[0]);
+        int ok = clip_window_update_within(&r->material, cache, r->origin[0], &budget);
         r->material_current = ok == 1;
         if (!ok) all = 0;
     }
@@ -495,8 +514,8 @@ int terrain_renderer_update(terrain_renderer *r, world *w, const camera *cam,
         int near_ground = terrain_renderer_height_at(r, cam->pos[0], cam->pos[2], &ground) == 0 &&
                           fabs(cam->pos[1] - ground) < s->detail_distance;
         if (near_ground) {
-            int a = clip_window_update(&r->detail, cache, r->detail_origin);
-            int b = clip_window_update(&r->detail_pd, cache, r->detail_origin);
+            int a = clip_window_update_within(&r->detail, cache, r->detail_origin, &budget);
+            int b = clip_window_update_within(&r->detail_pd, cache, r->detail_origin, &budget);
             r->detail_current = a == 1 && b == 1;
             if (!r->detail_current) all = 0;
         }
@@ -957,6 +976,10 @@ int terrain_renderer_draw(terrain_renderer *r, world *w, const camera *cam,
     r->stats.cpu_ms += now_ms() - t0;
     if (e != GL_NO_ERROR) return og_error_set(err, "terrain_renderer_draw: GL error 0x%x", e);
     return 0;
+}
+
+void terrain_renderer_spread_uploads(terrain_renderer *r, int on) {
+    r->whole_uploads = !on;
 }
 
 void terrain_renderer_set_view_size(terrain_renderer *r, int width, int height) {

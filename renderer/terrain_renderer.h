@@ -31,8 +31,13 @@ void terrain_renderer_destroy(terrain_renderer *r);
 // resident yet are requested (the levels that need them show the coarser level).
 // Returns 1 when every level is current, 0 while some still wait, -1 on error (a
 // planet world, which this viewport does not draw yet, or a cache failure).
+// A frame uploads at most about a tenth of the level textures: jumps and first fills
+// are spread over frames (the next coarser level stands in meanwhile).
 int terrain_renderer_update(terrain_renderer *r, world *w, const camera *cam,
                             const render_settings *s, og_error *err);
+// Off: every update copies all it can (a headless render waiting for a finished
+// picture has no frames to spread the uploads over). On by default.
+void terrain_renderer_spread_uploads(terrain_renderer *r, int on);
 
 // Draws into the current framebuffer (width x height pixels).
 int terrain_renderer_draw(terrain_renderer *r, world *w, const camera *cam,

@@ -78,16 +78,20 @@ int viewport_settle(viewport *v, world *w, og_error *err) {
     if (viewport_prepare(v, err) != 0) return -1;
     if (!v->cam_set && viewport_default_camera(v, w, err) != 0) return -1;
     double start = seconds_now();
+    terrain_renderer_spread_uploads(v->renderer, 0); // no frames to spread them over
     for (;;) {
         int rc = terrain_renderer_update(v->renderer, w, &v->cam, &v->settings, err);
-        if (rc < 0) return -1;
         // Twice current in a row: the finest level depends on the ground height the
         // first current frame reveals.
-        if (rc == 1 && terrain_renderer_update(v->renderer, w, &v->cam, &v->settings, err) == 1)
-            return 0;
-        if (seconds_now() - start > v->wait_seconds)
+        if (rc == 1) rc = terrain_renderer_update(v->renderer, w, &v->cam, &v->settings, err);
+        if (rc != 0) terrain_renderer_spread_uploads(v->renderer, 1);
+        if (rc < 0) return -1;
+        if (rc == 1) return 0;
+        if (seconds_now() - start > v->wait_seconds) {
+            terrain_renderer_spread_uploads(v->renderer, 1);
             return og_error_set(err, "the terrain's tiles did not arrive within %.0f s",
                                 v->wait_seconds);
+        }
         struct timespec nap = {0, 2000000};
         nanosleep(&nap, NULL);
     }

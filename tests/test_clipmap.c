@@ -215,8 +215,85 @@ static void test_window_moves_toroidally(void **state) {
     assert_int_equal(tile_cache_destroy(c, &err), 0);
 }
 
+// Texels queued for upload since the last call (and forgets them).
+static uint64_t take_queued(clip_window *w) {
+    uint64_t queued = 0;
+    for (int k = 0; k < w->upload_count; k++)
+        queued += (uint64_t)w->uploads[k].w * w->uploads[k].h;
+    if (w->upload_all) queued += (uint64_t)w->size * w->size;
+    w->upload_count = 0, w->upload_all = 0;
+    return queued;
+}
+
+// Budgeted updates: jumps and first fills spread over calls, never more than the budget
+// a call (moves of up to 32 rows or columns excepted), the window growing from what it
+// holds of the wanted one, edits during a fill kept, and the result the same samples.
+static void test_window_fills_within_a_budget(void **state) {
+    (void)state;
+    slow_source g = {PTHREAD_MUTEX_INITIALIZER, 1};
+    og_error err;
+    tile_cache *c = tile_cache_create(
+        &(tile_cache_desc){
+            .budget_bytes = 64u << 20, .workers = 2, .source = named_source, .source_user = &g},
+        &err);
+    assert_non_null(c);
+    clip_window w;
+    assert_int_equal(clip_window_init(&w, TILE_LAYER_COARSE, 0, 1, 256), 0);
+    struct {
+        int64_t x, z; // where the window goes (absolute), one jump after another
+    } goals[] = {{-300, 77}, {-290, 80}, {-100, 77}, {5000, 5000}, {5000 + 200, 5000 - 40}};
+    const int64_t per_call = 40 * 256;
+    int calls_total = 0, edited = 0;
+    for (size_t i = 0; i < sizeof goals / sizeof goals[0]; i++) {
+        int64_t want[2] = {goals[i].x, goals[i].z};
+        int calls = 0, rc = 0;
+        for (; calls < 20000 && rc != 1; calls++) {
+            int64_t budget = per_call;
+            rc = clip_window_update_within(&w, c, want, &budget);
+            assert_true(rc >= 0);
+            uint64_t queued = take_queued(&w);
+            // Small moves (<= 32 rows or columns) may exceed it; nothing else does.
+            assert_true(queued <= (uint64_t)per_call || queued <= 32 * 256);
+            assert_int_equal(queued, (uint64_t)(per_call - budget));
+            if (rc == 1) assert_true(clip_window_current(&w, want));
+            if (rc != 1) {
+                assert_false(clip_window_current(&w, want));
+                usleep(200); // tiles still coming
+            }
+            if (i == 3 && w.partial && w.valid[3] > w.valid[1]) {
+                // An edit inside what a fill already holds is re-read at once.
+                int64_t ex = w.valid[0] + 3, ez = w.valid[1];
+                tile_view v;
+                tile_key k = {TILE_LAYER_COARSE, 0, 1, (int32_t)(ex >> 8), (int32_t)(ez >> 8)};
+                const float *m = (const float *)w.mirror;
+                for (int pass = 0; pass < 2; pass++) { // -7, then back
+                    float value = pass == 0 ? -7.0f : expected(1, ex, ez);
+                    assert_int_equal(tile_cache_acquire_write(c, k, &v, &err), 0);
+                    ((float *)v.data)[(ez & 255) * 256 + (ex & 255)] = value;
+                    tile_cache_release(c, &v);
+                    clip_window_refresh(&w, c, ex, ez, ex + 1, ez + 1);
+                    assert_true(w.partial);
+                    assert_true(m[(size_t)(ez & 255) * 256 + (size_t)(ex & 255)] == value);
+                    assert_int_equal(take_queued(&w), 1);
+                }
+                edited = 1;
+            }
+        }
+        assert_int_equal(rc, 1);
+        check_window(&w);
+        calls_total += calls;
+        if (i == 1) assert_int_equal(calls, 1);                 // a small move: at once
+        if (i == 3) assert_true(calls >= 256 * 256 / per_call); // a jump: spread
+    }
+    assert_true(calls_total > 10);
+    assert_true(edited);
+    clip_window_free(&w);
+    assert_int_equal(tile_cache_destroy(c, &err), 0);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_window_fills_within_a_budget),
         cmocka_unit_test(test_pieces_tile_each_level_once),
         cmocka_unit_test(test_bad_sizes_are_refused),
         cmocka_unit_test(test_window_moves_toroidally),
