@@ -310,7 +310,7 @@ static void resize_end(window_state *st) {
 static int planet_ground(void *user, const double pos[3], double *h) {
     window_state *st = user;
     og_error err = {{0}};
-    return planet_ground_height(st->ctx->world, pos, h, &err);
+    return planet_surface_height(st->ctx->world, pos, h, &err); // floats on the sea
 }
 
 static void reset_camera(window_state *st) {

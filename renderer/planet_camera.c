@@ -125,3 +125,9 @@ int planet_ground_height(world *w, const double pos[3], double *height, og_error
                         (corner[1] - corner[3]) * (1.0 - fv);
     return 0;
 }
+
+int planet_surface_height(world *w, const double pos[3], double *height, og_error *err) {
+    if (planet_ground_height(w, pos, height, err) != 0) return -1;
+    *height = fmax(*height, world_params_ocean_height(world_get_params(w)));
+    return 0;
+}

@@ -33,5 +33,8 @@ void planet_lat_lon(const double pos[3], double *lat, double *lon);
 // it: the finest level's triangles, whose corners are bilinear between the face's
 // samples.
 int planet_ground_height(world *w, const double pos[3], double *height, og_error *err);
+// The surface a person stands or floats on there: the ground, or the sea's surface where
+// the ground lies under it (what the viewport draws, and where `ground` puts a camera).
+int planet_surface_height(world *w, const double pos[3], double *height, og_error *err);
 
 #endif

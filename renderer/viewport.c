@@ -145,9 +145,11 @@ static int shown_height(void *user, double x, double z, double *h) {
     return volume_renderer_replaces(terrain_renderer_volume(r), x, *h, z) ? -1 : 0;
 }
 
-// Planets: the ray against the sphere of the ground's height, that height re-read where
-// it lands until it settles (a few steps for any view that looks down at the ground).
-static int planet_pick(viewport *v, world *w, double sx, double sy, double aspect, double hit[3]) {
+// Planets: the ray against the sphere of the surface's height (the sea's where it covers
+// the ground; floor: the ground under it), that height re-read where it lands until it
+// settles (a few steps for any view that looks down at the ground).
+static int planet_pick(viewport *v, world *w, double sx, double sy, double aspect, int floor,
+                       double hit[3]) {
     const world_params *p = world_get_params(w);
     double dir[3], ground = 0, t = -1;
     planet_camera_ray(&v->cam, aspect, sx, sy, dir);
@@ -161,7 +163,9 @@ static int planet_pick(viewport *v, world *w, double sx, double sy, double aspec
         for (int k = 0; k < 3; k++)
             hit[k] = c[k] + nt * dir[k];
         og_error err;
-        if (planet_ground_height(w, hit, &ground, &err) != 0) return -1;
+        if ((floor ? planet_ground_height(w, hit, &ground, &err)
+                   : planet_surface_height(w, hit, &ground, &err)) != 0)
+            return -1;
         if (t >= 0 && fabs(nt - t) < 1e-3 * fmax(1.0, p->spacing)) break;
         t = nt;
     }
@@ -174,7 +178,7 @@ static int planet_pick(viewport *v, world *w, double sx, double sy, double aspec
 int viewport_pick_loaded(viewport *v, world *w, double sx, double sy, double aspect,
                          double hit[3]) {
     if (!v->renderer) return -1;
-    if (world_get_params(w)->kind == WORLD_PLANET) return planet_pick(v, w, sx, sy, aspect, hit);
+    if (world_get_params(w)->kind == WORLD_PLANET) return planet_pick(v, w, sx, sy, aspect, 0, hit);
     double dir[3];
     camera_ray(&v->cam, aspect, sx, sy, dir);
     const world_params *p = world_get_params(w);
@@ -193,6 +197,17 @@ int viewport_pick_loaded(viewport *v, world *w, double sx, double sy, double asp
         return 0;
     }
     return ground;
+}
+
+int viewport_pick_floor(viewport *v, world *w, double px, double py, int width, int height,
+                        double hit[3], og_error *err) {
+    if (world_get_params(w)->kind != WORLD_PLANET)
+        return viewport_pick(v, w, px, py, width, height, hit, err);
+    if (viewport_settle(v, w, err) != 0) return -1;
+    if (!v->renderer ||
+        planet_pick(v, w, px / width, py / height, (double)width / height, 1, hit) != 0)
+        return og_error_set(err, "no terrain under pixel (%g, %g)", px, py);
+    return 0;
 }
 
 int viewport_pick(viewport *v, world *w, double px, double py, int width, int height, double hit[3],

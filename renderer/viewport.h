@@ -59,5 +59,9 @@ int viewport_screenshot(viewport *v, world *w, const char *path, int width, int 
 int viewport_pick_loaded(viewport *v, world *w, double sx, double sy, double aspect, double hit[3]);
 int viewport_pick(viewport *v, world *w, double px, double py, int width, int height, double hit[3],
                   og_error *err);
+// As viewport_pick, but on a planet the sea floor under the sea (the ground, not the
+// surface).
+int viewport_pick_floor(viewport *v, world *w, double px, double py, int width, int height,
+                        double hit[3], og_error *err);
 
 #endif

@@ -50,6 +50,16 @@ rc=$?; check "the moon preset renders ($(cat "$work/err"))" $rc
 run "new planet preset=earth; camera_geo 0 20 100 90 -10; screenshot $work/planet_sea_low.png $size;
      camera_geo 10.004 45 2 110 -12 60 ground; screenshot $work/planet_face_edge.png $size"
 rc=$?; check "the issue-29 reproducers render ($(cat "$work/err"))" $rc
+# Over the sea `ground` means the surface a person floats on, and pick finds the
+# surface (the floor under it on request): the camera never lands on the sea floor.
+run "new planet preset=earth; camera_geo 0 20 100 90 -10 60 ground; camera; pick 640 600;
+     pick 640 600 1280 720 floor"
+rc=$?; check "the sea's surface and floor are picked ($(cat "$work/err"))" $rc
+alt=$(awk '/^camera_geo /{print $4}' "$work/out")
+[ "$alt" = "100.000" ]; check "camera_geo ... ground over the sea stands 100 m above the sea's surface (got $alt)" $?
+read -r surface floor <<<"$(awk '/^pick /{r = sqrt($2*$2 + $3*$3 + $4*$4) - 6371000; printf "%s ", r}' "$work/out")"
+awk -v s="$surface" -v f="$floor" 'BEGIN { exit !(s * s < 0.01 && f < -100) }'
+check "pick reports the sea's surface (${surface} m) and, with floor, the sea floor (${floor} m)" $?
 max_golden=2.0
 mkdir -p "$failed_dir"
 for name in planet_orbit planet_10km planet_2m planet_wire planet_seed004 planet_moon \

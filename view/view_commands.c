@@ -77,8 +77,8 @@ static int cmd_camera_geo(cmd_context *ctx, int argc, char **argv, og_error *err
     camera c = v->cam;
     planet_position(val[0], val[1], p->radius + val[2], c.pos);
     double ground = 0;
-    if (above_ground) { // ALT above the ground there, not the datum
-        if (planet_ground_height(ctx->world, c.pos, &ground, err) != 0) return -1;
+    if (above_ground) { // ALT above the surface there (the sea's over the sea), not the datum
+        if (planet_surface_height(ctx->world, c.pos, &ground, err) != 0) return -1;
         planet_position(val[0], val[1], p->radius + ground + val[2], c.pos);
     }
     c.yaw = 0, c.pitch = 0;
@@ -251,13 +251,17 @@ static int cmd_pick(cmd_context *ctx, int argc, char **argv, og_error *err) {
     if (!v) return -1;
     double px, py;
     int w, h;
+    const int floor = argc > 1 && strcmp(argv[argc - 1], "floor") == 0; // the sea floor
+    if (floor) argc--;
     if (parse_number(argv[1], "PX", &px, err) != 0 || parse_number(argv[2], "PY", &py, err) != 0 ||
         parse_size(argc, argv, 3, &w, &h, err) != 0)
         return -1;
     if (px < 0 || py < 0 || px > w || py > h)
         return og_error_set(err, "pixel (%g, %g) lies outside the %d x %d image", px, py, w, h);
     double hit[3];
-    if (viewport_pick(v, ctx->world, px, py, w, h, hit, err) != 0) return -1;
+    if ((floor ? viewport_pick_floor(v, ctx->world, px, py, w, h, hit, err)
+               : viewport_pick(v, ctx->world, px, py, w, h, hit, err)) != 0)
+        return -1;
     fprintf(ctx->out, "pick %.3f %.3f %.3f\n", hit[0], hit[1], hit[2]);
     return 0;
 }
@@ -269,7 +273,8 @@ static const cmd_def view_commands[] = {
      0, 6, cmd_camera, 0},
     {"camera_geo", "camera_geo LAT LON ALT [YAW PITCH [FOV]] [ground]",
      "Planets: places the camera at latitude, longitude (degrees; longitude 0 on +Z, east toward "
-     "+X) and ALT metres above the datum (with `ground`: above the ground there), turned by yaw "
+     "+X) and ALT metres above the datum (with `ground`: above the surface there, the ground or "
+     "the sea's surface over it), turned by yaw "
      "(0 north, 90 east) and pitch (-90, the default, looks straight down) in the local frame.",
      3, 7, cmd_camera_geo, 0},
     {"view", "view [MODE]",
@@ -291,9 +296,10 @@ static const cmd_def view_commands[] = {
      "Renders the viewport offscreen (no display needed) to an RGB PNG, W x H pixels (1280 x 720), "
      "once every visible tile is loaded.",
      1, 3, cmd_screenshot, 0},
-    {"pick", "pick PX PY [W H]",
-     "Prints the terrain point (x y z metres) under pixel PX, PY of a W x H (1280 x 720) view.", 2,
-     4, cmd_pick, 0},
+    {"pick", "pick PX PY [W H] [floor]",
+     "Prints the terrain point (x y z metres) under pixel PX, PY of a W x H (1280 x 720) view; on "
+     "a planet the sea's surface where the sea covers the ground (`floor`: the ground under it).",
+     2, 5, cmd_pick, 0},
 };
 
 int view_commands_register(og_error *err) {
