@@ -485,6 +485,7 @@ static void bench_erosion(void) {
            "iteration; %.0fx the memcpy\n",
            tp.iterations, tp.talus_deg, tp.rate, t * 1e3, t * 1e9 / ((double)N * N * tp.iterations),
            t / c);
+    goal("hydraulic erosion, 100k droplets on 1024^2, ms", y * 1e3, 150.0, 0, " ms");
     free(terrain);
     free(h);
     free(wt);
@@ -529,6 +530,7 @@ static void bench_stamp(void) {
            "memcpy of the footprint: %.3f ms (%.0fx)\n",
            bench_median(t, RUNS) * 1e3, bench_median(a, RUNS) * 1e3, bench_median(c, RUNS) * 1e3,
            bench_median(t, RUNS) / bench_median(c, RUNS));
+    goal("512^2 stamp as its own undo step, ms", bench_median(t, RUNS) * 1e3, 3.2, 0, " ms");
     free(buf);
     free(dst);
     free(plain);
