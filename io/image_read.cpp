@@ -395,6 +395,9 @@ int write_samples_impl(const char *path, const float *samples, int width, int he
         data = q.data();
     }
     OIIO::ImageSpec spec(width, height, 1, type);
+    // OIIO stamps TIFF and EXR with the wall clock unless DateTime is given; empty leaves
+    // it out, so the same export makes the same bytes (shards, reruns, CI caches).
+    spec.attribute("DateTime", "");
     if (channel && *channel) spec.channelnames[0] = channel;
     if (ext == "png") spec.attribute("png:compressionLevel", 6);
     if (ext == "exr") spec.attribute("compression", "zip");

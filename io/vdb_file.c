@@ -1,5 +1,6 @@
 #include "io/vdb_file.h"
 
+#include "io/crc32c.h"
 #include "io/file_mode.h"
 #include "io/module_load.h"
 
@@ -113,6 +114,39 @@ static int fsync_path(const char *path, int flags) {
     return rc;
 }
 
+// OpenVDB stamps every file with a random UUID (36 characters after the 21-byte
+// header start); it only tags the file, so it becomes a hash of the file's other bytes
+// and the same level set always makes the same bytes.
+enum { UUID_AT = 21, UUID_LEN = 36 };
+
+static int stamp_content_uuid(const char *path) {
+    int fd = open(path, O_RDWR);
+    if (fd < 0) return -1;
+    unsigned char head[UUID_AT + UUID_LEN], buf[1 << 16];
+    int rc = -1;
+    if (pread(fd, head, sizeof head, 0) != (ssize_t)sizeof head || memcmp(head, " BDV", 4) != 0 ||
+        head[UUID_AT + 8] != '-' || head[UUID_AT + 13] != '-')
+        goto done;
+    uint32_t h[4] = {1, 2, 3, 4};
+    for (int k = 0; k < 4; k++)
+        h[k] = crc32c_update(h[k] * 0x9e3779b9u, head, UUID_AT);
+    for (off_t at = UUID_AT + UUID_LEN;;) {
+        ssize_t n = pread(fd, buf, sizeof buf, at);
+        if (n < 0) goto done;
+        if (n == 0) break;
+        for (int k = 0; k < 4; k++)
+            h[k] = crc32c_update(h[k], buf, (size_t)n);
+        at += n;
+    }
+    char uuid[UUID_LEN + 1];
+    snprintf(uuid, sizeof uuid, "%08x-%04x-%04x-%04x-%04x%08x", h[0], h[1] >> 16, h[1] & 0xffff,
+             h[2] >> 16, h[2] & 0xffff, h[3]);
+    if (pwrite(fd, uuid, UUID_LEN, UUID_AT) == UUID_LEN) rc = 0;
+done:
+    close(fd);
+    return rc;
+}
+
 int vdb_level_set_write(vdb_level_set *ls, const char *path, int fog, const char *const *meta,
                         int meta_count, og_error *err) {
     size_t len = strlen(path);
@@ -134,6 +168,8 @@ int vdb_level_set_write(vdb_level_set *ls, const char *path, int fog, const char
     char why[512] = "";
     if (module.write(ls, tmp, fog, meta, meta_count, why, sizeof why) != 0) {
         og_error_set(err, "%s: OpenVDB could not write it: %s", path, why);
+    } else if (stamp_content_uuid(tmp) != 0) {
+        og_error_set(err, "%s: cannot stamp the file's tag: %s", path, strerror(errno));
     } else if (fsync_path(tmp, 0) != 0) {
         og_error_set(err, "%s: cannot flush the file to disk: %s", path, strerror(errno));
     } else if (rename(tmp, path) != 0) {

@@ -212,6 +212,18 @@ if command -v parallel >/dev/null; then
 else
     echo "FAIL: GNU parallel is missing (scripts/install-deps.sh installs it)"; failures=$((failures + 1))
 fi
+# The formats that carry a date (EXR, TIFF) too: a second apart, as one run and as two
+# shards, every file the same bytes.
+mkdir -p "$work/date1" "$work/date2"
+small="new flat; set size 257; set spacing 4; generate"
+run -c "$small; export $work/date1/d.exr tiles=2x2; export $work/date1/d16.tif tiles=2x2 bits=16; export $work/date1/d32.tif tiles=2x2"
+sleep 1.1
+for shard in 0/2 1/2; do
+    "$orogen" -c "$small; export $work/date2/d.exr tiles=2x2 shard=$shard; export $work/date2/d16.tif tiles=2x2 bits=16 shard=$shard; export $work/date2/d32.tif tiles=2x2 shard=$shard" >/dev/null 2>&1
+done
+files=$(ls "$work/date1" | wc -l)
+[ "$files" = 27 ] && diff -r "$work/date1" "$work/date2" >/dev/null
+check "EXR and 16/32-bit TIFF tiles a second apart, one run and two shards: the same bytes ($files files)" $?
 run -c "$world; export $work/u.raw tiles=2x2 preset=unity"
 [ -s "$work/u_0_0.raw" ] && [ -s "$work/u_1_1.raw" ]; check "Unity tiles are named NAME_X_Z" $?
 run -c "$world; export $work/g.png tiles=2x2 pattern={name}_y{y}_x{x}"

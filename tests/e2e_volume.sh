@@ -228,6 +228,9 @@ small=$(stat -c %s small.vdb 2>/dev/null || echo 0)
 large=$(stat -c %s large.vdb 2>/dev/null || echo 0)
 [ $status = 0 ] && [ "$small" -gt 0 ] && [ "$large" -gt $((small * 2)) ] && [ "$large" -lt $((small * 6)) ]
 check "the .vdb grows with the region: a quarter of it $small bytes, all of it $large" $?
+"$orogen" -c "export again.vdb region=800,60,1000,700 fog=1" >/dev/null 2>&1
+cmp -s again.vdb large.vdb
+check "the same .vdb export twice: the same bytes (OpenVDB's random file UUID becomes a content hash)" $?
 (umask 027 && "$orogen" -c "export mode.vdb region=0,0,40,40" >/dev/null 2>&1)
 [ "$(stat -c %a mode.vdb 2>/dev/null)" = 640 ]
 rc=$?
