@@ -36,7 +36,10 @@ enum {
     TV_OVERLAYS = 16,
     TV_CONTOURS = 32,
     TV_MINIFIED = 64,
-    TERRAIN_VARIANTS = 128
+    TV_NO_ROCK = 128, // the automatic rules' materials whose weight is 0 all over the level
+    TV_NO_CLIFF = 256,
+    TV_NO_SNOW = 512,
+    TERRAIN_VARIANTS = 1024
 };
 
 struct terrain_renderer {
@@ -53,6 +56,10 @@ struct terrain_renderer {
     clip_window heights[RENDER_MAX_LEVELS];
     clip_window material, detail, detail_pd;
     float hmin[RENDER_MAX_LEVELS], hmax[RENDER_MAX_LEVELS];
+    // The steepest slope (rise over run) between neighbouring samples of each level's
+    // window, re-measured when it changed and is whole (slope_stale).
+    double slope_max[RENDER_MAX_LEVELS];
+    int slope_stale[RENDER_MAX_LEVELS];
 
     // What the levels show: the world they were filled from, and its change
     // notifications (edits, new parameters, another world).
@@ -189,6 +196,8 @@ static int create_textures(terrain_renderer *r, og_error *err) {
 
 static int create_windows(terrain_renderer *r, og_error *err) {
     for (int l = 0; l < RENDER_MAX_LEVELS; l++)
+        r->slope_max[l] = INFINITY, r->slope_stale[l] = 1;
+    for (int l = 0; l < RENDER_MAX_LEVELS; l++)
         if (clip_window_init(&r->heights[l], TILE_LAYER_COARSE, 0, l, CLIP_TEXELS) != 0)
             return og_error_set(err, "out of memory for the clipmap levels");
     if (clip_window_init(&r->material, TILE_LAYER_MATERIAL, 0, 0, CLIP_TEXELS) != 0 ||
@@ -201,10 +210,10 @@ static int create_windows(terrain_renderer *r, og_error *err) {
 // The terrain program for a variant (TV_* bits), built on first use.
 static GLuint terrain_program(terrain_renderer *r, int variant, og_error *err) {
     if (r->prog_terrain[variant]) return r->prog_terrain[variant];
-    static const char *const names[] = {"SHADED",   "DETAIL",   "PAINTED", "BRUSH",
-                                        "OVERLAYS", "CONTOURS", "MINIFIED"};
+    static const char *const names[] = {"SHADED",   "DETAIL",   "PAINTED", "BRUSH",    "OVERLAYS",
+                                        "CONTOURS", "MINIFIED", "NO_ROCK", "NO_CLIFF", "NO_SNOW"};
     r->prog_terrain[variant] = shader_program_load_flags(
-        r->shader_dir, "terrain.vert", "terrain.frag", names, 7, (unsigned)variant, err);
+        r->shader_dir, "terrain.vert", "terrain.frag", names, 10, (unsigned)variant, err);
     r->prog_frame[variant] = 0;
     return r->prog_terrain[variant];
 }
@@ -347,6 +356,26 @@ static void upload_window(terrain_renderer *r, clip_window *w, GLuint tex, int l
     r->frame_texels += clip_window_upload(w, tex, layer, format, type);
 }
 
+// Level l's steepest step between neighbouring samples of its window (in sample order:
+// the toroidal mirror's wrap seam is not a step), in metres per metre.
+static void measure_slopes(terrain_renderer *r, int l) {
+    const clip_window *w = &r->heights[l];
+    const float *h = (const float *)w->mirror;
+    int n = w->size, mask = n - 1, x0 = (int)(w->have[0] & mask), z0 = (int)(w->have[1] & mask);
+    float steepest = 0.0f;
+    for (int j = 0; j < n; j++) {
+        const float *row = h + (size_t)((z0 + j) & mask) * n;
+        const float *next = h + (size_t)((z0 + j + 1) & mask) * n;
+        for (int i = 0; i < n; i++) {
+            int x = (x0 + i) & mask;
+            float a = row[x];
+            if (i + 1 < n) steepest = fmaxf(steepest, fabsf(row[(x + 1) & mask] - a));
+            if (j + 1 < n) steepest = fmaxf(steepest, fabsf(next[x] - a));
+        }
+    }
+    r->slope_max[l] = steepest / (r->params.spacing * (double)((int64_t)1 << l));
+}
+
 // Whether any texel of the material window holds paint (weight 0, "automatic", under
 // 255): the levels then draw with the painted variant.
 static int window_has_paint(const clip_window *w) {
@@ -357,8 +386,10 @@ static int window_has_paint(const clip_window *w) {
 }
 
 static void invalidate_all(terrain_renderer *r) {
-    for (int l = 0; l < RENDER_MAX_LEVELS; l++)
+    for (int l = 0; l < RENDER_MAX_LEVELS; l++) {
         clip_window_invalidate(&r->heights[l]);
+        r->slope_max[l] = INFINITY, r->slope_stale[l] = 1;
+    }
     clip_window_invalidate(&r->material);
     clip_window_invalidate(&r->detail);
     clip_window_invalidate(&r->detail_pd);
@@ -521,8 +552,15 @@ int terrain_renderer_update(terrain_renderer *r, world *w, const camera *cam,
         }
     }
     // Uploads, and which level each level draws from while its own is not current.
-    for (int l = r->finest; l < r->levels; l++)
-        upload_window(r, &r->heights[l], r->tex_heights, l, GL_RED, GL_FLOAT);
+    for (int l = r->finest; l < r->levels; l++) {
+        clip_window *hw = &r->heights[l];
+        r->slope_stale[l] |= hw->upload_all || hw->upload_count > 0;
+        upload_window(r, hw, r->tex_heights, l, GL_RED, GL_FLOAT);
+        if (r->slope_stale[l] && clip_window_current(hw, r->origin[l])) {
+            measure_slopes(r, l);
+            r->slope_stale[l] = 0;
+        }
+    }
     if (r->material.upload_all || r->material.upload_count > 0)
         r->material_painted = window_has_paint(&r->material);
     upload_window(r, &r->material, r->tex_material, -1, GL_RG_INTEGER, GL_UNSIGNED_INT);
@@ -782,6 +820,16 @@ static int level_variant(const terrain_renderer *r, const camera *cam, const ren
         (r->height > 0 ? r->height : 720) / (2.0 * tan(cam->fov_y * M_PI / 360.0));
     if (!(v & TV_DETAIL) && level_nearest(r, cam, l) > 4.0 * TEX_PERIOD_NEAR * pixels_per_radian)
         v |= TV_MINIFIED;
+    // Rock, cliff and snow where the level (and the coarser one it morphs into) has
+    // no slope or height that gives them weight (materials.glsl's thresholds, with a
+    // margin for the shader's rounding): two texture lookups a fragment fewer each.
+    int a = r->src[l], b = l + 1 < r->levels && r->src[l + 1] >= 0 ? r->src[l + 1] : a;
+    double slope = fmax(r->slope_max[a], r->slope_max[b]) * 1.01 + 1e-4;
+    if (slope < 0.55) v |= TV_NO_ROCK;
+    if (slope < 1.1) v |= TV_NO_CLIFF;
+    double ocean = world_params_ocean_height(&r->params);
+    double snow_line = ocean + (r->params.max_height - ocean) * 0.62;
+    if (fmax(r->hmax[a], r->hmax[b]) + 1.0 < snow_line - 40.0) v |= TV_NO_SNOW;
     return v;
 }
 

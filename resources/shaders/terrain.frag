@@ -176,11 +176,8 @@ void main() {
     // lookup of each texture's green channel: renderer/terrain_renderer.c packs them).
     vec4 far[2] = vec4[2](texture(u_albedo_far, vec3(uv_far, 0.0)), texture(u_albedo_far, vec3(uv_far, 1.0)));
     // Unpainted ground: the automatic rules, or a neutral clay when they are hidden.
-    vec3 auto_c = u_auto_materials != 0
-        ? automatic_of(h, slope, albedo_varied(0, uv, far[0].x), albedo_varied(1, uv, far[0].y),
-                       albedo_varied(2, uv, far[0].z), albedo_varied(3, uv, far[0].w),
-                       albedo_varied(7, uv, far[1].w))
-        : vec3(0.45, 0.42, 0.38);
+    vec3 auto_c = u_auto_materials != 0 ? automatic_varied(h, slope, uv, far[0], far[1])
+                                        : vec3(0.45, 0.42, 0.38);
     vec3 c = auto_c;
 #ifdef PAINTED
     vec4 lm = u_lvl_mat[u_level];
