@@ -2,6 +2,7 @@
 
 #include "renderer/antialias.h"
 #include "renderer/gl_target.h"
+#include "renderer/lighting.h"
 #include "renderer/planet_camera.h"
 #include "renderer/pick.h"
 #include "renderer/volume_renderer.h"
@@ -35,9 +36,17 @@ void viewport_destroy(viewport *v) {
 int viewport_default_camera(viewport *v, world *w, og_error *err) {
     const world_params *p = world_get_params(w);
     if (p->kind == WORLD_PLANET) {
-        // From orbit: the whole planet in view, looking down at its centre.
+        // From orbit: the whole planet in view, looking down at its centre, 10 degrees
+        // from under the sun: from 3 radii out the disc reaches 70.5 degrees from its
+        // centre, so all of it is in daylight, lit a little from the side for relief.
+        float sun[3];
+        render_sun_direction(&v->settings, sun);
+        const double sun_dir[3] = {sun[0], sun[1], sun[2]};
+        double lat, lon;
+        planet_lat_lon(sun_dir, &lat, &lon);
         camera_default(&v->cam);
-        planet_position(20.0, 30.0, 3.0 * (p->radius + p->max_height), v->cam.pos);
+        planet_position(lat > 0 ? lat - 10.0 : lat + 10.0, lon, 3.0 * (p->radius + p->max_height),
+                        v->cam.pos);
         v->cam.pitch = -CAMERA_PITCH_LIMIT;
         v->cam_set = 1;
         return 0;

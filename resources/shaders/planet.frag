@@ -70,6 +70,25 @@ vec3 with_grids(vec3 c) {
     return c;
 }
 
+// A planet's automatic rules, fit for its scale (the flat worlds' are for a valley): a
+// beach a few metres wide, lowland grass, highland dirt, bare rock on mountains and
+// steep slopes, cliffs steeper still, and snow above a snow line that falls from 60% of
+// the relief at the equator to the sea at the poles (lat_sin: sine of the latitude).
+vec3 planet_automatic(float h, float slope, float lat_sin, vec2 uv, vec2 uv_far) {
+    float range = max(u_max_height - u_ocean_level, 1.0), above = h - u_ocean_level;
+    float beach = max(0.002 * range, 2.0), rel = above / range;
+    vec3 c = blend2(albedo(0, uv, uv_far), albedo(1, uv, uv_far),
+                    smoothstep(0.5 * beach, 1.5 * beach, above));
+    c = blend2(vec4(c, 0.5), albedo(4, uv, uv_far), smoothstep(0.12, 0.3, rel));
+    vec4 rock = albedo(2, uv, uv_far);
+    c = blend2(vec4(c, 0.5), rock, max(smoothstep(0.3, 0.5, rel), smoothstep(0.3, 0.6, slope)));
+    c = blend2(vec4(c, 0.5), albedo(7, uv, uv_far), smoothstep(0.9, 1.3, slope));
+    float snow_line = mix(0.6, -0.05, smoothstep(0.8, 0.97, abs(lat_sin)));
+    float snowy = smoothstep(snow_line - 0.03, snow_line + 0.03, rel) *
+                  (1.0 - smoothstep(0.6, 0.9, slope));
+    return blend2(vec4(c, 0.5), albedo(3, uv, uv_far), snowy);
+}
+
 void main() {
     vec3 n = normalize(v_normal), up = normalize(v_up);
     float dist = length(v_rel);
@@ -118,8 +137,12 @@ void main() {
     vec3 base = blend2(vec4(c0, 0.5), steep, smoothstep(0.5, 1.0, slope));
     if (u_palette == 2) base *= vec3(1.15, 0.78, 0.58); // iron-red dust
     else base = vec3(dot(base, vec3(0.3, 0.5, 0.2))) * 0.9; // grey regolith
+    if (u_palette == 2) { // Mars-like: ice caps at the poles
+        float cap = smoothstep(0.93, 0.97, abs(up.y)) * (1.0 - smoothstep(0.6, 0.9, slope));
+        base = blend2(vec4(base, 0.5), vec4(vec3(0.92, 0.9, 0.88), 0.5), cap);
+    }
 #else
-    vec3 base = automatic(v_height, slope, uv, uv_far);
+    vec3 base = planet_automatic(v_height, slope, up.y, uv, uv_far);
 #endif
 #ifdef PAINTED // as the flat viewport blends the weights
     base = base * v_paint0.x + albedo(0, uv, uv_far).rgb * v_paint0.y +
