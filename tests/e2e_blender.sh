@@ -124,5 +124,21 @@ EOF
 rc=$?
 check "$(cat vdb.txt)" $rc
 
+# A planet's OBJ links its face images through its .mtl: Blender finds all six.
+"$orogen" -c "new planet; export 3 planet.obj size=400" >planet.txt 2>&1
+rc=$?
+check "planet export ($(head -c 200 planet.txt))" $rc
+blender -b --python-expr "
+import bpy
+bpy.ops.wm.read_factory_settings(use_empty=True)
+bpy.ops.wm.obj_import(filepath='planet.obj')
+o = [x for x in bpy.context.scene.objects if x.type == 'MESH'][0]
+print('IMAGES', ' '.join(sorted(n.image.name for m in o.data.materials for n in m.node_tree.nodes
+                                if n.type == 'TEX_IMAGE' and n.image and n.image.size[0] == 391)))
+" >planet_blender.txt 2>&1
+images=$(sed -n 's/^IMAGES //p' planet_blender.txt)
+[ "$images" = "planet_height_0.png planet_height_1.png planet_height_2.png planet_height_3.png planet_height_4.png planet_height_5.png" ]
+check "Blender loads the planet's six face images through planet.mtl ($images)" $?
+
 echo "e2e_blender: $passes passed, $failures failed"
 [ $failures = 0 ]

@@ -20,7 +20,7 @@
 #include <unistd.h>
 
 #define FACES 6
-#define FILES_MAX (4 * FACES + 1) // heights, their sidecars, normals; the OBJ
+#define FILES_MAX (4 * FACES + 2) // heights, their sidecars, normals; the OBJ and .mtl
 
 int export_planet_wanted(const char *first) {
     if (!first || !*first) return 0;
@@ -419,6 +419,32 @@ static int build_mesh(planet_mesh *m, const face_images *fi, int subdivision, og
     return 0;
 }
 
+// The OBJ's materials, one per face group, linking its images so importers (Blender,
+// Houdini, assimp) load them: the heights as the colour and the displacement map.
+static int write_mtl(const face_images *fi, const char *path, og_error *err) {
+    char stem[4200];
+    snprintf(stem, sizeof stem, "%s", fi->stem);
+    const char *name = basename(stem);
+    char *text = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&text, &len);
+    if (!f) return og_error_set(err, "%s: out of memory", path);
+    fprintf(f,
+            "# Orogen planet: face F's images (%s_height_F.png heights, %s_normal_F.png "
+            "object-space normals)\n",
+            name, name);
+    for (int face = 0; face < FACES; face++)
+        fprintf(f, "newmtl face_%d\nKd 1 1 1\nmap_Kd %s_height_%d.png\ndisp %s_height_%d.png\n",
+                face, name, face, name, face);
+    if (fclose(f) != 0 || !text) {
+        free(text);
+        return og_error_set(err, "%s: out of memory", path);
+    }
+    int rc = param_file_write_atomic(path, text, len, err);
+    free(text);
+    return rc;
+}
+
 static int write_obj(const planet_mesh *m, const face_images *fi, int subdivision, const char *path,
                      og_error *err) {
     char stem[4200];
@@ -431,8 +457,8 @@ static int write_obj(const planet_mesh *m, const face_images *fi, int subdivisio
     fprintf(f,
             "# Orogen planet: subdivision %d of the cube, metres from the centre, +Y up (face 2)\n"
             "# radius %.17g; vt of group face_F address %s_height_F.png (heights, .json: "
-            "metres) and %s_normal_F.png (object-space normals)\no planet\n",
-            subdivision, fi->p->radius, name, name);
+            "metres) and %s_normal_F.png (object-space normals)\nmtllib %s.mtl\no planet\n",
+            subdivision, fi->p->radius, name, name, name);
     // %.12g: millimetres at Earth's radius.
     for (size_t v = 0; v < m->vertices; v++)
         fprintf(f, "v %.12g %.12g %.12g\n", m->pos[v * 3], m->pos[v * 3 + 1], m->pos[v * 3 + 2]);
@@ -443,7 +469,8 @@ static int write_obj(const planet_mesh *m, const face_images *fi, int subdivisio
         fprintf(f, "vt %.9g %.9g\n", m->vt[t * 2], m->vt[t * 2 + 1]);
     const size_t per_face = m->triangles / FACES;
     for (size_t k = 0; k < m->triangles; k++) {
-        if (k % per_face == 0) fprintf(f, "g face_%zu\n", k / per_face);
+        if (k % per_face == 0)
+            fprintf(f, "g face_%zu\nusemtl face_%zu\n", k / per_face, k / per_face);
         const uint32_t *tr = m->tri + k * 6;
         fprintf(f, "f %u/%u/%u %u/%u/%u %u/%u/%u\n", tr[0] + 1, tr[3] + 1, tr[0] + 1, tr[1] + 1,
                 tr[4] + 1, tr[1] + 1, tr[2] + 1, tr[5] + 1, tr[2] + 1);
@@ -514,6 +541,9 @@ int export_planet(world *w, int subdivision, const char *path, int image_size,
     if (write_face_images(&fi, err) != 0) goto done;
     if (build_mesh(&m, &fi, subdivision, err) != 0) goto done;
     if (write_obj(&m, &fi, subdivision, add_file(files, path), err) != 0) goto done;
+    char mtl[4300];
+    snprintf(mtl, sizeof mtl, "%s.mtl", stem);
+    if (write_mtl(&fi, add_file(files, mtl), err) != 0) goto done;
     if (publish_files(files, &rep->bytes, err) != 0) goto done;
     rep->vertices = m.vertices;
     rep->triangles = m.triangles;
