@@ -126,6 +126,12 @@ same "${vals[0]}" "$first" 0.001; check "row 0, column 0 lands at x, z" $?
 same "${vals[2]}" 10 0; check "undo removes the import" $?
 run -c "new flat; set generator flat; set base_height 10; set spacing 30; generate; import $work/v.exr x=0 z=0 blend=add; sample 0 0"
 same "$(tail -n 1 "$work/out")" "$(python3 -c "print($first + 10)")" 0.001; check "blend=add adds to the terrain" $?
+# anchor=centre on an even size (403 x 344): the middle sample (201, 172) lands at x, z
+# on whole samples, so export of the same place gives the same image back.
+oiiotool --pattern noise:type=uniform:min=0:max=1 403x344 1 -d uint16 -o "$work/even.png"
+run -c "import $work/even.png scale=1 offset=0 x=500 z=500 anchor=centre; export $work/even_back.png region=98,156,902,842 scale=1 offset=0"
+grep -q "placed at 98, 156 .. 902, 842 m on the coarse layer (138632 samples)" "$work/out" && idiff "$work/even.png" "$work/even_back.png" >/dev/null
+check "anchor=centre on a 403 x 344 raster: every row and column placed on whole samples and back unchanged" $?
 
 # 6. RAW sizes: inferred squares, and a clear error naming sizes that fit.
 head -c 20000 /dev/zero >"$work/odd.r16"

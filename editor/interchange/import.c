@@ -348,8 +348,11 @@ int import_apply_source(world *w, const char *path, const import_source *s, cons
         op.z0 = s->origin_z;
     }
     if (o->anchor_centre) {
-        op.x0 -= (r->width - 1) * sx / 2;
-        op.z0 -= (r->height - 1) * sz / 2;
+        // The middle sample (the lower of the two middles on an even side) goes to x, z:
+        // an even-sized raster then lands on whole samples instead of half way between
+        // them (which resampled it, each sample the mean of two, and lost a row).
+        op.x0 -= (double)(r->width / 2) * sx;
+        op.z0 -= (double)(r->height / 2) * sz;
     }
     const double x1 = op.x0 + (r->width - 1) * sx, z1 = op.z0 + (r->height - 1) * sz;
     if (layer_grid_check_position(&g, op.x0, op.z0, err) != 0 ||
