@@ -62,6 +62,17 @@ static void add_grid(mesh_builder *b, clip_piece_kind kind, int trim, int x0, in
     end_piece(b, p);
 }
 
+// The same as culling units of at most CLIPMAP_CULL_QUADS quads a side: a 63-quad block
+// seen edge-on is mostly outside the view; its parts are not.
+static void add_grid_parts(mesh_builder *b, clip_piece_kind kind, int x0, int z0, int x1, int z1) {
+    for (int z = z0; z < z1; z += CLIPMAP_CULL_QUADS)
+        for (int x = x0; x < x1; x += CLIPMAP_CULL_QUADS) {
+            int xe = x + CLIPMAP_CULL_QUADS < x1 ? x + CLIPMAP_CULL_QUADS : x1;
+            int ze = z + CLIPMAP_CULL_QUADS < z1 ? z + CLIPMAP_CULL_QUADS : z1;
+            add_grid(b, kind, -1, x, z, xe, ze);
+        }
+}
+
 // Along the outer edge every other vertex has no partner on the coarser level; a
 // zero-area triangle through it closes the T-junction against rasterisation gaps.
 static void add_degenerate_ring(mesh_builder *b) {
@@ -97,8 +108,8 @@ int clipmap_mesh_build(clipmap_mesh *mesh, int n) {
     for (int j = 0; j < 4; j++)
         for (int i = 0; i < 4; i++) {
             if ((i == 1 || i == 2) && (j == 1 || j == 2)) continue; // the finer level's hole
-            add_grid(&b, CLIP_PIECE_BLOCK, -1, start[i], start[j], start[i] + m - 1,
-                     start[j] + m - 1);
+            add_grid_parts(&b, CLIP_PIECE_BLOCK, start[i], start[j], start[i] + m - 1,
+                           start[j] + m - 1);
         }
     int f0 = 2 * m - 2, f1 = 2 * m, last = n - 1;
     add_grid(&b, CLIP_PIECE_FIXUP, -1, f0, 0, f1, m - 1);
@@ -115,7 +126,7 @@ int clipmap_mesh_build(clipmap_mesh *mesh, int n) {
     add_grid(&b, CLIP_PIECE_TRIM, CLIP_TRIM_Z_LOW_XB, h0 + 1, h0, h1, h0 + 1);
 
     add_degenerate_ring(&b);
-    add_grid(&b, CLIP_PIECE_INTERIOR, -1, h0, h0, h1, h1);
+    add_grid_parts(&b, CLIP_PIECE_INTERIOR, h0, h0, h1, h1);
     if (b.failed) {
         clipmap_mesh_free(mesh);
         return -1;

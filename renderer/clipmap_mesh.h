@@ -14,10 +14,11 @@
 #include <stdint.h>
 
 #define CLIPMAP_MIN_N 15
-#define CLIPMAP_MAX_N 255 // indices are uint16 (n*n < 65536)
+#define CLIPMAP_MAX_N 255     // indices are uint16 (n*n < 65536)
+#define CLIPMAP_CULL_QUADS 16 // blocks and the interior come in parts this wide, for culling
 
 typedef enum clip_piece_kind {
-    CLIP_PIECE_BLOCK,      // m x m vertices; 12 per ring
+    CLIP_PIECE_BLOCK,      // a part of an m x m vertex block (12 blocks per ring)
     CLIP_PIECE_FIXUP,      // m x 3 or 3 x m vertices; 4 per ring
     CLIP_PIECE_TRIM,       // a side of the L-shaped interior trim
     CLIP_PIECE_DEGENERATE, // zero-area triangles along the outer edge (no T-junction cracks)

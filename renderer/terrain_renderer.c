@@ -838,8 +838,8 @@ static int draw_terrain(terrain_renderer *r, const camera *cam, const render_set
     frustum f;
     frustum_from_matrix(&f, view_proj);
     int m = r->mesh.m;
-    GLsizei counts[64];
-    const void *offsets[64];
+    GLsizei counts[512];
+    const void *offsets[512];
     glBindVertexArray(r->vao);
     r->frame++;
     if (cursor_drapes(cursor)) // the falloff curve, once a frame
@@ -863,7 +863,7 @@ static int draw_terrain(terrain_renderer *r, const camera *cam, const render_set
                 lo[a] = -(double)r->origin[l][a], hi[a] = last - (double)r->origin[l][a];
         }
         int n = 0;
-        for (size_t i = 0; i < r->mesh.piece_count && n < 64; i++) {
+        for (size_t i = 0; i < r->mesh.piece_count && n < 512; i++) {
             const clip_piece *pc = &r->mesh.pieces[i];
             if (pc->x1 < lo[0] || pc->x0 > hi[0] || pc->z1 < lo[1] || pc->z0 > hi[1]) continue;
             if (pc->kind == CLIP_PIECE_INTERIOR && l != r->finest) continue;

@@ -72,16 +72,24 @@ static void test_pieces_tile_each_level_once(void **state) {
         assert_int_equal(clipmap_mesh_build(&m, sizes[s]), 0);
         assert_int_equal(m.m, (sizes[s] + 1) / 4);
         int kinds[5] = {0};
-        for (size_t i = 0; i < m.piece_count; i++)
-            kinds[m.pieces[i].kind]++;
-        assert_int_equal(kinds[CLIP_PIECE_BLOCK], 12);
+        long quads[5] = {0}; // blocks and the interior come in parts, for culling
+        for (size_t i = 0; i < m.piece_count; i++) {
+            const clip_piece *pc = &m.pieces[i];
+            kinds[pc->kind]++;
+            quads[pc->kind] += (long)(pc->x1 - pc->x0) * (pc->z1 - pc->z0);
+            if (pc->kind == CLIP_PIECE_BLOCK || pc->kind == CLIP_PIECE_INTERIOR) {
+                assert_true(pc->x1 - pc->x0 <= CLIPMAP_CULL_QUADS);
+                assert_true(pc->z1 - pc->z0 <= CLIPMAP_CULL_QUADS);
+                assert_int_equal(pc->count, 6u * (pc->x1 - pc->x0) * (pc->z1 - pc->z0));
+            }
+        }
+        int parts = (m.m - 1 + CLIPMAP_CULL_QUADS - 1) / CLIPMAP_CULL_QUADS;
+        assert_int_equal(kinds[CLIP_PIECE_BLOCK], 12 * parts * parts);
+        assert_int_equal(quads[CLIP_PIECE_BLOCK], 12L * (m.m - 1) * (m.m - 1)); // m x m vertices
         assert_int_equal(kinds[CLIP_PIECE_FIXUP], 4);
         assert_int_equal(kinds[CLIP_PIECE_TRIM], CLIP_TRIM_COUNT);
         assert_int_equal(kinds[CLIP_PIECE_DEGENERATE], 1);
-        assert_int_equal(kinds[CLIP_PIECE_INTERIOR], 1);
-        for (size_t i = 0; i < m.piece_count; i++)
-            if (m.pieces[i].kind == CLIP_PIECE_BLOCK) // m x m vertices
-                assert_int_equal(m.pieces[i].x1 - m.pieces[i].x0 + 1, m.m);
+        assert_int_equal(quads[CLIP_PIECE_INTERIOR], 4L * m.m * m.m);
         check_level(&m, 1, 0, 0);
         for (int ox = m.m - 1; ox <= m.m; ox++)
             for (int oz = m.m - 1; oz <= m.m; oz++)
