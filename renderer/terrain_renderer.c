@@ -25,6 +25,9 @@
 #define TEX_PERIOD_NEAR 6.0 // metres per repeat of the material textures
 #define TEX_PERIOD_FAR 97.0 // metres per repeat of the variation layer
 #define UNBOUNDED 1e9f
+// Hoppe's transition band: w = n/10 level units, ending one unit inside the edge.
+#define MORPH_BAND ((float)(CLIP_N / 10))
+#define MORPH_START ((CLIP_N - 1) / 2.0f - MORPH_BAND - 1.0f)
 #define UPLOAD_BUDGET_PERCENT 6 // of the level textures, for refills (moves come on top)
 
 // The terrain program's variants (see terrain.frag): what a level can show.
@@ -39,7 +42,8 @@ enum {
     TV_NO_ROCK = 128, // the automatic rules' materials whose weight is 0 all over the level
     TV_NO_CLIFF = 256,
     TV_NO_SNOW = 512,
-    TERRAIN_VARIANTS = 1024
+    TV_NO_MORPH = 1024, // the parts of a level inside its morph band's inner edge
+    TERRAIN_VARIANTS = 2048
 };
 
 struct terrain_renderer {
@@ -210,10 +214,11 @@ static int create_windows(terrain_renderer *r, og_error *err) {
 // The terrain program for a variant (TV_* bits), built on first use.
 static GLuint terrain_program(terrain_renderer *r, int variant, og_error *err) {
     if (r->prog_terrain[variant]) return r->prog_terrain[variant];
-    static const char *const names[] = {"SHADED",   "DETAIL",   "PAINTED", "BRUSH",    "OVERLAYS",
-                                        "CONTOURS", "MINIFIED", "NO_ROCK", "NO_CLIFF", "NO_SNOW"};
+    static const char *const names[] = {"SHADED",   "DETAIL",   "PAINTED",  "BRUSH",
+                                        "OVERLAYS", "CONTOURS", "MINIFIED", "NO_ROCK",
+                                        "NO_CLIFF", "NO_SNOW",  "NO_MORPH"};
     r->prog_terrain[variant] = shader_program_load_flags(
-        r->shader_dir, "terrain.vert", "terrain.frag", names, 10, (unsigned)variant, err);
+        r->shader_dir, "terrain.vert", "terrain.frag", names, 11, (unsigned)variant, err);
     r->prog_frame[variant] = 0;
     return r->prog_terrain[variant];
 }
@@ -705,10 +710,7 @@ static void set_terrain_uniforms(terrain_renderer *r, GLuint prog, const camera 
     glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "u_view_proj"), 1, GL_FALSE,
                               view_proj);
     glProgramUniform1f(prog, glGetUniformLocation(prog, "u_cam_y"), (float)cam->pos[1]);
-    // Hoppe's transition band: w = n/10 level units, ending one unit inside the edge.
-    float band = (float)(CLIP_N / 10);
-    glProgramUniform2f(prog, glGetUniformLocation(prog, "u_morph"),
-                       (CLIP_N - 1) / 2.0f - band - 1.0f, band);
+    glProgramUniform2f(prog, glGetUniformLocation(prog, "u_morph"), MORPH_START, MORPH_BAND);
     uniform_vec4s(prog, "u_lvl_offset", offset, RENDER_MAX_LEVELS);
     uniform_vec4s(prog, "u_lvl_view", view, RENDER_MAX_LEVELS);
     uniform_vec4s(prog, "u_lvl_src_a", src_a, RENDER_MAX_LEVELS);
@@ -862,8 +864,16 @@ static int draw_terrain(terrain_renderer *r, const camera *cam, const render_set
             for (int a = 0; a < 2; a++)
                 lo[a] = -(double)r->origin[l][a], hi[a] = last - (double)r->origin[l][a];
         }
-        int n = 0;
-        for (size_t i = 0; i < r->mesh.piece_count && n < 512; i++) {
+        // Parts wholly inside the morph band's inner edge (the camera's square of side
+        // 2 x MORPH_START, less a hundredth for the varyings' rounding) never morph: they
+        // are drawn without the coarser level's lookups (the same values: alpha is 0).
+        int morphs = s->morph && l + 1 < r->levels && r->src[l + 1] >= 0;
+        double ls = r->params.spacing * (double)((int64_t)1 << l);
+        float view[2] = {(float)(cam->pos[0] / ls - (double)r->origin[l][0]),
+                         (float)(cam->pos[2] / ls - (double)r->origin[l][1])};
+        float reach = MORPH_START - 0.01f;
+        int n[2] = {0, 0}; // [0]: parts that may morph, [1]: parts that never do
+        for (size_t i = 0; i < r->mesh.piece_count && n[0] + n[1] < 512; i++) {
             const clip_piece *pc = &r->mesh.pieces[i];
             if (pc->x1 < lo[0] || pc->x0 > hi[0] || pc->z1 < lo[1] || pc->z0 > hi[1]) continue;
             if (pc->kind == CLIP_PIECE_INTERIOR && l != r->finest) continue;
@@ -876,23 +886,31 @@ static int draw_terrain(terrain_renderer *r, const camera *cam, const render_set
                 piece_box(r, l, pc, cam, mn, mx);
                 if (!frustum_test_aabb(&f, mn, mx)) continue;
             }
-            counts[n] = (GLsizei)pc->count;
-            offsets[n] = (const void *)(uintptr_t)(pc->first * sizeof(uint16_t));
+            int still = !morphs || (pc->x0 >= view[0] - reach && pc->x1 <= view[0] + reach &&
+                                    pc->z0 >= view[1] - reach && pc->z1 <= view[1] + reach);
+            int k = still ? 511 - n[1]++ : n[0]++; // the still parts fill from the end
+            counts[k] = (GLsizei)pc->count;
+            offsets[k] = (const void *)(uintptr_t)(pc->first * sizeof(uint16_t));
             r->stats.triangles += pc->count / 3;
-            n++;
         }
-        if (n == 0) continue;
-        int v = level_variant(r, cam, s, cursor, l);
-        GLuint prog = terrain_program(r, v, err);
-        if (!prog) return -1;
-        if (r->prog_frame[v] != r->frame) {
-            set_terrain_uniforms(r, prog, cam, s, cursor, view_proj);
-            r->prog_frame[v] = r->frame;
+        if (n[0] + n[1] == 0) continue;
+        int base = level_variant(r, cam, s, cursor, l);
+        for (int still = 0; still < 2; still++) {
+            if (n[still] == 0) continue;
+            int v = base | (still ? TV_NO_MORPH : 0);
+            GLuint prog = terrain_program(r, v, err);
+            if (!prog) return -1;
+            if (r->prog_frame[v] != r->frame) {
+                set_terrain_uniforms(r, prog, cam, s, cursor, view_proj);
+                r->prog_frame[v] = r->frame;
+            }
+            if (prog != current) glUseProgram(current = prog);
+            glProgramUniform1i(prog, glGetUniformLocation(prog, "u_level"), l);
+            int first = still ? 512 - n[1] : 0;
+            glMultiDrawElements(GL_TRIANGLES, counts + first, GL_UNSIGNED_SHORT, offsets + first,
+                                n[still]);
+            r->stats.draw_calls++;
         }
-        if (prog != current) glUseProgram(current = prog);
-        glProgramUniform1i(prog, glGetUniformLocation(prog, "u_level"), l);
-        glMultiDrawElements(GL_TRIANGLES, counts, GL_UNSIGNED_SHORT, offsets, n);
-        r->stats.draw_calls++;
         r->stats.levels_drawn++;
     }
     return 0;

@@ -22,6 +22,9 @@ float sample_height(vec4 src, vec2 p) {
 // 0 inside, rising to 1 at the level's outer edge, where the vertices take the coarser
 // level's (interpolated) heights: no cracks between levels, no popping as they shift.
 float morph_factor(vec2 p) {
+#ifdef NO_MORPH
+    return 0.0; // drawn only where the band does not reach (renderer/terrain_renderer.c)
+#endif
     vec4 view = u_lvl_view[u_level];
     vec2 d = abs(p - view.xy);
     vec2 a = clamp((d - u_morph.x) / u_morph.y, 0.0, 1.0);
