@@ -8,6 +8,9 @@
 #include "support/test_support.h"
 
 #include <math.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -920,22 +923,24 @@ static void test_slider_drag(void **state) {
     assert_true(r.w > 100);
     float cy = r.y + r.h / 2;
     double per_px = (s.hi - s.lo) / r.w;
-    // A press sets the value where it is.
+    // A press changes nothing (as Unreal's and Blender's number fields): a drag scrubs
+    // from the value.
     press(&d, slider_x(r, &s, 25), cy);
-    assert_true(fabs(s.v - 25) < 1e-4);
-    assert_int_equal(s.changes, 1);
+    assert_true(s.v == 50);
+    assert_int_equal(s.changes, 0);
     // Dragging right adds in proportion.
     drag_to(&d, slider_x(r, &s, 25) + 40, cy);
-    double coarse = s.v - 25;
+    double coarse = s.v - 50;
     assert_true(fabs(coarse - 40 * per_px) < 1e-4);
     drag_to(&d, slider_x(r, &s, 25) + 80, cy);
-    assert_true(fabs(s.v - 25 - 80 * per_px) < 1e-4);
+    assert_true(fabs(s.v - 50 - 80 * per_px) < 1e-4);
     release(&d, slider_x(r, &s, 25) + 80, cy);
+    assert_int_equal(ui_wants_keyboard(d.ui), 0); // a drag opens no text field
     double after = s.v;
     frame(&d);
     move_to(&d, 10, 190);
     assert_true(s.v == after); // moving without the button does nothing
-    // Shift: the same 40 px add a tenth as much (and the press does not jump).
+    // Shift: the same 40 px add a tenth as much.
     d.in.mods = UI_MOD_SHIFT;
     press(&d, slider_x(r, &s, 25), cy);
     assert_true(s.v == after);
@@ -954,6 +959,20 @@ static void test_slider_drag(void **state) {
     release(&d, 5000, cy);
     assert_true(s.v == s.hi);
     assert_int_equal(ui_wants_keyboard(d.ui), 0);
+    // A value outside the range scrubs from the end it is shown at; the pointer's place
+    // in the frame the button is let go counts.
+    s.v = -500;
+    press(&d, slider_x(r, &s, 50), cy);
+    release(&d, slider_x(r, &s, 50) + 40, cy);
+    assert_true(fabs(s.v - 40 * per_px) < 1e-4);
+    assert_int_equal(ui_wants_keyboard(d.ui), 0);
+    // A pointer that shakes by a pixel or two is still a click: no change, a field.
+    s.v = 1.0 / 3.0;
+    press(&d, slider_x(r, &s, 60), cy);
+    drag_to(&d, slider_x(r, &s, 60) + 2, cy);
+    release(&d, slider_x(r, &s, 60) + 2, cy);
+    assert_true(s.v == 1.0 / 3.0);
+    assert_int_equal(ui_wants_keyboard(d.ui), 1);
     drv_free(&d);
 }
 
@@ -981,38 +1000,65 @@ static void test_slider_typing(void **state) {
     slider_type(&d, &s, "42", UI_KEY_ENTER);
     assert_true(s.v == 42);
     assert_int_equal(s.changes, 1);
-    // Out of range: clamped.
-    slider_type(&d, &s, "250", UI_KEY_ENTER);
-    assert_true(s.v == 100);
-    slider_type(&d, &s, "-7.5", UI_KEY_ENTER);
-    assert_true(s.v == 0);
+    assert_string_equal(ui_field_error(d.ui), "");
     slider_type(&d, &s, "12.25", UI_KEY_ENTER);
     assert_true(s.v == 12.25);
-    // Esc cancels and leaves typing mode.
-    slider_type(&d, &s, "77", UI_KEY_ESCAPE);
+    // Out of range: refused, the field stays open and says why.
+    slider_type(&d, &s, "250", UI_KEY_ENTER);
+    assert_true(s.v == 12.25);
+    assert_int_equal(ui_wants_keyboard(d.ui), 1);
+    assert_non_null(strstr(ui_field_error(d.ui), "250 is outside 0 .. 100"));
+    assert_int_equal(ui_message_count(d.ui), 1); // listed where it shows, for ui_messages
+    assert_string_equal(ui_message_at(d.ui, 0)->where, "S/Value");
+    assert_string_equal(ui_message_at(d.ui, 0)->text, ui_field_error(d.ui));
+    // Typing again clears the reason; a good number then goes in.
+    key(&d, UI_KEY_BACKSPACE, 0);
+    assert_string_equal(ui_field_error(d.ui), "");
+    key(&d, UI_KEY_ESCAPE, 0);
     assert_true(s.v == 12.25);
     assert_int_equal(ui_wants_keyboard(d.ui), 0);
-    // Not a number: the value stays.
+    // Not a number: refused the same way.
     slider_type(&d, &s, "abc", UI_KEY_ENTER);
     assert_true(s.v == 12.25);
-    d.in.mods = UI_MOD_CTRL; // emptied: no number either
+    assert_int_equal(ui_wants_keyboard(d.ui), 1);
+    assert_non_null(strstr(ui_field_error(d.ui), "\"abc\" is not a number"));
+    key(&d, UI_KEY_A, UI_MOD_CTRL);
+    type(&d, "7.5");
+    key(&d, UI_KEY_ENTER, 0);
+    assert_true(s.v == 7.5);
+    assert_int_equal(ui_wants_keyboard(d.ui), 0);
+    assert_string_equal(ui_field_error(d.ui), "");
+    // Esc restores the value bit for bit, whatever was typed.
+    s.v = 0.1 + 0.2; // not 0.3: a value no short text prints
+    int changes = s.changes;
+    slider_type(&d, &s, "77", UI_KEY_ESCAPE);
+    assert_true(s.v == 0.1 + 0.2);
+    assert_int_equal(s.changes, changes);
+    assert_int_equal(ui_wants_keyboard(d.ui), 0);
+    // Enter on the untouched text changes nothing either (it reads back as the value).
+    d.in.mods = UI_MOD_CTRL;
     press(&d, r.x + r.w * 0.9f, r.y + r.h / 2);
     release(&d, r.x + r.w * 0.9f, r.y + r.h / 2);
     d.in.mods = 0;
-    key(&d, UI_KEY_BACKSPACE, 0);
     key(&d, UI_KEY_ENTER, 0);
-    assert_true(s.v == 12.25);
-    // Out of typing mode again: a plain press sets the value by position.
-    press(&d, slider_x(r, &s, 75), r.y + r.h / 2);
-    release(&d, slider_x(r, &s, 75), r.y + r.h / 2);
-    assert_true(fabs(s.v - 75) < 1e-4);
-    // A double click types too.
+    assert_true(s.v == 0.1 + 0.2);
+    assert_int_equal(s.changes, changes);
+    // A plain click opens the field without changing the value.
+    click(&d, slider_x(r, &s, 75), r.y + r.h / 2);
+    assert_true(s.v == 0.1 + 0.2);
+    assert_int_equal(ui_wants_keyboard(d.ui), 1);
+    key(&d, UI_KEY_ESCAPE, 0);
+    // A double click: the first click changes nothing, the second keeps the field open
+    // with all its text selected, so typing replaces it.
+    click(&d, r.x + 10, r.y + r.h / 2);
     d.in.double_click = 1;
     press(&d, r.x + 10, r.y + r.h / 2);
+    d.in.double_click = 0;
     release(&d, r.x + 10, r.y + r.h / 2);
-    double now = s.v;
+    assert_true(s.v == 0.1 + 0.2);
+    assert_int_equal(s.changes, changes);
     type(&d, "3");
-    assert_true(s.v == now);
+    assert_true(s.v == 0.1 + 0.2);
     key(&d, UI_KEY_ENTER, 0);
     assert_true(s.v == 3);
     drv_free(&d);
@@ -1950,6 +1996,363 @@ static void test_tooltip(void **state) {
     drv_free(&d);
 }
 
+// ---- id identity: sections, conflicts -------------------------------------------------
+
+// A brush's Radius and a planet's Radius in one panel, under two sections (the Dock).
+typedef struct two_radii {
+    double brush, planet;
+    int dup; // also two "Go" buttons in one section: a conflict
+} two_radii;
+
+static void build_two_radii(drv *d) {
+    two_radii *t = d->user;
+    ui_panel_begin(d->ui, "Dock", (ui_rect){0, 0, 400, 400});
+    ui_row(d->ui, 1, NULL, 0);
+    if (ui_section(d->ui, "Raise", 1)) ui_slider(d->ui, "Radius", &t->brush, 0, 500, "%.1f");
+    if (ui_section(d->ui, "World", 1)) {
+        ui_slider(d->ui, "Radius", &t->planet, 0, 10000, "%.1f");
+        if (ui_section(d->ui, "More", 1) && t->dup) { // a section in a section ends it
+            ui_button(d->ui, "Go");
+            ui_button(d->ui, "Go");
+        }
+    }
+    ui_panel_end(d->ui);
+    ui_button(d->ui, "Radius"); // outside the panel: its own id
+}
+
+static void test_ids_scoped_by_section(void **state) {
+    (void)state;
+    two_radii t = {.brush = 40, .planet = 6371};
+    drv d;
+    drv_init(&d, build_two_radii, &t);
+    ui_set_strict_ids(d.ui, 1); // a conflict would abort the test
+    frame(&d);
+    assert_int_equal(ui_id_conflict_count(d.ui), 0);
+    // Both are named Dock/Radius (the names tests use leave sections out); drag the
+    // brush's: only the brush's value moves.
+    ui_rect rr[2];
+    int n = 0;
+    for (size_t i = 0; i < ui_widget_count(d.ui); i++)
+        if (strcmp(ui_widget_at(d.ui, i)->name, "Dock/Radius") == 0 && n < 2)
+            rr[n++] = ui_widget_at(d.ui, i)->rect;
+    assert_int_equal(n, 2);
+    float cy = rr[0].y + rr[0].h / 2;
+    press(&d, rr[0].x + 10, cy);
+    drag_to(&d, rr[0].x + 60, cy);
+    release(&d, rr[0].x + 60, cy);
+    assert_true(t.brush > 40);
+    assert_true(t.planet == 6371);
+    // And typing into it leaves the planet alone as well.
+    d.in.mods = UI_MOD_CTRL;
+    click(&d, rr[0].x + 10, cy);
+    d.in.mods = 0;
+    type(&d, "245.153");
+    key(&d, UI_KEY_ENTER, 0);
+    assert_true(t.brush == 245.153);
+    assert_true(t.planet == 6371);
+    drv_free(&d);
+}
+
+static void test_id_conflict_reported(void **state) {
+    (void)state;
+    two_radii t = {.brush = 40, .planet = 6371, .dup = 1};
+    drv d;
+    drv_init(&d, NULL, &t);
+    ui_set_strict_ids(d.ui, 0);
+    d.build = build_two_radii;
+    frame(&d);
+    assert_int_equal(ui_id_conflict_count(d.ui), 1);
+    assert_string_equal(ui_id_conflict(d.ui, 0, 0), "Dock/More/Go");
+    assert_string_equal(ui_id_conflict(d.ui, 0, 1), "Dock/More/Go");
+    assert_null(ui_id_conflict(d.ui, 1, 0));
+    t.dup = 0;
+    frame(&d);
+    assert_int_equal(ui_id_conflict_count(d.ui), 0);
+    drv_free(&d);
+}
+
+// Strict (debug builds, OROGEN_UI_STRICT=1): the process stops, naming both widgets.
+static void test_id_conflict_strict_aborts(void **state) {
+    (void)state;
+    int fds[2];
+    assert_int_equal(pipe(fds), 0);
+    pid_t pid = fork();
+    assert_true(pid >= 0);
+    if (pid == 0) {
+        dup2(fds[1], 2);
+        close(fds[0]);
+        two_radii t = {.dup = 1};
+        ui_context *ui = ui_create(font);
+        ui_set_strict_ids(ui, 1);
+        ui_input in = {0};
+        drv d = {.ui = ui, .user = &t};
+        ui_begin(ui, &in, WIN_W, WIN_H);
+        build_two_radii(&d);
+        ui_end(ui);
+        _exit(0); // not reached
+    }
+    close(fds[1]);
+    char err[1024] = {0};
+    size_t got = 0;
+    ssize_t k;
+    while ((k = read(fds[0], err + got, sizeof err - 1 - got)) > 0)
+        got += (size_t)k;
+    close(fds[0]);
+    int status;
+    assert_int_equal(waitpid(pid, &status, 0), pid);
+    assert_true(WIFSIGNALED(status) && WTERMSIG(status) == SIGABRT);
+    assert_non_null(strstr(err, "\"Dock/More/Go\" and \"Dock/More/Go\""));
+}
+
+// ---- the input queue ---------------------------------------------------------------
+
+static ui_event key_event(int key, int code, int down, int mods, double time) {
+    return (ui_event){
+        .kind = UI_EVENT_KEY, .key = key, .code = code, .down = down, .mods = mods, .time = time};
+}
+static ui_event text_event(const char *t, double time) {
+    ui_event e = {.kind = UI_EVENT_TEXT, .time = time};
+    snprintf(e.text, sizeof e.text, "%s", t);
+    return e;
+}
+static ui_event button_event(int down, float x, float y, int mods, double time) {
+    return (ui_event){.kind = UI_EVENT_BUTTON,
+                      .button = 0,
+                      .down = down,
+                      .x = x,
+                      .y = y,
+                      .mods = mods,
+                      .time = time};
+}
+// A key as a window system sends it: press, its text, release.
+static void push_typed(ui_input_queue *q, char c, double time) {
+    char t[2] = {c, 0};
+    ui_event e = key_event(-1, c, 1, 0, time);
+    ui_input_queue_push(q, &e);
+    e = text_event(t, time);
+    ui_input_queue_push(q, &e);
+    e = key_event(-1, c, 0, 0, time);
+    ui_input_queue_push(q, &e);
+}
+
+// Frames from the queue until it is empty; returns how many.
+static int run_queue(drv *d, ui_input_queue *q) {
+    int frames = 0;
+    size_t left = 1;
+    while (left > 0 && frames < 1000) {
+        left = ui_input_queue_frame(q, ui_wants_keyboard(d->ui), &d->in);
+        frame(d);
+        frames++;
+    }
+    return frames;
+}
+
+static void test_queue_keeps_every_key_once(void **state) {
+    (void)state;
+    ui_input_queue *q = malloc(sizeof *q);
+    assert_non_null(q);
+    ui_input_queue_init(q);
+    ui_input in;
+    // Five ']' pressed during one slow frame: five frames, one press each, for shortcuts.
+    for (int i = 0; i < 5; i++) {
+        ui_event e = key_event(-1, ']', 1, 0, i * 0.01);
+        ui_input_queue_push(q, &e);
+        e = text_event("]", i * 0.01);
+        ui_input_queue_push(q, &e);
+        e = key_event(-1, ']', 0, 0, i * 0.01);
+        ui_input_queue_push(q, &e);
+    }
+    int presses = 0, frames = 0;
+    size_t left = 1;
+    while (left > 0) {
+        left = ui_input_queue_frame(q, 0, &in);
+        int here = 0;
+        for (int i = 0; i < in.event_count; i++)
+            here += in.events[i].kind == UI_EVENT_KEY && in.events[i].down;
+        assert_true(here <= 1);
+        presses += here;
+        frames++;
+    }
+    assert_int_equal(presses, 5);
+    assert_int_equal(frames, 5);
+    // A press and its release in one batch: two frames, the press where it happened.
+    ui_event e = {.kind = UI_EVENT_MOVE, .x = 10, .y = 10};
+    ui_input_queue_push(q, &e);
+    e = button_event(1, 10, 10, 0, 1.0);
+    ui_input_queue_push(q, &e);
+    e = (ui_event){.kind = UI_EVENT_MOVE, .x = 30, .y = 10};
+    ui_input_queue_push(q, &e);
+    e = button_event(0, 30, 10, 0, 1.05);
+    ui_input_queue_push(q, &e);
+    ui_input_queue_frame(q, 0, &in);
+    assert_true(in.mouse_pressed[0] && in.mouse_down[0] && !in.mouse_released[0]);
+    assert_true(in.mouse_x == 10);
+    assert_int_equal(ui_input_queue_frame(q, 0, &in), 0); // the move, then the release
+    assert_true(!in.mouse_pressed[0] && in.mouse_released[0] && !in.mouse_down[0]);
+    assert_true(in.mouse_x == 30);
+    // A second press soon after, near: a double click; a third is not another.
+    for (int i = 0; i < 3; i++) {
+        e = button_event(1, 30, 11, 0, 2.1 + 0.1 * i);
+        ui_input_queue_push(q, &e);
+        e = button_event(0, 30, 11, 0, 2.15 + 0.1 * i);
+        ui_input_queue_push(q, &e);
+        ui_input_queue_frame(q, 0, &in);
+        assert_int_equal(in.double_click, i == 1); // the first follows a press far away
+        ui_input_queue_frame(q, 0, &in);
+    }
+    // Thousands of moves with no frame: a press among them is kept.
+    for (int i = 0; i < UI_QUEUE_MAX + 100; i++) {
+        e = (ui_event){.kind = UI_EVENT_MOVE, .x = (float)i, .y = 5};
+        ui_input_queue_push(q, &e);
+        if (i == 50) {
+            e = button_event(1, 50, 5, 0, 3.0);
+            ui_input_queue_push(q, &e);
+        }
+    }
+    int pressed = 0;
+    while (ui_input_queue_frame(q, 0, &in) > 0 || in.event_count > 0)
+        pressed += in.mouse_pressed[0];
+    assert_int_equal(pressed, 1);
+    assert_true(q->merged > 0);
+    free(q);
+}
+
+typedef struct field {
+    char text[32];
+    slider_state s;
+} field;
+
+static void build_field(drv *d) {
+    field *f = d->user;
+    ui_panel_begin(d->ui, "F", (ui_rect){0, 0, 400, 200});
+    ui_row(d->ui, 1, NULL, 0);
+    ui_textbox(d->ui, "Name", f->text, sizeof f->text);
+    f->s.changes += ui_slider(d->ui, "Value", &f->s.v, f->s.lo, f->s.hi, "%.2f");
+    ui_panel_end(d->ui);
+}
+
+// Typing into a field during slow frames: every character once, in order; a slider's
+// Ctrl+click and the digits after it in one batch: the digits are the field's.
+static void test_queue_typing(void **state) {
+    (void)state;
+    field f = {.s = {.v = 40, .lo = 0, .hi = 500}};
+    drv d;
+    drv_init(&d, build_field, &f);
+    ui_input_queue *q = malloc(sizeof *q);
+    assert_non_null(q);
+    ui_input_queue_init(q);
+    ui_rect r = rect_of(&d, "F/Name");
+    ui_event e = button_event(1, r.x + 5, r.y + 5, 0, 0.0);
+    ui_input_queue_push(q, &e);
+    e = button_event(0, r.x + 5, r.y + 5, 0, 0.05);
+    ui_input_queue_push(q, &e);
+    for (const char *c = "abc"; *c; c++)
+        push_typed(q, *c, 0.1);
+    e = key_event(UI_KEY_BACKSPACE, 0, 1, 0, 0.2);
+    ui_input_queue_push(q, &e);
+    push_typed(q, 'd', 0.3);
+    run_queue(&d, q);
+    assert_string_equal(f.text, "abd");
+    // The slider: Ctrl+click, "150", Enter, then ']' for the viewport, all at once.
+    ui_rect sr = rect_of(&d, "F/Value");
+    e = button_event(1, sr.x + 5, sr.y + 5, UI_MOD_CTRL, 1.0);
+    ui_input_queue_push(q, &e);
+    e = button_event(0, sr.x + 5, sr.y + 5, UI_MOD_CTRL, 1.01);
+    ui_input_queue_push(q, &e);
+    for (const char *c = "150"; *c; c++)
+        push_typed(q, *c, 1.02);
+    e = key_event(UI_KEY_ENTER, 0, 1, 0, 1.03);
+    ui_input_queue_push(q, &e);
+    push_typed(q, ']', 1.04);
+    int shortcuts = 0; // key presses the UI left for the viewport
+    size_t left = 1;
+    while (left > 0) {
+        left = ui_input_queue_frame(q, ui_wants_keyboard(d.ui), &d.in);
+        frame(&d);
+        for (int i = 0; i < d.in.event_count; i++)
+            if (d.in.events[i].kind == UI_EVENT_KEY && d.in.events[i].down && !ui_took_keys(d.ui))
+                shortcuts += d.in.events[i].code == ']' ? 1 : 100; // a digit would be a bug
+    }
+    assert_true(f.s.v == 150);
+    assert_int_equal(shortcuts, 1);
+    free(q);
+    drv_free(&d);
+}
+
+// A menu longer than the window is tall wraps into columns: every item inside the
+// window and the popup, each one clickable.
+typedef struct long_menu {
+    int picked;
+} long_menu;
+
+static void build_long_menu(drv *d) {
+    long_menu *m = d->user;
+    ui_menubar_begin(d->ui, (ui_rect){0, 0, WIN_W, 24});
+    if (ui_menu_begin(d->ui, "View")) {
+        for (int i = 0; i < 40; i++) {
+            char label[32];
+            snprintf(label, sizeof label, "Item %d", i);
+            if (i % 10 == 9) ui_menu_separator(d->ui);
+            if (ui_menu_item(d->ui, label, "Ctrl+1", 1)) m->picked = i;
+        }
+        ui_menu_end(d->ui);
+    }
+    ui_menubar_end(d->ui);
+}
+
+static void test_menu_wraps_into_columns(void **state) {
+    (void)state;
+    long_menu m = {-1};
+    drv d;
+    drv_init(&d, build_long_menu, &m);
+    click_widget(&d, "Menu/View");
+    frame(&d);
+    frame(&d); // sized from the frames before
+    float right = 0, first_x = rect_of(&d, "Menu/View/Item 0").x;
+    for (int i = 0; i < 40; i++) {
+        char name[64];
+        snprintf(name, sizeof name, "Menu/View/Item %d", i);
+        ui_rect r = rect_of(&d, name);
+        if (!rect_within(r, (ui_rect){0, 0, WIN_W, WIN_H}))
+            fail_msg("%s at {%g %g %g %g} leaves the window", name, r.x, r.y, r.w, r.h);
+        right = fmaxf(right, r.x + r.w);
+    }
+    assert_true(right > first_x + 2 * rect_of(&d, "Menu/View/Item 0").w); // 3 columns or more
+    click_widget(&d, "Menu/View/Item 39");
+    assert_int_equal(m.picked, 39);
+    drv_free(&d);
+}
+
+// Labels in the error colour are the messages the frame shows.
+static void build_error_label(drv *d) {
+    ui_panel_begin(d->ui, "Import options", (ui_rect){0, 0, 300, 200});
+    ui_row(d->ui, 1, NULL, 0);
+    ui_label(d->ui, "fine");
+    ui_label_colored(d->ui, "x.hgt: over the limit", ui_get_theme(d->ui)->text_error);
+    ui_label_wrapped(d->ui,
+                     "/a/very/long/path/that/does/not/fit/in/one/row/of/the/panel/at/all.hgt: it "
+                     "covers 40000 x 40000 samples of the world (2 m apart), over the limit",
+                     ui_get_theme(d->ui)->text_error);
+    ui_button(d->ui, "After");
+    ui_panel_end(d->ui);
+}
+
+static void test_messages_listed(void **state) {
+    (void)state;
+    drv d;
+    drv_init(&d, build_error_label, NULL);
+    assert_string_equal(ui_message_at(d.ui, 0)->where, "Import options");
+    assert_string_equal(ui_message_at(d.ui, 0)->text, "x.hgt: over the limit");
+    assert_int_equal(ui_message_count(d.ui), 2); // the wrapped one is one message, whole
+    assert_non_null(strstr(ui_message_at(d.ui, 1)->text, "(2 m apart), over the limit"));
+    assert_null(ui_message_at(d.ui, 2));
+    // It took several rows: what follows is below them, inside the panel.
+    ui_rect after = rect_of(&d, "Import options/After");
+    assert_true(after.y > 4 * ui_em(d.ui, 1.4f));
+    assert_true(rect_within(after, (ui_rect){0, 0, 300, 200}));
+    drv_free(&d);
+}
+
 #define T(f) cmocka_unit_test_teardown(f, free_contexts)
 
 int main(void) {
@@ -1973,6 +2376,13 @@ int main(void) {
         T(test_slider_drag),
         T(test_slider_typing),
         T(test_slider_enter_releases_keyboard),
+        T(test_ids_scoped_by_section),
+        T(test_id_conflict_reported),
+        T(test_id_conflict_strict_aborts),
+        T(test_queue_keeps_every_key_once),
+        T(test_queue_typing),
+        T(test_menu_wraps_into_columns),
+        T(test_messages_listed),
         T(test_textbox_focus_and_caret),
         T(test_textbox_select_all_on_click),
         T(test_textbox_selection_and_delete),

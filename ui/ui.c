@@ -16,6 +16,10 @@
 #define UNDO_MAX 16
 #define FOCUSABLE_MAX 256
 #define TOOLTIP_DELAY 0.5
+#define CLAIMS_MAX 2048 // a power of two above WIDGETS_MAX: the open-addressed id table
+#define CONFLICTS_MAX 8
+#define PATH_MAX_LEN 192
+#define MESSAGES_MAX 32
 
 typedef struct layout {
     ui_rect body;      // the region widgets flow in (screen pixels, scrolled)
@@ -48,7 +52,20 @@ struct ui_context {
 
     ui_id scope_ids[SCOPE_MAX];
     char scope_names[SCOPE_MAX][64];
+    int scope_section[SCOPE_MAX]; // the entry is a section's (ends at the next section)
     int scope_depth;
+
+    // Ids claimed by widgets this frame, to find two widgets with one id.
+    struct {
+        ui_id id;
+        uint64_t frame;
+        char path[PATH_MAX_LEN];
+    } claims[CLAIMS_MAX];
+    char conflicts[2][CONFLICTS_MAX][2][PATH_MAX_LEN];
+    ui_message_info messages[2][MESSAGES_MAX];
+    size_t message_count[2];
+    size_t conflict_count[2];
+    int strict_ids;
     layout layouts[LAYOUT_MAX];
     int layout_depth;
 
@@ -67,7 +84,8 @@ struct ui_context {
     // Text editing (text boxes, and sliders being typed into).
     ui_id edit_id;
     char edit_restore[EDIT_MAX];
-    float select_all_press_x; // where the click that focused a select-all field was
+    float select_all_press_x; // where the click that selected all (or a word) was
+    int keep_selection;       // and its selection holds until the pointer moves away
     size_t cursor, anchor;
     char undo[UNDO_MAX][EDIT_MAX];
     int undo_count, typing_run;
@@ -86,6 +104,12 @@ struct ui_context {
     double drag_start_value;
     float drag_start_x;
     int drag_fine;
+    int drag_moved; // the pointer left the press's spot: a scrub, not a click
+    char field_error[PATH_MAX_LEN];
+    ui_id field_error_id;
+    // Keys: whether a field had the keyboard as the frame began, and whether Esc was
+    // spent closing a popup (ui_took_keys).
+    int focus_at_begin, keys_spent, took_keys;
 
     // Curve editors: the point being dragged, where it is now (the caller's arrays
     // change only when the drag ends).
@@ -96,6 +120,8 @@ struct ui_context {
     ui_id open_popup;
     ui_rect popup_rect, popup_rect_prev;
     float popup_y, popup_w_needed;
+    // A popup taller than the room below it wraps into columns of popup_col_w.
+    float popup_top, popup_bottom, popup_col_x, popup_col_w, popup_y_max;
     int in_popup;
     ui_rect menubar;
     float menubar_x;
@@ -179,16 +205,79 @@ static int over(const ui_context *ui, ui_rect r) {
     return 1;
 }
 
+// The scope path and label in out ("Dock/Radius"); with sections, their headers too
+// ("Dock/World/Radius"). A long path is cut.
+static void widget_path(const ui_context *ui, const char *label, int sections, char *out,
+                        size_t size) {
+    size_t n = 0;
+    out[0] = 0;
+    for (int i = 0; i < ui->scope_depth && n < size; i++)
+        if (sections || !ui->scope_section[i])
+            n += (size_t)snprintf(out + n, size - n, "%s/", ui->scope_names[i]);
+    if (n < size) snprintf(out + n, size - n, "%.*s", (int)label_len(label), label);
+}
+
+// A message shown this frame, where the current scope is (label: a widget it is about).
+static void record_message(ui_context *ui, const char *label, const char *text, size_t n) {
+    size_t *count = &ui->message_count[ui->cur];
+    if (*count == MESSAGES_MAX) return;
+    ui_message_info *m = &ui->messages[ui->cur][(*count)++];
+    char where[PATH_MAX_LEN];
+    widget_path(ui, label, 0, where, sizeof where);
+    size_t len = strlen(where);
+    if (len > 0 && where[len - 1] == '/') where[len - 1] = 0; // no label: the scope
+    snprintf(m->where, sizeof m->where, "%s", where);
+    snprintf(m->text, sizeof m->text, "%.*s", (int)n, text);
+}
+
+size_t ui_message_count(const ui_context *ui) {
+    return ui->message_count[ui->shown];
+}
+const ui_message_info *ui_message_at(const ui_context *ui, size_t i) {
+    return i < ui_message_count(ui) ? &ui->messages[ui->shown][i] : NULL;
+}
+
+// Widgets are named by their scopes without sections, as tests have always found them.
 static void record_widget(ui_context *ui, const char *label, ui_rect r) {
     if (ui->widget_count[ui->cur] == WIDGETS_MAX) return;
     ui_widget_info *w = &ui->widgets[ui->cur][ui->widget_count[ui->cur]++];
-    size_t n = 0;
-    w->name[0] = 0;
-    for (int i = 0; i < ui->scope_depth && n < sizeof w->name; i++) // a long path is cut
-        n += (size_t)snprintf(w->name + n, sizeof w->name - n, "%s/", ui->scope_names[i]);
-    if (n < sizeof w->name)
-        snprintf(w->name + n, sizeof w->name - n, "%.*s", (int)label_len(label), label);
+    widget_path(ui, label, 0, w->name, sizeof w->name);
     w->rect = r;
+}
+
+// A widget takes id for this frame; a second one with the same id is a conflict.
+static void claim_id(ui_context *ui, ui_id id, const char *label) {
+    size_t i = id & (CLAIMS_MAX - 1);
+    for (size_t k = 0; k < CLAIMS_MAX; k++, i = (i + 1) & (CLAIMS_MAX - 1)) {
+        if (ui->claims[i].frame != ui->frame) { // free this frame: take it
+            ui->claims[i].id = id;
+            ui->claims[i].frame = ui->frame;
+            widget_path(ui, label, 1, ui->claims[i].path, sizeof ui->claims[i].path);
+            return;
+        }
+        if (ui->claims[i].id != id) continue;
+        char path[PATH_MAX_LEN];
+        widget_path(ui, label, 1, path, sizeof path);
+        if (ui->strict_ids) {
+            fprintf(stderr,
+                    "ui: two widgets share one id in one frame: \"%s\" and \"%s\" (give one "
+                    "a \"##suffix\" or a scope)\n",
+                    ui->claims[i].path, path);
+            abort(); // a programmer's mistake, caught where the tests run strict
+        }
+        size_t *count = &ui->conflict_count[ui->cur];
+        if (*count < CONFLICTS_MAX) {
+            memcpy(ui->conflicts[ui->cur][*count][0], ui->claims[i].path, PATH_MAX_LEN);
+            memcpy(ui->conflicts[ui->cur][*count][1], path, PATH_MAX_LEN);
+            (*count)++;
+        }
+        return;
+    }
+}
+
+static void record_claim(ui_context *ui, ui_id id, const char *label, ui_rect r) {
+    claim_id(ui, id, label);
+    record_widget(ui, label, r);
 }
 
 // Hover and press handling shared by clickable widgets; returns 1 on a click
@@ -245,6 +334,11 @@ ui_context *ui_create(const ui_font *font) {
     if (!ui) return NULL;
     ui->font = font;
     ui->c_locale = newlocale(LC_ALL_MASK, "C", (locale_t)0);
+#ifndef NDEBUG
+    ui->strict_ids = 1;
+#endif
+    const char *strict = getenv("OROGEN_UI_STRICT");
+    if (strict && *strict) ui->strict_ids = strcmp(strict, "0") != 0;
     // A dark theme in the manner of Blender's and Unreal's editors.
     ui->theme = (ui_theme){
         .bg = UI_RGBA(30, 30, 33, 255),
@@ -297,7 +391,11 @@ void ui_begin(ui_context *ui, const ui_input *in, float width, float height) {
     ui->hot_next = 0;
     ui->cur ^= 1;
     ui->widget_count[ui->cur] = 0;
+    ui->conflict_count[ui->cur] = 0;
+    ui->message_count[ui->cur] = 0;
     ui->panel_count[ui->cur] = 0;
+    ui->focus_at_begin = ui->focus != 0;
+    ui->keys_spent = 0;
     ui->scope_depth = 0;
     ui->layout_depth = 0;
     ui->needs_frame = 0;
@@ -318,6 +416,7 @@ void ui_begin(ui_context *ui, const ui_input *in, float width, float height) {
     if (in->key_pressed[UI_KEY_ESCAPE] && ui->open_popup && !ui->edit_id) {
         ui->open_popup = 0;
         ui->in.key_pressed[UI_KEY_ESCAPE] = 0; // spent: the dialog under the popup stays
+        ui->keys_spent = 1;
     }
     ui->tab_pending = in->key_pressed[UI_KEY_TAB] && ui->focus;
 }
@@ -384,6 +483,8 @@ const ui_draw_list *ui_end(ui_context *ui) {
         ui->open_popup && ui_rect_contains(ui->popup_rect, ui->in.mouse_x, ui->in.mouse_y);
     ui->wants_mouse = over_panel || ui->active != 0 || ui->press_taken;
     ui->wants_keyboard = ui->focus != 0;
+    ui->took_keys = ui->focus_at_begin || ui->focus != 0 || ui->keys_spent;
+    if (ui->field_error_id && ui->typing_id != ui->field_error_id) ui->field_error_id = 0;
     ui->shown = ui->cur;
     append_overlay(ui);
     return &ui->dl;
@@ -403,6 +504,12 @@ int ui_wants_mouse(const ui_context *ui) {
 int ui_wants_keyboard(const ui_context *ui) {
     return ui->wants_keyboard;
 }
+int ui_took_keys(const ui_context *ui) {
+    return ui->took_keys;
+}
+const char *ui_field_error(const ui_context *ui) {
+    return ui->field_error_id ? ui->field_error : "";
+}
 int ui_needs_frame(const ui_context *ui) {
     return ui->needs_frame;
 }
@@ -418,22 +525,51 @@ void ui_dim(ui_context *ui) {
 
 // ---- ids, scopes, named widgets -------------------------------------------------------
 
-ui_id ui_get_id(ui_context *ui, const char *label) {
-    ui_id h = ui->scope_depth ? ui->scope_ids[ui->scope_depth - 1] : 2166136261u;
+static ui_id id_at_depth(const ui_context *ui, int depth, const char *label) {
+    ui_id h = depth ? ui->scope_ids[depth - 1] : 2166136261u;
     h = hash_bytes(h, label, strlen(label));
     return h ? h : 1;
 }
 
-void ui_push_scope(ui_context *ui, const char *name) {
+ui_id ui_get_id(ui_context *ui, const char *label) {
+    return id_at_depth(ui, ui->scope_depth, label);
+}
+
+static void push_scope(ui_context *ui, const char *name, int section) {
     if (ui->scope_depth == SCOPE_MAX) return;
     ui->scope_ids[ui->scope_depth] = hash_bytes(ui_get_id(ui, name), "", 1); // a NUL after it
     snprintf(ui->scope_names[ui->scope_depth], sizeof ui->scope_names[0], "%.*s",
              (int)label_len(name), name);
+    ui->scope_section[ui->scope_depth] = section;
     ui->scope_depth++;
 }
 
+void ui_push_scope(ui_context *ui, const char *name) {
+    push_scope(ui, name, 0);
+}
+
+// The depth below the sections open at the current level.
+static int depth_below_sections(const ui_context *ui) {
+    int d = ui->scope_depth;
+    while (d > 0 && ui->scope_section[d - 1])
+        d--;
+    return d;
+}
+
 void ui_pop_scope(ui_context *ui) {
+    ui->scope_depth = depth_below_sections(ui);
     if (ui->scope_depth > 0) ui->scope_depth--;
+}
+
+void ui_set_strict_ids(ui_context *ui, int strict) {
+    ui->strict_ids = strict;
+}
+size_t ui_id_conflict_count(const ui_context *ui) {
+    return ui->conflict_count[ui->shown];
+}
+const char *ui_id_conflict(const ui_context *ui, size_t i, int which) {
+    if (i >= ui_id_conflict_count(ui) || which < 0 || which > 1) return NULL;
+    return ui->conflicts[ui->shown][i][which];
 }
 
 size_t ui_widget_count(const ui_context *ui) {
@@ -529,10 +665,12 @@ void ui_panel_begin(ui_context *ui, const char *name, ui_rect r) {
         l->y = l->body.y;
         l->content_top = l->body.y;
     }
+    claim_id(ui, id, "");
     record_widget(ui, "", r);
 }
 
 void ui_panel_end(ui_context *ui) {
+    ui->scope_depth = depth_below_sections(ui); // the panel's last section ends
     if (ui->scope_depth == 0) return;
     ui_id id = ui->scope_ids[ui->scope_depth - 1];
     slot *s = get_slot(ui, id);
@@ -567,11 +705,48 @@ void ui_panel_end(ui_context *ui) {
 
 void ui_label_colored(ui_context *ui, const char *text, ui_color c) {
     ui_rect r = ui_next_cell(ui);
+    if (c == ui->theme.text_error) record_message(ui, "", text, label_len(text));
     text_in(ui, r, text, label_len(text), c, 0);
     record_widget(ui, text, r);
     ui->last_rect = r;
     ui->last_id = ui_get_id(ui, text);
     ui->last_hovered = over(ui, r);
+}
+
+static size_t next_char(const char *s, size_t n, size_t i);
+
+void ui_label_wrapped(ui_context *ui, const char *text, ui_color c) {
+    if (c == ui->theme.text_error) record_message(ui, "", text, strlen(text));
+    layout *l = top_layout(ui);
+    if (l->col < l->columns) l->col = l->columns; // full-width rows
+    float w = l->body.w - ui_em(ui, 0.6f) - 1;    // text_in's padding
+    const char *at = text;
+    do {
+        size_t n = strlen(at), fit = 0, i = 0;
+        while (i < n) { // the longest run of whole words that fits (at least one word)
+            size_t next = i;
+            while (next < n && at[next] == ' ')
+                next++;
+            while (next < n && at[next] != ' ')
+                next++;
+            if (fit > 0 && text_width(ui, at, next) > w) break;
+            fit = i = next;
+        }
+        if (text_width(ui, at, fit) > w) { // one word longer than a row (a path): cut it
+            size_t cut = ui_font_offset_at(ui->font, UI_FACE_SANS, at, fit, w);
+            while (cut > 0 && text_width(ui, at, cut) > w)
+                cut--;
+            while (cut > 0 && ((unsigned char)at[cut] & 0xC0) == 0x80)
+                cut--;
+            fit = cut > 0 ? cut : next_char(at, fit, 0);
+        }
+        ui_row(ui, 1, NULL, 0);
+        ui_rect r = ui_next_cell(ui);
+        text_in(ui, r, at, fit, c, 0);
+        at += fit;
+        while (*at == ' ')
+            at++;
+    } while (*at);
 }
 
 void ui_label(ui_context *ui, const char *text) {
@@ -595,7 +770,7 @@ static int toggle(ui_context *ui, const char *label, int on, float indent, int c
     if (indent < r.w) // an indent of the whole width: an icon button (the caller draws it)
         text_in(ui, (ui_rect){r.x + indent, r.y, r.w - indent, r.h}, label, label_len(label),
                 ui->theme.text, centred);
-    record_widget(ui, label, r);
+    record_claim(ui, id, label, r);
     return clicked;
 }
 
@@ -610,7 +785,7 @@ int ui_selectable(ui_context *ui, const char *label, int on) {
     if (on || ui->hot == id)
         ui_draw_rect(ui->target, r, on ? ui->theme.selection : ui->theme.widget_hot);
     text_in(ui, r, label, label_len(label), ui->theme.text, 0);
-    record_widget(ui, label, r);
+    record_claim(ui, id, label, r);
     return clicked;
 }
 
@@ -626,7 +801,7 @@ int ui_image_button(ui_context *ui, const char *label, uint32_t texture, int on)
     ui_rect strip = {img.x, img.y + img.h - lh, img.w, lh};
     ui_draw_rect(ui->target, strip, UI_RGBA(0, 0, 0, 150));
     text_in(ui, strip, label, label_len(label), ui->theme.text, 1);
-    record_widget(ui, label, r);
+    record_claim(ui, id, label, r);
     return clicked;
 }
 
@@ -652,7 +827,7 @@ int ui_checkbox(ui_context *ui, const char *label, int *value) {
     }
     text_in(ui, (ui_rect){r.x + box, r.y, r.w - box, r.h}, label, label_len(label), ui->theme.text,
             0);
-    record_widget(ui, label, r);
+    record_claim(ui, id, label, r);
     if (clicked) *value = !*value;
     return clicked;
 }
@@ -684,6 +859,7 @@ void ui_progress(ui_context *ui, double fraction, const char *text) {
 }
 
 int ui_section(ui_context *ui, const char *label, int default_open) {
+    ui->scope_depth = depth_below_sections(ui); // the section before it ends here
     ui_id id = ui_get_id(ui, label);
     slot *s = get_slot(ui, id);
     if (!s->initialised) s->open = default_open, s->initialised = 1;
@@ -700,8 +876,9 @@ int ui_section(ui_context *ui, const char *label, int default_open) {
     snprintf(head, sizeof head, "%s %.*s", s->open ? "\xe2\x96\xbc" : "\xe2\x96\xb6",
              (int)label_len(label), label);
     text_in(ui, r, head, strlen(head), ui->theme.text, 0);
-    record_widget(ui, label, r);
+    record_claim(ui, id, label, r);
     if (cols > 0) ui_row(ui, cols, widths, height);
+    push_scope(ui, label, 1); // what follows, open or not, is named in it
     return s->open;
 }
 
@@ -716,7 +893,7 @@ int ui_tree_push(ui_context *ui, const char *label, int default_open) {
     snprintf(head, sizeof head, "%s %.*s", s->open ? "\xe2\x96\xbe" : "\xe2\x96\xb8",
              (int)label_len(label), label);
     text_in(ui, r, head, strlen(head), ui->theme.text, 0);
-    record_widget(ui, label, r);
+    record_claim(ui, id, label, r);
     if (!s->open) return 0;
     layout *l = top_layout(ui); // children are indented and named below the node
     float indent = ui_em(ui, 1.0f);
@@ -749,12 +926,12 @@ int ui_color_swatch(ui_context *ui, const char *label, ui_color color, int on) {
     float text_x = sw.x + sw.w + ui_em(ui, 0.2f);
     text_in(ui, (ui_rect){text_x, r.y, r.x + r.w - text_x, r.h}, label, label_len(label),
             ui->theme.text, 0);
-    record_widget(ui, label, r);
+    record_claim(ui, id, label, r);
     return clicked;
 }
 
 void ui_section_set(ui_context *ui, const char *label, int open) {
-    slot *s = get_slot(ui, ui_get_id(ui, label));
+    slot *s = get_slot(ui, id_at_depth(ui, depth_below_sections(ui), label)); // as ui_section
     s->open = open;
     s->initialised = 1;
 }
@@ -812,51 +989,99 @@ static int parse_double_c(ui_context *ui, const char *s, double *out) {
 
 static int text_edit(ui_context *ui, ui_id id, ui_rect r, char *buf, size_t size, int flags);
 
+// Opens the slider's text field on its value, as "%.17g" prints it: the text reads back
+// as the same double, so Enter on it unchanged changes nothing.
+static void slider_open_typing(ui_context *ui, ui_id id, double value) {
+    ui->typing_id = id;
+    ui->focus_seen = 1; // its text field is drawn from the next frame
+    snprintf(ui->typing_buf, sizeof ui->typing_buf, "%.15g", value);
+    double back;
+    if (parse_double_c(ui, ui->typing_buf, &back) != 0 || back != value)
+        snprintf(ui->typing_buf, sizeof ui->typing_buf, "%.17g", value);
+    ui->focus = id;
+    ui->edit_id = 0; // text_edit starts editing next frame (all selected)
+    ui->active = 0;
+    ui->field_error_id = 0;
+}
+
+// The slider's open text field: Enter with a number in range sets it; other text keeps
+// the field open with the reason; Esc or a click elsewhere closes it, the value untouched.
+static int slider_typing(ui_context *ui, ui_id id, const char *label, ui_rect r, double *value,
+                         double lo, double hi) {
+    int rc = text_edit(ui, id, r, ui->typing_buf, sizeof ui->typing_buf, UI_TEXTBOX_SELECT_ALL);
+    ui->keys_spent = 1; // every key while it is open is its own
+    if (rc & UI_TEXT_CHANGED) ui->field_error_id = 0;
+    if (ui->focus != id) { // Esc or a click elsewhere
+        ui->typing_id = 0;
+        ui->field_error_id = 0;
+        return 0;
+    }
+    if (rc & UI_TEXT_SUBMIT) {
+        double v;
+        const char *fail = NULL;
+        char why[PATH_MAX_LEN];
+        if (parse_double_c(ui, ui->typing_buf, &v) != 0) {
+            snprintf(why, sizeof why, "\"%.40s\" is not a number", ui->typing_buf);
+            fail = why;
+        } else if (v < lo || v > hi) {
+            snprintf(why, sizeof why, "%.10g is outside %.10g .. %.10g", v, lo, hi);
+            fail = why;
+        }
+        if (fail) {
+            snprintf(ui->field_error, sizeof ui->field_error, "%s", fail);
+            ui->field_error_id = id;
+        } else {
+            ui->typing_id = ui->focus = ui->edit_id = 0;
+            ui->field_error_id = 0;
+            if (v != *value) return *value = v, 1;
+            return 0;
+        }
+    }
+    if (ui->field_error_id == id) { // the reason, under the field, until the text changes
+        record_message(ui, label, ui->field_error, strlen(ui->field_error));
+        ui_draw_list *base = ui->target;
+        ui->target = &ui->overlay;
+        float pad = ui_em(ui, 0.3f), w = text_width(ui, ui->field_error, strlen(ui->field_error));
+        ui_rect box = {r.x, r.y + r.h, fmaxf(r.w, w + 2 * pad), ui_em(ui, 1.3f)};
+        if (box.y + box.h > ui->height) box.y = r.y - box.h;
+        ui_draw_rect(ui->target, box, ui->theme.panel_alt);
+        ui_draw_rect_outline(ui->target, box, ui->theme.text_error, 1);
+        text_in(ui, (ui_rect){box.x + pad, box.y, box.w - 2 * pad, box.h}, ui->field_error,
+                strlen(ui->field_error), ui->theme.text_error, 0);
+        ui->target = base;
+    }
+    return 0;
+}
+
 int ui_slider(ui_context *ui, const char *label, double *value, double lo, double hi,
               const char *fmt) {
     ui_id id = ui_get_id(ui, label);
     ui_rect r = ui_next_cell(ui);
-    record_widget(ui, label, r);
-    if (ui->typing_id == id) { // typing a value
-        int rc = text_edit(ui, id, r, ui->typing_buf, sizeof ui->typing_buf, 0);
-        if (rc & UI_TEXT_SUBMIT) {
-            ui->typing_id = ui->focus = ui->edit_id = 0;
-            double v;
-            if (parse_double_c(ui, ui->typing_buf, &v) == 0) {
-                v = v < lo ? lo : v > hi ? hi : v;
-                if (v != *value) return *value = v, 1;
-            }
-            return 0;
-        }
-        if (ui->focus != id) ui->typing_id = 0; // Esc or a click elsewhere
-        return 0;
-    }
+    record_claim(ui, id, label, r);
+    if (ui->typing_id == id) return slider_typing(ui, id, label, r, value, lo, hi);
     int hovered = over(ui, r);
     if (hovered) ui->hot_next = id;
     int changed = 0;
     if (hovered && press_for(ui, id)) {
+        if (ui->focus && ui->focus != id) ui->focus = ui->edit_id = ui->typing_id = 0;
         if ((ui->in.mods & UI_MOD_CTRL) || ui->in.double_click) { // type a value
-            ui->typing_id = id;
-            ui->focus_seen = 1; // its text field is drawn from the next frame
-            snprintf(ui->typing_buf, sizeof ui->typing_buf, "%.10g", *value);
-            ui->focus = id;
-            ui->edit_id = 0; // text_edit starts editing next frame
-        } else {
+            slider_open_typing(ui, id, *value);
+        } else { // a scrub from the value, or a click (opens the field on release)
             ui->active = id;
-            ui->drag_start_value = *value;
+            // From the value as shown: one outside the range (a sea under all the ground)
+            // moves from the end it is shown at.
+            ui->drag_start_value = *value < lo ? lo : *value > hi ? hi : *value;
             ui->drag_start_x = ui->in.mouse_x;
             ui->drag_fine = ui->in.mods & UI_MOD_SHIFT;
-            // A click without a drag jumps to the position (as Blender's sliders do not:
-            // here a press sets the value where the pointer is, then drags from there).
-            double t = (ui->in.mouse_x - r.x) / (r.w > 1 ? r.w : 1);
-            double v = lo + (hi - lo) * (t < 0 ? 0 : t > 1 ? 1 : t);
-            if (!ui->drag_fine && v != *value) *value = v, changed = 1;
-            ui->drag_start_value = *value;
+            ui->drag_moved = 0;
         }
     }
     if (ui->active == id) {
-        if (ui->in.mouse_down[0]) {
+        // The pointer's last place counts in the frame the button is let go in too.
+        if (ui->in.mouse_down[0] || ui->in.mouse_released[0]) {
             int fine = ui->in.mods & UI_MOD_SHIFT;
+            if (!ui->drag_moved && fabsf(ui->in.mouse_x - ui->drag_start_x) >= ui_em(ui, 0.25f))
+                ui->drag_moved = 1;
             if (fine != ui->drag_fine) { // re-base when Shift changes mid-drag
                 ui->drag_start_value = *value;
                 ui->drag_start_x = ui->in.mouse_x;
@@ -865,9 +1090,11 @@ int ui_slider(ui_context *ui, const char *label, double *value, double lo, doubl
             double per_px = (hi - lo) / (r.w > 1 ? r.w : 1) * (fine ? 0.1 : 1.0);
             double v = ui->drag_start_value + (ui->in.mouse_x - ui->drag_start_x) * per_px;
             v = v < lo ? lo : v > hi ? hi : v;
-            if (v != *value) *value = v, changed = 1;
-        } else {
+            if (ui->drag_moved && v != *value) *value = v, changed = 1;
+        }
+        if (!ui->in.mouse_down[0]) {
             ui->active = 0;
+            if (!ui->drag_moved && hovered) slider_open_typing(ui, id, *value);
         }
     }
     ui->last_id = id, ui->last_rect = r, ui->last_hovered = hovered;
@@ -885,28 +1112,52 @@ int ui_slider(ui_context *ui, const char *label, double *value, double lo, doubl
 
 // ---- combos and menus (popups) ---------------------------------------------------------
 
+// A popup's slot keeps its column's width (size_w), its height (size_h) and how many
+// columns it took (content) on the last frame, to place it before its items are known.
 static void popup_begin(ui_context *ui, ui_id id, float x, float y, float min_w) {
     slot *s = get_slot(ui, id);
-    float w = fmaxf(min_w, s->size_w), h = s->size_h;
+    float col_w = fmaxf(min_w, s->size_w), h = s->size_h;
+    int cols = s->content > 1 ? (int)s->content : 1;
+    float w = col_w * (float)cols;
     if (x + w > ui->width) x = fmaxf(0, ui->width - w);
     ui->target = &ui->overlay;
     ui->in_popup = 1;
     ui->popup_rect = (ui_rect){x, y, w, h};
-    ui->popup_y = y + ui_em(ui, 0.2f);
+    ui->popup_top = ui->popup_y = y + ui_em(ui, 0.2f);
+    ui->popup_bottom = fmaxf(ui->popup_top + ui_em(ui, 2.6f), ui->height - ui_em(ui, 0.2f));
+    ui->popup_col_x = 0;
+    ui->popup_col_w = col_w;
+    ui->popup_y_max = ui->popup_y;
     ui->popup_w_needed = min_w;
     ui_draw_rect(ui->target, ui->popup_rect, ui->theme.panel_alt);
     ui_draw_rect_outline(ui->target, ui->popup_rect, ui->theme.border, 1);
     if (h == 0) ui->needs_frame = 1; // sized from this frame's items on the next
 }
 
+// The next line of height h in the popup: below the last, or atop a new column when it
+// would pass the window's bottom (a long menu at a small window or a large UI scale).
+static ui_rect popup_line(ui_context *ui, float h) {
+    if (ui->popup_y + h > ui->popup_bottom && ui->popup_y > ui->popup_top) {
+        ui->popup_col_x += ui->popup_col_w;
+        ui->popup_y = ui->popup_top;
+    }
+    ui_rect r = {ui->popup_rect.x + ui->popup_col_x + 1, ui->popup_y, ui->popup_col_w - 2, h};
+    ui->popup_y += h;
+    ui->popup_y_max = fmaxf(ui->popup_y_max, ui->popup_y);
+    return r;
+}
+
 static void popup_end(ui_context *ui, ui_id id) {
     slot *s = get_slot(ui, id);
-    float h = ui->popup_y + ui_em(ui, 0.2f) - ui->popup_rect.y;
-    if (s->size_h != h || s->size_w != ui->popup_w_needed) ui->needs_frame = 1;
+    float h = ui->popup_y_max + ui_em(ui, 0.2f) - ui->popup_rect.y;
+    float cols = ui->popup_col_x / fmaxf(ui->popup_col_w, 1) + 1;
+    if (s->size_h != h || s->size_w != ui->popup_w_needed || s->content != cols)
+        ui->needs_frame = 1;
     s->size_h = h;
     s->size_w = ui->popup_w_needed;
+    s->content = cols;
     ui->popup_rect.h = h;
-    ui->popup_rect.w = fmaxf(ui->popup_rect.w, ui->popup_w_needed);
+    ui->popup_rect.w = fmaxf(ui->popup_rect.w, ui->popup_w_needed * cols);
     ui->target = &ui->dl;
     ui->in_popup = 0;
 }
@@ -919,8 +1170,7 @@ static int popup_item(ui_context *ui, const char *label, const char *right, int 
     float need = text_width(ui, label, label_len(label)) + 3 * pad +
                  (right ? text_width(ui, right, strlen(right)) + 2 * pad : 0);
     ui->popup_w_needed = fmaxf(ui->popup_w_needed, need);
-    ui_rect r = {ui->popup_rect.x + 1, ui->popup_y, ui->popup_rect.w - 2, h};
-    ui->popup_y += h;
+    ui_rect r = popup_line(ui, h);
     int clicked = enabled && behave(ui, id, r);
     if (clicked) ui->press_taken = 1;
     if (enabled && ui->hot == id) ui_draw_rect(ui->target, r, ui->theme.selection);
@@ -936,14 +1186,14 @@ static int popup_item(ui_context *ui, const char *label, const char *right, int 
                      r.y + (h - ui_font_line_height(ui->font)) * 0.5f, right, strlen(right),
                      ui->theme.text_dim);
     }
-    record_widget(ui, label, r);
+    record_claim(ui, id, label, r);
     return clicked;
 }
 
 int ui_combo(ui_context *ui, const char *label, int *index, const char *const *items, int count) {
     ui_id id = ui_get_id(ui, label);
     ui_rect r = ui_next_cell(ui);
-    record_widget(ui, label, r);
+    record_claim(ui, id, label, r);
     if (behave(ui, id, r)) {
         ui->open_popup = ui->open_popup == id ? 0 : id;
         ui->popup_just_opened = 1;
@@ -1002,7 +1252,7 @@ int ui_menu_begin(ui_context *ui, const char *label) {
     if (open || ui->hot == id)
         ui_draw_rect(ui->target, r, open ? ui->theme.selection : ui->theme.widget_hot);
     text_in(ui, r, label, label_len(label), ui->theme.text, 1);
-    record_widget(ui, label, r);
+    record_claim(ui, id, label, r);
     ui->last_id = id, ui->last_rect = r, ui->last_hovered = hovered;
     if (!open) return 0;
     ui_push_scope(ui, label);
@@ -1024,10 +1274,9 @@ int ui_menu_item(ui_context *ui, const char *label, const char *shortcut, int en
 }
 
 void ui_menu_separator(ui_context *ui) {
-    float y = ui->popup_y + ui_em(ui, 0.2f);
-    ui_draw_rect(ui->target, (ui_rect){ui->popup_rect.x + 4, y, ui->popup_rect.w - 8, 1},
-                 ui->theme.border);
-    ui->popup_y += ui_em(ui, 0.4f) + 1;
+    ui_rect line = popup_line(ui, ui_em(ui, 0.4f) + 1);
+    float y = line.y + ui_em(ui, 0.2f);
+    ui_draw_rect(ui->target, (ui_rect){line.x + 3, y, line.w - 6, 1}, ui->theme.border);
 }
 
 // ---- text editing ----------------------------------------------------------------------
@@ -1124,14 +1373,24 @@ static int text_edit(ui_context *ui, ui_id id, ui_rect r, char *buf, size_t size
         ui->cursor = n;
         ui->anchor = 0; // all selected, as most editors do on focus
         ui->caret_time = ui->in.time;
+        ui->keep_selection = 0;
         if (hovered && press_for(ui, id) && (flags & UI_TEXTBOX_SELECT_ALL))
-            ui->select_all_press_x = ui->in.mouse_x; // keep all selected: typing replaces
+            ui->select_all_press_x = ui->in.mouse_x, // keep all selected: typing replaces
+                ui->keep_selection = 1;
         else if (hovered && press_for(ui, id))
             ui->cursor = ui->anchor =
                 ui_font_offset_at(ui->font, UI_FACE_SANS, buf, n, ui->in.mouse_x - r.x - pad);
+    } else if (ui->focus == id && hovered && press_for(ui, id) && ui->in.double_click) {
+        // A double click selects the word under it (a number field: all of it).
+        size_t at = ui_font_offset_at(ui->font, UI_FACE_SANS, buf, n, ui->in.mouse_x - r.x - pad);
+        ui->anchor = (flags & UI_TEXTBOX_SELECT_ALL) ? 0 : word_left(buf, at);
+        ui->cursor = (flags & UI_TEXTBOX_SELECT_ALL) ? n : word_right(buf, n, at);
+        ui->select_all_press_x = ui->in.mouse_x;
+        ui->keep_selection = 1;
     } else if (ui->focus == id && ui->active == id && ui->in.mouse_down[0] &&
-               !((flags & UI_TEXTBOX_SELECT_ALL) && !mouse_pressed(ui) &&
+               !(ui->keep_selection && !mouse_pressed(ui) &&
                  fabsf(ui->in.mouse_x - ui->select_all_press_x) < ui_em(ui, 0.3f))) {
+        ui->keep_selection = 0;
         // Click/drag selects (a select-all field keeps its selection until a drag).
         size_t at = ui_font_offset_at(ui->font, UI_FACE_SANS, buf, n, ui->in.mouse_x - r.x - pad);
         if (mouse_pressed(ui) && !(ui->in.mods & UI_MOD_SHIFT)) ui->anchor = at;
@@ -1289,7 +1548,7 @@ int ui_textbox_flags(ui_context *ui, const char *label, char *buf, size_t size, 
         ui->tab_to_first = 0;
     }
     ui_rect r = ui_next_cell(ui);
-    record_widget(ui, label, r);
+    record_claim(ui, id, label, r);
     return text_edit(ui, id, r, buf, size, flags);
 }
 
@@ -1307,7 +1566,7 @@ void ui_log(ui_context *ui, const char *name, size_t count,
     if (l->col < l->columns) l->col = l->columns;
     ui_rect r = {l->body.x, l->y, l->body.w, height};
     l->y += height + ui_em(ui, 0.2f);
-    record_widget(ui, name, r);
+    record_claim(ui, id, name, r);
     float lh = ui_font_line_height(ui->font), pad = ui_em(ui, 0.3f);
     float content = (float)count * lh, view = r.h - 2 * pad,
           max_scroll = fmaxf(0.0f, content - view);
@@ -1348,7 +1607,7 @@ static float clampf(float x, float lo, float hi) {
 int ui_curve(ui_context *ui, const char *label, float *t, float *v, int *count, int max) {
     ui_id id = ui_get_id(ui, label);
     ui_rect r = ui_next_cell(ui);
-    record_widget(ui, label, r);
+    record_claim(ui, id, label, r);
     float pad = ui_em(ui, 0.45f);
     ui_rect a = {r.x + pad, r.y + pad, r.w - 2 * pad, r.h - 2 * pad}; // the unit square
     if (a.w < 1 || a.h < 1 || *count < 2) return 0;

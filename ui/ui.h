@@ -40,7 +40,33 @@ typedef enum ui_key {
 
 enum { UI_MOD_SHIFT = 1, UI_MOD_CTRL = 2, UI_MOD_ALT = 4 };
 
-// One frame's input, filled by the window (pixels, origin top left).
+// One input event as the window system delivers it (see ui_input_queue).
+typedef enum ui_event_kind {
+    UI_EVENT_MOVE,   // the pointer moved to (x, y)
+    UI_EVENT_BUTTON, // button went down or up at (x, y)
+    UI_EVENT_WHEEL,  // wheel notches
+    UI_EVENT_KEY,    // a key went down (or repeated) or up
+    UI_EVENT_TEXT,   // a typed code point (UTF-8 in text)
+} ui_event_kind;
+
+typedef struct ui_event {
+    ui_event_kind kind;
+    float x, y;   // MOVE, BUTTON: the pointer (pixels)
+    int button;   // BUTTON: 0 left, 1 right, 2 middle
+    int down;     // BUTTON, KEY: 1 pressed (or repeated), 0 released
+    int repeat;   // KEY: an auto-repeat of a held key
+    int key;      // KEY: a ui_key, or -1 for a key the UI does not use
+    int code;     // KEY: the window system's key code, for the caller's shortcuts
+    int mods;     // BUTTON, KEY: UI_MOD_* held
+    float wheel;  // WHEEL: notches, + away from the user
+    char text[8]; // TEXT: one code point, UTF-8
+    double time;  // seconds
+} ui_event;
+
+enum { UI_FRAME_EVENTS_MAX = 64 };
+
+// One frame's input, filled by the window (pixels, origin top left), or made from
+// queued events by ui_input_queue_frame.
 typedef struct ui_input {
     float mouse_x, mouse_y;
     int mouse_down[3];             // left, right, middle held now
@@ -52,7 +78,34 @@ typedef struct ui_input {
     int mods;                      // UI_MOD_* held
     char text[64];                 // UTF-8 typed this frame
     double time;                   // seconds
+    // The events this frame was made of, in order (from ui_input_queue_frame): what the
+    // UI did not take (ui_took_keys, ui_captures_point) is the caller's to use.
+    ui_event events[UI_FRAME_EVENTS_MAX];
+    int event_count;
 } ui_input;
+
+// Events queued as they arrive and handed out frame by frame, so that none is lost or
+// seen twice however slow a frame is (as Dear ImGui's input queue "trickles" them): a
+// frame takes events in order until one would change what an earlier one meant, i.e. a
+// second button change, a move after a button change (the press is seen where it
+// happened), a key after another key or text, text after a key the UI uses. The rest
+// waits for the next frame. Typed text stays together while a field has the keyboard.
+enum { UI_QUEUE_MAX = 4096 };
+typedef struct ui_input_queue {
+    ui_event events[UI_QUEUE_MAX];
+    size_t head, count;
+    size_t merged;  // moves merged because the queue was full (no button or key is ever)
+    ui_input state; // the pointer, held buttons and modifiers between frames
+    double last_press_time;
+    float last_press_x, last_press_y;
+} ui_input_queue;
+
+void ui_input_queue_init(ui_input_queue *q);
+void ui_input_queue_push(ui_input_queue *q, const ui_event *e);
+// Fills in with the next frame's share of the queue; typing: a text field has the
+// keyboard (ui_wants_keyboard), so keys and text of plain typing go in one frame.
+// Returns how many events still wait (draw another frame while > 0).
+size_t ui_input_queue_frame(ui_input_queue *q, int typing, ui_input *in);
 
 typedef struct ui_theme {
     ui_color bg, panel, panel_alt, border, text, text_dim, text_error, accent, accent_hot, widget,
@@ -91,6 +144,22 @@ int ui_wants_mouse(const ui_context *ui);
 // ui_wants_mouse it uses the given point, not where the pointer was at the last frame.
 int ui_captures_point(const ui_context *ui, float x, float y);
 int ui_wants_keyboard(const ui_context *ui);
+// The last frame's keys went to a text field (one had the keyboard when the frame began
+// or has it at its end) or closed a popup: the caller must not use them as shortcuts too.
+int ui_took_keys(const ui_context *ui);
+// A text field (a slider being typed into) that refused its text on Enter says why
+// here (it stays open); "" when none does. Valid after ui_end.
+const char *ui_field_error(const ui_context *ui);
+
+// The messages the last frame showed the user: every label drawn in the theme's error
+// colour and a field's refusal (ui_field_error), each named by where it is ("Import
+// options", "Dock/Radius"), for tests and the console's ui_messages.
+typedef struct ui_message_info {
+    char where[128];
+    char text[512];
+} ui_message_info;
+size_t ui_message_count(const ui_context *ui);
+const ui_message_info *ui_message_at(const ui_context *ui, size_t i);
 // Something animates or waits (a tooltip delay, a caret blink): draw another frame.
 int ui_needs_frame(const ui_context *ui);
 
@@ -98,9 +167,21 @@ int ui_needs_frame(const ui_context *ui);
 float ui_em(const ui_context *ui, float n);
 
 // --- ids and scopes ---------------------------------------------------------------
+// An id is the label's hash within the scope stack: panels, pushed scopes, tree nodes
+// and sections (the widgets after a ui_section header, up to the next one at the same
+// level or the end of the enclosing scope, are scoped by it). Two widgets claiming one
+// id in one frame are a conflict (they would share hover, drags and typing): the
+// library records it, and in strict mode (debug builds, or OROGEN_UI_STRICT=1 in the
+// environment, as the tests set) prints both widgets' paths and aborts.
 ui_id ui_get_id(ui_context *ui, const char *label);
 void ui_push_scope(ui_context *ui, const char *name);
+// Pops the last pushed scope (and any section opened inside it).
 void ui_pop_scope(ui_context *ui);
+void ui_set_strict_ids(ui_context *ui, int strict);
+// The last frame's id conflicts: each the paths of the two widgets (sections shown as
+// path segments too), e.g. "Dock/Raise/Radius" and "Dock/World/Radius".
+size_t ui_id_conflict_count(const ui_context *ui);
+const char *ui_id_conflict(const ui_context *ui, size_t i, int which);
 
 // Named widgets: every widget's rectangle of the last frame under its path of scope
 // names and label ("Tools/Raise"), for tests that click widgets by name.
@@ -129,6 +210,9 @@ void ui_panel_end(ui_context *ui);
 // --- widgets (each takes the next layout cell) -------------------------------------
 void ui_label(ui_context *ui, const char *text);
 void ui_label_colored(ui_context *ui, const char *text, ui_color c);
+// The whole text over as many full-width rows as it needs, broken between words (a
+// message must never be cut at the panel's edge); in the error colour it is one message.
+void ui_label_wrapped(ui_context *ui, const char *text, ui_color c);
 int ui_button(ui_context *ui, const char *label); // 1 when clicked
 int ui_toggle_button(ui_context *ui, const char *label, int on);
 // The same with its label left-aligned after indent pixels (room for an icon); with
@@ -143,8 +227,12 @@ int ui_image_button(ui_context *ui, const char *label, uint32_t texture, int on)
 int ui_radio(ui_context *ui, const char *label, int *value, int option);
 // A line of a list, left-aligned, highlighted when on. 1 when clicked.
 int ui_selectable(ui_context *ui, const char *label, int on);
-// A slider over [lo, hi]: drag (Shift: 10x finer), Ctrl+click or double click to type a
-// value (Enter sets, Esc cancels). fmt formats the value ("%.1f m"). 1 when changed.
+// A slider over [lo, hi], as Unreal's and Blender's number fields: a drag scrubs from
+// the value (Shift: 10x finer); a click, double click or Ctrl+click opens a text field
+// without changing the value; while it is open every key goes to it; Enter sets a
+// number in [lo, hi] (other text keeps the field open, ui_field_error says why), Esc or
+// a click elsewhere leaves the value as it was. fmt formats the value ("%.1f m").
+// 1 when changed.
 int ui_slider(ui_context *ui, const char *label, double *value, double lo, double hi,
               const char *fmt);
 // A combo box: items[0..count); 1 when *index changed.
