@@ -36,7 +36,18 @@ void tool_settings_capture(const cmd_context *ctx, app_settings *s) {
         const brush *b = ctx->brush.tool == (brush_tool)t     ? &ctx->brush
                          : (ctx->tool_remembered & (1u << t)) ? &ctx->tool_memory[t]
                                                               : NULL;
-        if (b) describe(b, s->tools[s->tool_count++], sizeof s->tools[0]);
+        if (!b) continue;
+        brush kept = *b;
+        if (!ctx->tool_size_per_tool) { // shared: every line restores the size in use
+            kept.radius = ctx->brush.radius;
+            if (brush_tool_is_volume(kept.tool) == brush_tool_is_volume(ctx->brush.tool))
+                kept.strength = ctx->brush.strength;
+        }
+        char *line = s->tools[s->tool_count++];
+        describe(&kept, line, sizeof s->tools[0]);
+        size_t n = strlen(line);
+        if (ctx->tool_size_per_tool && n + 16 < sizeof s->tools[0])
+            snprintf(line + n, sizeof s->tools[0] - n, " memory=per_tool");
     }
     const brush *b = &ctx->brush;
     snprintf(s->tool, sizeof s->tool, "%s",

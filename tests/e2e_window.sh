@@ -211,10 +211,16 @@ echo "camera 1 2" >&3
 sleep 0.3
 kill -0 $app 2>/dev/null && [ -n "$(ask "camera" '^camera ')" ]; check "the editor survives bad commands" $?
 
-# Each tool keeps its own settings, and they are kept between runs.
-echo "tool smooth radius=33 falloff=tip; tool raise radius=12" >&3
+# Each tool keeps its own settings; radius and strength are shared by all tools unless
+# memory=per_tool; and they are kept between runs.
+echo "tool smooth radius=33 falloff=tip strength=0.25; tool raise radius=12" >&3
+ask "tool smooth; tool" '^memory=' >/dev/null
+line=$(tail -n 40 "$work/out" | grep -E '^(radius|strength|falloff|memory)=' | tail -n 4 | tr '\n' ' ')
+[ "$line" = "radius=12 strength=0.25 falloff=tip memory=shared " ]
+check "by default a tool picked again has the shared radius and strength, and its own falloff ($line)" $?
+echo "tool smooth memory=per_tool radius=33; tool raise radius=12" >&3
 line=$(ask "tool smooth; tool" '^radius=')
-[ "$line" = "radius=33" ]; check "a tool picked again has its own radius back ($line)" $?
+[ "$line" = "radius=33" ]; check "with memory=per_tool a tool picked again has its own radius back ($line)" $?
 echo "tool raise" >&3
 
 echo "exit" >&3

@@ -1223,6 +1223,45 @@ static void test_brush_set_rejects_bad_values(void **state) {
     assert_true(copy.radius == 12.5);
 }
 
+// A brush held still keeps applying: 2 / spacing dabs a second, fractions carried, none
+// with hold=0; the dabs raise the ground under it.
+static void test_stroke_hold(void **state) {
+    (void)state;
+    world_params p = flat_params(700, 1.0);
+    world *w = open_world(&p);
+    brush b;
+    brush_defaults(&b, BRUSH_RAISE);
+    assert_int_equal(b.hold, 1);
+    og_error err;
+    stroke *s = stroke_begin(w, &b, &err);
+    assert_non_null(s);
+    assert_int_equal(stroke_hold(s, 1.0, &err), 0); // before the first point: nothing
+    assert_int_equal(stroke_dab_count(s), 0);
+    assert_int_equal(stroke_to(s, 300, 300, 1, &err), 0);
+    assert_int_equal(stroke_dab_count(s), 1);
+    double before, after;
+    assert_int_equal(world_sample(w, 0, 300, 300, &before, &err), 0);
+    assert_int_equal(stroke_hold(s, 1.0, &err), 0); // spacing 0.25: 8 a second
+    assert_int_equal(stroke_dab_count(s), 9);
+    for (int i = 0; i < 10; i++) // 10 x 0.05 s: 4 dabs, the fractions carried
+        assert_int_equal(stroke_hold(s, 0.05, &err), 0);
+    assert_int_equal(stroke_dab_count(s), 13);
+    assert_int_equal(world_sample(w, 0, 300, 300, &after, &err), 0);
+    assert_true(after > before + 5 * 0.5 * 0.9); // 12 dabs of up to 0.5 m at the centre
+    assert_int_equal(stroke_hold(s, -1, &err), -1);
+    assert_non_null(strstr(err.msg, "seconds"));
+    assert_int_equal(stroke_hold(s, NAN, &err), -1);
+    assert_int_equal(stroke_end(s, &err), 0);
+    assert_int_equal(brush_set(&b, "hold", "0", &err), 0);
+    s = stroke_begin(w, &b, &err);
+    assert_int_equal(stroke_to(s, 300, 300, 1, &err), 0);
+    assert_int_equal(stroke_hold(s, 2.0, &err), 0);
+    assert_int_equal(stroke_dab_count(s), 1);
+    assert_int_equal(stroke_end(s, &err), 0);
+    assert_int_equal(brush_set(&b, "hold", "maybe", &err), -1);
+    world_close(w);
+}
+
 static void test_stroke_rejects_bad_points(void **state) {
     (void)state;
     world_params p = flat_params(700, 1.0);
@@ -1833,6 +1872,7 @@ int main(void) {
         cmocka_unit_test(test_invariant_smooth),
         cmocka_unit_test(test_invariant_flatten_converges),
         cmocka_unit_test(test_invariant_thermal_talus),
+        cmocka_unit_test(test_stroke_hold),
         cmocka_unit_test(test_invariant_hydraulic_mass),
         cmocka_unit_test(test_invariant_paint),
         cmocka_unit_test(test_invariant_terrace),

@@ -396,10 +396,13 @@ static const cmd_def commands[] = {
      "Picks and sets up the brush: raise lower smooth flatten set ramp noise terrace thermal "
      "hydraulic paint, and the volume tools fill carve vsmooth vflatten (3D points). Keys: radius "
      "(m) strength (0-1) falloff (smooth linear spherical constant "
-     "curve) curve=t:v,... spacing (x radius) invert target (coarse detail) face amount height "
+     "curve) curve=t:v,... spacing (x radius) hold (1: a brush held still keeps dabbing) invert "
+     "target (coarse detail) face amount height "
      "mode (both raise lower) scale octaves seed step sharpness talus iterations droplets erosion "
      "deposition evaporation capacity inertia material depth (m along the view ray, volume tools) "
-     "lock (surface plane). Without arguments, prints the brush.",
+     "lock (surface plane), memory (shared: radius is one for all tools and strength one for "
+     "the surface tools and one for the volume tools, the default; per_tool: each tool keeps "
+     "its own). Without arguments, prints the brush.",
      0, 24, cmd_tool, 0},
     {"dab", "dab X Z [PRESSURE] | dab X Y Z [PRESSURE]",
      "One dab of the brush at X, Z (metres); the volume tools (fill carve vsmooth vflatten) take "
@@ -438,6 +441,11 @@ static const cmd_def commands[] = {
      "Drags the open stroke to X, Z (metres), dabbing every spacing x radius; PRESSURE 0-1 (1). "
      "A volume tool's stroke takes X Y Z (Y up).",
      2, 4, cmd_stroke_to, 0},
+    {"stroke_hold", "stroke_hold SECONDS",
+     "The open stroke's brush rests where it is for SECONDS (0-60), as a brush held still in the "
+     "viewport: it keeps dabbing there, 2 / spacing dabs a second (the tool's hold=0 turns that "
+     "off; not ramp or the volume tools).",
+     1, 1, cmd_stroke_hold, 0},
     {"stroke_end", "stroke_end",
      "Ends the open stroke as one undo step (a stroke that laid no dab leaves none).", 0, 0,
      cmd_stroke_end, 0},

@@ -24,6 +24,7 @@ typedef struct cmd_context {
     // Each tool's own settings, as it was last used (a tool picked again gets them back).
     brush tool_memory[BRUSH_TOOL_COUNT];
     unsigned tool_remembered; // bit t: tool_memory[t] holds settings
+    int tool_size_per_tool;   // 0: radius and strength shared by all tools (tool memory=)
     struct stroke *stroke;    // the stroke stroke_begin opened (NULL: none)
     FILE *record;             // when set, every command that succeeded is written here
     // The session's commands for `history script FILE` (the editor window keeps them

@@ -34,6 +34,7 @@ static void remember_tool(cmd_context *ctx, const brush *b) {
 int cmd_tool(cmd_context *ctx, int argc, char **argv, og_error *err) {
     if (argc == 1) {
         brush_print(&ctx->brush, ctx->out);
+        fprintf(ctx->out, "memory=%s\n", ctx->tool_size_per_tool ? "per_tool" : "shared");
         return 0;
     }
     int t = brush_tool_parse(argv[1]);
@@ -49,18 +50,35 @@ int cmd_tool(cmd_context *ctx, int argc, char **argv, og_error *err) {
     }
     // Each tool keeps its own settings (Terrain3D, Unreal): the one left is remembered,
     // the one picked comes back as it was. Raise and lower are one tool, inverted.
+    // Size and strength are the artist's, shared by every tool (as Unreal's and Terrain3D's
+    // brush size), unless memory=per_tool asks each tool to keep its own. Strength is
+    // shared within the surface tools and within the volume tools: a carve at a raise's
+    // half strength would leave half-solid rock in a tunnel.
     brush b = ctx->brush;
+    int per_tool = ctx->tool_size_per_tool;
+    for (int i = 2; i < argc; i++)
+        if (strncmp(argv[i], "memory=", 7) == 0) {
+            const char *m = argv[i] + 7;
+            if (strcmp(m, "shared") != 0 && strcmp(m, "per_tool") != 0)
+                return og_error_set(err, "tool: memory=%s: expected shared or per_tool", m);
+            per_tool = strcmp(m, "per_tool") == 0;
+        }
     if (b.tool != (brush_tool)t) {
         remember_tool(ctx, &ctx->brush);
         b = recalled_tool(ctx, (brush_tool)t);
+        if (!per_tool) b.radius = ctx->brush.radius;
+        if (!per_tool && brush_tool_is_volume(b.tool) == brush_tool_is_volume(ctx->brush.tool))
+            b.strength = ctx->brush.strength;
     }
     if (t == BRUSH_RAISE) b.invert = strcmp(argv[1], "lower") == 0;
     for (int i = 2; i < argc; i++) {
         char buf[512], *key = NULL, *value = NULL;
+        if (strncmp(argv[i], "memory=", 7) == 0) continue;
         if (parse_setting(argv[i], buf, sizeof buf, &key, &value, err) != 0 ||
             brush_set(&b, key, value, err) != 0)
             return -1;
     }
+    ctx->tool_size_per_tool = per_tool;
     ctx->brush = b;
     remember_tool(ctx, &b);
     return 0;
@@ -207,6 +225,19 @@ int cmd_stroke_to(cmd_context *ctx, int argc, char **argv, og_error *err) {
     if (rc != 0) {
         // A failed dab leaves the stroke half-applied: abandon it whole.
         stroke_cancel(ctx->stroke);
+        ctx->stroke = NULL;
+        return -1;
+    }
+    return 0;
+}
+
+int cmd_stroke_hold(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    (void)argc;
+    if (!ctx->stroke) return no_stroke(argv[0], err);
+    double seconds;
+    if (parse_number(argv[1], "seconds", &seconds, err) != 0) return -1;
+    if (stroke_hold(ctx->stroke, seconds, err) != 0) {
+        stroke_cancel(ctx->stroke); // as stroke_to: a failed dab abandons the stroke whole
         ctx->stroke = NULL;
         return -1;
     }

@@ -12,6 +12,7 @@ int cmd_stroke(cmd_context *ctx, int argc, char **argv, og_error *err);
 int cmd_stroke_begin(cmd_context *ctx, int argc, char **argv, og_error *err);
 int cmd_stroke_to(cmd_context *ctx, int argc, char **argv, og_error *err);
 int cmd_stroke_end(cmd_context *ctx, int argc, char **argv, og_error *err);
+int cmd_stroke_hold(cmd_context *ctx, int argc, char **argv, og_error *err);
 int cmd_stroke_cancel(cmd_context *ctx, int argc, char **argv, og_error *err);
 int cmd_undo(cmd_context *ctx, int argc, char **argv, og_error *err);
 int cmd_redo(cmd_context *ctx, int argc, char **argv, og_error *err);

@@ -57,6 +57,7 @@ typedef struct brush {
     int curve_count; // curve: t ascending 0..1, value 0..1
     float curve_t[BRUSH_CURVE_MAX], curve_v[BRUSH_CURVE_MAX];
     double spacing; // dab spacing along a stroke, as a fraction of the radius
+    int hold;       // held still, a stroke keeps dabbing (stroke_hold); 0: it does not
     int invert;
     tile_layer target; // coarse or detail (height tools); paint always edits materials
     int face;          // planet face edited (0 on flat worlds)

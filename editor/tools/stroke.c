@@ -24,8 +24,9 @@ struct stroke {
     int started;
     double last_x, last_z, last_p; // metres
     double first_x, first_z;
-    double carry; // distance walked since the last dab
-    float target; // flatten / set height
+    double carry;      // distance walked since the last dab
+    double hold_carry; // dabs owed to the brush held still, less those laid
+    float target;      // flatten / set height
     long dabs;
     size_t mips_from;      // dirty areas from here on have not reached the mip levels yet
     volume_stroke *volume; // the volume tools' stroke (3D points) instead of the above
@@ -134,6 +135,16 @@ int stroke_to(stroke *s, double x, double z, double pressure, og_error *err) {
         return og_error_set(err, "%s is a volume tool: it takes X Y Z points",
                             brush_tool_name(s->brush.tool));
     if (lay_to(s, x, z, pressure, err) != 0) return -1;
+    return show_live(s, err);
+}
+
+int stroke_hold(stroke *s, double seconds, og_error *err) {
+    if (!(seconds >= 0.0 && seconds <= 60.0))
+        return og_error_set(err, "stroke_hold: expected seconds in [0, 60], got '%g'", seconds);
+    if (s->volume || !s->started || !s->brush.hold || s->brush.tool == BRUSH_RAMP) return 0;
+    s->hold_carry += seconds * 2.0 / s->brush.spacing;
+    for (; s->hold_carry >= 1.0; s->hold_carry -= 1.0)
+        if (dab_at(s, s->last_x, s->last_z, s->last_p, err) != 0) return -1;
     return show_live(s, err);
 }
 

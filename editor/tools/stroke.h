@@ -19,6 +19,11 @@ int stroke_to(stroke *s, double x, double z, double pressure, og_error *err);
 // each form refuses the other's tools.
 int stroke_to_3d(stroke *s, const double p[3], double pressure, og_error *err);
 int stroke_is_volume(const stroke *s);
+// The brush rests at the stroke's last point for seconds (0-60): a brush held still
+// keeps applying, as in Unreal and Terrain3D, 2 / spacing dabs a second (the dabs a
+// pointer moving two radii a second lays), fractions carried to the next call. Nothing
+// when the brush's hold is 0, before the first point, for ramp and the volume tools.
+int stroke_hold(stroke *s, double seconds, og_error *err);
 // Commits the stroke as one undo step and frees it.
 int stroke_end(stroke *s, og_error *err);
 // Undoes what the stroke did so far and frees it.
