@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 void app_settings_default(app_settings *s) {
     memset(s, 0, sizeof *s);
@@ -157,10 +158,29 @@ int app_settings_save(const app_settings *s, const char *path, og_error *err) {
     return param_file_write_atomic(path, text, n, err);
 }
 
+// path as an absolute path (the file resolved when it exists, else joined to the
+// working directory), so a recent file opens from wherever the editor starts next.
+static void absolute_path(const char *path, char *out, size_t size) {
+    char *real = realpath(path, NULL);
+    if (real) {
+        snprintf(out, size, "%s", real);
+        free(real);
+        return;
+    }
+    char cwd[4096];
+    size_t used = 0;
+    if (path[0] != '/' && getcwd(cwd, sizeof cwd) && strlen(cwd) + 1 < size) {
+        used = strlen(cwd);
+        memcpy(out, cwd, used);
+        out[used++] = '/';
+    }
+    snprintf(out + used, size - used, "%s", path);
+}
+
 void app_settings_add_recent(app_settings *s, const char *path) {
     if (!path || !path[0]) return;
     char keep[1024];
-    snprintf(keep, sizeof keep, "%s", path);
+    absolute_path(path, keep, sizeof keep);
     int n = 0;
     char list[SETTINGS_RECENT][1024];
     snprintf(list[n++], sizeof list[0], "%s", keep);

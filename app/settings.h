@@ -47,7 +47,7 @@ void app_settings_path(char *buf, size_t size, const char *file);
 void app_settings_load(app_settings *s, const char *path);
 // Writes path atomically, creating its folder.
 int app_settings_save(const app_settings *s, const char *path, og_error *err);
-// Puts path first in the recent files (once).
+// Puts path first in the recent files (once), made absolute.
 void app_settings_add_recent(app_settings *s, const char *path);
 
 #endif
