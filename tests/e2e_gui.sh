@@ -612,17 +612,19 @@ dock_widget() {
     done
     return 1
 }
-if dock_widget "Dock/Sea level"; then # a scrub from the sea's level, past the right end
+if dock_widget "Dock/Sea level"; then # two scrubs from the middle to the right end
     cy=$((y + h / 2))
-    xdotool mousemove --window "$wid" $((x + w / 2)) $cy mousedown 1
-    sleep 0.15
-    xdotool mousemove --window "$wid" $((x + 3 * w / 4)) $cy
-    sleep 0.15
-    xdotool mousemove --window "$wid" $((x + w + 300)) $cy
-    sleep 0.15
+    for _ in 1 2; do
+        xdotool mousemove --window "$wid" $((x + w / 2)) $cy mousedown 1
+        sleep 0.15
+        xdotool mousemove --window "$wid" $((x + 3 * w / 4)) $cy
+        sleep 0.15
+        xdotool mousemove --window "$wid" $((x + w - 2)) $cy
+        sleep 0.15
+        xdotool mouseup 1
+        sleep 0.3
+    done
     import -window "$wid" "$art/gui_sea_drag.png" 2>/dev/null
-    xdotool mouseup 1
-    sleep 0.3
 fi
 rad=$(ask nparams '^radius = ')
 sea=""
