@@ -128,4 +128,5 @@ def main():
     sys.exit(1 if crowded or flipped or degenerate or twins or unused or open_inside or not faces else 0)
 
 
-main()
+if __name__ == '__main__':
+    main()

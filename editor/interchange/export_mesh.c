@@ -1,6 +1,8 @@
 #include "editor/interchange/export_mesh.h"
 
 #include "editor/interchange/export_solid.h"
+#include "editor/interchange/heightfield_error.h"
+#include "editor/interchange/heightfield_simplify.h"
 #include "editor/world/layer_grid.h"
 #include "io/image_read.h"
 #include "io/param_file.h"
@@ -149,15 +151,52 @@ static void bounds(mesh *m) {
 }
 
 // Simplifies to within error_m metres (meshoptimizer), borders kept so tiles still meet.
-static int simplify(mesh *m, double error_m, double *achieved_m) {
-    const float scale = meshopt_simplifyScale(m->v, m->vertices, sizeof(float) * VERTEX_FLOATS);
-    uint32_t *out = malloc(sizeof(uint32_t) * m->indices);
-    if (!out) return -1;
-    float result = 0;
-    size_t n =
-        meshopt_simplify(out, m->idx, m->indices, m->v, m->vertices, sizeof(float) * VERTEX_FLOATS,
-                         0, (float)(error_m / scale), meshopt_SimplifyLockBorder, &result);
-    *achieved_m = (double)result * scale;
+// Simplifies within error_m metres of vertical deviation, measured at every grid sample
+// (grid NULL: a volume surface, judged by meshoptimizer's own estimate). meshoptimizer
+// targets a 3D error and may fold triangles over steep ground, so each result is
+// measured and, if it strays or folds, redone with a smaller target; if none passes,
+// the mesh stays whole. *achieved_m: the measured maximum.
+// Simplifies within error_m metres. A heightfield (grid) becomes right triangles of a
+// regular hierarchy (heightfield_simplify.h: no folds, no cracks, the border included),
+// its true vertical deviation measured at every sample and the threshold lowered until
+// it keeps to error_m; *achieved_m is that measured maximum. A volume surface (grid
+// NULL) goes to meshoptimizer, *achieved_m its own estimate.
+static int simplify(mesh *m, const heightfield_grid *grid, double error_m, double *achieved_m) {
+    uint32_t *out = NULL;
+    size_t n = 0;
+    if (!grid) {
+        out = malloc(sizeof(uint32_t) * m->indices);
+        if (!out) return -1;
+        const float scale = meshopt_simplifyScale(m->v, m->vertices, sizeof(float) * VERTEX_FLOATS);
+        float result = 0;
+        n = meshopt_simplify(out, m->idx, m->indices, m->v, m->vertices,
+                             sizeof(float) * VERTEX_FLOATS, 0, (float)(error_m / scale),
+                             meshopt_SimplifyLockBorder, &result);
+        *achieved_m = (double)result * scale;
+    } else {
+        heightfield_rtin r;
+        if (heightfield_rtin_build(&r, grid->h, grid->w, grid->d) != 0) return -1;
+        double threshold = error_m;
+        for (int attempt = 0;; attempt++) {
+            free(out);
+            if (heightfield_rtin_mesh(&r, attempt < 8 ? threshold : 0, &out, &n) != 0) break;
+            heightfield_error e;
+            if (heightfield_error_measure(grid, m->v, VERTEX_FLOATS, out, n, &e) != 0) {
+                free(out);
+                out = NULL;
+                break;
+            }
+            *achieved_m = e.max_deviation;
+            if ((e.max_deviation <= error_m && e.folded == 0 && e.uncovered == 0) || attempt >= 8)
+                break;
+            // The split errors are along long edges; inside a triangle the ground may
+            // stray further: aim lower by the overshoot.
+            double shrink = 0.95 * error_m / e.max_deviation;
+            threshold *= shrink < 0.8 ? shrink : 0.8;
+        }
+        heightfield_rtin_free(&r);
+        if (!out) return -1;
+    }
     free(m->idx);
     m->idx = out;
     m->indices = n;
@@ -408,7 +447,9 @@ int export_mesh(world *w, const char *path, const export_mesh_options *o, export
         og_error_set(err, "%s: cancelled", path);
         goto done;
     }
-    if (o->simplify > 0 && simplify(&m, o->simplify, &rep->achieved_error) != 0) {
+    heightfield_grid grid = {h, W, D, g.spacing, ox, oz};
+    if (o->simplify > 0 &&
+        simplify(&m, volume ? NULL : &grid, o->simplify, &rep->achieved_error) != 0) {
         og_error_set(err, "%s: out of memory simplifying", path);
         goto done;
     }
