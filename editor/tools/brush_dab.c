@@ -317,23 +317,25 @@ static void transpose(const float *src, float *dst, int64_t w, int64_t h) {
         }
 }
 
+// Only rows [r0, r1) and columns [c0, c1) of dst are computed: the smoothed samples
+// the dab keeps depend on no others (each pass needs k fewer at each side).
 HOT_LOOP static void box_columns(const float *src, float *dst, int64_t w, int64_t h, int k,
-                                 double *sum) {
+                                 double *sum, int64_t r0, int64_t r1, int64_t c0, int64_t c1) {
     double inv = 1.0 / (2 * k + 1);
-    for (int64_t x = 0; x < w; x++)
+    for (int64_t x = c0; x < c1; x++)
         sum[x] = 0.0;
-    for (int64_t i = -k; i <= k; i++) {
+    for (int64_t i = r0 - k; i <= r0 + k; i++) {
         const float *s = src + (i < 0 ? 0 : i >= h ? h - 1 : i) * w;
-        for (int64_t x = 0; x < w; x++)
+        for (int64_t x = c0; x < c1; x++)
             sum[x] += s[x];
     }
-    for (int64_t i = 0; i < h; i++) {
+    for (int64_t i = r0; i < r1; i++) {
         float *o = dst + i * w;
-        for (int64_t x = 0; x < w; x++)
+        for (int64_t x = c0; x < c1; x++)
             o[x] = (float)(sum[x] * inv);
         int64_t add = i + k + 1, sub = i - k;
         const float *a = src + (add >= h ? h - 1 : add) * w, *r = src + (sub < 0 ? 0 : sub) * w;
-        for (int64_t x = 0; x < w; x++)
+        for (int64_t x = c0; x < c1; x++)
             sum[x] += (double)a[x] - (double)r[x];
     }
 }
@@ -371,14 +373,18 @@ static int neighbourhood(const brush_dab *d, float *heights, float *weight, grid
             return og_error_set(err, "out of memory smoothing (%lld x %lld samples)", (long long)w,
                                 (long long)h);
         }
+        // Rows first (on the transposed copy, every row of the area), then columns (the
+        // inner columns): two box passes each, each needing k fewer samples per side.
         transpose(heights, a, w, h);
-        box_columns(a, c, h, w, k, scratch);
-        box_columns(c, a, h, w, k, scratch);
+        box_columns(a, c, h, w, k, scratch, k, w - k, 0, h);
+        box_columns(c, a, h, w, k, scratch, 2 * k, w - 2 * k, 0, h);
         transpose(a, c, h, w);
-        box_columns(c, a, w, h, k, scratch);
-        box_columns(a, c, w, h, k, scratch);
+        box_columns(c, a, w, h, k, scratch, k, h - k, halo, w - halo);
+        box_columns(a, c, w, h, k, scratch, halo, h - halo, halo, w - halo);
         free(scratch);
-        blend_smoothed(heights, c, weight, b->invert, w * h);
+        for (int64_t z = halo; z < h - halo; z++) // weights are 0 outside the inner rect
+            blend_smoothed(heights + z * w + halo, c + z * w + halo, weight + z * w + halo,
+                           b->invert, w - 2 * halo);
         free(a);
         free(c);
         return 0;
