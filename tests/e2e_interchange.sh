@@ -232,6 +232,18 @@ files=$(ls "$work/date1" | wc -l)
 check "EXR and 16/32-bit TIFF tiles a second apart, one run and two shards: the same bytes ($files files)" $?
 run -c "$world; export $work/u.raw tiles=2x2 preset=unity"
 [ -s "$work/u_0_0.raw" ] && [ -s "$work/u_1_1.raw" ]; check "Unity tiles are named NAME_X_Z" $?
+# Presets size each tile as the engine imports one and print one tile's settings and
+# the set's placement; godot refuses float TIFF.
+[ "$(stat -c %s "$work/u_0_0.raw")" = $((513 * 513 * 2)) ] && grep -q "each tile (513 x 513 samples)" "$work/out" &&
+    grep -q "resolution 513; Terrain Width 2048" "$work/out" && grep -q "tile (x, y) starts at X = 0 + x \* 2048 m" "$work/out"
+check "Unity 2x2: 513 x 513 tiles, settings for one tile and the set's placement" $?
+run -c "$world; export $work/ue.png tiles=4x4 preset=unreal"
+size=$(iinfo "$work/ue_x3_y3.png" 2>/dev/null | sed -n 's/.*: *\([0-9]*\) x *\([0-9]*\),.*/\1x\2/p')
+[ $status = 0 ] && [ "$size" = 253x253 ] && grep -q "cropped 257 x 257 samples to 253 x 253" "$work/out"
+check "Unreal 4x4: each tile cropped to an Unreal size (253 x 253; got $size)" $?
+run -c "$world; export $work/godot.tif preset=godot"
+[ $status = 1 ] && grep -q "preset godot takes float heights in metres: name it .exr" "$work/err" && [ ! -e "$work/godot.tif" ]
+check "preset godot refuses a float TIFF" $?
 run -c "$world; export $work/g.png tiles=2x2 pattern={name}_y{y}_x{x}"
 [ -s "$work/g_y1_x0.png" ]; check "pattern= names tiles (Gaea-style y before x)" $?
 run -c "$world; export $work/s.png shard=1/2"

@@ -212,6 +212,11 @@ static int apply_preset(const char *path, const export_options *o, file_format f
         break;
     }
     case EXPORT_PRESET_GODOT:
+        // Terrain3D's importer reads EXR (and 8/16-bit images), not float TIFF.
+        if (f != FMT_EXR32)
+            return og_error_set(err, "%s: preset godot takes float heights in metres: name it .exr",
+                                path);
+        return 0;
     case EXPORT_PRESET_HOUDINI:
     case EXPORT_PRESET_BLENDER:
         if (f != FMT_EXR32 && f != FMT_TIFF32)
@@ -460,7 +465,11 @@ static int export_tiles(world *w, const layer_grid *g, const char *path, const e
                         og_error *err) {
     const int C = o->tiles_x, R = o->tiles_y;
     const int64_t W = r.x1 - r.x0, H = r.z1 - r.z0;
-    const int64_t tw = (W - 1) / C + 1, th = (H - 1) / R + 1;
+    int64_t tw = (W - 1) / C + 1, th = (H - 1) / R + 1;
+    // A preset sizes each tile as its engine imports one (the set follows).
+    char preset_change[512];
+    if (apply_preset(path, o, f, &tw, &th, preset_change, sizeof preset_change, err) != 0)
+        return -1;
     if (tw < 2 || th < 2)
         return og_error_set(err,
                             "%s: %lld x %lld samples cannot make %d x %d tiles of 2 samples "
@@ -476,10 +485,10 @@ static int export_tiles(world *w, const layer_grid *g, const char *path, const e
     const int64_t used_w = C * (tw - 1) + 1, used_h = R * (th - 1) + 1;
     if (used_w != W || used_h != H)
         snprintf(rep.changed, sizeof rep.changed,
-                 "tiles: the region is %lld x %lld samples; %d x %d tiles of %lld x %lld sharing "
-                 "their edges cover %lld x %lld of it (from the first corner)",
-                 (long long)W, (long long)H, C, R, (long long)tw, (long long)th, (long long)used_w,
-                 (long long)used_h);
+                 "%.200s%stiles: the region is %lld x %lld samples; %d x %d tiles of %lld x %lld "
+                 "sharing their edges cover %lld x %lld of it (from the first corner)",
+                 preset_change, preset_change[0] ? " per tile; " : "", (long long)W, (long long)H,
+                 C, R, (long long)tw, (long long)th, (long long)used_w, (long long)used_h);
     // One mapping for every tile and every shard: what was given, else the generator's range.
     rep.scale = 1.0, rep.offset = 0.0;
     const world_params *p = world_get_params(w);
@@ -567,7 +576,22 @@ static int export_tiles(world *w, const layer_grid *g, const char *path, const e
     }
     free(files);
     if (rc != 0) return -1;
-    print_hints(hints, o, f, &rep);
+    // The engine takes one tile at a time: its settings, then where each tile goes.
+    export_report tile = rep;
+    tile.width = (int)tw, tile.height = (int)th;
+    if (hints) fprintf(hints, "  each tile (%lld x %lld samples):\n", (long long)tw, (long long)th);
+    print_hints(hints, o, f, &tile);
+    if (hints)
+        fprintf(hints,
+                "  the set: %d x %d tiles; tile (x, y) starts at X = %.9g + x * %.9g m, Z = %.9g "
+                "+ y * %.9g m%s\n",
+                C, R, rep.origin_x, (double)(tw - 1) * g->spacing, rep.origin_z,
+                (double)(th - 1) * g->spacing,
+                o->preset == EXPORT_PRESET_UNREAL
+                    ? " (Unreal: Import from File with the _x{x}_y{y} tiles, section size to fit)"
+                : o->preset == EXPORT_PRESET_UNITY ? " (Unity: one terrain per tile, neighbours "
+                                                     "connected)"
+                                                   : "");
     if (report) *report = rep;
     return 0;
 }
@@ -643,15 +667,7 @@ int export_heightmap(world *w, const char *path, const export_options *o, FILE *
     grid_rect r;
     if (resolve_region(w, path, o, &g, &r, err) != 0) return -1;
     int64_t w64 = r.x1 - r.x0, h64 = r.z1 - r.z0;
-    if (o->tiles_x * o->tiles_y > 1) {
-        // Presets check the format; the tiles are cut as asked.
-        int64_t cw = 4097, ch = 4097; // fits every preset: nothing is cropped
-        char ignored[512];
-        export_options fmt_only = *o;
-        if (apply_preset(path, &fmt_only, f, &cw, &ch, ignored, sizeof ignored, err) != 0)
-            return -1;
-        return export_tiles(w, &g, path, o, f, r, hints, report, err);
-    }
+    if (o->tiles_x * o->tiles_y > 1) return export_tiles(w, &g, path, o, f, r, hints, report, err);
     if (o->shard_count > 1)
         return og_error_set(err, "%s: shard= splits a tiled export: give tiles=CxR too", path);
     if (w64 < 2 || h64 < 2)
