@@ -363,22 +363,44 @@ static void upload_window(terrain_renderer *r, clip_window *w, GLuint tex, int l
 
 // Level l's steepest step between neighbouring samples of its window (in sample order:
 // the toroidal mirror's wrap seam is not a step), in metres per metre.
-static void measure_slopes(terrain_renderer *r, int l) {
+static void measure_slopes(terrain_renderer *r, int l, int i0, int j0, int i1, int j1) {
     const clip_window *w = &r->heights[l];
     const float *h = (const float *)w->mirror;
     int n = w->size, mask = n - 1, x0 = (int)(w->have[0] & mask), z0 = (int)(w->have[1] & mask);
     float steepest = 0.0f;
-    for (int j = 0; j < n; j++) {
+    for (int j = j0; j < j1; j++) {
         const float *row = h + (size_t)((z0 + j) & mask) * n;
         const float *next = h + (size_t)((z0 + j + 1) & mask) * n;
-        for (int i = 0; i < n; i++) {
+        for (int i = i0; i < i1; i++) {
             int x = (x0 + i) & mask;
             float a = row[x];
             if (i + 1 < n) steepest = fmaxf(steepest, fabsf(row[(x + 1) & mask] - a));
             if (j + 1 < n) steepest = fmaxf(steepest, fabsf(next[x] - a));
         }
     }
-    r->slope_max[l] = steepest / (r->params.spacing * (double)((int64_t)1 << l));
+    double slope = steepest / (r->params.spacing * (double)((int64_t)1 << l));
+    if (i0 == 0 && j0 == 0 && i1 == n && j1 == n)
+        r->slope_max[l] = slope;
+    else
+        r->slope_max[l] = fmax(r->slope_max[l], slope);
+}
+
+// What a whole window's changes do to its slope bound: a move or an edit widens it by
+// the steps into and inside the texels that changed (a sample before each, as the
+// steps run forward); a refill or a fill under way measures it again once whole.
+static void slopes_changed(terrain_renderer *r, int l) {
+    const clip_window *w = &r->heights[l];
+    if (!(w->upload_all || w->upload_count > 0)) return;
+    if (w->upload_all || w->refill_started || !w->has_data || r->slope_stale[l]) {
+        r->slope_stale[l] = 1;
+        return;
+    }
+    int n = w->size, mask = n - 1;
+    for (int k = 0; k < w->upload_count; k++) {
+        const texel_rect *t = &w->uploads[k]; // never across the window's own seam
+        int i = (int)((t->x - w->have[0]) & mask), j = (int)((t->z - w->have[1]) & mask);
+        measure_slopes(r, l, i > 0 ? i - 1 : 0, j > 0 ? j - 1 : 0, i + t->w, j + t->h);
+    }
 }
 
 // Whether any texel of the material window holds paint (weight 0, "automatic", under
@@ -559,10 +581,10 @@ int terrain_renderer_update(terrain_renderer *r, world *w, const camera *cam,
     // Uploads, and which level each level draws from while its own is not current.
     for (int l = r->finest; l < r->levels; l++) {
         clip_window *hw = &r->heights[l];
-        r->slope_stale[l] |= hw->upload_all || hw->upload_count > 0;
+        slopes_changed(r, l);
         upload_window(r, hw, r->tex_heights, l, GL_RED, GL_FLOAT);
         if (r->slope_stale[l] && clip_window_current(hw, r->origin[l])) {
-            measure_slopes(r, l);
+            measure_slopes(r, l, 0, 0, hw->size, hw->size);
             r->slope_stale[l] = 0;
         }
     }
