@@ -154,15 +154,22 @@ static int settle(clip_window *w, tile_cache *c, int64_t x, int64_t z) {
     return 0;
 }
 
+// A cache whose tiles name their samples (expected()), made as g allows.
+static tile_cache *named_cache(slow_source *g) {
+    og_error err;
+    tile_cache *c = tile_cache_create(
+        &(tile_cache_desc){
+            .budget_bytes = 64u << 20, .workers = 2, .source = named_source, .source_user = g},
+        &err);
+    assert_non_null(c);
+    return c;
+}
+
 static void test_window_moves_toroidally(void **state) {
     (void)state;
     slow_source g = {PTHREAD_MUTEX_INITIALIZER, 0};
     og_error err;
-    tile_cache *c = tile_cache_create(
-        &(tile_cache_desc){
-            .budget_bytes = 64u << 20, .workers = 2, .source = named_source, .source_user = &g},
-        &err);
-    assert_non_null(c);
+    tile_cache *c = named_cache(&g);
     clip_window w;
     assert_int_equal(clip_window_init(&w, TILE_LAYER_COARSE, 0, 2, 256), 0);
     int64_t want[2] = {-300, 77};
@@ -240,11 +247,7 @@ static void test_window_fills_within_a_budget(void **state) {
     (void)state;
     slow_source g = {PTHREAD_MUTEX_INITIALIZER, 1};
     og_error err;
-    tile_cache *c = tile_cache_create(
-        &(tile_cache_desc){
-            .budget_bytes = 64u << 20, .workers = 2, .source = named_source, .source_user = &g},
-        &err);
-    assert_non_null(c);
+    tile_cache *c = named_cache(&g);
     clip_window w;
     assert_int_equal(clip_window_init(&w, TILE_LAYER_COARSE, 0, 1, 256), 0);
     struct {
