@@ -163,13 +163,14 @@ static void point_along_ray(window_state *st, double x, double y, double dist, d
 
 // A drag sculpts through the command language like any other action (stroke_begin,
 // stroke_to per mouse move, stroke_end), so it is echoed to a recording and replays
-// to the same terrain. Positions are written with 17 digits: the replay is exact.
+// to the same terrain. The points go to the queue as numbers (work_queue_add_point)
+// and are written with 17 digits only for the recording: the replay is exact.
 // The points queue up while earlier ones are still being laid (work_queue.h), so no
 // mouse move is lost however long a dab takes.
-static void sculpt_add(window_state *st, const char *text) {
+static void sculpt_add(window_state *st, const char *text, int flags) {
     st->dirty = 1;
     st->ui_dirty = 1;
-    work_queue_add(&st->work, text, "sculpt", WORK_STROKE);
+    work_queue_add(&st->work, text, "sculpt", WORK_STROKE | flags);
 }
 
 // A volume tool's brush centre for the mouse at (x, y): the picked surface pushed
@@ -208,19 +209,17 @@ static int planet_face_metres(window_state *st, int face, const double hit[3], d
 static void sculpt_to(window_state *st, double x, double y) {
     double hit[3];
     if (st->drag != DRAG_SCULPT || pick_at(st, x, y, hit) != 0) return; // off the terrain
-    char text[160];
+    cmd_stroke_point pt = {hit[0], 0, hit[2], 0};
     if (st->stroke_face >= 0) { // a planet: the stroke's face, in its metres
-        double fx, fz;
-        if (planet_face_metres(st, st->stroke_face, hit, &fx, &fz) != 0) return;
-        snprintf(text, sizeof text, "stroke_to %.17g %.17g", fx, fz);
+        if (planet_face_metres(st, st->stroke_face, hit, &pt.x, &pt.z) != 0) return;
     } else if (st->stroke_volume) {
         double p[3];
         if (volume_point(st, x, y, hit, p, 1) != 0) return;
-        snprintf(text, sizeof text, "stroke_to %.17g %.17g %.17g", p[0], p[1], p[2]);
-    } else {
-        snprintf(text, sizeof text, "stroke_to %.17g %.17g", hit[0], hit[2]);
+        pt = (cmd_stroke_point){p[0], p[1], p[2], 1};
     }
-    sculpt_add(st, text);
+    st->dirty = 1;
+    st->ui_dirty = 1;
+    work_queue_add_point(&st->work, &pt);
     st->stroke_points++;
 }
 
@@ -244,7 +243,7 @@ static void sculpt_begin(window_state *st, int mods) {
                  (mods & GLFW_MOD_SHIFT)     ? " tool=smooth"
                  : (mods & GLFW_MOD_CONTROL) ? (b->invert ? " invert=0" : " invert=1")
                                              : "");
-        sculpt_add(st, cmd);
+        sculpt_add(st, cmd, WORK_STROKE_BEGIN);
         sculpt_to(st, st->mouse_x, st->mouse_y);
         return;
     }
@@ -259,7 +258,7 @@ static void sculpt_begin(window_state *st, int mods) {
     } else if (mods & GLFW_MOD_CONTROL) {
         snprintf(cmd, sizeof cmd, "stroke_begin invert=%d", !st->ctx->brush.invert);
     }
-    sculpt_add(st, cmd);
+    sculpt_add(st, cmd, WORK_STROKE_BEGIN);
     sculpt_to(st, st->mouse_x, st->mouse_y);
 }
 
@@ -268,7 +267,7 @@ static void sculpt_begin(window_state *st, int mods) {
 static void sculpt_end(window_state *st) {
     if (st->drag != DRAG_SCULPT) return;
     st->drag = DRAG_NONE;
-    sculpt_add(st, "stroke_end");
+    sculpt_add(st, "stroke_end", 0);
     char echo[128];
     snprintf(echo, sizeof echo, "> stroke_begin; stroke_to ... (%d points); stroke_end",
              st->stroke_points);

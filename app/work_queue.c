@@ -19,36 +19,61 @@ static void report_error(work_queue *q, const char *msg) {
 }
 
 static void drop_item(work_item *it) {
-    free(it->text);
-    it->text = NULL;
+    cmd_work_free(&it->work);
+    free(it->echo);
+    it->echo = NULL;
+}
+
+static work_item *new_item(work_queue *q, const char *what, const char *label, int flags) {
+    if (q->count == WORK_QUEUE_MAX) {
+        char msg[256];
+        snprintf(msg, sizeof msg, "%s: too much work waiting; '%.80s' was dropped", label, what);
+        report_error(q, msg);
+        return NULL;
+    }
+    work_item *it = &q->items[q->count++];
+    memset(it, 0, sizeof *it);
+    snprintf(it->label, sizeof it->label, "%s", label);
+    it->flags = flags;
+    return it;
 }
 
 int work_queue_add(work_queue *q, const char *text, const char *label, int flags) {
-    // Stroke points that arrive while a job runs join the last waiting stroke text.
-    work_item *last = q->count ? &q->items[q->count - 1] : NULL;
-    if (last && (flags & WORK_STROKE) && (last->flags & WORK_STROKE) &&
-        strncmp(text, "stroke_to ", 10) == 0 && strncmp(last->text, "stroke_to ", 10) == 0) {
-        size_t a = strlen(last->text), b = strlen(text);
-        char *joined = realloc(last->text, a + b + 2);
-        if (joined) {
-            joined[a] = '\n';
-            memcpy(joined + a + 1, text, b + 1);
-            last->text = joined;
-            return 0;
-        }
-    }
-    char *copy = strdup(text);
-    if (q->count == WORK_QUEUE_MAX || !copy) {
-        free(copy);
-        char msg[256];
-        snprintf(msg, sizeof msg, "%s: too much work waiting; '%.80s' was dropped", label, text);
-        report_error(q, msg);
+    cmd_script script;
+    og_error err = {{0}};
+    if (cmd_script_parse(&script, text, strlen(text), label, &err) != 0) {
+        report_error(q, err.msg);
         return -1;
     }
-    work_item *it = &q->items[q->count++];
-    it->text = copy;
-    snprintf(it->label, sizeof it->label, "%s", label);
-    it->flags = flags;
+    char *echo = (flags & WORK_ECHO) ? strdup(text) : NULL;
+    work_item *it = (flags & WORK_ECHO) && !echo ? NULL : new_item(q, text, label, flags);
+    if (!it) {
+        if ((flags & WORK_ECHO) && !echo) report_error(q, "out of memory");
+        cmd_script_free(&script);
+        free(echo);
+        return -1;
+    }
+    it->work.script = script;
+    it->echo = echo;
+    return 0;
+}
+
+int work_queue_add_point(work_queue *q, const cmd_stroke_point *p) {
+    // Points that arrive while a job runs join the last waiting ones: one job lays them.
+    work_item *it = q->count ? &q->items[q->count - 1] : NULL;
+    if (!it || !it->work.points) {
+        it = new_item(q, "a stroke's point", "sculpt", WORK_STROKE);
+        if (!it) return -1;
+    }
+    cmd_work *w = &it->work;
+    cmd_stroke_point *grown = realloc(w->points, (w->point_count + 1) * sizeof *grown);
+    if (!grown) {
+        if (!w->points) q->count--; // the item just made
+        report_error(q, "sculpt: out of memory; a stroke's point was dropped");
+        return -1;
+    }
+    w->points = grown;
+    w->points[w->point_count++] = *p;
     return 0;
 }
 
@@ -93,10 +118,7 @@ static void finished(work_queue *q, int rc, const og_error *err, int cancelled) 
     q->ran = 1;
     if (rc != 0) report_error(q, err->msg);
     if (rc != 0 && cancelled) {
-        if (q->ctx->stroke) { // (a failing stroke_to has already abandoned it)
-            og_error ignored = {{0}};
-            cmd_run(q->ctx, "stroke_cancel", 13, "cancel", &ignored);
-        }
+        cmd_cancel_stroke(q->ctx); // (a failing stroke_to has already abandoned it)
         if (q->running.flags & WORK_STROKE) report_error(q, "cancelled: the stroke was undone");
         drop_stroke_items(q);
         q->stroke_cancelled = 1;
@@ -123,24 +145,24 @@ void work_queue_pump(work_queue *q, double wait_ms) {
         q->count--;
         work_item *it = &q->running;
         // Points of a stroke that never began (or was cancelled) have nothing to go to.
-        if ((it->flags & WORK_STROKE) && strncmp(it->text, "stroke_begin", 12) != 0 &&
-            !q->ctx->stroke) {
+        if ((it->flags & WORK_STROKE) && !(it->flags & WORK_STROKE_BEGIN) &&
+            !cmd_stroke_is_open(q->ctx)) {
             drop_item(it);
             continue;
         }
-        if (it->flags & WORK_ECHO) {
+        if (it->echo) {
             char echo[CONSOLE_INPUT + 4];
-            snprintf(echo, sizeof echo, "> %s", it->text);
+            snprintf(echo, sizeof echo, "> %s", it->echo);
             console_add(q->console, CONSOLE_ECHO, echo);
         }
         capture_begin(q);
         og_error err = {{0}};
-        if (!cmd_text_is_builtin(it->text, strlen(it->text))) { // GL or window state: here
-            int rc = cmd_run(q->ctx, it->text, strlen(it->text), it->label, &err);
+        if (!it->work.points && !cmd_script_is_builtin(&it->work.script)) { // GL or window state
+            int rc = cmd_script_run(q->ctx, &it->work.script, &err);
             finished(q, rc, &err, 0);
             continue;
         }
-        q->job = cmd_job_start(q->ctx, it->text, it->label, q->wake, q->wake_user, &err);
+        q->job = cmd_job_run(q->ctx, &it->work, it->label, q->wake, q->wake_user, &err);
         if (!q->job) {
             finished(q, -1, &err, 0);
             continue;

@@ -1,4 +1,6 @@
-// The window's queue of command text, run in order. The command language's own
+// The window's queue of commands, run in order: text tokenised once when it is queued,
+// and a drag's stroke points as numbers. The queue knows no command words. The
+// command language's own
 // commands (edits, strokes, stamps, undo, generate, save...) run on a job thread
 // (editor/cmd/cmd_job.h), so long work never freezes the window: while a job runs the
 // window shows its progress and a Cancel button, and touches neither the command
@@ -13,12 +15,14 @@
 #define WORK_QUEUE_MAX 256
 
 typedef enum work_flags {
-    WORK_ECHO = 1,   // echo the text in the console before it runs
-    WORK_STROKE = 2, // part of a mouse stroke: consecutive ones run as one job
+    WORK_ECHO = 1,         // echo the text in the console before it runs
+    WORK_STROKE = 2,       // part of a mouse stroke: dropped when no stroke is open
+    WORK_STROKE_BEGIN = 4, // opens the mouse stroke (runs with none open)
 } work_flags;
 
 typedef struct work_item {
-    char *text;
+    cmd_work work; // commands, or a stroke's points (consecutive ones run as one job)
+    char *echo;    // the text as queued, for the console (WORK_ECHO), else NULL
     char label[16];
     int flags;
 } work_item;
@@ -43,8 +47,11 @@ void work_queue_init(work_queue *q, cmd_context *ctx, console *c, void (*wake)(v
 // Cancels a running job and waits for it; drops what is queued.
 void work_queue_free(work_queue *q);
 
-// Queues text. Returns -1 when the queue is full (the text is reported and dropped).
+// Queues text (tokenised here, once). Returns -1 when the queue is full (the text is
+// reported and dropped).
 int work_queue_add(work_queue *q, const char *text, const char *label, int flags);
+// Queues a point of the open mouse stroke (it joins points still waiting). -1 as above.
+int work_queue_add_point(work_queue *q, const cmd_stroke_point *p);
 // Finishes a job that has ended, then runs queued text until the queue is empty or a
 // job is still running after wait_ms.
 void work_queue_pump(work_queue *q, double wait_ms);

@@ -219,12 +219,10 @@ int main(void) {
         world_event ev[64];
         while (world_subscription_take(changes, ev, 64) > 0) {
         }
-        char cmd[128];
         // Around the picked point (5 x 3 spots 25 m apart): every dab is in view.
-        snprintf(cmd, sizeof cmd, "stroke_to %.17g %.17g", hit[0] + 25.0 * (d % 5 - 2),
-                 hit[2] + 25.0 * (d / 5 - 1));
+        cmd_stroke_point pt = {hit[0] + 25.0 * (d % 5 - 2), 0, hit[2] + 25.0 * (d / 5 - 1), 0};
         double t0 = bench_now(), shown = 0, one_frame = 0;
-        work_queue_add(&q, cmd, "sculpt", WORK_STROKE);
+        work_queue_add_point(&q, &pt);
         while (!work_queue_idle(&q))
             work_queue_pump(&q, 30);
         frames_needed[d] = 0;

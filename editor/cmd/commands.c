@@ -4,6 +4,7 @@
 #include "editor/edit/recover.h"
 #include "editor/cmd/edit_commands.h"
 #include "editor/cmd/interchange_commands.h"
+#include "editor/cmd/record.h"
 #include "editor/cmd/volume_commands.h"
 #include "editor/cmd/tokenize.h"
 #include "editor/gen/gen.h"
@@ -576,35 +577,6 @@ static int c_cmdlist(cmd_context *ctx, int argc, char **argv, og_error *err) {
 
 // ---- driver ----------------------------------------------------------------------
 
-// Writes the command to a recording, quoted so that running the file repeats it.
-static void record_to(FILE *f, int argc, char **argv) {
-    for (int k = 0; k < argc; k++) {
-        const char *a = argv[k];
-        int plain = *a != 0;
-        for (const char *c = a; *c && plain; c++)
-            plain = !(*c == ' ' || *c == '\t' || *c == '\r' || *c == '\n' || *c == ';' ||
-                      *c == '#' || *c == '"' || *c == '\\');
-        fputs(k ? " " : "", f);
-        if (plain) {
-            fputs(a, f);
-            continue;
-        }
-        fputc('"', f);
-        for (const char *c = a; *c; c++) {
-            if (*c == '"' || *c == '\\') fputc('\\', f);
-            fputc(*c, f);
-        }
-        fputc('"', f);
-    }
-    fputc('\n', f);
-    fflush(f); // a crash keeps every command that ran
-}
-
-static void record(cmd_context *ctx, int argc, char **argv) {
-    if (ctx->record) record_to(ctx->record, argc, argv);
-    if (ctx->session) record_to(ctx->session, argc, argv);
-}
-
 static int execute(cmd_context *ctx, int argc, char **argv, og_error *err) {
     const cmd_def *c = find_command(argv[0]);
     if (!c) return og_error_set(err, "unknown command '%s' (try 'cmdlist' or 'help')", argv[0]);
@@ -618,24 +590,18 @@ static int execute(cmd_context *ctx, int argc, char **argv, og_error *err) {
     // `exit` is left out: a replay goes on to whatever follows it.
     if ((ctx->record || ctx->session) && c->run != c_exit && !(c->flags & CMD_NOT_RECORDED) &&
         !ctx->skip_record)
-        record(ctx, argc, argv);
+        cmd_record(ctx, argc, argv);
     return 0;
 }
 
-// 1 when every command of text passes the test (and the text parses).
-static int every_command(const char *text, size_t len, int (*test)(const cmd_def *c, int flags),
-                         int flags) {
-    cmd_tokenizer t;
-    cmd_tokenizer_init(&t, text, len, "");
-    int argc, line, rc, all = 1;
-    char **argv;
-    og_error ignored = {{0}};
-    while (all && (rc = cmd_tokenizer_next(&t, &argc, &argv, &line, &ignored)) == 1) {
-        const cmd_def *c = find_command(argv[0]);
-        all = c && test(c, flags);
+// 1 when every command of the script passes the test (and the text parsed).
+static int every_command(const cmd_script *s, int (*test)(const cmd_def *c, int flags), int flags) {
+    if (s->malformed) return 0;
+    for (size_t i = 0; i < s->count; i++) {
+        const cmd_def *c = find_command(s->calls[i].argv[0]);
+        if (!c || !test(c, flags)) return 0;
     }
-    cmd_tokenizer_free(&t);
-    return all && rc == 0;
+    return 1;
 }
 
 static int is_builtin(const cmd_def *c, int flags) {
@@ -647,28 +613,52 @@ static int has_flags(const cmd_def *c, int flags) {
     return (c->flags & flags) == flags;
 }
 
+int cmd_script_is_builtin(const cmd_script *s) {
+    return every_command(s, is_builtin, 0);
+}
+
+int cmd_script_all_flagged(const cmd_script *s, int flags) {
+    return every_command(s, has_flags, flags);
+}
+
+// Text checks tokenise the text for the question only (an empty script on no memory).
+static int text_test(const char *text, size_t len, int (*test)(const cmd_def *c, int flags),
+                     int flags) {
+    cmd_script s;
+    og_error ignored = {{0}};
+    if (cmd_script_parse(&s, text, len, "", &ignored) != 0) return 0;
+    int all = every_command(&s, test, flags);
+    cmd_script_free(&s);
+    return all;
+}
+
 int cmd_text_is_builtin(const char *text, size_t len) {
-    return every_command(text, len, is_builtin, 0);
+    return text_test(text, len, is_builtin, 0);
 }
 
 int cmd_text_all_flagged(const char *text, size_t len, int flags) {
-    return every_command(text, len, has_flags, flags);
+    return text_test(text, len, has_flags, flags);
+}
+
+int cmd_script_run(cmd_context *ctx, const cmd_script *s, og_error *err) {
+    og_error inner = {{0}};
+    for (size_t i = 0; i < s->count; i++) {
+        const cmd_call *c = &s->calls[i];
+        if (execute(ctx, c->argc, c->argv, &inner) != 0)
+            return og_error_set(err, "%s:%d: error: %s", s->label, c->line, inner.msg);
+        if (ctx->exit_requested) return 0;
+    }
+    if (s->malformed) {
+        *err = s->parse_error;
+        return -1;
+    }
+    return 0;
 }
 
 int cmd_run(cmd_context *ctx, const char *text, size_t len, const char *label, og_error *err) {
-    cmd_tokenizer t;
-    cmd_tokenizer_init(&t, text, len, label);
-    int argc, line, rc;
-    char **argv;
-    og_error inner = {{0}};
-    while ((rc = cmd_tokenizer_next(&t, &argc, &argv, &line, err)) == 1) {
-        if (execute(ctx, argc, argv, &inner) != 0) {
-            og_error_set(err, "%s:%d: error: %s", label, line, inner.msg);
-            rc = -1;
-            break;
-        }
-        if (ctx->exit_requested) break;
-    }
-    cmd_tokenizer_free(&t);
-    return rc < 0 ? -1 : 0;
+    cmd_script s;
+    if (cmd_script_parse(&s, text, len, label, err) != 0) return -1;
+    int rc = cmd_script_run(ctx, &s, err);
+    cmd_script_free(&s);
+    return rc;
 }

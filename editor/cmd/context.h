@@ -35,8 +35,8 @@ typedef struct cmd_context {
     int skip_record;         // set by a command that must not be recorded this time
     char resource_dir[4096]; // built-in resources (stamp library in resource_dir/stamps)
     char stamp_dir[4096];    // the user's stamp folder
-    // State of commands registered from outside (the renderer's view commands keep
-    // their viewport here: made by the first view command, or set by the window).
+    // State of commands registered from outside (view/view_commands.c keeps
+    // its viewport here: made by the first view command, or set by the window).
     // The command language never looks inside; app/ frees it.
     void *view_state;
 } cmd_context;

@@ -1,5 +1,7 @@
 #include "editor/cmd/edit_commands.h"
 
+#include "editor/cmd/record.h"
+
 #include "io/param_file.h"
 
 #include "editor/edit/edit.h"
@@ -200,34 +202,64 @@ static int no_stroke(const char *name, og_error *err) {
     return og_error_set(err, "%s: no stroke in progress (stroke_begin starts one)", name);
 }
 
+// Undoes the open stroke's dabs and closes it.
+static void stroke_abandon(cmd_context *ctx) {
+    stroke_cancel(ctx->stroke);
+    ctx->stroke = NULL;
+}
+
+// Lays the open stroke's next dab (the stroke is open). A failed dab leaves the stroke
+// half-applied: it is abandoned whole.
+static int stroke_point(cmd_context *ctx, const double p[3], double pressure, og_error *err) {
+    int rc = stroke_is_volume(ctx->stroke) ? stroke_to_3d(ctx->stroke, p, pressure, err)
+                                           : stroke_to(ctx->stroke, p[0], p[2], pressure, err);
+    if (rc != 0) stroke_abandon(ctx);
+    return rc;
+}
+
 int cmd_stroke_to(cmd_context *ctx, int argc, char **argv, og_error *err) {
     if (!ctx->stroke) return no_stroke(argv[0], err);
-    int rc;
+    double p[3] = {0}, pressure = 1.0;
     if (stroke_is_volume(ctx->stroke)) {
-        double(*points)[3] = NULL, *pressure = NULL;
+        double(*points)[3] = NULL, *pressures = NULL;
         size_t count = 0;
-        rc = volume_points(argv[0], brush_tool_name(ctx->brush.tool), argc, argv, 1, &points,
-                           &pressure, &count, err);
-        if (rc == 0) rc = stroke_to_3d(ctx->stroke, points[0], pressure[0], err);
+        int rc = volume_points(argv[0], brush_tool_name(ctx->brush.tool), argc, argv, 1, &points,
+                               &pressures, &count, err);
+        if (rc == 0) memcpy(p, points[0], sizeof p), pressure = pressures[0];
         free(points);
-        free(pressure);
+        free(pressures);
+        if (rc != 0) {
+            stroke_abandon(ctx);
+            return -1;
+        }
     } else {
-        double x = 0, z = 0, pressure = 1.0;
         if (argc > 4)
             return og_error_set(err,
                                 "stroke_to: the stroke's tool takes X Z [PRESSURE] (got %d "
                                 "numbers)",
                                 argc - 1);
-        if (parse_point(argv, 1, &x, &z, err) != 0) return -1;
+        if (parse_point(argv, 1, &p[0], &p[2], err) != 0) return -1;
         if (argc > 3 && parse_number(argv[3], "pressure", &pressure, err) != 0) return -1;
-        rc = stroke_to(ctx->stroke, x, z, pressure, err);
     }
-    if (rc != 0) {
-        // A failed dab leaves the stroke half-applied: abandon it whole.
-        stroke_cancel(ctx->stroke);
-        ctx->stroke = NULL;
-        return -1;
-    }
+    return stroke_point(ctx, p, pressure, err);
+}
+
+int cmd_stroke_to_point(cmd_context *ctx, const cmd_stroke_point *pt, og_error *err) {
+    if (!ctx->stroke) return no_stroke("stroke_to", err);
+    int volume = stroke_is_volume(ctx->stroke);
+    if (pt->volume != volume)
+        return og_error_set(err, "stroke_to: the stroke's tool takes %s", volume ? "X Y Z" : "X Z");
+    double p[3] = {pt->x, pt->y, pt->z};
+    if (stroke_point(ctx, p, 1.0, err) != 0) return -1;
+    // The command it stands for, for --record and `history script`: 17 significant
+    // digits read back as the same doubles, so a replay lays the same dabs.
+    char numbers[3][32];
+    char *argv[5] = {"stroke_to", numbers[0], numbers[1], numbers[2], NULL};
+    snprintf(numbers[0], sizeof numbers[0], "%.17g", pt->x);
+    snprintf(numbers[1], sizeof numbers[1], "%.17g", volume ? pt->y : pt->z);
+    snprintf(numbers[2], sizeof numbers[2], "%.17g", pt->z);
+    if (!volume) argv[3] = NULL;
+    cmd_record(ctx, volume ? 4 : 3, argv);
     return 0;
 }
 
@@ -237,11 +269,21 @@ int cmd_stroke_hold(cmd_context *ctx, int argc, char **argv, og_error *err) {
     double seconds;
     if (parse_number(argv[1], "seconds", &seconds, err) != 0) return -1;
     if (stroke_hold(ctx->stroke, seconds, err) != 0) {
-        stroke_cancel(ctx->stroke); // as stroke_to: a failed dab abandons the stroke whole
-        ctx->stroke = NULL;
+        stroke_abandon(ctx); // as stroke_to: a failed dab abandons the stroke whole
         return -1;
     }
     return 0;
+}
+
+int cmd_stroke_is_open(const cmd_context *ctx) {
+    return ctx->stroke != NULL;
+}
+
+void cmd_cancel_stroke(cmd_context *ctx) {
+    if (!ctx->stroke) return;
+    stroke_abandon(ctx);
+    char *argv[] = {"stroke_cancel", NULL};
+    cmd_record(ctx, 1, argv);
 }
 
 int cmd_end_stroke(cmd_context *ctx, og_error *err) {
@@ -264,8 +306,7 @@ int cmd_stroke_end(cmd_context *ctx, int argc, char **argv, og_error *err) {
 int cmd_stroke_cancel(cmd_context *ctx, int argc, char **argv, og_error *err) {
     (void)argc;
     if (!ctx->stroke) return no_stroke(argv[0], err);
-    stroke_cancel(ctx->stroke);
-    ctx->stroke = NULL;
+    stroke_abandon(ctx);
     return 0;
 }
 
