@@ -6,6 +6,7 @@
 #include "app/camera_controls.h"
 #include "app/dynamic_resolution.h"
 #include "app/editor_ui.h"
+#include "app/sculpt_drag.h"
 #include "app/settings.h"
 #include "app/tool_settings.h"
 #include "app/work_queue.h"
@@ -103,12 +104,9 @@ typedef struct window_state {
     brush_cursor drawn_cursor;
     float drawn_scale;
     int drawn_w, drawn_h;
-    int world_changed;     // change notifications since the terrain image
-    int stroke_points;     // stroke_to commands of the current drag
-    int stroke_volume;     // the drag is a volume tool's: 3D points
-    int stroke_face;       // a planet's stroke: the face its points are given on (else -1)
-    double stroke_plane_y; // a volume drag locked to a plane: its height
-    double px_scale;       // framebuffer pixels per window unit (HiDPI)
+    int world_changed;  // change notifications since the terrain image
+    sculpt_drag sculpt; // the left button's sculpting drag
+    double px_scale;    // framebuffer pixels per window unit (HiDPI)
     app_settings settings;
     char settings_path[4096], history_path[4096];
 
@@ -161,105 +159,22 @@ static void point_along_ray(window_state *st, double x, double y, double dist, d
 
 // --- sculpting ---------------------------------------------------------------------
 
-// A drag sculpts through the command language like any other action (stroke_begin,
-// stroke_to per mouse move, stroke_end), so it is echoed to a recording and replays
-// to the same terrain. The points go to the queue as numbers (work_queue_add_point)
-// and are written with 17 digits only for the recording: the replay is exact.
-// The points queue up while earlier ones are still being laid (work_queue.h), so no
-// mouse move is lost however long a dab takes.
-static void sculpt_add(window_state *st, const char *text, int flags) {
-    st->dirty = 1;
-    st->ui_dirty = 1;
-    work_queue_add(&st->work, text, "sculpt", WORK_STROKE | flags);
-}
-
-// A volume tool's brush centre for the mouse at (x, y): the picked surface pushed
-// `depth` metres along the view ray, or the ray's crossing of the drag's level plane.
-static int volume_point(window_state *st, double x, double y, const double hit[3], double out[3],
-                        int dragging) {
-    const brush *b = &st->ctx->brush;
-    ui_rect r = st->view_rect;
-    double dir[3];
-    camera_ray(&st->v->cam, (double)r.w / r.h, (x - r.x) / r.w, (y - r.y) / r.h, dir);
-    if (dragging && b->lock_plane && st->stroke_points > 0) {
-        double dy = st->stroke_plane_y - st->v->cam.pos[1];
-        if (fabs(dir[1]) < 1e-9 || dy / dir[1] <= 0) return -1; // the ray never meets it
-        for (int a = 0; a < 3; a++)
-            out[a] = st->v->cam.pos[a] + dir[a] * (dy / dir[1]);
-        return 0;
-    }
-    for (int a = 0; a < 3; a++)
-        out[a] = hit[a] + dir[a] * b->depth;
-    if (dragging && st->stroke_points == 0) st->stroke_plane_y = out[1];
-    return 0;
-}
-
-// Planets: a picked point in face-local metres of face `face` (past its edges when the
-// point lies on a neighbour: strokes may cross an edge). 0, or -1 when it points away.
-static int planet_face_metres(window_state *st, int face, const double hit[3], double *x,
-                              double *z) {
-    const world_params *p = world_get_params(st->ctx->world);
-    double s, t, n = (double)world_grid_face_samples(p);
-    if (!world_grid_face_coords_on(face, hit, &s, &t)) return -1;
-    *x = ((s + 1.0) * 0.5 * n - 0.5) * p->spacing;
-    *z = ((t + 1.0) * 0.5 * n - 0.5) * p->spacing;
-    return 0;
-}
-
-static void sculpt_to(window_state *st, double x, double y) {
-    double hit[3];
-    if (st->drag != DRAG_SCULPT || pick_at(st, x, y, hit) != 0) return; // off the terrain
-    cmd_stroke_point pt = {hit[0], 0, hit[2], 0};
-    if (st->stroke_face >= 0) { // a planet: the stroke's face, in its metres
-        if (planet_face_metres(st, st->stroke_face, hit, &pt.x, &pt.z) != 0) return;
-    } else if (st->stroke_volume) {
-        double p[3];
-        if (volume_point(st, x, y, hit, p, 1) != 0) return;
-        pt = (cmd_stroke_point){p[0], p[1], p[2], 1};
-    }
-    st->dirty = 1;
-    st->ui_dirty = 1;
-    work_queue_add_point(&st->work, &pt);
-    st->stroke_points++;
+static sculpt_view sculpt_view_of(const window_state *st) {
+    return (sculpt_view){st->v, st->view_rect};
 }
 
 // Ctrl held inverts the tool for the stroke, Shift smooths instead (Unreal, Terrain3D);
 // for the volume tools Ctrl swaps fill and carve and Shift smooths in 3D.
 static void sculpt_begin(window_state *st, int mods) {
-    st->stroke_points = 0;
-    const brush *b = &st->ctx->brush;
-    st->stroke_volume = brush_tool_is_volume(b->tool);
-    char cmd[96] = "stroke_begin";
-    st->stroke_face = -1;
-    double hit[3];
-    if (world_get_params(st->ctx->world)->kind == WORLD_PLANET && !st->stroke_volume &&
-        pick_at(st, st->mouse_x, st->mouse_y, hit) == 0) {
-        // The stroke's face is where it starts; it may run over the edges from there.
-        double s, t;
-        world_grid_direction_face(hit, &st->stroke_face, &s, &t);
-        char face[32];
-        snprintf(face, sizeof face, "face=%d", st->stroke_face);
-        snprintf(cmd, sizeof cmd, "stroke_begin %s%s", face,
-                 (mods & GLFW_MOD_SHIFT)     ? " tool=smooth"
-                 : (mods & GLFW_MOD_CONTROL) ? (b->invert ? " invert=0" : " invert=1")
-                                             : "");
-        sculpt_add(st, cmd, WORK_STROKE_BEGIN);
-        sculpt_to(st, st->mouse_x, st->mouse_y);
-        return;
-    }
-    if (st->stroke_volume) {
-        if (mods & GLFW_MOD_SHIFT)
-            snprintf(cmd, sizeof cmd, "stroke_begin tool=vsmooth");
-        else if ((mods & GLFW_MOD_CONTROL) && (b->tool == BRUSH_FILL || b->tool == BRUSH_CARVE))
-            snprintf(cmd, sizeof cmd, "stroke_begin tool=%s",
-                     b->tool == BRUSH_FILL ? "carve" : "fill");
-    } else if (mods & GLFW_MOD_SHIFT) {
-        snprintf(cmd, sizeof cmd, "stroke_begin tool=smooth");
-    } else if (mods & GLFW_MOD_CONTROL) {
-        snprintf(cmd, sizeof cmd, "stroke_begin invert=%d", !st->ctx->brush.invert);
-    }
-    sculpt_add(st, cmd, WORK_STROKE_BEGIN);
-    sculpt_to(st, st->mouse_x, st->mouse_y);
+    st->dirty = st->ui_dirty = 1;
+    sculpt_drag_begin(&st->sculpt, &st->work, st->ctx, sculpt_view_of(st), st->mouse_x, st->mouse_y,
+                      (mods & GLFW_MOD_SHIFT) != 0, (mods & GLFW_MOD_CONTROL) != 0);
+}
+
+static void sculpt_to(window_state *st, double x, double y) {
+    if (st->drag != DRAG_SCULPT) return;
+    st->dirty = st->ui_dirty = 1;
+    sculpt_drag_to(&st->sculpt, &st->work, sculpt_view_of(st), x, y);
 }
 
 // Commits the drag's stroke (one undo step); a stroke that laid no dab leaves no step.
@@ -267,10 +182,10 @@ static void sculpt_begin(window_state *st, int mods) {
 static void sculpt_end(window_state *st) {
     if (st->drag != DRAG_SCULPT) return;
     st->drag = DRAG_NONE;
-    sculpt_add(st, "stroke_end", 0);
+    st->dirty = st->ui_dirty = 1;
+    int points = sculpt_drag_end(&st->sculpt, &st->work);
     char echo[128];
-    snprintf(echo, sizeof echo, "> stroke_begin; stroke_to ... (%d points); stroke_end",
-             st->stroke_points);
+    snprintf(echo, sizeof echo, "> stroke_begin; stroke_to ... (%d points); stroke_end", points);
     console_add(&st->ed.console, CONSOLE_ECHO, echo);
 }
 
@@ -393,7 +308,10 @@ static void pump_work(window_state *st) {
     if (st->work.stroke_cancelled) { // Esc or Cancel ended the stroke: the drag is over
         st->work.stroke_cancelled = 0;
         if (st->drag == DRAG_SCULPT) st->drag = DRAG_NONE;
+        sculpt_drag_cancelled(&st->sculpt);
     }
+    // A planet drag's moves during the job, picked now the world is free.
+    sculpt_drag_flush(&st->sculpt, &st->work, sculpt_view_of(st));
 }
 
 // Runs every complete line waiting on standard input, without blocking.
@@ -556,7 +474,7 @@ static void on_mouse_button(GLFWwindow *win, int button, int action, int mods) {
             int face = -1;
             if (world_get_params(st->ctx->world)->kind == WORLD_PLANET) { // that face's metres
                 world_grid_direction_face(hit, &face, &s, &t);
-                planet_face_metres(st, face, hit, &x, &z);
+                sculpt_face_metres(world_get_params(st->ctx->world), face, hit, &x, &z);
             }
             if (stamp_browser_command(&st->ed.stamps, x, z, cmd, sizeof cmd) == 0) {
                 if (face >= 0) {
@@ -1057,7 +975,8 @@ static void update_cursor(window_state *st) {
     if (bc->sphere) { // where the next point would go, as big as the ball it would lay
         double p[3];
         bc->visible =
-            volume_point(st, st->mouse_x, st->mouse_y, hit, p, st->drag == DRAG_SCULPT) == 0;
+            sculpt_volume_point(st->drag == DRAG_SCULPT ? &st->sculpt : NULL, b, sculpt_view_of(st),
+                                st->mouse_x, st->mouse_y, hit, p) == 0;
         bc->x = p[0], bc->y = p[1], bc->z = p[2];
         if (b->tool == BRUSH_FILL || b->tool == BRUSH_CARVE) {
             bc->radius *= strength;

@@ -188,9 +188,14 @@ int viewport_pick_loaded(viewport *v, world *w, double sx, double sy, double asp
                          double hit[3]) {
     if (!v->renderer) return -1;
     if (world_get_params(w)->kind == WORLD_PLANET) return planet_pick(v, w, sx, sy, aspect, 0, hit);
+    return viewport_pick_shown(v, world_get_params(w), sx, sy, aspect, hit);
+}
+
+int viewport_pick_shown(viewport *v, const world_params *p, double sx, double sy, double aspect,
+                        double hit[3]) {
+    if (!v->renderer || p->kind == WORLD_PLANET) return -1;
     double dir[3];
     camera_ray(&v->cam, aspect, sx, sy, dir);
-    const world_params *p = world_get_params(w);
     // As far as the coarsest level reaches; steps of one coarse sample near the camera.
     double reach = 0.75 * 254 * p->spacing * (double)((int64_t)1 << (v->settings.levels - 1));
     int ground = pick_ray(shown_height, v->renderer, v->cam.pos, dir, reach, p->spacing, hit);

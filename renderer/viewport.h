@@ -57,6 +57,11 @@ int viewport_screenshot(viewport *v, world *w, const char *path, int width, int 
 // The same without waiting, against whatever the levels hold now (the window's
 // brushes): sx, sy in [0, 1] from the top-left. 0 and hit, or -1 on no terrain.
 int viewport_pick_loaded(viewport *v, world *w, double sx, double sy, double aspect, double hit[3]);
+// Flat worlds' picking reads only what the renderer holds (its levels and volume
+// meshes) and the parameters given, never the world's tiles: the window may use it
+// while a job owns the world. -1 on planets (their picking reads the world).
+int viewport_pick_shown(viewport *v, const world_params *p, double sx, double sy, double aspect,
+                        double hit[3]);
 int viewport_pick(viewport *v, world *w, double px, double py, int width, int height, double hit[3],
                   og_error *err);
 // As viewport_pick, but on a planet the sea floor under the sea (the ground, not the
