@@ -15,10 +15,12 @@
 #include <cstring>
 #include <exception>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
 #include <fcntl.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -431,11 +433,56 @@ int write_samples_impl(const char *path, const float *samples, int width, int he
 
 } // namespace
 
+// libpng (under OIIO) prints "libpng error: ..." straight to stderr before OIIO turns
+// the same text into its own error. While a file is read, fd 2 goes to a memory file:
+// on failure the text is already in our message and is dropped; on success (warnings)
+// it is passed on under the file's name. Reads only: they are few and one at a time,
+// while writes run in parallel and would queue on the lock.
+class stderr_capture {
+    static std::mutex lock_;
+    std::lock_guard<std::mutex> hold_{lock_};
+    int saved_ = -1, mem_ = -1;
+
+  public:
+    stderr_capture() {
+        fflush(stderr);
+        mem_ = memfd_create("orogen-stderr", MFD_CLOEXEC);
+        saved_ = mem_ >= 0 ? dup(2) : -1;
+        if (saved_ >= 0) dup2(mem_, 2);
+    }
+    // Restores stderr; what was written meanwhile.
+    std::string finish() {
+        std::string text;
+        if (saved_ < 0) return text;
+        fflush(stderr);
+        dup2(saved_, 2);
+        close(saved_);
+        saved_ = -1;
+        char buf[4096];
+        ssize_t n;
+        for (off_t at = 0; (n = pread(mem_, buf, sizeof buf, at)) > 0; at += n)
+            text.append(buf, (size_t)n);
+        return text;
+    }
+    ~stderr_capture() {
+        finish();
+        if (mem_ >= 0) close(mem_);
+    }
+};
+std::mutex stderr_capture::lock_;
+
 // Runs an entry point's body: no C++ exception may cross into C.
 template <typename Body>
 static int guarded(const char *path, const char *verb, og_error *err, Body body) {
     try {
-        return body();
+        if (strcmp(verb, "read") != 0) return body();
+        stderr_capture capture;
+        int rc = body();
+        std::string said = capture.finish();
+        if (rc == 0 && !said.empty())
+            fprintf(stderr, "%s: %s", path,
+                    said.back() == '\n' ? said.c_str() : (said + "\n").c_str());
+        return rc;
     } catch (const std::exception &e) {
         return og_error_set(err, "%s: cannot %s image: %s", path, verb, e.what());
     } catch (...) {

@@ -156,6 +156,7 @@ mkdir -p "$work/folder.png"
 for bad in junk.png truncated.png huge.pgm truncated.tif folder.png missing.exr; do
     run -c "import $work/$bad; $area"
     [ $status = 1 ] && grep -q "$work/$bad" "$work/err"; check "bad input $bad: error names the file" $?
+    ! grep -qi "^libpng\|^TIFF" "$work/err"; check "bad input $bad: no library's own line before ours" $?
 done
 run -c "import $work/huge.pgm"
 grep -q "larger than the 65536 x 65536 limit\|over the limit" "$work/err"; check "huge header refused against the limit" $?
