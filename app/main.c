@@ -128,6 +128,34 @@ typedef struct script {
     const char *path; // for --batch
 } script;
 
+// Runs the --batch files and -c texts in order; 1 at the first that fails.
+static int run_scripts(cmd_context *ctx, const script *scripts, int script_count, og_error *err) {
+    for (int s = 0; s < script_count && !ctx->exit_requested; s++) {
+        size_t len;
+        char why[256];
+        char *text = NULL;
+        const char *label = "-c";
+        if (scripts[s].path) {
+            label = scripts[s].path;
+            text = read_file(scripts[s].path, &len, why, sizeof why);
+            if (!text) {
+                fprintf(stderr, "orogen: cannot read batch file %s: %s\n", scripts[s].path, why);
+                return 1;
+            }
+        } else {
+            len = strlen(scripts[s].text);
+        }
+        int rc = cmd_run(ctx, text ? text : scripts[s].text, len, label, err);
+        free(text);
+        if (rc != 0) {
+            fflush(stdout);
+            fprintf(stderr, "%s\n", err->msg);
+            return 1;
+        }
+    }
+    return 0;
+}
+
 int main(int argc, char **argv) {
     script scripts[64];
     int script_count = 0;
@@ -236,32 +264,7 @@ int main(int argc, char **argv) {
             status = 1;
         }
     } else {
-        for (int s = 0; s < script_count && !ctx.exit_requested; s++) {
-            size_t len;
-            char why[256];
-            char *text = NULL;
-            const char *label = "-c";
-            if (scripts[s].path) {
-                label = scripts[s].path;
-                text = read_file(scripts[s].path, &len, why, sizeof why);
-                if (!text) {
-                    fprintf(stderr, "orogen: cannot read batch file %s: %s\n", scripts[s].path,
-                            why);
-                    status = 1;
-                    break;
-                }
-            } else {
-                len = strlen(scripts[s].text);
-            }
-            int rc = cmd_run(&ctx, text ? text : scripts[s].text, len, label, &err);
-            free(text);
-            if (rc != 0) {
-                fflush(stdout);
-                fprintf(stderr, "%s\n", err.msg);
-                status = 1;
-                break;
-            }
-        }
+        status = run_scripts(&ctx, scripts, script_count, &err);
     }
     // A script that left a stroke open: it is one undo step like any other.
     if (cmd_end_stroke(&ctx, &err) != 0) {

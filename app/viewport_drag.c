@@ -1,0 +1,196 @@
+// The viewport's mouse interaction: a small state machine of drags (window_state's
+// drag: none, sculpt, orbit, resize) started by the buttons and moved by the cursor.
+#include "app/window_internal.h"
+
+sculpt_view sculpt_view_of(const window_state *st) {
+    return (sculpt_view){st->v, st->view_rect};
+}
+
+// Ctrl held inverts the tool for the stroke, Shift smooths instead (Unreal, Terrain3D);
+// for the volume tools Ctrl swaps fill and carve and Shift smooths in 3D.
+static void sculpt_begin(window_state *st, int mods) {
+    st->dirty = st->ui_dirty = 1;
+    sculpt_drag_begin(&st->sculpt, &st->work, st->ctx, sculpt_view_of(st), st->mouse_x, st->mouse_y,
+                      (mods & GLFW_MOD_SHIFT) != 0, (mods & GLFW_MOD_CONTROL) != 0);
+}
+
+static void sculpt_to(window_state *st, double x, double y) {
+    if (st->drag != DRAG_SCULPT) return;
+    st->dirty = st->ui_dirty = 1;
+    sculpt_drag_to(&st->sculpt, &st->work, sculpt_view_of(st), x, y);
+}
+
+// Commits the drag's stroke (one undo step); a stroke that laid no dab leaves no step.
+// The console shows the drag as one line rather than a line per mouse move.
+void sculpt_end(window_state *st) {
+    if (st->drag != DRAG_SCULPT) return;
+    st->drag = DRAG_NONE;
+    st->dirty = st->ui_dirty = 1;
+    int points = sculpt_drag_end(&st->sculpt, &st->work);
+    char echo[128];
+    snprintf(echo, sizeof echo, "> stroke_begin; stroke_to ... (%d points); stroke_end", points);
+    console_add(&st->ed.console, CONSOLE_ECHO, echo);
+}
+
+const char *tool_name(const brush *b) {
+    return b->tool == BRUSH_RAISE && b->invert ? "lower" : brush_tool_name(b->tool);
+}
+
+static void resize_begin(window_state *st) {
+    if (pick_at(st, st->mouse_x, st->mouse_y, st->resize_at) != 0) return; // no terrain there
+    st->drag = DRAG_RESIZE;
+    st->resize_x0 = st->mouse_x, st->resize_y0 = st->mouse_y;
+    st->resize_radius = st->resize_r0 = st->ctx->brush.radius;
+    st->resize_strength = st->resize_s0 = st->ctx->brush.strength;
+}
+
+static void resize_to(window_state *st, double x, double y) {
+    double r = st->resize_r0 * pow(1.01, x - st->resize_x0); // 1% a pixel
+    st->resize_radius = fmin(fmax(r, 0.5), 5000);
+    st->resize_strength = fmin(fmax(st->resize_s0 - 0.004 * (y - st->resize_y0), 0), 1);
+}
+
+static void resize_end(window_state *st) {
+    st->drag = DRAG_NONE;
+    char cmd[128];
+    snprintf(cmd, sizeof cmd, "tool %s radius=%.4g strength=%.3g", tool_name(&st->ctx->brush),
+             st->resize_radius, st->resize_strength);
+    run_commands(st, cmd, "resize");
+}
+
+void viewport_drag_button(GLFWwindow *win, int button, int action, int mods) {
+    window_state *st = glfwGetWindowUserPointer(win);
+    st->ui_dirty = 1;
+    int b = button == GLFW_MOUSE_BUTTON_LEFT     ? 0
+            : button == GLFW_MOUSE_BUTTON_RIGHT  ? 1
+            : button == GLFW_MOUSE_BUTTON_MIDDLE ? 2
+                                                 : -1;
+    if (b >= 0) {
+        if (action == GLFW_PRESS) {
+            st->in.mouse_pressed[b] = 1;
+            double now = glfwGetTime();
+            static double last_left;
+            if (b == 0) {
+                st->in.double_click = now - last_left < 0.35;
+                last_left = now;
+            }
+        } else {
+            st->in.mouse_released[b] = 1;
+        }
+        st->in.mouse_down[b] = action == GLFW_PRESS;
+    }
+    // While long work runs only its Cancel button answers; a stroke's release still
+    // ends the stroke (queued after its points).
+    if (work_queue_busy(&st->work)) {
+        if (action == GLFW_RELEASE && button == GLFW_MOUSE_BUTTON_LEFT) sculpt_end(st);
+        if (action == GLFW_RELEASE) st->drag = DRAG_NONE, st->looking = 0;
+        return;
+    }
+    // Presses over the UI (or outside the viewport) are the UI's; releases always end
+    // the viewport's drags.
+    int ui_owns = !in_view(st, st->mouse_x, st->mouse_y) ||
+                  ui_captures_point(st->ui, st->in.mouse_x, st->in.mouse_y);
+    if (action == GLFW_PRESS && ui_owns) return;
+    st->dirty = 1;
+    // Drags start where the last motion event left the cursor (not where the pointer
+    // is now: events queue up, and querying would skip the moves between).
+    if (button == GLFW_MOUSE_BUTTON_RIGHT && st->drag == DRAG_RESIZE && action == GLFW_RELEASE) {
+        resize_end(st);
+        return;
+    }
+    if (button == GLFW_MOUSE_BUTTON_RIGHT && (mods & GLFW_MOD_ALT) && action == GLFW_PRESS &&
+        st->drag == DRAG_NONE && !st->ed.stamps.active) {
+        resize_begin(st);
+        return;
+    }
+    if (button == GLFW_MOUSE_BUTTON_RIGHT && st->orbit_mode && !st->cc.walk) {
+        if (action == GLFW_RELEASE) {
+            if (st->drag == DRAG_ORBIT) st->drag = DRAG_NONE;
+        } else if (st->drag == DRAG_NONE) { // the orbit camera turns about the view's centre
+            ui_rect r = st->view_rect;
+            double cx = r.x + r.w * 0.5, cy = r.y + r.h * 0.5;
+            st->drag = DRAG_ORBIT;
+            if (pick_at(st, cx, cy, st->pivot) != 0) point_along_ray(st, cx, cy, 100.0, st->pivot);
+        }
+        return;
+    }
+    if (button == GLFW_MOUSE_BUTTON_RIGHT) {
+        bank_keys(st);
+        st->looking = action == GLFW_PRESS;
+        return;
+    }
+    if (button != GLFW_MOUSE_BUTTON_LEFT && button != GLFW_MOUSE_BUTTON_MIDDLE) return;
+    if (action == GLFW_RELEASE) {
+        if (st->drag == DRAG_SCULPT && button == GLFW_MOUSE_BUTTON_LEFT) sculpt_end(st);
+        st->drag = DRAG_NONE;
+        return;
+    }
+    if (st->drag != DRAG_NONE) return; // one drag at a time
+    if (button == GLFW_MOUSE_BUTTON_MIDDLE || (mods & GLFW_MOD_ALT)) {
+        st->drag = DRAG_ORBIT;
+        if (pick_at(st, st->mouse_x, st->mouse_y, st->pivot) != 0) {
+            int ww, wh;
+            glfwGetWindowSize(win, &ww, &wh);
+            if (pick_at(st, ww * 0.5, wh * 0.5, st->pivot) != 0)
+                point_along_ray(st, ww * 0.5, wh * 0.5, 100.0, st->pivot);
+        }
+        st->cc.walk = 0;
+    } else if (st->ed.picking_height && button == GLFW_MOUSE_BUTTON_LEFT) {
+        double hit[3]; // the tool's height from the terrain (the Pick button)
+        st->ed.picking_height = 0;
+        if (pick_at(st, st->mouse_x, st->mouse_y, hit) == 0) {
+            char cmd[128];
+            snprintf(cmd, sizeof cmd, "tool %s height=%.6g", tool_name(&st->ctx->brush), hit[1]);
+            run_commands(st, cmd, "pick");
+        }
+    } else if (st->ed.shape_placing && button == GLFW_MOUSE_BUTTON_LEFT) {
+        double hit[3]; // a 3D shape: its clicks, then its command
+        char cmd[512];
+        if (pick_at(st, st->mouse_x, st->mouse_y, hit) == 0 &&
+            editor_ui_shape_click(&st->ed, st->ctx, hit, cmd, sizeof cmd) == 1)
+            run_commands(st, cmd, "shape");
+    } else if (st->ed.stamps.active && button == GLFW_MOUSE_BUTTON_LEFT) {
+        double hit[3]; // the stamp tool: one click, one stamp at the picked point
+        char cmd[512];
+        if (pick_at(st, st->mouse_x, st->mouse_y, hit) == 0) {
+            double x = hit[0], z = hit[2], s, t;
+            int face = -1;
+            if (world_get_params(st->ctx->world)->kind == WORLD_PLANET) { // that face's metres
+                world_grid_direction_face(hit, &face, &s, &t);
+                sculpt_face_metres(world_get_params(st->ctx->world), face, hit, &x, &z);
+            }
+            if (stamp_browser_command(&st->ed.stamps, x, z, cmd, sizeof cmd) == 0) {
+                if (face >= 0) {
+                    size_t used = strlen(cmd);
+                    snprintf(cmd + used, sizeof cmd - used, " face=%d", face);
+                }
+                run_commands(st, cmd, "stamp");
+            }
+        }
+    } else {
+        st->drag = DRAG_SCULPT;
+        sculpt_begin(st, mods);
+    }
+}
+
+void viewport_drag_cursor(GLFWwindow *win, double x, double y) {
+    window_state *st = glfwGetWindowUserPointer(win);
+    double dx = x - st->mouse_x, dy = y - st->mouse_y;
+    st->mouse_x = x, st->mouse_y = y;
+    st->in.mouse_x = ui_px(st, x);
+    st->in.mouse_y = ui_px(st, y);
+    st->ui_dirty = 1;
+    // The brush cursor moves with the pointer over the viewport.
+    if (st->drag != DRAG_NONE || st->looking || in_view(st, x, y)) st->dirty = 1;
+    if (work_queue_busy(&st->work)) { // the camera waits; a stroke's points queue up
+        sculpt_to(st, x, y);
+        return;
+    }
+    if (st->drag == DRAG_RESIZE)
+        resize_to(st, x, y);
+    else if (st->drag == DRAG_ORBIT)
+        camera_controls_orbit(&st->cc, &st->v->cam, st->pivot, dx, dy);
+    else if (st->drag == DRAG_SCULPT)
+        sculpt_to(st, x, y);
+    if (st->looking) camera_controls_look(&st->cc, &st->v->cam, dx, dy);
+}

@@ -1,0 +1,133 @@
+// The window's own commands: ui_scale, dynamic_resolution, ui_widgets, window_screenshot.
+#include "app/window.h"
+
+#include "app/window_internal.h"
+
+// The window whose UI the ui_widgets command reports (one window per process).
+window_state *current_window;
+
+// Changes the UI scale: a new font at the new size (the renderer re-uploads its atlas).
+static int set_ui_scale(window_state *st, double scale, og_error *err) {
+    ui_font *f = load_font(st->win, scale, err);
+    if (!f) return -1;
+    ui_set_font(st->ui, f);
+    ui_set_font(st->busy_ui, f);
+    ui_font_destroy(st->font);
+    st->font = f;
+    st->settings.ui_scale = scale;
+    st->ui_dirty = 1;
+    return 0;
+}
+
+// ui_scale [FACTOR]: the editor's UI scale (times the monitor's content scale).
+static int cmd_ui_scale(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    window_state *st = current_window;
+    if (!st) return og_error_set(err, "ui_scale: no editor window is open");
+    if (argc == 1) {
+        fprintf(ctx->out, "ui_scale %g\n", st->settings.ui_scale);
+        return 0;
+    }
+    double v;
+    if (parse_number_in(argv[1], "FACTOR", 0.5, 4, &v, err) != 0) return -1;
+    return set_ui_scale(st, v, err);
+}
+
+// dynamic_resolution [on|off]: lower the viewport's resolution while moving (L).
+static int cmd_dynamic_resolution(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    window_state *st = current_window;
+    if (!st) return og_error_set(err, "dynamic_resolution: no editor window is open");
+    if (argc > 1 && parse_switch(argv[1], "dynamic_resolution", &st->dynamic_res, err) != 0)
+        return -1;
+    st->dirty = st->ui_dirty = 1;
+    fprintf(ctx->out, "dynamic_resolution %s (target %g ms)\n", st->dynamic_res ? "on" : "off",
+            st->target_ms);
+    return 0;
+}
+
+// ui_widgets: the named widgets of the last UI frame, for tests that click by name.
+static int cmd_ui_widgets(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    window_state *st = current_window;
+    if (!st) return og_error_set(err, "ui_widgets: no editor window is open");
+    float k = ui_px(st, 1.0);
+    const char *filter = argc > 1 ? argv[1] : NULL;
+    fprintf(ctx->out, "Viewport %.0f %.0f %.0f %.0f\n", st->view_rect.x, st->view_rect.y,
+            st->view_rect.w, st->view_rect.h);
+    // While long work runs, its progress bar and Cancel button are listed after the rest.
+    ui_context *uis[2] = {st->ui, work_queue_busy(&st->work) ? st->busy_ui : NULL};
+    for (int u = 0; u < 2 && uis[u]; u++)
+        for (size_t i = 0; i < ui_widget_count(uis[u]); i++) {
+            const ui_widget_info *w = ui_widget_at(uis[u], i);
+            if (!w->name[0] || (filter && !strstr(w->name, filter))) continue;
+            fprintf(ctx->out, "%s %.0f %.0f %.0f %.0f\n", w->name, w->rect.x / k, w->rect.y / k,
+                    w->rect.w / k, w->rect.h / k);
+        }
+    return 0;
+}
+
+// window_screenshot FILE: the whole window (UI and viewport) as an RGB PNG, once every
+// tile in view has arrived, with the terrain at full resolution.
+static int cmd_window_screenshot(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    (void)argc;
+    window_state *st = current_window;
+    if (!st) return og_error_set(err, "window_screenshot: no editor window is open");
+    int w, h;
+    glfwGetFramebufferSize(st->win, &w, &h);
+    if (w <= 0 || h <= 0) return og_error_set(err, "window_screenshot: the window has no area");
+    float k = ui_px(st, 1.0);
+    take_changes(st); // a world made earlier in the same batch of commands gets its camera
+    for (int i = 0; i < 60000 && !st->render_failed; i++) { // tiles: at most ~60 s
+        update_view(st);
+        if (st->settled >= 2) break;
+        struct timespec pause = {0, 1000000};
+        nanosleep(&pause, NULL);
+    }
+    const ui_draw_list *dl = build_ui(st, w, h);
+    st->terrain_valid = 0; // full resolution, whatever was drawn while moving
+    float keep = st->res_scale;
+    st->res_scale = 1.0f;
+    render_terrain(st, (int)roundf(st->view_rect.w * k), (int)roundf(st->view_rect.h * k), 1);
+    if (st->smooth_owed) smooth_terrain(st); // as the view shows once it is still
+    st->res_scale = keep;
+    dl = build_ui(st, w, h); // the status bar with this frame's figures
+    compose(st, dl, w, h);
+    unsigned char *rgba = malloc((size_t)w * h * 4), *rgb = malloc((size_t)w * h * 3);
+    if (!rgba || !rgb) {
+        free(rgba), free(rgb);
+        return og_error_set(err, "out of memory");
+    }
+    glReadBuffer(GL_BACK);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+    for (int y = 0; y < h; y++) // GL's rows are bottom first
+        for (int x = 0; x < w; x++)
+            memcpy(rgb + ((size_t)y * w + x) * 3, rgba + ((size_t)(h - 1 - y) * w + x) * 4, 3);
+    int rc = image_write_rgb8(argv[1], rgb, w, h, err);
+    free(rgba), free(rgb);
+    if (rc != 0) return -1;
+    st->dirty = st->ui_dirty = 1; // the next frame is drawn normally again
+    fprintf(ctx->out, "window_screenshot %s %dx%d\n", argv[1], w, h);
+    return 0;
+}
+
+static const cmd_def window_commands[] = {
+    {"window_screenshot", "window_screenshot FILE",
+     "Writes the whole editor window (UI and viewport) to an RGB PNG once every tile in view has "
+     "arrived.",
+     1, 1, cmd_window_screenshot, CMD_NOT_RECORDED},
+    {"ui_scale", "ui_scale [FACTOR]",
+     "Sets the editor's UI scale (0.5-4, times the monitor's content scale; View > UI scale); "
+     "without a value, prints it.",
+     0, 1, cmd_ui_scale, CMD_NOT_RECORDED},
+    {"dynamic_resolution", "dynamic_resolution [on|off]",
+     "While the camera moves or a stroke is drawn, render the viewport at a lower resolution "
+     "chosen to keep frames near the frame-time goal (L toggles it); without a value, prints it.",
+     0, 1, cmd_dynamic_resolution, CMD_NOT_RECORDED},
+    {"ui_widgets", "ui_widgets [FILTER]",
+     "Lists the editor window's named widgets of the last frame as NAME X Y W H (window pixels; "
+     "names containing FILTER), and the Viewport's rectangle first.",
+     0, 1, cmd_ui_widgets, CMD_NOT_RECORDED | CMD_WHILE_BUSY},
+};
+
+int window_commands_register(og_error *err) {
+    return cmd_register(window_commands, sizeof window_commands / sizeof window_commands[0], err);
+}

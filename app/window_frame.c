@@ -1,0 +1,318 @@
+// The window's frame: the terrain image (dynamic resolution, smoothing when still),
+// the UI built over it and composed, the progress of long work, the title.
+#include "app/window_internal.h"
+
+void update_title(window_state *st) {
+    char title[sizeof st->title], name[256];
+    const char *path = world_path(st->ctx->world);
+    const char *slash = strrchr(path, '/');
+    snprintf(name, sizeof name, "%s%s", path[0] ? (slash ? slash + 1 : path) : "unsaved world",
+             world_read_only(st->ctx->world)[0] ? " (read-only)" : "");
+    const camera *c = &st->v->cam;
+    render_stats rs = {0};
+    if (st->v->renderer) terrain_renderer_stats(st->v->renderer, &rs);
+    int used = st->v->settings.levels - rs.finest_level;
+    if (st->render_failed)
+        snprintf(title, sizeof title, "Orogen - %s%s - the viewport failed (see the console)", name,
+                 world_is_modified(st->ctx->world) ? " *" : "");
+    else
+        snprintf(title, sizeof title,
+                 "Orogen - %s%s - cam (%.1f, %.1f, %.1f) yaw %.1f pitch %.1f - %s %.3g m/s - "
+                 "levels %d/%d - tool %s r%g - pending %d",
+                 name, world_is_modified(st->ctx->world) ? " *" : "", c->pos[0], c->pos[1],
+                 c->pos[2], c->yaw, c->pitch,
+                 st->cc.walk      ? "walk"
+                 : st->orbit_mode ? "orbit"
+                                  : "fly",
+                 camera_controls_speed(&st->cc), rs.levels_ready, used,
+                 brush_tool_name(st->ctx->brush.tool), st->ctx->brush.radius, st->pending);
+    if (strcmp(title, st->title) != 0) {
+        snprintf(st->title, sizeof st->title, "%s", title);
+        glfwSetWindowTitle(st->win, title);
+    }
+}
+
+// The brush cursor's colour for a tool: warm raises, cool lowers, green smooths, yellow
+// levels, violet adds noise, cyan erodes, pink paints; the volume tools as their 2D
+// counterparts, carving cool.
+static void cursor_colour(brush_tool tool, int invert, float rgb[3]) {
+    static const float colours[BRUSH_TOOL_COUNT][3] = {
+        [BRUSH_RAISE] = {1.0f, 0.55f, 0.1f},     [BRUSH_SMOOTH] = {0.3f, 0.9f, 0.4f},
+        [BRUSH_FLATTEN] = {1.0f, 0.85f, 0.2f},   [BRUSH_SET] = {1.0f, 0.85f, 0.2f},
+        [BRUSH_RAMP] = {1.0f, 0.85f, 0.2f},      [BRUSH_NOISE] = {0.75f, 0.4f, 1.0f},
+        [BRUSH_TERRACE] = {1.0f, 0.85f, 0.2f},   [BRUSH_THERMAL] = {0.2f, 0.85f, 0.9f},
+        [BRUSH_HYDRAULIC] = {0.2f, 0.85f, 0.9f}, [BRUSH_PAINT] = {1.0f, 0.35f, 0.75f},
+        [BRUSH_FILL] = {1.0f, 0.55f, 0.1f},      [BRUSH_CARVE] = {0.25f, 0.5f, 1.0f},
+        [BRUSH_VSMOOTH] = {0.3f, 0.9f, 0.4f},    [BRUSH_VFLATTEN] = {1.0f, 0.85f, 0.2f},
+    };
+    static const float lowering[3] = {0.25f, 0.5f, 1.0f};
+    memcpy(rgb, invert && (tool == BRUSH_RAISE || tool == BRUSH_NOISE) ? lowering : colours[tool],
+           3 * sizeof(float));
+}
+
+static void update_cursor(window_state *st) {
+    brush_cursor *bc = &st->v->cursor;
+    double hit[3];
+    bc->visible = st->mouse_in && !st->looking && st->drag != DRAG_ORBIT &&
+                  (st->drag == DRAG_RESIZE || pick_at(st, st->mouse_x, st->mouse_y, hit) == 0);
+    if (!bc->visible) return;
+    if (st->drag == DRAG_RESIZE) memcpy(hit, st->resize_at, sizeof hit);
+    bc->x = hit[0], bc->y = hit[1], bc->z = hit[2]; // y: planets drape it in 3D
+    if (st->ed.stamps.active) { // the stamp's footprint: its half size, no falloff
+        bc->radius =
+            stamp_browser_half_size(&st->ed.stamps, world_get_params(st->ctx->world)->spacing);
+        for (int i = 0; i < BRUSH_FALLOFF_SAMPLES; i++)
+            bc->falloff[i] = 1.0f;
+        bc->color[0] = bc->color[1] = bc->color[2] = 0.9f;
+        bc->opacity = 0.25f;
+        return;
+    }
+    const brush *b = &st->ctx->brush;
+    bc->radius = st->drag == DRAG_RESIZE ? st->resize_radius : b->radius;
+    for (int i = 0; i < BRUSH_FALLOFF_SAMPLES; i++)
+        bc->falloff[i] = brush_falloff_weight(b, (float)i / (BRUSH_FALLOFF_SAMPLES - 1));
+    // Coloured by what a stroke would do now (Ctrl inverts, Shift smooths), as strong
+    // as the strength.
+    int ctrl =
+        glfwGetKey(st->win, GLFW_KEY_LEFT_CONTROL) || glfwGetKey(st->win, GLFW_KEY_RIGHT_CONTROL);
+    int shift =
+        glfwGetKey(st->win, GLFW_KEY_LEFT_SHIFT) || glfwGetKey(st->win, GLFW_KEY_RIGHT_SHIFT);
+    brush_tool tool = shift ? BRUSH_SMOOTH : b->tool;
+    int invert = !shift && (b->invert != ctrl);
+    double strength = st->drag == DRAG_RESIZE ? st->resize_strength : b->strength;
+    bc->sphere = brush_tool_is_volume(b->tool) && st->drag != DRAG_RESIZE;
+    if (bc->sphere) { // where the next point would go, as big as the ball it would lay
+        double p[3];
+        bc->visible =
+            sculpt_volume_point(st->drag == DRAG_SCULPT ? &st->sculpt : NULL, b, sculpt_view_of(st),
+                                st->mouse_x, st->mouse_y, hit, p) == 0;
+        bc->x = p[0], bc->y = p[1], bc->z = p[2];
+        if (b->tool == BRUSH_FILL || b->tool == BRUSH_CARVE) {
+            bc->radius *= strength;
+            if (ctrl) tool = b->tool == BRUSH_FILL ? BRUSH_CARVE : BRUSH_FILL;
+        }
+        if (shift) tool = BRUSH_VSMOOTH;
+        invert = 0;
+    }
+    cursor_colour(tool, invert, bc->color);
+    bc->opacity = (float)(0.12 + 0.5 * strength);
+}
+
+// Brings the clipmaps up to date without waiting for tiles. Returns 1 when the picture
+// changed (texels arrived), 0 when not, -1 when this world cannot be drawn.
+int update_view(window_state *st) {
+    og_error err = {{0}};
+    viewport *v = st->v;
+    if (st->render_failed) return -1;
+    int rc = terrain_renderer_update(v->renderer, st->ctx->world, &v->cam, &v->settings, &err);
+    if (rc < 0) {
+        report("viewport", &err);
+        st->render_failed = 1;
+        st->pending = 0;
+        st->settled = 2; // nothing to wait for
+        return -1;
+    }
+    render_stats rs;
+    terrain_renderer_stats(v->renderer, &rs);
+    if (rc == 1) {
+        st->settled++;
+        st->pending = 0;
+    } else {
+        int missing = v->settings.levels - rs.finest_level - rs.levels_ready;
+        st->settled = 0;
+        st->pending = missing > 0 ? missing : 1; // else the material or detail layers
+    }
+    return rs.texels_uploaded > 0;
+}
+
+// Builds this frame's UI (running the commands its widgets ask for); sets the
+// viewport's rectangle. fw, fh: the framebuffer's size.
+// Textures of the stamp thumbnails, once the browser has rendered them.
+static int upload_stamp_thumbnails(stamp_browser *b) {
+    if (!b->needs_upload) return 0;
+    b->needs_upload = 0;
+    for (int i = 0; i < b->count; i++)
+        if (!b->entries[i].texture)
+            b->entries[i].texture =
+                ui_renderer_create_texture(STAMP_THUMB, STAMP_THUMB, b->entries[i].rgba);
+    return 1;
+}
+
+// Lists the stamps again when the user's stamp folder changed (an image dropped on the
+// window, stamp_add in the console, a file copied there by hand).
+static void refresh_stamps(window_state *st) {
+    stamp_browser *b = &st->ed.stamps;
+    if (!stamp_browser_stale(b, st->ctx, glfwGetTime())) return;
+    for (int i = 0; i < b->count; i++) {
+        ui_renderer_delete_texture(b->entries[i].texture);
+        b->entries[i].texture = 0;
+    }
+    stamp_browser_reload(b, st->ctx);
+    st->ui_dirty = 1;
+}
+
+const ui_draw_list *build_ui(window_state *st, int fw, int fh) {
+    editor_frame_info info = {.frame_ms = st->terrain_ms,
+                              .resolution_scale = st->drawn_scale,
+                              .pending = st->pending,
+                              .gl_renderer = st->gl_renderer,
+                              .resizing = st->drag == DRAG_RESIZE,
+                              .resize_radius = st->resize_radius,
+                              .resize_strength = st->resize_strength};
+    double hit[3];
+    if (st->mouse_in && pick_at(st, st->mouse_x, st->mouse_y, hit) == 0) {
+        info.cursor_valid = 1;
+        memcpy(info.cursor, hit, sizeof hit);
+    }
+    st->in.time = glfwGetTime();
+    refresh_stamps(st);
+    st->ed.ui_scale = st->settings.ui_scale; // the ui_scale command may have changed it
+    st->ed.camera_mode = camera_mode(st);
+    st->ed.dynamic_resolution = st->dynamic_res;
+    ui_begin(st->ui, &st->in, (float)fw, (float)fh);
+    ui_rect vr = editor_ui_build(&st->ed, st->ui, st->ctx, st->v, &info, (float)fw, (float)fh);
+    const ui_draw_list *dl = ui_end(st->ui);
+    clear_frame_input(&st->in);
+    float k = ui_px(st, 1.0); // framebuffer pixels per window unit
+    st->view_rect = (ui_rect){vr.x / k, vr.y / k, vr.w / k, vr.h / k};
+    if (st->ed.quit_requested) glfwSetWindowShouldClose(st->win, GLFW_TRUE);
+    st->ui_dirty = upload_stamp_thumbnails(&st->ed.stamps); // shown from the next frame
+    return dl;
+}
+
+static double now_ms(void) {
+    return glfwGetTime() * 1e3;
+}
+
+// The still, full-size terrain image with its edges smoothed into terrain_smooth: one
+// pass over the image, never a new render (and never while moving, where it would
+// cost every frame). Returns 1 when compose shows the smoothed image.
+int smooth_terrain(window_state *st) {
+    og_error err = {{0}};
+    const gl_target *t = &st->terrain;
+    if (st->terrain_smooth.width != t->width || st->terrain_smooth.height != t->height) {
+        gl_target_destroy(&st->terrain_smooth);
+        if (gl_target_create(&st->terrain_smooth, t->width, t->height, &err) != 0) goto failed;
+    }
+    if (viewport_antialias(st->v, t, &st->terrain_smooth, &err) != 0) goto failed;
+    st->smooth_shown = 1;
+    st->smooth_owed = 0;
+    return 1;
+failed:
+    report("viewport", &err);
+    st->smooth_failed = 1;
+    st->smooth_owed = 0;
+    return 0;
+}
+
+// Renders the terrain into its own image when something it shows changed: the camera,
+// the world, the view settings, the brush cursor, the viewport's size, or newly
+// arrived tiles. While the camera moves or a stroke is drawn the image is rendered
+// smaller, sized to keep the frame near target_ms. Returns 1 when it rendered.
+int render_terrain(window_state *st, int vw, int vh, int arrived) {
+    viewport *v = st->v;
+    if (vw <= 0 || vh <= 0) return 0;
+    update_cursor(st);
+    // The cursor is drawn with the terrain: while it moves the frame is made at the
+    // moving scale too, so it follows the pointer at the frame-time goal.
+    int moving = memcmp(&v->cam, &st->drawn_cam, sizeof v->cam) != 0 || st->drag == DRAG_SCULPT ||
+                 v->settings.sun_rotation != 0 ||
+                 memcmp(&v->cursor, &st->drawn_cursor, sizeof v->cursor) != 0 ||
+                 st->drag == DRAG_ORBIT || keys_held(st);
+    float scale = moving && st->dynamic_res ? st->res_scale : 1.0f;
+    int w = (int)fmaxf(1.0f, roundf(vw * scale)), h = (int)fmaxf(1.0f, roundf(vh * scale));
+    int changed = !st->terrain_valid || arrived || st->world_changed ||
+                  memcmp(&v->cam, &st->drawn_cam, sizeof v->cam) != 0 ||
+                  memcmp(&v->settings, &st->drawn_settings, sizeof v->settings) != 0 ||
+                  memcmp(&v->cursor, &st->drawn_cursor, sizeof v->cursor) != 0 ||
+                  w != st->drawn_w || h != st->drawn_h;
+    int wants_smooth = render_settings_smooth_edges(&v->settings) && !st->render_failed &&
+                       !st->smooth_failed && scale == 1.0f;
+    if (!changed) { // the view came to rest on a full-size image: smooth it now
+        if (wants_smooth && !moving && !st->smooth_shown && st->terrain_valid)
+            return smooth_terrain(st);
+        return 0;
+    }
+    og_error err = {{0}};
+    if (st->terrain.width != w || st->terrain.height != h) {
+        gl_target_destroy(&st->terrain);
+        if (gl_target_create(&st->terrain, w, h, &err) != 0) {
+            report("viewport", &err);
+            return 0;
+        }
+    }
+    double t0 = now_ms();
+    glBindFramebuffer(GL_FRAMEBUFFER, st->terrain.fbo);
+    if (st->render_failed) {
+        glViewport(0, 0, w, h);
+        glClearColor(0.1f, 0.1f, 0.12f, 1.0f);
+        glClear(GL_COLOR_BUFFER_BIT);
+    } else if (terrain_renderer_draw(v->renderer, st->ctx->world, &v->cam, &v->settings, &v->cursor,
+                                     w, h, &err) != 0) {
+        report("viewport", &err);
+    }
+    st->smooth_shown = 0;
+    st->smooth_owed = wants_smooth;
+    if (wants_smooth && !moving) smooth_terrain(st);
+    glFinish(); // the frame's real cost, for the resolution controller
+    st->terrain_ms = now_ms() - t0;
+    if (moving)
+        st->res_scale = dynamic_resolution_next(st->res_scale, st->terrain_ms, st->target_ms);
+    st->drawn_cam = v->cam;
+    st->drawn_settings = v->settings;
+    st->drawn_cursor = v->cursor;
+    st->drawn_scale = scale;
+    st->drawn_w = w, st->drawn_h = h;
+    st->world_changed = 0;
+    st->terrain_valid = 1;
+    return 1;
+}
+
+// The window's picture: the terrain image in the viewport's rectangle, the UI over it.
+void compose(window_state *st, const ui_draw_list *dl, int fw, int fh) {
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, fw, fh);
+    const ui_theme *t = ui_get_theme(st->ui);
+    glClearColor((t->bg & 255) / 255.0f, ((t->bg >> 8) & 255) / 255.0f,
+                 ((t->bg >> 16) & 255) / 255.0f, 1);
+    glClear(GL_COLOR_BUFFER_BIT);
+    float k = ui_px(st, 1.0);
+    int vx = (int)roundf(st->view_rect.x * k), vy = (int)roundf(st->view_rect.y * k);
+    int vw = (int)roundf(st->view_rect.w * k), vh = (int)roundf(st->view_rect.h * k);
+    const gl_target *image = st->smooth_shown ? &st->terrain_smooth : &st->terrain;
+    if (st->terrain_valid && vw > 0 && vh > 0)
+        glBlitNamedFramebuffer(image->fbo, 0, 0, 0, image->width, image->height, vx, fh - (vy + vh),
+                               vx + vw, fh - vy, GL_COLOR_BUFFER_BIT, GL_LINEAR);
+    og_error err = {{0}};
+    if (dl && ui_renderer_draw(st->uir, dl, st->font, fw, fh, &err) != 0) report("ui", &err);
+}
+
+// While long work runs: the last frame with a progress bar and a Cancel button over
+// its status bar, drawn at most ten times a second (none for work under 150 ms).
+void draw_busy(window_state *st, const ui_draw_list *dl, int fw, int fh) {
+    cmd_job *job = st->work.job;
+    double elapsed = cmd_job_elapsed_ms(job), t = now_ms();
+    if (elapsed < 150 || (t - st->busy_drawn_ms < 100 && !st->ui_dirty)) return;
+    st->busy_drawn_ms = t;
+    st->ui_dirty = 0;
+    st->in.time = glfwGetTime();
+    ui_begin(st->busy_ui, &st->in, (float)fw, (float)fh);
+    const char *what = (st->work.running.flags & WORK_STROKE) ? "the stroke's dabs along the drag"
+                                                              : cmd_job_text(job);
+    if (editor_ui_build_busy(st->busy_ui, what, cmd_job_progress(job), elapsed, (float)fw,
+                             (float)fh))
+        work_queue_cancel(&st->work);
+    const ui_draw_list *busy = ui_end(st->busy_ui);
+    clear_frame_input(&st->in);
+    compose(st, dl, fw, fh);
+    og_error err = {{0}};
+    if (ui_renderer_draw(st->uir, busy, st->font, fw, fh, &err) != 0) report("ui", &err);
+    glfwSwapBuffers(st->win);
+    char title[sizeof st->title];
+    snprintf(title, sizeof title, "Orogen - working %.0f%% - Esc cancels",
+             cmd_job_progress(job) * 100);
+    if (strcmp(title, st->title) != 0) {
+        snprintf(st->title, sizeof st->title, "%s", title);
+        glfwSetWindowTitle(st->win, title);
+    }
+}

@@ -1,0 +1,433 @@
+// GLFW's events turned into the UI's input (ui_input), the camera's movement keys and
+// the keyboard shortcuts; dropped files; the close button.
+#include "app/window_internal.h"
+
+#include <strings.h>
+
+static const int move_key_codes[MOVE_KEY_COUNT] = {GLFW_KEY_W, GLFW_KEY_S, GLFW_KEY_A,
+                                                   GLFW_KEY_D, GLFW_KEY_E, GLFW_KEY_Q};
+
+// Movement keys count while the right button is held, or always while walking. Their
+// held time is banked at every press, release and mode change, so the camera moves
+// for as long as a key was held even when frames are slow.
+static int movement_allowed(const window_state *st) {
+    return st->looking || st->cc.walk;
+}
+
+void bank_keys(window_state *st) {
+    double now = glfwGetTime();
+    for (int i = 0; i < MOVE_KEY_COUNT; i++) {
+        if (st->key_down[i] && movement_allowed(st)) st->key_held[i] += now - st->key_since[i];
+        st->key_since[i] = now;
+    }
+}
+
+// The banked time as a step for camera_controls_move; clears the bank.
+move_keys take_keys(window_state *st) {
+    bank_keys(st);
+    GLFWwindow *w = st->win;
+    double *h = st->key_held;
+    move_keys k = {h[0], h[1], h[2], h[3], h[4], h[5], 0};
+    k.fast = glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) || glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT);
+    for (int i = 0; i < MOVE_KEY_COUNT; i++)
+        h[i] = 0;
+    return k;
+}
+
+int keys_held(const window_state *st) {
+    if (!movement_allowed(st)) return 0;
+    for (int i = 0; i < MOVE_KEY_COUNT; i++)
+        if (st->key_down[i]) return 1;
+    return 0;
+}
+
+static void on_framebuffer_size(GLFWwindow *win, int width, int height) {
+    (void)width, (void)height;
+    window_state *st = glfwGetWindowUserPointer(win);
+    update_px_scale(st);
+    st->ui_dirty = st->dirty = 1;
+}
+
+static void on_cursor_enter(GLFWwindow *win, int entered) {
+    window_state *st = glfwGetWindowUserPointer(win);
+    st->mouse_in = entered;
+    st->dirty = 1;
+    // A pointer that left (with no button held) hovers nothing: no widget stays lit and no
+    // tooltip comes up for a place the pointer no longer is.
+    if (!entered && !st->in.mouse_down[0] && !st->in.mouse_down[1] && !st->in.mouse_down[2]) {
+        st->in.mouse_x = st->in.mouse_y = -1e6f;
+        st->ui_dirty = 1;
+    }
+}
+
+static void on_scroll(GLFWwindow *win, double dx, double dy) {
+    (void)dx;
+    window_state *st = glfwGetWindowUserPointer(win);
+    st->ui_dirty = 1;
+    if (work_queue_busy(&st->work)) return;
+    if (!in_view(st, st->mouse_x, st->mouse_y) ||
+        ui_captures_point(st->ui, st->in.mouse_x, st->in.mouse_y)) {
+        st->in.wheel += (float)dy;
+        return;
+    }
+    st->dirty = 1;
+    if (st->looking) {
+        camera_controls_speed_wheel(&st->cc, dy);
+        return;
+    }
+    int ctrl = glfwGetKey(win, GLFW_KEY_LEFT_CONTROL) || glfwGetKey(win, GLFW_KEY_RIGHT_CONTROL);
+    int shift = glfwGetKey(win, GLFW_KEY_LEFT_SHIFT) || glfwGetKey(win, GLFW_KEY_RIGHT_SHIFT);
+    if (st->ed.stamps.active && (ctrl || shift)) { // the stamp preview: size and turn
+        stamp_browser *b = &st->ed.stamps;
+        if (ctrl) b->scale = fmin(20, fmax(0.1, b->scale * pow(1.1, dy)));
+        if (shift) b->rotation = fmod(b->rotation + 5 * dy + 540, 360) - 180;
+        st->ui_dirty = 1;
+        return;
+    }
+    double pivot[3];
+    if (pick_at(st, st->mouse_x, st->mouse_y, pivot) != 0)
+        point_along_ray(st, st->mouse_x, st->mouse_y, fmax(100.0, 4.0 * st->cc.fly_speed), pivot);
+    st->cc.walk = 0;
+    camera_controls_dolly(&st->cc, &st->v->cam, pivot, dy);
+}
+
+static void save_shortcut(window_state *st) {
+    if (!world_path(st->ctx->world)[0]) {
+        fprintf(stderr, "orogen: this world has never been saved: type save FILE in the console "
+                        "or use File > Save as (after that, Ctrl+S saves it there)\n");
+        return;
+    }
+    if (world_file_errors(st->ctx->world) || world_read_only(st->ctx->world)[0]) {
+        editor_ui_save(&st->ed, st->ctx); // asks first: saving would lose something
+        st->ui_dirty = 1;
+        return;
+    }
+    run_commands(st, "save", "Ctrl+S");
+}
+
+// GLFW keys the UI uses.
+static int ui_key_of(int key) {
+    switch (key) {
+    case GLFW_KEY_TAB:
+        return UI_KEY_TAB;
+    case GLFW_KEY_ENTER:
+    case GLFW_KEY_KP_ENTER:
+        return UI_KEY_ENTER;
+    case GLFW_KEY_ESCAPE:
+        return UI_KEY_ESCAPE;
+    case GLFW_KEY_BACKSPACE:
+        return UI_KEY_BACKSPACE;
+    case GLFW_KEY_DELETE:
+        return UI_KEY_DELETE;
+    case GLFW_KEY_LEFT:
+        return UI_KEY_LEFT;
+    case GLFW_KEY_RIGHT:
+        return UI_KEY_RIGHT;
+    case GLFW_KEY_UP:
+        return UI_KEY_UP;
+    case GLFW_KEY_DOWN:
+        return UI_KEY_DOWN;
+    case GLFW_KEY_HOME:
+        return UI_KEY_HOME;
+    case GLFW_KEY_END:
+        return UI_KEY_END;
+    case GLFW_KEY_A:
+        return UI_KEY_A;
+    case GLFW_KEY_C:
+        return UI_KEY_C;
+    case GLFW_KEY_V:
+        return UI_KEY_V;
+    case GLFW_KEY_X:
+        return UI_KEY_X;
+    case GLFW_KEY_Z:
+        return UI_KEY_Z;
+    default:
+        return -1;
+    }
+}
+
+static void on_char(GLFWwindow *win, unsigned int codepoint) {
+    window_state *st = glfwGetWindowUserPointer(win);
+    st->ui_dirty = 1;
+    if (work_queue_busy(&st->work)) return;
+    if (!ui_wants_keyboard(st->ui)) return; // typed into the viewport: shortcuts
+    char u[5] = {0};
+    if (codepoint < 0x80)
+        u[0] = (char)codepoint;
+    else if (codepoint < 0x800)
+        u[0] = (char)(0xC0 | codepoint >> 6), u[1] = (char)(0x80 | (codepoint & 0x3F));
+    else if (codepoint < 0x10000)
+        u[0] = (char)(0xE0 | codepoint >> 12), u[1] = (char)(0x80 | ((codepoint >> 6) & 0x3F)),
+        u[2] = (char)(0x80 | (codepoint & 0x3F));
+    else
+        u[0] = (char)(0xF0 | codepoint >> 18), u[1] = (char)(0x80 | ((codepoint >> 12) & 0x3F)),
+        u[2] = (char)(0x80 | ((codepoint >> 6) & 0x3F)), u[3] = (char)(0x80 | (codepoint & 0x3F));
+    size_t n = strlen(st->in.text);
+    if (n + strlen(u) < sizeof st->in.text) memcpy(st->in.text + n, u, strlen(u) + 1);
+}
+
+// Fly, orbit or walk (C, View > Camera): seed 004's camera switch.
+void set_camera_mode(window_state *st, int mode) {
+    bank_keys(st);
+    st->orbit_mode = mode == 1;
+    if ((mode == 2) != st->cc.walk)
+        camera_controls_toggle_walk(&st->cc, &st->v->cam, ground_height, st);
+    st->dirty = st->ui_dirty = 1;
+}
+
+int camera_mode(const window_state *st) {
+    return st->cc.walk ? 2 : st->orbit_mode ? 1 : 0;
+}
+
+static void toggle_console(window_state *st) {
+    st->ed.console.open = !st->ed.console.open;
+    st->ed.console.focus_input = st->ed.console.open;
+}
+
+// Ctrl+key: files, undo and redo, the levels of detail.
+static void ctrl_shortcut(window_state *st, int key, int mods) {
+    if (key == GLFW_KEY_S && (mods & GLFW_MOD_SHIFT))
+        editor_ui_save_as(&st->ed, st->ctx);
+    else if (key == GLFW_KEY_O)
+        editor_ui_open(&st->ed, st->ctx);
+    else if (key == GLFW_KEY_S)
+        save_shortcut(st);
+    else if (key == GLFW_KEY_N)
+        editor_ui_request(&st->ed, st->ctx, PENDING_NEW_FLAT);
+    else if (key == GLFW_KEY_Q)
+        editor_ui_request(&st->ed, st->ctx, PENDING_QUIT);
+    else if (key == GLFW_KEY_Z && (mods & GLFW_MOD_SHIFT))
+        run_commands(st, "redo", "Ctrl+Shift+Z");
+    else if (key == GLFW_KEY_Z)
+        run_commands(st, "undo", "Ctrl+Z");
+    else if (key == GLFW_KEY_Y)
+        run_commands(st, "redo", "Ctrl+Y");
+    else if (key == GLFW_KEY_EQUAL || key == GLFW_KEY_MINUS) { // seed 004's = and -
+        int levels = st->v->settings.levels + (key == GLFW_KEY_EQUAL ? 1 : -1);
+        if (levels >= RENDER_MIN_LEVELS && levels <= RENDER_MAX_LEVELS) {
+            char cmd[64];
+            snprintf(cmd, sizeof cmd, "render levels=%d", levels);
+            run_commands(st, cmd, "key");
+        }
+    }
+}
+
+// A key without Ctrl: the console, help, the brush, the camera, views, tools.
+static void plain_shortcut(window_state *st, int key) {
+    double hit[3];
+    switch (key) {
+    case GLFW_KEY_GRAVE_ACCENT:
+        toggle_console(st);
+        break;
+    case GLFW_KEY_F1:
+        st->ed.show_help = 1;
+        break;
+    case GLFW_KEY_LEFT_BRACKET: // brush size and strength, as in Terrain3D
+    case GLFW_KEY_RIGHT_BRACKET:
+    case GLFW_KEY_MINUS:
+    case GLFW_KEY_EQUAL: {
+        const brush *b = &st->ctx->brush;
+        const char *name = tool_name(b);
+        char cmd[128];
+        if (key == GLFW_KEY_LEFT_BRACKET || key == GLFW_KEY_RIGHT_BRACKET) {
+            double r = b->radius * (key == GLFW_KEY_RIGHT_BRACKET ? 1.15 : 1 / 1.15);
+            snprintf(cmd, sizeof cmd, "tool %s radius=%.4g", name, fmin(fmax(r, 0.5), 5000));
+        } else {
+            double k = b->strength + (key == GLFW_KEY_EQUAL ? 0.05 : -0.05);
+            snprintf(cmd, sizeof cmd, "tool %s strength=%.3g", name, fmin(fmax(k, 0), 1));
+        }
+        run_commands(st, cmd, "key");
+        break;
+    }
+    case GLFW_KEY_F:
+        if (pick_at(st, st->mouse_x, st->mouse_y, hit) == 0)
+            camera_controls_focus(&st->cc, &st->v->cam, hit, st->ctx->brush.radius);
+        else
+            fprintf(stderr, "orogen: focus: no terrain under the cursor\n");
+        break;
+    case GLFW_KEY_G:
+        bank_keys(st);
+        camera_controls_toggle_walk(&st->cc, &st->v->cam, ground_height, st);
+        break;
+    case GLFW_KEY_HOME:
+        reset_camera(st);
+        break;
+    case GLFW_KEY_1:
+    case GLFW_KEY_2:
+    case GLFW_KEY_3:
+    case GLFW_KEY_4:
+    case GLFW_KEY_5: {
+        char cmd[64];
+        snprintf(cmd, sizeof cmd, "view %s", view_mode_name((view_mode)(key - GLFW_KEY_1)));
+        run_commands(st, cmd, "key");
+        break;
+    }
+    case GLFW_KEY_C:
+        set_camera_mode(st, (camera_mode(st) + 1) % 3);
+        break;
+    case GLFW_KEY_R: { // the light turns; on a planet at its omega (seed 004)
+        const world_params *p = world_get_params(st->ctx->world);
+        double speed = p->kind == WORLD_PLANET && p->omega != 0 ? p->omega * 180.0 / M_PI : 20.0;
+        char cmd[64];
+        snprintf(cmd, sizeof cmd, "render sun_rotation=%.6g",
+                 st->v->settings.sun_rotation != 0 ? 0.0 : fmax(-360, fmin(360, speed)));
+        run_commands(st, cmd, "key");
+        break;
+    }
+    case GLFW_KEY_L:
+        run_commands(st, st->dynamic_res ? "dynamic_resolution off" : "dynamic_resolution on",
+                     "key");
+        break;
+    default:
+        // One letter per tool, while the pointer is over the viewport.
+        if (key >= GLFW_KEY_A && key <= GLFW_KEY_Z && !st->looking &&
+            in_view(st, st->mouse_x, st->mouse_y)) {
+            int tool = editor_ui_tool_for_key('A' + (key - GLFW_KEY_A));
+            if (tool >= 0) editor_ui_pick_tool(&st->ed, st->ctx, tool);
+        }
+        break;
+    }
+}
+
+static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods) {
+    (void)scancode;
+    window_state *st = glfwGetWindowUserPointer(win);
+    st->ui_dirty = 1;
+    st->in.mods = ((mods & GLFW_MOD_SHIFT) ? UI_MOD_SHIFT : 0) |
+                  ((mods & GLFW_MOD_CONTROL) ? UI_MOD_CTRL : 0) |
+                  ((mods & GLFW_MOD_ALT) ? UI_MOD_ALT : 0);
+    int k = ui_key_of(key);
+    if (k >= 0 && action != GLFW_RELEASE) st->in.key_pressed[k] = 1;
+    if (work_queue_busy(&st->work)) { // Esc cancels long work; other keys wait for it
+        if (action == GLFW_PRESS && key == GLFW_KEY_ESCAPE) work_queue_cancel(&st->work);
+        for (int i = 0; i < MOVE_KEY_COUNT; i++) // a key let go is never left held
+            if (key == move_key_codes[i] && action == GLFW_RELEASE) st->key_down[i] = 0;
+        return;
+    }
+    // A focused text field takes every key; ~ still closes the console.
+    if (ui_wants_keyboard(st->ui)) {
+        if (action == GLFW_PRESS && key == GLFW_KEY_GRAVE_ACCENT && st->ed.console.open) {
+            toggle_console(st);
+            st->in.text[0] = 0;
+        }
+        return;
+    }
+    if (action == GLFW_PRESS && key == GLFW_KEY_ESCAPE) return; // the UI closes menus, dialogs
+    st->dirty = 1;
+    for (int i = 0; i < MOVE_KEY_COUNT; i++) {
+        if (key != move_key_codes[i] || action == GLFW_REPEAT) continue;
+        bank_keys(st);
+        // Ctrl+S is a shortcut, not a step back.
+        st->key_down[i] = action == GLFW_PRESS && !(mods & GLFW_MOD_CONTROL);
+    }
+    if (action != GLFW_PRESS) return;
+    if (mods & GLFW_MOD_CONTROL)
+        ctrl_shortcut(st, key, mods);
+    else
+        plain_shortcut(st, key);
+}
+
+// Elevation rasters (not pictures): dropped, they are imported, not made stamps.
+static int is_elevation_raster(const char *path) {
+    static const char *const ext[] = {".hgt", ".tif", ".tiff", ".asc", ".r16",
+                                      ".raw", ".dem", ".bil",  ".exr"};
+    const char *dot = strrchr(path, '.');
+    for (size_t i = 0; dot && i < sizeof ext / sizeof ext[0]; i++)
+        if (strcasecmp(dot, ext[i]) == 0) return 1;
+    return 0;
+}
+
+// Files dropped on the window: a world opens (asking first about unsaved changes), a
+// heightmap (.hgt .tif .exr .r16 ...) is imported centred under the pointer, another
+// image becomes a user stamp (stamp_add; the browser then selects it), anything else
+// is refused with a message.
+static void on_drop(GLFWwindow *win, int count, const char **paths) {
+    window_state *st = glfwGetWindowUserPointer(win);
+    st->ui_dirty = 1;
+    for (int i = 0; i < count; i++) {
+        const char *p = paths[i], *dot = strrchr(p, '.');
+        char msg[4400];
+        if (work_queue_busy(&st->work)) {
+            snprintf(msg, sizeof msg, "%.4000s: dropped while work runs; drop it again after", p);
+            console_add(&st->ed.console, CONSOLE_ERROR, msg);
+            fprintf(stderr, "%s\n", msg);
+        } else if (dot && (strcmp(dot, ".world") == 0 || strcmp(dot, ".planet") == 0)) {
+            snprintf(st->ed.open_path, sizeof st->ed.open_path, "%.1023s", p);
+            editor_ui_request(&st->ed, st->ctx, PENDING_OPEN);
+        } else if (is_elevation_raster(p)) {
+            // Imported centred on the point under the pointer (else where the file says).
+            double hit[3], mx, my;
+            char arg[4200], cmd[4400];
+            cmd_quote_arg(arg, sizeof arg, p);
+            glfwGetCursorPos(win, &mx, &my);
+            if (pick_at(st, mx, my, hit) == 0)
+                snprintf(cmd, sizeof cmd, "import %s x=%.3f z=%.3f anchor=centre", arg, hit[0],
+                         hit[2]);
+            else
+                snprintf(cmd, sizeof cmd, "import %s", arg);
+            run_commands(st, cmd, "drop");
+        } else if (stamp_is_image_file(p)) {
+            char arg[4200], cmd[4300];
+            cmd_quote_arg(arg, sizeof arg, p);
+            snprintf(cmd, sizeof cmd, "stamp_add %s", arg);
+            stamp_browser_load(&st->ed.stamps,
+                               st->ctx); // listed before, so the new one shows as new
+            run_commands(st, cmd, "drop");
+            st->ed.stamps.checked_at = 0; // look at the folder again at once
+        } else {
+            snprintf(
+                msg, sizeof msg,
+                "%.4000s: Orogen opens .world and .planet files, imports heightmaps (.hgt .tif "
+                ".exr .r16 ...) and makes other images stamps",
+                p);
+            console_add(&st->ed.console, CONSOLE_ERROR, msg);
+            fprintf(stderr, "%s\n", msg);
+        }
+    }
+}
+
+static void on_refresh(GLFWwindow *win) {
+    window_state *st = glfwGetWindowUserPointer(win);
+    st->dirty = 1;
+    st->ui_dirty = 1;
+}
+
+// The close button asks first when there are unsaved changes.
+void on_close(GLFWwindow *win) {
+    window_state *st = glfwGetWindowUserPointer(win);
+    if (work_queue_busy(&st->work)) { // stop the work first, then ask as usual
+        glfwSetWindowShouldClose(win, GLFW_FALSE);
+        work_queue_cancel(&st->work);
+        st->close_after_work = 1;
+        return;
+    }
+    if (world_is_modified(st->ctx->world)) {
+        glfwSetWindowShouldClose(win, GLFW_FALSE);
+        editor_ui_request(&st->ed, st->ctx, PENDING_QUIT);
+        st->ui_dirty = 1;
+    }
+}
+
+void clear_frame_input(ui_input *in) {
+    memset(in->mouse_pressed, 0, sizeof in->mouse_pressed);
+    memset(in->mouse_released, 0, sizeof in->mouse_released);
+    memset(in->key_pressed, 0, sizeof in->key_pressed);
+    in->double_click = 0;
+    in->wheel = 0;
+    in->text[0] = 0;
+}
+
+void window_input_attach(window_state *st) {
+    GLFWwindow *win = st->win;
+    glfwSetWindowUserPointer(win, st);
+    glfwSetMouseButtonCallback(win, viewport_drag_button);
+    glfwSetCursorPosCallback(win, viewport_drag_cursor);
+    glfwSetCursorEnterCallback(win, on_cursor_enter);
+    glfwSetScrollCallback(win, on_scroll);
+    glfwSetKeyCallback(win, on_key);
+    glfwSetWindowRefreshCallback(win, on_refresh);
+    glfwSetCharCallback(win, on_char);
+    glfwSetFramebufferSizeCallback(win, on_framebuffer_size);
+    glfwSetWindowCloseCallback(win, on_close);
+    glfwSetDropCallback(win, on_drop);
+}
