@@ -156,6 +156,18 @@ static int run_scripts(cmd_context *ctx, const script *scripts, int script_count
     return 0;
 }
 
+// Interactive use needs a display for the editor window: 1 (said so) when there is none,
+// instead of failing later.
+static int no_display(void) {
+    const char *x = getenv("DISPLAY"), *wl = getenv("WAYLAND_DISPLAY");
+    if ((x && *x) || (wl && *wl)) return 0;
+    fprintf(stderr, "orogen: no display found (DISPLAY and WAYLAND_DISPLAY are unset), so the "
+                    "editor cannot open.\n"
+                    "Batch mode needs no display: orogen --batch SCRIPT or orogen -c 'CMD; CMD'\n"
+                    "  e.g. orogen -c 'info; sample 100 200; save my.world'\n");
+    return 1;
+}
+
 int main(int argc, char **argv) {
     script scripts[64];
     int script_count = 0;
@@ -204,18 +216,7 @@ int main(int argc, char **argv) {
         }
     }
 
-    if (script_count == 0) {
-        // Interactive: the editor window needs a display. Say so instead of failing later.
-        const char *x = getenv("DISPLAY"), *wl = getenv("WAYLAND_DISPLAY");
-        if (!(x && *x) && !(wl && *wl)) {
-            fprintf(stderr,
-                    "orogen: no display found (DISPLAY and WAYLAND_DISPLAY are unset), so the "
-                    "editor cannot open.\n"
-                    "Batch mode needs no display: orogen --batch SCRIPT or orogen -c 'CMD; CMD'\n"
-                    "  e.g. orogen -c 'info; sample 100 200; save my.world'\n");
-            return 2;
-        }
-    }
+    if (script_count == 0 && no_display()) return 2;
 
     og_error err = {{0}};
     if (view_commands_register(&err) != 0 || window_commands_register(&err) != 0) {

@@ -1,0 +1,82 @@
+// The editor's panels (app/editor_*.c) and what they share: each part builds its
+// widgets with the UI library and acts by running commands (editor_ui_run).
+#ifndef OROGEN_APP_EDITOR_UI_INTERNAL_H
+#define OROGEN_APP_EDITOR_UI_INTERNAL_H
+
+#include "app/editor_ui.h"
+#include "editor/cmd/tokenize.h"
+#include "editor/gen/gen.h"
+#include "editor/params/world_params.h"
+#include "editor/world/history.h"
+#include "io/tile_store.h"
+#include "renderer/planet_camera.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+#include <time.h>
+
+// --- editor_build.c: running actions, building the frame
+
+int editor_ui_run(editor_ui *e, cmd_context *ctx, const char *text);
+// Runs text now, on this thread, for actions that go on only when it succeeded (load,
+// save): quick file work, not long edits.
+int run_now(editor_ui *e, cmd_context *ctx, const char *text);
+int problem_lines(const char *problems);
+int runf(editor_ui *e, cmd_context *ctx, const char *fmt, ...);
+void remember_recent(editor_ui *e, const char *path);
+void do_action(editor_ui *e, cmd_context *ctx, editor_pending action);
+void editor_ui_request(editor_ui *e, cmd_context *ctx, editor_pending action);
+const char *file_name(const char *path);
+
+// --- editor_menus.c: the menu bar
+
+void menus(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v, ui_rect bar);
+
+// --- editor_tools.c: tools
+
+void palette(editor_ui *e, ui_context *ui, cmd_context *ctx, ui_rect r);
+// The current tool's name as `tool` takes it.
+const char *current_tool(const brush *b);
+void tool_options(editor_ui *e, ui_context *ui, cmd_context *ctx);
+
+// --- editor_panels.c: the dock's panels
+
+void world_panel(editor_ui *e, ui_context *ui, cmd_context *ctx);
+// The layers: the coarse and detail heights (the current tool's target), the material
+// layer's eight materials (the paint material) and whether the automatic material rules
+// colour unpainted ground.
+void layers_panel(editor_ui *e, ui_context *ui, cmd_context *ctx, const viewport *v);
+void history_panel(editor_ui *e, ui_context *ui, cmd_context *ctx);
+
+// --- editor_dialogs.c: status bar and dialogs
+
+void status_bar(ui_context *ui, cmd_context *ctx, viewport *v, const editor_frame_info *info,
+                const stamp_browser *stamps, ui_rect r);
+ui_rect centred(float width, float height, float w, float h);
+void unsaved_prompt(editor_ui *e, ui_context *ui, cmd_context *ctx, float width, float height);
+// Whether the world has unsaved edits of a session that ended without saving, and the
+// user has not put the question off for this world.
+// The journal whose edits the Recover dialog offers: the world's own, or one a
+// never-saved world left (found when the editor started); "" when none is offered.
+const char *offered_journal(const editor_ui *e, cmd_context *ctx, size_t *steps, int64_t *when);
+// Like Blender's Recover Last Session: the edits a crash or a kill left in a journal,
+// offered when the world opens (or, for a world never saved, when the editor starts).
+void recover_dialog(editor_ui *e, ui_context *ui, cmd_context *ctx, ui_rect r);
+void editor_ui_save(editor_ui *e, cmd_context *ctx);
+// Saving over a file that loaded with errors writes defaults where its bad lines were,
+// and over a world opened read-only replaces its tile store: say so (which lines, which
+// store), and let the user replace it, save elsewhere or keep working.
+void replace_dialog(editor_ui *e, ui_context *ui, cmd_context *ctx, ui_rect r);
+void editor_ui_save_as(editor_ui *e, cmd_context *ctx);
+void editor_ui_open(editor_ui *e, cmd_context *ctx);
+// The file browser for Open and Save as; what it chose runs as load or save.
+void files_dialog(editor_ui *e, ui_context *ui, cmd_context *ctx, ui_rect r);
+// A text dialog's rectangle: as wide as its longest line (within the window).
+ui_rect text_dialog_rect(const ui_context *ui, const char *const *lines, int n, float width,
+                         float height);
+void text_dialog(ui_context *ui, const char *name, const char *const *lines, int n, int *show,
+                 float width, float height);
+
+#endif
