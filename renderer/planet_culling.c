@@ -31,11 +31,13 @@ int planet_node_visible(planet_renderer *r, const node *n, double hmin, double h
     double pts[10][3];
     const double ss[5] = {s0, s1, s0, s1, 0.5 * (s0 + s1)};
     const double ts[5] = {t0, t0, t1, t1, 0.5 * (t0 + t1)};
-    // The ground under the sea is drawn raised to its surface: the top the camera sees.
-    const double top = fmax(hmax, world_params_ocean_height(&r->params));
+    // The ground under the sea is drawn raised to its surface: the heights drawn (a
+    // chunk wholly under the sea is a thin shell at the surface, not as deep as its floor).
+    const double ocean = world_params_ocean_height(&r->params);
+    const double top = fmax(hmax, ocean), bottom = fmax(hmin, ocean);
     for (int k = 0; k < 5; k++) {
         surface_point(r, n->face, ss[k], ts[k], top, pts[k]);
-        surface_point(r, n->face, ss[k], ts[k], hmin, pts[5 + k]);
+        surface_point(r, n->face, ss[k], ts[k], bottom, pts[5 + k]);
     }
     // Sphere around the midpoint of the centre's top and bottom.
     for (int k = 0; k < 3; k++)

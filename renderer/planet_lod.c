@@ -34,7 +34,10 @@ static double split_distance(const planet_renderer *r, const node_bounds *b, dou
                    b->centre[2] - r->cam->pos[2]};
     double centre_dist = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
     *node_dist = fmax(centre_dist - b->radius, b->cell);
-    return cell * r->pixels_per_radian * grazing(r, b, centre_dist, d) / r->split_pixels;
+    // Open sea (a built chunk wholly under it) is the sphere's smooth surface: its
+    // samples shape nothing but the water's depth colour, so they may be 8 times wider.
+    const double sea = b->hmax < world_params_ocean_height(&r->params) ? 8.0 : 1.0;
+    return cell * r->pixels_per_radian * grazing(r, b, centre_dist, d) / (sea * r->split_pixels);
 }
 
 static int wants_split(const planet_renderer *r, const node *n, const node_bounds *b) {
