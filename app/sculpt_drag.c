@@ -9,8 +9,8 @@
 int sculpt_face_metres(const world_params *p, int face, const double hit[3], double *x, double *z) {
     double s, t, n = (double)world_grid_face_samples(p);
     if (!world_grid_face_coords_on(face, hit, &s, &t)) return -1;
-    *x = ((s + 1.0) * 0.5 * n - 0.5) * p->spacing;
-    *z = ((t + 1.0) * 0.5 * n - 0.5) * p->spacing;
+    *x = ((s + 1.0) * 0.5 * n - 0.5) * world_grid_sample_metres(p);
+    *z = ((t + 1.0) * 0.5 * n - 0.5) * world_grid_sample_metres(p);
     return 0;
 }
 

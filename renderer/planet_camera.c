@@ -79,9 +79,10 @@ void planet_lat_lon(const double pos[3], double *lat, double *lon) {
 // (renderer/planet_face_edges.c: the same from each side).
 static int corner_height(world *w, int face, double e, double f, double *height, og_error *err) {
     const world_params *p = world_get_params(w);
-    const double n = (double)world_grid_face_samples(p), last = (n - 1.0) * p->spacing;
+    const double n = (double)world_grid_face_samples(p), sp = world_grid_sample_metres(p),
+                 last = (n - 1.0) * sp;
     if (e > 0 && e < n && f > 0 && f < n)
-        return world_sample(w, face, (e - 0.5) * p->spacing, (f - 0.5) * p->spacing, height, err);
+        return world_sample(w, face, (e - 0.5) * sp, (f - 0.5) * sp, height, err);
     double dir[3], sum = 0;
     int faces = 0;
     world_grid_face_direction(face, e / n * 2.0 - 1.0, f / n * 2.0 - 1.0, dir);
@@ -90,14 +91,14 @@ static int corner_height(world *w, int face, double e, double f, double *height,
         if (!world_grid_face_coords_on(g, dir, &s, &t) || fmax(fabs(s), fabs(t)) > 1.0 + 1e-9)
             continue;
         const double x = (s + 1.0) * 0.5 * n - 0.5, z = (t + 1.0) * 0.5 * n - 0.5;
-        if (world_sample(w, g, fmin(fmax(x * p->spacing, 0.0), last),
-                         fmin(fmax(z * p->spacing, 0.0), last), &h, err) != 0)
+        if (world_sample(w, g, fmin(fmax(x * sp, 0.0), last), fmin(fmax(z * sp, 0.0), last), &h,
+                         err) != 0)
             return -1;
         sum += h, faces++;
     }
     if (faces == 0)
-        return world_sample(w, face, fmin(fmax((e - 0.5) * p->spacing, 0.0), last),
-                            fmin(fmax((f - 0.5) * p->spacing, 0.0), last), height, err);
+        return world_sample(w, face, fmin(fmax((e - 0.5) * sp, 0.0), last),
+                            fmin(fmax((f - 0.5) * sp, 0.0), last), height, err);
     *height = sum / faces;
     return 0;
 }

@@ -115,9 +115,12 @@ run -c 'new planet; sample 1000 2000 3; hash 0 0 5000 5000 5'
 check "planet sample and hash on faces" $status
 run -c 'new planet; info'
 n=$(sed -n 's/^face_samples=//p' "$work/out"); e=$(sed -n 's/^face_extent_m=//p' "$work/out")
-# Earth-sized at 100 m: the face's arc (pi/2 x 6371 km) in whole 256-sample tiles.
-[ "$n" = 100096 ] && [ "$e" = 10009500 ]; check "info on a planet: face_samples=$n face_extent_m=$e" $?
-run -c "new planet; sample $e $e 2; sample $(awk -v e="$e" 'BEGIN { print e + 1 }') 0 2"
+# Earth-sized at 100 m: the face's arc (pi/2 x 6371 km) in whole 256-sample tiles, in
+# true metres on the sphere (the arc per sample a little under the spacing).
+[ "$n" = 100096 ] && awk -v e="$e" -v n="$n" 'BEGIN { t = (n - 1) * 3.14159265358979 / 2 * 6371000 / n
+                                                     exit !((e - t) ^ 2 < 1e-6) }'
+check "info on a planet: face_samples=$n face_extent_m=$e" $?
+run -c "new planet; sample $e $e 2; sample $(awk -v e="$e" 'BEGIN { printf "%.17g", e + 1 }') 0 2"
 [ $status = 1 ] && grep -q "outside" "$work/err"; check "face_extent_m is the last position a face takes" $?
 run -c 'new planet; sample 1000 2000 6'
 [ $status = 1 ] && grep -q "face 6 does not exist" "$work/err"; check "bad face rejected" $?

@@ -60,6 +60,12 @@ alt=$(awk '/^camera_geo /{print $4}' "$work/out")
 read -r surface floor <<<"$(awk '/^pick /{r = sqrt($2*$2 + $3*$3 + $4*$4) - 6371000; printf "%s ", r}' "$work/out")"
 awk -v s="$surface" -v f="$floor" 'BEGIN { exit !(s * s < 0.01 && f < -100) }'
 check "pick reports the sea's surface (${surface} m) and, with floor, the sea floor (${floor} m)" $?
+# One unit everywhere: seed 004's radius-10 planet counts face-local metres on the sphere
+# (a face's arc is pi/2 x 10 m, not 256 samples x its nominal spacing of 100).
+run "load $tests/data/params/seed004.planet; info"
+extent=$(sed -n 's/^face_extent_m=//p' "$work/out")
+awk -v e="$extent" 'BEGIN { t = 3.14159265358979 / 2 * 10 * 255 / 256; exit !((e - t) ^ 2 < 1e-12) }'
+check "seed 004's face is 15.6 m across in face-local metres (face_extent_m=$extent)" $?
 max_golden=2.0
 mkdir -p "$failed_dir"
 for name in planet_orbit planet_10km planet_2m planet_wire planet_seed004 planet_moon \

@@ -171,7 +171,7 @@ static uint64_t layer_hash(world *w, tile_layer layer, int face, grid_rect r) {
 
 // world_hash over the samples of r (level 0, coarse).
 static uint64_t coarse_hash(world *w, int face, grid_rect r) {
-    double sp = world_get_params(w)->spacing;
+    double sp = world_grid_sample_metres(world_get_params(w)); // true metres on a planet
     uint64_t digest, count;
     og_error err;
     if (world_hash(w, face, (double)r.x0 * sp, (double)r.z0 * sp, (double)(r.x1 - 1) * sp,
@@ -1824,9 +1824,10 @@ static void test_planet_face_edit(void **state) {
     brush_defaults(&b, BRUSH_RAISE);
     og_error err;
     assert_int_equal(brush_set(&b, "face", "2", &err), 0);
-    b.radius = 3000; // 30 cells
+    b.radius = 3000; // 49 cells of 61.4 m (face-local metres are the datum's arc)
     b.amount = 50;
-    dab_at(w, &b, 256 * 100.0, 250 * 100.0); // the face centre, across all four tiles
+    const double sp = world_grid_sample_metres(&p);
+    dab_at(w, &b, 256 * sp, 250 * sp); // the face centre, across all four tiles
     uint64_t f2_after = coarse_hash(w, 2, face);
     assert_true(f2_after != f2);
     assert_true(coarse_hash(w, 3, face) == f3);

@@ -24,8 +24,10 @@
 #include <string.h>
 #include <cmocka.h>
 
-#define N 512         // samples per face side (radius 20 km at 100 m: 2 x 2 tiles)
-#define SPACING 100.0 // metres per sample (face-local)
+#define N 512 // samples per face side (radius 20 km at 100 m: 2 x 2 tiles)
+// Metres per sample (face-local): the datum's arc, pi/2 x radius over N (61.4 m), not
+// the nominal spacing of 100 (world_grid_sample_metres).
+#define SPACING (M_PI / 2.0 * RADIUS / N)
 #define RADIUS 20000.0
 
 static void silent(void *u, const char *m) {
@@ -128,7 +130,7 @@ static void check_tool(brush_tool tool, const char *key, const char *value) {
         og_error err;
         assert_int_equal(brush_set(&b, "face", "4", &err), 0);
         if (key) assert_int_equal(brush_set(&b, key, value, &err), 0);
-        b.radius = 2500; // 25 samples
+        b.radius = 2500; // 41 samples
         b.strength = 0.8;
         if (tool == BRUSH_RAISE || tool == BRUSH_NOISE) b.amount = 40;
         float *before = read_faces(w);

@@ -250,8 +250,9 @@ static int c_info(cmd_context *ctx, int argc, char **argv, og_error *err) {
         // The cube-face grid sample, hash, dab, stroke and stamp address with FACE and
         // face-local metres 0 .. face_extent_m.
         int64_t n = world_grid_face_samples(p);
-        fprintf(o, "face_samples=%" PRId64 "\nface_extent_m=%.17g\n", n,
-                (double)(n - 1) * p->spacing);
+        // True metres on the sphere: sample_metres is the datum's arc per cell.
+        fprintf(o, "face_samples=%" PRId64 "\nface_extent_m=%.17g\nsample_metres=%.17g\n", n,
+                (double)(n - 1) * world_grid_sample_metres(p), world_grid_sample_metres(p));
     }
     if (p->kind == WORLD_FLAT) {
         tile_key *bricks = NULL;

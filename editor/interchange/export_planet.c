@@ -209,15 +209,16 @@ static int write_face_images(face_images *fi, og_error *err) {
     image_job job = {.fi = fi};
     char path[4300];
     const world_params *p = fi->p;
-    const double cell = ldexp(p->spacing, fi->level); // face-local metres per pixel
+    const double sample = world_grid_sample_metres(p); // true metres on the sphere
+    const double cell = ldexp(sample, fi->level);      // face-local metres per pixel
     for (int f = 0; f < FACES; f++) {
         snprintf(path, sizeof path, "%s_height_%d.png", fi->stem, f);
         const char *staged = add_file(fi->files, path);
         job.height_path[f] = staged;
         sidecar s = {.spacing = cell,
                      // Pixel centres in the face-local metres sample and dab take.
-                     .origin_x = 0.5 * (cell - p->spacing),
-                     .origin_z = 0.5 * (cell - p->spacing),
+                     .origin_x = 0.5 * (cell - sample),
+                     .origin_z = 0.5 * (cell - sample),
                      .width = fi->size,
                      .height = fi->size,
                      .scale = (fi->max - fi->min > 0 ? fi->max - fi->min : 1.0) / 65535.0,

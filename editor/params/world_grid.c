@@ -9,6 +9,11 @@ int64_t world_grid_face_samples(const world_params *p) {
     return tiles * TILE_SIZE;
 }
 
+double world_grid_sample_metres(const world_params *p) {
+    if (p->kind != WORLD_PLANET) return p->spacing;
+    return (M_PI / 2.0) * p->radius / (double)world_grid_face_samples(p);
+}
+
 void world_grid_face_direction(int face, double s, double t, double dir[3]) {
     // Tangent warp: equal steps in s map to equal angles, so cells near face
     // corners are not squeezed as in the plain gnomonic projection.

@@ -18,6 +18,12 @@
 // Level-0 cells per planet face side: the face's arc (pi/2 * radius) over spacing,
 // rounded up to a whole number of tiles.
 int64_t world_grid_face_samples(const world_params *p);
+// Metres between level-0 samples as face-local coordinates count them: a flat world's
+// spacing; on a planet the datum's arc per cell (a face's quarter circle over its
+// samples: the spacing or a little less, far less on a planet smaller than a tile of
+// samples at its spacing, as seed 004's radius-10 planet), so face-local metres, brush
+// radii, `info` and sidecars are true metres on the sphere at every size.
+double world_grid_sample_metres(const world_params *p);
 
 // Unit direction from the planet centre through face-local coordinates s, t in [-1, 1].
 void world_grid_face_direction(int face, double s, double t, double dir[3]);

@@ -16,10 +16,10 @@ int layer_grid_init(layer_grid *g, const world_params *p, tile_layer layer, int 
     int64_t coarse = p->kind == WORLD_PLANET ? world_grid_face_samples(p) : p->size;
     g->layer = layer;
     g->face = face;
-    g->spacing = p->spacing;
+    g->spacing = world_grid_sample_metres(p);
     g->extent = coarse;
     if (layer == TILE_LAYER_DETAIL) {
-        g->spacing = p->spacing / p->detail_ratio;
+        g->spacing = world_grid_sample_metres(p) / p->detail_ratio;
         g->extent = coarse > 0 ? (coarse - 1) * p->detail_ratio + 1 : 0;
     }
     return 0;

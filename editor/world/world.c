@@ -670,11 +670,15 @@ static int in_tile_range(double index) {
 int world_sample(world *w, int face, double x, double z, double *height, og_error *err) {
     if (check_face(w, face, err) != 0) return -1;
     if (!isfinite(x) || !isfinite(z)) return og_error_set(err, "position must be finite numbers");
-    double fx = x / w->params.spacing, fz = z / w->params.spacing;
+    const double sp = world_grid_sample_metres(&w->params); // true metres on a planet
+    double fx = x / sp, fz = z / sp;
     int64_t n = world_extent(w);
+    // The last sample's position printed and read back may land an ulp past it.
+    if (n > 0 && fx > (double)(n - 1) && fx < (double)(n - 1) * (1 + 1e-12)) fx = (double)(n - 1);
+    if (n > 0 && fz > (double)(n - 1) && fz < (double)(n - 1) * (1 + 1e-12)) fz = (double)(n - 1);
     if (n > 0 && (fx < 0 || fz < 0 || fx > (double)(n - 1) || fz > (double)(n - 1)))
         return og_error_set(err, "position (%g, %g) m lies outside the world (0 to %g m)", x, z,
-                            (double)(n - 1) * w->params.spacing);
+                            (double)(n - 1) * sp);
     if (!in_tile_range(fx) || !in_tile_range(fz))
         return og_error_set(err, "position (%g, %g) m lies beyond the int32 tile range", x, z);
     int64_t i0 = (int64_t)floor(fx), j0 = (int64_t)floor(fz);
@@ -700,7 +704,7 @@ int world_hash(world *w, int face, double x0, double z0, double x1, double z1, u
         return og_error_set(err, "rectangle corners must be finite numbers");
     if (x1 < x0 || z1 < z0)
         return og_error_set(err, "rectangle is empty: need X0 <= X1 and Z0 <= Z1");
-    double sp = w->params.spacing;
+    double sp = world_grid_sample_metres(&w->params);
     double fx0 = ceil(x0 / sp), fz0 = ceil(z0 / sp), fx1 = floor(x1 / sp), fz1 = floor(z1 / sp);
     int64_t n = world_extent(w);
     if (n > 0 && (fx0 < 0 || fz0 < 0 || fx1 > (double)(n - 1) || fz1 > (double)(n - 1)))
