@@ -2,6 +2,8 @@
 // the UI built over it and composed, the progress of long work, the title.
 #include "app/window_internal.h"
 
+#include "editor/params/world_grid.h"
+
 void update_title(window_state *st) {
     char title[sizeof st->title], name[256];
     const char *path = world_path(st->ctx->world);
@@ -58,9 +60,9 @@ static void update_cursor(window_state *st) {
     if (!bc->visible) return;
     if (st->drag == DRAG_RESIZE) memcpy(hit, st->resize_at, sizeof hit);
     bc->x = hit[0], bc->y = hit[1], bc->z = hit[2]; // y: planets drape it in 3D
-    if (st->ed.stamps.active) { // the stamp's footprint: its half size, no falloff
-        bc->radius =
-            stamp_browser_half_size(&st->ed.stamps, world_get_params(st->ctx->world)->spacing);
+    if (st->ed.stamps.active) {               // the stamp's footprint: its half size, no falloff
+        bc->radius = stamp_browser_half_size( // in face-local metres on a planet
+            &st->ed.stamps, world_grid_sample_metres(world_get_params(st->ctx->world)));
         for (int i = 0; i < BRUSH_FALLOFF_SAMPLES; i++)
             bc->falloff[i] = 1.0f;
         bc->color[0] = bc->color[1] = bc->color[2] = 0.9f;
