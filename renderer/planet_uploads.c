@@ -18,11 +18,12 @@
 // vertex past the face's edge lies a cell beyond it, on the neighbouring face. *edge: the
 // vertex lies on the face's edge or past it (planet_face_edges.c gives its height).
 static double vertex_coord(const planet_renderer *r, int level, int64_t e0, int g, int *edge) {
-    const int64_t cells = (e0 + g) << level;
+    const int64_t cells = (e0 + g) * ((int64_t)1 << level); // e0 + g may be -1
     const double past = 2.0 * ldexp(1.0, level) / (double)r->face_samples;
     *edge = cells <= 0 || cells >= r->face_samples;
     if (g == -1 && cells < 0) return -1.0 - past;
-    if (g == BLOCK + 1 && ((e0 + BLOCK) << level) >= r->face_samples) return 1.0 + past;
+    if (g == BLOCK + 1 && (e0 + BLOCK) * ((int64_t)1 << level) >= r->face_samples)
+        return 1.0 + past;
     return edge_coord(r, level, e0 + g);
 }
 
