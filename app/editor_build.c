@@ -4,8 +4,6 @@
 
 void editor_ui_init(editor_ui *e) {
     memset(e, 0, sizeof *e);
-    e->camera_mode_request = -1;
-    e->dynamic_resolution = 1;
     console_init(&e->console);
     stamp_browser_init(&e->stamps);
 }
@@ -65,7 +63,7 @@ void do_action(editor_ui *e, cmd_context *ctx, editor_pending action) {
         snprintf(cmd, sizeof cmd, "load %s", arg);
         if (run_now(e, ctx, cmd) == 0) remember_recent(e, e->open_path);
     }
-    if (action == PENDING_QUIT) e->quit_requested = 1;
+    if (action == PENDING_QUIT && e->host.close) e->host.close(e->host.user);
 }
 
 void editor_ui_request(editor_ui *e, cmd_context *ctx, editor_pending action) {
@@ -216,7 +214,7 @@ ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport
         unsaved_prompt(e, ui, ctx, width, height);
     }
     // The menu bar last: its menus open over everything.
-    menus(e, ui, ctx, v, top);
+    menus(e, ui, ctx, v, info, top);
     if (ui_get_input(ui)->key_pressed[UI_KEY_ESCAPE] && !ui_wants_keyboard(ui)) {
         e->show_help = e->show_about = e->picking_height = e->shape_placing = 0;
         if (e->files.open)

@@ -50,7 +50,8 @@ static void edit_menu(editor_ui *e, ui_context *ui, cmd_context *ctx) {
     ui_menu_end(ui);
 }
 
-static void view_menu(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v) {
+static void view_menu(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v,
+                      const editor_frame_info *info) {
     static const char *const modes[] = {"shaded", "wireframe", "levels", "height", "slope"};
     static const char *const labels[] = {"Shaded", "Wireframe", "Clipmap levels", "Height colours",
                                          "Slope colours"};
@@ -113,22 +114,24 @@ static void view_menu(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *
                      v->settings.levels > RENDER_MIN_LEVELS))
         runf(e, ctx, "render levels=%d", v->settings.levels - 1);
     if (ui_menu_item(ui,
-                     e->dynamic_resolution ? "Dynamic resolution: on##Dynamic"
-                                           : "Dynamic resolution: off##Dynamic",
+                     info->dynamic_resolution ? "Dynamic resolution: on##Dynamic"
+                                              : "Dynamic resolution: off##Dynamic",
                      "L", 1))
-        runf(e, ctx, "dynamic_resolution %s", e->dynamic_resolution ? "off" : "on");
+        runf(e, ctx, "dynamic_resolution %s", info->dynamic_resolution ? "off" : "on");
     ui_menu_separator(ui);
     static const char *const cameras[] = {"Camera: fly", "Camera: orbit", "Camera: walk"};
     for (int i = 0; i < 3; i++)
-        if (ui_menu_item(ui, cameras[i], "C", e->camera_mode != i)) e->camera_mode_request = i;
+        if (ui_menu_item(ui, cameras[i], "C", info->camera_mode != i)) {
+            if (e->host.set_camera_mode) e->host.set_camera_mode(e->host.user, i);
+        }
     if (ui_menu_item(ui, "Reset view", "Home", 1)) editor_ui_run(e, ctx, "camera default");
     ui_menu_separator(ui);
     static const double scales[] = {1.0, 1.25, 1.5, 2.0};
     for (int i = 0; i < 4; i++) {
         char label[64];
         snprintf(label, sizeof label, "UI scale %.0f%%", scales[i] * 100);
-        if (ui_menu_item(ui, label, NULL, fabs(e->ui_scale - scales[i]) > 1e-6))
-            e->ui_scale_request = scales[i]; // applied between frames (a new font)
+        if (ui_menu_item(ui, label, NULL, fabs(info->ui_scale - scales[i]) > 1e-6))
+            runf(e, ctx, "ui_scale %g", scales[i]); // a new font, between frames
     }
     if (ui_menu_item(ui, "Console", "~", 1)) {
         e->console.open = !e->console.open;
@@ -137,11 +140,12 @@ static void view_menu(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *
     ui_menu_end(ui);
 }
 
-void menus(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v, ui_rect bar) {
+void menus(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v,
+           const editor_frame_info *info, ui_rect bar) {
     ui_menubar_begin(ui, bar);
     if (ui_menu_begin(ui, "File")) file_menu(e, ui, ctx);
     if (ui_menu_begin(ui, "Edit")) edit_menu(e, ui, ctx);
-    if (ui_menu_begin(ui, "View")) view_menu(e, ui, ctx, v);
+    if (ui_menu_begin(ui, "View")) view_menu(e, ui, ctx, v, info);
     if (ui_menu_begin(ui, "Help")) {
         if (ui_menu_item(ui, "Keyboard shortcuts", "F1", 1)) e->show_help = 1;
         if (ui_menu_item(ui, "About Orogen", NULL, 1)) e->show_about = 1;

@@ -25,6 +25,10 @@ typedef struct editor_frame_info {
     const char *gl_renderer;
     int resizing; // the brush is being resized on screen: its radius and strength so far
     double resize_radius, resize_strength;
+    // The window's own state, shown in View (changed by commands or editor_host).
+    double ui_scale;
+    int camera_mode;        // 0 fly, 1 orbit, 2 walk
+    int dynamic_resolution; // the window lowers the resolution while moving
 } editor_frame_info;
 
 typedef enum editor_pending {
@@ -36,6 +40,14 @@ typedef enum editor_pending {
 } editor_pending;
 
 #define EDITOR_RECENT 8
+
+// What the panels may ask of the window holding them beyond running commands: a
+// narrow typed interface the window fills in (a NULL member is not offered).
+typedef struct editor_host {
+    void *user;
+    void (*set_camera_mode)(void *user, int mode); // View > Camera: 0 fly, 1 orbit, 2 walk
+    void (*close)(void *user);                     // Quit, once nothing unsaved is left
+} editor_host;
 
 typedef struct editor_ui {
     console console;
@@ -56,23 +68,19 @@ typedef struct editor_ui {
     char planet_command[1024];        // PENDING_NEW_PLANET: the dialog's new planet command
     char recent[EDITOR_RECENT][1024]; // worlds opened or saved lately, newest first
     int recent_count;
-    double ui_scale, ui_scale_request; // the current scale; a new one asked for (0: none)
-    stamp_browser stamps;              // the stamp tool (stamps.active) and its options
-    uint32_t material_textures[8];     // swatches of the paint materials (0: automatic)
-    ui_color material_colors[8];       // and their mean colours (the Layers panel)
-    int quit_requested;                // the window should close
-    work_queue *work;                  // where actions are queued (NULL: run at once)
-    int camera_mode;                   // 0 fly, 1 orbit, 2 walk (the window's, shown in View)
-    int camera_mode_request;           // View > Camera asked for one (-1: none)
-    int dynamic_resolution;            // the window lowers the resolution while moving
-    int history_request;               // Edit > History: open the History section
-    const char *glfw_version;          // for Help > About
-    int picking_height;                // the next click in the viewport picks the tool's height
-    int shape_placing;                 // a 3D shape waits for clicks in the viewport (0: none)
-    int shape_clicks;                  // clicks it has had
-    double shape_at[3];                // where the first one picked
-    long long tiles_stored;            // the World panel's count of stored tiles, and when
-    double tiles_counted_at;           // it was taken (seconds)
+    stamp_browser stamps;          // the stamp tool (stamps.active) and its options
+    uint32_t material_textures[8]; // swatches of the paint materials (0: automatic)
+    ui_color material_colors[8];   // and their mean colours (the Layers panel)
+    editor_host host;              // the window's side
+    work_queue *work;              // where actions are queued (NULL: run at once)
+    int history_request;           // Edit > History: open the History section
+    const char *glfw_version;      // for Help > About
+    int picking_height;            // the next click in the viewport picks the tool's height
+    int shape_placing;             // a 3D shape waits for clicks in the viewport (0: none)
+    int shape_clicks;              // clicks it has had
+    double shape_at[3];            // where the first one picked
+    long long tiles_stored;        // the World panel's count of stored tiles, and when
+    double tiles_counted_at;       // it was taken (seconds)
 } editor_ui;
 
 // A click in the viewport on the surface point hit while a shape is being placed:

@@ -32,7 +32,8 @@ const char *file_name(const char *path);
 
 // --- editor_menus.c: the menu bar
 
-void menus(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v, ui_rect bar);
+void menus(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v,
+           const editor_frame_info *info, ui_rect bar);
 
 // --- editor_tools.c: tools
 

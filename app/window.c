@@ -330,6 +330,16 @@ static void window_teardown(window_state *st) {
     glfwTerminate();
 }
 
+// The panels' side of the window (editor_host).
+static void host_set_camera_mode(void *user, int mode) {
+    set_camera_mode(user, mode);
+}
+
+static void host_close(void *user) {
+    window_state *st = user;
+    glfwSetWindowShouldClose(st->win, GLFW_TRUE);
+}
+
 // The window's state from the settings: the viewport, the UI, the console, the queue.
 static int window_start(window_state *st, const app_settings *settings, const char *settings_path,
                         og_error *err) {
@@ -364,7 +374,6 @@ static int window_start(window_state *st, const app_settings *settings, const ch
     st->cc.fly_speed = settings->fly_speed; // the wheel with the right button held changes it
     st->dynamic_res = settings->dynamic_lod;
     st->ed.glfw_version = glfwGetVersionString();
-    st->ed.ui_scale = settings->ui_scale;
     st->drawn_scale = 1.0f;
     st->gl_renderer = (const char *)glGetString(GL_RENDERER);
     og_error ui_err = {{0}};
@@ -381,6 +390,7 @@ static int window_start(window_state *st, const app_settings *settings, const ch
     tool_settings_restore(ctx, settings, settings_path); // each tool as it was last used
     work_queue_init(&st->work, ctx, &st->ed.console, wake_window, NULL);
     st->ed.work = &st->work;
+    st->ed.host = (editor_host){st, host_set_camera_mode, host_close};
     st->ed.console.submit = submit_console_line;
     st->ed.console.submit_user = st;
     current_window = st;
@@ -436,10 +446,6 @@ static int frame_input(window_state *st, int w, int h, const ui_draw_list *dl) {
     }
     move_keys keys = take_keys(st);
     if (camera_controls_move(&st->cc, &v->cam, &keys, ground_height, st)) st->dirty = 1;
-    if (st->ed.camera_mode_request >= 0) { // View > Camera
-        set_camera_mode(st, st->ed.camera_mode_request);
-        st->ed.camera_mode_request = -1;
-    }
     double now_s = glfwGetTime();
     if (v->settings.sun_rotation != 0) { // R: the light turns while time passes
         double dt = fmin(now_s - st->sun_turned_at, 0.25);
@@ -466,19 +472,12 @@ static int frame_draw(window_state *st, int w, int h, const ui_draw_list **dl,
         *dl = build_ui(st, w, h);
         drawn = 1;
     }
-    if (st->ed.ui_scale_request > 0) { // View > UI scale: a new font between frames
-        char cmd[64];
-        snprintf(cmd, sizeof cmd, "ui_scale %g", st->ed.ui_scale_request);
-        st->ed.ui_scale_request = 0;
-        run_commands(st, cmd, "ui");
-    }
     // The actions the UI asked for run before the frame is drawn.
     if (!work_queue_idle(&st->work)) {
         pump_work(st);
         if (st->ctx->exit_requested) return -1;
         if (work_queue_busy(&st->work)) return 0;
         take_changes(st);
-        st->ed.ui_scale = st->settings.ui_scale;
         *dl = build_ui(st, w, h);
     }
     if (st->dirty || st->pending || st->settled < 2) {

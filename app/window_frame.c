@@ -160,7 +160,10 @@ const ui_draw_list *build_ui(window_state *st, int fw, int fh) {
                               .gl_renderer = st->gl_renderer,
                               .resizing = st->drag == DRAG_RESIZE,
                               .resize_radius = st->resize_radius,
-                              .resize_strength = st->resize_strength};
+                              .resize_strength = st->resize_strength,
+                              .ui_scale = st->settings.ui_scale,
+                              .camera_mode = camera_mode(st),
+                              .dynamic_resolution = st->dynamic_res};
     double hit[3];
     if (st->mouse_in && pick_at(st, st->mouse_x, st->mouse_y, hit) == 0) {
         info.cursor_valid = 1;
@@ -168,16 +171,12 @@ const ui_draw_list *build_ui(window_state *st, int fw, int fh) {
     }
     st->in.time = glfwGetTime();
     refresh_stamps(st);
-    st->ed.ui_scale = st->settings.ui_scale; // the ui_scale command may have changed it
-    st->ed.camera_mode = camera_mode(st);
-    st->ed.dynamic_resolution = st->dynamic_res;
     ui_begin(st->ui, &st->in, (float)fw, (float)fh);
     ui_rect vr = editor_ui_build(&st->ed, st->ui, st->ctx, st->v, &info, (float)fw, (float)fh);
     const ui_draw_list *dl = ui_end(st->ui);
     clear_frame_input(&st->in);
     float k = ui_px(st, 1.0); // framebuffer pixels per window unit
     st->view_rect = (ui_rect){vr.x / k, vr.y / k, vr.w / k, vr.h / k};
-    if (st->ed.quit_requested) glfwSetWindowShouldClose(st->win, GLFW_TRUE);
     st->ui_dirty = upload_stamp_thumbnails(&st->ed.stamps); // shown from the next frame
     return dl;
 }
