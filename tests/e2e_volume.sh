@@ -170,6 +170,16 @@ for f in t.obj t.ply t.glb; do
     check "manifold: $(cat manifold.txt)" $rc
 done
 
+# solid=1 with volume edits: sides on the region's edges and a floor, closed everywhere
+# (the tunnel's mouths open into the side walls).
+run -c "new flat; seed 3; generate; tool carve radius=8; tunnel 100 -20 100 300 -20 300 radius=10; export ts.ply region=0,0,256,256 solid=1"
+exported=$status
+python3 "$tests/mesh_check.py" ts.ply --closed >manifold.txt 2>&1
+closed=$?
+[ $exported = 0 ] && [ $closed = 0 ] && grep -q "bounds 0.000,.*,0.000 .. 256.000,.*,256.000" manifold.txt
+rc=$?
+check "solid=1 with a tunnel is a closed manifold solid over the region: $(cat manifold.txt)" $rc
+
 # The saved world keeps its volume edits.
 run -c "load caves.world; vsample 330 $in_cave 300"
 check "load caves.world" $status

@@ -3,8 +3,9 @@
 two faces, each direction of an edge at most once (consistent winding), no degenerate
 face (repeated vertex or zero area), no two faces on the same vertices, no vertex that no face uses. Prints one line with
 the counts and the bounds; exits 1 if any check fails.
-Usage: mesh_check.py FILE [--closed-inside X0,Z0,X1,Z1]
-  --closed-inside: also every edge not on the region's sides has exactly two faces."""
+Usage: mesh_check.py FILE [--closed-inside X0,Z0,X1,Z1 | --closed]
+  --closed-inside: also every edge not on the region's sides has exactly two faces;
+  --closed: every edge has exactly two faces (a solid)."""
 import json
 import struct
 import sys
@@ -90,6 +91,8 @@ def main():
     region = None
     if len(sys.argv) > 3 and sys.argv[2] == '--closed-inside':
         region = [float(v) for v in sys.argv[3].split(',')]
+    elif len(sys.argv) > 2 and sys.argv[2] == '--closed':
+        region = [float('inf')] * 4  # no edge lies on a side
     reader = {'obj': read_obj, 'ply': read_ply, 'glb': read_glb}[path.rsplit('.', 1)[-1].lower()]
     pos, faces = reader(path)
     directed, undirected, used = Counter(), Counter(), set()

@@ -418,15 +418,8 @@ int export_mesh(world *w, const char *path, const export_mesh_options *o, export
     int volume = 0;
     if (export_solid_has_volume(w, r, &volume, err) != 0) goto done;
     if (volume) { // caves and overhangs: the solid's surface, the heightfield's included
-        if (o->solid) {
-            og_error_set(err,
-                         "%s: solid=1 needs a region without volume edits (caves, "
-                         "overhangs): their surface is exported as it is",
-                         path);
-            goto done;
-        }
         volume_mesh sm;
-        if (export_solid_surface(w, r, &sm, err) != 0) goto done;
+        if (export_solid_surface(w, r, o->solid, &sm, err) != 0) goto done;
         int built = from_solid(&sm, (double)r.x0 * g.spacing, (double)r.z0 * g.spacing,
                                (double)(W - 1) * g.spacing, (double)(D - 1) * g.spacing,
                                o->centred ? ox : (double)r.x0 * g.spacing,
@@ -453,7 +446,7 @@ int export_mesh(world *w, const char *path, const export_mesh_options *o, export
         og_error_set(err, "%s: out of memory simplifying", path);
         goto done;
     }
-    if (o->solid) {
+    if (o->solid && !volume) { // a volume surface came closed already
         float lo = INFINITY, hi = -INFINITY;
         for (int64_t i = 0; i < W * D; i++)
             lo = fminf(lo, h[i]), hi = fmaxf(hi, h[i]);

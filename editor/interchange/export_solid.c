@@ -129,7 +129,7 @@ fail:
     return -1;
 }
 
-int export_solid_surface(world *w, grid_rect rect, volume_mesh *out, og_error *err) {
+int export_solid_surface(world *w, grid_rect rect, int closed, volume_mesh *out, og_error *err) {
     memset(out, 0, sizeof *out);
     volume_grid g;
     int64_t c0[2], c1[2];
@@ -149,15 +149,29 @@ int export_solid_surface(world *w, grid_rect rect, volume_mesh *out, og_error *e
     double v = g.voxel, origin[3] = {0, 0, 0};
     volume_box within = volume_box_everything();
     within.i0 = c0[0], within.i1 = c1[0], within.k0 = c0[1], within.k1 = c1[1];
-    for (int64_t bz = c0[1]; bz < c1[1] && rc == 0; bz += VOLUME_BRICK_Z)
-        for (int64_t bx = c0[0]; bx < c1[0] && rc == 0; bx += VOLUME_BRICK_X) {
-            int64_t ex = bx + VOLUME_BRICK_X < c1[0] ? bx + VOLUME_BRICK_X : c1[0];
-            int64_t ez = bz + VOLUME_BRICK_Z < c1[1] ? bz + VOLUME_BRICK_Z : c1[1];
+    // Closed: the solid box's sides and floor are surface too, so the edges reach one
+    // voxel past the region on every side.
+    volume_box solid = within;
+    const int64_t pad = closed ? 1 : 0;
+    if (closed) {
+        double lo = INFINITY, hi = -INFINITY;
+        for (int64_t c = 0; c < vh.w * vh.h; c++)
+            lo = fmin(lo, vh.height[c]), hi = fmax(hi, vh.height[c]);
+        for (size_t b = 0; b < n; b++)
+            lo = fmin(lo, (double)volume_brick_box(keys[b]).j0 * v);
+        solid.j0 = (int64_t)floor((lo - fmax(1.0, 0.05 * (hi - lo))) / v);
+        within.i0--, within.k0--, within.i1++, within.k1++;
+    }
+    for (int64_t bz = c0[1] - pad; bz < c1[1] + pad && rc == 0; bz += VOLUME_BRICK_Z)
+        for (int64_t bx = c0[0] - pad; bx < c1[0] + pad && rc == 0; bx += VOLUME_BRICK_X) {
+            int64_t ex = bx + VOLUME_BRICK_X < c1[0] + pad ? bx + VOLUME_BRICK_X : c1[0] + pad;
+            int64_t ez = bz + VOLUME_BRICK_Z < c1[1] + pad ? bz + VOLUME_BRICK_Z : c1[1] + pad;
             // Heights over the block's columns and the cells around them, a voxel spare,
             // and the volume bricks over them: where the surface can cross an edge.
             double lo = INFINITY, hi = -INFINITY;
-            for (int64_t k = bz - 1; k <= ez && k < c1[1] + 1; k++)
-                for (int64_t i = bx - 1; i <= ex && i < c0[0] + (c1[0] - c0[0]) + 1; i++) {
+            for (int64_t k = bz - 1 < c0[1] - 1 ? c0[1] - 1 : bz - 1; k <= ez && k < c1[1] + 1; k++)
+                for (int64_t i = bx - 1 < c0[0] - 1 ? c0[0] - 1 : bx - 1;
+                     i <= ex && i < c0[0] + (c1[0] - c0[0]) + 1; i++) {
                     double h = vh.height[(size_t)((k - vh.k0) * vh.w + (i - vh.i0))];
                     lo = fmin(lo, h), hi = fmax(hi, h);
                 }
@@ -168,9 +182,11 @@ int export_solid_surface(world *w, grid_rect rect, volume_mesh *out, og_error *e
                 if (box.j0 - 1 < j0) j0 = box.j0 - 1;
                 if (box.j1 + 1 > j1) j1 = box.j1 + 1;
             }
+            if (closed && solid.j0 - 1 < j0) j0 = solid.j0 - 1;
             volume_box starts = {bx, j0, bz, ex, j1, ez};
             volume_mesh block;
-            if (volume_mesh_edges(w, &g, starts, within, origin, &block, err) != 0) {
+            if (volume_mesh_edges(w, &g, starts, within, closed ? &solid : NULL, origin, &block,
+                                  err) != 0) {
                 rc = -1;
                 break;
             }

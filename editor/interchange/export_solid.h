@@ -15,6 +15,8 @@ int export_solid_has_volume(world *w, grid_rect rect, int *has, og_error *err);
 // The surface over the region's voxel columns (world metres, origin 0), welded: shared
 // positions are one vertex, then made manifold (mesh_manifold.h). Open only at the
 // region's sides.
-int export_solid_surface(world *w, grid_rect rect, volume_mesh *out, og_error *err);
+// closed: a solid for printing and booleans instead, its sides on the region's edges and
+// a floor below the lowest ground (by 5% of the relief, at least a metre): no open edge.
+int export_solid_surface(world *w, grid_rect rect, int closed, volume_mesh *out, og_error *err);
 
 #endif

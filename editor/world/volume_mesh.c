@@ -99,8 +99,28 @@ static int inside_box(volume_box b, int64_t i, int64_t j, int64_t k) {
     return i >= b.i0 && i < b.i1 && j >= b.j0 && j < b.j1 && k >= b.k0 && k < b.k1;
 }
 
+// Samples outside the solid box become air, as far from the surface as the nearest
+// sample inside it is (so the wall or floor lies half way between the two).
+static void clip_to_solid(const sample_box *s, volume_box solid, float *f) {
+    for (int64_t y = 0; y < s->ny; y++)
+        for (int64_t z = 0; z < s->nz; z++)
+            for (int64_t x = 0; x < s->nx; x++) {
+                int64_t i = s->box.i0 + x, j = s->box.j0 + y, k = s->box.k0 + z;
+                if (inside_box(solid, i, j, k)) continue;
+                int64_t ci = i < solid.i0 ? solid.i0 : i >= solid.i1 ? solid.i1 - 1 : i;
+                int64_t cj = j < solid.j0 ? solid.j0 : j >= solid.j1 ? solid.j1 - 1 : j;
+                int64_t ck = k < solid.k0 ? solid.k0 : k >= solid.k1 ? solid.k1 - 1 : k;
+                int64_t cx = ci - s->box.i0, cy = cj - s->box.j0, cz = ck - s->box.k0;
+                float near = cx >= 0 && cx < s->nx && cy >= 0 && cy < s->ny && cz >= 0 && cz < s->nz
+                                 ? f[at(s, cx, cy, cz)]
+                                 : 1.0f;
+                f[at(s, x, y, z)] = fmaxf(fabsf(near), 1e-6f);
+            }
+}
+
 int volume_mesh_edges(world *w, const volume_grid *g, volume_box starts, volume_box within,
-                      const double origin[3], volume_mesh *out, og_error *err) {
+                      const volume_box *solid, const double origin[3], volume_mesh *out,
+                      og_error *err) {
     memset(out, 0, sizeof *out);
     memcpy(out->origin, origin, sizeof out->origin);
     if (volume_box_empty(starts)) return 0;
@@ -117,6 +137,7 @@ int volume_mesh_edges(world *w, const volume_grid *g, volume_box starts, volume_
         return og_error_set(err, "out of memory meshing %lld voxels", (long long)samples);
     }
     int rc = sample_field(w, g, &s, f, err);
+    if (rc == 0 && solid) clip_to_solid(&s, *solid, f);
     mesh_builder b = {out, 0, 0};
     double v = g->voxel;
     for (int64_t y = 0; y < s.ny && rc == 0; y++)
@@ -197,7 +218,7 @@ int volume_mesh_brick(world *w, const volume_grid *g, tile_key key, volume_mesh 
     // Its own edges and a ring of one voxel around them, which the neighbours mesh too.
     volume_box starts = {box.i0 - 1, box.j0 - 1, box.k0 - 1, box.i1 + 1, box.j1 + 1, box.k1 + 1};
     double origin[3] = {box.i0 * g->voxel, box.j0 * g->voxel, box.k0 * g->voxel};
-    return volume_mesh_edges(w, g, starts, volume_box_everything(), origin, out, err);
+    return volume_mesh_edges(w, g, starts, volume_box_everything(), NULL, origin, out, err);
 }
 
 void volume_mesh_free(volume_mesh *m) {

@@ -24,8 +24,11 @@ typedef struct volume_mesh {
 // The surface crossing the voxel edges that start at voxels in `starts` and end inside
 // `within` (volume_box_everything(): no limit), positions relative to origin (metres).
 // An empty mesh (no surface there) is not an error.
+// With solid (may be NULL), voxels outside that box count as air (mirroring the
+// nearest voxel inside it), so the surface closes along its sides and floor.
 int volume_mesh_edges(world *w, const volume_grid *g, volume_box starts, volume_box within,
-                      const double origin[3], volume_mesh *out, og_error *err);
+                      const volume_box *solid, const double origin[3], volume_mesh *out,
+                      og_error *err);
 volume_box volume_box_everything(void);
 // The viewport's mesh of brick `key`: its edges and a ring of one voxel around them,
 // relative to the brick's first voxel.
