@@ -26,6 +26,7 @@ struct edit {
     size_t index_size;
     dirty_rect *dirty;
     size_t dirty_count, dirty_cap;
+    size_t mips_current; // dirty areas [0, this) have reached the mip levels
 };
 
 static snapshot *find_snap(edit *e, tile_key key) {
@@ -144,6 +145,14 @@ void edit_dirty(edit *e, tile_layer layer, int face, grid_rect r) {
     }
     pthread_mutex_unlock(&e->lock);
     world_publish_area(e->world, layer, face, r); // live: the viewport shows the stroke
+}
+
+size_t edit_mips_current(const edit *e) {
+    return e->mips_current;
+}
+
+void edit_set_mips_current(edit *e, size_t count) {
+    e->mips_current = count;
 }
 
 size_t edit_dirty_rects(edit *e, const dirty_rect **rects) {

@@ -26,6 +26,10 @@ void edit_dirty(edit *e, tile_layer layer, int face, grid_rect r);
 // untouched), and the changed areas so far.
 const void *edit_snapshot(edit *e, tile_key key);
 size_t edit_dirty_rects(edit *e, const dirty_rect **rects);
+// How many of the dirty areas have reached the mip levels (edit_mips.c keeps it; the
+// last of them may have grown since, when later changes touched it).
+size_t edit_mips_current(const edit *e);
+void edit_set_mips_current(edit *e, size_t count);
 
 // Ends the edit as one undo step holding the touched tiles' deltas as they are now
 // (edit_commit in edit_commit.h first brings mips and PD maps up to date: use that).

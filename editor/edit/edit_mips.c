@@ -127,7 +127,12 @@ static int parent_tile_task(void *user, int task, og_error *err) {
 }
 
 int edit_mips_update(edit *e, og_error *err) {
-    return edit_mips_update_from(e, 0, err);
+    const dirty_rect *d;
+    size_t n = edit_dirty_rects(e, &d), done = edit_mips_current(e);
+    // The last area brought up to date may have grown since (dabs coalesce into it).
+    if (edit_mips_update_from(e, done > 0 ? done - 1 : 0, err) != 0) return -1;
+    edit_set_mips_current(e, n);
+    return 0;
 }
 
 int edit_mips_update_from(edit *e, size_t first, og_error *err) {

@@ -28,7 +28,6 @@ struct stroke {
     double hold_carry; // dabs owed to the brush held still, less those laid
     float target;      // flatten / set height
     long dabs;
-    size_t mips_from;      // dirty areas from here on have not reached the mip levels yet
     volume_stroke *volume; // the volume tools' stroke (3D points) instead of the above
 };
 
@@ -119,13 +118,8 @@ static int check_point(stroke *s, double x, double z, double pressure, og_error 
 // draws them away from the camera) shows the stroke while it goes on.
 static int show_live(stroke *s, og_error *err) {
     const dirty_rect *rects;
-    size_t n = edit_dirty_rects(s->edit, &rects);
-    if (n == 0) return 0;
-    // The last area may have grown since the last call: it is done again.
-    size_t from = s->mips_from > 0 ? s->mips_from - 1 : 0;
-    if (edit_mips_update_from(s->edit, from, err) != 0) return -1;
-    s->mips_from = n;
-    return 0;
+    if (edit_dirty_rects(s->edit, &rects) == 0) return 0;
+    return edit_mips_update(s->edit, err); // only the areas changed since the last call
 }
 
 static int lay_to(stroke *s, double x, double z, double pressure, og_error *err);
