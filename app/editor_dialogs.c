@@ -121,9 +121,13 @@ void unsaved_prompt(editor_ui *e, ui_context *ui, cmd_context *ctx, float width,
     if (ui_button(ui, "Discard")) {
         editor_pending a = e->pending;
         e->pending = PENDING_NONE;
+        // Only an explicit discard drops the crash journal of these edits.
+        if (world_session_journaled(ctx->world)) run_now(e, ctx, "recover discard");
         do_action(e, ctx, a);
     }
-    ui_tooltip(ui, "Go on without saving: the changes are lost");
+    ui_tooltip(ui, world_session_journaled(ctx->world)
+                       ? "Go on without saving: the changes and their recovery journal are lost"
+                       : "Go on without saving: the changes are lost");
     if (ui_button(ui, "Cancel")) e->pending = PENDING_NONE;
     ui_tooltip(ui, "Keep working");
     ui_panel_end(ui);

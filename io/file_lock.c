@@ -30,11 +30,37 @@ file_lock_result file_lock_acquire(file_lock *l, const char *path, long *owner, 
     // A few rounds: the file we locked may have been removed by its releasing owner
     // between our open and our flock; then a new one must be made and locked.
     for (int round = 0; round < 8; round++) {
-        int fd = open(path, O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+        // O_NOFOLLOW: a symlink planted as the lock would have our pid written into its
+        // target; O_NONBLOCK: a FIFO there must not hang the open.
+        int fd = open(path, O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK, 0644);
+        if (fd < 0 && errno == ELOOP) {
+            og_error_set(err, "%s is a symbolic link, not a lock file: not followed (remove it)",
+                         path);
+            return FILE_LOCK_REFUSED;
+        }
+        if (fd < 0 && (errno == ENXIO || errno == ENODEV || errno == ETXTBSY)) {
+            og_error_set(err, "%s is not a plain file (%s): not written (remove it)", path,
+                         strerror(errno));
+            return FILE_LOCK_REFUSED;
+        }
         if (fd < 0) {
-            if (errno == EACCES || errno == EROFS || errno == EPERM) return FILE_LOCK_UNAVAILABLE;
+            // A read-only folder, or a full disk: nobody can write there, so there is
+            // nothing to guard (the store then opens read-only, saying why).
+            if (errno == EACCES || errno == EROFS || errno == EPERM || errno == ENOSPC ||
+                errno == EDQUOT)
+                return FILE_LOCK_UNAVAILABLE;
             og_error_set(err, "%s: cannot create the lock file: %s", path, strerror(errno));
             return FILE_LOCK_ERROR;
+        }
+        struct stat kind;
+        if (fstat(fd, &kind) != 0 || !S_ISREG(kind.st_mode)) {
+            og_error_set(err, "%s is not a plain file (a %s): not written (remove it)", path,
+                         S_ISFIFO(kind.st_mode)                           ? "FIFO"
+                         : S_ISCHR(kind.st_mode) || S_ISBLK(kind.st_mode) ? "device"
+                         : S_ISDIR(kind.st_mode)                          ? "folder"
+                                                                          : "special file");
+            close(fd);
+            return FILE_LOCK_REFUSED;
         }
         if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
             int e = errno;
@@ -53,7 +79,10 @@ file_lock_result file_lock_acquire(file_lock *l, const char *path, long *owner, 
         *stale = read_pid(fd);
         char pid[32];
         int n = snprintf(pid, sizeof pid, "%ld\n", (long)getpid());
-        if (ftruncate(fd, 0) != 0 || pwrite(fd, pid, (size_t)n, 0) != n) {
+        // The flock is the guard; the pid only names the holder: a full disk that
+        // cannot take it leaves the lock held, nameless.
+        if ((ftruncate(fd, 0) != 0 || pwrite(fd, pid, (size_t)n, 0) != n) && errno != ENOSPC &&
+            errno != EDQUOT) {
             og_error_set(err, "%s: cannot write the lock file: %s", path, strerror(errno));
             unlink(path);
             close(fd);

@@ -1,5 +1,6 @@
 #include "io/gdal_raster.h"
 
+#include "io/file_kind.h"
 #include "io/module_load.h"
 
 #include <dlfcn.h>
@@ -43,6 +44,7 @@ int gdal_raster_read(const char *path, int max_size, long long max_samples, floa
                      int *width, int *height, int *kind, int *bits, double geotransform[6],
                      int *geographic, char *desc, size_t desc_len, og_error *err) {
     *samples = NULL;
+    if (file_kind_check_read(path, err) != 0) return -1;
     if (!gdal_raster_available(NULL, 0))
         return og_error_set(err, "%s: elevation rasters need GDAL, which is unavailable: %s", path,
                             module.why);
@@ -52,6 +54,7 @@ int gdal_raster_read(const char *path, int max_size, long long max_samples, floa
 
 int gdal_raster_write_geotiff(const char *path, const float *samples, int width, int height,
                               const double geotransform[6], og_error *err) {
+    if (file_kind_check_replace(path, err) != 0) return -1;
     if (!gdal_raster_available(NULL, 0))
         return og_error_set(err, "%s: GeoTIFF export needs GDAL, which is unavailable: %s", path,
                             module.why);

@@ -4,6 +4,7 @@
 // is built as the module liborogen_image.so and opened with dlopen here.
 #include "io/image_read.h"
 
+#include "io/file_kind.h"
 #include "io/module_load.h"
 
 #include <dlfcn.h>
@@ -57,27 +58,39 @@ static void load_module(void) {
     module.read = NULL;
 }
 
+// Before a write: the module is there and path is no device, FIFO or socket.
+static int ready_to_write(const char *path, og_error *err) {
+    pthread_once(&module.once, load_module);
+    if (file_kind_check_replace(path, err) != 0) return -1;
+    if (module.read) return 0;
+    return og_error_set(err, "%s: image support is unavailable: %s", path, module.why);
+}
+
+// Before a read: the module is there and path is no device, FIFO, socket or folder.
 static int ready(const char *path, og_error *err) {
     pthread_once(&module.once, load_module);
+    if (path && file_kind_check_read(path, err) != 0) return -1;
     if (module.read) return 0;
     return og_error_set(err, "%s: image support is unavailable: %s", path ? path : "(no path)",
                         module.why);
 }
 
 int image_read_luminance(const char *path, float **pixels, int *width, int *height, og_error *err) {
+    *pixels = NULL;
+    *width = *height = 0;
     if (ready(path, err) != 0) return -1;
     return module.read(path, pixels, width, height, err);
 }
 
 int image_write_gray16(const char *path, const float *pixels, int width, int height,
                        og_error *err) {
-    if (ready(path, err) != 0) return -1;
+    if (ready_to_write(path, err) != 0) return -1;
     return module.write(path, pixels, width, height, err);
 }
 
 int image_write_rgb8(const char *path, const unsigned char *rgb, int width, int height,
                      og_error *err) {
-    if (ready(path, err) != 0) return -1;
+    if (ready_to_write(path, err) != 0) return -1;
     return module.write_rgb8(path, rgb, width, height, err);
 }
 
@@ -100,18 +113,18 @@ int image_read_channel(const char *path, const char *channel, int max_size, floa
 
 int image_write_samples(const char *path, const float *samples, int width, int height,
                         image_sample_format format, const char *channel, og_error *err) {
-    if (ready(path, err) != 0) return -1;
+    if (ready_to_write(path, err) != 0) return -1;
     return module.write_samples(path, samples, width, height, (int)format, channel, err);
 }
 
 int image_write_u8(const char *path, const unsigned char *data, int width, int height, int channels,
                    og_error *err) {
-    if (ready(path, err) != 0) return -1;
+    if (ready_to_write(path, err) != 0) return -1;
     return module.write_png(path, data, width, height, channels, 8, err);
 }
 
 int image_write_u16(const char *path, const uint16_t *data, int width, int height, int channels,
                     og_error *err) {
-    if (ready(path, err) != 0) return -1;
+    if (ready_to_write(path, err) != 0) return -1;
     return module.write_png(path, data, width, height, channels, 16, err);
 }

@@ -1,6 +1,7 @@
 #include "io/param_file.h"
 
 #include "io/file_mode.h"
+#include "io/file_kind.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -292,8 +293,12 @@ int param_file_read(const char *path, param_file *out, og_error *err) {
     }
     close(fd);
     int rc = param_file_parse(buf, len, out);
-    free(buf);
-    if (rc != 0) return og_error_set(err, "%s: out of memory", path);
+    if (rc != 0) {
+        free(buf);
+        return og_error_set(err, "%s: out of memory", path);
+    }
+    buf[len] = 0; // cap > len: the loop stops on a read of 0 with room left
+    out->text = buf, out->text_len = len;
     return 0;
 }
 
@@ -305,6 +310,7 @@ void param_file_free(param_file *pf) {
     }
     free(pf->entries);
     free(pf->diags);
+    free(pf->text);
     *pf = (param_file){0};
 }
 
@@ -339,6 +345,7 @@ int param_file_write_atomic(const char *path, const char *text, size_t len, og_e
                      base);
     if (n < 0 || (size_t)n >= sizeof tmp) return og_error_set(err, "%s: path too long", path);
 
+    if (file_kind_check_replace(path, err) != 0) return -1;
     // Keep the permissions of the file being replaced; new files get the umask's mode.
     mode_t mode = og_new_file_mode();
     struct stat st;

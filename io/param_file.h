@@ -37,6 +37,8 @@ typedef struct param_file {
     // and column. A caller refuses such a file as not a parameter file at all.
     char not_text[128];
     int has_lines; // some line is neither blank nor only a comment
+    char *text;    // param_file_read: the file's bytes, NUL-terminated (NULL from parse)
+    size_t text_len;
 } param_file;
 
 // Parses text (not necessarily NUL-terminated; len bytes). Never fails on

@@ -1,5 +1,6 @@
 #include "io/raster.h"
 
+#include "io/file_kind.h"
 #include "io/gdal_raster.h"
 #include "io/image_read.h"
 
@@ -261,6 +262,7 @@ int raster_read(const char *path, const raster_read_options *options, raster *ou
                                        "img", "vrt", "ter",  "flt", "grd", "nc",  NULL};
     const char *ext = extension(path);
     int rc;
+    if (file_kind_check_read(path, err) != 0) return -1;
     if (ext_in(ext, raw) || o->raw_float || o->width || o->height) {
         rc = raster_read_raw(path, o, out, err);
     } else if (ext_in(ext, gdal) && !o->channel[0] && gdal_raster_available(NULL, 0)) {

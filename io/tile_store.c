@@ -3,16 +3,22 @@
 #include "io/crc32c.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <limits.h>
 #include <pthread.h>
 #include <sqlite3.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/random.h>
+#include <sys/stat.h>
+#include <sys/statvfs.h>
+#include <unistd.h>
 #include <zstd.h>
 
 // ---------------------------------------------------------------------------
-// Blob format (all numbers little-endian), version 1:
+// Blob format (all numbers little-endian), version 2 (version 1, still read, differs
+// only in that its header CRC does not cover the key):
 //
 //   offset size  field
 //        0    4  magic "OGTB"
@@ -23,15 +29,16 @@
 //        8    4  raw size: bytes of the decoded tile payload
 //       12    4  compressed size: bytes following the header
 //       16    4  CRC32C of the raw payload (the tile's values as little-endian bytes)
-//       20    4  CRC32C of header bytes 0..19
+//       20    4  CRC32C of header bytes 0..19 then the tile's face, level, tx, ty (u32)
 //       24    .  zstd frame of the transformed payload
 //
 // The header CRC lets decode reject a damaged header before trusting any size
-// in it; the payload CRC catches anything zstd's own checks let through.
+// in it, and a blob copied under another key (it is another tile's); the payload CRC
+// catches anything zstd's own checks let through.
 // ---------------------------------------------------------------------------
 
 #define BLOB_MAGIC 0x4254474Fu // "OGTB" read as little-endian
-#define BLOB_VERSION 1
+#define BLOB_VERSION 2
 #define BLOB_HEADER_BYTES 24
 
 enum {
@@ -259,7 +266,29 @@ static int layer_transform(tile_layer layer) {
 // Blob encode / decode
 // ---------------------------------------------------------------------------
 
+// The header checksum: bytes 0..19, and from version 2 the key they belong to.
+static uint32_t header_crc(const uint8_t *b, tile_key key, int version) {
+    uint32_t crc = crc32c_update(0, b, 20);
+    if (version < 2) return crc;
+    uint8_t k[16];
+    put_u32le(k, (uint32_t)key.face);
+    put_u32le(k + 4, (uint32_t)key.level);
+    put_u32le(k + 8, (uint32_t)key.tx);
+    put_u32le(k + 12, (uint32_t)key.ty);
+    return crc32c_update(crc, k, sizeof k);
+}
+
 size_t tile_blob_encode(tile_layer layer, const void *data, void **blob) {
+    return tile_blob_encode_key((tile_key){.layer = layer}, data, blob);
+}
+
+int tile_blob_decode(tile_layer layer, const void *blob, size_t blob_bytes, void *out,
+                     og_error *err) {
+    return tile_blob_decode_key((tile_key){.layer = layer}, blob, blob_bytes, out, err);
+}
+
+size_t tile_blob_encode_key(tile_key key, const void *data, void **blob) {
+    tile_layer layer = (tile_layer)key.layer;
     *blob = NULL;
     size_t raw = tile_layer_bytes(layer);
     if (!raw || !data || raw > UINT32_MAX) return 0;
@@ -293,13 +322,14 @@ size_t tile_blob_encode(tile_layer layer, const void *data, void **blob) {
     put_u32le(out + 8, (uint32_t)raw);
     put_u32le(out + 12, (uint32_t)comp);
     put_u32le(out + 16, payload_crc(tile_layer_format(layer), data, raw));
-    put_u32le(out + 20, crc32c_update(0, out, 20));
+    put_u32le(out + 20, header_crc(out, key, BLOB_VERSION));
     *blob = out;
     return BLOB_HEADER_BYTES + comp;
 }
 
-int tile_blob_decode(tile_layer layer, const void *blob, size_t blob_bytes, void *out,
-                     og_error *err) {
+int tile_blob_decode_key(tile_key key, const void *blob, size_t blob_bytes, void *out,
+                         og_error *err) {
+    tile_layer layer = (tile_layer)key.layer;
     const uint8_t *b = blob;
     size_t raw = tile_layer_bytes(layer);
     if (!raw) return og_error_set(err, "layer %d has no stored payload", (int)layer);
@@ -307,10 +337,12 @@ int tile_blob_decode(tile_layer layer, const void *blob, size_t blob_bytes, void
         return og_error_set(err, "blob too short (%zu bytes, header needs %d)", blob_bytes,
                             BLOB_HEADER_BYTES);
     if (get_u32le(b) != BLOB_MAGIC) return og_error_set(err, "bad blob magic");
-    if (get_u32le(b + 20) != crc32c_update(0, b, 20))
-        return og_error_set(err, "blob header checksum mismatch");
-    if (b[4] != BLOB_VERSION)
-        return og_error_set(err, "blob format version %u (expected %d)", b[4], BLOB_VERSION);
+    if (b[4] < 1 || b[4] > BLOB_VERSION)
+        return og_error_set(err, "blob format version %u (this Orogen reads 1 to %d)", b[4],
+                            BLOB_VERSION);
+    if (get_u32le(b + 20) != header_crc(b, key, b[4]))
+        return og_error_set(err, "blob header checksum mismatch (damaged, or another tile's "
+                                 "blob under this key)");
     if (b[5] != (uint8_t)layer)
         return og_error_set(err, "blob holds layer %u, expected %s", b[5], tile_layer_name(layer));
     if (b[6] != layer_transform(layer))
@@ -353,6 +385,10 @@ struct tile_store {
     pthread_mutex_t lock; // one connection, used by one thread at a time
     sqlite3 *db;
     char *path;
+    int blob_version;     // the meta table's: raised to BLOB_VERSION by the first write
+    char store_id[40];    // the meta table's store_id ("" until the first write makes it)
+    char read_only[4600]; // opened for reading only, and why ("" when writable)
+    char warning[9000];   // what opening it found and did (a foreign WAL moved aside), or
     sqlite3_stmt *get, *has, *put, *del, *count_all, *count_layer, *each;
     sqlite3_stmt *begin, *commit, *rollback;
 };
@@ -439,7 +475,7 @@ static int store_init_schema(tile_store *store, og_error *err) {
                 "CREATE TABLE meta(key TEXT PRIMARY KEY NOT NULL, value TEXT NOT NULL);"
                 "INSERT INTO meta VALUES('format', 'orogen tile store');"
                 "INSERT INTO meta VALUES('schema_version', '1');"
-                "INSERT INTO meta VALUES('blob_version', '1');"
+                "INSERT INTO meta VALUES('blob_version', '2');"
                 // A rowid table (not WITHOUT ROWID): rows are ~100 KB blobs, which
                 // SQLite stores best out of line from a small primary-key index.
                 "CREATE TABLE tiles(layer INTEGER NOT NULL, face INTEGER NOT NULL,"
@@ -477,6 +513,70 @@ static int store_init_schema(tile_store *store, og_error *err) {
     return 0;
 }
 
+// The meta table's value of key into out ("" and 0 when it has none).
+static int meta_text(tile_store *store, const char *key, char *out, size_t len) {
+    sqlite3_stmt *st = NULL;
+    out[0] = 0;
+    int found = 0;
+    if (sqlite3_prepare_v2(store->db, "SELECT value FROM meta WHERE key=?1", -1, &st, NULL) ==
+        SQLITE_OK) {
+        sqlite3_bind_text(st, 1, key, -1, SQLITE_STATIC);
+        if (sqlite3_step(st) == SQLITE_ROW) {
+            const unsigned char *v = sqlite3_column_text(st, 0);
+            snprintf(out, len, "%s", v ? (const char *)v : "");
+            found = 1;
+        }
+    }
+    sqlite3_finalize(st);
+    return found;
+}
+
+// Refuses a store whose meta table names a format, schema or blob version this Orogen
+// does not know (before anything is written to it).
+static int check_versions(tile_store *store, og_error *err) {
+    char format[128], schema[64], blob[64];
+    if (!meta_text(store, "format", format, sizeof format) || strcmp(format, "orogen tile store"))
+        return og_error_set(err,
+                            "tile store '%s': its meta table's format is '%s', not 'orogen "
+                            "tile store': refused",
+                            store->path, format);
+    char *end;
+    long v = 0;
+    if (!meta_text(store, "schema_version", schema, sizeof schema) ||
+        (v = strtol(schema, &end, 10), *end || v != STORE_SCHEMA_VERSION))
+        return og_error_set(err,
+                            "tile store '%s' has schema_version '%s' (this Orogen knows %d): "
+                            "refused, nothing written",
+                            store->path, schema, STORE_SCHEMA_VERSION);
+    if (!meta_text(store, "blob_version", blob, sizeof blob) ||
+        (v = strtol(blob, &end, 10), *end || v < 1 || v > BLOB_VERSION))
+        return og_error_set(err,
+                            "tile store '%s' has blob_version '%s' (this Orogen reads 1 to "
+                            "%d): refused, nothing written",
+                            store->path, blob, BLOB_VERSION);
+    store->blob_version = (int)v;
+    meta_text(store, "store_id", store->store_id, sizeof store->store_id);
+    return 0;
+}
+
+// Within every write transaction: the meta table says which blob version the store
+// holds, and its store_id (random, made by the first write) is written again, so every
+// WAL this store writes carries its meta page: a WAL of another store is told by it.
+static int mark_write(tile_store *store, og_error *err) {
+    if (!store->store_id[0]) {
+        uint8_t bits[16];
+        if (getrandom(bits, sizeof bits, 0) != (ssize_t)sizeof bits)
+            return og_error_set(err, "tile store '%s': cannot make a store id", store->path);
+        for (size_t i = 0; i < sizeof bits; i++)
+            snprintf(store->store_id + 2 * i, 3, "%02x", bits[i]);
+    }
+    char sql[256];
+    snprintf(sql, sizeof sql,
+             "INSERT OR REPLACE INTO main.meta VALUES('blob_version', '%d'), ('store_id', '%s')",
+             BLOB_VERSION, store->store_id);
+    return exec(store, sql, err, "cannot record the store's identity");
+}
+
 static int prepare(tile_store *store, sqlite3_stmt **st, const char *sql, og_error *err) {
     if (sqlite3_prepare_v3(store->db, sql, -1, SQLITE_PREPARE_PERSISTENT, st, NULL) != SQLITE_OK)
         return db_fail(store, err, "cannot prepare statements (damaged schema?)");
@@ -496,7 +596,201 @@ void tile_store_close(tile_store *store) {
     free(store);
 }
 
+// ---------------------------------------------------------------------------
+// A WAL that is not the database's
+// ---------------------------------------------------------------------------
+
+// A connection to path: "immutable" reads the main file alone (its WAL ignored);
+// otherwise read-only through the WAL, never checkpointing it into the file.
+// path as an SQLite URI with the given query ("mode=ro").
+static void file_uri(const char *path, const char *query, char *uri, size_t len) {
+    size_t n = (size_t)snprintf(uri, len, "file:");
+    for (const unsigned char *c = (const unsigned char *)path; *c && n + 40 < len; c++) {
+        if (*c == '%' || *c == '?' || *c == '#' || *c < 0x20)
+            n += (size_t)snprintf(uri + n, len - n, "%%%02X", *c);
+        else
+            uri[n++] = (char)*c;
+    }
+    snprintf(uri + n, len - n, "?%s", query);
+}
+
+enum { PROBE_READ_ONLY = 0, PROBE_IMMUTABLE = 1, PROBE_THROUGH_WAL = 2 };
+
+// A connection that never writes the database file: immutable (the main file alone),
+// read-only through the WAL, or through the WAL with its index (-shm) made if missing
+// (a read-only connection cannot make it), queries only, never checkpointing.
+static sqlite3 *open_probe(const char *path, int mode) {
+    char uri[8400];
+    file_uri(path,
+             mode == PROBE_IMMUTABLE   ? "immutable=1"
+             : mode == PROBE_READ_ONLY ? "mode=ro"
+                                       : "",
+             uri, sizeof uri);
+    sqlite3 *db = NULL;
+    int flags = (mode == PROBE_THROUGH_WAL ? SQLITE_OPEN_READWRITE : SQLITE_OPEN_READONLY) |
+                SQLITE_OPEN_URI | SQLITE_OPEN_NOMUTEX;
+    if (sqlite3_open_v2(uri, &db, flags, NULL) != SQLITE_OK) {
+        sqlite3_close(db);
+        return NULL;
+    }
+    sqlite3_db_config(db, SQLITE_DBCONFIG_NO_CKPT_ON_CLOSE, 1, NULL);
+    if (mode == PROBE_THROUGH_WAL) sqlite3_exec(db, "PRAGMA query_only=1", NULL, NULL, NULL);
+    return db;
+}
+
+// The identity a connection sees: "application id/world id/store id".
+// SQLITE_OK, or the error reading them gave.
+static int probe_identity(sqlite3 *db, char *out, size_t len) {
+    sqlite3_stmt *st = NULL;
+    int rc =
+        sqlite3_prepare_v2(db,
+                           "SELECT (SELECT application_id FROM pragma_application_id) || '/' || "
+                           "ifnull((SELECT value FROM meta WHERE key='world_id'), '') || '/' || "
+                           "ifnull((SELECT value FROM meta WHERE key='state_id'), '')",
+                           -1, &st, NULL);
+    if (rc == SQLITE_OK) rc = sqlite3_step(st);
+    if (rc == SQLITE_ROW) {
+        const unsigned char *v = sqlite3_column_text(st, 0);
+        snprintf(out, len, "%s", v ? (const char *)v : "");
+        rc = SQLITE_OK;
+    }
+    if (rc != SQLITE_OK && db) rc = sqlite3_errcode(db);
+    sqlite3_finalize(st);
+    return rc;
+}
+
+// Whether a live connection has the database open (SQLite's shared lock on the -shm's
+// "DMS" byte): its WAL is then in use, not left over, and is not touched.
+static int wal_in_use(const char *shm) {
+    int fd = open(shm, O_RDONLY | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK);
+    if (fd < 0) return 0;
+    struct flock l = {.l_type = F_WRLCK, .l_whence = SEEK_SET, .l_start = 128, .l_len = 1};
+    int busy = fcntl(fd, F_GETLK, &l) == 0 && l.l_type != F_UNLCK;
+    close(fd);
+    return busy;
+}
+
+// SQLite replays a WAL beside the database into it on open, whatever database wrote
+// it: a stray one (another store's, a copy's) would overwrite the tiles. Before the
+// store is opened, a leftover WAL is checked against the main file: when the view
+// through it fails or names another world (or no Orogen store at all), it is moved
+// aside as PATH-wal.foreign (its index, PATH-shm, removed) and never replayed.
+static void set_foreign_wal_aside(tile_store *store) {
+    char wal[4200], shm[4200], aside[4300];
+    snprintf(wal, sizeof wal, "%s-wal", store->path);
+    snprintf(shm, sizeof shm, "%s-shm", store->path);
+    struct stat st;
+    if (lstat(wal, &st) != 0 || !S_ISREG(st.st_mode) || st.st_size == 0 || wal_in_use(shm)) return;
+    char main_id[256] = "", wal_id[256] = "";
+    sqlite3 *db = open_probe(store->path, PROBE_IMMUTABLE);
+    int main_rc = db ? probe_identity(db, main_id, sizeof main_id) : SQLITE_CANTOPEN;
+    sqlite3_close(db);
+    if (main_rc != SQLITE_OK) return; // not judged here: opening reports what the file is
+    db = open_probe(store->path, PROBE_THROUGH_WAL);
+    int wal_rc = db ? probe_identity(db, wal_id, sizeof wal_id) : SQLITE_CANTOPEN;
+    sqlite3_close(db);
+    if ((wal_rc & 0xFF) == SQLITE_CANTOPEN || (wal_rc & 0xFF) == SQLITE_READONLY) {
+        db = open_probe(store->path, PROBE_READ_ONLY); // a read-only folder: an index exists?
+        wal_rc = db ? probe_identity(db, wal_id, sizeof wal_id) : SQLITE_CANTOPEN;
+        sqlite3_close(db);
+    }
+    int primary = wal_rc & 0xFF;
+    if (primary == SQLITE_CANTOPEN || primary == SQLITE_BUSY || primary == SQLITE_READONLY ||
+        primary == SQLITE_IOERR || primary == SQLITE_NOMEM || primary == SQLITE_PERM)
+        return; // could not look: leave it (opening will say what fails)
+    // The same store: the same application id, and the world and store ids the main
+    // file names (the WAL of a store's first writes may name ids the file does not yet).
+    char main_f[3][128] = {{0}}, wal_f[3][128] = {{0}};
+    sscanf(main_id, "%127[^/]/%127[^/]/%127s", main_f[0], main_f[1], main_f[2]);
+    sscanf(wal_id, "%127[^/]/%127[^/]/%127s", wal_f[0], wal_f[1], wal_f[2]);
+    if (main_f[1][0] == 0) sscanf(main_id, "%127[^/]//%127s", main_f[0], main_f[2]);
+    if (wal_f[1][0] == 0) sscanf(wal_id, "%127[^/]//%127s", wal_f[0], wal_f[2]);
+    int ours = wal_rc == SQLITE_OK && !strcmp(main_f[0], wal_f[0]);
+    for (int i = 1; i < 3 && ours; i++)
+        if (main_f[i][0] && strcmp(main_f[i], wal_f[i]) != 0) ours = 0;
+    if (ours) return;
+    for (int n = 1; n < 100; n++) {
+        if (n == 1)
+            snprintf(aside, sizeof aside, "%s.foreign", wal);
+        else
+            snprintf(aside, sizeof aside, "%s.foreign%d", wal, n);
+        if (renameat2(AT_FDCWD, wal, AT_FDCWD, aside, RENAME_NOREPLACE) == 0 ||
+            ((errno == EINVAL || errno == ENOSYS) && link(wal, aside) == 0 && unlink(wal) == 0)) {
+            unlink(shm);
+            snprintf(store->warning, sizeof store->warning,
+                     "warning: %s is not this tile store's write-ahead log (%s): moved aside "
+                     "as %s, not replayed",
+                     wal,
+                     wal_rc == SQLITE_OK ? "it holds another database's pages"
+                                         : "the view "
+                                           "through it is damaged",
+                     aside);
+            return;
+        }
+        if (errno != EEXIST) break;
+    }
+    snprintf(store->warning, sizeof store->warning,
+             "warning: %s is not this tile store's write-ahead log and cannot be moved aside "
+             "(%s)",
+             wal, strerror(errno));
+}
+
+const char *tile_store_warning(const tile_store *store) {
+    return store->warning;
+}
+
+// Why a store that exists cannot be written (for tile_store_open_readable): the file
+// system, the folder's or the file's permissions, or a full disk; found without writing.
+static void write_cause(const char *path, const char *sqlite_why, char *out, size_t len) {
+    char dir[4200];
+    snprintf(dir, sizeof dir, "%s", path);
+    char *slash = strrchr(dir, '/');
+    if (slash)
+        slash == dir ? (void)(dir[1] = 0) : (void)(*slash = 0);
+    else
+        snprintf(dir, sizeof dir, ".");
+    struct statvfs fs;
+    int have_fs = statvfs(dir, &fs) == 0;
+    if (have_fs && (fs.f_flag & ST_RDONLY))
+        snprintf(out, len, "its folder %s is on a read-only file system", dir);
+    else if (access(dir, W_OK) != 0)
+        snprintf(out, len, "its folder %s is not writable (%s)", dir, strerror(errno));
+    else if (access(path, W_OK) != 0)
+        snprintf(out, len, "the file is not writable (%s)", strerror(errno));
+    else if (have_fs && (unsigned long long)fs.f_bavail * fs.f_frsize < (1ull << 20))
+        snprintf(out, len, "the disk is full (%llu KiB free)",
+                 (unsigned long long)fs.f_bavail * fs.f_frsize / 1024);
+    else
+        snprintf(out, len, "%s", sqlite_why);
+}
+
+static tile_store *open_store(const char *path, int read_only, og_error *err);
+
 tile_store *tile_store_open(const char *path, og_error *err) {
+    return open_store(path, 0, err);
+}
+
+tile_store *tile_store_open_readable(const char *path, og_error *err) {
+    tile_store *store = open_store(path, 0, err);
+    struct stat st;
+    if (store || stat(path, &st) != 0 || !S_ISREG(st.st_mode) || st.st_size == 0) return store;
+    og_error why = *err;
+    // Only a store that cannot be written is opened for reading: not a damaged or
+    // foreign one, nor an unknown version.
+    if (strstr(why.msg, "refused") || strstr(why.msg, "not an Orogen tile store")) return NULL;
+    if (!(store = open_store(path, 1, err))) {
+        *err = why;
+        return NULL;
+    }
+    write_cause(path, why.msg, store->read_only, sizeof store->read_only);
+    return store;
+}
+
+const char *tile_store_read_only(const tile_store *store) {
+    return store->read_only;
+}
+
+static tile_store *open_store(const char *path, int read_only, og_error *err) {
     tile_store *store = calloc(1, sizeof *store);
     if (!store || !(store->path = strdup(path))) {
         free(store);
@@ -504,9 +798,45 @@ tile_store *tile_store_open(const char *path, og_error *err) {
         return NULL;
     }
     pthread_mutex_init(&store->lock, NULL);
-    // NOMUTEX: our own lock serialises use of the connection.
-    int rc = sqlite3_open_v2(
-        path, &store->db, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_NOMUTEX, NULL);
+    set_foreign_wal_aside(store);
+    int stuck = strstr(store->warning, "cannot be moved aside") != NULL;
+    if (stuck && !read_only) {
+        og_error_set(err, "tile store '%s': %s; not opened (it would be replayed into the store)",
+                     path, store->warning + 9);
+        tile_store_close(store);
+        return NULL;
+    }
+    // NOMUTEX: our own lock serialises use of the connection. Read-only: through the
+    // WAL when SQLite can (its index exists or can be made), else the main file alone
+    // (immutable), which is also how a foreign WAL that could not be moved is ignored.
+    char wal_path[4200];
+    struct stat wst;
+    snprintf(wal_path, sizeof wal_path, "%s-wal", path);
+    int has_wal = lstat(wal_path, &wst) == 0 && wst.st_size > 0;
+    int rc = SQLITE_CANTOPEN;
+    if (!read_only) {
+        // URI filenames on: save attaches its sources read-only ("file:...?mode=ro").
+        char uri[8400];
+        file_uri(path, "", uri, sizeof uri);
+        rc = sqlite3_open_v2(uri, &store->db,
+                             SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_NOMUTEX |
+                                 SQLITE_OPEN_URI,
+                             NULL);
+    } else {
+        if (!has_wal && (store->db = open_probe(path, PROBE_IMMUTABLE))) // nothing to replay
+            rc = SQLITE_OK;
+        if (rc != SQLITE_OK && !stuck) {
+            sqlite3 *db = open_probe(path, PROBE_READ_ONLY);
+            if (db && sqlite3_exec(db, "SELECT count(*) FROM sqlite_master", NULL, NULL, NULL) ==
+                          SQLITE_OK)
+                store->db = db, rc = SQLITE_OK;
+            else
+                sqlite3_close(db);
+        }
+        if (rc != SQLITE_OK && (!has_wal || stuck) &&
+            (store->db = open_probe(path, PROBE_IMMUTABLE)))
+            rc = SQLITE_OK;
+    }
     if (rc != SQLITE_OK) {
         if (!store->db) {
             og_error_set(err, "tile store '%s': cannot open: out of memory", path);
@@ -520,7 +850,8 @@ tile_store *tile_store_open(const char *path, og_error *err) {
     }
     sqlite3_extended_result_codes(store->db, 1);
     sqlite3_busy_timeout(store->db, STORE_BUSY_TIMEOUT_MS);
-    if (store_init_schema(store, err)) goto fail;
+    if (store_init_schema(store, err) || check_versions(store, err)) goto fail;
+    if (read_only) goto statements;
     if (sqlite3_db_readonly(store->db, "main") == 1) {
         og_error_set(err, "tile store '%s' is read-only (check the file's permissions)", path);
         goto fail;
@@ -543,6 +874,7 @@ tile_store *tile_store_open(const char *path, og_error *err) {
         goto fail;
     }
     if (exec(store, "PRAGMA synchronous=FULL", err, "cannot set synchronous mode")) goto fail;
+statements:;
 
     if (prepare(store, &store->get,
                 "SELECT data FROM tiles WHERE layer=?1 AND face=?2 AND level=?3 AND tx=?4 "
@@ -626,7 +958,7 @@ tile_store_status tile_store_get(tile_store *store, tile_key key, void *out, siz
     og_error why = {{0}};
     if (kind != SQLITE_BLOB) {
         og_error_set(&why, "stored value is not a blob");
-    } else if (tile_blob_decode((tile_layer)key.layer, blob, blob_bytes, out, &why) == 0) {
+    } else if (tile_blob_decode_key(key, blob, blob_bytes, out, &why) == 0) {
         free(blob);
         return TILE_STORE_OK;
     }
@@ -665,7 +997,7 @@ int tile_store_put_batch(tile_store *store, const tile_store_write *writes, size
     }
     for (size_t i = 0; i < count; i++) {
         if (!writes[i].data) continue;
-        sizes[i] = tile_blob_encode((tile_layer)writes[i].key.layer, writes[i].data, &blobs[i]);
+        sizes[i] = tile_blob_encode_key(writes[i].key, writes[i].data, &blobs[i]);
         if (!sizes[i] || sizes[i] > INT_MAX) {
             result = og_error_set(err, "tile store '%s': %s: cannot compress the tile", store->path,
                                   tile_key_describe(writes[i].key, desc, sizeof desc));
@@ -679,6 +1011,7 @@ int tile_store_put_batch(tile_store *store, const tile_store_write *writes, size
         pthread_mutex_unlock(&store->lock);
         goto done;
     }
+    result = mark_write(store, err);
     for (size_t i = 0; i < count && result == 0; i++) {
         sqlite3_stmt *st = writes[i].data ? store->put : store->del;
         bind_key(st, writes[i].key);
@@ -690,6 +1023,7 @@ int tile_store_put_batch(tile_store *store, const tile_store_write *writes, size
         sqlite3_clear_bindings(st);
     }
     if (result == 0) result = step_done(store, store->commit, err, "cannot commit the write");
+    if (result == 0) store->blob_version = BLOB_VERSION;
     if (result != 0 && !sqlite3_get_autocommit(store->db)) {
         og_error ignored; // keep the first failure's message
         step_done(store, store->rollback, &ignored, "cannot roll back");
@@ -814,9 +1148,22 @@ int tile_store_merge_from(tile_store *store, const char *const *sources, size_t 
         if (sqlite3_prepare_v2(store->db, sql, -1, &st, NULL) != SQLITE_OK) {
             rc = db_fail(store, err, "cannot prepare attaching the tiles to save");
         } else {
-            sqlite3_bind_text(st, 1, sources[attached], -1, SQLITE_TRANSIENT);
-            if (sqlite3_step(st) != SQLITE_DONE)
-                rc = db_fail(store, err, "cannot attach the tiles to save");
+            // Read-only: a source on a full disk or in a read-only folder is still read;
+            // with no WAL to replay, as an immutable file (no index to write or lock).
+            char uri[8400], wal[4200];
+            struct stat wst;
+            snprintf(wal, sizeof wal, "%s-wal", sources[attached]);
+            int no_wal = lstat(wal, &wst) != 0 || wst.st_size == 0;
+            file_uri(sources[attached], "mode=ro", uri, sizeof uri);
+            sqlite3_bind_text(st, 1, uri, -1, SQLITE_TRANSIENT);
+            int step = sqlite3_step(st);
+            if (step != SQLITE_DONE && no_wal) {
+                sqlite3_reset(st);
+                file_uri(sources[attached], "immutable=1", uri, sizeof uri);
+                sqlite3_bind_text(st, 1, uri, -1, SQLITE_TRANSIENT);
+                step = sqlite3_step(st);
+            }
+            if (step != SQLITE_DONE) rc = db_fail(store, err, "cannot attach the tiles to save");
         }
         sqlite3_finalize(st);
         if (rc != 0) break;
@@ -837,7 +1184,9 @@ int tile_store_merge_from(tile_store *store, const char *const *sources, size_t 
             rc = exec(store, sql, err, "cannot merge the tiles to save");
         }
         if (rc == 0) rc = set_state_id(store, state_id, err);
+        if (rc == 0) rc = mark_write(store, err);
         if (rc == 0) rc = exec(store, "COMMIT", err, "cannot commit the merge");
+        if (rc == 0) store->blob_version = BLOB_VERSION;
         if (rc != 0 && !sqlite3_get_autocommit(store->db))
             sqlite3_exec(store->db, "ROLLBACK", NULL, NULL, NULL);
     } else if (rc == 0) {
@@ -854,7 +1203,12 @@ int tile_store_merge_from(tile_store *store, const char *const *sources, size_t 
 
 int tile_store_clear(tile_store *store, og_error *err) {
     pthread_mutex_lock(&store->lock);
-    int rc = exec(store, "DELETE FROM tiles", err, "cannot clear the tiles");
+    int rc = exec(store, "BEGIN IMMEDIATE", err, "cannot start clearing the tiles");
+    if (rc == 0) rc = mark_write(store, err);
+    if (rc == 0) rc = exec(store, "DELETE FROM tiles", err, "cannot clear the tiles");
+    if (rc == 0) rc = exec(store, "COMMIT", err, "cannot commit clearing the tiles");
+    if (rc != 0 && !sqlite3_get_autocommit(store->db))
+        sqlite3_exec(store->db, "ROLLBACK", NULL, NULL, NULL);
     pthread_mutex_unlock(&store->lock);
     return rc;
 }

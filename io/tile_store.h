@@ -28,9 +28,20 @@ typedef enum tile_store_status {
 } tile_store_status;
 
 // Opens (creating if needed) the store at path. Fails with a message naming the
-// path if it is not an Orogen tile store, has a newer schema, or cannot be opened.
+// path if it is not an Orogen tile store, names a format, schema or blob version this
+// Orogen does not know (nothing is written then), or cannot be opened.
 tile_store *tile_store_open(const char *path, og_error *err);
+// tile_store_open, or when the store exists but cannot be written (a read-only file
+// system or folder, an unwritable file, a full disk) opened for reading only:
+// tile_store_read_only then names that cause. Never for a damaged or foreign store.
+tile_store *tile_store_open_readable(const char *path, og_error *err);
+// Why the store was opened for reading only ("" when it is writable).
+const char *tile_store_read_only(const tile_store *store);
 void tile_store_close(tile_store *store);
+// What opening found and did, for the user ("" when nothing): a write-ahead log beside
+// the store that is not its own (another store's, a copy's) is moved aside as
+// PATH-wal.foreign before SQLite could replay it, never replayed.
+const char *tile_store_warning(const tile_store *store);
 const char *tile_store_path(const tile_store *store);
 // The SQLite and zstd versions the store runs with ("SQLite 3.40.1, zstd 1.5.4").
 const char *tile_store_library_versions(void);
@@ -88,5 +99,10 @@ size_t tile_blob_encode(tile_layer layer, const void *data, void **blob);
 // Returns 0, or -1 when the blob is corrupt (err says why).
 int tile_blob_decode(tile_layer layer, const void *blob, size_t blob_bytes, void *out,
                      og_error *err);
+// The store's own: the blob's checksum covers its key, so a blob moved to another key
+// is corrupt there (encode/decode above use face, level, tx, ty = 0).
+size_t tile_blob_encode_key(tile_key key, const void *data, void **blob);
+int tile_blob_decode_key(tile_key key, const void *blob, size_t blob_bytes, void *out,
+                         og_error *err);
 
 #endif

@@ -1,6 +1,7 @@
 #include "io/vdb_file.h"
 
 #include "io/crc32c.h"
+#include "io/file_kind.h"
 #include "io/file_mode.h"
 #include "io/module_load.h"
 
@@ -149,6 +150,7 @@ done:
 
 int vdb_level_set_write(vdb_level_set *ls, const char *path, int fog, const char *const *meta,
                         int meta_count, og_error *err) {
+    if (file_kind_check_replace(path, err) != 0) return -1;
     size_t len = strlen(path);
     char *tmp = malloc(len + 16), *dir = strdup(path);
     if (!tmp || !dir) {

@@ -227,14 +227,17 @@ rc=$?; check "a second process opens the world read-only and cannot save over it
 [ -s "$work/copy.world" ]; check "it saves to another file" $?
 kill9
 
-# A clean quit removes this session's journal: nothing to recover next time.
+# A quit without saving keeps this session's journal (only a save of its edits or an
+# explicit discard removes one): the next session lists and offers it.
 start
 step 0 >/dev/null
 ask "exit" 'xyz-never' >/dev/null
 wait "$app" 2>/dev/null
 app=
 exec 3>&-
-[ ! -e "$work/w.world.recover" ]; check "a quit without saving leaves no journal" $?
+[ -s "$work/w.world.recover" ] && "$orogen" "$work/w.world" -c 'recover list' 2>/dev/null |
+    grep -q "w.world.recover: 1 step.*recoverable"
+check "a quit without saving keeps the journal, and 'recover list' offers it" $?
 
 echo "$passes passed, $failures failed"
 [ $failures = 0 ]

@@ -369,26 +369,85 @@ static void test_load_unknown_key_and_syntax(void **state) {
     test_rmtree(dir);
 }
 
+// An empty file (or only blanks and comments) is refused: Orogen never saves one, so it
+// is damage (an interrupted copy), not a world of defaults.
 static void test_load_empty_file(void **state) {
     (void)state;
     const char *dir = test_tmpdir("params");
-    world_params p, d;
+    world_params p;
     int errors = -1;
     messages m;
-    char path[4200], want[4400];
-    assert_int_equal(load_text(dir, "e.planet", "", 0, &p, &errors, &m, path, sizeof path), 0);
-    assert_int_equal(errors, 0);
-    assert_int_equal(m.count, 1);
-    snprintf(want, sizeof want, "%s: warning: empty parameter file, using defaults", path);
-    assert_string_equal(m.text[0], want);
-    world_params_default(&d, WORLD_PLANET);
-    assert_params_equal(&p, &d);
-    // Only blanks counts as empty too.
-    assert_int_equal(load_text(dir, "e.world", " \n\n\t\n", 4, &p, &errors, &m, path, sizeof path),
+    char path[4200];
+    static const char *const empty[] = {"", " \n\n\t\n", "# only a comment\n\n   # and another\n"};
+    for (size_t i = 0; i < sizeof empty / sizeof empty[0]; i++) {
+        assert_int_equal(load_text(dir, "e.planet", empty[i], strlen(empty[i]), &p, &errors, &m,
+                                   path, sizeof path),
+                         -1);
+        og_error err = {{0}};
+        assert_int_equal(world_params_check_file(path, &err), -1);
+        assert_non_null(strstr(err.msg, path));
+        assert_non_null(strstr(err.msg, "empty"));
+    }
+    test_rmtree(dir);
+}
+
+// Issue 27, finding 3: a saved file cut short anywhere is never adopted: the seal (its
+// last line) is missing, so it is reported naming the keys it lacks; a whole one, a
+// hand-written one (no seal) and one edited by hand after saving load as before.
+static void test_seal_detects_cut_short(void **state) {
+    (void)state;
+    const char *dir = test_tmpdir("params");
+    world_params a;
+    world_params_default(&a, WORLD_FLAT);
+    assert_int_equal(world_params_set(&a, "generator", "ridged", NULL), 0);
+    assert_int_equal(world_params_set(&a, "seed", "7", NULL), 0);
+    char path[4200], why[1200];
+    snprintf(path, sizeof path, "%s/s.world", dir);
+    og_error err = {{0}};
+    assert_int_equal(world_params_save(path, &a, &err), 0);
+    size_t len = 0;
+    char *text = test_read_file(path, &len);
+    assert_int_equal(world_params_seal_check(text, len, why, sizeof why), 0);
+    size_t cuts = 0;
+    for (size_t cut = 1; cut < len; cut += 7, cuts++) {
+        int rc = world_params_seal_check(text, cut, why, sizeof why);
+        // Cut inside the header (before the sealed line) it reads as hand-written;
+        // then the loader refuses it for having no key, or it lacks every key.
+        if (rc == 0) { // refused whole: no line sets a key yet
+            test_write_file(path, text, cut);
+            world_params p;
+            assert_int_equal(world_params_load(path, &p, NULL, NULL, NULL, &err), -1);
+            continue;
+        }
+        assert_int_equal(rc, 1);
+        assert_non_null(strstr(why, "cut short"));
+        if (cut < (size_t)(strstr(text, "\nseed =") - text)) assert_non_null(strstr(why, "seed"));
+    }
+    assert_true(cuts > 300);
+    // world_params_load_whole says so; world_params_load reports it as an error.
+    test_write_file(path, text, len / 2);
+    world_params p;
+    int errors = 0;
+    assert_int_equal(world_params_load_whole(path, &p, &errors, NULL, NULL, why, sizeof why, &err),
                      0);
-    assert_int_equal(m.count, 1);
-    world_params_default(&d, WORLD_FLAT);
-    assert_params_equal(&p, &d);
+    assert_non_null(strstr(why, "missing keys:"));
+    assert_non_null(strstr(why, "tiles_id"));
+    messages m = {0};
+    assert_int_equal(world_params_load(path, &p, &errors, collect, &m, &err), 0);
+    assert_int_equal(errors, 1);
+    // Edited by hand after saving: read as it is, with a warning.
+    char *edited = strdup(text);
+    char *seed = strstr(edited, "\nseed = 7;");
+    seed[8] = '8';
+    test_write_file(path, edited, len);
+    assert_int_equal(world_params_load_whole(path, &p, &errors, collect, &m, why, sizeof why, &err),
+                     0);
+    assert_string_equal(why, "");
+    assert_int_equal(errors, 0);
+    assert_int_equal(p.seed, 8);
+    assert_non_null(strstr(m.text[m.count - 1], "changed after Orogen saved it"));
+    free(edited);
+    free(text);
     test_rmtree(dir);
 }
 
@@ -471,8 +530,7 @@ static void test_load_refuses_foreign_text(void **state) {
     }
     static const char *const taken[] = {
         "caf\xc3\xa9 = 1;\nseed = 4;\n", // UTF-8, one unknown key and one known
-        "# only a comment\n\n   # and another\n",
-        "seed = oops;\n", // a known key with a bad value: loads, with an error
+        "seed = oops;\n",                // a known key with a bad value: loads, with an error
     };
     for (size_t i = 0; i < sizeof taken / sizeof taken[0]; i++) {
         world_params p;
@@ -660,8 +718,17 @@ static void test_round_trip_exact(void **state) {
     size_t len = 0;
     char *disk = test_read_file(path, &len);
     assert_non_null(disk);
-    assert_int_equal(len, strlen(text));
-    assert_memory_equal(disk, text, len);
+    // The canonical text, with the line saying it is sealed after the header and the
+    // seal (length and checksum) as the last line.
+    const char *sealed = strstr(disk, "\n# Saved by Orogen: the last line seals the file");
+    assert_non_null(sealed);
+    size_t head = strcspn(text, "\n");
+    assert_memory_equal(disk, text, head);
+    const char *rest = strchr(sealed + 1, '\n') + 1;
+    assert_memory_equal(rest, text + head + 1, strlen(text) - head - 1);
+    char why[256];
+    assert_int_equal(world_params_seal_check(disk, len, why, sizeof why), 0);
+    assert_non_null(strstr(rest + strlen(text) - head - 1, "# end of file: "));
     int errors = -1;
     messages m = {0};
     assert_int_equal(world_params_load(path, &b, &errors, collect, &m, &err), 0);
@@ -923,6 +990,7 @@ int main(void) {
         cmocka_unit_test(test_load_bad_number_keeps_default),
         cmocka_unit_test(test_load_unknown_key_and_syntax),
         cmocka_unit_test(test_load_empty_file),
+        cmocka_unit_test(test_seal_detects_cut_short),
         cmocka_unit_test(test_load_binary_garbage),
         cmocka_unit_test(test_load_refuses_foreign_text),
         cmocka_unit_test(test_load_long_line),

@@ -117,8 +117,8 @@ static void crashed_session(session *s, char h[6][17]) {
     assert_string_not_equal(h[4], h[3]);
     assert_string_not_equal(h[5], h[4]);
     copy_file(s->journal, s->backup, 0); // what a kill -9 leaves
-    run(s, "new flat");                  // quits the world without saving
-    assert_int_equal(access(s->journal, F_OK), -1);
+    run(s, "new flat");                  // quits the world without saving: the journal stays
+    assert_int_equal(file_size(s->journal), file_size(s->backup));
 }
 
 static void reopen(session *s) {
@@ -303,10 +303,10 @@ static void test_recover_never_saved(void **state) {
     snprintf(s.backup, sizeof s.backup, "%s/crash.recover", s.dir);
     snprintf(text, sizeof text, "%s", world_recovery_path(s.ctx.world));
     copy_file(text, s.backup, 0);
-    run(&s, "new flat"); // quits that world: its journal goes
-    assert_int_equal(access(text, F_OK), -1);
+    run(&s, "new flat"); // quits that world: its journal stays
+    assert_int_equal(file_size(text), file_size(s.backup));
     snprintf(journal, sizeof journal, "%s/unsaved-1-1-0.recover", rec);
-    copy_file(s.backup, journal, 0); // what a kill leaves
+    assert_int_equal(rename(text, journal), 0); // as a kill of another process leaves it
     char found[4400];
     assert_int_equal(edit_find_unsaved_journal(found, sizeof found, &scan), 1);
     assert_string_equal(found, journal);
@@ -330,6 +330,55 @@ static void test_recover_never_saved(void **state) {
     finish(&s);
 }
 
+// Finding 1 of issue 27: a session that edits without recovering sets the crashed
+// session's journal aside, and it stays reachable: listed, and restored by name, also
+// when a folder holds the first name; nothing of it is lost.
+static void test_recover_set_aside_reachable(void **state) {
+    (void)state;
+    session s;
+    char h[6][17], now[17], text[8800], old[4400], old2[4400];
+    crashed_session(&s, h);
+    snprintf(old, sizeof old, "%s.old", s.journal);
+    snprintf(old2, sizeof old2, "%s.old2", s.journal);
+    assert_int_equal(mkdir(old, 0755), 0); // the first name is taken
+    reopen(&s);
+    run(&s, "dab 10 10"); // a new session's first edit
+    assert_int_equal(file_size(old2), file_size(s.backup));
+    run(&s, "new flat"); // that session quits without saving
+    reopen(&s);
+    og_error err = {{0}};
+    char *listed = run_maybe(&s, "recover list", 0, &err);
+    assert_non_null(strstr(listed, old2));
+    assert_non_null(strstr(listed, "5 steps"));
+    free(listed);
+    snprintf(text, sizeof text, "recover %s", old2);
+    run(&s, text);
+    hash(&s, now);
+    assert_string_equal(now, h[5]);
+    assert_int_equal(access(s.journal, F_OK), 0); // the other session's stays
+    // Recovered, then left without saving: the journal stays (finding 2).
+    run(&s, "new flat");
+    assert_int_equal(file_size(old2), file_size(s.backup));
+    snprintf(text, sizeof text, "load %s; recover %s", s.world, old2);
+    run(&s, text);
+    hash(&s, now);
+    assert_string_equal(now, h[5]);
+    // An edit after recovering: a journal cannot be replayed on it, and says so.
+    snprintf(text, sizeof text, "recover %s", s.journal);
+    assert_null(run_maybe(&s, text, 1, &err));
+    assert_non_null(strstr(err.msg, "edits of its own"));
+    // From another world, `recover FILE` opens the journal's world.
+    snprintf(text, sizeof text, "new flat; recover %s", s.journal);
+    run(&s, text);
+    assert_string_equal(world_path(s.ctx.world), s.world);
+    // save keeps the recovered session's edits and removes only its journal.
+    run(&s, "save");
+    assert_int_equal(access(s.journal, F_OK), -1);
+    assert_int_equal(file_size(old2), file_size(s.backup));
+    rmdir(old);
+    finish(&s);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_recover_exact),
@@ -337,6 +386,7 @@ int main(void) {
         cmocka_unit_test(test_recover_prefix),
         cmocka_unit_test(test_recover_stale_aside_discard),
         cmocka_unit_test(test_recover_never_saved),
+        cmocka_unit_test(test_recover_set_aside_reachable),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -336,7 +336,9 @@ static void test_decode_hostile(void **state) {
     assert_memory_equal(blob, "OGTB", 4);
     uint32_t stored = (uint32_t)blob[20] | (uint32_t)blob[21] << 8 | (uint32_t)blob[22] << 16 |
                       (uint32_t)blob[23] << 24;
-    assert_int_equal(stored, ref_crc32c(blob, 20));
+    uint8_t keyed[36] = {0}; // header bytes 0..19, then face, level, tx, ty (all 0 here)
+    memcpy(keyed, blob, 20);
+    assert_int_equal(stored, ref_crc32c(keyed, sizeof keyed));
 
     // Every truncation, at the heap's exact size so ASan sees any over-read.
     for (size_t len = 0; len < n; len += (len < 64 ? 1 : 97)) {
@@ -821,6 +823,174 @@ static void test_threads(void **state) {
 // Foreign files, newer schemas, unwritable places, full disks
 // ---------------------------------------------------------------------------
 
+static void expect_open_fails(const char *path, const char *needle);
+
+// Runs sql on the store file with SQLite directly (outside Orogen).
+static void sql_on(const char *path, const char *sql) {
+    sqlite3 *db = NULL;
+    assert_int_equal(sqlite3_open(path, &db), SQLITE_OK);
+    char *why = NULL;
+    if (sqlite3_exec(db, sql, NULL, NULL, &why) != SQLITE_OK) fail_msg("%s: %s", sql, why);
+    sqlite3_close(db);
+}
+
+// Issue 27: a tile blob copied under another key is that other tile's: corrupt there,
+// never adopted (the blob's checksum covers its key).
+static void test_moved_blob_is_corrupt(void **state) {
+    (void)state;
+    const char *dir = test_tmpdir("store-moved");
+    char *path = join(dir, "w.tiles");
+    og_error err = {{0}};
+    float *f = malloc(F32_BYTES), *out = malloc(F32_BYTES);
+    fill_terrain(f, 9);
+    tile_store *s = tile_store_open(path, &err);
+    assert_non_null(s);
+    assert_int_equal(tile_store_put(s, key_of(TILE_LAYER_COARSE, 1, 2), f, &err), 0);
+    tile_store_close(s);
+    sql_on(path, "INSERT INTO tiles SELECT layer, face, level, 5, 2, data FROM tiles;"
+                 "INSERT INTO tiles SELECT layer, 3, level, tx, ty, data FROM tiles WHERE tx=1;"
+                 "INSERT INTO tiles SELECT layer, face, 1, tx, ty, data FROM tiles WHERE face=0 "
+                 "AND tx=1;");
+    assert_non_null(s = tile_store_open(path, &err));
+    assert_int_equal(tile_store_get(s, key_of(TILE_LAYER_COARSE, 1, 2), out, F32_BYTES, &err),
+                     TILE_STORE_OK);
+    tile_key moved[] = {key_of(TILE_LAYER_COARSE, 5, 2),
+                        {TILE_LAYER_COARSE, 3, 0, 1, 2},
+                        {TILE_LAYER_COARSE, 0, 1, 1, 2}};
+    for (size_t i = 0; i < 3; i++) {
+        assert_int_equal(tile_store_get(s, moved[i], out, F32_BYTES, &err), TILE_STORE_CORRUPT);
+        assert_non_null(strstr(err.msg, "another tile's blob"));
+    }
+    tile_store_close(s);
+    free(f);
+    free(out);
+    test_rmtree(dir);
+}
+
+static char *file_bytes(const char *path, size_t *len) {
+    return test_read_file(path, len);
+}
+
+// Issue 27: a store naming a format, schema or blob version this Orogen does not know
+// is refused by name, and not written (its bytes stay as they were).
+static void test_unknown_versions_refused(void **state) {
+    (void)state;
+    const char *dir = test_tmpdir("store-versions");
+    static const char *const cases[][3] = {
+        {"schema_version", "99", "schema_version '99'"},
+        {"blob_version", "99", "blob_version '99'"},
+        {"blob_version", "x", "blob_version 'x'"},
+        {"format", "another store", "format is 'another store'"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char *path = join(dir, "v.tiles");
+        og_error err = {{0}};
+        float *f = malloc(F32_BYTES);
+        fill_terrain(f, 3);
+        tile_store *s = tile_store_open(path, &err);
+        assert_non_null(s);
+        assert_int_equal(tile_store_put(s, key_of(TILE_LAYER_COARSE, 0, 0), f, &err), 0);
+        tile_store_close(s);
+        char sql[256];
+        snprintf(sql, sizeof sql, "UPDATE meta SET value='%s' WHERE key='%s'", cases[i][1],
+                 cases[i][0]);
+        sql_on(path, sql);
+        size_t before_len = 0, after_len = 0;
+        char *before = file_bytes(path, &before_len);
+        expect_open_fails(path, cases[i][2]);
+        assert_null(tile_store_open_readable(path, &err));
+        char *after = file_bytes(path, &after_len);
+        assert_int_equal(before_len, after_len);
+        assert_memory_equal(before, after, before_len);
+        free(before);
+        free(after);
+        free(f);
+        unlink(path);
+    }
+    test_rmtree(dir);
+}
+
+// Commits sql on path in a child that then dies without closing (as a kill leaves it):
+// the commit stays in path-wal, not checkpointed.
+static void commit_and_die(const char *path, const char *sql) {
+    pid_t pid = fork();
+    assert_true(pid >= 0);
+    if (pid == 0) {
+        sqlite3 *db = NULL;
+        if (sqlite3_open(path, &db) != SQLITE_OK ||
+            sqlite3_exec(db, "PRAGMA wal_autocheckpoint=0", NULL, NULL, NULL) != SQLITE_OK ||
+            sqlite3_exec(db, sql, NULL, NULL, NULL) != SQLITE_OK)
+            _exit(1);
+        _exit(0);
+    }
+    int status = 0;
+    waitpid(pid, &status, 0);
+    assert_true(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+}
+
+// Issue 27, finding 4: a stray WAL of another database beside a store is moved aside
+// as NAME-wal.foreign, never replayed; the store's own WAL (a kill after a commit)
+// is replayed as always.
+static void test_foreign_wal_moved_aside(void **state) {
+    (void)state;
+    const char *dir = test_tmpdir("store-wal");
+    og_error err = {{0}};
+    float *f = malloc(F32_BYTES);
+    fill_terrain(f, 4);
+    char a[4096], b[4096], wal[4200], foreign[4300];
+    snprintf(a, sizeof a, "%s", join(dir, "a.tiles"));
+    snprintf(b, sizeof b, "%s", join(dir, "b.tiles"));
+    for (int i = 0; i < 2; i++) {
+        tile_store *s = tile_store_open(i ? b : a, &err);
+        assert_non_null(s);
+        for (int t = 0; t < 6; t++)
+            assert_int_equal(tile_store_put(s, key_of(TILE_LAYER_COARSE, t, i), f, &err), 0);
+        assert_int_equal(tile_store_set_meta(s, "world_id", i ? "bbbb" : "aaaa", &err), 0);
+        tile_store_close(s);
+    }
+    // Another store's WAL (an Orogen killed after clearing its tiles), copied beside a.
+    pid_t pid = fork();
+    assert_true(pid >= 0);
+    if (pid == 0) {
+        tile_store *other = tile_store_open(b, &err);
+        _exit(other && tile_store_clear(other, &err) == 0 ? 0 : 1); // no close: the WAL stays
+    }
+    int status = 0;
+    waitpid(pid, &status, 0);
+    assert_true(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+    snprintf(wal, sizeof wal, "%s-wal", b);
+    size_t len = 0;
+    char *bytes = test_read_file(wal, &len);
+    assert_true(len > 0);
+    snprintf(wal, sizeof wal, "%s-wal", a);
+    test_write_file(wal, bytes, len);
+    free(bytes);
+    tile_store *s = tile_store_open(a, &err);
+    assert_non_null(s);
+    assert_int_equal(tile_store_count(s, -1), 6);
+    snprintf(foreign, sizeof foreign, "%s.foreign", wal);
+    assert_non_null(strstr(tile_store_warning(s), foreign));
+    tile_store_close(s);
+    assert_int_equal(access(foreign, F_OK), 0);
+    // A WAL that does not even read as a database's: the same.
+    unlink(foreign);
+    char junk[8192];
+    for (size_t i = 0; i < sizeof junk; i++)
+        junk[i] = (char)(i * 131 + 7);
+    test_write_file(wal, junk, sizeof junk);
+    assert_non_null(s = tile_store_open(a, &err));
+    assert_int_equal(tile_store_count(s, -1), 6);
+    tile_store_close(s);
+    // Its own WAL: replayed.
+    commit_and_die(a, "DELETE FROM tiles WHERE tx=0");
+    assert_non_null(s = tile_store_open(a, &err));
+    assert_string_equal(tile_store_warning(s), "");
+    assert_int_equal(tile_store_count(s, -1), 5);
+    tile_store_close(s);
+    free(f);
+    test_rmtree(dir);
+}
+
 static void expect_open_fails(const char *path, const char *needle) {
     og_error err = {{0}};
     tile_store *s = tile_store_open(path, &err);
@@ -994,6 +1164,9 @@ int main(void) {
         cmocka_unit_test(test_refuses_foreign_files),
         cmocka_unit_test(test_unwritable),
         cmocka_unit_test(test_full_disk),
+        cmocka_unit_test(test_moved_blob_is_corrupt),
+        cmocka_unit_test(test_unknown_versions_refused),
+        cmocka_unit_test(test_foreign_wal_moved_aside),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -13,6 +13,9 @@
 #include "io/parse.h"
 
 #include <errno.h>
+#include <limits.h>
+#include <sys/stat.h>
+#include <time.h>
 #include <inttypes.h>
 #include <math.h>
 #include <stdlib.h>
@@ -147,44 +150,97 @@ static void print_recovered(cmd_context *ctx, const recover_report *r) {
         fprintf(ctx->out, "a torn last step (%zu bytes) was left out\n", r->dropped_bytes);
 }
 
-// recover [discard] [JOURNAL]: replay (or drop) the journal a session that did not save
-// left: the world's own, or a never-saved world's (by its file).
+static void print_journal(void *user, const recover_entry *e) {
+    cmd_context *ctx = user;
+    char when[64] = "?";
+    time_t t = (time_t)e->scan.last;
+    struct tm tm;
+    if (e->scan.valid_bytes && localtime_r(&t, &tm))
+        strftime(when, sizeof when, "%Y-%m-%d %H:%M:%S", &tm);
+    fprintf(ctx->out, "%s: %zu step%s, last %s%s; %s\n", e->path, e->scan.records,
+            e->scan.records == 1 ? "" : "s", when,
+            e->scan.dropped_bytes ? " (a torn tail is left out)" : "", e->status);
+}
+
+// The world file a saved world's journal (WORLD.recover, WORLD.recover.oldN) is beside.
+static int journal_world(const char *journal, char *out, size_t len) {
+    const char *mark = strstr(journal, ".recover");
+    const char *last = mark;
+    while (last && (mark = strstr(last + 1, ".recover")))
+        last = mark;
+    if (!last || last == journal || (size_t)(last - journal) >= len) return -1;
+    snprintf(out, len, "%.*s", (int)(last - journal), journal);
+    return 0;
+}
+
+// recover [list | discard [JOURNAL] | JOURNAL]: replay (or drop, or list) the journals
+// sessions that did not save left: the world's own, one set aside, or a never-saved
+// world's (by its file).
 static int c_recover(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    if (argc > 1 && !strcmp(argv[1], "list")) {
+        if (argc > 2) return og_error_set(err, "recover: expected 'recover list'");
+        if (!edit_recover_list(ctx->world, print_journal, ctx))
+            fprintf(ctx->out, "no recovery journals\n");
+        return 0;
+    }
     int discard = argc > 1 && strcmp(argv[1], "discard") == 0;
     const char *journal = argc > 1 + discard ? argv[1 + discard] : NULL;
     if (argc > 2 + discard || (argc == 3 && !discard))
-        return og_error_set(err, "recover: expected 'recover [discard] [JOURNAL]'");
-    if (discard && journal) {
-        if (edit_discard_unsaved(journal, err) != 0) return -1;
-        fprintf(ctx->out, "discarded the unsaved edits in %s\n", journal);
-        return 0;
-    }
+        return og_error_set(err,
+                            "recover: expected 'recover [list | discard [JOURNAL] | JOURNAL]'");
     if (discard) {
         char path[4400];
-        snprintf(path, sizeof path, "%s", world_recovery_path(ctx->world));
-        if (world_recover_discard(ctx->world, err) != 0) return -1;
+        snprintf(path, sizeof path, "%s", journal ? journal : world_recovery_path(ctx->world));
+        if ((journal ? edit_discard_journal(ctx->world, journal, err)
+                     : world_recover_discard(ctx->world, err)) != 0)
+            return -1;
         fprintf(ctx->out, "discarded the unsaved edits in %s\n", path);
         return 0;
     }
     recover_report r;
-    if (journal) {
+    recovery_scan scan;
+    if (journal && recovery_journal_read(journal, &scan, NULL, NULL, err) != 0) return -1;
+    if (journal && scan.has_base) {
         world *w = edit_recover_unsaved(journal, &ctx->settings, &r, err);
         if (!w) return -1;
         replace_world(ctx, w);
         print_recovered(ctx, &r);
         return 0;
     }
-    if (!world_recoverable(ctx->world, NULL)) {
+    if (journal && strcmp(journal, world_recovery_path(ctx->world)) != 0) {
+        // Another world's journal: that world is opened to take its steps (the current
+        // one stays if anything fails).
+        char file[4400];
+        struct stat st;
+        if (journal_world(journal, file, sizeof file) == 0 && stat(file, &st) == 0) {
+            char real_a[PATH_MAX], real_b[PATH_MAX];
+            int same = world_path(ctx->world)[0] && realpath(file, real_a) &&
+                       realpath(world_path(ctx->world), real_b) && !strcmp(real_a, real_b);
+            if (!same) {
+                int errors = 0;
+                world *w = world_load(file, &ctx->settings, &errors, err);
+                if (!w) return -1;
+                if (edit_recover(w, journal, &r, err) != 0) {
+                    world_close(w);
+                    return -1;
+                }
+                replace_world(ctx, w);
+                fprintf(ctx->out, "loaded %s\n", file);
+                print_recovered(ctx, &r);
+                return 0;
+            }
+        }
+    }
+    if (!journal && !world_recoverable(ctx->world, NULL)) {
         // Point at a never-saved world's edits, if a crash left some.
         char path[4400];
-        recovery_scan scan;
         if (edit_find_unsaved_journal(path, sizeof path, &scan))
             return og_error_set(err,
                                 "recover: this world has no unsaved edits to recover; a world "
                                 "that was never saved left %zu steps in %s: 'recover %s'",
                                 scan.records, path, path);
     }
-    if (edit_recover(ctx->world, &r, err) != 0) return -1;
+    if (edit_recover(ctx->world, journal, &r, err) != 0) return -1;
     print_recovered(ctx, &r);
     return 0;
 }
@@ -352,11 +408,13 @@ static const cmd_def commands[] = {
      "names both. It will not write over a file that loaded with errors (their lines would "
      "become defaults) or a file that is not a parameter file, unless force=1.",
      0, 2, c_save, CMD_ENDS_STROKE},
-    {"recover", "recover [discard] [JOURNAL]",
+    {"recover", "recover [list | discard [JOURNAL] | JOURNAL]",
      "Restores the edits a session that ended without saving (a crash, a kill) left in the "
-     "world's recovery journal: every committed step, undoable, the world unsaved. With a "
-     "JOURNAL file, a never-saved world's edits (kept in the recovery folder) as a new world. "
-     "'recover discard' drops them.",
+     "world's recovery journal: every committed step, undoable, the world unsaved; the journal "
+     "stays until a save keeps its edits. 'recover list' lists every journal (the world's, "
+     "those set aside as WORLD.recover.old..., never-saved worlds') with its steps and time; "
+     "'recover JOURNAL' restores one of them (a never-saved world's as a new world, another "
+     "world's by opening it); 'recover discard [JOURNAL]' drops one.",
      0, 2, c_recover, CMD_ENDS_STROKE},
     {"generate", "generate",
      "Regenerates the world from the next parameters (see nparams). Edited tiles stay.", 0, 0,

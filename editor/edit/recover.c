@@ -1,9 +1,12 @@
 #include "editor/edit/recover.h"
 
 #include "editor/edit/edit.h"
+#include "editor/world/journal_files.h"
 
 #include <dirent.h>
 #include <errno.h>
+#include <libgen.h>
+#include <limits.h>
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -89,32 +92,77 @@ static int replay_journal(world *w, const char *path, recover_report *report, re
     return rc;
 }
 
-int edit_recover(world *w, recover_report *report, og_error *err) {
+// Whether journal is one of w's journal files (its own or one set aside): beside w's
+// parameter file, named after it.
+static int journal_of(const world *w, const char *journal) {
+    if (!world_path(w)[0]) return 0;
+    char own[4400], dir_a[4400], dir_b[4400], real_a[PATH_MAX], real_b[PATH_MAX];
+    snprintf(own, sizeof own, "%s.recover", world_path(w));
+    snprintf(dir_a, sizeof dir_a, "%s", own);
+    snprintf(dir_b, sizeof dir_b, "%s", journal);
+    const char *slash_a = strrchr(own, '/'), *slash_b = strrchr(journal, '/');
+    const char *base_a = slash_a ? slash_a + 1 : own, *base_b = slash_b ? slash_b + 1 : journal;
+    if (strncmp(base_b, base_a, strlen(base_a)) != 0) return 0;
+    const char *rest = base_b + strlen(base_a);
+    if (*rest && strncmp(rest, ".old", 4) != 0) return 0;
+    return realpath(dirname(dir_a), real_a) && realpath(dirname(dir_b), real_b) &&
+           strcmp(real_a, real_b) == 0;
+}
+
+int edit_recover(world *w, const char *journal, recover_report *report, og_error *err) {
     memset(report, 0, sizeof *report);
-    if (!world_recoverable(w, NULL))
-        return og_error_set(err, "recover: %s has no unsaved edits to recover",
-                            world_path(w)[0] ? world_path(w) : "this world");
+    const char *own = world_recovery_path(w);
+    if (!journal) {
+        if (!world_recoverable(w, NULL))
+            return og_error_set(err, "recover: %s has no unsaved edits to recover%s",
+                                world_path(w)[0] ? world_path(w) : "this world",
+                                world_path(w)[0] ? " ('recover list' lists its journals)" : "");
+        journal = own;
+    }
     recovery_scan scan;
-    if (replay_journal(w, world_recovery_path(w), report, &scan, err) != 0) return -1;
-    return world_journal_continue(w, scan.valid_bytes, err);
+    if (recovery_journal_read(journal, &scan, NULL, NULL, err) != 0) return -1;
+    if (scan.has_base)
+        return og_error_set(err, "recover: %s is a never-saved world's journal", journal);
+    if (!journal_of(w, journal))
+        return og_error_set(err, "recover: %s is not a journal of %s", journal,
+                            world_path(w)[0] ? world_path(w) : "this (never saved) world");
+    if (recovery_journal_in_use(journal))
+        return og_error_set(err, "recover: %s belongs to an Orogen that is still running", journal);
+    if (world_session_journaled(w))
+        return og_error_set(err,
+                            "recover: this session has edits of its own since %s was opened or "
+                            "saved; %s builds on the world as it was: load the world again, "
+                            "then 'recover %s' (this session's edits stay journaled)",
+                            world_path(w), journal, journal);
+    if (strcmp(scan.state_id, world_state_id(w)) != 0)
+        return og_error_set(err,
+                            "recover: %s builds on another saved state of %s (its tile store was "
+                            "saved since), so its steps cannot be replayed on this one; it is "
+                            "kept until 'recover discard %s'",
+                            journal, world_path(w), journal);
+    if (!scan.records) return og_error_set(err, "recover: %s holds no steps", journal);
+    if (replay_journal(w, journal, report, &scan, err) != 0) return -1;
+    return world_journal_continue(w, journal, scan.valid_bytes, err);
 }
 
 // Whether journal is a never-saved world's that no running Orogen writes.
 static int check_unsaved(const char *journal, recovery_scan *scan, og_error *err) {
     if (recovery_journal_read(journal, scan, NULL, NULL, err) != 0) return -1;
     if (!scan->has_base)
-        return og_error_set(err,
-                            "recover: %s is the journal of a saved world: open that world and "
-                            "run 'recover' or 'recover discard'",
-                            journal);
+        return og_error_set(err, "recover: %s is the journal of a saved world", journal);
     if (recovery_journal_in_use(journal))
         return og_error_set(err, "recover: %s belongs to an Orogen that is still running", journal);
     return 0;
 }
 
-int edit_discard_unsaved(const char *journal, og_error *err) {
+int edit_discard_journal(world *w, const char *journal, og_error *err) {
+    if (!strcmp(journal, world_recovery_path(w))) return world_recover_discard(w, err);
     recovery_scan scan;
-    if (check_unsaved(journal, &scan, err) != 0) return -1;
+    og_error why;
+    if (recovery_journal_read(journal, &scan, NULL, NULL, &why) != 0)
+        return og_error_set(err, "recover: will not remove %s: %s", journal, why.msg);
+    if (recovery_journal_in_use(journal))
+        return og_error_set(err, "recover: %s belongs to an Orogen that is still running", journal);
     if (remove(journal) != 0)
         return og_error_set(err, "recover: cannot remove %s: %s", journal, strerror(errno));
     return 0;
@@ -133,6 +181,76 @@ world *edit_recover_unsaved(const char *journal, const world_settings *settings,
         return NULL;
     }
     return w;
+}
+
+// ---- listing -----------------------------------------------------------------------
+
+typedef struct lister {
+    const world *w;
+    void (*fn)(void *user, const recover_entry *e);
+    void *user;
+    size_t count;
+} lister;
+
+static void list_one(void *user, const char *path) {
+    lister *l = user;
+    recover_entry e = {0};
+    snprintf(e.path, sizeof e.path, "%s", path);
+    og_error why;
+    const char *own = world_recovery_path(l->w);
+    if (recovery_journal_read(path, &e.scan, NULL, NULL, &why) != 0) {
+        snprintf(e.status, sizeof e.status, "unreadable: %s", why.msg);
+    } else if (world_session_journaled(l->w) && !strcmp(path, own)) {
+        snprintf(e.status, sizeof e.status, "this session's (save keeps its edits)");
+    } else if (recovery_journal_in_use(path)) {
+        snprintf(e.status, sizeof e.status, "in use by a running Orogen");
+    } else if (e.scan.has_base) {
+        e.recoverable = e.scan.records > 0;
+        snprintf(e.status, sizeof e.status, "a never-saved world's: 'recover %s' makes it again",
+                 path);
+    } else if (strcmp(e.scan.state_id, world_state_id(l->w)) != 0) {
+        snprintf(e.status, sizeof e.status,
+                 "builds on another saved state of the world: cannot be replayed");
+    } else if (world_session_journaled(l->w)) {
+        snprintf(e.status, sizeof e.status,
+                 "recoverable once the world is loaded again (this session has edits)");
+    } else {
+        e.recoverable = e.scan.records > 0;
+        snprintf(e.status, sizeof e.status, "recoverable: 'recover %s'", path);
+    }
+    l->fn(l->user, &e);
+    l->count++;
+}
+
+size_t edit_recover_list(const world *w, void (*fn)(void *user, const recover_entry *e),
+                         void *user) {
+    lister l = {w, fn, user, 0};
+    char own[4400];
+    if (world_path(w)[0]) {
+        snprintf(own, sizeof own, "%s.recover", world_path(w));
+        journal_files_each(own, list_one, &l); // a recovered set-aside one is among them
+    } else if (world_session_journaled(w)) {
+        list_one(&l, world_recovery_path(w));
+    }
+    // Never-saved worlds' journals in the recovery folder, not this session's.
+    char dir[4096];
+    og_error err;
+    if (world_recovery_dir(dir, sizeof dir, &err) != 0) return l.count;
+    DIR *d = opendir(dir);
+    if (!d) return l.count;
+    struct dirent *e;
+    while ((e = readdir(d))) {
+        size_t n = strlen(e->d_name);
+        if (strncmp(e->d_name, "unsaved-", 8) != 0 || n < 9 ||
+            strcmp(e->d_name + n - 8, ".recover") != 0)
+            continue;
+        char candidate[4400];
+        snprintf(candidate, sizeof candidate, "%s/%s", dir, e->d_name);
+        if (!strcmp(candidate, world_recovery_path(w))) continue;
+        list_one(&l, candidate);
+    }
+    closedir(d);
+    return l.count;
 }
 
 int edit_find_unsaved_journal(char *path, size_t len, recovery_scan *scan) {

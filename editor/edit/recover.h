@@ -19,16 +19,31 @@ typedef struct recover_report {
     int64_t when;         // when the last replayed step was made (unix s)
 } recover_report;
 
-// Fails (nothing changed) when the world has no journal to recover.
-int edit_recover(world *w, recover_report *report, og_error *err);
+// Replays journal (NULL: the world's own, when it has unrecovered steps) onto w: one
+// of w's journal files, its own or one set aside, on the saved state w is in, not in use,
+// with w not edited since it was opened. The journal is then this session's (it grows
+// with its edits; save removes it). Fails, nothing changed, otherwise.
+int edit_recover(world *w, const char *journal, recover_report *report, og_error *err);
 // A never-saved world's journal (world_recovery_dir): a new world of its base
 // parameters with its steps replayed, the journal now its own. NULL with err when the
 // journal is not one, or its Orogen still runs.
 world *edit_recover_unsaved(const char *journal, const world_settings *settings,
                             recover_report *report, og_error *err);
-// `recover discard JOURNAL`: removes a never-saved world's journal (not one a running
-// Orogen writes, nor a saved world's).
-int edit_discard_unsaved(const char *journal, og_error *err);
+// `recover discard JOURNAL`: removes a journal (w's own, or any other one a running
+// Orogen does not write; a file that is not a journal is left alone).
+int edit_discard_journal(world *w, const char *journal, og_error *err);
+
+// One journal `recover list` shows.
+typedef struct recover_entry {
+    char path[4400];
+    recovery_scan scan;
+    int recoverable; // 'recover PATH' would restore it now
+    char status[4600];
+} recover_entry;
+// Every journal of w (its own, those set aside, this session's) and the never-saved
+// worlds' journals of the recovery folder; returns how many.
+size_t edit_recover_list(const world *w, void (*fn)(void *user, const recover_entry *e),
+                         void *user);
 // The newest journal a never-saved world left in the recovery folder when its Orogen
 // stopped without saving (a crash, a kill): 1 with its path and scan, or 0.
 int edit_find_unsaved_journal(char *path, size_t len, recovery_scan *scan);

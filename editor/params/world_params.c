@@ -1,5 +1,7 @@
 #include "editor/params/world_params.h"
 
+#include "io/crc32c.h"
+
 #include "io/param_file.h"
 #include "io/parse.h"
 
@@ -381,7 +383,11 @@ static void sort_diags(param_diag *d, size_t n) {
 static int refuse_foreign(const char *path, const param_file *pf, og_error *err) {
     const char *what = "not an Orogen world or planet parameter file";
     if (pf->not_text[0]) return og_error_set(err, "%s: %s (%s)", path, what, pf->not_text);
-    if (!pf->has_lines) return 0;
+    if (!pf->has_lines)
+        return og_error_set(err,
+                            "%s: %s (it is empty: no line sets a key; Orogen never saves "
+                            "an empty file)",
+                            path, what);
     for (size_t i = 0; i < pf->count; i++)
         if (find_def(pf->entries[i].key)) return 0;
     if (pf->count)
@@ -400,13 +406,26 @@ int world_params_check_file(const char *path, og_error *err) {
 
 int world_params_load(const char *path, world_params *p, int *errors,
                       void (*report)(void *user, const char *message), void *user, og_error *err) {
+    return world_params_load_whole(path, p, errors, report, user, NULL, 0, err);
+}
+
+int world_params_load_whole(const char *path, world_params *p, int *errors,
+                            void (*report)(void *user, const char *message), void *user,
+                            char *cut_short, size_t cut_len, og_error *err) {
     if (errors) *errors = 0;
+    if (cut_short) cut_short[0] = 0;
     param_file pf;
     if (param_file_read(path, &pf, err) != 0) return -1;
     if (refuse_foreign(path, &pf, err) != 0) {
         param_file_free(&pf);
         return -1;
     }
+    char why[1200];
+    int seal = world_params_seal_check(pf.text, pf.text_len, why, sizeof why);
+    if (seal == 1 && cut_short) // the caller reports it, in full
+        snprintf(cut_short, cut_len, "%s", why);
+    else if (seal)
+        param_file_diag(&pf, seal == 1 ? PARAM_ERROR : PARAM_WARNING, 0, "%s", why);
 
     const char *ext = path_ext(path);
     world_kind kind = ext && !strcasecmp(ext, ".planet") ? WORLD_PLANET : WORLD_FLAT;
@@ -469,12 +488,96 @@ char *world_params_format(const world_params *p) {
     return out;
 }
 
+// What save adds: a line after the header saying the file is sealed, and the seal as the
+// last line (the length and checksum of everything before it), so a file cut short (an
+// interrupted copy, a sync tool) is told from a complete one.
+#define SEALED_LINE                                                                                \
+    "# Saved by Orogen: the last line seals the file (its length and checksum); a file "           \
+    "that lacks it was cut short.\n"
+#define SEAL_FORMAT "# end of file: %zu bytes before this line, crc32c %08x\n"
+
 int world_params_save(const char *path, const world_params *p, og_error *err) {
     char *text = world_params_format(p);
     if (!text) return og_error_set(err, "%s: out of memory", path);
-    int rc = param_file_write_atomic(path, text, strlen(text), err);
+    size_t len = strlen(text), head = strcspn(text, "\n") + 1;
+    size_t cap = len + sizeof SEALED_LINE + 128;
+    char *sealed = malloc(cap);
+    if (!sealed) {
+        free(text);
+        return og_error_set(err, "%s: out of memory", path);
+    }
+    memcpy(sealed, text, head);
+    memcpy(sealed + head, SEALED_LINE, sizeof SEALED_LINE - 1);
+    memcpy(sealed + head + sizeof SEALED_LINE - 1, text + head, len - head);
+    size_t n = len + sizeof SEALED_LINE - 1;
+    n += (size_t)snprintf(sealed + n, cap - n, SEAL_FORMAT, n, crc32c_update(0, sealed, n));
     free(text);
+    int rc = param_file_write_atomic(path, sealed, n, err);
+    free(sealed);
     return rc;
+}
+
+// Whether the key is set on some line of the text (at a line's start, before '=').
+static int sets_key(const char *text, size_t len, const char *key) {
+    size_t k = strlen(key);
+    for (size_t i = 0; i < len;) {
+        const char *nl = memchr(text + i, '\n', len - i);
+        size_t end = nl ? (size_t)(nl - text) : len, j = i;
+        while (j < end && (text[j] == ' ' || text[j] == '\t'))
+            j++;
+        if (end - j > k && !strncmp(text + j, key, k)) {
+            size_t e = j + k;
+            while (e < end && (text[e] == ' ' || text[e] == '\t'))
+                e++;
+            if (e < end && text[e] == '=') return 1;
+        }
+        i = end + 1;
+    }
+    return 0;
+}
+
+int world_params_seal_check(const char *text, size_t len, char *why, size_t why_len) {
+    why[0] = 0;
+    if (len >= 3 && !memcmp(text, "\xEF\xBB\xBF", 3)) text += 3, len -= 3;
+    if (!memmem(text, len, SEALED_LINE, sizeof SEALED_LINE - 1)) return 0; // by hand, or older
+    // The last line (without its newline).
+    size_t end = len;
+    while (end > 0 && text[end - 1] == '\n')
+        end--;
+    size_t start = end;
+    while (start > 0 && text[start - 1] != '\n')
+        start--;
+    size_t bytes = 0;
+    unsigned crc = 0;
+    char tail[160];
+    snprintf(tail, sizeof tail, "%.*s\n", (int)(end - start < 150 ? end - start : 150),
+             text + start);
+    // A whole seal: all its text, 8 hex digits and the newline (a cut one is no seal).
+    int used = 0;
+    if (end < len &&
+        sscanf(tail, "# end of file: %zu bytes before this line, crc32c %x%n", &bytes, &crc,
+               &used) == 2 &&
+        used == (int)(end - start) && end - start >= 8 &&
+        strspn(text + end - 8, "0123456789abcdef") >= 8) {
+        if (bytes == start && crc32c_update(0, text, start) == crc) return 0;
+        snprintf(why, why_len,
+                 "it was changed after Orogen saved it (its last line's length or checksum no "
+                 "longer matches); it is read as it is");
+        return 2;
+    }
+    char missing[1024] = "";
+    size_t n = 0, count = 0;
+    for (size_t i = 0; i < KEY_COUNT; i++) {
+        if (sets_key(text, len, KEYS[i].name)) continue;
+        count++;
+        if (n < sizeof missing - 64)
+            n += (size_t)snprintf(missing + n, sizeof missing - n, "%s%s", n ? ", " : "",
+                                  KEYS[i].name);
+    }
+    snprintf(why, why_len, "cut short: it lacks the last line Orogen's save writes%s%s%s",
+             count ? "; " : "", count ? (count == 1 ? "missing key: " : "missing keys: ") : "",
+             missing);
+    return 1;
 }
 
 // Appends "/name" (or "name" when dst is empty) to dst; -1 when it does not fit.

@@ -95,14 +95,26 @@ int world_params_validate(const world_params *p, og_error *err);
 int world_params_load(const char *path, world_params *p, int *errors,
                       void (*report)(void *user, const char *message), void *user, og_error *err);
 
+// world_params_load that also checks the seal save writes: a file Orogen saved that
+// lacks it was cut short; cut_short (unless NULL) then says so, naming the keys it lacks
+// ("" for a whole file), and an error is reported.
+int world_params_load_whole(const char *path, world_params *p, int *errors,
+                            void (*report)(void *user, const char *message), void *user,
+                            char *cut_short, size_t cut_len, og_error *err);
+
 // 0 when path reads as a parameter file world_params_load would take; -1 with err
 // naming the path and why otherwise (unreadable, not text, no known key).
 int world_params_check_file(const char *path, og_error *err);
 
 // Writes the canonical file: a header, then for each key a `# comment` line and
-// `key = value;`. Floats are printed so that they read back bit-exactly.
-// Atomic (see param_file_write_atomic).
+// `key = value;`, then the seal (world_params_seal_check). Floats are printed so that they read
+// back bit-exactly. Atomic (see param_file_write_atomic).
 int world_params_save(const char *path, const world_params *p, og_error *err);
+// Whether a parameter file's text is whole: 0 when it is (or was written by hand, or by
+// an Orogen before files were sealed: no "Saved by Orogen" line); 1 when Orogen saved it
+// and its seal (the last line save writes) is missing: cut short; why names the keys
+// it lacks; 2 when the seal is there but the text before it changed (edited by hand).
+int world_params_seal_check(const char *text, size_t len, char *why, size_t why_len);
 // The canonical text alone (malloc'd, NUL-terminated).
 char *world_params_format(const world_params *p);
 

@@ -472,12 +472,15 @@ int recovery_journal_read(const char *path, recovery_scan *scan,
                                     history_step *step, og_error *err),
                           void *user, og_error *err) {
     memset(scan, 0, sizeof *scan);
-    int fd = open(path, O_RDONLY | O_CLOEXEC);
+    int fd = open(path, O_RDONLY | O_CLOEXEC | O_NONBLOCK); // a FIFO is refused, not waited on
     if (fd < 0) return og_error_set(err, "%s: cannot open: %s", path, strerror(errno));
     struct stat st;
     if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
         close(fd);
-        return og_error_set(err, "%s: not a regular file", path);
+        return og_error_set(err,
+                            "%s: not a recovery journal (not a regular file: a FIFO, device "
+                            "or folder is not read)",
+                            path);
     }
     size_t size = (size_t)st.st_size;
     uint8_t *data = malloc(size ? size : 1);
@@ -550,7 +553,7 @@ int recovery_journal_read(const char *path, recovery_scan *scan,
 }
 
 int recovery_journal_in_use(const char *path) {
-    int fd = open(path, O_RDONLY | O_CLOEXEC);
+    int fd = open(path, O_RDONLY | O_CLOEXEC | O_NONBLOCK);
     if (fd < 0) return 0;
     int busy = flock(fd, LOCK_EX | LOCK_NB) != 0 && errno == EWOULDBLOCK;
     close(fd);

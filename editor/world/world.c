@@ -3,11 +3,13 @@
 #include "editor/gen/gen.h"
 #include "editor/world/history.h"
 #include "editor/params/world_grid.h"
+#include "editor/world/journal_files.h"
 #include "io/file_lock.h"
 
 #include <time.h>
 
 #include <errno.h>
+#include <signal.h>
 #include <stdarg.h>
 #include <inttypes.h>
 #include <ftw.h>
@@ -263,7 +265,15 @@ static int open_checked_store(world *w, const char *tiles, og_error *err) {
                  ro);
         return 0;
     }
-    if (!(w->store = tile_store_open(tiles, err))) return -1;
+    if (!(w->store = tile_store_open_readable(tiles, err))) return -1;
+    if (tile_store_warning(w->store)[0]) warn_path(w, tiles, "%s", tile_store_warning(w->store));
+    if (tile_store_read_only(w->store)[0]) {
+        snprintf(w->read_only, sizeof w->read_only,
+                 "its tile store %s cannot be written: %s; opened read-only (save to another "
+                 "file keeps your edits)",
+                 tiles, tile_store_read_only(w->store));
+        return 0;
+    }
     char id[64] = "";
     int has_id = tile_store_get_meta(w->store, "world_id", id, sizeof id, err);
     if (has_id < 0) return -1;
@@ -298,13 +308,28 @@ static int lock_files(world *w, const char *tiles, long *owner, og_error *err) {
     long stale = 0;
     file_lock_result r = file_lock_acquire(&l, path, owner, &stale, err);
     if (r == FILE_LOCK_ERROR) return -1;
+    if (r == FILE_LOCK_REFUSED) { // never written through: the world is not ours to save
+        snprintf(w->read_only, sizeof w->read_only,
+                 "%s; opened read-only, save to another file keeps your edits", err->msg);
+        return 0;
+    }
     // This process holds it: a world being replaced by a load of the same files. It
     // releases the lock when closed; save takes it then.
     if (r == FILE_LOCK_HELD && *owner == (long)getpid()) return 0;
     if (r == FILE_LOCK_HELD) return 1;
-    if (r == FILE_LOCK_ACQUIRED && stale && stale != (long)getpid())
-        warn_path(w, path, "warning: took over the lock of process %ld, which is no longer running",
-                  stale);
+    if (r == FILE_LOCK_ACQUIRED && stale && stale != (long)getpid()) {
+        // Nobody held the lock, so its writer is gone; a live process of that pid is
+        // another one (the pid was reused, or the file was copied).
+        if (kill((pid_t)stale, 0) == 0 || errno == EPERM)
+            warn_path(w, path,
+                      "warning: took over a lock file naming process %ld, which does not hold "
+                      "it (that pid is now another process's)",
+                      stale);
+        else
+            warn_path(w, path,
+                      "warning: took over the lock of process %ld, which is no longer running",
+                      stale);
+    }
     file_lock_release(&w->lock);
     w->lock = l; // FILE_LOCK_UNAVAILABLE leaves fd -1: a read-only folder needs no guard
     return 0;
@@ -319,8 +344,22 @@ static void format_time(int64_t t, char *out, size_t len) {
 
 // The journal a session that did not save left beside the world: offered when it
 // builds on the state the world was saved in, reported when it does not.
+static void count_journal(void *user, const char *path) {
+    (void)path;
+    ++*(size_t *)user;
+}
+
 static void find_recoverable(world *w) {
     snprintf(w->recover_path, sizeof w->recover_path, "%s.recover", w->path);
+    size_t journals = 0;
+    journal_files_each(w->recover_path, count_journal, &journals);
+    struct stat own;
+    size_t aside = journals - (lstat(w->recover_path, &own) == 0);
+    if (aside)
+        warn_path(w, w->path,
+                  "warning: %zu journal%s of earlier sessions %s set aside: 'recover list' lists "
+                  "them, 'recover FILE' restores one",
+                  aside, aside == 1 ? "" : "s", aside == 1 ? "is" : "are");
     if (w->store) {
         og_error ignored;
         if (tile_store_get_meta(w->store, "state_id", w->state_id, sizeof w->state_id, &ignored) !=
@@ -360,7 +399,10 @@ world *world_load(const char *path, const world_settings *settings, int *errors,
     world_params p;
     int errs = 0;
     load_report report = {.settings = settings, .path_len = strlen(path)};
-    if (world_params_load(path, &p, &errs, collect_report, &report, err) != 0) return NULL;
+    char cut_short[1200];
+    if (world_params_load_whole(path, &p, &errs, collect_report, &report, cut_short,
+                                sizeof cut_short, err) != 0)
+        return NULL;
     if (errors) *errors = errs;
     if (check_params(&p, err) != 0) {
         char msg[sizeof err->msg + 4200];
@@ -383,6 +425,11 @@ world *world_load(const char *path, const world_settings *settings, int *errors,
     // Loading never creates files: a world with no tile store yet has only its journal.
     int failed = open_journal(w, err) != 0;
     if (!failed) failed = open_checked_store(w, tiles, err) != 0;
+    if (!failed && cut_short[0]) // its missing keys became defaults: never adopted
+        snprintf(w->read_only, sizeof w->read_only,
+                 "%s is %s; opened read-only (save to another file keeps your edits; 'save "
+                 "force=1' writes a whole file over it)",
+                 path, cut_short);
     long owner = 0;
     int locked = failed ? -1 : lock_files(w, tiles, &owner, err);
     if (locked < 0 || start_cache(w, err) != 0) {
@@ -410,10 +457,8 @@ void world_close(world *w) {
         og_error err = {{0}};
         if (stop_cache(w, &err) != 0) w->settings.warn(w->settings.warn_user, err.msg);
     }
-    if (w->rj) { // a quit or another load without saving discards the edits: and their journal
-        recovery_journal_close(w->rj);
-        unlink(w->recover_path);
-    }
+    // The journal stays: only a save of its edits or 'recover discard' removes it.
+    recovery_journal_close(w->rj);
     close_stores(w);
     file_lock_release(&w->lock);
     history_destroy(w->history);
@@ -471,7 +516,6 @@ static int check_overwrite(const world *w, const char *path, og_error *err) {
 // that it may; on failure the world keeps working as before.
 static int save_files(world *w, const char *path, world_params p, const char *tiles,
                       og_error *err) {
-    const int same_file = strcmp(path, w->path) == 0;
     if (tile_cache_flush(w->cache, err) != 0) return -1;
 
     int same_store = w->store && strcmp(tiles, tile_store_path(w->store)) == 0;
@@ -515,11 +559,11 @@ static int save_files(world *w, const char *path, world_params p, const char *ti
     w->file_errors = 0;
     w->file_problems[0] = 0;
     w->read_only[0] = 0;
-    // The saved files hold every edit now: this session's journal is done with, and so
-    // is one left unrecovered on the same files; the next edit starts one on the new
-    // state.
-    if (w->rj || (same_file && w->recover_path[0])) unlink(w->recover_path);
-    if (w->rj) recovery_journal_close(w->rj);
+    // The saved files hold this session's edits now: its journal is done with. Another
+    // session's, unrecovered, stays (its edits are not saved); the next edit starts a
+    // journal on the new state.
+    if (w->rj) unlink(w->recover_path);
+    recovery_journal_close(w->rj);
     w->rj = NULL;
     memcpy(w->state_id, state_id, sizeof w->state_id);
     snprintf(w->recover_path, sizeof w->recover_path, "%s.recover", path);
@@ -564,6 +608,10 @@ int world_save(world *w, const char *path, int force, og_error *err) {
         long owner = 0, stale = 0;
         file_lock_result r = file_lock_acquire(&lock, lock_path, &owner, &stale, err);
         if (r == FILE_LOCK_ERROR) return -1;
+        if (r == FILE_LOCK_REFUSED) {
+            og_error why = *err;
+            return og_error_set(err, "save: %s", why.msg);
+        }
         if (r == FILE_LOCK_HELD)
             return og_error_set(err, "save: %s is open in process %ld; save to another file", path,
                                 owner);
@@ -823,15 +871,23 @@ void world_journal_record(world *w, recovery_kind kind, const history_step *s) {
         w->unsaved_journal = 1;
     }
     if (!w->rj) {
-        if (w->recoverable) {
-            // A new session's edits cannot follow an unrecovered one's: set it aside.
+        struct stat st;
+        if (!w->unsaved_journal && lstat(w->recover_path, &st) == 0) {
+            // A new session's edits cannot follow another session's journal: it is set
+            // aside under a free name (never overwritten; 'recover list' shows it).
             char aside[4400];
-            snprintf(aside, sizeof aside, "%s.old", w->recover_path);
-            if (rename(w->recover_path, aside) == 0)
+            if (journal_files_set_aside(w->recover_path, aside, sizeof aside, &err) != 0) {
+                w->journal_failed = 1;
                 warn_path(w, w->path,
-                          "warning: the unrecovered edits of the last session were set aside "
-                          "in %s",
-                          aside);
+                          "warning: %s; it stays as it is, and this session's edits are not "
+                          "journaled (not protected against a crash)",
+                          err.msg);
+                return;
+            }
+            warn_path(w, w->path,
+                      "warning: the unrecovered journal of an earlier session was set aside as "
+                      "%s ('recover list' lists it, 'recover %s' restores it)",
+                      aside, aside);
             w->recoverable = 0;
         }
         if (!(w->rj =
@@ -850,6 +906,10 @@ void world_journal_record(world *w, recovery_kind kind, const history_step *s) {
     }
 }
 
+int world_session_journaled(const world *w) {
+    return w->rj != NULL;
+}
+
 size_t world_recoverable(const world *w, int64_t *when) {
     if (when) *when = w->recoverable_when;
     return w->recoverable;
@@ -863,10 +923,13 @@ void world_journal_pause(world *w, int paused) {
     w->journal_paused = paused;
 }
 
-int world_journal_continue(world *w, size_t keep_bytes, og_error *err) {
+int world_journal_continue(world *w, const char *journal, size_t keep_bytes, og_error *err) {
     w->recoverable = 0;
     if (w->read_only[0]) return 0;
     recovery_journal_close(w->rj);
+    w->rj = NULL;
+    if (journal && journal != w->recover_path)
+        snprintf(w->recover_path, sizeof w->recover_path, "%s", journal);
     w->rj = recovery_journal_open(w->recover_path, w->state_id,
                                   w->unsaved_journal ? &w->base_params : NULL, keep_bytes, err);
     return w->rj ? 0 : -1;
@@ -877,7 +940,7 @@ int world_adopt_journal(world *w, const char *journal, size_t keep_bytes, og_err
     if (rename(journal, w->recover_path) != 0)
         return og_error_set(err, "recover: cannot take over %s: %s", journal, strerror(errno));
     w->unsaved_journal = 1;
-    return world_journal_continue(w, keep_bytes, err);
+    return world_journal_continue(w, NULL, keep_bytes, err);
 }
 
 int world_recover_discard(world *w, og_error *err) {

@@ -64,8 +64,11 @@ size_t world_recoverable(const world *w, int64_t *when);
 const char *world_recovery_path(const world *w); // "" for a never-saved world
 // While `recover` replays the journal, its steps are not recorded again.
 void world_journal_pause(world *w, int paused);
-// After `recover`: this session's records follow the journal's first keep_bytes.
-int world_journal_continue(world *w, size_t keep_bytes, og_error *err);
+// After `recover`: this session's records follow the first keep_bytes of journal (NULL:
+// the world's own), which is now this session's.
+int world_journal_continue(world *w, const char *journal, size_t keep_bytes, og_error *err);
+// Whether this session has written a journal (edited, or recovered) since its last save.
+int world_session_journaled(const world *w);
 // The folder of never-saved worlds' journals ($OROGEN_RECOVER_DIR, else
 // $XDG_STATE_HOME/orogen/recover, else ~/.local/state/orogen/recover), created if need be.
 int world_recovery_dir(char *out, size_t len, og_error *err);
