@@ -7,6 +7,7 @@
 #include "editor/cmd/commands.h"
 #include "editor/cmd/edit_commands.h"
 #include "editor/world/world.h"
+#include "io/file_kind.h"
 #include "io/parse.h"
 
 #include <errno.h>
@@ -36,8 +37,16 @@ static void usage(FILE *out) {
                  "Type 'help' in the console or run `orogen -c help` for the command list.\n");
 }
 
+// A script file, or standard input for "-"; a FIFO or device given by name is refused
+// (it would block or never end).
 static char *read_file(const char *path, size_t *len, char *why, size_t why_len) {
-    FILE *f = fopen(path, "rb");
+    og_error kind;
+    int from_stdin = strcmp(path, "-") == 0;
+    if (!from_stdin && file_kind_check_read(path, &kind) != 0) {
+        snprintf(why, why_len, "%s", kind.msg);
+        return NULL;
+    }
+    FILE *f = from_stdin ? stdin : fopen(path, "rb");
     if (!f) {
         snprintf(why, why_len, "%s", strerror(errno));
         return NULL;
@@ -49,7 +58,7 @@ static char *read_file(const char *path, size_t *len, char *why, size_t why_len)
             if (cap >= ((size_t)256 << 20)) {
                 snprintf(why, why_len, "larger than 256 MiB");
                 free(buf);
-                fclose(f);
+                if (!from_stdin) fclose(f);
                 return NULL;
             }
             cap *= 2;
@@ -60,7 +69,7 @@ static char *read_file(const char *path, size_t *len, char *why, size_t why_len)
         if (got == 0) break;
     }
     int failed = ferror(f);
-    fclose(f);
+    if (!from_stdin) fclose(f);
     if (failed) {
         snprintf(why, why_len, "read error (is it a folder?)");
         free(buf);

@@ -646,7 +646,7 @@ static int probe_identity(sqlite3 *db, char *out, size_t len) {
         sqlite3_prepare_v2(db,
                            "SELECT (SELECT application_id FROM pragma_application_id) || '/' || "
                            "ifnull((SELECT value FROM meta WHERE key='world_id'), '') || '/' || "
-                           "ifnull((SELECT value FROM meta WHERE key='state_id'), '')",
+                           "ifnull((SELECT value FROM meta WHERE key='store_id'), '')",
                            -1, &st, NULL);
     if (rc == SQLITE_OK) rc = sqlite3_step(st);
     if (rc == SQLITE_ROW) {
@@ -657,6 +657,57 @@ static int probe_identity(sqlite3 *db, char *out, size_t len) {
     if (rc != SQLITE_OK && db) rc = sqlite3_errcode(db);
     sqlite3_finalize(st);
     return rc;
+}
+
+static uint32_t get_u32be(const uint8_t *p) {
+    return (uint32_t)p[0] << 24 | (uint32_t)p[1] << 16 | (uint32_t)p[2] << 8 | p[3];
+}
+
+// Whether a valid frame of the WAL at path (its salts those of the WAL's header) holds
+// the page numbered page.
+static int wal_writes_page(const char *path, uint32_t page) {
+    int fd = open(path, O_RDONLY | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK);
+    if (fd < 0) return 0;
+    uint8_t head[32], frame[24];
+    int found = 0;
+    if (pread(fd, head, sizeof head, 0) == (ssize_t)sizeof head &&
+        (get_u32be(head) & 0xFFFFFFFEu) == 0x377F0682u) {
+        uint32_t page_size = get_u32be(head + 8);
+        if (page_size == 1) page_size = 65536;
+        for (off_t at = 32; !found && pread(fd, frame, sizeof frame, at) == (ssize_t)sizeof frame;
+             at += 24 + (off_t)page_size) {
+            if (memcmp(frame + 8, head + 16, 8) != 0) break; // past the valid frames
+            found = get_u32be(frame) == page;
+        }
+    }
+    close(fd);
+    return found;
+}
+
+// The root page of the meta table, or 0.
+static uint32_t meta_root_page(sqlite3 *db) {
+    sqlite3_stmt *st = NULL;
+    uint32_t page = 0;
+    if (db &&
+        sqlite3_prepare_v2(db, "SELECT rootpage FROM sqlite_master WHERE name='meta'", -1, &st,
+                           NULL) == SQLITE_OK &&
+        sqlite3_step(st) == SQLITE_ROW)
+        page = (uint32_t)sqlite3_column_int64(st, 0);
+    sqlite3_finalize(st);
+    return page;
+}
+
+// Whether SQLite's quick_check finds the database as a connection sees it consistent.
+static int quick_ok(sqlite3 *db) {
+    sqlite3_stmt *st = NULL;
+    int ok = 0;
+    if (db && sqlite3_prepare_v2(db, "PRAGMA quick_check(1)", -1, &st, NULL) == SQLITE_OK &&
+        sqlite3_step(st) == SQLITE_ROW) {
+        const unsigned char *v = sqlite3_column_text(st, 0);
+        ok = v && !strcmp((const char *)v, "ok");
+    }
+    sqlite3_finalize(st);
+    return ok;
 }
 
 // Whether a live connection has the database open (SQLite's shared lock on the -shm's
@@ -672,9 +723,13 @@ static int wal_in_use(const char *shm) {
 
 // SQLite replays a WAL beside the database into it on open, whatever database wrote
 // it: a stray one (another store's, a copy's) would overwrite the tiles. Before the
-// store is opened, a leftover WAL is checked against the main file: when the view
-// through it fails or names another world (or no Orogen store at all), it is moved
-// aside as PATH-wal.foreign (its index, PATH-shm, removed) and never replayed.
+// store is opened, a leftover WAL is checked against the main file: it is this store's
+// when one of its frames is the meta page (each write transaction rewrites the store's
+// row there), the view through it names the same application, world and store ids,
+// and that view is as consistent as the file alone (quick_check). Otherwise it is moved
+// aside as PATH-wal.foreign (its index, PATH-shm, removed) and never replayed. (A WAL
+// left by an Orogen from before store ids, killed before its checkpoint, is also moved
+// aside, not lost: renaming it back replays it.)
 static void set_foreign_wal_aside(tile_store *store) {
     char wal[4200], shm[4200], aside[4300];
     snprintf(wal, sizeof wal, "%s-wal", store->path);
@@ -682,18 +737,24 @@ static void set_foreign_wal_aside(tile_store *store) {
     struct stat st;
     if (lstat(wal, &st) != 0 || !S_ISREG(st.st_mode) || st.st_size == 0 || wal_in_use(shm)) return;
     char main_id[256] = "", wal_id[256] = "";
+    // Both views: their ids, and whether their pages make a consistent database (a WAL
+    // of another database laid over this one's pages mostly does not, also when it does
+    // not carry the meta page).
     sqlite3 *db = open_probe(store->path, PROBE_IMMUTABLE);
     int main_rc = db ? probe_identity(db, main_id, sizeof main_id) : SQLITE_CANTOPEN;
+    int main_ok = main_rc == SQLITE_OK && quick_ok(db);
+    uint32_t meta_page = meta_root_page(db);
     sqlite3_close(db);
     if (main_rc != SQLITE_OK) return; // not judged here: opening reports what the file is
     db = open_probe(store->path, PROBE_THROUGH_WAL);
     int wal_rc = db ? probe_identity(db, wal_id, sizeof wal_id) : SQLITE_CANTOPEN;
-    sqlite3_close(db);
     if ((wal_rc & 0xFF) == SQLITE_CANTOPEN || (wal_rc & 0xFF) == SQLITE_READONLY) {
+        sqlite3_close(db);
         db = open_probe(store->path, PROBE_READ_ONLY); // a read-only folder: an index exists?
         wal_rc = db ? probe_identity(db, wal_id, sizeof wal_id) : SQLITE_CANTOPEN;
-        sqlite3_close(db);
     }
+    int wal_ok = wal_rc == SQLITE_OK && quick_ok(db);
+    sqlite3_close(db);
     int primary = wal_rc & 0xFF;
     if (primary == SQLITE_CANTOPEN || primary == SQLITE_BUSY || primary == SQLITE_READONLY ||
         primary == SQLITE_IOERR || primary == SQLITE_NOMEM || primary == SQLITE_PERM)
@@ -708,6 +769,10 @@ static void set_foreign_wal_aside(tile_store *store) {
     int ours = wal_rc == SQLITE_OK && !strcmp(main_f[0], wal_f[0]);
     for (int i = 1; i < 3 && ours; i++)
         if (main_f[i][0] && strcmp(main_f[i], wal_f[i]) != 0) ours = 0;
+    if (ours && main_ok && !wal_ok) ours = 0, wal_rc = SQLITE_CORRUPT;
+    // Every write transaction of a store rewrites its meta row (mark_write): a WAL none
+    // of whose frames is the meta page was not written by this store.
+    if (ours && meta_page && !wal_writes_page(wal, meta_page)) ours = 0;
     if (ours) return;
     for (int n = 1; n < 100; n++) {
         if (n == 1)

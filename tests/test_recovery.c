@@ -379,6 +379,33 @@ static void test_recover_set_aside_reachable(void **state) {
     finish(&s);
 }
 
+// Found by the fault harness (issue 27): a dab whose edge touches a never-edited tile
+// without changing it, then `generate`: the live session kept that tile's old terrain
+// (it had been written back unchanged), while a replay, which has no record of it,
+// regenerated it. Both now regenerate it: recovering gives exactly the live terrain.
+static void test_recover_untouched_edge_then_generate(void **state) {
+    (void)state;
+    session s;
+    char live[17], now[17], text[4400];
+    snprintf(s.dir, sizeof s.dir, "%s", test_tmpdir("recovery-edge"));
+    snprintf(s.world, sizeof s.world, "%s/w.world", s.dir);
+    snprintf(s.journal, sizeof s.journal, "%s.recover", s.world);
+    world_params p;
+    world_params_default(&p, WORLD_FLAT);
+    og_error err = {{0}};
+    cmd_context_init(&s.ctx, world_create(&p, NULL, &err), NULL, stdout, OROGEN_RESOURCE_DIR);
+    snprintf(text, sizeof text, "tool raise radius=40 strength=1; dab 450 450; save %s", s.world);
+    run(&s, text);
+    reopen(&s);
+    run(&s, "tool raise radius=74 strength=1; dab 443 39; seed 421; generate");
+    hash(&s, live);
+    reopen(&s); // leaves without saving: the journal stays
+    run(&s, "recover");
+    hash(&s, now);
+    assert_string_equal(now, live);
+    finish(&s);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_recover_exact),
@@ -387,6 +414,7 @@ int main(void) {
         cmocka_unit_test(test_recover_stale_aside_discard),
         cmocka_unit_test(test_recover_never_saved),
         cmocka_unit_test(test_recover_set_aside_reachable),
+        cmocka_unit_test(test_recover_untouched_edge_then_generate),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -981,8 +981,21 @@ static void test_foreign_wal_moved_aside(void **state) {
     assert_non_null(s = tile_store_open(a, &err));
     assert_int_equal(tile_store_count(s, -1), 6);
     tile_store_close(s);
-    // Its own WAL: replayed.
-    commit_and_die(a, "DELETE FROM tiles WHERE tx=0");
+    // Its own WAL (an Orogen killed after a commit): replayed. A WAL written by other
+    // means (no frame of the store's meta page) is taken for a foreign one.
+    commit_and_die(a, "DELETE FROM tiles WHERE tx=5");
+    assert_non_null(s = tile_store_open(a, &err));
+    assert_non_null(strstr(tile_store_warning(s), ".foreign"));
+    assert_int_equal(tile_store_count(s, -1), 6);
+    tile_store_close(s);
+    pid = fork();
+    assert_true(pid >= 0);
+    if (pid == 0) {
+        tile_store *own = tile_store_open(a, &err);
+        _exit(own && tile_store_put(own, key_of(TILE_LAYER_COARSE, 0, 0), NULL, &err) == 0 ? 0 : 1);
+    }
+    waitpid(pid, &status, 0);
+    assert_true(WIFEXITED(status) && WEXITSTATUS(status) == 0);
     assert_non_null(s = tile_store_open(a, &err));
     assert_string_equal(tile_store_warning(s), "");
     assert_int_equal(tile_store_count(s, -1), 5);

@@ -112,9 +112,10 @@ static int c_load(cmd_context *ctx, int argc, char **argv, og_error *err) {
     replace_world(ctx, w);
     ctx->reported_errors += errors;
     fprintf(ctx->out, "loaded %s%s\n", argv[1],
-            errors ? " (with errors: those keys keep their defaults; save will not write over "
-                     "the file without force=1)"
-                   : "");
+            world_file_errors(w) ? " (with errors: those keys keep their defaults; save will not "
+                                   "write over the file without force=1)"
+            : world_read_only(w)[0] ? " (read-only: see above)"
+                                    : "");
     return 0;
 }
 

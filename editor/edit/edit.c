@@ -251,6 +251,15 @@ int edit_record(edit *e, og_error *err) {
         edit_abort(e);
         return -1;
     }
+    // A never-edited tile the edit touched without changing (the brush's edge): back to
+    // generated terrain, as if untouched, so a later `generate` changes it like its
+    // neighbours; the undo step has no record of it, so a replay (recover) agrees.
+    tile_cache *cache = world_cache(e->world);
+    for (size_t i = 0; i < e->count; i++) {
+        og_error ignored;
+        if (!sizes[i] && e->snaps[i].pristine && tile_cache_discard(cache, e->snaps[i].key) == 0)
+            tile_store_put(world_journal(e->world), e->snaps[i].key, NULL, &ignored);
+    }
     free(deltas);
     free(sizes);
     publish_areas(e->world, e->dirty, e->dirty_count);

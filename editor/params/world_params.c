@@ -422,10 +422,6 @@ int world_params_load_whole(const char *path, world_params *p, int *errors,
     }
     char why[1200];
     int seal = world_params_seal_check(pf.text, pf.text_len, why, sizeof why);
-    if (seal == 1 && cut_short) // the caller reports it, in full
-        snprintf(cut_short, cut_len, "%s", why);
-    else if (seal)
-        param_file_diag(&pf, seal == 1 ? PARAM_ERROR : PARAM_WARNING, 0, "%s", why);
 
     const char *ext = path_ext(path);
     world_kind kind = ext && !strcasecmp(ext, ".planet") ? WORLD_PLANET : WORLD_FLAT;
@@ -450,6 +446,15 @@ int world_params_load_whole(const char *path, world_params *p, int *errors,
     og_error v_err;
     if (pf.count && world_params_validate(p, &v_err) != 0)
         param_file_diag(&pf, PARAM_ERROR, 0, "%s", v_err.msg);
+    // Changed since saved, with lines that no longer read: damage, not an edit by hand.
+    if (seal == 2 && pf.diag_count)
+        seal = 1, snprintf(why, sizeof why,
+                           "damaged: it changed after Orogen saved it and has lines that do not "
+                           "read (reported above)");
+    if (seal == 1 && cut_short) // the caller reports it, in full
+        snprintf(cut_short, cut_len, "%s", why);
+    else if (seal)
+        param_file_diag(&pf, seal == 1 ? PARAM_ERROR : PARAM_WARNING, 0, "%s", why);
 
     sort_diags(pf.diags, pf.diag_count);
     for (size_t i = 0; i < pf.diag_count; i++) {
@@ -539,7 +544,12 @@ static int sets_key(const char *text, size_t len, const char *key) {
 int world_params_seal_check(const char *text, size_t len, char *why, size_t why_len) {
     why[0] = 0;
     if (len >= 3 && !memcmp(text, "\xEF\xBB\xBF", 3)) text += 3, len -= 3;
-    if (!memmem(text, len, SEALED_LINE, sizeof SEALED_LINE - 1)) return 0; // by hand, or older
+    // Sealed: it says so after its header, or ends in a seal (also when the line saying
+    // so was damaged). Otherwise written by hand, or by an Orogen from before seals.
+    int says_sealed = memmem(text, len, SEALED_LINE, sizeof SEALED_LINE - 1) != NULL;
+    int ends_sealed = len > 16 && memmem(text + (len > 100 ? len - 100 : 0), len > 100 ? 100 : len,
+                                         "\n# end of file: ", 16);
+    if (!says_sealed && !ends_sealed) return 0;
     // The last line (without its newline).
     size_t end = len;
     while (end > 0 && text[end - 1] == '\n')
@@ -553,17 +563,14 @@ int world_params_seal_check(const char *text, size_t len, char *why, size_t why_
     snprintf(tail, sizeof tail, "%.*s\n", (int)(end - start < 150 ? end - start : 150),
              text + start);
     // A whole seal: all its text, 8 hex digits and the newline (a cut one is no seal).
-    int used = 0;
+    int used = 0, sealed = 0;
     if (end < len &&
         sscanf(tail, "# end of file: %zu bytes before this line, crc32c %x%n", &bytes, &crc,
                &used) == 2 &&
         used == (int)(end - start) && end - start >= 8 &&
         strspn(text + end - 8, "0123456789abcdef") >= 8) {
         if (bytes == start && crc32c_update(0, text, start) == crc) return 0;
-        snprintf(why, why_len,
-                 "it was changed after Orogen saved it (its last line's length or checksum no "
-                 "longer matches); it is read as it is");
-        return 2;
+        sealed = 1;
     }
     char missing[1024] = "";
     size_t n = 0, count = 0;
@@ -574,9 +581,19 @@ int world_params_seal_check(const char *text, size_t len, char *why, size_t why_
             n += (size_t)snprintf(missing + n, sizeof missing - n, "%s%s", n ? ", " : "",
                                   KEYS[i].name);
     }
-    snprintf(why, why_len, "cut short: it lacks the last line Orogen's save writes%s%s%s",
-             count ? "; " : "", count ? (count == 1 ? "missing key: " : "missing keys: ") : "",
-             missing);
+    const char *lacking = count == 1 ? "; missing key: " : "; missing keys: ";
+    if (sealed && !count) { // every key still there: an edit by hand
+        snprintf(why, why_len,
+                 "it was changed after Orogen saved it (its last line's length or checksum no "
+                 "longer matches); it is read as it is");
+        return 2;
+    }
+    if (sealed)
+        snprintf(why, why_len, "damaged: it changed after Orogen saved it and lost keys%s%s",
+                 lacking, missing);
+    else
+        snprintf(why, why_len, "cut short: it lacks the last line Orogen's save writes%s%s",
+                 count ? lacking : "", missing);
     return 1;
 }
 

@@ -112,8 +112,10 @@ int world_params_check_file(const char *path, og_error *err);
 int world_params_save(const char *path, const world_params *p, og_error *err);
 // Whether a parameter file's text is whole: 0 when it is (or was written by hand, or by
 // an Orogen before files were sealed: no "Saved by Orogen" line); 1 when Orogen saved it
-// and its seal (the last line save writes) is missing: cut short; why names the keys
-// it lacks; 2 when the seal is there but the text before it changed (edited by hand).
+// and its seal (the last line save writes) is missing (cut short), or the text changed
+// and lost keys (damaged); why names the keys it lacks; 2 when the seal is there, the
+// text before it changed but every key is still set (edited by hand: read as it is,
+// unless a line then does not read, which the loader takes for damage).
 int world_params_seal_check(const char *text, size_t len, char *why, size_t why_len);
 // The canonical text alone (malloc'd, NUL-terminated).
 char *world_params_format(const world_params *p);
