@@ -141,7 +141,7 @@ typedef struct script {
 static int run_scripts(cmd_context *ctx, const script *scripts, int script_count, og_error *err) {
     for (int s = 0; s < script_count && !ctx->exit_requested; s++) {
         size_t len;
-        char why[256];
+        char why[1100];
         char *text = NULL;
         const char *label = "-c";
         if (scripts[s].path) {

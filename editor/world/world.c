@@ -919,6 +919,10 @@ const char *world_recovery_path(const world *w) {
     return w->recover_path;
 }
 
+const char *world_state_id(const world *w) {
+    return w->state_id;
+}
+
 void world_journal_pause(world *w, int paused) {
     w->journal_paused = paused;
 }

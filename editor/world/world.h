@@ -62,6 +62,7 @@ void world_journal_record(world *w, recovery_kind kind, const history_step *s);
 // loaded in (0: none), and when the last was made.
 size_t world_recoverable(const world *w, int64_t *when);
 const char *world_recovery_path(const world *w); // "" for a never-saved world
+const char *world_state_id(const world *w);      // the saved state edits build on
 // While `recover` replays the journal, its steps are not recorded again.
 void world_journal_pause(world *w, int paused);
 // After `recover`: this session's records follow the first keep_bytes of journal (NULL:
