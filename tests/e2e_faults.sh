@@ -14,7 +14,7 @@
 # It prints trials / recovered / adopted / destroyed and fails on any loss.
 # Usage: e2e_faults.sh OROGEN TESTS_DIR
 # Longer runs by hand: FAULT_SEQUENCES (10; 3 kills each), FAULT_PARAMS (200),
-# FAULT_STORES (100), FAULT_SEED.
+# FAULT_STORES (100), FAULT_SEED; FAULT_NO_MOUNT=1 uses the file size limit even as root.
 set -u
 orogen=$1
 work=$(mktemp -d "${TMPDIR:-/tmp}/orogen-faults-XXXXXX")
@@ -297,6 +297,17 @@ if [ "$(cat "$d/target")" = precious ] && grep -q "symbolic link" "$d/err"; then
 else
     fail "special: a symlinked lock was written through ($(head -c 200 "$d/err"))"
 fi
+# A lock file naming a live process that does not hold it (this shell): taken over,
+# and said to be another process's pid, not "no longer running".
+special=$((special + 1))
+rm -f "$d/l.tiles.lock"
+echo $$ >"$d/l.tiles.lock"
+"$orogen" "$d/l.world" -c "info" >/dev/null 2>"$d/err"
+if grep -q "naming process $$, which does not hold it" "$d/err"; then
+    special_ok=$((special_ok + 1))
+else
+    fail "special: a lock naming a live process that does not hold it ($(head -c 200 "$d/err"))"
+fi
 echo "special files: $special cases, refused as they should be: $special_ok"
 
 # ---- a full disk ------------------------------------------------------------------------
@@ -305,7 +316,7 @@ full="$work/full"
 mkdir -p "$full"
 how="RLIMIT_FSIZE (ulimit -f)"
 limit=
-if [ "$(id -u)" = 0 ] && mount -t tmpfs -o size=6m tmpfs "$full" 2>/dev/null; then
+if [ "$(id -u)" = 0 ] && [ -z "${FAULT_NO_MOUNT:-}" ] && mount -t tmpfs -o size=6m tmpfs "$full" 2>/dev/null; then
     mounted=$full
     how="a 6 MiB tmpfs"
 fi
@@ -359,7 +370,24 @@ if [ -n "$mounted" ]; then
         fail "full disk: a failed save lost the journal of its edits (recovered '$back', live '$live'; $(tail -n 2 "$work/full.err"))"
     fi
 fi
-echo "full disk ($how): $disk_cases cases, behaved: $disk_ok"
+# 4. A read-only file system (the tmpfs remounted read-only): the world opens
+#    read-only naming that cause (not "No such file or directory"), saves elsewhere.
+if [ -n "$mounted" ]; then
+    rm -f "$full"/*
+    cp "$work/base.world" "$work/base.tiles" "$full/"
+    if mount -o remount,ro "$full" 2>/dev/null; then
+        disk_cases=$((disk_cases + 1))
+        edited=$("$orogen" "$full/base.world" -c "tool raise radius=30 strength=1; dab 100 100; $probe; save $work/ro-copy.world" 2>"$work/full.err" | probe_lines)
+        again=$("$orogen" "$work/ro-copy.world" -c "$probe" 2>/dev/null)
+        if grep -q "read-only file system" "$work/full.err" && [ -n "$edited" ] && [ "$edited" = "$again" ]; then
+            disk_ok=$((disk_ok + 1))
+        else
+            fail "read-only file system: not opened read-only with the cause, or no save elsewhere ($(tail -n 2 "$work/full.err"))"
+        fi
+        mount -o remount,rw "$full"
+    fi
+fi
+echo "full disk and read-only file system ($how): $disk_cases cases, behaved: $disk_ok"
 
 echo "faults: trials $trials, recovered $recovered, lost $lost, adopted $adopted, destroyed $destroyed"
 [ $failures = 0 ] && [ $recovered = $trials ]

@@ -655,6 +655,9 @@ widget "Dock/Spacing" >/dev/null && widget_gone "Dock/Size"
 check "a planet's More parameters leave out Size (its faces follow radius and spacing)" $?
 click "Dock/More parameters"
 ask "load $work/gui.world" '^loaded' >/dev/null
+# The edits left unsaved when bad.world was loaded are still journaled (only a save or
+# a discard removes a journal): the window offers them; dropped here to go on.
+ask "recover discard" '^discarded' >/dev/null
 wait_title "gui.world - "; rc=$?; check "back to gui.world ($(title))" $rc
 # Section 8 drags where the terrain was: wait until every tile in view is there again
 # (window_screenshot answers once they are), or a busy machine picks a coarser surface.
