@@ -22,6 +22,12 @@ RANDOM=${FAULT_SEED:-27}
 sequences=${FAULT_SEQUENCES:-10}
 param_cases=${FAULT_PARAMS:-200}
 store_cases=${FAULT_STORES:-100}
+# Under the sanitizers (scripts/test.sh --sanitize sets ASAN_OPTIONS) every process is
+# a few times slower: the same 30 kill trials, half the mutations (the plain run does all).
+if [ -n "${ASAN_OPTIONS:-}" ]; then
+    param_cases=${FAULT_PARAMS:-100}
+    store_cases=${FAULT_STORES:-50}
+fi
 export OROGEN_RECOVER_DIR="$work/recover-dir"
 # stdbuf preloads a library: under AddressSanitizer its runtime then is not first.
 export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}verify_asan_link_order=0"
