@@ -87,6 +87,7 @@ int console_run(console *c, cmd_context *ctx, const char *text, const char *labe
     if (rc != 0) {
         fprintf(stderr, "%s\n", err.msg);
         console_add(c, CONSOLE_ERROR, err.msg);
+        if (c->notices && strcmp(label, "console") != 0) notices_add(c->notices, err.msg);
     }
     return rc;
 }

@@ -4,6 +4,7 @@
 #ifndef OROGEN_APP_CONSOLE_H
 #define OROGEN_APP_CONSOLE_H
 
+#include "app/notices.h"
 #include "editor/cmd/commands.h"
 #include "ui/ui.h"
 
@@ -28,6 +29,8 @@ typedef struct console {
     // Where a typed line goes (the window's work queue); NULL: console_run at once.
     int (*submit)(void *user, const char *text);
     void *submit_user;
+    // When set, a line run for the UI (not typed here) that fails is shown there too.
+    notices *notices;
 } console;
 
 void console_init(console *c);

@@ -15,6 +15,7 @@ static int listed_file(file_browser_mode mode, const char *name) {
     if (!dot) return 0;
     if (mode == FILE_BROWSER_SCRIPT) return strcmp(dot, ".og") == 0 || strcmp(dot, ".txt") == 0;
     if (mode == FILE_BROWSER_EXPORT_PLANET) return strcasecmp(dot, ".obj") == 0;
+    if (mode == FILE_BROWSER_NEW_FROM) mode = FILE_BROWSER_IMPORT; // the same files
     if (mode == FILE_BROWSER_IMPORT || mode == FILE_BROWSER_EXPORT) {
         static const char *const rasters[] = {".png", ".tif", ".tiff", ".exr", ".r16", ".raw",
                                               ".hgt", ".asc", ".pgm",  ".pfm", ".dem", ".bil"};
@@ -28,16 +29,21 @@ static int listed_file(file_browser_mode mode, const char *name) {
     return strcmp(dot, ".world") == 0 || strcmp(dot, ".planet") == 0;
 }
 
-static const char *const titles[] = {
-    "Open",         "Save as", "Save session script", "Import heightmap", "Export heightmap",
-    "Export planet"};
+static const char *const titles[] = {"Open",
+                                     "Save as",
+                                     "Save session script",
+                                     "Import heightmap",
+                                     "Export heightmap",
+                                     "Export planet",
+                                     "New world from heightmap"};
 static const char *const intros[] = {
     "Open a world (.world or .planet)",
     "Save the world as (a .world or .planet file; its tiles go beside it as NAME.tiles)",
     "Save this session's commands as a script (.og) that replays it on the starting world",
     "Import a heightmap: PNG, TIFF, EXR, RAW/R16, SRTM .hgt, GeoTIFF, ASCII grid",
     "Export a heightmap: .png (16-bit), .tif (float GeoTIFF), .exr (float), .r16",
-    "Export the planet: an .obj and its face height and normal maps"};
+    "Export the planet: an .obj and its face height and normal maps",
+    "A new flat world of a heightmap's extent and spacing (PNG, TIFF, EXR, RAW, .hgt, ...)"};
 
 static int sort_mode; // qsort has no user pointer
 
@@ -142,7 +148,10 @@ int file_browser_draw(file_browser *b, ui_context *ui, ui_rect r) {
     list.h = list_h > line ? list_h : line;
     ui_panel_begin(ui, "Files", list);
     ui_row(ui, 1, NULL, ui_em(ui, 1.2f));
-    if (b->error[0]) ui_label_colored(ui, b->error, t->text_error);
+    if (b->error[0]) {
+        ui_label_wrapped(ui, b->error, t->text_error);
+        ui_row(ui, 1, NULL, ui_em(ui, 1.2f));
+    }
     for (int i = 0; i < b->count; i++) {
         file_browser_entry *e = &b->entries[i];
         char label[400];
@@ -171,14 +180,16 @@ int file_browser_draw(file_browser *b, ui_context *ui, ui_rect r) {
     ui_tooltip(ui, "The file: type a path, or pick one above");
     float bottom[2] = {-0.5f, 0};
     ui_row(ui, 2, bottom, line);
-    static const char *const go_labels[] = {"Open##go", "Save##go", "Save##go",
-                                            "Next##go", "Next##go", "Next##go"};
+    static const char *const go_labels[] = {"Open##go", "Save##go", "Save##go",  "Next##go",
+                                            "Next##go", "Next##go", "Create##go"};
     static const char *const go_tips[] = {"Open the chosen world",
                                           "Save the world there",
                                           "Write the script there",
                                           "Choose how to import it (next: the import options)",
                                           "Choose what to export there (next: the export options)",
-                                          "Export the planet there (next: its subdivision)"};
+                                          "Export the planet there (next: its subdivision)",
+                                          "Make a new world of it (asks first about unsaved "
+                                          "changes)"};
     int go = ui_button(ui, b->confirm_overwrite ? "Overwrite##go" : go_labels[b->mode]) ||
              (rc & UI_TEXT_SUBMIT);
     ui_tooltip(ui, go_tips[b->mode]);
@@ -188,7 +199,8 @@ int file_browser_draw(file_browser *b, ui_context *ui, ui_rect r) {
     if (go && b->path[0]) {
         struct stat st;
         int exists = stat(b->path, &st) == 0;
-        int opening = b->mode == FILE_BROWSER_OPEN || b->mode == FILE_BROWSER_IMPORT;
+        int opening = b->mode == FILE_BROWSER_OPEN || b->mode == FILE_BROWSER_IMPORT ||
+                      b->mode == FILE_BROWSER_NEW_FROM;
         if (opening && !exists) {
             snprintf(b->error, sizeof b->error, "%.400s: no such file", b->path);
         } else if (exists && S_ISDIR(st.st_mode)) {

@@ -1,6 +1,7 @@
 // orogen: the command line. Batch mode (--batch FILE, -c 'cmd; cmd') runs the
 // command language with no window and no GL; interactive mode opens the editor
 // window on the default world (or the one named), with the console on stdin.
+#include "app/ui_messages.h"
 #include "app/window.h"
 #include "view/view_commands.h"
 #include "renderer/viewport.h"
@@ -228,7 +229,8 @@ int main(int argc, char **argv) {
     if (script_count == 0 && no_display()) return 2;
 
     og_error err = {{0}};
-    if (view_commands_register(&err) != 0 || window_commands_register(&err) != 0) {
+    if (view_commands_register(&err) != 0 || window_commands_register(&err) != 0 ||
+        ui_messages_register(&err) != 0) {
         fprintf(stderr, "orogen: %s\n", err.msg);
         return 1;
     }

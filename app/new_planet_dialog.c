@@ -132,8 +132,7 @@ int new_planet_dialog_draw(new_planet_dialog *d, ui_context *ui, ui_rect r, char
                   "Any integer: another seed, other continents");
     if (d->error[0]) {
         ui_row(ui, 1, NULL, 0);
-        ui_label_colored(ui, d->error, ui_get_theme(ui)->text_error);
-        ui_tooltip(ui, d->error);
+        ui_label_wrapped(ui, d->error, ui_get_theme(ui)->text_error);
     }
     float bottom[2] = {-0.5f, 0};
     ui_row(ui, 2, bottom, 0);

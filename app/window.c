@@ -312,6 +312,7 @@ static void window_teardown(window_state *st) {
     free(st->session_text);
     if (st->changes) world_events_unsubscribe(st->changes);
     current_window = NULL;
+    ui_messages_attach(NULL, NULL);
     gl_target_destroy(&st->terrain);
     gl_target_destroy(&st->terrain_smooth);
     for (int i = 0; i < st->ed.stamps.count; i++)
@@ -391,6 +392,8 @@ static int window_start(window_state *st, const app_settings *settings, const ch
     work_queue_init(&st->work, ctx, &st->ed.console, wake_window, NULL);
     st->ed.work = &st->work;
     st->ed.host = (editor_host){st, host_set_camera_mode, host_close};
+    st->work.notices = st->ed.console.notices = &st->notices;
+    ui_messages_attach(st->ui, st->busy_ui);
     st->ed.console.submit = submit_console_line;
     st->ed.console.submit_user = st;
     current_window = st;

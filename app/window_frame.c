@@ -52,10 +52,19 @@ static void cursor_colour(brush_tool tool, int invert, float rgb[3]) {
            3 * sizeof(float));
 }
 
+// The pointer is over the viewport's terrain, not a panel, menu or dialog over it (nor
+// over what they hide): the brush cursor and the status bar follow only what is seen.
+static int pointer_on_terrain(const window_state *st) {
+    return (st->drag != DRAG_NONE || in_view(st, st->mouse_x, st->mouse_y)) &&
+           (st->drag == DRAG_SCULPT || st->drag == DRAG_RESIZE ||
+            !ui_captures_point(st->ui, st->in.mouse_x, st->in.mouse_y));
+}
+
 static void update_cursor(window_state *st) {
     brush_cursor *bc = &st->v->cursor;
     double hit[3];
     bc->visible = st->mouse_in && !st->looking && st->drag != DRAG_ORBIT &&
+                  pointer_on_terrain(st) &&
                   (st->drag == DRAG_RESIZE || pick_at(st, st->mouse_x, st->mouse_y, hit) == 0);
     if (!bc->visible) return;
     if (st->drag == DRAG_RESIZE) memcpy(hit, st->resize_at, sizeof hit);
@@ -165,7 +174,7 @@ const ui_draw_list *build_ui(window_state *st, int fw, int fh) {
                               .camera_mode = camera_mode(st),
                               .dynamic_resolution = st->dynamic_res};
     double hit[3];
-    if (st->mouse_in && pick_at(st, st->mouse_x, st->mouse_y, hit) == 0) {
+    if (st->mouse_in && pointer_on_terrain(st) && pick_at(st, st->mouse_x, st->mouse_y, hit) == 0) {
         info.cursor_valid = 1;
         memcpy(info.cursor, hit, sizeof hit);
     }
@@ -173,6 +182,7 @@ const ui_draw_list *build_ui(window_state *st, int fw, int fh) {
     refresh_stamps(st);
     ui_begin(st->ui, &st->in, (float)fw, (float)fh);
     ui_rect vr = editor_ui_build(&st->ed, st->ui, st->ctx, st->v, &info, (float)fw, (float)fh);
+    notices_draw(&st->notices, st->ui, vr);
     const ui_draw_list *dl = ui_end(st->ui);
     clear_frame_input(&st->in);
     float k = ui_px(st, 1.0); // framebuffer pixels per window unit

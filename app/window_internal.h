@@ -9,6 +9,7 @@
 #include "app/sculpt_drag.h"
 #include "app/settings.h"
 #include "app/tool_settings.h"
+#include "app/ui_messages.h"
 #include "app/work_queue.h"
 #include "editor/edit/recover.h"
 #include "editor/params/world_grid.h"
@@ -75,6 +76,7 @@ typedef struct window_state {
     ui_context *ui;
     ui_renderer *uir;
     editor_ui ed;
+    notices notices;   // what failed for the UI, over the viewport until dismissed
     ui_input in;       // input gathered since the last UI frame
     int ui_dirty;      // input or state changed: build and draw the UI again
     ui_rect view_rect; // the viewport's part of the window (window coordinates)

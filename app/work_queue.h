@@ -10,6 +10,7 @@
 #define OROGEN_APP_WORK_QUEUE_H
 
 #include "app/console.h"
+#include "app/notices.h"
 #include "editor/cmd/cmd_job.h"
 
 #define WORK_QUEUE_MAX 256
@@ -41,6 +42,9 @@ typedef struct work_queue {
     FILE *mem, *keep_out;
     int stroke_cancelled; // a cancelled job ended the mouse stroke (the window resets its drag)
     int ran;              // something ran since the last work_queue_take_ran
+    // When set, what failed that the console did not start (a menu, a shortcut, a drop,
+    // a dialog) is also shown here until dismissed, where the user looks.
+    notices *notices;
 } work_queue;
 
 void work_queue_init(work_queue *q, cmd_context *ctx, console *c, void (*wake)(void *), void *user);

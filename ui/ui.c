@@ -743,6 +743,9 @@ void ui_label_wrapped(ui_context *ui, const char *text, ui_color c) {
         ui_row(ui, 1, NULL, 0);
         ui_rect r = ui_next_cell(ui);
         text_in(ui, r, at, fit, c, 0);
+        char row[PATH_MAX_LEN]; // each row is named by its text, as labels are
+        snprintf(row, sizeof row, "%.*s", (int)(fit < sizeof row ? fit : sizeof row - 1), at);
+        record_widget(ui, row, r);
         at += fit;
         while (*at == ' ')
             at++;
@@ -964,7 +967,8 @@ static void tooltip_box(ui_context *ui, const char *text) {
 }
 
 void ui_tooltip(ui_context *ui, const char *text) {
-    if (!ui->last_hovered || ui->active) {
+    // Not over a field being typed into: its text and its refusal stay readable.
+    if (!ui->last_hovered || ui->active || (ui->last_id && ui->last_id == ui->typing_id)) {
         if (ui->tip_id == ui->last_id) ui->tip_id = 0;
         return;
     }

@@ -212,6 +212,7 @@ void ui_label(ui_context *ui, const char *text);
 void ui_label_colored(ui_context *ui, const char *text, ui_color c);
 // The whole text over as many full-width rows as it needs, broken between words (a
 // message must never be cut at the panel's edge); in the error colour it is one message.
+// Each row is a named widget (its text); rows after it are single full-width ones.
 void ui_label_wrapped(ui_context *ui, const char *text, ui_color c);
 int ui_button(ui_context *ui, const char *label); // 1 when clicked
 int ui_toggle_button(ui_context *ui, const char *label, int on);
