@@ -63,6 +63,11 @@ void do_action(editor_ui *e, cmd_context *ctx, editor_pending action) {
         snprintf(cmd, sizeof cmd, "load %s", arg);
         if (run_now(e, ctx, cmd) == 0) remember_recent(e, e->open_path);
     }
+    if (action == PENDING_NEW_FROM) {
+        char arg[1100];
+        cmd_quote_arg(arg, sizeof arg, e->open_path);
+        runf(e, ctx, "new flat from=%s", arg);
+    }
     if (action == PENDING_QUIT && e->host.close) e->host.close(e->host.user);
 }
 
@@ -134,6 +139,10 @@ ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport
         size_t steps;
         int64_t when;
         e->offer_recovery = offered_journal(e, ctx, &steps, &when)[0] != 0;
+    }
+    if (ctx->tool_serial != e->tool_serial_seen) { // a tool picked from anywhere ends stamping
+        e->tool_serial_seen = ctx->tool_serial;
+        e->stamps.active = 0;
     }
     e->replace_lines = problem_lines(world_file_problems(ctx->world)) +
                        (world_file_errors(ctx->world) ? 2 : 0) +

@@ -56,7 +56,7 @@ void status_bar(ui_context *ui, cmd_context *ctx, viewport *v, const editor_fram
              s.resident_bytes / 1048576.0, s.budget_bytes / 1048576.0,
              history_bytes(world_history(ctx->world)) / 1048576.0);
     // Each item as wide as its text, the rest shared out; in a narrow window (or at a
-    // large UI scale) the least important go first: the cache, the frame time, the tool.
+    // large UI scale) the least important go first.
     const char *texts[5] = {cursor, cam, tool, frame, cache};
     const char *tips[5] = {
         "The terrain point under the pointer",
@@ -70,18 +70,27 @@ void status_bar(ui_context *ui, cmd_context *ctx, viewport *v, const editor_fram
     for (int i = 0; i < 5; i++)
         need[i] = ui_font_text_width(ui_get_font(ui), UI_FACE_SANS, texts[i], strlen(texts[i])) +
                   ui_em(ui, 1.2f);
-    int shown = 5;
     for (int i = 0; i < 5; i++)
         sum += need[i];
-    while (shown > 2 && sum > room)
-        sum -= need[--shown];
+    // The tool and the frame time always stay; the cache, the camera and the point
+    // under the pointer go first, in that order.
+    int keep[5] = {1, 1, 1, 1, 1}, shown = 5;
+    static const int drop_order[3] = {4, 1, 0};
+    for (int k = 0; k < 3 && sum > room; k++) {
+        keep[drop_order[k]] = 0;
+        sum -= need[drop_order[k]];
+        shown--;
+    }
     float cols[5] = {0};
-    for (int i = 0; i + 1 < shown; i++)
-        cols[i] = need[i] + fmaxf(room - sum, 0) / (float)shown;
+    int order[5], n = 0;
+    for (int i = 0; i < 5; i++)
+        if (keep[i]) order[n++] = i;
+    for (int i = 0; i + 1 < n; i++)
+        cols[i] = need[order[i]] + fmaxf(room - sum, 0) / (float)shown;
     ui_row(ui, shown, cols, r.h - 2 * ui_em(ui, 0.3f)); // the panel's padding above and below
-    for (int i = 0; i < shown; i++) {
-        ui_label(ui, texts[i]);
-        ui_tooltip(ui, tips[i]);
+    for (int i = 0; i < n; i++) {
+        ui_label(ui, texts[order[i]]);
+        ui_tooltip(ui, tips[order[i]]);
     }
     ui_panel_end(ui);
 }
@@ -274,9 +283,10 @@ void editor_ui_open(editor_ui *e, cmd_context *ctx) {
 // The file browser for Open and Save as; what it chose runs as load or save.
 void files_dialog(editor_ui *e, ui_context *ui, cmd_context *ctx, ui_rect r) {
     if (!file_browser_draw(&e->files, ui, r)) return;
-    if (e->files.mode == FILE_BROWSER_OPEN) {
+    if (e->files.mode == FILE_BROWSER_OPEN || e->files.mode == FILE_BROWSER_NEW_FROM) {
         snprintf(e->open_path, sizeof e->open_path, "%.1023s", e->files.path);
-        editor_ui_request(e, ctx, PENDING_OPEN);
+        editor_ui_request(e, ctx,
+                          e->files.mode == FILE_BROWSER_OPEN ? PENDING_OPEN : PENDING_NEW_FROM);
         return;
     }
     if (e->files.mode == FILE_BROWSER_IMPORT || e->files.mode == FILE_BROWSER_EXPORT ||
@@ -286,6 +296,7 @@ void files_dialog(editor_ui *e, ui_context *ui, cmd_context *ctx, ui_rect r) {
         interchange_dialog_show(&e->interchange, e->files.mode != FILE_BROWSER_IMPORT,
                                 e->files.path, bounded, p->max_height, e->view_x, e->view_z);
         e->interchange.planet = e->files.mode == FILE_BROWSER_EXPORT_PLANET;
+        e->interchange.world_spacing = p->spacing;
         if (!e->interchange.subdivision[0])
             snprintf(e->interchange.subdivision, sizeof e->interchange.subdivision, "8");
         return;

@@ -1,10 +1,26 @@
 // The editor's menu bar: File, Edit, View, Help.
 #include "app/editor_ui_internal.h"
 
+// A name for an export, from the world's: beside its file with ext ("dir/alps.exr"), or
+// fallback + ext for a world never saved (never the last imported file's name).
+static const char *export_name(const cmd_context *ctx, const char *fallback, const char *ext,
+                               char *out, size_t size) {
+    const char *path = world_path(ctx->world);
+    const char *slash = strrchr(path, '/'), *dot = strrchr(path, '.');
+    size_t stem = dot && (!slash || dot > slash) ? (size_t)(dot - path) : strlen(path);
+    if (path[0])
+        snprintf(out, size, "%.*s%s", (int)stem, path, ext);
+    else
+        snprintf(out, size, "%s%s", fallback, ext);
+    return out;
+}
+
 static void file_menu(editor_ui *e, ui_context *ui, cmd_context *ctx) {
     if (ui_menu_item(ui, "New flat world", "Ctrl+N", 1))
         editor_ui_request(e, ctx, PENDING_NEW_FLAT);
     if (ui_menu_item(ui, "New planet...", NULL, 1)) new_planet_dialog_show(&e->new_planet);
+    if (ui_menu_item(ui, "New world from heightmap...", NULL, 1)) // as Gaea, World Machine
+        file_browser_show(&e->files, FILE_BROWSER_NEW_FROM, e->interchange.path);
     if (ui_menu_item(ui, "Open...", "Ctrl+O", 1)) editor_ui_open(e, ctx);
     for (int i = 0; i < e->recent_count; i++) {
         char label[1100];
@@ -23,11 +39,13 @@ static void file_menu(editor_ui *e, ui_context *ui, cmd_context *ctx) {
     int flat = world_get_params(ctx->world)->kind == WORLD_FLAT;
     if (ui_menu_item(ui, "Import heightmap...", NULL, flat))
         file_browser_show(&e->files, FILE_BROWSER_IMPORT, e->interchange.path);
+    char proposed[4200];
     if (flat && ui_menu_item(ui, "Export heightmap...", NULL, 1))
         file_browser_show(&e->files, FILE_BROWSER_EXPORT,
-                          e->interchange.path[0] ? e->interchange.path : "heightmap.exr");
+                          export_name(ctx, "heightmap", ".exr", proposed, sizeof proposed));
     if (!flat && ui_menu_item(ui, "Export planet...", NULL, 1)) // seed 004's export N FILE
-        file_browser_show(&e->files, FILE_BROWSER_EXPORT_PLANET, "planet.obj");
+        file_browser_show(&e->files, FILE_BROWSER_EXPORT_PLANET,
+                          export_name(ctx, "planet", ".obj", proposed, sizeof proposed));
     ui_menu_separator(ui);
     if (ui_menu_item(ui, "Quit", "Ctrl+Q", 1)) editor_ui_request(e, ctx, PENDING_QUIT);
     ui_menu_end(ui);

@@ -36,6 +36,7 @@ typedef enum editor_pending {
     PENDING_NEW_FLAT,
     PENDING_NEW_PLANET, // planet_command
     PENDING_OPEN,       // open_path
+    PENDING_NEW_FROM,   // a new flat world from the heightmap at open_path
     PENDING_QUIT,
 } editor_pending;
 
@@ -52,6 +53,8 @@ typedef struct editor_host {
 typedef struct editor_ui {
     console console;
     int show_help, show_about;
+    unsigned tool_serial_seen;      // ctx->tool_serial when last drawn: a tool command ends
+                                    // the stamp tool (the palette, dock and title agree)
     file_browser files;             // Open and Save as
     interchange_dialog interchange; // Import / Export heightmap options
     double view_x, view_z;          // where the camera is (metres): default placements

@@ -45,8 +45,7 @@ static void mapping_preview(interchange_dialog *d, ui_context *ui) {
     const ui_theme *theme = ui_get_theme(ui);
     ui_row(ui, 1, NULL, 0);
     if (!d->preview_ok) {
-        ui_label_colored(ui, d->preview_error, theme->text_error);
-        ui_tooltip(ui, d->preview_error);
+        ui_label_wrapped(ui, d->preview_error, theme->text_error);
         return;
     }
     const import_preview *p = &d->preview;
@@ -96,13 +95,59 @@ static void mapping_preview(interchange_dialog *d, ui_context *ui) {
     ui_row(ui, 1, NULL, 0);
     if (import_preview_mapping(d->path, p, &o, d->max_height, &scale, &offset, how, sizeof how,
                                &err) != 0) {
-        ui_label_colored(ui, err.msg, theme->text_error);
+        ui_label_wrapped(ui, err.msg, theme->text_error);
         return;
     }
     snprintf(line, sizeof line, "Stored %.6g .. %.6g become %.6g .. %.6g m", p->stored_min,
              p->stored_max, p->stored_min * scale + offset, p->stored_max * scale + offset);
-    ui_label(ui, line);
+    ui_label_wrapped(ui, line, theme->text);
     ui_tooltip(ui, how);
+}
+
+// What the import will cover at the spacing given: metres, the world's samples and their
+// memory (4 bytes each), and whether one import may take that many.
+static void import_extent(interchange_dialog *d, ui_context *ui) {
+    if (!d->preview_ok) return;
+    const ui_theme *theme = ui_get_theme(ui);
+    const raster *r = &d->preview.header;
+    double sx = 0, sz = 0;
+    char *end;
+    ui_row(ui, 1, NULL, 0);
+    if (d->spacing[0]) {
+        sx = sz = strtod(d->spacing, &end);
+        if (end == d->spacing || *end || !(sx > 0) || !isfinite(sx)) {
+            ui_label_colored(ui, "The spacing must be a number of metres above 0",
+                             theme->text_error);
+            return;
+        }
+    } else if (r->spacing_x > 0) {
+        sx = r->spacing_x, sz = r->spacing_z > 0 ? r->spacing_z : r->spacing_x;
+    } else if (d->preview.has_sidecar && d->preview.sc.spacing > 0) {
+        sx = sz = d->preview.sc.spacing;
+    } else {
+        sx = sz = d->world_spacing; // one world sample per pixel
+    }
+    char line[300];
+    if (!(sx > 0)) {
+        ui_label(ui, "One world sample per pixel");
+        return;
+    }
+    double w = (r->width - 1) * sx, h = (r->height - 1) * sz;
+    int n = snprintf(line, sizeof line, "%.4g x %.4g km at %.4g m", w / 1000, h / 1000, sx);
+    double samples = 0;
+    if (d->world_spacing > 0) {
+        samples = (floor(w / d->world_spacing) + 1) * (floor(h / d->world_spacing) + 1);
+        snprintf(line + n, sizeof line - (size_t)n, ": %.4g M world samples, %.4g MiB",
+                 samples / 1e6, samples * 4 / 1048576.0);
+    }
+    ui_label_wrapped(ui, line, theme->text);
+    ui_tooltip(ui, "The area the file will cover, and the world's samples it writes");
+    if (samples > (double)IMPORT_MAX_SAMPLES) {
+        ui_label_wrapped(ui,
+                         "Too many for one import: give a larger spacing, or File > New world "
+                         "from heightmap",
+                         theme->text_error);
+    }
 }
 
 // A label and its text field in one row; the field is named `name` (labels are listed
@@ -127,6 +172,10 @@ static void import_fields(interchange_dialog *d, ui_context *ui) {
                       "Height in metres of the highest stored value (65535 in 16-bit)");
     }
     mapping_preview(d, ui);
+    ui_form_field(ui, "Spacing (m)", "spacing", d->spacing, sizeof d->spacing,
+                  "Metres between the file's samples (blank: its georeferencing or sidecar, "
+                  "else one world sample per pixel)");
+    import_extent(d, ui);
     ui_row(ui, 1, NULL, 0);
     static const char *const blends[] = {"Replace", "Add", "Max", "Min"};
     ui_combo(ui, "Blend", &d->blend, blends, 4);
@@ -192,13 +241,18 @@ int interchange_dialog_rows(const interchange_dialog *d) {
     if (d->exporting && d->planet) return 5; // title, subdivision, counts, images, buttons
     if (d->exporting) return 9; // title, whole, 4 region edges, preset, 16-bit TIFF, buttons
     // title x z centre layer map min max, file, histogram (about 1.5 rows), heights,
-    // blend resample falloff buttons
-    return 16;
+    // spacing, extent, its warning (the last three may wrap), blend resample falloff
+    // buttons
+    return 21;
 }
 
 int interchange_dialog_draw(interchange_dialog *d, ui_context *ui, ui_rect r, char *cmd,
                             size_t cmd_len) {
-    ui_panel_begin(ui, d->exporting ? "Export options" : "Import options", r);
+    // The fields scroll when the window is small (or the UI large); the buttons stay at
+    // the bottom, always in view.
+    float foot_h = ui_em(ui, 1.4f) + 2 * ui_em(ui, 0.3f);
+    ui_rect body = {r.x, r.y, r.w, r.h - foot_h}, foot = {r.x, r.y + body.h, r.w, foot_h};
+    ui_panel_begin(ui, d->exporting ? "Export options" : "Import options", body);
     ui_row(ui, 1, NULL, 0);
     const char *slash = strrchr(d->path, '/');
     char title[600];
@@ -209,6 +263,8 @@ int interchange_dialog_draw(interchange_dialog *d, ui_context *ui, ui_rect r, ch
         export_fields(d, ui);
     else
         import_fields(d, ui);
+    ui_panel_end(ui);
+    ui_panel_begin(ui, d->exporting ? "Export options##buttons" : "Import options##buttons", foot);
     float bottom[2] = {-0.5f, 0};
     ui_row(ui, 2, bottom, 0);
     int go = ui_button(ui, d->exporting ? "Export##go" : "Import##go");
@@ -237,10 +293,12 @@ int interchange_dialog_draw(interchange_dialog *d, ui_context *ui, ui_rect r, ch
     } else {
         char mapping[100] = "";
         if (d->map_heights) snprintf(mapping, sizeof mapping, " min=%s max=%s", d->min, d->max);
-        snprintf(cmd, cmd_len, "import %s x=%s z=%s%s layer=%s%s blend=%s resample=%s falloff=%g",
+        char spacing[64] = "";
+        if (d->spacing[0]) snprintf(spacing, sizeof spacing, " spacing=%s", d->spacing);
+        snprintf(cmd, cmd_len, "import %s x=%s z=%s%s layer=%s%s%s blend=%s resample=%s falloff=%g",
                  path, d->x, d->z, d->centre ? " anchor=centre" : "",
-                 d->layer ? "detail" : "coarse", mapping, blends[d->blend], resamples[d->resample],
-                 d->falloff);
+                 d->layer ? "detail" : "coarse", mapping, spacing, blends[d->blend],
+                 resamples[d->resample], d->falloff);
     }
     d->open = 0;
     return 1;

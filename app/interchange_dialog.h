@@ -21,9 +21,11 @@ typedef struct interchange_dialog {
     int layer;         // 0 coarse, 1 detail
     int map_heights;   // give min= / max= (8/16-bit files)
     char min[32], max[32];
-    int blend;      // replace add max min
-    int resample;   // nearest bilinear bicubic
-    double falloff; // metres
+    int blend;            // replace add max min
+    int resample;         // nearest bilinear bicubic
+    double falloff;       // metres
+    char spacing[32];     // metres between the file's samples; "": the file's own, or the world's
+    double world_spacing; // the world's coarse spacing (set by the caller; 0: not shown)
     // What the file holds, read when the dialog opens: shown with the heights the
     // mapping gives them, updated as the fields change.
     int preview_ok;

@@ -82,6 +82,7 @@ int cmd_tool(cmd_context *ctx, int argc, char **argv, og_error *err) {
     }
     ctx->tool_size_per_tool = per_tool;
     ctx->brush = b;
+    ctx->tool_serial++;
     remember_tool(ctx, &b);
     return 0;
 }

@@ -1,0 +1,182 @@
+#!/bin/bash
+# End-to-end: a newcomer's first minutes in the real window, at 1024 x 640 and UI scale
+# 1.5, with a fresh home (issue 26): everything fits, failures show where the user
+# acted (ui_messages), typed slider values are exact, one state after console commands.
+# Every step is checked through commands; screenshots are kept in build/test-artifacts.
+set -u
+orogen=$(realpath "$1")
+work=$(mktemp -d "${TMPDIR:-/tmp}/orogen-newcomer-XXXXXX")
+art=${OROGEN_TEST_ARTIFACTS:-$(dirname "$orogen")/test-artifacts}
+mkdir -p "$art"
+failures=0
+passes=0
+check() { if [ "$2" = 0 ]; then passes=$((passes + 1)); else echo "FAIL: $1"; failures=$((failures + 1)); fi; }
+
+. "$2/support/window_session.sh"
+require_tools Xvfb xdotool import
+export HOME="$work/home"
+mkdir -p "$HOME"
+export OROGEN_UI_SCALE=1.5
+start_xvfb 1280x800
+mkfifo "$work/stdin"
+(cd "$HOME" && exec "$orogen") <"$work/stdin" >"$work/out" 2>"$work/err" &
+app=$!
+exec 3>"$work/stdin"
+trap '' PIPE
+cleanup() {
+    exec 3>&-
+    kill $app 2>/dev/null
+    kill $xvfb 2>/dev/null
+    wait 2>/dev/null
+    rm -rf "$work"
+}
+trap cleanup EXIT
+wid=$(timeout 30 xdotool search --sync --name '^Orogen' | head -n 1)
+[ -n "$wid" ]; check "the editor window opens" $?
+[ -n "$wid" ] || { cat "$work/err"; echo "$passes passed, $failures failed"; exit 1; }
+. "$2/support/gui_helpers.sh"
+shot() { import -window "$wid" "$art/newcomer_$1.png" 2>/dev/null; }
+# Whether every widget listed for FILTER lies inside the window (W x H).
+inside() { # FILTER W H
+    local before bad
+    before=$(wc -l <"$work/out")
+    ask "ui_widgets \"$1\"" '^Viewport ' >/dev/null || return 1
+    sleep 0.1
+    bad=$(tail -n +$((before + 1)) "$work/out" | grep -v '^Viewport ' |
+        awk -v W="$2" -v H="$3" '{ n = NF; x = $(n-3); y = $(n-2); w = $(n-1); h = $n
+            if (x < 0 || y < 0 || x + w > W + 0.5 || y + h > H + 0.5) print }')
+    [ -z "$bad" ] || { echo "$bad" | head -n 3 >&2; return 1; }
+}
+messages() { # prints the lines ui_messages lists now
+    local before
+    before=$(wc -l <"$work/out")
+    ask ui_messages '^messages ' >/dev/null || return 1
+    sleep 0.1
+    tail -n +$((before + 1)) "$work/out" | sed -n '/^messages /,$p'
+}
+
+# 1. The window at 1024 x 640, UI scale 1.5.
+xdotool windowsize --sync "$wid" 1024 640
+for _ in $(seq 40); do
+    read -r VX VY VW VH <<<"$(widget Viewport)"
+    [ -n "${VW:-}" ] && [ "$VW" -lt 1024 ] && break
+    sleep 0.25
+done
+wait_title "pending 0$" >/dev/null
+shot first_view
+line=$(ask ui_scale '^ui_scale')
+case "$line" in *1.5*) true ;; *) false ;; esac; check "the UI scale is 1.5 ($line)" $?
+inside "Menu/" 1024 640; check "the menu bar fits the window" $?
+click "Menu/View" && widget "Menu/View/Console*" >/dev/null
+check "View opens its menu" $?
+inside "Menu/View/" 1024 640; check "every item of the View menu lies inside the window (it wraps)" $?
+shot view_menu
+key Escape
+# Prints the names of the widgets whose name contains FILTER.
+names() {
+    local before
+    before=$(wc -l <"$work/out")
+    ask "ui_widgets \"$1\"" '^Viewport ' >/dev/null || return 1
+    sleep 0.1
+    tail -n +$((before + 1)) "$work/out" | grep -v '^Viewport ' | sed -E 's/ -?[0-9]+ -?[0-9]+ -?[0-9]+ -?[0-9]+$//'
+}
+xdotool mousemove --window "$wid" $((VX + VW / 2)) $((VY + VH / 2)) # the longest status line
+sleep 0.5
+names " ms (" | grep -q '^Status/'; check "the status bar keeps the frame time ($(names Status/ | tr '\n' '|'))" $?
+names " r 20.0 m" | grep -q '^Status/'; check "and the tool" $?
+inside "Status/" 1024 640; check "the status bar fits" $?
+
+# 2. A failure where the user acted: File > Open of a file that is not a world. The
+# refusal shows over the viewport (ui_messages lists it) until dismissed.
+click "Menu/File" && click "Menu/File/Open..."
+fill "Open/Path" "/etc/passwd"
+click "Open/Open"
+for _ in $(seq 20); do messages | grep -q '^Notices: .*passwd' && break; sleep 0.3; done
+messages | grep -q '^Notices: .*passwd'; check "File > Open of /etc/passwd shows the refusal in the window ($(messages | tr '\n' '|'))" $?
+shot open_refused
+click "Notices/Dismiss"
+for _ in $(seq 20); do messages | grep -q '^messages 0$' && break; sleep 0.3; done
+messages | grep -q '^messages 0$'; check "Dismiss closes it" $?
+
+# 3. Typing into a slider is exact: a double click opens it unchanged, bad text keeps it
+# open and says why, Esc restores the value bit for bit.
+r0=$(ask tool '^radius=')
+read -r x y w h <<<"$(widget "Dock/Radius")"
+xdotool mousemove --window "$wid" $((x + w * 3 / 4)) $((y + h / 2)) click --repeat 2 --delay 80 1
+sleep 0.5
+xdotool type --delay 30 "abc"
+key Return
+for _ in $(seq 20); do messages | grep -q 'Dock/Radius: "abc" is not a number' && break; sleep 0.3; done
+messages | grep -q 'Dock/Radius: "abc" is not a number'; check "Enter on abc keeps the field open and says why ($(messages | tr '\n' '|'))" $?
+shot slider_refused
+r1=$(ask tool '^radius=')
+[ "$r1" = "$r0" ]; check "a double click and bad text leave the radius as it was ($r0 -> $r1)" $?
+xdotool type --delay 30 "150"
+key Escape
+r2=$(ask tool '^radius=')
+[ "$r2" = "$r0" ] && messages | grep -q '^messages 0$'; check "Esc restores it exactly and closes the field ($r0 -> $r2)" $?
+xdotool mousemove --window "$wid" $((x + 10)) $((y + h / 2)) keydown ctrl click 1 keyup ctrl
+sleep 0.5
+xdotool type --delay 30 "150"
+key Return
+r3=$(ask_until tool '^radius=' '^radius=150$')
+[ "$r3" = "radius=150" ]; check "Ctrl+click, 150, Enter sets the radius to 150 and no digit reaches the shortcuts ($r3, $(ask view '^view'))" $?
+
+# 4. One state: the stamp tool picked in the palette, then `tool raise` in the console:
+# the dock, the status bar and the title all say raise.
+click "Tools/Stamp"
+widget "Dock/Tool: stamp*" >/dev/null; check "Tools/Stamp shows the stamp browser's tool in the dock" $?
+echo "tool raise" >&3
+widget "Dock/Tool: raise" >/dev/null && widget_gone "Dock/Tool: stamp*"
+check "after 'tool raise' in the console the dock shows raise ($(names "Dock/Tool" | tr '\n' '|'))" $?
+names "Status/" | grep -q '^Status/raise r '; check "and the status bar ($(names "Status/" | tr '\n' '|'))" $?
+shot tool_from_console
+
+# 5. A planet: dragging the brush's Radius never changes the planet's radius.
+echo "new planet preset=moon" >&3
+line=$(ask_until nparams '^radius = ' '^radius = 1737400;$'); check "a moon ($line)" $?
+read -r x y w h <<<"$(widget "Dock/Radius")"
+xdotool mousemove --window "$wid" $((x + w / 4)) $((y + h / 2)) mousedown 1
+sleep 0.2
+xdotool mousemove --window "$wid" $((x + w / 2)) $((y + h / 2))
+sleep 0.2
+xdotool mousemove --window "$wid" $((x + 3 * w / 4)) $((y + h / 2)) mouseup 1
+sleep 0.5
+for _ in $(seq 20); do r=$(ask tool '^radius='); [ "$r" != "radius=150" ] && break; sleep 0.3; done
+line=$(ask nparams '^radius = ')
+[ "$r" != "radius=150" ] && [ "$line" = "radius = 1737400;" ]
+check "a drag on the brush's Radius changes the brush ($r) and not the planet ($line)" $?
+shot planet_radius_drag
+
+# 6. Heightmaps from the File menu: a new world of a heightmap's extent and spacing, and
+# the import dialog's spacing with the size it makes and a refusal before importing.
+"$orogen" -c "new flat; export $work/hm.exr region=0,0,256,128" >/dev/null 2>&1
+click "Menu/File" && click "Menu/File/New world from heightmap..."
+fill "New world from heightmap/Path" "$work/hm.exr"
+click "New world from heightmap/Create"
+widget "Unsaved changes/Discard*" 8 >/dev/null && click "Unsaved changes/Discard*"
+line=$(ask_until info '^size=' '^size=129$'); check "File > New world from heightmap makes a world of its size ($line)" $?
+click "Menu/File" && click "Menu/File/Import heightmap..."
+fill "Import heightmap/Path" "$work/hm.exr"
+click "Import heightmap/Next"
+widget "Import options/0.256 x 0.128 km at 2 m: 0.0167 M world samples, 0.0636 MiB" >/dev/null
+check "the import dialog shows the size and memory it makes ($(names "Import options/" | grep km | tr '\n' '|'))" $?
+fill "Import options/spacing" "300"
+widget "Import options/Too many for one import*" >/dev/null
+check "at 300 m spacing it says, before importing, that it is too many for one import" $?
+shot import_too_many
+click "Import options/Import"
+for _ in $(seq 20); do messages | grep -q '^Notices: .*over the limit' && break; sleep 0.3; done
+messages | grep -q '^Notices: .*over the limit'; check "Import all the same: the whole refusal shows in the window ($(messages | tr '\n' '|'))" $?
+shot import_refused
+click "Notices/Dismiss"
+# Export proposes a name from the world, not the last imported file.
+echo "save $work/alps.world" >&3
+ask_until info '^path=' "alps.world" >/dev/null
+click "Menu/File" && click "Menu/File/Export heightmap..."
+click "Export heightmap/Next"
+widget "Export options/Export to alps.exr" >/dev/null; check "File > Export heightmap proposes alps.exr for alps.world" $?
+key Escape
+
+echo "$passes passed, $failures failed"
+[ $failures = 0 ]
