@@ -78,6 +78,14 @@ void viewport_drag_button(GLFWwindow *win, int button, int action, int mods) {
             st->in.mouse_released[b] = 1;
         }
         st->in.mouse_down[b] = action == GLFW_PRESS;
+        // The UI's copy (a release even during long work: no widget stays held).
+        if (!work_queue_busy(&st->work) || action == GLFW_RELEASE)
+            queue_ui_event(st, (ui_event){.kind = UI_EVENT_BUTTON,
+                                          .button = b,
+                                          .down = action == GLFW_PRESS,
+                                          .x = st->in.mouse_x,
+                                          .y = st->in.mouse_y,
+                                          .mods = ui_mods_of(mods)});
     }
     // While long work runs only its Cancel button answers; a stroke's release still
     // ends the stroke (queued after its points).
@@ -179,6 +187,7 @@ void viewport_drag_cursor(GLFWwindow *win, double x, double y) {
     st->mouse_x = x, st->mouse_y = y;
     st->in.mouse_x = ui_px(st, x);
     st->in.mouse_y = ui_px(st, y);
+    queue_ui_event(st, (ui_event){.kind = UI_EVENT_MOVE, .x = st->in.mouse_x, .y = st->in.mouse_y});
     st->ui_dirty = 1;
     // The brush cursor moves with the pointer over the viewport.
     if (st->drag != DRAG_NONE || st->looking || in_view(st, x, y)) st->dirty = 1;

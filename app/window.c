@@ -322,6 +322,7 @@ static void window_teardown(window_state *st) {
     ui_renderer_destroy(st->uir);
     ui_destroy(st->ui);
     ui_destroy(st->busy_ui);
+    free(st->queue);
     ui_font_destroy(st->font);
     editor_ui_free(&st->ed);
     // The renderer's GL objects belong to this context: free them while it is current.
@@ -380,10 +381,12 @@ static int window_start(window_state *st, const app_settings *settings, const ch
     og_error ui_err = {{0}};
     if (!(st->font = load_font(st->win, settings->ui_scale, &ui_err)) ||
         !(st->ui = ui_create(st->font)) || !(st->busy_ui = ui_create(st->font)) ||
+        !(st->queue = malloc(sizeof *st->queue)) ||
         !(st->uir = ui_renderer_create(ctx->resource_dir, &ui_err)))
         return og_error_set(err, "the editor's UI cannot start: %s",
                             ui_err.msg[0] ? ui_err.msg : "out of memory");
     ui_set_clipboard(st->ui, (ui_clipboard){clipboard_get, clipboard_set, st->win});
+    ui_input_queue_init(st->queue);
     // The session's commands, kept for `history script FILE` (File > Save session...).
     ctx->session = open_memstream(&st->session_text, &st->session_len);
     ctx->session_text = &st->session_text;
@@ -414,6 +417,7 @@ static void first_frame(window_state *st) {
     st->mouse_in = in_window(st->win, st->mouse_x, st->mouse_y);
     st->in.mouse_x = st->mouse_in ? ui_px(st, st->mouse_x) : -1e6f; // not (0, 0): File's place
     st->in.mouse_y = st->mouse_in ? ui_px(st, st->mouse_y) : -1e6f;
+    queue_ui_event(st, (ui_event){.kind = UI_EVENT_MOVE, .x = st->in.mouse_x, .y = st->in.mouse_y});
     window_input_attach(st);
     printf("Orogen viewport:\n"
            "  left-drag sculpts with the current tool (console: tool NAME key=value ...)\n"

@@ -180,14 +180,17 @@ const ui_draw_list *build_ui(window_state *st, int fw, int fh) {
     }
     st->in.time = glfwGetTime();
     refresh_stamps(st);
-    ui_begin(st->ui, &st->in, (float)fw, (float)fh);
+    size_t waiting = ui_input_queue_frame(st->queue, ui_wants_keyboard(st->ui), &st->frame_in);
+    st->frame_in.time = glfwGetTime();
+    ui_begin(st->ui, &st->frame_in, (float)fw, (float)fh);
     ui_rect vr = editor_ui_build(&st->ed, st->ui, st->ctx, st->v, &info, (float)fw, (float)fh);
     notices_draw(&st->notices, st->ui, vr);
     const ui_draw_list *dl = ui_end(st->ui);
     clear_frame_input(&st->in);
+    keys_after_ui(st, &st->frame_in);
     float k = ui_px(st, 1.0); // framebuffer pixels per window unit
     st->view_rect = (ui_rect){vr.x / k, vr.y / k, vr.w / k, vr.h / k};
-    st->ui_dirty = upload_stamp_thumbnails(&st->ed.stamps); // shown from the next frame
+    st->ui_dirty = upload_stamp_thumbnails(&st->ed.stamps) || waiting > 0; // more next frame
     return dl;
 }
 

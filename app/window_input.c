@@ -56,6 +56,7 @@ static void on_cursor_enter(GLFWwindow *win, int entered) {
     // tooltip comes up for a place the pointer no longer is.
     if (!entered && !st->in.mouse_down[0] && !st->in.mouse_down[1] && !st->in.mouse_down[2]) {
         st->in.mouse_x = st->in.mouse_y = -1e6f;
+        queue_ui_event(st, (ui_event){.kind = UI_EVENT_MOVE, .x = -1e6f, .y = -1e6f});
         st->ui_dirty = 1;
     }
 }
@@ -68,6 +69,7 @@ static void on_scroll(GLFWwindow *win, double dx, double dy) {
     if (!in_view(st, st->mouse_x, st->mouse_y) ||
         ui_captures_point(st->ui, st->in.mouse_x, st->in.mouse_y)) {
         st->in.wheel += (float)dy;
+        queue_ui_event(st, (ui_event){.kind = UI_EVENT_WHEEL, .wheel = (float)dy});
         return;
     }
     st->dirty = 1;
@@ -150,7 +152,6 @@ static void on_char(GLFWwindow *win, unsigned int codepoint) {
     window_state *st = glfwGetWindowUserPointer(win);
     st->ui_dirty = 1;
     if (work_queue_busy(&st->work)) return;
-    if (!ui_wants_keyboard(st->ui)) return; // typed into the viewport: shortcuts
     char u[5] = {0};
     if (codepoint < 0x80)
         u[0] = (char)codepoint;
@@ -162,8 +163,22 @@ static void on_char(GLFWwindow *win, unsigned int codepoint) {
     else
         u[0] = (char)(0xF0 | codepoint >> 18), u[1] = (char)(0x80 | ((codepoint >> 12) & 0x3F)),
         u[2] = (char)(0x80 | ((codepoint >> 6) & 0x3F)), u[3] = (char)(0x80 | (codepoint & 0x3F));
-    size_t n = strlen(st->in.text);
-    if (n + strlen(u) < sizeof st->in.text) memcpy(st->in.text + n, u, strlen(u) + 1);
+    // Queued whether or not a field has the keyboard now: a click just before it may
+    // open one (the UI ignores text with no field focused).
+    ui_event e = {.kind = UI_EVENT_TEXT};
+    memcpy(e.text, u, sizeof u);
+    queue_ui_event(st, e);
+}
+
+int ui_mods_of(int glfw_mods) {
+    return ((glfw_mods & GLFW_MOD_SHIFT) ? UI_MOD_SHIFT : 0) |
+           ((glfw_mods & GLFW_MOD_CONTROL) ? UI_MOD_CTRL : 0) |
+           ((glfw_mods & GLFW_MOD_ALT) ? UI_MOD_ALT : 0);
+}
+
+void queue_ui_event(window_state *st, ui_event e) {
+    e.time = glfwGetTime();
+    ui_input_queue_push(st->queue, &e);
 }
 
 // Fly, orbit or walk (C, View > Camera): seed 004's camera switch.
@@ -289,13 +304,14 @@ static void plain_shortcut(window_state *st, int key) {
     }
 }
 
+// A key goes to the UI's queue first; what the UI's frame does not take comes back to
+// key_after_ui as a shortcut, in order (a Ctrl+click that opens a field and the digits
+// typed after it, however quickly, are the field's).
 static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods) {
     (void)scancode;
     window_state *st = glfwGetWindowUserPointer(win);
     st->ui_dirty = 1;
-    st->in.mods = ((mods & GLFW_MOD_SHIFT) ? UI_MOD_SHIFT : 0) |
-                  ((mods & GLFW_MOD_CONTROL) ? UI_MOD_CTRL : 0) |
-                  ((mods & GLFW_MOD_ALT) ? UI_MOD_ALT : 0);
+    st->in.mods = ui_mods_of(mods);
     int k = ui_key_of(key);
     if (k >= 0 && action != GLFW_RELEASE) st->in.key_pressed[k] = 1;
     if (work_queue_busy(&st->work)) { // Esc cancels long work; other keys wait for it
@@ -304,11 +320,30 @@ static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
             if (key == move_key_codes[i] && action == GLFW_RELEASE) st->key_down[i] = 0;
         return;
     }
-    // A focused text field takes every key; ~ still closes the console.
-    if (ui_wants_keyboard(st->ui)) {
+    // Shift, Ctrl, Alt alone are no event of their own: they travel as the mods of the rest
+    // (queued, each would take a frame before the key they go with).
+    if (key >= GLFW_KEY_LEFT_SHIFT && key <= GLFW_KEY_RIGHT_SUPER) return;
+    queue_ui_event(st, (ui_event){.kind = UI_EVENT_KEY,
+                                  .key = k,
+                                  .code = key,
+                                  .down = action != GLFW_RELEASE,
+                                  .repeat = action == GLFW_REPEAT,
+                                  .mods = ui_mods_of(mods)});
+}
+
+static void key_after_ui(window_state *st, int key, int action, int mods, int taken) {
+    for (int i = 0; i < MOVE_KEY_COUNT; i++) // a key let go is never left held
+        if (taken && key == move_key_codes[i] && action == GLFW_RELEASE && st->key_down[i]) {
+            bank_keys(st);
+            st->key_down[i] = 0;
+        }
+    // A focused text field took it; ~ still closes the console.
+    if (taken) {
         if (action == GLFW_PRESS && key == GLFW_KEY_GRAVE_ACCENT && st->ed.console.open) {
             toggle_console(st);
-            st->in.text[0] = 0;
+            size_t n = strlen(st->ed.console.input); // the ` it typed goes with it
+            if (n && (st->ed.console.input[n - 1] == '`' || st->ed.console.input[n - 1] == '~'))
+                st->ed.console.input[n - 1] = 0;
         }
         return;
     }
@@ -325,6 +360,19 @@ static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
         ctrl_shortcut(st, key, mods);
     else
         plain_shortcut(st, key);
+}
+
+void keys_after_ui(window_state *st, const ui_input *in) {
+    int taken = ui_took_keys(st->ui);
+    for (int i = 0; i < in->event_count; i++) {
+        const ui_event *e = &in->events[i];
+        if (e->kind != UI_EVENT_KEY) continue;
+        int mods = ((e->mods & UI_MOD_SHIFT) ? GLFW_MOD_SHIFT : 0) |
+                   ((e->mods & UI_MOD_CTRL) ? GLFW_MOD_CONTROL : 0) |
+                   ((e->mods & UI_MOD_ALT) ? GLFW_MOD_ALT : 0);
+        int action = !e->down ? GLFW_RELEASE : e->repeat ? GLFW_REPEAT : GLFW_PRESS;
+        key_after_ui(st, e->code, action, mods, taken);
+    }
 }
 
 // Elevation rasters (not pictures): dropped, they are imported, not made stamps.

@@ -76,8 +76,12 @@ typedef struct window_state {
     ui_context *ui;
     ui_renderer *uir;
     editor_ui ed;
-    notices notices;   // what failed for the UI, over the viewport until dismissed
-    ui_input in;       // input gathered since the last UI frame
+    notices notices; // what failed for the UI, over the viewport until dismissed
+    ui_input in;     // the latest pointer, buttons and keys (the busy UI's input)
+    // Events for the editor's UI, queued as they come and handed out a frame's share at
+    // a time (never lost or seen twice however slow a frame); frame_in is this frame's.
+    ui_input_queue *queue;
+    ui_input frame_in;
     int ui_dirty;      // input or state changed: build and draw the UI again
     ui_rect view_rect; // the viewport's part of the window (window coordinates)
     const char *gl_renderer;
@@ -149,6 +153,11 @@ int camera_mode(const window_state *st);
 // The close button asks first when there are unsaved changes.
 void on_close(GLFWwindow *win);
 void clear_frame_input(ui_input *in);
+// Queues an event for the editor's UI (its time set now).
+void queue_ui_event(window_state *st, ui_event e);
+int ui_mods_of(int glfw_mods);
+// After a UI frame: its key events the UI did not take are the viewport's shortcuts.
+void keys_after_ui(window_state *st, const ui_input *in);
 // Sets the window's GLFW callbacks (events go to st).
 void window_input_attach(window_state *st);
 

@@ -325,6 +325,9 @@ scroll_into_view "Dock/Material layer/Automatic material rules"
 check "the wheel scrolls the dock to the material layer" $?
 click "Dock/Material layer/snow"
 line=$(ask_until tool '^material=' '^material=4$'); check "Layers > snow picks paint with snow ($line)" $?
+# Snow picked the paint tool: the dock now shows its options above; find the box again.
+widget "Dock/Tool: paint" >/dev/null
+scroll_into_view "Dock/Material layer/Automatic material rules"
 click "Dock/Material layer/Automatic material rules"
 line=$(ask_until render '^render ' 'auto_materials=off'); check "unticking the automatic rules hides them ($line)" $?
 click "Dock/Material layer/Automatic material rules"
@@ -500,7 +503,7 @@ rc=$?; check "File > Export planet... writes the OBJ (194 vertices, 384 faces) a
 # lies below the window's bottom.
 dock_widget() {
     read -r x y w h <<<"$(widget "$1")"
-    for _ in $(seq 12); do
+    for _ in $(seq 30); do
         [ -n "${h:-}" ] && [ $((y + h)) -lt $((WIN_H - 40)) ] && return 0
         [ -n "${h:-}" ] && xdotool mousemove --window "$wid" $((x + w / 2)) $((WIN_H / 2)) click 5
         sleep 0.3
@@ -560,6 +563,7 @@ wait_title "gui.world - "; rc=$?; check "back to gui.world ($(title))" $rc
 ask "window_screenshot $work/back.png" '^window_screenshot' >/dev/null
 
 # 8. The unsaved-changes prompt: Cancel keeps working, Discard quits without saving.
+echo "tool raise" >&3 # (Layers > snow left the paint tool picked)
 sculpt
 wait_title "gui.world \* - "; rc=$?; check "a new stroke marks the world modified ($(title))" $rc
 s2=$(hash_box "$qx" "$qz")

@@ -25,7 +25,8 @@ typedef struct cmd_context {
     brush tool_memory[BRUSH_TOOL_COUNT];
     unsigned tool_remembered; // bit t: tool_memory[t] holds settings
     int tool_size_per_tool;   // 0: radius and strength shared by all tools (tool memory=)
-    unsigned tool_serial;     // counts tool commands (an editor's own tool modes give way)
+    unsigned tool_serial;     // counts tools picked (`tool NAME`, or a tool=... that changes
+                              // it): an editor's own tool modes (stamping) give way
     struct stroke *stroke;    // the stroke stroke_begin opened (NULL: none)
     FILE *record;             // when set, every command that succeeded is written here
     // The session's commands for `history script FILE` (the editor window keeps them

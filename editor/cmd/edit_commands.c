@@ -81,8 +81,8 @@ int cmd_tool(cmd_context *ctx, int argc, char **argv, og_error *err) {
             return -1;
     }
     ctx->tool_size_per_tool = per_tool;
+    if (argc == 2 || b.tool != ctx->brush.tool) ctx->tool_serial++; // a tool picked
     ctx->brush = b;
-    ctx->tool_serial++;
     remember_tool(ctx, &b);
     return 0;
 }
