@@ -717,6 +717,7 @@ static size_t next_char(const char *s, size_t n, size_t i);
 
 void ui_label_wrapped(ui_context *ui, const char *text, ui_color c) {
     if (c == ui->theme.text_error) record_message(ui, "", text, strlen(text));
+    ui_rect all = {0, 0, 0, 0}; // its rows, for a tooltip on it (not on what came before)
     layout *l = top_layout(ui);
     if (l->col < l->columns) l->col = l->columns; // full-width rows
     float w = l->body.w - ui_em(ui, 0.6f) - 1;    // text_in's padding
@@ -746,10 +747,14 @@ void ui_label_wrapped(ui_context *ui, const char *text, ui_color c) {
         char row[PATH_MAX_LEN]; // each row is named by its text, as labels are
         snprintf(row, sizeof row, "%.*s", (int)(fit < sizeof row ? fit : sizeof row - 1), at);
         record_widget(ui, row, r);
+        all = all.w > 0 ? (ui_rect){all.x, all.y, all.w, r.y + r.h - all.y} : r;
         at += fit;
         while (*at == ' ')
             at++;
     } while (*at);
+    ui->last_id = ui_get_id(ui, text);
+    ui->last_rect = all;
+    ui->last_hovered = over(ui, all);
 }
 
 void ui_label(ui_context *ui, const char *text) {
