@@ -12,8 +12,9 @@ const char *file_kind_special(unsigned mode) {
 
 int file_kind_check_replace(const char *path, og_error *err) {
     struct stat st;
-    // stat, not lstat: a symlink to /dev/null is refused like /dev/null.
-    if (stat(path, &st) != 0) return 0;
+    // stat, not lstat: a symlink to /dev/null is refused like /dev/null. No path: the
+    // writer itself reports it.
+    if (!path || stat(path, &st) != 0) return 0;
     const char *what = file_kind_special(st.st_mode);
     if (what) return og_error_set(err, "%s is %s, not a file: not replaced", path, what);
     return 0;
@@ -21,7 +22,7 @@ int file_kind_check_replace(const char *path, og_error *err) {
 
 int file_kind_check_read(const char *path, og_error *err) {
     struct stat st;
-    if (stat(path, &st) != 0) return 0;
+    if (!path || stat(path, &st) != 0) return 0;
     const char *what = file_kind_special(st.st_mode);
     if (what) return og_error_set(err, "%s is %s, not a file: not read", path, what);
     if (S_ISDIR(st.st_mode)) return og_error_set(err, "%s is a folder, not a file", path);
