@@ -23,24 +23,7 @@ check() { if [ "$2" = 0 ]; then passes=$((passes + 1)); else echo "FAIL: $1"; fa
 require_tools Xvfb xdotool import
 
 start_xvfb 1400x900
-mkfifo "$work/stdin"
-"$orogen" --record "$work/session.og" <"$work/stdin" >"$work/out" 2>"$work/err" &
-app=$!
-exec 3>"$work/stdin" # keep the console's input open
-trap '' PIPE # should the editor die, writes to its console fail instead of ending this test
-
-cleanup() {
-    exec 3>&-
-    kill $app 2>/dev/null
-    kill $xvfb 2>/dev/null
-    wait 2>/dev/null
-    rm -rf "$work"
-}
-trap cleanup EXIT
-
-wid=$(timeout 30 xdotool search --sync --name '^Orogen' | head -n 1)
-[ -n "$wid" ]; check "the editor window opens" $?
-[ -n "$wid" ] || { cat "$work/err"; echo "$passes passed, $failures failed"; exit 1; }
+open_editor "$orogen" --record "$work/session.og"
 
 . "$2/support/gui_helpers.sh"
 

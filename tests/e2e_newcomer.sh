@@ -18,22 +18,7 @@ export HOME="$work/home"
 mkdir -p "$HOME"
 export OROGEN_UI_SCALE=1.5
 start_xvfb 1280x800
-mkfifo "$work/stdin"
-(cd "$HOME" && exec "$orogen") <"$work/stdin" >"$work/out" 2>"$work/err" &
-app=$!
-exec 3>"$work/stdin"
-trap '' PIPE
-cleanup() {
-    exec 3>&-
-    kill $app 2>/dev/null
-    kill $xvfb 2>/dev/null
-    wait 2>/dev/null
-    rm -rf "$work"
-}
-trap cleanup EXIT
-wid=$(timeout 30 xdotool search --sync --name '^Orogen' | head -n 1)
-[ -n "$wid" ]; check "the editor window opens" $?
-[ -n "$wid" ] || { cat "$work/err"; echo "$passes passed, $failures failed"; exit 1; }
+open_editor sh -c 'cd "$HOME" && exec "$0"' "$orogen" # started from the home folder
 . "$2/support/gui_helpers.sh"
 shot() { import -window "$wid" "$art/newcomer_$1.png" 2>/dev/null; }
 # Whether every widget listed for FILTER lies inside the window (W x H).

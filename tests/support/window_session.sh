@@ -33,3 +33,27 @@ export XDG_DATA_HOME="$work/data"
 export XDG_STATE_HOME="$work/state"
 unset OROGEN_RECOVER_DIR
 unset OROGEN_STAMP_DIR
+
+# open_editor COMMAND...: runs the editor with its console on $work/stdin (held open on
+# fd 3) and its output in $work/out and $work/err ($app is its pid); the editor and the X
+# server go at exit. $wid is its window; the test ends here if none shows.
+open_editor() {
+    mkfifo "$work/stdin"
+    "$@" <"$work/stdin" >"$work/out" 2>"$work/err" &
+    app=$!
+    exec 3>"$work/stdin"
+    trap '' PIPE # should the editor die, writes to its console fail instead of ending the test
+    trap cleanup EXIT
+    wid=$(timeout 30 xdotool search --sync --name '^Orogen' | head -n 1)
+    [ -n "$wid" ]
+    check "the editor window opens" $?
+    [ -n "$wid" ] || { cat "$work/err"; echo "$passes passed, $failures failed"; exit 1; }
+}
+
+cleanup() {
+    exec 3>&-
+    kill $app 2>/dev/null
+    kill $xvfb 2>/dev/null
+    wait 2>/dev/null
+    rm -rf "$work"
+}
