@@ -16,17 +16,19 @@ ALLOWED = {
     "ui": [],
     "editor/params": ["io"],
     "editor/gen": ["editor/params", "io"],
-    "editor/world": ["editor/gen", "editor/params", "io"],
-    "editor/edit": ["editor/world", "editor/gen", "editor/params", "io"],
-    "editor/tools": ["editor/edit", "editor/world", "editor/gen", "editor/params", "io"],
-    "editor/interchange": ["editor/edit", "editor/world", "editor/gen", "editor/params", "io"],
-    "editor/cmd": ["editor/interchange", "editor/tools", "editor/edit", "editor/world", "editor/gen", "editor/params",
+    # Layer masks and material rules: functions of heights, below the world.
+    "editor/layers": ["editor/params", "io"],
+    "editor/world": ["editor/layers", "editor/gen", "editor/params", "io"],
+    "editor/edit": ["editor/world", "editor/layers", "editor/gen", "editor/params", "io"],
+    "editor/tools": ["editor/edit", "editor/world", "editor/layers", "editor/gen", "editor/params", "io"],
+    "editor/interchange": ["editor/edit", "editor/world", "editor/layers", "editor/gen", "editor/params", "io"],
+    "editor/cmd": ["editor/interchange", "editor/tools", "editor/edit", "editor/world", "editor/layers", "editor/gen", "editor/params",
                    "io"],
     # The renderer reads the world; it knows neither the command language nor the edits.
-    "renderer": ["editor/world", "editor/gen", "editor/params", "io", "ui"],
+    "renderer": ["editor/world", "editor/layers", "editor/gen", "editor/params", "io", "ui"],
     # The viewport's commands sit above both.
     "view": ["renderer", "editor/cmd", "editor/interchange", "editor/tools", "editor/edit", "editor/world",
-             "editor/gen", "editor/params", "io", "ui"],
+             "editor/layers", "editor/gen", "editor/params", "io", "ui"],
     "app": None,  # everything
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
