@@ -1,6 +1,7 @@
 // The editor's UI each frame (app/editor_ui.h): its actions run as commands; the
 // menus, dock, status bar and dialogs come from the parts in editor_ui_internal.h.
 #include "app/editor_ui_internal.h"
+#include "app/shortcuts.h"
 
 void editor_ui_init(editor_ui *e) {
     memset(e, 0, sizeof *e);
@@ -83,25 +84,15 @@ const char *file_name(const char *path) {
     return path[0] ? (slash ? slash + 1 : path) : "unsaved world";
 }
 
-// The keyboard shortcuts (Help > Keyboard shortcuts, F1).
-static const char *const help_lines[] = {
-    "Left drag: sculpt or paint; with Ctrl inverted, with Shift smoothing",
-    "Alt + left drag, middle drag: orbit around the point under the pointer",
-    "Right drag: look; with it held W A S D fly, Q E down/up, Shift faster",
-    "Wheel: dolly toward the pointer (with right drag: fly speed)",
-    "G walk mode, F focus on the pointer, Home reset the view",
-    "1-5 shaded, wireframe, levels, height, slope views; R rotates the light",
-    "C camera: fly, orbit (right drag orbits the view's centre), walk",
-    "L dynamic resolution while moving; Ctrl+= / Ctrl+- more / fewer levels of detail",
-    "Over the viewport: U raise, J lower, M smooth, T flatten, H set height, P ramp,",
-    "  N noise, K terrace, Y thermal, O hydraulic, I paint, B stamp",
-    "Ctrl+Z undo, Ctrl+Shift+Z or Ctrl+Y redo; [ ] brush radius, - = strength",
-    "(Slartibartfast's = and - level-of-detail keys are Ctrl+= and Ctrl+- here: - and = are "
-    "strength)",
-    "Ctrl+S save, Ctrl+Shift+S save as, Ctrl+N new, Ctrl+O open, Ctrl+Q quit",
-    "~ console, F1 this help, Esc close menus and dialogs, cancel long work",
-};
-#define HELP_LINES ((int)(sizeof help_lines / sizeof help_lines[0]))
+// The keyboard shortcuts (Help > Keyboard shortcuts, F1): the shortcut table's rows.
+enum { HELP_MAX_LINES = 32 };
+static int help_lines(const char *lines[HELP_MAX_LINES]) {
+    static char text[HELP_MAX_LINES][200];
+    int n = 0;
+    for (; n < shortcut_row_count() && n < HELP_MAX_LINES; n++)
+        lines[n] = shortcut_help_line(n, text[n], sizeof text[n]);
+    return n;
+}
 
 // The open dialog's rectangle (they are centred and sized from the font).
 static ui_rect dialog_rect(const editor_ui *e, const ui_context *ui, float width, float height) {
@@ -128,7 +119,10 @@ static ui_rect dialog_rect(const editor_ui *e, const ui_context *ui, float width
         return centred(width, height, fminf(width * 0.9f, ui_em(ui, 30)),
                        fminf(height * 0.9f, ui_em(ui, 1.45f * (float)(e->replace_lines + 2) + 1)));
     if (e->pending != PENDING_NONE) return centred(width, height, ui_em(ui, 22), ui_em(ui, 6));
-    if (e->show_help) return text_dialog_rect(ui, help_lines, HELP_LINES, width, height);
+    if (e->show_help) {
+        const char *lines[HELP_MAX_LINES];
+        return text_dialog_rect(ui, lines, help_lines(lines), width, height);
+    }
     if (e->show_about) return centred(width, height, ui_em(ui, 34), ui_em(ui, 1.45f * (3 + 3)));
     return (ui_rect){0, 0, 0, 0};
 }
@@ -192,7 +186,9 @@ ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport
     }
     if (modal.w > 0) ui_dim(ui); // the dialog stands out; the rest waits
     if (e->show_help) {
-        text_dialog(ui, "Keyboard shortcuts", help_lines, HELP_LINES, &e->show_help, width, height);
+        const char *lines[HELP_MAX_LINES];
+        text_dialog(ui, "Keyboard shortcuts", lines, help_lines(lines), &e->show_help, width,
+                    height);
     }
     if (e->show_about) {
         char gl[256];

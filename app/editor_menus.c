@@ -1,5 +1,6 @@
 // The editor's menu bar: File, Edit, View, Help.
 #include "app/editor_ui_internal.h"
+#include "app/shortcuts.h"
 
 // A name for an export, from the world's: beside its file with ext ("dir/alps.exr"), or
 // fallback + ext for a world never saved (never the last imported file's name).
@@ -16,12 +17,12 @@ static const char *export_name(const cmd_context *ctx, const char *fallback, con
 }
 
 static void file_menu(editor_ui *e, ui_context *ui, cmd_context *ctx) {
-    if (ui_menu_item(ui, "New flat world", "Ctrl+N", 1))
+    if (ui_menu_item(ui, "New flat world", shortcut_label(SHORTCUT_NEW_FLAT, NULL), 1))
         editor_ui_request(e, ctx, PENDING_NEW_FLAT);
     if (ui_menu_item(ui, "New planet...", NULL, 1)) new_planet_dialog_show(&e->new_planet);
     if (ui_menu_item(ui, "New world from heightmap...", NULL, 1)) // as Gaea, World Machine
         file_browser_show(&e->files, FILE_BROWSER_NEW_FROM, e->interchange.path);
-    if (ui_menu_item(ui, "Open...", "Ctrl+O", 1)) editor_ui_open(e, ctx);
+    if (ui_menu_item(ui, "Open...", shortcut_label(SHORTCUT_OPEN, NULL), 1)) editor_ui_open(e, ctx);
     for (int i = 0; i < e->recent_count; i++) {
         char label[1100];
         snprintf(label, sizeof label, "Open %s##recent%d", file_name(e->recent[i]), i);
@@ -31,8 +32,11 @@ static void file_menu(editor_ui *e, ui_context *ui, cmd_context *ctx) {
         }
     }
     if (e->recent_count) ui_menu_separator(ui);
-    if (ui_menu_item(ui, "Save", "Ctrl+S", world_path(ctx->world)[0] != 0)) editor_ui_save(e, ctx);
-    if (ui_menu_item(ui, "Save as...", "Ctrl+Shift+S", 1)) editor_ui_save_as(e, ctx);
+    if (ui_menu_item(ui, "Save", shortcut_label(SHORTCUT_SAVE, NULL),
+                     world_path(ctx->world)[0] != 0))
+        editor_ui_save(e, ctx);
+    if (ui_menu_item(ui, "Save as...", shortcut_label(SHORTCUT_SAVE_AS, NULL), 1))
+        editor_ui_save_as(e, ctx);
     if (ui_menu_item(ui, "Save session as script...", NULL, ctx->session != NULL))
         file_browser_show(&e->files, FILE_BROWSER_SCRIPT, "session.og");
     ui_menu_separator(ui);
@@ -47,7 +51,8 @@ static void file_menu(editor_ui *e, ui_context *ui, cmd_context *ctx) {
         file_browser_show(&e->files, FILE_BROWSER_EXPORT_PLANET,
                           export_name(ctx, "planet", ".obj", proposed, sizeof proposed));
     ui_menu_separator(ui);
-    if (ui_menu_item(ui, "Quit", "Ctrl+Q", 1)) editor_ui_request(e, ctx, PENDING_QUIT);
+    if (ui_menu_item(ui, "Quit", shortcut_label(SHORTCUT_QUIT, NULL), 1))
+        editor_ui_request(e, ctx, PENDING_QUIT);
     ui_menu_end(ui);
 }
 
@@ -61,8 +66,10 @@ static void edit_menu(editor_ui *e, ui_context *ui, cmd_context *ctx) {
     char undo_id[200], redo_id[200];
     snprintf(undo_id, sizeof undo_id, "%s##Undo", undo);
     snprintf(redo_id, sizeof redo_id, "%s##Redo", redo);
-    if (ui_menu_item(ui, undo_id, "Ctrl+Z", pos > 0)) editor_ui_run(e, ctx, "undo");
-    if (ui_menu_item(ui, redo_id, "Ctrl+Shift+Z", pos < n)) editor_ui_run(e, ctx, "redo");
+    if (ui_menu_item(ui, undo_id, shortcut_label(SHORTCUT_RUN, "undo"), pos > 0))
+        editor_ui_run(e, ctx, "undo");
+    if (ui_menu_item(ui, redo_id, shortcut_label(SHORTCUT_RUN, "redo"), pos < n))
+        editor_ui_run(e, ctx, "redo");
     ui_menu_separator(ui);
     if (ui_menu_item(ui, "History", NULL, 1)) e->history_request = 1; // the dock's section
     ui_menu_end(ui);
@@ -73,10 +80,13 @@ static void view_menu(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *
     static const char *const modes[] = {"shaded", "wireframe", "levels", "height", "slope"};
     static const char *const labels[] = {"Shaded", "Wireframe", "Clipmap levels", "Height colours",
                                          "Slope colours"};
-    static const char *const keys[] = {"1", "2", "3", "4", "5"};
-    for (int i = 0; i < 5; i++)
-        if (ui_menu_item(ui, labels[i], keys[i], (int)v->settings.view != i))
-            runf(e, ctx, "view %s", modes[i]);
+    for (int i = 0; i < 5; i++) {
+        char cmd[64];
+        snprintf(cmd, sizeof cmd, "view %s", modes[i]);
+        if (ui_menu_item(ui, labels[i], shortcut_label(SHORTCUT_RUN, cmd),
+                         (int)v->settings.view != i))
+            editor_ui_run(e, ctx, cmd);
+    }
     ui_menu_separator(ui);
     if (ui_menu_item(ui,
                      v->settings.parallax ? "Parallax detail: on##Parallax"
@@ -124,25 +134,28 @@ static void view_menu(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *
     if (ui_menu_item(ui,
                      v->settings.sun_rotation != 0 ? "Light rotation: on##Light"
                                                    : "Light rotation: off##Light",
-                     "R", 1))
+                     shortcut_label(SHORTCUT_LIGHT, NULL), 1))
         runf(e, ctx, "render sun_rotation=%g", v->settings.sun_rotation != 0 ? 0.0 : 20.0);
-    if (ui_menu_item(ui, "More levels of detail", "Ctrl+=", v->settings.levels < RENDER_MAX_LEVELS))
+    if (ui_menu_item(ui, "More levels of detail", shortcut_label(SHORTCUT_MORE_LEVELS, NULL),
+                     v->settings.levels < RENDER_MAX_LEVELS))
         runf(e, ctx, "render levels=%d", v->settings.levels + 1);
-    if (ui_menu_item(ui, "Fewer levels of detail", "Ctrl+-",
+    if (ui_menu_item(ui, "Fewer levels of detail", shortcut_label(SHORTCUT_FEWER_LEVELS, NULL),
                      v->settings.levels > RENDER_MIN_LEVELS))
         runf(e, ctx, "render levels=%d", v->settings.levels - 1);
     if (ui_menu_item(ui,
                      info->dynamic_resolution ? "Dynamic resolution: on##Dynamic"
                                               : "Dynamic resolution: off##Dynamic",
-                     "L", 1))
+                     shortcut_label(SHORTCUT_DYNAMIC_RES, NULL), 1))
         runf(e, ctx, "dynamic_resolution %s", info->dynamic_resolution ? "off" : "on");
     ui_menu_separator(ui);
     static const char *const cameras[] = {"Camera: fly", "Camera: orbit", "Camera: walk"};
     for (int i = 0; i < 3; i++)
-        if (ui_menu_item(ui, cameras[i], "C", info->camera_mode != i)) {
+        if (ui_menu_item(ui, cameras[i], shortcut_label(SHORTCUT_NEXT_CAMERA, NULL),
+                         info->camera_mode != i)) {
             if (e->host.set_camera_mode) e->host.set_camera_mode(e->host.user, i);
         }
-    if (ui_menu_item(ui, "Reset view", "Home", 1)) editor_ui_run(e, ctx, "camera default");
+    if (ui_menu_item(ui, "Reset view", shortcut_label(SHORTCUT_RESET_VIEW, NULL), 1))
+        editor_ui_run(e, ctx, "camera default");
     ui_menu_separator(ui);
     static const double scales[] = {1.0, 1.25, 1.5, 2.0};
     for (int i = 0; i < 4; i++) {
@@ -151,7 +164,7 @@ static void view_menu(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *
         if (ui_menu_item(ui, label, NULL, fabs(info->ui_scale - scales[i]) > 1e-6))
             runf(e, ctx, "ui_scale %g", scales[i]); // a new font, between frames
     }
-    if (ui_menu_item(ui, "Console", "~", 1)) {
+    if (ui_menu_item(ui, "Console", shortcut_label(SHORTCUT_CONSOLE, NULL), 1)) {
         e->console.open = !e->console.open;
         e->console.focus_input = e->console.open;
     }
@@ -165,7 +178,8 @@ void menus(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v,
     if (ui_menu_begin(ui, "Edit")) edit_menu(e, ui, ctx);
     if (ui_menu_begin(ui, "View")) view_menu(e, ui, ctx, v, info);
     if (ui_menu_begin(ui, "Help")) {
-        if (ui_menu_item(ui, "Keyboard shortcuts", "F1", 1)) e->show_help = 1;
+        if (ui_menu_item(ui, "Keyboard shortcuts", shortcut_label(SHORTCUT_HELP, NULL), 1))
+            e->show_help = 1;
         if (ui_menu_item(ui, "About Orogen", NULL, 1)) e->show_about = 1;
         ui_menu_end(ui);
     }

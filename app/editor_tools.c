@@ -1,44 +1,38 @@
 // The tool palette (icons, keys) and the current tool's options.
 #include "app/editor_ui_internal.h"
+#include "app/shortcuts.h"
 
 typedef struct tool_entry {
     const char *name;  // as `tool` takes it
     const char *label; // on the button
     const char *tip;
-    char key; // its shortcut over the viewport (none collides with the camera's keys)
-} tool_entry;
+} tool_entry; // its key over the viewport is in the shortcut table (app/shortcuts.c)
 
 static const tool_entry tools[] = {
-    {"raise", "Raise", "Raise the terrain by amount metres per dab (key U)", 'U'},
-    {"lower", "Lower", "Lower the terrain by amount metres per dab (key J)", 'J'},
+    {"raise", "Raise", "Raise the terrain by amount metres per dab"},
+    {"lower", "Lower", "Lower the terrain by amount metres per dab"},
     {"smooth", "Smooth",
-     "Blend toward a blur that widens with the radius; invert sharpens (key M; Shift while "
-     "dragging smooths with any tool)",
-     'M'},
-    {"flatten", "Flatten", "Blend toward a height, or the height under the stroke's start (key T)",
-     'T'},
-    {"set", "Set height", "Blend toward the height you give (key H)", 'H'},
-    {"ramp", "Ramp", "A ramp from the stroke's first point to its last (key P)", 'P'},
-    {"noise", "Noise", "Add fractal noise (key N)", 'N'},
-    {"terrace", "Terrace", "Blend toward terraces of a step height (key K)", 'K'},
-    {"thermal", "Thermal", "Thermal erosion down to the talus angle (key Y)", 'Y'},
-    {"hydraulic", "Hydraulic", "Droplet erosion: water carves and deposits (key O)", 'O'},
-    {"paint", "Paint", "Paint a material; invert removes it (key I)", 'I'},
+     "Blend toward a blur that widens with the radius; invert sharpens; Shift while "
+     "dragging smooths with any tool"},
+    {"flatten", "Flatten", "Blend toward a height, or the height under the stroke's start"},
+    {"set", "Set height", "Blend toward the height you give"},
+    {"ramp", "Ramp", "A ramp from the stroke's first point to its last"},
+    {"noise", "Noise", "Add fractal noise"},
+    {"terrace", "Terrace", "Blend toward terraces of a step height"},
+    {"thermal", "Thermal", "Thermal erosion down to the talus angle"},
+    {"hydraulic", "Hydraulic", "Droplet erosion: water carves and deposits"},
+    {"paint", "Paint", "Paint a material; invert removes it"},
     {"fill", "Fill",
      "Add rock in 3D: a ball per dab, a tube along a drag (overhangs, arches; "
-     "Ctrl carves instead)",
-     0},
+     "Ctrl carves instead)"},
     {"carve", "Carve",
      "Cut rock away in 3D: a ball per dab, a tube along a drag (caves, "
-     "undercuts; Ctrl fills instead)",
-     0},
-    {"vsmooth", "Smooth 3D", "Smooth the surface in 3D, overhangs included", 0},
+     "undercuts; Ctrl fills instead)"},
+    {"vsmooth", "Smooth 3D", "Smooth the surface in 3D, overhangs included"},
     {"vflatten", "Flatten 3D",
      "Flatten the surface in 3D to a level plane (height, or the "
-     "first point's)",
-     0},
+     "first point's)"},
 };
-#define STAMP_KEY 'B' // the stamp tool's shortcut
 #define TOOL_COUNT (sizeof tools / sizeof tools[0])
 
 static int tool_is_current(const brush *b, const char *name) {
@@ -145,10 +139,10 @@ static void tool_icon(ui_context *ui, int tool, ui_rect r, ui_color c) {
 #undef P
 }
 
-int editor_ui_tool_for_key(int letter) {
+int editor_ui_tool_index(const char *name) {
     for (size_t i = 0; i < TOOL_COUNT; i++)
-        if (tools[i].key == letter) return (int)i;
-    return letter == STAMP_KEY ? (int)TOOL_COUNT : -1;
+        if (strcmp(tools[i].name, name) == 0) return (int)i;
+    return strcmp(name, "stamp") == 0 ? (int)TOOL_COUNT : -1;
 }
 
 // The volume tools (caves, overhangs) work on flat worlds only: on a planet they are
@@ -199,10 +193,13 @@ void palette(editor_ui *e, ui_context *ui, cmd_context *ctx, ui_rect r) {
         ui_rect b = ui_last_rect(ui);
         float side = b.h * 0.6f, x = names ? b.x + b.h * 0.2f : b.x + (b.w - side) * 0.5f;
         tool_icon(ui, (int)i, (ui_rect){x, b.y + b.h * 0.2f, side, side}, ui_get_theme(ui)->text);
-        snprintf(tip, sizeof tip, "%s%s%s", names ? "" : label, names ? "" : ": ",
-                 stamp ? "Place a stamp (a shape or heightmap) with a click in the viewport "
-                         "(key B)"
-                       : tools[i].tip);
+        const char *key = shortcut_label(SHORTCUT_TOOL, stamp ? "stamp" : tools[i].name);
+        char key_note[32] = "";
+        if (key) snprintf(key_note, sizeof key_note, " (key %s)", key);
+        snprintf(tip, sizeof tip, "%s%s%s%s", names ? "" : label, names ? "" : ": ",
+                 stamp ? "Place a stamp (a shape or heightmap) with a click in the viewport"
+                       : tools[i].tip,
+                 key_note);
         ui_tooltip(ui, tip);
         if (clicked) editor_ui_pick_tool(e, ctx, (int)i);
     }

@@ -114,10 +114,10 @@ int editor_ui_run(editor_ui *e, cmd_context *ctx, const char *text);
 int editor_ui_build_busy(ui_context *ui, const char *what, double fraction, double elapsed_ms,
                          float width, float height);
 
-// The palette's tools by index (the stamp tool last), and the letter key of each
-// (-1 for a letter that picks none).
+// The palette's tools by index (the stamp tool last), and the index of the tool named
+// as `tool` takes it ("stamp" for the stamp tool; -1 for a name that is none).
 void editor_ui_pick_tool(editor_ui *e, cmd_context *ctx, int index);
-int editor_ui_tool_for_key(int letter);
+int editor_ui_tool_index(const char *name);
 
 // Opens the file browser to save the world somewhere (File > Save as, Ctrl+Shift+S) or
 // to open one (File > Open, Ctrl+O).

@@ -1,5 +1,6 @@
 #include "app/window.h"
 
+#include "app/shortcuts.h"
 #include "app/window_internal.h"
 
 #include <poll.h>
@@ -419,16 +420,11 @@ static void first_frame(window_state *st) {
     st->in.mouse_y = st->mouse_in ? ui_px(st, st->mouse_y) : -1e6f;
     queue_ui_event(st, (ui_event){.kind = UI_EVENT_MOVE, .x = st->in.mouse_x, .y = st->in.mouse_y});
     window_input_attach(st);
-    printf("Orogen viewport:\n"
-           "  left-drag sculpts with the current tool (console: tool NAME key=value ...)\n"
-           "  Alt+left-drag or middle-drag orbits, wheel dollies to the point under the cursor\n"
-           "  right-drag looks; with it held W A S D move, Q E down/up, Shift faster, wheel "
-           "sets the speed\n"
-           "  G walk mode (WASD walk on the ground), F focus on the point under the cursor, "
-           "Home resets the view\n"
-           "  1-5 shaded, wireframe, levels, height, slope views\n"
-           "  Ctrl+Z undo, Ctrl+Shift+Z or Ctrl+Y redo, Ctrl+S save\n"
-           "Console: type commands here ('help' lists them, 'exit' quits).\n");
+    printf("Orogen viewport (F1 lists every shortcut):\n");
+    for (int i = 0; i < shortcut_row_count(); i++)
+        if (shortcut_row_at(i)->banner)
+            printf("  %s: %s\n", shortcut_row_at(i)->input, shortcut_row_at(i)->help);
+    printf("Console: type commands here ('help' lists them, 'exit' quits).\n");
     fflush(stdout);
 }
 

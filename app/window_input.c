@@ -1,5 +1,6 @@
 // GLFW's events turned into the UI's input (ui_input), the camera's movement keys and
 // the keyboard shortcuts; dropped files; the close button.
+#include "app/shortcuts.h"
 #include "app/window_internal.h"
 
 #include <strings.h>
@@ -199,109 +200,113 @@ static void toggle_console(window_state *st) {
     st->ed.console.focus_input = st->ed.console.open;
 }
 
-// Ctrl+key: files, undo and redo, the levels of detail.
-static void ctrl_shortcut(window_state *st, int key, int mods) {
-    if (key == GLFW_KEY_S && (mods & GLFW_MOD_SHIFT))
-        editor_ui_save_as(&st->ed, st->ctx);
-    else if (key == GLFW_KEY_O)
-        editor_ui_open(&st->ed, st->ctx);
-    else if (key == GLFW_KEY_S)
-        save_shortcut(st);
-    else if (key == GLFW_KEY_N)
-        editor_ui_request(&st->ed, st->ctx, PENDING_NEW_FLAT);
-    else if (key == GLFW_KEY_Q)
-        editor_ui_request(&st->ed, st->ctx, PENDING_QUIT);
-    else if (key == GLFW_KEY_Z && (mods & GLFW_MOD_SHIFT))
-        run_commands(st, "redo", "Ctrl+Shift+Z");
-    else if (key == GLFW_KEY_Z)
-        run_commands(st, "undo", "Ctrl+Z");
-    else if (key == GLFW_KEY_Y)
-        run_commands(st, "redo", "Ctrl+Y");
-    else if (key == GLFW_KEY_EQUAL || key == GLFW_KEY_MINUS) { // seed 004's = and -
-        int levels = st->v->settings.levels + (key == GLFW_KEY_EQUAL ? 1 : -1);
-        if (levels >= RENDER_MIN_LEVELS && levels <= RENDER_MAX_LEVELS) {
-            char cmd[64];
-            snprintf(cmd, sizeof cmd, "render levels=%d", levels);
-            run_commands(st, cmd, "key");
-        }
+static void brush_step(window_state *st, shortcut_action action) {
+    const brush *b = &st->ctx->brush;
+    const char *name = tool_name(b);
+    char cmd[128];
+    if (action == SHORTCUT_RADIUS_DOWN || action == SHORTCUT_RADIUS_UP) {
+        double r = b->radius * (action == SHORTCUT_RADIUS_UP ? 1.15 : 1 / 1.15);
+        snprintf(cmd, sizeof cmd, "tool %s radius=%.4g", name, fmin(fmax(r, 0.5), 5000));
+    } else {
+        double k = b->strength + (action == SHORTCUT_STRENGTH_UP ? 0.05 : -0.05);
+        snprintf(cmd, sizeof cmd, "tool %s strength=%.3g", name, fmin(fmax(k, 0), 1));
+    }
+    run_commands(st, cmd, "key");
+}
+
+static void levels_step(window_state *st, int step) { // seed 004's = and -, with Ctrl here
+    int levels = st->v->settings.levels + step;
+    if (levels >= RENDER_MIN_LEVELS && levels <= RENDER_MAX_LEVELS) {
+        char cmd[64];
+        snprintf(cmd, sizeof cmd, "render levels=%d", levels);
+        run_commands(st, cmd, "key");
     }
 }
 
-// A key without Ctrl: the console, help, the brush, the camera, views, tools.
-static void plain_shortcut(window_state *st, int key) {
+static void turn_light(window_state *st) { // the light turns; on a planet at its omega (seed 004)
+    const world_params *p = world_get_params(st->ctx->world);
+    double speed = p->kind == WORLD_PLANET && p->omega != 0 ? p->omega * 180.0 / M_PI : 20.0;
+    char cmd[64];
+    snprintf(cmd, sizeof cmd, "render sun_rotation=%.6g",
+             st->v->settings.sun_rotation != 0 ? 0.0 : fmax(-360, fmin(360, speed)));
+    run_commands(st, cmd, "key");
+}
+
+// A key of the shortcut table (app/shortcuts.c) does what its row says.
+static void run_shortcut(window_state *st, const shortcut_key *k) {
     double hit[3];
-    switch (key) {
-    case GLFW_KEY_GRAVE_ACCENT:
+    switch (k->action) {
+    case SHORTCUT_RUN:
+        run_commands(st, k->arg, strchr(k->label, '+') ? k->label : "key");
+        break;
+    case SHORTCUT_TOOL: // one letter per tool, while the pointer is over the viewport
+        if (!st->looking && in_view(st, st->mouse_x, st->mouse_y)) {
+            int tool = editor_ui_tool_index(k->arg);
+            if (tool >= 0) editor_ui_pick_tool(&st->ed, st->ctx, tool);
+        }
+        break;
+    case SHORTCUT_CONSOLE:
         toggle_console(st);
         break;
-    case GLFW_KEY_F1:
+    case SHORTCUT_HELP:
         st->ed.show_help = 1;
         break;
-    case GLFW_KEY_LEFT_BRACKET: // brush size and strength, as in Terrain3D
-    case GLFW_KEY_RIGHT_BRACKET:
-    case GLFW_KEY_MINUS:
-    case GLFW_KEY_EQUAL: {
-        const brush *b = &st->ctx->brush;
-        const char *name = tool_name(b);
-        char cmd[128];
-        if (key == GLFW_KEY_LEFT_BRACKET || key == GLFW_KEY_RIGHT_BRACKET) {
-            double r = b->radius * (key == GLFW_KEY_RIGHT_BRACKET ? 1.15 : 1 / 1.15);
-            snprintf(cmd, sizeof cmd, "tool %s radius=%.4g", name, fmin(fmax(r, 0.5), 5000));
-        } else {
-            double k = b->strength + (key == GLFW_KEY_EQUAL ? 0.05 : -0.05);
-            snprintf(cmd, sizeof cmd, "tool %s strength=%.3g", name, fmin(fmax(k, 0), 1));
-        }
-        run_commands(st, cmd, "key");
+    case SHORTCUT_RADIUS_DOWN:
+    case SHORTCUT_RADIUS_UP:
+    case SHORTCUT_STRENGTH_DOWN:
+    case SHORTCUT_STRENGTH_UP:
+        brush_step(st, k->action);
         break;
-    }
-    case GLFW_KEY_F:
+    case SHORTCUT_FOCUS:
         if (pick_at(st, st->mouse_x, st->mouse_y, hit) == 0)
             camera_controls_focus(&st->cc, &st->v->cam, hit, st->ctx->brush.radius);
         else
             fprintf(stderr, "orogen: focus: no terrain under the cursor\n");
         break;
-    case GLFW_KEY_G:
+    case SHORTCUT_WALK:
         bank_keys(st);
         camera_controls_toggle_walk(&st->cc, &st->v->cam, ground_height, st);
         break;
-    case GLFW_KEY_HOME:
+    case SHORTCUT_RESET_VIEW:
         reset_camera(st);
         break;
-    case GLFW_KEY_1:
-    case GLFW_KEY_2:
-    case GLFW_KEY_3:
-    case GLFW_KEY_4:
-    case GLFW_KEY_5: {
-        char cmd[64];
-        snprintf(cmd, sizeof cmd, "view %s", view_mode_name((view_mode)(key - GLFW_KEY_1)));
-        run_commands(st, cmd, "key");
-        break;
-    }
-    case GLFW_KEY_C:
+    case SHORTCUT_NEXT_CAMERA:
         set_camera_mode(st, (camera_mode(st) + 1) % 3);
         break;
-    case GLFW_KEY_R: { // the light turns; on a planet at its omega (seed 004)
-        const world_params *p = world_get_params(st->ctx->world);
-        double speed = p->kind == WORLD_PLANET && p->omega != 0 ? p->omega * 180.0 / M_PI : 20.0;
-        char cmd[64];
-        snprintf(cmd, sizeof cmd, "render sun_rotation=%.6g",
-                 st->v->settings.sun_rotation != 0 ? 0.0 : fmax(-360, fmin(360, speed)));
-        run_commands(st, cmd, "key");
+    case SHORTCUT_LIGHT:
+        turn_light(st);
         break;
-    }
-    case GLFW_KEY_L:
+    case SHORTCUT_DYNAMIC_RES:
         run_commands(st, st->dynamic_res ? "dynamic_resolution off" : "dynamic_resolution on",
                      "key");
         break;
-    default:
-        // One letter per tool, while the pointer is over the viewport.
-        if (key >= GLFW_KEY_A && key <= GLFW_KEY_Z && !st->looking &&
-            in_view(st, st->mouse_x, st->mouse_y)) {
-            int tool = editor_ui_tool_for_key('A' + (key - GLFW_KEY_A));
-            if (tool >= 0) editor_ui_pick_tool(&st->ed, st->ctx, tool);
-        }
+    case SHORTCUT_MORE_LEVELS:
+    case SHORTCUT_FEWER_LEVELS:
+        levels_step(st, k->action == SHORTCUT_MORE_LEVELS ? 1 : -1);
+        break;
+    case SHORTCUT_SAVE:
+        save_shortcut(st);
+        break;
+    case SHORTCUT_SAVE_AS:
+        editor_ui_save_as(&st->ed, st->ctx);
+        break;
+    case SHORTCUT_OPEN:
+        editor_ui_open(&st->ed, st->ctx);
+        break;
+    case SHORTCUT_NEW_FLAT:
+        editor_ui_request(&st->ed, st->ctx, PENDING_NEW_FLAT);
+        break;
+    case SHORTCUT_QUIT:
+        editor_ui_request(&st->ed, st->ctx, PENDING_QUIT);
+        break;
+    case SHORTCUT_ACTION_COUNT:
         break;
     }
+}
+
+static int shortcut_mods_of(int glfw_mods) {
+    return ((glfw_mods & GLFW_MOD_CONTROL) ? SHORTCUT_CTRL : 0) |
+           ((glfw_mods & GLFW_MOD_SHIFT) ? SHORTCUT_SHIFT : 0);
 }
 
 // A key goes to the UI's queue first; what the UI's frame does not take comes back to
@@ -314,11 +319,15 @@ static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
     st->in.mods = ui_mods_of(mods);
     int k = ui_key_of(key);
     if (k >= 0 && action != GLFW_RELEASE) st->in.key_pressed[k] = 1;
-    if (work_queue_busy(&st->work)) { // Esc cancels long work; other keys wait for it
+    if (work_queue_busy(&st->work)) { // Esc cancels long work
         if (action == GLFW_PRESS && key == GLFW_KEY_ESCAPE) work_queue_cancel(&st->work);
         for (int i = 0; i < MOVE_KEY_COUNT; i++) // a key let go is never left held
             if (key == move_key_codes[i] && action == GLFW_RELEASE) st->key_down[i] = 0;
-        return;
+        // A shortcut waits in the queue and runs after the work, in order; other keys
+        // (typing into panels the work hides) are dropped.
+        if (action != GLFW_PRESS || key == GLFW_KEY_ESCAPE ||
+            !shortcut_find(key, shortcut_mods_of(mods)))
+            return;
     }
     // Shift, Ctrl, Alt alone are no event of their own: they travel as the mods of the rest
     // (queued, each would take a frame before the key they go with).
@@ -356,10 +365,8 @@ static void key_after_ui(window_state *st, int key, int action, int mods, int ta
         st->key_down[i] = action == GLFW_PRESS && !(mods & GLFW_MOD_CONTROL);
     }
     if (action != GLFW_PRESS) return;
-    if (mods & GLFW_MOD_CONTROL)
-        ctrl_shortcut(st, key, mods);
-    else
-        plain_shortcut(st, key);
+    const shortcut_key *k = shortcut_find(key, shortcut_mods_of(mods));
+    if (k) run_shortcut(st, k);
 }
 
 void keys_after_ui(window_state *st, const ui_input *in) {
