@@ -27,6 +27,17 @@ int run_now(editor_ui *e, cmd_context *ctx, const char *text) {
 // The problem lines the replace dialog lists (at most this many).
 #define REPLACE_LINES_SHOWN 8
 
+// run_now for a dialog that runs commands through a callback.
+typedef struct dialog_runner {
+    editor_ui *e;
+    cmd_context *ctx;
+} dialog_runner;
+
+static int run_for_dialog(void *user, const char *text) {
+    dialog_runner *r = user;
+    return run_now(r->e, r->ctx, text);
+}
+
 int problem_lines(const char *problems) {
     int n = problems[0] != 0;
     for (const char *c = problems; *c; c++)
@@ -113,8 +124,9 @@ static ui_rect dialog_rect(const editor_ui *e, const ui_context *ui, float width
             fminf(height * 0.9f,
                   // rows of 1.4 em and their 0.2 em gaps, the panel's padding
                   ui_em(ui, 1.6f * (float)new_planet_dialog_rows(&e->new_planet) + 0.8f)));
-    if (e->offer_recovery) // wide enough for its first line in full
-        return centred(width, height, fminf(width * 0.9f, ui_em(ui, 32)), ui_em(ui, 6.5f));
+    if (e->offer_recovery) // wide enough for its first lines in full
+        return centred(width, height, fminf(width * 0.9f, ui_em(ui, 32)),
+                       fminf(height * 0.9f, ui_em(ui, recover_offer_lines(&e->recovery))));
     if (e->confirm_replace)
         return centred(width, height, fminf(width * 0.9f, ui_em(ui, 30)),
                        fminf(height * 0.9f, ui_em(ui, 1.45f * (float)(e->replace_lines + 2) + 1)));
@@ -129,11 +141,7 @@ static ui_rect dialog_rect(const editor_ui *e, const ui_context *ui, float width
 
 ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v,
                         const editor_frame_info *info, float width, float height) {
-    {
-        size_t steps;
-        int64_t when;
-        e->offer_recovery = offered_journal(e, ctx, &steps, &when)[0] != 0;
-    }
+    e->offer_recovery = recover_offer_update(&e->recovery, ctx->world);
     if (ctx->tool_serial != e->tool_serial_seen) { // a tool picked from anywhere ends stamping
         e->tool_serial_seen = ctx->tool_serial;
         e->stamps.active = 0;
@@ -212,7 +220,8 @@ ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport
                                    sizeof e->planet_command))
             editor_ui_request(e, ctx, PENDING_NEW_PLANET);
     } else if (e->offer_recovery) {
-        recover_dialog(e, ui, ctx, modal);
+        recover_offer_draw(&e->recovery, ui, ctx->world, modal, run_for_dialog,
+                           &(dialog_runner){e, ctx});
     } else if (e->confirm_replace) {
         replace_dialog(e, ui, ctx, modal);
     } else if (e->pending != PENDING_NONE) {
@@ -228,12 +237,9 @@ ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport
             e->interchange.open = 0;
         else if (e->new_planet.open)
             e->new_planet.open = 0;
-        else if (e->offer_recovery) {
-            size_t steps;
-            int64_t when;
-            snprintf(e->recover_dismissed, sizeof e->recover_dismissed, "%s",
-                     offered_journal(e, ctx, &steps, &when));
-        } else if (e->confirm_replace)
+        else if (e->offer_recovery)
+            recover_offer_dismiss(&e->recovery);
+        else if (e->confirm_replace)
             e->confirm_replace = 0;
         else if (e->pending != PENDING_NONE)
             e->pending = PENDING_NONE;

@@ -142,67 +142,6 @@ void unsaved_prompt(editor_ui *e, ui_context *ui, cmd_context *ctx, float width,
     ui_panel_end(ui);
 }
 
-// Whether the world has unsaved edits of a session that ended without saving, and the
-// user has not put the question off for this world.
-// The journal whose edits the Recover dialog offers: the world's own, or one a
-// never-saved world left (found when the editor started); "" when none is offered.
-const char *offered_journal(const editor_ui *e, cmd_context *ctx, size_t *steps, int64_t *when) {
-    const char *own = world_recovery_path(ctx->world);
-    *steps = world_recoverable(ctx->world, when);
-    if (*steps && strcmp(e->recover_dismissed, own) != 0) return own;
-    if (e->unsaved_journal[0] && strcmp(e->recover_dismissed, e->unsaved_journal) != 0 &&
-        !world_path(ctx->world)[0] && !world_is_modified(ctx->world)) {
-        *steps = e->unsaved_journal_steps;
-        *when = e->unsaved_journal_when;
-        return e->unsaved_journal;
-    }
-    return "";
-}
-
-// Like Blender's Recover Last Session: the edits a crash or a kill left in a journal,
-// offered when the world opens (or, for a world never saved, when the editor starts).
-void recover_dialog(editor_ui *e, ui_context *ui, cmd_context *ctx, ui_rect r) {
-    ui_panel_begin(ui, "Recover unsaved edits", r);
-    ui_row(ui, 1, NULL, 0);
-    int64_t when = 0;
-    size_t steps = 0;
-    const char *journal = offered_journal(e, ctx, &steps, &when);
-    int own = !strcmp(journal, world_recovery_path(ctx->world));
-    char text[1200], stamp[64], cmd[4600], arg[4400];
-    if (own)
-        snprintf(text, sizeof text, "%s was not saved when Orogen last stopped.",
-                 file_name(world_path(ctx->world)));
-    else
-        snprintf(text, sizeof text, "A world that was never saved was open when Orogen stopped.");
-    ui_label(ui, text);
-    time_t t = (time_t)when;
-    struct tm tm;
-    if (!localtime_r(&t, &tm) || !strftime(stamp, sizeof stamp, "%Y-%m-%d %H:%M", &tm))
-        snprintf(stamp, sizeof stamp, "?");
-    snprintf(text, sizeof text, "Its edits of %s (%zu step%s) can be recovered.", stamp, steps,
-             steps == 1 ? "" : "s");
-    ui_label(ui, text);
-    ui_tooltip(ui, journal);
-    cmd_quote_arg(arg, sizeof arg, journal);
-    float thirds[3] = {-0.333f, -0.333f, 0};
-    ui_row(ui, 3, thirds, ui_em(ui, 1.5f));
-    if (ui_button(ui, "Recover")) {
-        snprintf(cmd, sizeof cmd, own ? "recover" : "recover %s", arg);
-        if (run_now(e, ctx, cmd) == 0 && !own) e->unsaved_journal[0] = 0;
-    }
-    ui_tooltip(ui, "Restore those edits: undoable, and unsaved until you save (recover)");
-    if (ui_button(ui, "Discard")) {
-        snprintf(cmd, sizeof cmd, own ? "recover discard" : "recover discard %s", arg);
-        if (run_now(e, ctx, cmd) == 0 && !own) e->unsaved_journal[0] = 0;
-    }
-    ui_tooltip(ui, "Drop those edits for good (recover discard)");
-    if (ui_button(ui, "Not now"))
-        snprintf(e->recover_dismissed, sizeof e->recover_dismissed, "%s", journal);
-    ui_tooltip(ui, "Keep them for later: the console's 'recover' restores them until the world "
-                   "is edited or saved");
-    ui_panel_end(ui);
-}
-
 void editor_ui_save(editor_ui *e, cmd_context *ctx) {
     if (world_file_errors(ctx->world) || world_read_only(ctx->world)[0])
         e->confirm_replace = 1;

@@ -39,6 +39,8 @@ static void file_menu(editor_ui *e, ui_context *ui, cmd_context *ctx) {
         editor_ui_save_as(e, ctx);
     if (ui_menu_item(ui, "Save session as script...", NULL, ctx->session != NULL))
         file_browser_show(&e->files, FILE_BROWSER_SCRIPT, "session.og");
+    // Every crash journal, those put off with "Not now" and those set aside included.
+    if (ui_menu_item(ui, "Recover unsaved edits...", NULL, 1)) recover_offer_show_all(&e->recovery);
     ui_menu_separator(ui);
     int flat = world_get_params(ctx->world)->kind == WORLD_FLAT;
     if (ui_menu_item(ui, "Import heightmap...", NULL, flat))

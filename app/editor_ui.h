@@ -9,6 +9,7 @@
 #include "app/file_browser.h"
 #include "app/interchange_dialog.h"
 #include "app/new_planet_dialog.h"
+#include "app/recover_offer.h"
 #include "app/stamp_browser.h"
 #include "app/work_queue.h"
 #include "editor/cmd/commands.h"
@@ -62,10 +63,7 @@ typedef struct editor_ui {
     int confirm_replace;            // asking before saving over a file that loaded with errors
     int replace_lines;              // how many of its bad lines the dialog lists
     int offer_recovery;             // the Recover unsaved edits dialog is up
-    char recover_dismissed[4400];   // the journal whose offer was put off ("Not now")
-    char unsaved_journal[4400];     // a never-saved world's journal a crash left ("": none)
-    size_t unsaved_journal_steps;
-    int64_t unsaved_journal_when;
+    recover_offer recovery;         // what it offers
     char open_path[1024];
     new_planet_dialog new_planet;     // File > New planet...
     char planet_command[1024];        // PENDING_NEW_PLANET: the dialog's new planet command

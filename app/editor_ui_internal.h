@@ -61,10 +61,8 @@ void unsaved_prompt(editor_ui *e, ui_context *ui, cmd_context *ctx, float width,
 // user has not put the question off for this world.
 // The journal whose edits the Recover dialog offers: the world's own, or one a
 // never-saved world left (found when the editor started); "" when none is offered.
-const char *offered_journal(const editor_ui *e, cmd_context *ctx, size_t *steps, int64_t *when);
 // Like Blender's Recover Last Session: the edits a crash or a kill left in a journal,
 // offered when the world opens (or, for a world never saved, when the editor starts).
-void recover_dialog(editor_ui *e, ui_context *ui, cmd_context *ctx, ui_rect r);
 void editor_ui_save(editor_ui *e, cmd_context *ctx);
 // Saving over a file that loaded with errors writes defaults where its bad lines were,
 // and over a world opened read-only replaces its tile store: say so (which lines, which

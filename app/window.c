@@ -356,14 +356,8 @@ static int window_start(window_state *st, const app_settings *settings, const ch
     camera_controls_init(&st->cc);
     st->changes = world_events_subscribe(world_event_hub(ctx->world), wake_window, NULL);
     if (!st->changes) return og_error_set(err, "out of memory");
-    if (!world_path(ctx->world)[0]) { // a new session: a never-saved world's crash to offer?
-        recovery_scan scan;
-        if (edit_find_unsaved_journal(st->ed.unsaved_journal, sizeof st->ed.unsaved_journal,
-                                      &scan)) {
-            st->ed.unsaved_journal_steps = scan.records;
-            st->ed.unsaved_journal_when = scan.last;
-        }
-    }
+    if (!world_path(ctx->world)[0]) // a new session: a never-saved world's crash to offer?
+        recover_offer_find_startup(&st->ed.recovery);
     st->res_scale = 1.0f;
     update_px_scale(st);
     st->settings = *settings;

@@ -186,29 +186,81 @@ hash_until() {
     done
     echo "$line"
 }
-# Clicks the dialog's Recover until the hash is WANT: the pointer is moved there a
-# moment before the click (a move and a press in one frame of a busy machine can miss
-# the button), and a click the dialog did not take is tried again; prints the hash.
+# Clicks the button NAME (the dialog's Recover of one journal) until the hash is WANT:
+# the pointer is moved there a moment before the click (a move and a press in one frame
+# of a busy machine can miss the button), and a click the dialog did not take is tried
+# again; prints the hash.
 recover_click() {
     local line=
     for _ in 1 2 3; do
-        read -r x y w h <<<"$(widget "Recover unsaved edits/Recover")"
+        read -r x y w h <<<"$(widget "$1")"
         [ -n "${h:-}" ] || break
         xdotool mousemove --window "$wid" $((x + w / 2)) $((y + h / 2))
         sleep 0.3
         xdotool click 1
-        line=$(hash_until "$1")
-        [ "$line" = "$1" ] && break
+        line=$(hash_until "$2")
+        [ "$line" = "$2" ] && break
     done
     echo "$line"
 }
 wid=$(timeout 30 xdotool search --sync --name '^Orogen' | head -n 1)
-read -r x y w h <<<"$(widget "Recover unsaved edits/Recover")"
-[ -n "${h:-}" ]; check "the window offers to recover the killed session's edits" $?
-widget "Recover unsaved edits/Its edits of *" >/dev/null
+own="Recover unsaved edits/w.world.recover"
+read -r x y w h <<<"$(widget "$own/Recover")"
+[ -n "${h:-}" ] && widget "$own/w.world was not saved when Orogen last stopped." >/dev/null
+check "the window offers to recover the killed session's edits" $?
 [ -n "$wid" ] && timeout 20 import -window "$wid" "$art/recover_dialog.png" 2>/dev/null
-line=$(recover_click "${hashes[3]}")
+line=$(recover_click "$own/Recover" "${hashes[3]}")
 [ "$line" = "${hashes[3]}" ]; check "Recover restores them ($line, wanted ${hashes[3]})" $?
+kill9
+
+# A session that edited without recovering set the killed session's journal aside, and
+# was killed too: the window offers both journals, and Recover on the one set aside
+# gives its terrain (issue 27: a journal set aside is never out of reach).
+start
+for i in 0 1 2; do step "$i" >/dev/null; done
+kill9
+launch
+step 3 >/dev/null # the first edit sets the earlier journal aside
+kill9
+[ -e "$work/w.world.recover.old" ] && [ -e "$work/w.world.recover" ]
+check "a second killed session leaves its own journal and the one it set aside" $?
+launch
+wid=$(timeout 30 xdotool search --sync --name '^Orogen' | head -n 1)
+aside="Recover unsaved edits/w.world.recover.old"
+widget "$own/Recover" >/dev/null && widget "$aside/Edits an earlier session set aside (w.world.recover.old)." >/dev/null
+check "the window offers both: the last session's journal and the one set aside" $?
+[ -n "$wid" ] && timeout 20 import -window "$wid" "$art/recover_dialog_two.png" 2>/dev/null
+line=$(recover_click "$aside/Recover" "${hashes[3]}")
+[ "$line" = "${hashes[3]}" ]; check "Recover on the set-aside journal restores its steps ($line, wanted ${hashes[3]})" $?
+# Not now puts the other offer off; File > Recover unsaved edits... still lists every
+# journal, and its Discard (naming the steps it drops) removes only that one.
+ask "recover list" 'w.world.recover:' >/dev/null
+grep -q "w.world.recover: 1 step" "$work/out"
+check "recover list shows the last session's journal after the other was recovered" $?
+kill9
+launch
+wid=$(timeout 30 xdotool search --sync --name '^Orogen' | head -n 1)
+read -r x y w h <<<"$(widget "Recover unsaved edits/Not now")"
+xdotool mousemove --window "$wid" $((x + w / 2)) $((y + h / 2)); sleep 0.3; xdotool click 1
+shown=1
+for _ in $(seq 30); do
+    before=$(wc -l <"$work/out")
+    ask "ui_widgets \"Recover unsaved edits/Not now\"" '^Viewport ' >/dev/null
+    tail -n +$((before + 1)) "$work/out" | grep -qF "Recover unsaved edits/Not now " || { shown=0; break; }
+    sleep 0.2
+done
+[ $shown = 0 ]
+check "Not now closes the offer" $?
+read -r x y w h <<<"$(widget "Menu/File")"
+xdotool mousemove --window "$wid" $((x + w / 2)) $((y + h / 2)); sleep 0.3; xdotool click 1
+read -r x y w h <<<"$(widget "Menu/File/Recover unsaved edits...")"
+xdotool mousemove --window "$wid" $((x + w / 2)) $((y + h / 2)); sleep 0.3; xdotool click 1
+read -r x y w h <<<"$(widget "$own/Discard 1 step")"
+[ -n "${h:-}" ]; check "File > Recover unsaved edits... lists the journal put off, with its Discard" $?
+[ -n "$wid" ] && timeout 20 import -window "$wid" "$art/recover_dialog_all.png" 2>/dev/null
+xdotool mousemove --window "$wid" $((x + w / 2)) $((y + h / 2)); sleep 0.3; xdotool click 1
+for _ in $(seq 30); do [ -e "$work/w.world.recover" ] || break; sleep 0.2; done
+[ ! -e "$work/w.world.recover" ]; check "its Discard removes that journal" $?
 kill9
 
 # A world that was never saved: its journal lives in the recovery folder, and the next
@@ -219,12 +271,12 @@ h_unsaved=$(step 1)
 kill9
 ls "$XDG_STATE_HOME"/orogen/recover/unsaved-*.recover >/dev/null 2>&1
 check "a never-saved world's steps are journaled in the recovery folder" $?
+unsaved=$(basename "$(ls -t "$XDG_STATE_HOME"/orogen/recover/unsaved-*.recover | head -n 1)")
 launch -
-read -r x y w h <<<"$(widget "Recover unsaved edits/Recover")"
-widget "Recover unsaved edits/A world that was never saved was open when Orogen stopped." >/dev/null
+widget "Recover unsaved edits/$unsaved/A world that was never saved was open when Orogen stopped." >/dev/null
 check "the next editor offers a never-saved world's edits" $?
 wid=$(timeout 30 xdotool search --sync --name '^Orogen' | head -n 1)
-line=$(recover_click "$h_unsaved")
+line=$(recover_click "Recover unsaved edits/$unsaved/Recover" "$h_unsaved")
 [ "$line" = "$h_unsaved" ]; check "Recover restores the never-saved world's terrain ($line, wanted $h_unsaved)" $?
 kill9
 
