@@ -235,6 +235,10 @@ int main(int argc, char **argv) {
         return 1;
     }
     FILE *recording = NULL;
+    if (record_path && file_kind_check_replace(record_path, &err) != 0) { // a FIFO would block
+        fprintf(stderr, "orogen: --record: %s\n", err.msg);
+        return 1;
+    }
     if (record_path && !(recording = fopen(record_path, "a"))) {
         fprintf(stderr, "orogen: --record: cannot open %s: %s\n", record_path, strerror(errno));
         return 1;

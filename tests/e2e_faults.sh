@@ -287,6 +287,8 @@ for t in fifo.png sock.png dev.png; do
     [ -e "$d/$t" ] || continue
     kind=$(stat -c %F "$d/$t")
     expect_refused "export to $t" -c "new flat; generate; export $d/$t region=0,0,64,64"
+    expect_refused "screenshot to $t" -c "new flat; screenshot $d/$t"
+    expect_refused "--record to $t" --record "$d/$t" -c "new flat"
     [ "$(stat -c %F "$d/$t")" = "$kind" ] || fail "special: $t was replaced"
 done
 for t in fifo.world dev.world; do
