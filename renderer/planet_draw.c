@@ -13,9 +13,9 @@
 ground_program *planet_ground_variant(planet_renderer *r, int variant, og_error *err) {
     ground_program *g = &r->ground[variant];
     if (g->prog) return g;
-    static const char *const names[] = {"SHADED", "DETAIL", "SEA",      "PAINTED",
-                                        "BARE",   "BRUSH",  "OVERLAYS", "MINIFIED"};
-    g->prog = shader_program_load_flags(r->shader_dir, "planet.vert", "planet.frag", names, 8,
+    static const char *const names[] = {"SHADED", "DETAIL",   "SEA",      "PAINTED", "BARE",
+                                        "BRUSH",  "OVERLAYS", "MINIFIED", "SEAM"};
+    g->prog = shader_program_load_flags(r->shader_dir, "planet.vert", "planet.frag", names, 9,
                                         (unsigned)variant, err);
     if (!g->prog) return NULL;
     g->offset = glGetUniformLocation(g->prog, "u_offset");
@@ -157,6 +157,7 @@ static int chunk_variant(const planet_renderer *r, const chunk *c, const ground_
     else if (c->lowest < ocean)
         v |= V_SEA;
     if (c->painted) v |= V_PAINTED;
+    if (c->blended) v |= V_SEAM;
     return v;
 }
 
@@ -284,7 +285,7 @@ int planet_renderer_draw(planet_renderer *r, const camera *cam, const render_set
         l->window = (signed char)planet_detail_chunk(r->detail, chunk_face(c), c->level,
                                                      c->metres_lo, c->metres_hi, c->metres_base[0],
                                                      c->metres_base[1], l->detail, l->wrap);
-        l->variant = (unsigned char)chunk_variant(r, c, &f, l->detail);
+        l->variant = (unsigned short)chunk_variant(r, c, &f, l->detail);
     }
     glBindVertexArray(r->vao);
     if (wire) glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);

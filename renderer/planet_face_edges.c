@@ -63,3 +63,41 @@ int planet_edge_height(planet_renderer *r, int level, const double dir[3], float
     *out = (float)(sum / faces);
     return 1;
 }
+
+// A vertex on a face's edge took its normal from central differences along its own
+// face's grid, whose lines past the edge run askew to the neighbour's (more so toward a
+// corner): the two faces gave the vertex different normals and the light stepped along
+// the edge. Here the differences are taken along a frame of the direction alone (east
+// and north), the same from every face, a level's cell each way.
+int planet_edge_normal(planet_renderer *r, int level, const double dir[3], double normal[3]) {
+    const double step = ldexp(r->cell_arc, level) / r->params.radius; // radians
+    double east[3] = {dir[2], 0.0, -dir[0]};                          // y up: y x dir
+    double len = sqrt(dot3(east, east));
+    if (len < 1e-9) east[0] = 1.0, east[2] = 0.0, len = 1.0; // at a pole (no edge is)
+    for (int a = 0; a < 3; a++)
+        east[a] /= len;
+    const double north[3] = {dir[1] * east[2] - dir[2] * east[1],
+                             dir[2] * east[0] - dir[0] * east[2],
+                             dir[0] * east[1] - dir[1] * east[0]};
+    double p[4][3];
+    for (int k = 0; k < 4; k++) {
+        const double *axis = k < 2 ? east : north, sign = k % 2 ? -1.0 : 1.0;
+        double d[3];
+        for (int a = 0; a < 3; a++)
+            d[a] = dir[a] + sign * step * axis[a];
+        const double dl = sqrt(dot3(d, d));
+        float h;
+        if (!planet_edge_height(r, level, d, &h)) return 0;
+        for (int a = 0; a < 3; a++)
+            p[k][a] = d[a] / dl * (r->params.radius + h);
+    }
+    double du[3], dv[3];
+    for (int a = 0; a < 3; a++)
+        du[a] = p[0][a] - p[1][a], dv[a] = p[2][a] - p[3][a];
+    double n[3] = {du[1] * dv[2] - du[2] * dv[1], du[2] * dv[0] - du[0] * dv[2],
+                   du[0] * dv[1] - du[1] * dv[0]};
+    const double nl = sqrt(dot3(n, n)), sign = dot3(n, dir) < 0 ? -1.0 : 1.0;
+    for (int a = 0; a < 3; a++)
+        normal[a] = nl > 0 ? sign * n[a] / nl : dir[a];
+    return 1;
+}

@@ -35,8 +35,11 @@ typedef struct planet_renderer planet_renderer;
 #define CHUNK_INDICES (BLOCK * BLOCK * 6 + 4 * BLOCK * 6)
 // Position 3 (from the chunk's origin), normal 3, up 3, height, uv 2, and the morph
 // target: where the vertex sits in the parent level's mesh (position 3, height).
-// Then the 8 painted material weights (uint8 each, packed in two 32-bit slots).
-#define VERTEX_FLOATS 18
+// Then the 8 painted material weights (uint8 each, packed in two 32-bit slots), and near
+// a face's edge the (up to two) neighbouring faces' texture metres and weights
+// (planet_face_blend.c).
+#define VERTEX_FLOATS 24
+#define BLEND_FLOAT0 18
 #define MAX_CHUNKS 3072 // resident meshes (~80 MB): several views' worth
 #define TABLE_SIZE 8192 // open addressing, power of two, > 2 x MAX_CHUNKS
 #define BUILD_BUDGET_MS 10.0
@@ -56,6 +59,7 @@ typedef struct chunk {
     float lowest;     // under hmin where the morph targets are lower
     float reach;      // metres from the origin to the farthest vertex (skirts aside)
     int painted;      // some vertex has painted weights
+    int blended;      // how many other faces' textures it blends in (planet_face_blend)
     int level;
     float top[TOP_CELLS][TOP_CELLS]; // the highest the mesh reaches over each cell (morphed or not)
     float top_max;                   // and over the whole chunk
@@ -77,7 +81,7 @@ typedef struct chunk {
 typedef struct chunk_look {
     float detail[4], wrap[2]; // planet_detail_chunk's
     signed char window;       // its detail window (-1: none)
-    unsigned char variant;
+    unsigned short variant;
 } chunk_look;
 
 // The ground program's variants (see planet.frag): what a chunk can show.
@@ -90,7 +94,8 @@ enum {
     V_BRUSH = 32,
     V_OVERLAYS = 64,
     V_MINIFIED = 128,
-    VARIANTS = 256
+    V_SEAM = 256,
+    VARIANTS = 512
 };
 
 typedef struct ground_program {
@@ -243,6 +248,14 @@ chunk *planet_try_build(planet_renderer *r, const node *n);
 // edge or corner (the mean of the faces there) or past it (the neighbouring face's).
 // 1 when read, 0 while a tile is pending.
 int planet_edge_height(planet_renderer *r, int level, const double dir[3], float *out);
+// The ground's normal at unit direction dir on a face's edge, the same from every face
+// there (planet_face_edges.c). 1 when made, 0 while a tile is pending.
+int planet_edge_normal(planet_renderer *r, int level, const double dir[3], double normal[3]);
+// Fills the grid vertices' blend floats (BLEND_FLOAT0 on) of a chunk of `face` whose
+// vertex coordinates are s, t (the ring's, RING long) and positions pos (ring x ring,
+// 3 doubles each); returns how many other faces it blends in.
+int planet_face_blend(const planet_renderer *r, int face, const double s[], const double t[],
+                      const double *pos, int ring, float *out);
 
 // Drawing (planet_draw.c): the ground program for a variant (V_* bits), built on first use.
 ground_program *planet_ground_variant(planet_renderer *r, int variant, og_error *err);

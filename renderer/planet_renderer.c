@@ -134,6 +134,12 @@ planet_renderer *planet_renderer_create(const char *resource_dir, GLuint albedo,
     glEnableVertexArrayAttrib(r->vao, 6); // the painted weights, as integers
     glVertexArrayAttribIFormat(r->vao, 6, 2, GL_UNSIGNED_INT, (GLuint)(16 * sizeof(float)));
     glVertexArrayAttribBinding(r->vao, 6, 0);
+    for (int a = 7; a <= 8; a++) { // the neighbouring faces' texture metres and weights
+        glEnableVertexArrayAttrib(r->vao, a);
+        glVertexArrayAttribFormat(r->vao, a, 3, GL_FLOAT, GL_FALSE,
+                                  (GLuint)((BLEND_FLOAT0 + 3 * (a - 7)) * sizeof(float)));
+        glVertexArrayAttribBinding(r->vao, a, 0);
+    }
     planet_drop_all(r);
     return r;
 }

@@ -31,7 +31,7 @@ static double vertex_coord(const planet_renderer *r, int level, int64_t e0, int 
 // tile's), at its level and, for the morph targets, at its parent's. 0 while a tile of a
 // neighbouring face is pending.
 static int edge_heights(planet_renderer *r, const node *n, double s[RING], double t[RING],
-                        float *heights, float *parent_heights) {
+                        float *heights, float *parent_heights, double (*normals)[3]) {
     int edge_s[RING], edge_t[RING], any = 0;
     for (int g = -1; g <= BLOCK + 1; g++) {
         s[g + 1] = vertex_coord(r, n->level, n->bx * BLOCK, g, &edge_s[g + 1]);
@@ -41,7 +41,7 @@ static int edge_heights(planet_renderer *r, const node *n, double s[RING], doubl
     for (int k = 0; k < RING * RING; k++)
         heights[k] = NAN;
     for (int k = 0; k < GRID_VERTS; k++)
-        parent_heights[k] = NAN;
+        parent_heights[k] = normals[k][0] = NAN;
     if (!any) return 1;
     for (int gj = -1; gj <= BLOCK + 1; gj++)
         for (int gi = -1; gi <= BLOCK + 1; gi++) {
@@ -50,6 +50,8 @@ static int edge_heights(planet_renderer *r, const node *n, double s[RING], doubl
             world_grid_face_direction(n->face, s[gi + 1], t[gj + 1], d);
             if (!planet_edge_height(r, n->level, d, &heights[(gj + 1) * RING + gi + 1])) return 0;
             const int grid = gi >= 0 && gj >= 0 && gi <= BLOCK && gj <= BLOCK;
+            if (grid && !planet_edge_normal(r, n->level, d, normals[gj * (BLOCK + 1) + gi]))
+                return 0;
             if (grid && gi % 2 == 0 && gj % 2 == 0 && n->level < r->root_level &&
                 !planet_edge_height(r, n->level + 1, d, &parent_heights[gj * (BLOCK + 1) + gi]))
                 return 0;
@@ -151,7 +153,7 @@ static int painted_weights(const node *n, const uint8_t *material, float *out) {
 static void build_vertices(const planet_renderer *r, const node *n, const float *tile,
                            const float *parent, const uint8_t *material, const double s[RING],
                            const double t[RING], const float *edge_h, const float *parent_edge_h,
-                           float *out, chunk *c) {
+                           const double (*edge_n)[3], float *out, chunk *c) {
     static double pos[RING * RING][3];
     static float heights[RING * RING];
     static double metres[RING][2];
@@ -223,9 +225,12 @@ static void build_vertices(const planet_renderer *r, const node *n, const float 
             double len = sqrt(nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2]);
             double sign = nn[0] * up[0] + nn[1] * up[1] + nn[2] * up[2] < 0 ? -1.0 : 1.0;
             float *o = out + (size_t)(gj * (BLOCK + 1) + gi) * VERTEX_FLOATS;
+            const double *edge_normal = edge_n[gj * (BLOCK + 1) + gi];
             for (int a = 0; a < 3; a++) {
                 o[a] = (float)(pos[k][a] - c->origin[a]);
-                o[3 + a] = (float)(len > 0 ? sign * nn[a] / len : up[a]);
+                o[3 + a] = (float)(!isnan(edge_normal[0]) ? edge_normal[a]
+                                   : len > 0              ? sign * nn[a] / len
+                                                          : up[a]);
                 o[6 + a] = (float)up[a];
             }
             o[9] = heights[k];
@@ -237,6 +242,7 @@ static void build_vertices(const planet_renderer *r, const node *n, const float 
             o[15] = coarse_h[q];
         }
     c->painted = painted_weights(n, material, out);
+    c->blended = planet_face_blend(r, n->face, s, t, &pos[0][0], RING, out);
     // A cell's top: its vertices' heights and morph targets (the triangles between them
     // are chords, under their corners; the targets between parent vertices sit on the
     // parent's chords, under the heights given).
@@ -342,7 +348,8 @@ chunk *planet_try_build(planet_renderer *r, const node *n) {
     // The vertices on the face's edges, from every face there (planet_face_edges.c).
     static double s[RING], t[RING];
     static float edge_h[RING * RING], parent_edge_h[GRID_VERTS];
-    if (!edge_heights(r, n, s, t, edge_h, parent_edge_h)) {
+    static double edge_n[GRID_VERTS][3];
+    if (!edge_heights(r, n, s, t, edge_h, parent_edge_h, edge_n)) {
         tile_cache_release(cache, &view);
         if (material.data) tile_cache_release(cache, &material);
         r->all_current = 0;
@@ -368,8 +375,8 @@ chunk *planet_try_build(planet_renderer *r, const node *n) {
     }
     static float verts[CHUNK_VERTS * VERTEX_FLOATS];
     chunk *c = &r->chunks[slot];
-    build_vertices(r, n, view.data, parent.data, material.data, s, t, edge_h, parent_edge_h, verts,
-                   c);
+    build_vertices(r, n, view.data, parent.data, material.data, s, t, edge_h, parent_edge_h,
+                   (const double(*)[3])edge_n, verts, c);
     c->cos_widest = footprint_corners(r, n, c->corner_dir);
     for (int j = 0; j <= CREST_SQUARES; j++)
         for (int i = 0; i <= CREST_SQUARES; i++) {

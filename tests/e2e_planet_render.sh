@@ -46,9 +46,12 @@ run "new planet preset=moon; screenshot $work/planet_moon.png $size"
 rc=$?; check "the moon preset renders ($(cat "$work/err"))" $rc
 # Issue 29's reproducers: the sea 100 m below a camera looking out to the horizon (its
 # near part was left out, black), and a camera 2 m up on a face edge (the neighbouring
-# face's near ground was missing: its edge stood higher than the camera).
+# face's near ground was missing: its edge stood higher than the camera); the ground
+# 2 m over a face edge and at a cube corner (the textures' pattern broke along the edge).
 run "new planet preset=earth; camera_geo 0 20 100 90 -10; screenshot $work/planet_sea_low.png $size;
-     camera_geo 10.004 45 2 110 -12 60 ground; screenshot $work/planet_face_edge.png $size"
+     camera_geo 10.004 45 2 110 -12 60 ground; screenshot $work/planet_face_edge.png $size;
+     camera_geo 10 45 2 0 -8 60 ground; screenshot $work/planet_face_seam.png $size;
+     camera_geo 35.2644 -45 3 200 -40 60 ground; screenshot $work/planet_face_corner.png $size"
 rc=$?; check "the issue-29 reproducers render ($(cat "$work/err"))" $rc
 # Over the sea `ground` means the surface a person floats on, and pick finds the
 # surface (the floor under it on request): the camera never lands on the sea floor.
@@ -69,7 +72,7 @@ check "seed 004's face is 15.6 m across in face-local metres (face_extent_m=$ext
 max_golden=2.0
 mkdir -p "$failed_dir"
 for name in planet_orbit planet_10km planet_2m planet_wire planet_seed004 planet_moon \
-    planet_sea_low planet_face_edge; do
+    planet_sea_low planet_face_edge planet_face_seam planet_face_corner; do
     if [ -n "${OROGEN_UPDATE_GOLDEN:-}" ]; then
         mkdir -p "$golden" && cp "$work/$name.png" "$golden/$name.png"
         echo "updated $golden/$name.png"

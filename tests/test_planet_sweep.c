@@ -247,19 +247,20 @@ typedef struct place {
 } place;
 
 // One pose: above_surface metres over the ground or the sea, pitch, yaw.
-static void pose(world *w, const char *preset, const place *pl, double above, double pitch,
-                 double yaw) {
+static void pose_fov(world *w, const char *preset, const place *pl, double above, double pitch,
+                     double yaw, double fov) {
     const world_params *p = world_get_params(w);
     const double surface = fmax(surface_at(w, pl->lat, pl->lon), world_params_ocean_height(p));
     camera c;
     camera_default(&c);
     planet_position(pl->lat, pl->lon, p->radius + surface + above, c.pos);
-    c.pitch = pitch, c.yaw = yaw;
+    c.pitch = pitch, c.yaw = yaw, c.fov_y = fov;
     render(w, &c);
     frame_result fr = inspect(&c, p);
     S.poses++;
     char name[256];
-    snprintf(name, sizeof name, "%s-%s-%gm-pitch%g-yaw%g", preset, pl->name, above, pitch, yaw);
+    snprintf(name, sizeof name, "%s-%s-%gm-pitch%g-yaw%g-fov%g", preset, pl->name, above, pitch,
+             yaw, fov);
     if (fr.holes > HOLE_TOLERANCE || fr.black > HOLE_TOLERANCE) {
         S.holes++;
         printf("HOLE %s: %d pixels without ground (the first at %d, %d), %d black in sunlight\n",
@@ -273,6 +274,11 @@ static void pose(world *w, const char *preset, const place *pl, double above, do
                name, fr.seam_pairs, fr.edge_step, fr.beside_step, fr.band_gap);
         save_failure(name);
     }
+}
+
+static void pose(world *w, const char *preset, const place *pl, double above, double pitch,
+                 double yaw) {
+    pose_fov(w, preset, pl, above, pitch, yaw, 60);
 }
 
 // A place whose surface is land (want 1) or sea (want 0) at least `margin` from the
@@ -337,6 +343,17 @@ static void sweep_preset(const char *preset) {
     for (int i = 0; i < n; i++)
         for (size_t k = 0; k < sizeof POSES / sizeof POSES[0]; k++)
             pose(w, preset, &places[i], POSES[k][0], POSES[k][1], fmod(110.0 + 47.0 * k, 360.0));
+    // The material textures close up, magnified (a narrow field of view makes a pixel a
+    // few millimetres of ground): across the edge and at the corners their coordinates
+    // must run on, or the texture's pattern breaks along a line. And the cube's corner
+    // over land on the Earth-like preset (45 W), where the light stepped along the edges.
+    const place west = {"corner-west", 35.2644, -45};
+    pose_fov(w, preset, &places[n - 4], 2, -70, 160, 12); // the edge
+    pose_fov(w, preset, &places[n - 2], 2, -70, 160, 12); // the corner
+    pose_fov(w, preset, &west, 2, -70, 160, 12);
+    pose(w, preset, &west, 2, -35, 157);
+    pose(w, preset, &west, 100, -10, 298);
+    pose(w, preset, &west, 600, -80, 200);
     world_close(w);
 }
 

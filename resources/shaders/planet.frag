@@ -6,7 +6,8 @@
 // debug view modes), DETAIL (the detail window covers the chunk), SEA (some of it is
 // under the sea), PAINTED (painted weights), BARE (a planet without a sea: bare
 // ground), BRUSH (the cursor reaches it), OVERLAYS (a View menu grid is on), MINIFIED
-// (so far that the material textures' near scale is below a pixel). A software
+// (so far that the material textures' near scale is below a pixel), SEAM (near a face's
+// edge: the neighbouring faces' textures blend in). A software
 // renderer runs every branch of an `if` for every fragment, so what a chunk cannot show
 // is left out of its program rather than skipped at run time.
 #include "materials.glsl"
@@ -19,6 +20,9 @@ in vec2 v_metres;
 in vec4 v_paint0, v_paint1; // painted weights: 0 automatic, 1-7 sand, grass, rock, snow, dirt,
                             // gravel, moss
 in vec3 v_air, v_transmittance, v_sky_reflected; // the atmosphere, per vertex (planet.vert)
+#ifdef SEAM
+in vec3 v_other0, v_other1; // other faces' texture metres (xy) and weights (z)
+#endif
 out vec4 o_colour;
 uniform int u_view_mode; // VIEW_SHADED 0, WIREFRAME 1, LEVELS 2, HEIGHT 3, SLOPE 4
 uniform int u_level;
@@ -89,6 +93,35 @@ vec3 planet_automatic(float h, float slope, float lat_sin, vec2 uv, vec2 uv_far)
     return blend2(vec4(c, 0.5), albedo(3, uv, uv_far), snowy);
 }
 
+#ifdef SHADED
+// The ground's colour before lighting, its textures looked up at uv and uv_far.
+vec3 ground_albedo(vec2 uv, vec2 uv_far, float slope, vec3 up) {
+    vec3 base;
+#ifdef BARE // no sea: bare ground by slope (and height, for dust in the lowlands)
+    vec4 low = albedo(u_palette == 1 ? 5 : 0, uv, uv_far), mid = albedo(u_palette == 1 ? 2 : 4, uv, uv_far);
+    vec4 steep = albedo(7, uv, uv_far);
+    float lowland = 1.0 - smoothstep(-0.4, 0.2, v_height / max(u_max_height, 1e-6));
+    vec3 c0 = blend2(mid, low, lowland);
+    base = blend2(vec4(c0, 0.5), steep, smoothstep(0.5, 1.0, slope));
+    if (u_palette == 2) base *= vec3(1.15, 0.78, 0.58); // iron-red dust
+    else base = vec3(dot(base, vec3(0.3, 0.5, 0.2))) * 0.9; // grey regolith
+    if (u_palette == 2) { // Mars-like: ice caps at the poles
+        float cap = smoothstep(0.93, 0.97, abs(up.y)) * (1.0 - smoothstep(0.6, 0.9, slope));
+        base = blend2(vec4(base, 0.5), vec4(vec3(0.92, 0.9, 0.88), 0.5), cap);
+    }
+#else
+    base = planet_automatic(v_height, slope, up.y, uv, uv_far);
+#endif
+#ifdef PAINTED // as the flat viewport blends the weights
+    base = base * v_paint0.x + albedo(0, uv, uv_far).rgb * v_paint0.y +
+           albedo(1, uv, uv_far).rgb * v_paint0.z + albedo(2, uv, uv_far).rgb * v_paint0.w +
+           albedo(3, uv, uv_far).rgb * v_paint1.x + albedo(4, uv, uv_far).rgb * v_paint1.y +
+           albedo(5, uv, uv_far).rgb * v_paint1.z + albedo(6, uv, uv_far).rgb * v_paint1.w;
+#endif
+    return base;
+}
+#endif
+
 void main() {
     vec3 n = normalize(v_normal), up = normalize(v_up);
     float dist = length(v_rel);
@@ -129,26 +162,15 @@ void main() {
     vec3 c = base * (ambient + u_sun_colour * diffuse);
 #else
     vec2 uv = (v_metres + shift_m) / u_tex_period.x, uv_far = v_metres / u_tex_period.y;
-#ifdef BARE // no sea: bare ground by slope (and height, for dust in the lowlands)
-    vec4 low = albedo(u_palette == 1 ? 5 : 0, uv, uv_far), mid = albedo(u_palette == 1 ? 2 : 4, uv, uv_far);
-    vec4 steep = albedo(7, uv, uv_far);
-    float lowland = 1.0 - smoothstep(-0.4, 0.2, v_height / max(u_max_height, 1e-6));
-    vec3 c0 = blend2(mid, low, lowland);
-    vec3 base = blend2(vec4(c0, 0.5), steep, smoothstep(0.5, 1.0, slope));
-    if (u_palette == 2) base *= vec3(1.15, 0.78, 0.58); // iron-red dust
-    else base = vec3(dot(base, vec3(0.3, 0.5, 0.2))) * 0.9; // grey regolith
-    if (u_palette == 2) { // Mars-like: ice caps at the poles
-        float cap = smoothstep(0.93, 0.97, abs(up.y)) * (1.0 - smoothstep(0.6, 0.9, slope));
-        base = blend2(vec4(base, 0.5), vec4(vec3(0.92, 0.9, 0.88), 0.5), cap);
-    }
-#else
-    vec3 base = planet_automatic(v_height, slope, up.y, uv, uv_far);
-#endif
-#ifdef PAINTED // as the flat viewport blends the weights
-    base = base * v_paint0.x + albedo(0, uv, uv_far).rgb * v_paint0.y +
-           albedo(1, uv, uv_far).rgb * v_paint0.z + albedo(2, uv, uv_far).rgb * v_paint0.w +
-           albedo(3, uv, uv_far).rgb * v_paint1.x + albedo(4, uv, uv_far).rgb * v_paint1.y +
-           albedo(5, uv, uv_far).rgb * v_paint1.z + albedo(6, uv, uv_far).rgb * v_paint1.w;
+vec3 base = ground_albedo(uv, uv_far, slope, up);
+#ifdef SEAM // weights that depend on the point alone: both sides of an edge mix alike
+    base *= 1.0 - v_other0.z - v_other1.z;
+    if (v_other0.z > 0.0)
+        base += v_other0.z * ground_albedo(v_other0.xy / u_tex_period.x,
+                                           v_other0.xy / u_tex_period.y, slope, up);
+    if (v_other1.z > 0.0)
+        base += v_other1.z * ground_albedo(v_other1.xy / u_tex_period.x,
+                                           v_other1.xy / u_tex_period.y, slope, up);
 #endif
     vec3 c = base * (ambient + u_sun_colour * diffuse);
 #ifdef SEA

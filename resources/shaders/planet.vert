@@ -13,6 +13,11 @@ layout(location = 3) in float a_height;
 layout(location = 4) in vec2 a_metres;
 layout(location = 5) in vec4 a_coarse; // the vertex in the parent level's mesh, and its height
 layout(location = 6) in uvec2 a_paint; // the 8 painted weights, a byte each
+#ifdef SEAM // near a face's edge: the neighbouring faces' texture metres and weights
+layout(location = 7) in vec3 a_other0;
+layout(location = 8) in vec3 a_other1;
+out vec3 v_other0, v_other1;
+#endif
 uniform mat4 u_view_proj;
 uniform vec3 u_offset;
 uniform float u_ocean_h; // the sea's height above the datum
@@ -35,6 +40,9 @@ void main() {
     v_up = a_up;
     v_height = height;
     v_metres = a_metres;
+#ifdef SEAM
+    v_other0 = a_other0, v_other1 = a_other1;
+#endif
     v_paint0 = vec4(a_paint.x & 255u, (a_paint.x >> 8) & 255u, (a_paint.x >> 16) & 255u,
                     a_paint.x >> 24) / 255.0;
     v_paint1 = vec4(a_paint.y & 255u, (a_paint.y >> 8) & 255u, (a_paint.y >> 16) & 255u,
