@@ -8,8 +8,9 @@
 #include <stdio.h>
 
 typedef int (*read_fn)(const char *, int, long long, float **, int *, int *, int *, int *,
-                       double[6], int *, char *, size_t, og_error *);
-typedef int (*write_fn)(const char *, const float *, int, int, const double[6], og_error *);
+                       gdal_georef *, char *, size_t, og_error *);
+typedef int (*write_fn)(const char *, const float *, int, int, int, const double[6], const char *,
+                        og_error *);
 
 static struct {
     pthread_once_t once;
@@ -27,8 +28,8 @@ static void load_module(void) {
 #endif
                           module.why, sizeof module.why);
     if (!h) return;
-    module.read = (read_fn)dlsym(h, "orogen_gdal_module_read");
-    module.write = (write_fn)dlsym(h, "orogen_gdal_module_write_geotiff");
+    module.read = (read_fn)dlsym(h, "orogen_gdal_module_read_georef");
+    module.write = (write_fn)dlsym(h, "orogen_gdal_module_write_geotiff_crs");
     if (module.read && module.write) return;
     snprintf(module.why, sizeof module.why, "liborogen_gdal.so is not Orogen's GDAL module");
     module.read = NULL;
@@ -41,22 +42,23 @@ int gdal_raster_available(char *why, size_t why_len) {
 }
 
 int gdal_raster_read(const char *path, int max_size, long long max_samples, float **samples,
-                     int *width, int *height, int *kind, int *bits, double geotransform[6],
-                     int *geographic, char *desc, size_t desc_len, og_error *err) {
+                     int *width, int *height, int *kind, int *bits, gdal_georef *geo, char *desc,
+                     size_t desc_len, og_error *err) {
     *samples = NULL;
     if (file_kind_check_read(path, err) != 0) return -1;
     if (!gdal_raster_available(NULL, 0))
         return og_error_set(err, "%s: elevation rasters need GDAL, which is unavailable: %s", path,
                             module.why);
-    return module.read(path, max_size, max_samples, samples, width, height, kind, bits,
-                       geotransform, geographic, desc, desc_len, err);
+    return module.read(path, max_size, max_samples, samples, width, height, kind, bits, geo, desc,
+                       desc_len, err);
 }
 
 int gdal_raster_write_geotiff(const char *path, const float *samples, int width, int height,
-                              const double geotransform[6], og_error *err) {
+                              int uint16, const double geotransform[6], const char *crs,
+                              og_error *err) {
     if (file_kind_check_replace(path, err) != 0) return -1;
     if (!gdal_raster_available(NULL, 0))
         return og_error_set(err, "%s: GeoTIFF export needs GDAL, which is unavailable: %s", path,
                             module.why);
-    return module.write(path, samples, width, height, geotransform, err);
+    return module.write(path, samples, width, height, uint16, geotransform, crs ? crs : "", err);
 }

@@ -210,12 +210,13 @@ int64_t raster_fill_voids(float *s, int width, int height) {
 // ---- dispatch ---------------------------------------------------------------------
 
 static int read_gdal(const char *path, raster *out, og_error *err) {
-    double gt[6];
-    int kind, bits, geographic;
+    int kind, bits;
     char desc[160];
     if (gdal_raster_read(path, RASTER_MAX_SIZE, RASTER_MAX_SAMPLES, &out->samples, &out->width,
-                         &out->height, &kind, &bits, gt, &geographic, desc, sizeof desc, err) != 0)
+                         &out->height, &kind, &bits, &out->georef, desc, sizeof desc, err) != 0)
         return -1;
+    const double *gt = out->georef.geotransform;
+    const int geographic = out->georef.geographic;
     out->kind = (raster_kind)kind;
     out->bits = bits;
     snprintf(out->reader, sizeof out->reader, "gdal");

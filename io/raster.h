@@ -6,6 +6,7 @@
 #define OROGEN_IO_RASTER_H
 
 #include "io/err.h"
+#include "io/gdal_raster.h"
 
 #include <stddef.h>
 #include <stdint.h>
@@ -39,6 +40,7 @@ typedef struct raster {
     double spacing_x;      // metres between columns from the file's georeferencing; 0: none
     double spacing_z;      // metres between rows; 0: none
     int64_t voids;         // missing samples (nodata, NaN) filled from their surroundings
+    gdal_georef georef;    // GDAL's geotransform and CRS (zero / "" when not georeferenced)
     char reader[16];       // "image", "gdal" or "raw"
     char description[256]; // what was read: format, sample type, georeferencing, units
 } raster;

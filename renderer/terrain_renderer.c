@@ -694,10 +694,11 @@ static void set_terrain_uniforms(terrain_renderer *r, GLuint prog, const camera 
         source_uniform(r, l, coarser >= 0 ? coarser : r->src[l], src_b[l]);
         if (p->size > 0) {
             double last = (double)(p->size - 1) / mult;
+            double last_z = (double)(world_params_size_z(p) - 1) / mult;
             bounds[l][0] = (float)(-(double)r->origin[l][0]);
             bounds[l][1] = (float)(-(double)r->origin[l][1]);
             bounds[l][2] = (float)(last - (double)r->origin[l][0]);
-            bounds[l][3] = (float)(last - (double)r->origin[l][1]);
+            bounds[l][3] = (float)(last_z - (double)r->origin[l][1]);
         } else {
             bounds[l][0] = bounds[l][1] = -UNBOUNDED;
             bounds[l][2] = bounds[l][3] = UNBOUNDED;
@@ -882,9 +883,11 @@ static int draw_terrain(terrain_renderer *r, const camera *cam, const render_set
         // it are not drawn (the fragment shader discards the rest of the outside).
         double lo[2] = {-1e18, -1e18}, hi[2] = {1e18, 1e18};
         if (r->params.size > 0) {
-            double last = (double)(r->params.size - 1) / (double)((int64_t)1 << l);
+            const double last[2] = {(double)(r->params.size - 1) / (double)((int64_t)1 << l),
+                                    (double)(world_params_size_z(&r->params) - 1) /
+                                        (double)((int64_t)1 << l)};
             for (int a = 0; a < 2; a++)
-                lo[a] = -(double)r->origin[l][a], hi[a] = last - (double)r->origin[l][a];
+                lo[a] = -(double)r->origin[l][a], hi[a] = last[a] - (double)r->origin[l][a];
         }
         // Parts wholly inside the morph band's inner edge (the camera's square of side
         // 2 x MORPH_START, less a hundredth for the varyings' rounding) never morph: they
@@ -977,7 +980,8 @@ static void draw_water(terrain_renderer *r, const camera *cam, const render_sett
     double z0 = cam->pos[2] - reach, z1 = cam->pos[2] + reach;
     if (p->size > 0) {
         double last = (double)(p->size - 1) * p->spacing;
-        x0 = fmax(x0, 0), z0 = fmax(z0, 0), x1 = fmin(x1, last), z1 = fmin(z1, last);
+        double last_z = (double)(world_params_size_z(p) - 1) * p->spacing;
+        x0 = fmax(x0, 0), z0 = fmax(z0, 0), x1 = fmin(x1, last), z1 = fmin(z1, last_z);
         if (x0 >= x1 || z0 >= z1) return;
     }
     GLuint prog = r->prog_water;

@@ -52,11 +52,12 @@ int viewport_default_camera(viewport *v, world *w, og_error *err) {
         return 0;
     }
     double centre = p->size > 0 ? 0.5 * (double)(p->size - 1) * p->spacing : 0.0;
+    double centre_z = p->size > 0 ? 0.5 * (double)(world_params_size_z(p) - 1) * p->spacing : 0.0;
     double ground = 0;
-    if (world_sample(w, 0, centre, centre, &ground, err) != 0) return -1;
+    if (world_sample(w, 0, centre, centre_z, &ground, err) != 0) return -1;
     camera_default(&v->cam);
     v->cam.pos[0] = centre;
-    v->cam.pos[2] = centre;
+    v->cam.pos[2] = centre_z;
     v->cam.pos[1] = fmax(ground, world_params_ocean_height(p)) + fmax(40.0, 0.25 * p->max_height);
     v->cam.yaw = 30;
     v->cam.pitch = -18;

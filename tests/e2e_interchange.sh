@@ -85,6 +85,13 @@ check "export tif, exr, png, 16-bit tif and r16" $status
 h=$(tail -n 1 "$work/out")
 gdalinfo "$work/v.tif" >"$work/gdalinfo" 2>&1
 grep -q "Size is 3601, 3601\|Size is 1201, 1201" "$work/gdalinfo"; check "gdalinfo: size" $?
+# A world made from the DEM keeps its place: the GeoTIFF has the DEM's geotransform
+# (e2e_georef.sh checks corners and coordinate systems in full).
+grep -q "Pixel Size = (0.000833333333333,-0.000833333333333)" "$work/gdalinfo"; check "gdalinfo: the DEM's pixels" $?
+grep -q "Origin = (-72.000416666666666,45.000416666666666)" "$work/gdalinfo"; check "gdalinfo: the DEM's origin" $?
+# Without georeferencing: local metres, north-up, the origin half a sample out.
+run -c "new flat; set generator flat; set size 300; set spacing 30; generate; export $work/local.tif region=0,0,3000,3000"
+gdalinfo "$work/local.tif" >"$work/gdalinfo" 2>&1
 grep -q "Pixel Size = (30.000000000000000,-30.000000000000000)" "$work/gdalinfo"; check "gdalinfo: 30 m pixels" $?
 grep -q "Origin = (-15.000000000000000,15.000000000000000)" "$work/gdalinfo"; check "gdalinfo: origin half a sample out" $?
 same "$(gdallocationinfo -valonly "$work/v.tif" 100 200)" "$h" 0; check "gdallocationinfo on the GeoTIFF equals sample" $?

@@ -126,10 +126,12 @@ static void test_defaults_are_valid(void **state) {
 static void test_key_table(void **state) {
     (void)state;
     static const char *const expected[] = {
-        "kind",       "generator",    "seed",         "octaves",      "w_factor",    "exponent",
-        "max_height", "ocean_level",  "radius",       "omega",        "atmosphere",  "spacing",
-        "size",       "detail_ratio", "volume_ratio", "feature_size", "base_height", "roughness",
-        "smoothing",  "ridge_offset", "fault_count",  "tiles",        "tiles_id",    "tiles_saved"};
+        "kind",         "generator",    "seed",        "octaves",       "w_factor",
+        "exponent",     "max_height",   "ocean_level", "radius",        "omega",
+        "atmosphere",   "spacing",      "size",        "size_z",        "detail_ratio",
+        "volume_ratio", "feature_size", "base_height", "roughness",     "smoothing",
+        "ridge_offset", "fault_count",  "geo_crs",     "geo_transform", "tiles",
+        "tiles_id",     "tiles_saved"};
     size_t n = sizeof expected / sizeof expected[0];
     assert_int_equal(world_params_key_count(), n);
     for (size_t i = 0; i < n; i++) {
@@ -201,6 +203,18 @@ static void test_set_get_every_key(void **state) {
         {"tiles_id", "", ""},
         {"tiles_saved", "12", "12"},
         {"tiles_saved", "-1", "-1"},
+        {"size_z", "800", "800"},
+        {"size_z", "0", "0"},
+        {"geo_crs", "EPSG:32619", "EPSG:32619"},
+        {"geo_crs", "GEOGCS[\"WGS 84\",AUTHORITY[\"EPSG\",\"4326\"]]",
+         "GEOGCS[\"WGS 84\",AUTHORITY[\"EPSG\",\"4326\"]]"},
+        {"geo_crs", "", ""},
+        {"geo_transform",
+         "-72.000416666666666,0.00083333333333333339,0,45.000416666666666, 0, "
+         "-0.00083333333333333339",
+         "-72.00041666666667, 0.0008333333333333334, 0, 45.000416666666666, 0, "
+         "-0.0008333333333333334"},
+        {"geo_transform", "", ""},
     };
     world_params p;
     world_params_default(&p, WORLD_FLAT);
@@ -230,33 +244,67 @@ static void test_set_get_every_key(void **state) {
 static void test_bad_values_rejected(void **state) {
     (void)state;
     static const char *const bad[][2] = {
-        {"kind", "sphere"},       {"kind", ""},
-        {"generator", "7"},       {"generator", "1.0"},
-        {"generator", "fbm2"},    {"seed", "12abc"},
-        {"seed", "1.5"},          {"seed", ""},
-        {"seed", " 12"},          {"seed", "9223372036854775808"},
-        {"seed", "0x10"},         {"octaves", "0"},
-        {"octaves", "30.000001"}, {"octaves", "nan"},
-        {"octaves", "12abc"},     {"w_factor", "1.5"},
-        {"w_factor", "0"},        {"exponent", "1"},
-        {"exponent", "8.5"},      {"max_height", "0"},
-        {"max_height", "-1"},     {"max_height", "1e300"},
-        {"ocean_level", "inf"},   {"ocean_level", "-inf"},
-        {"ocean_level", "NaN"},   {"ocean_level", "1e400"},
-        {"ocean_level", "1,5"},   {"radius", "0"},
-        {"radius", "2e9"},        {"omega", "infinity"},
-        {"spacing", "0"},         {"spacing", "1e6"},
-        {"size", "-1"},           {"size", "549755813889"},
-        {"size", "100.5"},        {"detail_ratio", "0"},
-        {"detail_ratio", "65"},   {"volume_ratio", "0"},
-        {"volume_ratio", "9"},    {"feature_size", "-1"},
-        {"base_height", "nan"},   {"roughness", "2.5"},
-        {"smoothing", "1.01"},    {"ridge_offset", "-0.1"},
-        {"fault_count", "10001"}, {"fault_count", "-1"},
-        {"tiles", "a;b"},         {"tiles", "a#b"},
-        {"tiles", " lead"},       {"tiles", "tab\there"},
-        {"tiles_id", "0123"},     {"tiles_id", "0123456789ABCDEF0123456789ABCDEF"},
+        {"kind", "sphere"},
+        {"kind", ""},
+        {"generator", "7"},
+        {"generator", "1.0"},
+        {"generator", "fbm2"},
+        {"seed", "12abc"},
+        {"seed", "1.5"},
+        {"seed", ""},
+        {"seed", " 12"},
+        {"seed", "9223372036854775808"},
+        {"seed", "0x10"},
+        {"octaves", "0"},
+        {"octaves", "30.000001"},
+        {"octaves", "nan"},
+        {"octaves", "12abc"},
+        {"w_factor", "1.5"},
+        {"w_factor", "0"},
+        {"exponent", "1"},
+        {"exponent", "8.5"},
+        {"max_height", "0"},
+        {"max_height", "-1"},
+        {"max_height", "1e300"},
+        {"ocean_level", "inf"},
+        {"ocean_level", "-inf"},
+        {"ocean_level", "NaN"},
+        {"ocean_level", "1e400"},
+        {"ocean_level", "1,5"},
+        {"radius", "0"},
+        {"radius", "2e9"},
+        {"omega", "infinity"},
+        {"spacing", "0"},
+        {"spacing", "1e6"},
+        {"size", "-1"},
+        {"size", "549755813889"},
+        {"size", "100.5"},
+        {"detail_ratio", "0"},
+        {"detail_ratio", "65"},
+        {"volume_ratio", "0"},
+        {"volume_ratio", "9"},
+        {"feature_size", "-1"},
+        {"base_height", "nan"},
+        {"roughness", "2.5"},
+        {"smoothing", "1.01"},
+        {"ridge_offset", "-0.1"},
+        {"fault_count", "10001"},
+        {"fault_count", "-1"},
+        {"tiles", "a;b"},
+        {"tiles", "a#b"},
+        {"tiles", " lead"},
+        {"tiles", "tab\there"},
+        {"tiles_id", "0123"},
+        {"tiles_id", "0123456789ABCDEF0123456789ABCDEF"},
         {"tiles_saved", "-2"},
+        {"size_z", "-1"},
+        {"size_z", "1.5"},
+        {"geo_crs", "a;b"},
+        {"geo_crs", "a#b"},
+        {"geo_transform", "1,2,3"},
+        {"geo_transform", "1,2,3,4,5,6,7"},
+        {"geo_transform", "1,0,0,4,0,0"},
+        {"geo_transform", "1,2,0,4,0,nan"},
     };
     world_params p, before;
     world_params_default(&p, WORLD_FLAT);
@@ -279,7 +327,7 @@ static void test_bad_values_rejected(void **state) {
     for (size_t k = 0; k < world_params_key_count(); k++) {
         const char *key = world_params_key(k);
         for (size_t i = 0; i < sizeof nonfinite / sizeof nonfinite[0]; i++) {
-            if (!strcmp(key, "tiles")) continue;
+            if (!strcmp(key, "tiles") || !strcmp(key, "geo_crs")) continue;
             assert_int_equal(world_params_set(&p, key, nonfinite[i], &err), -1);
         }
     }
@@ -653,6 +701,17 @@ static void test_validate(void **state) {
     assert_non_null(strstr(err.msg, "size"));
     p.size = 2;
     assert_int_equal(world_params_validate(&p, &err), 0);
+    // Rectangular: rows of their own, 2 or more, on a bounded world only.
+    p.size = 1201, p.size_z = 800;
+    assert_int_equal(world_params_validate(&p, &err), 0);
+    assert_int_equal(world_params_size_z(&p), 800);
+    p.size_z = 1;
+    assert_int_equal(world_params_validate(&p, &err), -1);
+    assert_non_null(strstr(err.msg, "size_z"));
+    p.size = 0, p.size_z = 800;
+    assert_int_equal(world_params_validate(&p, &err), -1);
+    p.size = 300, p.size_z = 0;
+    assert_int_equal(world_params_size_z(&p), 300);
     // Fields filled directly get the same range checks as `set`.
     p.spacing = NAN;
     assert_int_equal(world_params_validate(&p, &err), -1);

@@ -35,7 +35,7 @@ static int parse_face(int argc, char **argv, int index, int *face, og_error *err
 // ---- parameter printing ----------------------------------------------------------
 
 static void print_params(FILE *out, const world_params *p) {
-    char value[1100];
+    char value[WORLD_VALUE_MAX];
     for (size_t i = 0; i < world_params_key_count(); i++) {
         const char *key = world_params_key(i);
         if (world_params_get(p, key, value, sizeof value) == 0)
@@ -264,7 +264,7 @@ static int c_generator(cmd_context *ctx, int argc, char **argv, og_error *err) {
 // seed, octaves, w_factor, ...: set the next world's parameter, or print it.
 static int c_param(cmd_context *ctx, int argc, char **argv, og_error *err) {
     if (argc == 1) {
-        char value[1100];
+        char value[WORLD_VALUE_MAX];
         world_params_get(&ctx->next, argv[0], value, sizeof value);
         fprintf(ctx->out, "%s\n", value);
         return 0;
@@ -301,6 +301,7 @@ static int c_info(cmd_context *ctx, int argc, char **argv, og_error *err) {
     fprintf(o, "kind=%s\n", p->kind == WORLD_PLANET ? "planet" : "flat");
     fprintf(o, "generator=%s\n", gen_kind_name(p->generator));
     fprintf(o, "size=%" PRId64 "\n", p->size);
+    if (p->kind == WORLD_FLAT) fprintf(o, "size_z=%" PRId64 "\n", world_params_size_z(p));
     fprintf(o, "spacing=%.17g\n", p->spacing);
     fprintf(o, "tile_size=%d\n", TILE_SIZE);
     if (p->kind == WORLD_PLANET) {

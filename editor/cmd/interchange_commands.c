@@ -4,6 +4,7 @@
 #include "editor/interchange/export_planet.h"
 #include "editor/interchange/export_vdb.h"
 #include "editor/interchange/import.h"
+#include "editor/params/world_georef.h"
 #include "io/parse.h"
 
 #include <math.h>
@@ -65,21 +66,38 @@ world *cmd_world_from_raster(cmd_context *ctx, const char *path, int argc, char 
     world_params_default(&p, WORLD_FLAT);
     import_source src;
     if (import_source_read(path, &o, p.max_height, &src, err) != 0) return NULL;
-    // One world sample per raster sample along the finer axis.
+    // The world is the raster: one coarse sample per raster sample, every row and
+    // column, at one spacing. Rows and columns of a geographic DEM are different
+    // distances apart (degrees of longitude shrink toward the poles): the world then
+    // takes their geometric mean (areas kept) unless spacing= says.
     double sx = src.spacing_x, sz = src.spacing_z;
     if (sx <= 0) sx = sz = p.spacing;
     const int width = src.raster.width, height = src.raster.height;
-    const double spacing = fmin(sx, sz);
+    if (width < 2 || height < 2) {
+        og_error_set(err, "%s: %d x %d samples: a world needs at least 2 x 2", path, width, height);
+        import_source_free(&src);
+        return NULL;
+    }
+    const double spacing = sx == sz ? sx : sqrt(sx * sz);
     p.generator = GEN_FLAT;
-    p.base_height = src.min; // where the raster does not reach (a non-square raster)
+    p.base_height = src.min;
     p.max_height = fmax(1.0, fmax(fabs(src.min), fabs(src.max)));
     p.spacing = spacing;
-    p.size = (int64_t)ceil(fmax((width - 1) * sx, (height - 1) * sz) / spacing - 1e-6) + 1;
+    p.size = width;
+    p.size_z = height == width ? 0 : height;
+    // The source's place on the Earth, by sample: the world's coarse sample (column,
+    // row) is the raster's.
+    const gdal_georef *geo = &src.raster.georef;
+    if (geo->geotransform[1] * geo->geotransform[5] - geo->geotransform[2] * geo->geotransform[4] !=
+        0) {
+        memcpy(p.geo_transform, geo->geotransform, sizeof p.geo_transform);
+        snprintf(p.geo_crs, sizeof p.geo_crs, "%s", geo->crs);
+    }
     world *w = world_params_validate(&p, err) == 0 ? world_create(&p, &ctx->settings, err) : NULL;
     o.has_position = 1;
     o.x = o.z = 0;
     o.anchor_centre = 0;
-    src.spacing_x = sx, src.spacing_z = sz;
+    src.spacing_x = src.spacing_z = spacing;
     import_report rep;
     if (w && import_apply_source(w, path, &src, &o, &rep, err) != 0) {
         world_close(w);
@@ -87,8 +105,18 @@ world *cmd_world_from_raster(cmd_context *ctx, const char *path, int argc, char 
     }
     import_source_free(&src);
     if (!w) return NULL;
-    fprintf(ctx->out, "new flat world of %lld x %lld samples, %.6g m apart, from %s\n",
-            (long long)p.size, (long long)p.size, spacing, path);
+    fprintf(ctx->out, "new flat world of %lld x %lld samples, %.6g m apart, from %s",
+            (long long)p.size, (long long)world_params_size_z(&p), spacing, path);
+    if (sx != sz)
+        fprintf(ctx->out,
+                " (its columns are %.6g m apart and its rows %.6g m: the world keeps every sample "
+                "at their geometric mean; spacing= chooses)",
+                sx, sz);
+    if (world_georef_present(&p))
+        fprintf(ctx->out, "; georeferenced%s%s", p.geo_crs[0] ? "" : " (no coordinate system)",
+                p.geo_crs[0] ? " (the world file keeps its coordinate system and geotransform)"
+                             : "");
+    fprintf(ctx->out, "\n");
     print_import(ctx->out, path, &rep, TILE_LAYER_COARSE, seconds_since(&t0));
     return w;
 }

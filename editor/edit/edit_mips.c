@@ -13,6 +13,7 @@ static int64_t floor_div(int64_t a, int64_t b) {
 int edit_mips_top_level(const world_params *p) {
     int64_t extent = p->kind == WORLD_PLANET ? world_grid_face_samples(p) : p->size;
     if (extent <= 0) return EDIT_MIP_LEVELS_UNBOUNDED;
+    if (p->kind != WORLD_PLANET && world_params_size_z(p) > extent) extent = world_params_size_z(p);
     int top = 1;
     while (top < TILE_MAX_LEVEL && ((extent - 1) >> top) >= TILE_SIZE)
         top++;
@@ -21,7 +22,8 @@ int edit_mips_top_level(const world_params *p) {
 
 typedef struct level_job {
     edit *e;
-    int64_t child_extent;    // children per side at the child level (bounded); 0 = unbounded
+    int64_t child_extent;    // children along X at the child level (bounded); 0 = unbounded
+    int64_t child_extent_z;  // and along Z
     int face, level, planet; // level: the parent level being written
     grid_rect parents;       // parent samples to update
     int64_t ptx0, ptz0, ptw; // parent tiles covering them
@@ -59,10 +61,10 @@ static int child_changes(level_job *j, int64_t cx0, int64_t cz0, int64_t w, int6
         }
     // Beyond a bounded world's edge the terrain reads as its edge sample (as brushes
     // see it), so the change there is the edge's change.
-    int64_t n = j->child_extent;
-    if (any && n > 0 && (cx0 < 0 || cz0 < 0 || cx0 + w > n || cz0 + h > n)) {
+    int64_t n = j->child_extent, nz = j->child_extent_z;
+    if (any && n > 0 && (cx0 < 0 || cz0 < 0 || cx0 + w > n || cz0 + h > nz)) {
         for (int64_t z = 0; z < h; z++) {
-            int64_t gz = cz0 + z, sz = gz < 0 ? 0 : gz >= n ? n - 1 : gz;
+            int64_t gz = cz0 + z, sz = gz < 0 ? 0 : gz >= nz ? nz - 1 : gz;
             for (int64_t x = 0; x < w; x++) {
                 int64_t gx = cx0 + x, sx = gx < 0 ? 0 : gx >= n ? n - 1 : gx;
                 if ((sx != gx || sz != gz) && sx - cx0 >= 0 && sx - cx0 < w && sz - cz0 >= 0 &&
@@ -139,6 +141,7 @@ int edit_mips_update_from(edit *e, size_t first, og_error *err) {
     const world_params *p = world_get_params(edit_world(e));
     int planet = p->kind == WORLD_PLANET, faces = planet ? 6 : 1;
     int64_t extent = planet ? world_grid_face_samples(p) : p->size;
+    int64_t extent_z = planet ? extent : world_params_size_z(p);
     int top = edit_mips_top_level(p);
     const dirty_rect *d;
     size_t n = edit_dirty_rects(e, &d);
@@ -161,14 +164,18 @@ int edit_mips_update_from(edit *e, size_t first, og_error *err) {
                                              floor_div(r.x1, 2) + 1, floor_div(r.z1, 2) + 1};
             if (extent > 0) {
                 int64_t ext = planet ? extent >> level : ((extent - 1) >> level) + 1;
+                int64_t ext_z = planet ? ext : ((extent_z - 1) >> level) + 1;
                 if (ext < 1) break;
-                pr = grid_rect_intersect(pr, (grid_rect){0, 0, ext, ext});
+                pr = grid_rect_intersect(pr, (grid_rect){0, 0, ext, ext_z});
             }
             if (grid_rect_empty(pr)) break;
             level_job job = {.e = e, .face = face, .level = level, .planet = planet, .parents = pr};
-            if (extent > 0)
+            if (extent > 0) {
                 job.child_extent =
                     planet ? extent >> (level - 1) : ((extent - 1) >> (level - 1)) + 1;
+                job.child_extent_z =
+                    planet ? job.child_extent : ((extent_z - 1) >> (level - 1)) + 1;
+            }
             job.ptx0 = floor_div(pr.x0, TILE_SIZE);
             job.ptz0 = floor_div(pr.z0, TILE_SIZE);
             job.ptw = floor_div(pr.x1 - 1, TILE_SIZE) - job.ptx0 + 1;

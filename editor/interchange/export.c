@@ -2,6 +2,7 @@
 
 #include "editor/interchange/export_layers.h"
 #include "editor/interchange/sidecar.h"
+#include "editor/params/world_georef.h"
 #include "editor/world/layer_grid.h"
 #include "io/gdal_raster.h"
 #include "io/image_read.h"
@@ -393,34 +394,46 @@ static int write_rect(world *w, const layer_grid *g, const char *path, const exp
             h[i] = (float)q;
         }
     }
+    // Where the samples lie: the world's georeference (a world made from a DEM), else
+    // local metres north-up (rows toward +Z, i.e. south).
+    const world_params *wp = world_get_params(w);
+    const int ratio = o->layer == TILE_LAYER_DETAIL ? wp->detail_ratio : 1;
+    double gt[6];
+    world_georef_region(wp, ratio, r.x0, r.z0, gt);
     switch (f) {
     case FMT_PNG16:
-    case FMT_TIFF16:
         rc = image_write_samples(path, h, rep->width, rep->height, IMAGE_WRITE_UINT16, NULL, err);
         break;
     case FMT_EXR32:
         rc = image_write_samples(path, h, rep->width, rep->height, IMAGE_WRITE_FLOAT, "Y", err);
         break;
-    case FMT_TIFF32: {
-        // North-up GeoTIFF: rows run toward +Z, i.e. south; GDAL's corners are half a
-        // sample outside the first sample's centre.
-        double gt[6] = {rep->origin_x - g->spacing / 2,    g->spacing, 0,
-                        -(rep->origin_z - g->spacing / 2), 0,          -g->spacing};
-        rc = gdal_raster_write_geotiff(path, h, rep->width, rep->height, gt, err);
+    case FMT_TIFF16:
+    case FMT_TIFF32:
+        rc = gdal_raster_write_geotiff(path, h, rep->width, rep->height, f == FMT_TIFF16, gt,
+                                       wp->geo_crs, err);
         break;
-    }
     case FMT_R16:
         rc = write_r16(path, h, n, err);
         break;
     }
     if (rc != 0) goto done;
-    sidecar sc = {g->spacing,  rep->origin_x, rep->origin_z, rep->width, rep->height, rep->scale,
-                  rep->offset, rep->min,      rep->max,      "",         ""};
+    sidecar sc = {.spacing = g->spacing,
+                  .origin_x = rep->origin_x,
+                  .origin_z = rep->origin_z,
+                  .width = rep->width,
+                  .height = rep->height,
+                  .scale = rep->scale,
+                  .offset = rep->offset,
+                  .min = rep->min,
+                  .max = rep->max};
     snprintf(sc.format, sizeof sc.format, "%s", rep->format);
     snprintf(sc.layer, sizeof sc.layer, "%s", o->layer == TILE_LAYER_DETAIL ? "detail" : "coarse");
-    char extra[256] = "";
+    char extra[8192] = "";
     if (o->preset != EXPORT_PRESET_NONE)
         snprintf(extra, sizeof extra, "  \"preset\": \"%s\"", export_preset_name(o->preset));
+    if (world_georef_present(wp))
+        sidecar_georef(extra + strlen(extra), sizeof extra - strlen(extra), extra[0] != 0,
+                       wp->geo_crs, gt);
     rc = sidecar_write(path, &sc, extra, err);
     if (rc != 0) goto done;
     char json[4200];
@@ -556,22 +569,36 @@ static int export_tiles(world *w, const layer_grid *g, const char *path, const e
     snprintf(rep.format, sizeof rep.format, "%s", format_names[f]);
     if (rc == 0 && o->shard == 0) {
         // The set's sidecar depends on nothing another shard does: every shard agrees.
-        sidecar sc = {g->spacing,
-                      rep.origin_x,
-                      rep.origin_z,
-                      rep.width,
-                      rep.height,
-                      rep.scale,
-                      rep.offset,
-                      0,
-                      0,
-                      "",
-                      ""};
+        sidecar sc = {.spacing = g->spacing,
+                      .origin_x = rep.origin_x,
+                      .origin_z = rep.origin_z,
+                      .width = rep.width,
+                      .height = rep.height,
+                      .scale = rep.scale,
+                      .offset = rep.offset};
         snprintf(sc.format, sizeof sc.format, "%s", rep.format);
         snprintf(sc.layer, sizeof sc.layer, "%s",
                  o->layer == TILE_LAYER_DETAIL ? "detail" : "coarse");
         sc.min = rep.offset;
         sc.max = is_16bit(f) ? rep.offset + 65535.0 * rep.scale : 0.0;
+        const world_params *wp = world_get_params(w);
+        if (world_georef_present(wp)) {
+            // The set's place: its first tile's corner, the tiles' sample size.
+            double gt[6];
+            world_georef_region(wp, o->layer == TILE_LAYER_DETAIL ? wp->detail_ratio : 1, r.x0,
+                                r.z0, gt);
+            char geo[8192];
+            sidecar_georef(geo, sizeof geo, 1, wp->geo_crs, gt);
+            char *joined = malloc(strlen(files) + strlen(geo) + 1);
+            if (!joined) {
+                free(files);
+                return og_error_set(err, "%s: out of memory", path);
+            }
+            strcpy(joined, files);
+            strcat(joined, geo);
+            free(files);
+            files = joined;
+        }
         rc = sidecar_write(path, &sc, files, err);
     }
     free(files);
@@ -615,7 +642,7 @@ static int resolve_region(world *w, const char *path, const export_options *o, l
         if (!gp->extent)
             return og_error_set(err, "%s: the world is unbounded: give region=X0,Z0,X1,Z1 (metres)",
                                 path);
-        r = (grid_rect){0, 0, gp->extent, gp->extent};
+        r = (grid_rect){0, 0, gp->extent, gp->extent_z};
     }
     *rp = r;
     return 0;

@@ -229,15 +229,19 @@ static int region_columns(world *w, const export_options *o, double ev, int64_t 
         x0 = o->x0, z0 = o->z0, x1 = o->x1, z1 = o->z1;
     } else if (p->size > 0) {
         x0 = z0 = 0;
-        x1 = z1 = (double)(p->size - 1) * p->spacing;
+        x1 = (double)(p->size - 1) * p->spacing;
+        z1 = (double)(world_params_size_z(p) - 1) * p->spacing;
     } else {
         return og_error_set(err, "export: a .vdb of an unbounded world needs region=X0,Z0,X1,Z1");
     }
     if (p->size > 0) {
-        double top = (double)(p->size - 1) * p->spacing;
-        if (x0 < 0 || z0 < 0 || x1 > top || z1 > top)
-            return og_error_set(err, "region: %g,%g,%g,%g m lies outside the world (0 to %g m)", x0,
-                                z0, x1, z1, top);
+        double right = (double)(p->size - 1) * p->spacing;
+        double bottom = (double)(world_params_size_z(p) - 1) * p->spacing;
+        if (x0 < 0 || z0 < 0 || x1 > right || z1 > bottom)
+            return og_error_set(err,
+                                "region: %g,%g,%g,%g m lies outside the world (0 to %g m along X, "
+                                "0 to %g m along Z)",
+                                x0, z0, x1, z1, right, bottom);
     }
     c0[0] = (int64_t)ceil(x0 / ev - 1e-9), c0[1] = (int64_t)ceil(z0 / ev - 1e-9);
     c1[0] = (int64_t)floor(x1 / ev + 1e-9) + 1, c1[1] = (int64_t)floor(z1 / ev + 1e-9) + 1;

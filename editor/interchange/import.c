@@ -270,9 +270,20 @@ int import_source_read(const char *path, const import_options *o, double default
     }
     s->min = lo;
     s->max = hi;
-    s->spacing_x = o->spacing > 0 ? o->spacing : r->spacing_x;
-    s->spacing_z = o->spacing > 0 ? o->spacing : r->spacing_z;
-    if (s->spacing_x <= 0 && has_sidecar) s->spacing_x = s->spacing_z = sc.spacing;
+    // Orogen's sidecar says how far apart the samples were in the world they came from
+    // (a georeferenced export's own georeferencing may be in degrees).
+    s->spacing_x = o->spacing > 0 ? o->spacing : has_sidecar ? sc.spacing : r->spacing_x;
+    s->spacing_z = o->spacing > 0 ? o->spacing : has_sidecar ? sc.spacing : r->spacing_z;
+    // A file Orogen exported from a georeferenced world keeps its place in its sidecar
+    // (a PNG or EXR has no room for it).
+    gdal_georef *geo = &r->georef;
+    const int georeferenced =
+        geo->geotransform[1] * geo->geotransform[5] - geo->geotransform[2] * geo->geotransform[4] !=
+        0;
+    if (has_sidecar && sc.has_georef && !georeferenced) {
+        memcpy(geo->geotransform, sc.geotransform, sizeof geo->geotransform);
+        snprintf(geo->crs, sizeof geo->crs, "%s", sc.crs);
+    }
     if (has_sidecar) {
         s->has_origin = 1;
         s->origin_x = sc.origin_x;
@@ -366,8 +377,9 @@ int import_apply_source(world *w, const char *path, const import_source *s, cons
     if (grid_rect_empty(rect)) {
         og_error_set(err,
                      "%s: placed at %.9g, %.9g .. %.9g, %.9g m it lies outside the world "
-                     "(0 .. %.9g m)",
-                     path, op.x0, op.z0, x1, z1, (double)(g.extent - 1) * g.spacing);
+                     "(0 .. %.9g, 0 .. %.9g m)",
+                     path, op.x0, op.z0, x1, z1, (double)(g.extent - 1) * g.spacing,
+                     (double)(g.extent_z - 1) * g.spacing);
         return -1;
     }
     const double covered = (double)(rect.x1 - rect.x0) * (double)(rect.z1 - rect.z0);

@@ -31,6 +31,21 @@ int sidecar_write(const char *image_path, const sidecar *s, const char *extra, o
     return rc;
 }
 
+void sidecar_georef(char *out, size_t len, int comma, const char *crs, const double gt[6]) {
+    size_t n = (size_t)snprintf(out, len, "%s  \"crs\": \"", comma ? ",\n" : "");
+    for (const char *c = crs; *c && n + 8 < len; c++) {
+        if (*c == '"' || *c == '\\') out[n++] = '\\';
+        out[n++] = *c;
+    }
+    if (n < len) out[n] = 0;
+    if (n < len)
+        snprintf(out + n, len - n,
+                 "\",\n  \"geotransform\": [%.17g, %.17g, %.17g, %.17g, %.17g, %.17g]", gt[0],
+                 gt[1], gt[2], gt[3], gt[4], gt[5]);
+}
+
+static int parse_text(const char *path, const char *text, sidecar *s, og_error *err);
+
 // The number after "key": in a flat JSON object (our own files).
 static int number_field(const char *text, const char *key, double *out) {
     char quoted[64];
@@ -52,10 +67,58 @@ int sidecar_read(const char *image_path, sidecar *s, og_error *err) {
     if (snprintf(path, sizeof path, "%s.json", image_path) >= (int)sizeof path) return 0;
     FILE *f = fopen(path, "rb");
     if (!f) return 0;
-    char text[8192];
-    size_t n = fread(text, 1, sizeof text - 1, f);
+    enum { TEXT_MAX = 1 << 16 };
+    char *text = malloc(TEXT_MAX);
+    if (!text) {
+        fclose(f);
+        return og_error_set(err, "%s: out of memory", path);
+    }
+    size_t n = fread(text, 1, TEXT_MAX - 1, f);
     fclose(f);
     text[n] = 0;
+    int rc = parse_text(path, text, s, err);
+    free(text);
+    return rc;
+}
+
+// The string after "key": (JSON escapes \" and \\ undone) into out; -1 if none.
+static int string_field(const char *text, const char *key, char *out, size_t len) {
+    char quoted[64];
+    snprintf(quoted, sizeof quoted, "\"%s\"", key);
+    const char *p = strstr(text, quoted);
+    if (!p) return -1;
+    p = strchr(p + strlen(quoted), ':');
+    if (!p) return -1;
+    p += strspn(p + 1, " \t\n") + 1;
+    if (*p++ != '"') return -1;
+    size_t n = 0;
+    for (; *p && *p != '"'; p++) {
+        if (*p == '\\' && p[1]) p++;
+        if (n + 1 >= len) return -1;
+        out[n++] = *p;
+    }
+    out[n] = 0;
+    return *p == '"' ? 0 : -1;
+}
+
+// The six numbers of "geotransform": [...]; -1 if not there.
+static int geotransform_field(const char *text, double gt[6]) {
+    const char *p = strstr(text, "\"geotransform\"");
+    if (!p || !(p = strchr(p, '['))) return -1;
+    p++;
+    for (int k = 0; k < 6; k++) {
+        char *end;
+        errno = 0;
+        gt[k] = strtod(p, &end);
+        if (end == p || errno || !isfinite(gt[k])) return -1;
+        p = end + strspn(end, " \t\n");
+        if (*p != (k < 5 ? ',' : ']')) return -1;
+        p++;
+    }
+    return gt[1] * gt[5] - gt[2] * gt[4] != 0 ? 0 : -1;
+}
+
+static int parse_text(const char *path, const char *text, sidecar *s, og_error *err) {
     memset(s, 0, sizeof *s);
     static const char *const keys[] = {"width",    "height",       "spacing",      "origin_x",
                                        "origin_z", "height_scale", "height_offset"};
@@ -73,5 +136,7 @@ int sidecar_read(const char *image_path, sidecar *s, og_error *err) {
     s->offset = v[6];
     number_field(text, "min_height", &s->min);
     number_field(text, "max_height", &s->max);
+    s->has_georef = geotransform_field(text, s->geotransform) == 0;
+    if (s->has_georef && string_field(text, "crs", s->crs, sizeof s->crs) != 0) s->crs[0] = 0;
     return 1;
 }

@@ -18,7 +18,17 @@
 // address from the origin outwards.
 #define WORLD_SIZE_MAX (INT64_C(1) << 39)
 
-typedef enum value_type { V_KIND, V_GEN, V_I64, V_I32, V_F64, V_STR, V_ID } value_type;
+typedef enum value_type {
+    V_KIND,
+    V_GEN,
+    V_I64,
+    V_I32,
+    V_F64,
+    V_STR,
+    V_ID,
+    V_CRS,
+    V_GEOT
+} value_type;
 
 // Range flags: whether lo / hi are themselves allowed.
 enum { LO_OPEN = 1, HI_OPEN = 2, NO_LO = 4, NO_HI = 8 };
@@ -63,7 +73,11 @@ static const key_def KEYS[] = {
     {"spacing", V_F64, F(spacing), 0, 1e5, LO_OPEN,
      "metres between coarse height samples, 0 < spacing <= 1e5"},
     {"size", V_I64, F(size), 0, (double)WORLD_SIZE_MAX, 0,
-     "flat worlds: coarse samples per side, 0 = unbounded, else 2 .. 2^39"},
+     "flat worlds: coarse samples along X (and along Z unless size_z says), 0 = unbounded, "
+     "else 2 .. 2^39"},
+    {"size_z", V_I64, F(size_z), 0, (double)WORLD_SIZE_MAX, 0,
+     "flat worlds: coarse samples along Z when the world is not square (a DEM's rows), 0 = as "
+     "size, else 2 .. 2^39"},
     {"detail_ratio", V_I32, F(detail_ratio), 1, 64, 0,
      "detail samples per coarse sample, per side, 1 .. 64"},
     {"volume_ratio", V_I32, F(volume_ratio), 1, 8, 0,
@@ -81,6 +95,13 @@ static const key_def KEYS[] = {
      "ridged multifractal: offset subtracted from |noise|, 0 .. 2"},
     {"fault_count", V_I32, F(fault_count), 0, 10000, 0,
      "faults: fault lines per 64 km x 64 km cell, 0 .. 10000"},
+    {"geo_crs", V_CRS, F(geo_crs), 0, 0, 0,
+     "georeferenced worlds: the source data's coordinate reference system (WKT or EPSG:N), "
+     "written into GeoTIFF exports and sidecars; empty = none"},
+    {"geo_transform", V_GEOT, F(geo_transform), 0, 0, 0,
+     "georeferenced worlds: GDAL's geotransform from coarse sample (column, row) to geo_crs "
+     "coordinates (X0, dX per column, dX per row, Y0, dY per column, dY per row; X0, Y0 the "
+     "outer corner of sample 0, 0's cell); empty = none"},
     {"tiles", V_STR, F(tiles), 0, 0, 0,
      "tile store (sculpted and painted data), relative to this file; empty = <name>.tiles"},
     {"tiles_id", V_ID, F(tiles_id), 0, 0, 0,
@@ -266,6 +287,35 @@ int world_params_set(world_params *p, const char *key, const char *value, og_err
                              value);
         memcpy(p->tiles, value, strlen(value) + 1);
         return 0;
+    case V_CRS:
+        // Kept as written; it must survive a save (one line, no ';' or '#').
+        if (strlen(value) >= WORLD_CRS_MAX || strpbrk(value, ";#\n\r"))
+            return bad_value(err, d,
+                             "a coordinate reference system as WKT or EPSG:N, one line under "
+                             "3584 bytes without ';' or '#'",
+                             value);
+        memcpy(p->geo_crs, value, strlen(value) + 1);
+        return 0;
+    case V_GEOT: {
+        double gt[6] = {0};
+        const char *at = value;
+        if (*value) {
+            for (int k = 0; k < 6; k++) {
+                const char *end;
+                if (parse_scan_f64(at, &gt[k], &end) != 0 || !isfinite(gt[k]) ||
+                    (k < 5 && *end != ',') || (k == 5 && *end))
+                    return bad_value(err, d, "six numbers apart by commas, or nothing", value);
+                at = end + 1;
+                while (*at == ' ')
+                    at++;
+            }
+            if (gt[1] * gt[5] - gt[2] * gt[4] == 0)
+                return bad_value(err, d, "a geotransform whose columns and rows are independent",
+                                 value);
+        }
+        memcpy(p->geo_transform, gt, sizeof gt);
+        return 0;
+    }
     case V_ID: {
         size_t n = strlen(value);
         int ok = n == 0 || n == WORLD_ID_CHARS;
@@ -283,7 +333,7 @@ int world_params_get(const world_params *p, const char *key, char *buf, size_t l
     const key_def *d = key ? find_def(key) : NULL;
     if (!d || !buf || !len) return -1;
     const void *field = (const char *)p + d->offset;
-    char tmp[64];
+    char tmp[200];
     const char *text = tmp;
     switch (d->type) {
     case V_KIND:
@@ -314,6 +364,20 @@ int world_params_get(const world_params *p, const char *key, char *buf, size_t l
     case V_ID:
         text = p->tiles_id;
         break;
+    case V_CRS:
+        text = p->geo_crs;
+        break;
+    case V_GEOT: {
+        const double *gt = p->geo_transform;
+        tmp[0] = 0;
+        if (gt[0] || gt[1] || gt[2] || gt[3] || gt[4] || gt[5])
+            for (int k = 0; k < 6; k++) {
+                size_t n = strlen(tmp);
+                if (k) n += (size_t)snprintf(tmp + n, sizeof tmp - n, ", ");
+                parse_format_f64(tmp + n, sizeof tmp - n, gt[k]);
+            }
+        break;
+    }
     }
     size_t n = strnlen(text, len);
     if (n >= len) return -1;
@@ -322,7 +386,7 @@ int world_params_get(const world_params *p, const char *key, char *buf, size_t l
 }
 
 int world_params_validate(const world_params *p, og_error *err) {
-    char buf[1100];
+    char buf[WORLD_VALUE_MAX];
     // Every field must also be a value `set` would accept (structs can be filled directly).
     for (size_t i = 0; i < KEY_COUNT; i++) {
         if (world_params_get(p, KEYS[i].name, buf, sizeof buf) != 0)
@@ -343,6 +407,11 @@ int world_params_validate(const world_params *p, og_error *err) {
     } else if (p->size == 1) {
         return og_error_set(err, "size: a flat world needs 0 (unbounded) or at least 2 samples "
                                  "per side, got 1");
+    } else if (p->size_z == 1 || (p->size_z > 0 && p->size == 0)) {
+        return og_error_set(err,
+                            "size_z: a bounded flat world's rows: 0 (as size) or at least 2, "
+                            "with size set; got %lld with size %lld",
+                            (long long)p->size_z, (long long)p->size);
     }
     return 0;
 }
@@ -469,7 +538,7 @@ char *world_params_format(const world_params *p) {
     size_t cap = 8192, len = 0;
     char *out = malloc(cap);
     if (!out) return NULL;
-    char value[1100];
+    char value[WORLD_VALUE_MAX];
     world_params_get(p, "kind", value, sizeof value);
     len += (size_t)snprintf(out, cap,
                             "# Orogen world parameters (kind %s). Syntax: key = value; '#' "

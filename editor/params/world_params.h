@@ -24,6 +24,11 @@ typedef enum gen_kind {
     GEN_COUNT
 } gen_kind;
 
+// Longest coordinate reference system text a world keeps (a parameter file line is 4096).
+#define WORLD_CRS_MAX 3584
+// Room for any key's value as text (world_params_get).
+#define WORLD_VALUE_MAX 4096
+
 // A world's id: 128 random bits as lowercase hex.
 #define WORLD_ID_CHARS 32
 
@@ -40,7 +45,8 @@ typedef struct world_params {
     double omega;         // planets: angular velocity, radians per second (Kahoun 2010)
     double atmosphere;    // planets: air relative to Earth's (1), 0 = none
     double spacing;       // metres between coarse samples
-    int64_t size;         // flat worlds: coarse samples per side; 0 = unbounded
+    int64_t size;         // flat worlds: coarse samples along X (and Z); 0 = unbounded
+    int64_t size_z;       // flat worlds: coarse samples along Z when not square; 0 = size
     int32_t detail_ratio; // detail samples per coarse sample, per side
     int32_t volume_ratio; // volume voxels per coarse spacing (voxel = spacing / volume_ratio)
     double feature_size;  // metres: wavelength of the lowest octave; 0 = automatic
@@ -49,7 +55,12 @@ typedef struct world_params {
     double smoothing;     // diamond-square: roughness multiplier per subdivision
     double ridge_offset;  // ridged multifractal: offset subtracted from |noise|
     int32_t fault_count;  // faults: number of fault lines per 64 km x 64 km cell
-    char tiles[1024];     // tile store path as written (relative to the file); "" = name.tiles
+    // Georeferenced worlds (made from a DEM): the source's coordinate reference system
+    // (WKT, or an authority code such as EPSG:4326; "" = none) and GDAL's geotransform
+    // from coarse sample (column, row) to its coordinates (all 0 = none).
+    char geo_crs[WORLD_CRS_MAX];
+    double geo_transform[6];
+    char tiles[1024]; // tile store path as written (relative to the file); "" = name.tiles
     // What the file was saved with, so a missing, emptied or swapped store is noticed:
     // the world's id (also in its tile store's meta table; "" = not recorded) and the
     // count of tiles the store held (-1 = not recorded). Written by save.
@@ -59,6 +70,11 @@ typedef struct world_params {
 
 // The built-in defaults for a kind (a pleasant landscape or an Earth-like planet).
 void world_params_default(world_params *p, world_kind kind);
+// Coarse samples along Z of a bounded flat world (size_z, else size; 0 = unbounded).
+static inline int64_t world_params_size_z(const world_params *p) {
+    return p->size_z > 0 ? p->size_z : p->size;
+}
+
 // The sea's height above the datum in metres, whatever the kind (planets keep
 // ocean_level as a radius, as seed 004's files do).
 double world_params_ocean_height(const world_params *p);

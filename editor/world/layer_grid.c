@@ -13,21 +13,25 @@ int layer_grid_init(layer_grid *g, const world_params *p, tile_layer layer, int 
                             faces == 6 ? "faces 0-5" : "only face 0");
     if (layer != TILE_LAYER_COARSE && layer != TILE_LAYER_DETAIL && layer != TILE_LAYER_MATERIAL)
         return og_error_set(err, "the %s layer cannot be edited", tile_layer_name(layer));
-    int64_t coarse = p->kind == WORLD_PLANET ? world_grid_face_samples(p) : p->size;
+    const int planet = p->kind == WORLD_PLANET;
+    int64_t coarse = planet ? world_grid_face_samples(p) : p->size;
+    int64_t coarse_z = planet ? coarse : world_params_size_z(p);
     g->layer = layer;
     g->face = face;
     g->spacing = world_grid_sample_metres(p);
     g->extent = coarse;
+    g->extent_z = coarse_z;
     if (layer == TILE_LAYER_DETAIL) {
         g->spacing = world_grid_sample_metres(p) / p->detail_ratio;
         g->extent = coarse > 0 ? (coarse - 1) * p->detail_ratio + 1 : 0;
+        g->extent_z = coarse_z > 0 ? (coarse_z - 1) * p->detail_ratio + 1 : 0;
     }
     return 0;
 }
 
 grid_rect layer_grid_clip(const layer_grid *g, grid_rect r) {
     if (g->extent <= 0) return r;
-    return grid_rect_intersect(r, (grid_rect){0, 0, g->extent, g->extent});
+    return grid_rect_intersect(r, (grid_rect){0, 0, g->extent, g->extent_z});
 }
 
 grid_rect layer_grid_disc_rect(const layer_grid *g, double x, double z, double radius) {
@@ -96,10 +100,13 @@ int layer_grid_check_position(const layer_grid *g, double x, double z, og_error 
         return og_error_set(err, "position (%g, %g) m lies beyond the addressable world (+-%g m)",
                             x, z, limit);
     if (g->extent > 0) {
-        double top = (double)(g->extent - 1) * g->spacing;
-        if (x < 0 || z < 0 || x > top || z > top)
-            return og_error_set(err, "position (%g, %g) m lies outside the world (0 to %g m)", x, z,
-                                top);
+        double right = (double)(g->extent - 1) * g->spacing;
+        double bottom = (double)(g->extent_z - 1) * g->spacing;
+        if (x < 0 || z < 0 || x > right || z > bottom)
+            return og_error_set(err,
+                                "position (%g, %g) m lies outside the world (0 .. %g m along X, "
+                                "0 .. %g m along Z)",
+                                x, z, right, bottom);
     }
     return 0;
 }

@@ -16,7 +16,8 @@ typedef struct layer_grid {
     tile_layer layer; // TILE_LAYER_COARSE, _DETAIL or _MATERIAL
     int face;
     double spacing; // metres between samples
-    int64_t extent; // samples per side of a bounded world or planet face; 0 = unbounded
+    int64_t extent; // samples along X of a bounded world, per side of a planet face; 0 = unbounded
+    int64_t extent_z; // samples along Z (a bounded flat world may be rectangular)
 } layer_grid;
 
 int layer_grid_init(layer_grid *g, const world_params *p, tile_layer layer, int face,

@@ -16,6 +16,7 @@ int volume_grid_init(volume_grid *g, const world_params *p, og_error *err) {
     g->ratio = p->volume_ratio > 0 ? p->volume_ratio : 1;
     g->voxel = p->spacing / g->ratio;
     g->extent = p->size;
+    g->extent_z = world_params_size_z(p);
     return 0;
 }
 
@@ -30,11 +31,13 @@ int volume_grid_check_position(const volume_grid *g, const double p[3], og_error
     if (fabs(p[1]) > VOLUME_HEIGHT_LIMIT)
         return og_error_set(err, "height %g m lies beyond +-%g m", p[1], VOLUME_HEIGHT_LIMIT);
     if (g->extent > 0) {
-        double top = (double)(g->extent - 1) * g->spacing;
-        if (p[0] < 0 || p[2] < 0 || p[0] > top || p[2] > top)
-            return og_error_set(
-                err, "position (%g, %g, %g) m lies outside the world (x and z 0 to %g m)", p[0],
-                p[1], p[2], top);
+        double right = (double)(g->extent - 1) * g->spacing;
+        double bottom = (double)(g->extent_z - 1) * g->spacing;
+        if (p[0] < 0 || p[2] < 0 || p[0] > right || p[2] > bottom)
+            return og_error_set(err,
+                                "position (%g, %g, %g) m lies outside the world (x 0 to %g m, z 0 "
+                                "to %g m)",
+                                p[0], p[1], p[2], right, bottom);
     }
     return 0;
 }

@@ -40,10 +40,11 @@
 #define VOLUME_EXACT_VOXELS 4.0
 
 typedef struct volume_grid {
-    double voxel;   // metres
-    double spacing; // coarse spacing, metres
-    int ratio;      // voxels per coarse spacing
-    int64_t extent; // bounded world: coarse samples per side; 0 = unbounded
+    double voxel;     // metres
+    double spacing;   // coarse spacing, metres
+    int ratio;        // voxels per coarse spacing
+    int64_t extent;   // bounded world: coarse samples along X; 0 = unbounded
+    int64_t extent_z; // and along Z
 } volume_grid;
 
 // Voxels of a box: [i0, i1) x [j0, j1) x [k0, k1).

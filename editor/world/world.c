@@ -685,9 +685,10 @@ void world_warn(const world *w, const char *message) {
     w->settings.warn(w->settings.warn_user, message);
 }
 
-// Level-0 samples per side, or 0 when unbounded.
-static int64_t world_extent(const world *w) {
-    if (w->params.kind == WORLD_PLANET) return world_grid_face_samples(&w->params);
+// Level-0 samples along X and Z, or 0 when unbounded.
+static int64_t world_extent(const world *w, int64_t *along_z) {
+    if (w->params.kind == WORLD_PLANET) return *along_z = world_grid_face_samples(&w->params);
+    *along_z = world_params_size_z(&w->params);
     return w->params.size;
 }
 
@@ -720,13 +721,15 @@ int world_sample(world *w, int face, double x, double z, double *height, og_erro
     if (!isfinite(x) || !isfinite(z)) return og_error_set(err, "position must be finite numbers");
     const double sp = world_grid_sample_metres(&w->params); // true metres on a planet
     double fx = x / sp, fz = z / sp;
-    int64_t n = world_extent(w);
+    int64_t nz, n = world_extent(w, &nz);
     // The last sample's position printed and read back may land an ulp past it.
     if (n > 0 && fx > (double)(n - 1) && fx < (double)(n - 1) * (1 + 1e-12)) fx = (double)(n - 1);
-    if (n > 0 && fz > (double)(n - 1) && fz < (double)(n - 1) * (1 + 1e-12)) fz = (double)(n - 1);
-    if (n > 0 && (fx < 0 || fz < 0 || fx > (double)(n - 1) || fz > (double)(n - 1)))
-        return og_error_set(err, "position (%g, %g) m lies outside the world (0 to %g m)", x, z,
-                            (double)(n - 1) * sp);
+    if (n > 0 && fz > (double)(nz - 1) && fz < (double)(nz - 1) * (1 + 1e-12))
+        fz = (double)(nz - 1);
+    if (n > 0 && (fx < 0 || fz < 0 || fx > (double)(n - 1) || fz > (double)(nz - 1)))
+        return og_error_set(err,
+                            "position (%g, %g) m lies outside the world (0 to %g m, 0 to %g m)", x,
+                            z, (double)(n - 1) * sp, (double)(nz - 1) * sp);
     if (!in_tile_range(fx) || !in_tile_range(fz))
         return og_error_set(err, "position (%g, %g) m lies beyond the int32 tile range", x, z);
     int64_t i0 = (int64_t)floor(fx), j0 = (int64_t)floor(fz);
@@ -754,10 +757,10 @@ int world_hash(world *w, int face, double x0, double z0, double x1, double z1, u
         return og_error_set(err, "rectangle is empty: need X0 <= X1 and Z0 <= Z1");
     double sp = world_grid_sample_metres(&w->params);
     double fx0 = ceil(x0 / sp), fz0 = ceil(z0 / sp), fx1 = floor(x1 / sp), fz1 = floor(z1 / sp);
-    int64_t n = world_extent(w);
-    if (n > 0 && (fx0 < 0 || fz0 < 0 || fx1 > (double)(n - 1) || fz1 > (double)(n - 1)))
-        return og_error_set(err, "rectangle extends outside the world (0 to %g m)",
-                            (double)(n - 1) * sp);
+    int64_t nz, n = world_extent(w, &nz);
+    if (n > 0 && (fx0 < 0 || fz0 < 0 || fx1 > (double)(n - 1) || fz1 > (double)(nz - 1)))
+        return og_error_set(err, "rectangle extends outside the world (0 to %g m, 0 to %g m)",
+                            (double)(n - 1) * sp, (double)(nz - 1) * sp);
     if (!in_tile_range(fx0) || !in_tile_range(fz0) || !in_tile_range(fx1) || !in_tile_range(fz1))
         return og_error_set(err, "rectangle lies beyond the int32 tile range");
     int64_t gx0 = (int64_t)fx0, gz0 = (int64_t)fz0, gx1 = (int64_t)fx1, gz1 = (int64_t)fz1;

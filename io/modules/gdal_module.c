@@ -3,6 +3,7 @@
 // Reads band 1 of any raster GDAL knows as float, nodata as NaN, with its
 // geotransform; writes float GeoTIFFs.
 #include "io/err.h"
+#include "io/gdal_raster.h"
 
 #include <gdal.h>
 #include <ogr_srs_api.h>
@@ -44,10 +45,32 @@ static void describe_type(GDALDataType t, int *kind, int *bits) {
     *kind = GDALDataTypeIsFloating(t) ? 2 : GDALDataTypeIsSigned(t) ? 1 : 0;
 }
 
-EXPORT int orogen_gdal_module_read(const char *path, int max_size, long long max_samples,
-                                   float **samples, int *width, int *height, int *kind, int *bits,
-                                   double geotransform[6], int *geographic, char *desc,
-                                   size_t desc_len, og_error *err) {
+// The dataset's coordinate reference system as one line a world file keeps: its WKT
+// when that fits and holds no ';' or '#', else its authority code; "" when it has none
+// (or neither form fits).
+static void crs_text(GDALDatasetH ds, char *out, size_t len, int *geographic) {
+    out[0] = 0;
+    *geographic = 0;
+    const char *wkt = GDALGetProjectionRef(ds);
+    if (!wkt || !*wkt) return;
+    OGRSpatialReferenceH srs = OSRNewSpatialReference(wkt);
+    if (!srs) return;
+    *geographic = OSRIsGeographic(srs);
+    if (strlen(wkt) < len && !strpbrk(wkt, ";#\n\r")) {
+        snprintf(out, len, "%s", wkt);
+    } else {
+        const char *root = OSRIsProjected(srs) ? "PROJCS" : "GEOGCS";
+        const char *name = OSRGetAuthorityName(srs, root), *code = OSRGetAuthorityCode(srs, root);
+        if (name && code) snprintf(out, len, "%s:%s", name, code);
+    }
+    OSRDestroySpatialReference(srs);
+}
+
+EXPORT int orogen_gdal_module_read_georef(const char *path, int max_size, long long max_samples,
+                                          float **samples, int *width, int *height, int *kind,
+                                          int *bits, gdal_georef *geo, char *desc, size_t desc_len,
+                                          og_error *err) {
+    double *geotransform = geo->geotransform;
     *samples = NULL;
     *width = *height = 0;
     pthread_once(&registered, register_drivers);
@@ -132,15 +155,7 @@ EXPORT int orogen_gdal_module_read(const char *path, int max_size, long long max
         geotransform[0] = geotransform[2] = geotransform[3] = geotransform[4] = 0.0;
         geotransform[1] = geotransform[5] = 0.0; // no georeferencing
     }
-    *geographic = 0;
-    const char *wkt = GDALGetProjectionRef(ds);
-    if (wkt && *wkt) {
-        OGRSpatialReferenceH srs = OSRNewSpatialReference(wkt);
-        if (srs) {
-            *geographic = OSRIsGeographic(srs);
-            OSRDestroySpatialReference(srs);
-        }
-    }
+    crs_text(ds, geo->crs, sizeof geo->crs, &geo->geographic);
     snprintf(desc, desc_len, "%s %s%s%s%s", GDALGetDriverShortName(GDALGetDatasetDriver(ds)),
              GDALGetDataTypeName(GDALGetRasterDataType(band)), has_nodata ? ", nodata " : "",
              has_nodata ? "set" : "", to_metres != 1.0 ? ", feet converted to metres" : "");
@@ -155,24 +170,43 @@ done:
     return rc;
 }
 
-// A float32 GeoTIFF (deflate, tiled) with the given geotransform, written to a temp
-// file beside path and renamed into place.
-EXPORT int orogen_gdal_module_write_geotiff(const char *path, const float *samples, int width,
-                                            int height, const double geotransform[6],
-                                            og_error *err) {
+// A float32 or uint16 GeoTIFF (deflate, tiled) with the given geotransform and
+// coordinate reference system, written to a temp file beside path and renamed into place.
+EXPORT int orogen_gdal_module_write_geotiff_crs(const char *path, const float *samples, int width,
+                                                int height, int uint16,
+                                                const double geotransform[6], const char *crs,
+                                                og_error *err) {
     pthread_once(&registered, register_drivers);
     GDALDriverH drv = GDALGetDriverByName("GTiff");
     if (!drv) return og_error_set(err, "%s: GDAL has no GeoTIFF driver", path);
     char tmp[4200];
     if (snprintf(tmp, sizeof tmp, "%s.tmp-%d", path, (int)getpid()) >= (int)sizeof tmp)
         return og_error_set(err, "%s: path too long", path);
-    char *options[] = {"COMPRESS=DEFLATE", "TILED=YES", "PREDICTOR=3", NULL};
+    OGRSpatialReferenceH srs = NULL;
+    if (crs && *crs) {
+        srs = OSRNewSpatialReference(NULL);
+        if (!srs || OSRSetFromUserInput(srs, crs) != OGRERR_NONE) {
+            if (srs) OSRDestroySpatialReference(srs);
+            return og_error_set(err, "%s: GDAL does not know the world's geo_crs '%.80s'", path,
+                                crs);
+        }
+    }
+    char *options[] = {"COMPRESS=DEFLATE", "TILED=YES", uint16 ? "PREDICTOR=2" : "PREDICTOR=3",
+                       NULL};
     CPLErrorReset();
-    GDALDatasetH ds = GDALCreate(drv, tmp, width, height, 1, GDT_Float32, options);
-    if (!ds) return og_error_set(err, "%s: cannot create (%s)", path, last_error());
+    GDALDatasetH ds =
+        GDALCreate(drv, tmp, width, height, 1, uint16 ? GDT_UInt16 : GDT_Float32, options);
+    if (!ds) {
+        if (srs) OSRDestroySpatialReference(srs);
+        return og_error_set(err, "%s: cannot create (%s)", path, last_error());
+    }
     int ok = GDALSetGeoTransform(ds, (double *)geotransform) == CE_None;
+    if (srs) {
+        ok = ok && GDALSetSpatialRef(ds, srs) == CE_None;
+        OSRDestroySpatialReference(srs);
+    }
     GDALRasterBandH band = GDALGetRasterBand(ds, 1);
-    GDALSetRasterUnitType(band, "m");
+    if (!uint16) GDALSetRasterUnitType(band, "m"); // 16-bit: the sidecar maps to metres
     ok = ok && GDALRasterIO(band, GF_Write, 0, 0, width, height, (void *)samples, width, height,
                             GDT_Float32, 0, 0) == CE_None;
     GDALClose(ds); // flushes; errors land in CPLGetLastErrorMsg
