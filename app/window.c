@@ -95,13 +95,7 @@ static void pump_work(window_state *st) {
         st->dirty = st->ui_dirty = 1;
         if (memcmp(&before, &st->v->cam, sizeof before) != 0) st->cc.walk = 0; // `camera`
     }
-    if (st->work.stroke_cancelled) { // Esc or Cancel ended the stroke: the drag is over
-        st->work.stroke_cancelled = 0;
-        if (st->drag == DRAG_SCULPT) st->drag = DRAG_NONE;
-        sculpt_drag_cancelled(&st->sculpt);
-    }
-    // A planet drag's moves during the job, picked now the world is free.
-    sculpt_drag_flush(&st->sculpt, &st->work, sculpt_view_of(st));
+    viewport_drag_after_work(st);
 }
 
 // Runs every complete line waiting on standard input, without blocking.
@@ -524,9 +518,9 @@ int window_run(cmd_context *ctx, og_error *err) {
     const ui_draw_list *dl = NULL;
     while (!glfwWindowShouldClose(win)) {
         // Input first; wake often while tiles arrive, keys fly the camera or work runs.
-        int awake = st.pending || st.settled < 2 || keys_held(&st) || st.drag == DRAG_SCULPT ||
-                    st.v->settings.sun_rotation != 0 || !work_queue_idle(&st.work) ||
-                    ui_needs_frame(st.ui);
+        int awake = st.pending || st.settled < 2 || keys_held(&st) ||
+                    viewport_drag_kind(&st) == DRAG_SCULPT || st.v->settings.sun_rotation != 0 ||
+                    !work_queue_idle(&st.work) || ui_needs_frame(st.ui);
         glfwWaitEventsTimeout(awake ? 0.01 : 0.1);
         int w, h;
         glfwGetFramebufferSize(win, &w, &h);

@@ -23,9 +23,9 @@ void update_title(window_state *st) {
                  "levels %d/%d - tool %s r%g - pending %d",
                  name, world_is_modified(st->ctx->world) ? " *" : "", c->pos[0], c->pos[1],
                  c->pos[2], c->yaw, c->pitch,
-                 st->cc.walk      ? "walk"
-                 : st->orbit_mode ? "orbit"
-                                  : "fly",
+                 st->cc.walk            ? "walk"
+                 : camera_mode(st) == 1 ? "orbit"
+                                        : "fly",
                  camera_controls_speed(&st->cc), rs.levels_ready, used,
                  brush_tool_name(st->ctx->brush.tool), st->ctx->brush.radius, st->pending);
     if (strcmp(title, st->title) != 0) {
@@ -55,19 +55,20 @@ static void cursor_colour(brush_tool tool, int invert, float rgb[3]) {
 // The pointer is over the viewport's terrain, not a panel, menu or dialog over it (nor
 // over what they hide): the brush cursor and the status bar follow only what is seen.
 static int pointer_on_terrain(const window_state *st) {
-    return (st->drag != DRAG_NONE || in_view(st, st->mouse_x, st->mouse_y)) &&
-           (st->drag == DRAG_SCULPT || st->drag == DRAG_RESIZE ||
+    drag_kind drag = viewport_drag_kind(st);
+    return (drag != DRAG_NONE || in_view(st, st->mouse_x, st->mouse_y)) &&
+           (drag == DRAG_SCULPT || drag == DRAG_RESIZE ||
             !ui_captures_point(st->ui, st->in.mouse_x, st->in.mouse_y));
 }
 
 static void update_cursor(window_state *st) {
     brush_cursor *bc = &st->v->cursor;
-    double hit[3];
-    bc->visible = st->mouse_in && !st->looking && st->drag != DRAG_ORBIT &&
+    double hit[3], resize_radius, resize_strength;
+    int resizing = viewport_drag_resizing(st, hit, &resize_radius, &resize_strength);
+    bc->visible = st->mouse_in && !viewport_looking(st) && viewport_drag_kind(st) != DRAG_ORBIT &&
                   pointer_on_terrain(st) &&
-                  (st->drag == DRAG_RESIZE || pick_at(st, st->mouse_x, st->mouse_y, hit) == 0);
+                  (resizing || pick_at(st, st->mouse_x, st->mouse_y, hit) == 0);
     if (!bc->visible) return;
-    if (st->drag == DRAG_RESIZE) memcpy(hit, st->resize_at, sizeof hit);
     bc->x = hit[0], bc->y = hit[1], bc->z = hit[2]; // y: planets drape it in 3D
     if (st->ed.stamps.active) {               // the stamp's footprint: its half size, no falloff
         bc->radius = stamp_browser_half_size( // in face-local metres on a planet
@@ -79,7 +80,7 @@ static void update_cursor(window_state *st) {
         return;
     }
     const brush *b = &st->ctx->brush;
-    bc->radius = st->drag == DRAG_RESIZE ? st->resize_radius : b->radius;
+    bc->radius = resizing ? resize_radius : b->radius;
     for (int i = 0; i < BRUSH_FALLOFF_SAMPLES; i++)
         bc->falloff[i] = brush_falloff_weight(b, (float)i / (BRUSH_FALLOFF_SAMPLES - 1));
     // Coloured by what a stroke would do now (Ctrl inverts, Shift smooths), as strong
@@ -90,13 +91,12 @@ static void update_cursor(window_state *st) {
         glfwGetKey(st->win, GLFW_KEY_LEFT_SHIFT) || glfwGetKey(st->win, GLFW_KEY_RIGHT_SHIFT);
     brush_tool tool = shift ? BRUSH_SMOOTH : b->tool;
     int invert = !shift && (b->invert != ctrl);
-    double strength = st->drag == DRAG_RESIZE ? st->resize_strength : b->strength;
-    bc->sphere = brush_tool_is_volume(b->tool) && st->drag != DRAG_RESIZE;
+    double strength = resizing ? resize_strength : b->strength;
+    bc->sphere = brush_tool_is_volume(b->tool) && !resizing;
     if (bc->sphere) { // where the next point would go, as big as the ball it would lay
         double p[3];
-        bc->visible =
-            sculpt_volume_point(st->drag == DRAG_SCULPT ? &st->sculpt : NULL, b, sculpt_view_of(st),
-                                st->mouse_x, st->mouse_y, hit, p) == 0;
+        bc->visible = sculpt_volume_point(viewport_drag_stroke(st), b, sculpt_view_of(st),
+                                          st->mouse_x, st->mouse_y, hit, p) == 0;
         bc->x = p[0], bc->y = p[1], bc->z = p[2];
         if (b->tool == BRUSH_FILL || b->tool == BRUSH_CARVE) {
             bc->radius *= strength;
@@ -167,12 +167,10 @@ const ui_draw_list *build_ui(window_state *st, int fw, int fh) {
                               .resolution_scale = st->drawn_scale,
                               .pending = st->pending,
                               .gl_renderer = st->gl_renderer,
-                              .resizing = st->drag == DRAG_RESIZE,
-                              .resize_radius = st->resize_radius,
-                              .resize_strength = st->resize_strength,
                               .ui_scale = st->settings.ui_scale,
                               .camera_mode = camera_mode(st),
                               .dynamic_resolution = st->dynamic_res};
+    info.resizing = viewport_drag_resizing(st, NULL, &info.resize_radius, &info.resize_strength);
     double hit[3];
     if (st->mouse_in && pointer_on_terrain(st) && pick_at(st, st->mouse_x, st->mouse_y, hit) == 0) {
         info.cursor_valid = 1;
@@ -229,10 +227,10 @@ int render_terrain(window_state *st, int vw, int vh, int arrived) {
     update_cursor(st);
     // The cursor is drawn with the terrain: while it moves the frame is made at the
     // moving scale too, so it follows the pointer at the frame-time goal.
-    int moving = memcmp(&v->cam, &st->drawn_cam, sizeof v->cam) != 0 || st->drag == DRAG_SCULPT ||
-                 v->settings.sun_rotation != 0 ||
+    int moving = memcmp(&v->cam, &st->drawn_cam, sizeof v->cam) != 0 ||
+                 viewport_drag_kind(st) == DRAG_SCULPT || v->settings.sun_rotation != 0 ||
                  memcmp(&v->cursor, &st->drawn_cursor, sizeof v->cursor) != 0 ||
-                 st->drag == DRAG_ORBIT || keys_held(st);
+                 viewport_drag_kind(st) == DRAG_ORBIT || keys_held(st);
     float scale = moving && st->dynamic_res ? st->res_scale : 1.0f;
     int w = (int)fmaxf(1.0f, roundf(vw * scale)), h = (int)fmaxf(1.0f, roundf(vh * scale));
     int changed = !st->terrain_valid || arrived || st->world_changed ||

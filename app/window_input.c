@@ -12,7 +12,7 @@ static const int move_key_codes[MOVE_KEY_COUNT] = {GLFW_KEY_W, GLFW_KEY_S, GLFW_
 // held time is banked at every press, release and mode change, so the camera moves
 // for as long as a key was held even when frames are slow.
 static int movement_allowed(const window_state *st) {
-    return st->looking || st->cc.walk;
+    return viewport_looking(st) || st->cc.walk;
 }
 
 void bank_keys(window_state *st) {
@@ -74,7 +74,7 @@ static void on_scroll(GLFWwindow *win, double dx, double dy) {
         return;
     }
     st->dirty = 1;
-    if (st->looking) {
+    if (viewport_looking(st)) {
         camera_controls_speed_wheel(&st->cc, dy);
         return;
     }
@@ -182,19 +182,6 @@ void queue_ui_event(window_state *st, ui_event e) {
     ui_input_queue_push(st->queue, &e);
 }
 
-// Fly, orbit or walk (C, View > Camera): seed 004's camera switch.
-void set_camera_mode(window_state *st, int mode) {
-    bank_keys(st);
-    st->orbit_mode = mode == 1;
-    if ((mode == 2) != st->cc.walk)
-        camera_controls_toggle_walk(&st->cc, &st->v->cam, ground_height, st);
-    st->dirty = st->ui_dirty = 1;
-}
-
-int camera_mode(const window_state *st) {
-    return st->cc.walk ? 2 : st->orbit_mode ? 1 : 0;
-}
-
 static void toggle_console(window_state *st) {
     st->ed.console.open = !st->ed.console.open;
     st->ed.console.focus_input = st->ed.console.open;
@@ -240,7 +227,7 @@ static void run_shortcut(window_state *st, const shortcut_key *k) {
         run_commands(st, k->arg, strchr(k->label, '+') ? k->label : "key");
         break;
     case SHORTCUT_TOOL: // one letter per tool, while the pointer is over the viewport
-        if (!st->looking && in_view(st, st->mouse_x, st->mouse_y)) {
+        if (!viewport_looking(st) && in_view(st, st->mouse_x, st->mouse_y)) {
             int tool = editor_ui_tool_index(k->arg);
             if (tool >= 0) editor_ui_pick_tool(&st->ed, st->ctx, tool);
         }

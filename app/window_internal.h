@@ -6,10 +6,10 @@
 #include "app/camera_controls.h"
 #include "app/dynamic_resolution.h"
 #include "app/editor_ui.h"
-#include "app/sculpt_drag.h"
 #include "app/settings.h"
 #include "app/tool_settings.h"
 #include "app/ui_messages.h"
+#include "app/viewport_drag_state.h"
 #include "app/work_queue.h"
 #include "editor/edit/recover.h"
 #include "editor/params/world_grid.h"
@@ -37,9 +37,6 @@
 // The movement keys: W S A D E Q.
 enum { MOVE_KEY_COUNT = 6 };
 
-// Left: sculpt; middle or Alt+left: orbit; Alt+right: resize the brush on screen.
-typedef enum drag_kind { DRAG_NONE, DRAG_SCULPT, DRAG_ORBIT, DRAG_RESIZE } drag_kind;
-
 typedef struct window_state {
     cmd_context *ctx;
     viewport *v;
@@ -48,16 +45,9 @@ typedef struct window_state {
     camera_controls cc;
     double mouse_x, mouse_y; // window coordinates of the last motion event
     int mouse_in;
-    drag_kind drag;       // left or middle button
-    int looking;          // right button held: mouse look, WASD, wheel sets the speed
-    int orbit_mode;       // the orbit camera (C): the right button orbits the view's centre
-    int dynamic_res;      // lower the resolution while moving (L)
-    double sun_turned_at; // when the rotating light last turned (seconds)
-    double pivot[3];      // orbit pivot of the current drag
-    // Alt+right drag: right/left sizes the brush, up/down its strength; the cursor stays
-    // where the drag began and one `tool` command applies the result on release.
-    double resize_x0, resize_y0, resize_r0, resize_s0, resize_radius, resize_strength;
-    double resize_at[3];
+    viewport_drag_state drag; // viewport_drag.c's
+    int dynamic_res;          // lower the resolution while moving (L)
+    double sun_turned_at;     // when the rotating light last turned (seconds)
     int key_down[MOVE_KEY_COUNT];
     double key_since[MOVE_KEY_COUNT], key_held[MOVE_KEY_COUNT]; // seconds, see bank_keys
     int dirty;                                                  // something changed: draw a frame
@@ -102,9 +92,8 @@ typedef struct window_state {
     brush_cursor drawn_cursor;
     float drawn_scale;
     int drawn_w, drawn_h;
-    int world_changed;  // change notifications since the terrain image
-    sculpt_drag sculpt; // the left button's sculpting drag
-    double px_scale;    // framebuffer pixels per window unit (HiDPI)
+    int world_changed; // change notifications since the terrain image
+    double px_scale;   // framebuffer pixels per window unit (HiDPI)
     app_settings settings;
     char settings_path[4096], history_path[4096];
 
@@ -147,9 +136,6 @@ void bank_keys(window_state *st);
 // The banked time as a step for camera_controls_move; clears the bank.
 move_keys take_keys(window_state *st);
 int keys_held(const window_state *st);
-// Fly, orbit or walk (C, View > Camera): seed 004's camera switch.
-void set_camera_mode(window_state *st, int mode);
-int camera_mode(const window_state *st);
 // The close button asks first when there are unsaved changes.
 void on_close(GLFWwindow *win);
 void clear_frame_input(ui_input *in);
@@ -161,13 +147,28 @@ void keys_after_ui(window_state *st, const ui_input *in);
 // Sets the window's GLFW callbacks (events go to st).
 void window_input_attach(window_state *st);
 
-// --- viewport_drag.c: the viewport's drags
+// --- viewport_drag.c: the viewport's drags, mouse look, the camera mode
+
+drag_kind viewport_drag_kind(const window_state *st);
+// The right button is held for mouse look.
+int viewport_looking(const window_state *st);
+// While the brush is resized on screen: 1, with the point it is shown at and the radius
+// and strength it would get; else 0.
+int viewport_drag_resizing(const window_state *st, double at[3], double *radius, double *strength);
+// The sculpting drag while one is drawn, else NULL.
+sculpt_drag *viewport_drag_stroke(window_state *st);
+// After queued work ran: a stroke that Esc or Cancel ended is over, and a planet drag's
+// moves held during the job are picked now the world is free.
+void viewport_drag_after_work(window_state *st);
 
 sculpt_view sculpt_view_of(const window_state *st);
 // Commits the drag's stroke (one undo step); a stroke that laid no dab leaves no step.
 // The console shows the drag as one line rather than a line per mouse move.
 void sculpt_end(window_state *st);
 const char *tool_name(const brush *b);
+// Fly, orbit or walk (C, View > Camera): seed 004's camera switch.
+void set_camera_mode(window_state *st, int mode);
+int camera_mode(const window_state *st);
 // GLFW's button and cursor events over the window: they start, move and end drags.
 void viewport_drag_button(GLFWwindow *win, int button, int action, int mods);
 void viewport_drag_cursor(GLFWwindow *win, double x, double y);
