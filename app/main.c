@@ -234,6 +234,11 @@ int main(int argc, char **argv) {
         fprintf(stderr, "orogen: %s\n", err.msg);
         return 1;
     }
+    // Scripts from files or -c are the record of their edits; standard input may be a
+    // person typing, whose never-saved world keeps its journal like the window's.
+    settings.scripted = script_count > 0;
+    for (int s = 0; s < script_count; s++)
+        if (scripts[s].path && !strcmp(scripts[s].path, "-")) settings.scripted = 0;
     FILE *recording = NULL;
     if (record_path && file_kind_check_replace(record_path, &err) != 0) { // a FIFO would block
         fprintf(stderr, "orogen: --record: %s\n", err.msg);

@@ -280,6 +280,19 @@ line=$(recover_click "Recover unsaved edits/$unsaved/Recover" "$h_unsaved")
 [ "$line" = "$h_unsaved" ]; check "Recover restores the never-saved world's terrain ($line, wanted $h_unsaved)" $?
 kill9
 
+# A script that edits a never-saved world and ends normally leaves no journal behind
+# (the script is the record of its edits; they piled up unseen in the recovery folder);
+# one killed leaves its journal, and standard input, maybe a person typing, keeps one.
+rdir="$XDG_STATE_HOME/orogen/recover"
+count() { find "$rdir" -name 'unsaved-*.recover' 2>/dev/null | wc -l; }
+n0=$(count)
+"$orogen" -c "tool raise radius=30 strength=1; dab 10 10; new flat; dab 20 20" >/dev/null 2>&1
+n1=$(count)
+echo "tool raise radius=30 strength=1; dab 10 10" | "$orogen" --batch - >/dev/null 2>&1
+n2=$(count)
+[ "$n1" = "$n0" ] && [ "$n2" = $((n0 + 1)) ]
+check "a script leaves no never-saved journal, standard input keeps one ($n0 -> $n1 -> $n2)" $?
+
 # One writer: while the editor has the world open, a second orogen opens it read-only
 # and cannot save over it, but can save elsewhere.
 start

@@ -54,6 +54,7 @@ struct world {
     // A never-saved world journals under the recovery folder, onto the parameters it
     // was created with.
     int unsaved_journal;
+    int journal_fresh; // the journal was begun by this session, not taken over
     world_params base_params;
     // Edits go to the journal (a scratch store) until saved; the world's own store,
     // when it has one, is only read until `save` merges the journal into it. So a
@@ -457,8 +458,11 @@ void world_close(world *w) {
         og_error err = {{0}};
         if (stop_cache(w, &err) != 0) w->settings.warn(w->settings.warn_user, err.msg);
     }
-    // The journal stays: only a save of its edits or 'recover discard' removes it.
+    // The journal stays: only a save of its edits or 'recover discard' removes it, or
+    // the normal end of a script that made a never-saved world (world_settings.scripted).
     recovery_journal_close(w->rj);
+    if (w->settings.scripted && w->unsaved_journal && w->journal_fresh && w->recover_path[0])
+        unlink(w->recover_path);
     close_stores(w);
     file_lock_release(&w->lock);
     history_destroy(w->history);
@@ -872,6 +876,7 @@ void world_journal_record(world *w, recovery_kind kind, const history_step *s) {
             return;
         }
         w->unsaved_journal = 1;
+        w->journal_fresh = 1;
     }
     if (!w->rj) {
         struct stat st;
@@ -932,6 +937,7 @@ void world_journal_pause(world *w, int paused) {
 
 int world_journal_continue(world *w, const char *journal, size_t keep_bytes, og_error *err) {
     w->recoverable = 0;
+    w->journal_fresh = 0; // another session's edits: never removed but by save or discard
     if (w->read_only[0]) return 0;
     recovery_journal_close(w->rj);
     w->rj = NULL;

@@ -23,6 +23,10 @@ typedef struct world_settings {
     // (so a subscriber hears WORLD_EVENT_REPLACED and keeps its subscription); NULL =
     // the world makes a private hub, freed with it.
     world_events *events;
+    // A script drives this run (-c, --batch FILE): the script is the record of its edits,
+    // so a never-saved world's journal the run began is removed when the world closes
+    // (a kill leaves it for `recover`; a journal taken over by `recover` stays).
+    int scripted;
 } world_settings;
 
 typedef struct world world;
