@@ -185,6 +185,27 @@ world *edit_recover_unsaved(const char *journal, const world_settings *settings,
 
 // ---- listing -----------------------------------------------------------------------
 
+// Calls fn with the path of each never-saved world's journal in the recovery folder
+// (unsaved-*.recover).
+static void each_unsaved_journal(void (*fn)(void *user, const char *path), void *user) {
+    char dir[4096];
+    og_error err;
+    if (world_recovery_dir(dir, sizeof dir, &err) != 0) return;
+    DIR *d = opendir(dir);
+    if (!d) return;
+    struct dirent *e;
+    while ((e = readdir(d))) {
+        size_t n = strlen(e->d_name);
+        if (strncmp(e->d_name, "unsaved-", 8) != 0 || n < 9 ||
+            strcmp(e->d_name + n - 8, ".recover") != 0)
+            continue;
+        char candidate[4400];
+        snprintf(candidate, sizeof candidate, "%s/%s", dir, e->d_name);
+        fn(user, candidate);
+    }
+    closedir(d);
+}
+
 typedef struct lister {
     const world *w;
     void (*fn)(void *user, const recover_entry *e);
@@ -222,6 +243,11 @@ static void list_one(void *user, const char *path) {
     l->count++;
 }
 
+static void list_other(void *user, const char *path) {
+    lister *l = user;
+    if (strcmp(path, world_recovery_path(l->w)) != 0) list_one(l, path);
+}
+
 size_t edit_recover_list(const world *w, void (*fn)(void *user, const recover_entry *e),
                          void *user) {
     lister l = {w, fn, user, 0};
@@ -233,52 +259,33 @@ size_t edit_recover_list(const world *w, void (*fn)(void *user, const recover_en
         list_one(&l, world_recovery_path(w));
     }
     // Never-saved worlds' journals in the recovery folder, not this session's.
-    char dir[4096];
-    og_error err;
-    if (world_recovery_dir(dir, sizeof dir, &err) != 0) return l.count;
-    DIR *d = opendir(dir);
-    if (!d) return l.count;
-    struct dirent *e;
-    while ((e = readdir(d))) {
-        size_t n = strlen(e->d_name);
-        if (strncmp(e->d_name, "unsaved-", 8) != 0 || n < 9 ||
-            strcmp(e->d_name + n - 8, ".recover") != 0)
-            continue;
-        char candidate[4400];
-        snprintf(candidate, sizeof candidate, "%s/%s", dir, e->d_name);
-        if (!strcmp(candidate, world_recovery_path(w))) continue;
-        list_one(&l, candidate);
-    }
-    closedir(d);
+    each_unsaved_journal(list_other, &l);
     return l.count;
 }
 
-int edit_find_unsaved_journal(char *path, size_t len, recovery_scan *scan) {
-    char dir[4096];
+typedef struct newest_finder {
+    char *path;
+    size_t len;
+    recovery_scan *scan;
+    int found;
+} newest_finder;
+
+static void consider_newest(void *user, const char *candidate) {
+    newest_finder *f = user;
+    recovery_scan s;
     og_error err;
-    if (world_recovery_dir(dir, sizeof dir, &err) != 0) return 0;
-    DIR *d = opendir(dir);
-    if (!d) return 0;
-    int found = 0;
-    struct dirent *e;
-    while ((e = readdir(d))) {
-        size_t n = strlen(e->d_name);
-        if (strncmp(e->d_name, "unsaved-", 8) != 0 || n < 9 ||
-            strcmp(e->d_name + n - 8, ".recover") != 0)
-            continue;
-        char candidate[4400];
-        snprintf(candidate, sizeof candidate, "%s/%s", dir, e->d_name);
-        recovery_scan s;
-        if (recovery_journal_in_use(candidate) ||
-            recovery_journal_read(candidate, &s, NULL, NULL, &err) != 0 || !s.records ||
-            !s.has_base)
-            continue;
-        if (!found || s.last > scan->last) {
-            snprintf(path, len, "%s", candidate);
-            *scan = s;
-            found = 1;
-        }
+    if (recovery_journal_in_use(candidate) ||
+        recovery_journal_read(candidate, &s, NULL, NULL, &err) != 0 || !s.records || !s.has_base)
+        return;
+    if (!f->found || s.last > f->scan->last) {
+        snprintf(f->path, f->len, "%s", candidate);
+        *f->scan = s;
+        f->found = 1;
     }
-    closedir(d);
-    return found;
+}
+
+int edit_find_unsaved_journal(char *path, size_t len, recovery_scan *scan) {
+    newest_finder f = {path, len, scan, 0};
+    each_unsaved_journal(consider_newest, &f);
+    return f.found;
 }
