@@ -5,7 +5,8 @@
 //     (begin, first-touch snapshot, commit with undo capture and mips);
 //  2. one raise dab of radius 512 samples inside a stroke: on every core, on one
 //     core, and on a plain array (one thread, no tiles: the reference);
-//  3. a 1000-dab stroke over 4 tiles with undo capture, then its undo and redo;
+//  3. a 1000-dab stroke over 4 tiles with undo capture, then its undo and redo; the
+//     same stroke drawn in 200 moves (live mip levels per move) against one move;
 //  4. that stroke's history memory against the raw bytes of the tiles it covers and
 //     the bytes it actually changed, and the cost of appending its step to the crash
 //     recovery journal against the stroke's own time (goal: under 5%);
@@ -337,6 +338,26 @@ static double stroke_seconds(world *w, const brush *b, double x0, double z0, dou
     return bench_now() - t0;
 }
 
+// The same stroke drawn as the window draws it, one stroke_to per mouse move (each
+// brings the mip levels up to date and publishes, so the viewport shows it live);
+// *end_s gets stroke_end's share (the commit).
+static double stroke_moves_seconds(world *w, const brush *b, double x0, double z0, double x1,
+                                   double z1, int moves, double *end_s) {
+    og_error err;
+    double t0 = bench_now();
+    stroke *s = stroke_begin(w, b, &err);
+    if (!s) check(-1, &err, "stroke_begin");
+    for (int i = 0; i <= moves; i++) {
+        double f = (double)i / moves;
+        check(stroke_to(s, x0 + f * (x1 - x0), z0 + f * (z1 - z0), 1.0, &err), &err, "stroke_to");
+    }
+    double t1 = bench_now();
+    check(stroke_end(s, &err), &err, "stroke_end");
+    double t2 = bench_now();
+    *end_s = t2 - t1;
+    return t2 - t0;
+}
+
 static void bench_stroke(void) {
     layer_grid g;
     world *w = bench_world(&g);
@@ -371,6 +392,21 @@ static void bench_stroke(void) {
            "(undo + redo) / stroke = %.3f\n",
            s * 1e3, s * 1e6 / (double)dabs, u * 1e3, d * 1e3, q);
     goal("(undo + redo) / stroke, 1000-dab stroke", q, 1.0, 1, "");
+
+    // Drawn in 200 moves, against the same dabs in one move (whose mip levels are
+    // brought up to date once): the live updates should cost little more than that.
+    const int moves = 200;
+    double mv[RUNS], mv_end[RUNS], one[RUNS], mv_ratio[RUNS];
+    for (int r = 0; r < RUNS; r++) {
+        one[r] = stroke_seconds(w, &b, x0, z0, x1, z1, &dabs);
+        mv[r] = stroke_moves_seconds(w, &b, x0, z0, x1, z1, moves, &mv_end[r]);
+        mv_ratio[r] = mv[r] / one[r];
+    }
+    printf("  drawn in %d moves (live mip levels and publishing per move): %.2f ms, stroke_end "
+           "%.2f ms; in one move %.2f ms; ratio %.2f\n",
+           moves, bench_median(mv, RUNS) * 1e3, bench_median(mv_end, RUNS) * 1e3,
+           bench_median(one, RUNS) * 1e3, bench_median(mv_ratio, RUNS));
+    goal("stroke in 200 moves / in one move", bench_median(mv_ratio, RUNS), 1.5, 0, "x");
 
     // The last stroke's step: compare every tile it holds before (undone) and after.
     const history_step *step = history_at(h, history_position(h) - 1);

@@ -1800,6 +1800,49 @@ static void test_dirty_rects(void **state) {
     changes = NULL;
 }
 
+// A stroke drawn move by move (as the window draws it) publishes each coarse area once,
+// when its mip levels are current: the moves' areas as they come, nothing again at the
+// end; and the mip levels it updated move by move are those of the whole change.
+static void test_stroke_publishes_once(void **state) {
+    (void)state;
+    world_params p = flat_params(0, 1.0);
+    p.octaves = 3;
+    world *w = open_world(&p);
+    drain_dirty(w);
+    const grid_rect l1 = {0, 0, 256, 256}, l2 = {0, 0, 128, 128};
+    mip_snapshot m1 = mip_snap(w, 1, l1), m2 = mip_snap(w, 2, l2);
+    brush b;
+    brush_defaults(&b, BRUSH_RAISE);
+    b.radius = 20;
+    b.amount = 5;
+    og_error err;
+    stroke *s = stroke_begin(w, &b, &err);
+    assert_non_null(s);
+    for (int i = 0; i < 12; i++) { // a zigzag: later moves cross earlier ones' areas
+        double x = 100 + 20 * i, z = i % 2 ? 120 : 180;
+        assert_int_equal(stroke_to(s, x, z, 1.0, &err), 0);
+        dirty_rect d[64];
+        size_t n = take_dirty(w, d, 64);
+        assert_true(n >= 1);
+        int covered = 0;
+        for (size_t k = 0; k < n; k++) {
+            assert_int_equal(d[k].layer, TILE_LAYER_COARSE);
+            covered |= covers(d[k].rect, (grid_rect){(int64_t)x - 2, (int64_t)z - 2, (int64_t)x + 2,
+                                                     (int64_t)z + 2});
+        }
+        assert_true(covered);
+    }
+    assert_int_equal(stroke_end(s, &err), 0);
+    dirty_rect d[64];
+    assert_int_equal(take_dirty(w, d, 64), 0); // all of it was published live
+    assert_true(mip_check(w, 1, &m1) > 1000);
+    assert_true(mip_check(w, 2, &m2) > 200);
+    mip_free(&m1), mip_free(&m2);
+    world_close(w);
+    world_events_unsubscribe(changes);
+    changes = NULL;
+}
+
 // ---------------------------------------------------------------------------
 // 12. A planet
 // ---------------------------------------------------------------------------
@@ -1888,6 +1931,7 @@ int main(void) {
         cmocka_unit_test(test_unsaved_changes),
         cmocka_unit_test(test_undo_after_save),
         cmocka_unit_test(test_dirty_rects),
+        cmocka_unit_test(test_stroke_publishes_once),
         cmocka_unit_test(test_planet_face_edit),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -26,8 +26,16 @@ struct edit {
     size_t index_size;
     dirty_rect *dirty;
     size_t dirty_count, dirty_cap;
-    size_t mips_current; // dirty areas [0, this) have reached the mip levels
+    // Dirty areas [0, this) have reached the mip levels and been published; a coarse
+    // area past it is still open (later dabs that touch it grow it).
+    size_t mips_current;
 };
+
+// Two areas of one grid that overlap or touch (a stroke's dabs): kept as their union.
+static int joins(const dirty_rect *a, const dirty_rect *b) {
+    return a->layer == b->layer && a->face == b->face && a->rect.x0 <= b->rect.x1 &&
+           b->rect.x0 <= a->rect.x1 && a->rect.z0 <= b->rect.z1 && b->rect.z0 <= a->rect.z1;
+}
 
 static snapshot *find_snap(edit *e, tile_key key) {
     if (!e->index_size) return NULL;
@@ -126,10 +134,11 @@ void edit_dirty(edit *e, tile_layer layer, int face, grid_rect r) {
     if (grid_rect_empty(r)) return;
     dirty_rect d = {layer, face, r};
     pthread_mutex_lock(&e->lock);
-    // Coalesce with the previous rect of the same layer when they touch (a stroke's dabs).
+    // Coalesce with the previous rect of the same layer when they touch (a stroke's dabs),
+    // unless that is a coarse area whose mips are done: its successor is only the new part.
     dirty_rect *last = e->dirty_count ? &e->dirty[e->dirty_count - 1] : NULL;
-    if (last && last->layer == layer && last->face == face && last->rect.x0 <= r.x1 &&
-        r.x0 <= last->rect.x1 && last->rect.z0 <= r.z1 && r.z0 <= last->rect.z1) {
+    if (last && layer == TILE_LAYER_COARSE && e->dirty_count <= e->mips_current) last = NULL;
+    if (last && joins(last, &d)) {
         last->rect = grid_rect_union(last->rect, r);
     } else {
         if (e->dirty_count == e->dirty_cap) {
@@ -144,7 +153,15 @@ void edit_dirty(edit *e, tile_layer layer, int face, grid_rect r) {
         if (e->dirty_count < e->dirty_cap) e->dirty[e->dirty_count++] = d;
     }
     pthread_mutex_unlock(&e->lock);
-    world_publish_area(e->world, layer, face, r); // live: the viewport shows the stroke
+    // Live: the viewport shows the stroke. Coarse areas wait for their mip levels
+    // (edit_mips_update publishes them), so the coarser levels are read once, current.
+    if (layer != TILE_LAYER_COARSE) world_publish_area(e->world, layer, face, r);
+}
+
+void edit_publish_from(edit *e, size_t first) {
+    for (size_t i = first; i < e->dirty_count; i++)
+        if (e->dirty[i].layer == TILE_LAYER_COARSE)
+            world_publish_area(e->world, e->dirty[i].layer, e->dirty[i].face, e->dirty[i].rect);
 }
 
 size_t edit_mips_current(const edit *e) {
@@ -239,9 +256,15 @@ int edit_record(edit *e, og_error *err) {
             failed = og_error_set(err, "out of memory recording the undo step");
         else
             deltas[i] = NULL;
-    for (size_t i = 0; i < e->dirty_count && !failed; i++)
-        if (history_step_add_dirty(step, e->dirty[i]) != 0)
+    for (size_t i = 0; i < e->dirty_count && !failed; i++) {
+        // The step holds a stroke's touching areas as one, as edit_dirty kept them
+        // before the mip levels split them.
+        dirty_rect *last = step->dirty_count ? &step->dirty[step->dirty_count - 1] : NULL;
+        if (last && joins(last, &e->dirty[i]))
+            last->rect = grid_rect_union(last->rect, e->dirty[i].rect);
+        else if (history_step_add_dirty(step, e->dirty[i]) != 0)
             failed = og_error_set(err, "out of memory recording the undo step");
+    }
     if (failed) {
         for (size_t i = 0; i < e->count; i++)
             free(deltas ? deltas[i] : NULL);
@@ -262,7 +285,9 @@ int edit_record(edit *e, og_error *err) {
     }
     free(deltas);
     free(sizes);
-    publish_areas(e->world, e->dirty, e->dirty_count);
+    // Every area was published once already, as it changed (edit_dirty) or when its mip
+    // levels were (edit_mips_update); only coarse areas no mip update saw are left.
+    edit_publish_from(e, e->mips_current);
     world *w = e->world;
     free_edit(e);
     if (step->tile_count == 0 && !step->has_params) { // nothing changed: no step

@@ -19,17 +19,21 @@ world *edit_world(edit *e);
 // it on the edit's first touch. Thread-safe: parallel dab tasks call it.
 int edit_tile_acquire(edit *e, tile_key key, tile_view *view, og_error *err);
 void edit_tile_release(edit *e, tile_view *view);
-// Records a changed area (level-0 samples of that layer). Thread-safe.
+// Records a changed area (level-0 samples of that layer) and publishes it, except a
+// coarse area, published once its mip levels are current (edit_mips_update). Thread-safe.
 void edit_dirty(edit *e, tile_layer layer, int face, grid_rect r);
 
 // For mip and PD maintenance: a touched tile's bytes before the edit (NULL if
 // untouched), and the changed areas so far.
 const void *edit_snapshot(edit *e, tile_key key);
 size_t edit_dirty_rects(edit *e, const dirty_rect **rects);
-// How many of the dirty areas have reached the mip levels (edit_mips.c keeps it; the
-// last of them may have grown since, when later changes touched it).
+// How many of the dirty areas have reached the mip levels and been published
+// (edit_mips.c keeps it); later changes start new areas after them.
 size_t edit_mips_current(const edit *e);
 void edit_set_mips_current(edit *e, size_t count);
+// Publishes the coarse dirty areas from index first on (their mip levels current):
+// each change reaches the world's subscribers once, live or at the commit.
+void edit_publish_from(edit *e, size_t first);
 
 // Ends the edit as one undo step holding the touched tiles' deltas as they are now
 // (edit_commit in edit_commit.h first brings mips and PD maps up to date: use that).

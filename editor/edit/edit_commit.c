@@ -14,5 +14,10 @@ int edit_commit(edit *e, og_error *err) {
         edit_abort(e);
         return -1;
     }
+    // The detail areas were published as they changed; their slopes (the PD map, which
+    // readers of the detail layer take with it) change only now.
+    for (size_t i = 0; i < count; i++)
+        if (rects[i].layer == TILE_LAYER_DETAIL)
+            world_publish_area(edit_world(e), rects[i].layer, rects[i].face, rects[i].rect);
     return edit_record(e, err);
 }

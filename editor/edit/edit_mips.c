@@ -131,8 +131,11 @@ static int parent_tile_task(void *user, int task, og_error *err) {
 int edit_mips_update(edit *e, og_error *err) {
     const dirty_rect *d;
     size_t n = edit_dirty_rects(e, &d), done = edit_mips_current(e);
-    // The last area brought up to date may have grown since (dabs coalesce into it).
-    if (edit_mips_update_from(e, done > 0 ? done - 1 : 0, err) != 0) return -1;
+    if (done == n) return 0;
+    // Only the areas changed since the last call: edit_dirty starts a new area after the
+    // ones done, so the parent tiles they reach are the only ones written.
+    if (edit_mips_update_from(e, done, err) != 0) return -1;
+    edit_publish_from(e, done);
     edit_set_mips_current(e, n);
     return 0;
 }
