@@ -452,7 +452,7 @@ static void bench_stroke(void) {
     char dir[] = "/tmp/orogen-bench-journal-XXXXXX", path[64];
     if (!mkdtemp(dir)) check(-1, &err, "mkdtemp");
     snprintf(path, sizeof path, "%s/w.recover", dir);
-    recovery_journal *j = recovery_journal_open(path, "", NULL, 0, &err);
+    recovery_journal *j = recovery_journal_open(path, "", NULL, NULL, 0, &err);
     if (!j) check(-1, &err, "recovery_journal_open");
     double ap[RUNS], share[RUNS];
     for (int r = 0; r < RUNS; r++) {

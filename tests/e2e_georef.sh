@@ -7,6 +7,7 @@
 #  2. A non-square raster makes a world of its own shape, every row and column, and
 #     exports back to the same dimensions and values.
 #  3. A parameter file without the new keys loads as before (square, local metres).
+#  4. Crash recovery of a world made from a file re-reads the file (checked).
 # Usage: e2e_georef.sh OROGEN TESTS_DIR
 set -u
 orogen=$1
@@ -144,6 +145,31 @@ check "an old parameter file loads" $status
 grep -q "^size_z=300$" "$work/out"; check "it is square" $?
 gdalinfo "$work/old.tif" | grep -q "Origin = (-15.000000000000000,15.000000000000000)"; check "its export is in local metres" $?
 gdalinfo "$work/old.tif" | grep -q "Size is 300, 300"; check "of the whole world" $?
+
+# 4. A world made from a file is journaled by the file's name, not a copy of its
+# samples: a crash after edits recovers the same terrain from it, and a file changed
+# since is refused (the journal kept).
+export OROGEN_RECOVER_DIR=$work/recover
+mkdir -p "$OROGEN_RECOVER_DIR"
+cp "$work/crop.tif" "$work/base.tif"
+run -c "new flat from=$work/base.tif; tool raise radius=2000 strength=1; stroke 5000 5000 20000 9000; hash 0 0 90000 60000"
+edited=$(tail -n 1 "$work/out")
+journal=$(ls "$OROGEN_RECOVER_DIR"/*.recover 2>/dev/null | head -n 1)
+[ -n "$journal" ] && [ "$(stat -c %s "$journal")" -lt 1000000 ]
+check "the journal names the raster instead of holding its $(stat -c %s "$work/base.tif" 2>/dev/null)-byte samples ($(stat -c %s "$journal" 2>/dev/null) bytes)" $?
+cp "$journal" "$work/journal.copy"
+run -c "recover $journal; hash 0 0 90000 60000; undo; hash 0 0 90000 60000"
+vals=($(grep -E '^[0-9a-f]{16}$' "$work/out"))
+[ "${vals[0]:-}" = "$edited" ]; check "recovered from the raster and the journal: the same terrain" $?
+run -c "new flat from=$work/base.tif; hash 0 0 90000 60000"
+[ "${vals[1]:-}" = "$(tail -n 1 "$work/out")" ]; check "and the steps undo back to the raster" $?
+rm -f "$OROGEN_RECOVER_DIR"/*.recover
+cp "$work/journal.copy" "$OROGEN_RECOVER_DIR/again.recover"
+gdal_translate -q -srcwin 1 0 1201 800 "$dem" "$work/base.tif"
+run -c "recover $OROGEN_RECOVER_DIR/again.recover"
+[ $status = 1 ] && grep -q "was made from $work/base.tif, which has changed since.*the journal is kept" "$work/err" &&
+    [ -s "$OROGEN_RECOVER_DIR/again.recover" ]
+check "a raster changed since: recovery refused, naming it, the journal kept" $?
 
 echo "e2e_georef: $passes passed, $failures failed"
 [ $failures = 0 ]

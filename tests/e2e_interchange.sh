@@ -226,6 +226,30 @@ if command -v parallel >/dev/null; then
 else
     echo "FAIL: GNU parallel is missing (scripts/install-deps.sh installs it)"; failures=$((failures + 1))
 fi
+# One 16-bit mapping for every tile: by default the union of the region's heights
+# (stored 0 and 65535 both used somewhere in the set), said in the sidecars and printout.
+mkdir -p "$work/union"
+run -c "new flat from=$vermont; export $work/union/t.png tiles=2x2; sample 0 0"
+grep -q "height mapping: one for every tile: the region's heights 115 .. 1908 m" "$work/out"
+check "tiles: the printout says the union mapping" $?
+/usr/bin/python3 - "$work/union" "$(tail -n 1 "$work/out")" <<'EOF'
+import glob, json, sys
+from osgeo import gdal
+d, h00 = sys.argv[1], float(sys.argv[2])
+sets = json.load(open(d + "/t.png.json"))
+assert "the region's heights 115 .. 1908 m" in sets["height_mapping"]
+lo, hi, maps = 65535, 0, set()
+for f in sorted(glob.glob(d + "/t_x*_y*.png")):
+    sc = json.load(open(f + ".json"))
+    maps.add((sc["height_scale"], sc["height_offset"]))
+    a = gdal.Open(f).ReadAsArray()
+    lo, hi = min(lo, int(a.min())), max(hi, int(a.max()))
+    if f.endswith("t_x0_y0.png"):
+        assert abs(a[0, 0] * sc["height_scale"] + sc["height_offset"] - h00) <= sc["height_scale"] / 2 + 1e-9
+assert len(maps) == 1 and maps == {(sets["height_scale"], sets["height_offset"])}, maps
+assert (lo, hi) == (0, 65535), (lo, hi)
+EOF
+check "tiles: one mapping in every sidecar, spanning stored 0 .. 65535 over the set" $?
 # The formats that carry a date (EXR, TIFF) too: a second apart, as one run and as two
 # shards, every file the same bytes.
 mkdir -p "$work/date1" "$work/date2"

@@ -202,7 +202,8 @@ static int c_recover(cmd_context *ctx, int argc, char **argv, og_error *err) {
     recovery_scan scan;
     if (journal && recovery_journal_read(journal, &scan, NULL, NULL, err) != 0) return -1;
     if (journal && scan.has_base) {
-        world *w = edit_recover_unsaved(journal, &ctx->settings, &r, err);
+        world *w =
+            edit_recover_unsaved(journal, &ctx->settings, cmd_world_from_raster_again, &r, err);
         if (!w) return -1;
         replace_world(ctx, w);
         print_recovered(ctx, &r);

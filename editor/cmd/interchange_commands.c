@@ -5,11 +5,14 @@
 #include "editor/interchange/export_vdb.h"
 #include "editor/interchange/import.h"
 #include "editor/params/world_georef.h"
+#include "io/crc32c.h"
 #include "io/parse.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <stdio.h>
 #include <time.h>
 
 static double seconds_since(const struct timespec *t0) {
@@ -50,6 +53,46 @@ int cmd_import(cmd_context *ctx, int argc, char **argv, og_error *err) {
     if (import_apply(ctx->world, argv[1], &o, &r, err) != 0) return -1;
     print_import(ctx->out, argv[1], &r, o.layer, seconds_since(&t0));
     return 0;
+}
+
+// CRC32C of the mapped samples: a remade base is checked to be the one made.
+static uint32_t samples_crc(const raster *r) {
+    return crc32c_update(0, r->samples, sizeof(float) * (size_t)r->width * (size_t)r->height);
+}
+
+// Imports src at the corner of a world made for it, one world sample per raster sample,
+// as the world's base: not journaled (its journal names the file instead, source).
+static int place_base(world *w, const char *path, import_source *src, import_options *o,
+                      const char *source, import_report *rep, og_error *err) {
+    const world_params *p = world_get_params(w);
+    o->has_position = 1;
+    o->x = o->z = 0;
+    o->anchor_centre = 0;
+    src->spacing_x = src->spacing_z = p->spacing;
+    if (world_set_base_source(w, source, err) != 0) return -1;
+    world_journal_pause(w, source != NULL);
+    int rc = import_apply_source(w, path, src, o, rep, err);
+    world_journal_pause(w, 0);
+    return rc;
+}
+
+// What a world's journal keeps of the raster it was made from: its absolute path, the
+// import options, one a line, and its size and samples' checksum. NULL when the path
+// cannot be kept so (the journal then holds the samples, as for any edit).
+static char *base_source_text(const char *path, int argc, char **argv, int first, const raster *r) {
+    char real[PATH_MAX];
+    if (!realpath(path, real) || strchr(real, '\n')) return NULL;
+    char *text = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&text, &len);
+    if (!f) return NULL;
+    fprintf(f, "raster %s\n", real);
+    for (int i = first; i < argc; i++)
+        if (!strchr(argv[i], '\n')) fprintf(f, "%s\n", argv[i]);
+    fprintf(f, "samples %d x %d crc32c %08x\n", r->width, r->height, samples_crc(r));
+    fclose(f);
+    if (text && len >= RECOVERY_SOURCE_MAX) free(text), text = NULL;
+    return text;
 }
 
 world *cmd_world_from_raster(cmd_context *ctx, const char *path, int argc, char **argv, int first,
@@ -94,15 +137,13 @@ world *cmd_world_from_raster(cmd_context *ctx, const char *path, int argc, char 
         snprintf(p.geo_crs, sizeof p.geo_crs, "%s", geo->crs);
     }
     world *w = world_params_validate(&p, err) == 0 ? world_create(&p, &ctx->settings, err) : NULL;
-    o.has_position = 1;
-    o.x = o.z = 0;
-    o.anchor_centre = 0;
-    src.spacing_x = src.spacing_z = spacing;
+    char *source = w ? base_source_text(path, argc, argv, first, &src.raster) : NULL;
     import_report rep;
-    if (w && import_apply_source(w, path, &src, &o, &rep, err) != 0) {
+    if (w && place_base(w, path, &src, &o, source, &rep, err) != 0) {
         world_close(w);
         w = NULL;
     }
+    free(source);
     import_source_free(&src);
     if (!w) return NULL;
     fprintf(ctx->out, "new flat world of %lld x %lld samples, %.6g m apart, from %s",
@@ -119,6 +160,47 @@ world *cmd_world_from_raster(cmd_context *ctx, const char *path, int argc, char 
     fprintf(ctx->out, "\n");
     print_import(ctx->out, path, &rep, TILE_LAYER_COARSE, seconds_since(&t0));
     return w;
+}
+
+int cmd_world_from_raster_again(world *w, const char *source, og_error *err) {
+    char text[RECOVERY_SOURCE_MAX];
+    snprintf(text, sizeof text, "%s", source);
+    char *lines[256];
+    int n = 0;
+    for (char *save = NULL, *l = strtok_r(text, "\n", &save); l && n < 256;
+         l = strtok_r(NULL, "\n", &save))
+        lines[n++] = l;
+    int width = 0, height = 0;
+    unsigned crc = 0;
+    if (n < 2 || strncmp(lines[0], "raster ", 7) != 0 ||
+        sscanf(lines[n - 1], "samples %d x %d crc32c %x", &width, &height, &crc) != 3)
+        return og_error_set(err, "its source is not described as Orogen writes it");
+    const char *path = lines[0] + 7;
+    // The options as given, for import's parser (argv[0] and argv[1] are the command's).
+    char *argv[258] = {"new", "flat"};
+    for (int i = 1; i < n - 1; i++)
+        argv[i + 1] = lines[i];
+    import_options o;
+    if (parse_import_options(n, argv, 2, &o, err) != 0) return -1;
+    world_params defaults;
+    world_params_default(&defaults, WORLD_FLAT);
+    import_source src;
+    og_error why;
+    if (import_source_read(path, &o, defaults.max_height, &src, &why) != 0)
+        return og_error_set(err, "it was made from %s, which cannot be read now (%s)", path,
+                            why.msg);
+    int rc = 0;
+    if (src.raster.width != width || src.raster.height != height || samples_crc(&src.raster) != crc)
+        rc = og_error_set(err,
+                          "it was made from %s, which has changed since (%d x %d samples, "
+                          "checksum %08x; it was %d x %d, %08x): put the file back as it was "
+                          "and recover again",
+                          path, src.raster.width, src.raster.height, samples_crc(&src.raster),
+                          width, height, crc);
+    import_report rep;
+    if (rc == 0) rc = place_base(w, path, &src, &o, NULL, &rep, err);
+    import_source_free(&src);
+    return rc;
 }
 
 // Seed 004's `export N FILE [size=PIXELS]` on planets.

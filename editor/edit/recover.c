@@ -169,12 +169,28 @@ int edit_discard_journal(world *w, const char *journal, og_error *err) {
 }
 
 world *edit_recover_unsaved(const char *journal, const world_settings *settings,
-                            recover_report *report, og_error *err) {
+                            recover_base_fn remake, recover_report *report, og_error *err) {
     memset(report, 0, sizeof *report);
     recovery_scan scan;
     if (check_unsaved(journal, &scan, err) != 0) return NULL;
     world *w = world_create(&scan.base, settings, err);
     if (!w) return NULL;
+    if (scan.base_source[0]) {
+        // Made from a file: made again from it (checked to be what it was), not journaled.
+        og_error why;
+        world_journal_pause(w, 1);
+        int rc = remake ? remake(w, scan.base_source, &why)
+                        : og_error_set(&why, "nothing here remakes it");
+        world_journal_pause(w, 0);
+        if (rc != 0 || world_set_base_source(w, scan.base_source, &why) != 0) {
+            og_error_set(
+                err,
+                "recover: %s: the world it holds was made from a file: %s; the journal is kept",
+                journal, why.msg);
+            world_close(w);
+            return NULL;
+        }
+    }
     if (replay_journal(w, journal, report, &scan, err) != 0 ||
         world_adopt_journal(w, journal, scan.valid_bytes, err) != 0) {
         world_close(w);

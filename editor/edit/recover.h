@@ -24,11 +24,16 @@ typedef struct recover_report {
 // with w not edited since it was opened. The journal is then this session's (it grows
 // with its edits; save removes it). Fails, nothing changed, otherwise.
 int edit_recover(world *w, const char *journal, recover_report *report, og_error *err);
+// Remakes a never-saved world's base from what it was made from (the journal's
+// base_source, world_set_base_source): the command layer's, which knows the text.
+typedef int (*recover_base_fn)(world *w, const char *base_source, og_error *err);
+
 // A never-saved world's journal (world_recovery_dir): a new world of its base
-// parameters with its steps replayed, the journal now its own. NULL with err when the
-// journal is not one, or its Orogen still runs.
+// parameters (made again from its source by remake, when it was made from a file) with
+// its steps replayed, the journal now its own. NULL with err when the journal is not
+// one, its Orogen still runs, or its source cannot be read again as it was.
 world *edit_recover_unsaved(const char *journal, const world_settings *settings,
-                            recover_report *report, og_error *err);
+                            recover_base_fn remake, recover_report *report, og_error *err);
 // `recover discard JOURNAL`: removes a journal (w's own, or any other one a running
 // Orogen does not write; a file that is not a journal is left alone).
 int edit_discard_journal(world *w, const char *journal, og_error *err);

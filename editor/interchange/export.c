@@ -352,6 +352,34 @@ static int read_reporting_progress(world *w, const layer_grid *g, const char *pa
     return 0;
 }
 
+// The lowest and highest heights of rectangle r, read a band of tile rows at a time.
+static int rect_height_range(world *w, const layer_grid *g, const char *path, grid_rect r,
+                             double *lo, double *hi, og_error *err) {
+    const int64_t width = r.x1 - r.x0;
+    float *band = malloc(sizeof(float) * (size_t)width * TILE_SIZE);
+    if (!band)
+        return og_error_set(err, "%s: out of memory for %lld samples", path,
+                            (long long)width * TILE_SIZE);
+    *lo = INFINITY, *hi = -INFINITY;
+    int rc = 0;
+    for (int64_t z0 = r.z0; z0 < r.z1 && rc == 0;) {
+        if (og_progress_report(og_progress_current(), 0, 1) != 0) {
+            rc = og_error_set(err, "%s: cancelled (nothing written)", path);
+            break;
+        }
+        int64_t z1 = (world_grid_floor_div(z0, TILE_SIZE) + 1) * TILE_SIZE;
+        if (z1 > r.z1) z1 = r.z1;
+        rc = layer_grid_read(w, g, (grid_rect){r.x0, z0, r.x1, z1}, band, err);
+        for (int64_t i = 0; rc == 0 && i < (z1 - z0) * width; i++) {
+            *lo = fmin(*lo, band[i]);
+            *hi = fmax(*hi, band[i]);
+        }
+        z0 = z1;
+    }
+    free(band);
+    return rc;
+}
+
 // Reads rectangle r of the layer and writes it to path with its sidecar. The 16-bit
 // mapping is rep's when fixed_mapping (tiles share one), else chosen from o and the
 // rectangle's range.
@@ -502,13 +530,26 @@ static int export_tiles(world *w, const layer_grid *g, const char *path, const e
                  "sharing their edges cover %lld x %lld of it (from the first corner)",
                  preset_change, preset_change[0] ? " per tile; " : "", (long long)W, (long long)H,
                  C, R, (long long)tw, (long long)th, (long long)used_w, (long long)used_h);
-    // One mapping for every tile and every shard: what was given, else the generator's range.
+    // One mapping for every tile and every shard: what was given, else the heights of
+    // all the tiles cover (every shard reads them, so every shard agrees).
     rep.scale = 1.0, rep.offset = 0.0;
-    const world_params *p = world_get_params(w);
-    if (is_16bit(f) &&
-        mapping_16bit(o, p->base_height - p->max_height, p->base_height + p->max_height, &rep.scale,
-                      &rep.offset, err) != 0)
-        return -1;
+    char mapping[256] = "";
+    if (is_16bit(f)) {
+        double lo = 0, hi = 0;
+        const int given = o->has_scale || o->has_min_max == 3;
+        grid_rect used = {r.x0, r.z0, r.x0 + used_w, r.z0 + used_h};
+        if (!given && rect_height_range(w, g, path, used, &lo, &hi, err) != 0) return -1;
+        if (mapping_16bit(o, lo, hi, &rep.scale, &rep.offset, err) != 0) return -1;
+        if (given)
+            snprintf(mapping, sizeof mapping,
+                     "one for every tile, as given: stored 0 .. 65535 = %.9g .. %.9g m", rep.offset,
+                     rep.offset + 65535.0 * rep.scale);
+        else
+            snprintf(mapping, sizeof mapping,
+                     "one for every tile: the region's heights %.9g .. %.9g m over stored 0 .. "
+                     "65535",
+                     lo, hi);
+    }
     const char *pattern = o->pattern[0]                      ? o->pattern
                           : o->preset == EXPORT_PRESET_UNITY ? "{name}_{x}_{y}"
                                                              : "{name}_x{x}_y{y}";
@@ -516,6 +557,7 @@ static int export_tiles(world *w, const layer_grid *g, const char *path, const e
     size_t files_len = 0;
     FILE *list = open_memstream(&files, &files_len);
     if (!list) return og_error_set(err, "%s: out of memory", path);
+    if (mapping[0]) fprintf(list, "  \"height_mapping\": \"%s\",\n", mapping);
     fprintf(list,
             "  \"tiles_x\": %d,\n  \"tiles_y\": %d,\n  \"tile_width\": %lld,\n"
             "  \"tile_height\": %lld,\n  \"overlap\": 1,\n  \"pattern\": \"%s\",\n"
@@ -606,6 +648,7 @@ static int export_tiles(world *w, const layer_grid *g, const char *path, const e
     // The engine takes one tile at a time: its settings, then where each tile goes.
     export_report tile = rep;
     tile.width = (int)tw, tile.height = (int)th;
+    if (hints && mapping[0]) fprintf(hints, "  height mapping: %s\n", mapping);
     if (hints) fprintf(hints, "  each tile (%lld x %lld samples):\n", (long long)tw, (long long)th);
     print_hints(hints, o, f, &tile);
     if (hints)

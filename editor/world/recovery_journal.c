@@ -21,13 +21,15 @@
 //   u32 magic, u32 payload bytes, u32 CRC32C of the payload, payload
 // little-endian. The header's payload: u32 version, state id (32 bytes, NUL padded),
 // i64 start time, u32 bytes + text of the base parameters (0: none, the world's file
-// has them). A step's: u8 kind, u64 session id, i64 time, u16 label bytes,
-// label, u32 tiles x (i32 layer face level tx ty, u8 was_pristine, u32 bytes, delta),
-// u32 dirty areas x (i32 layer face, i64 x0 z0 x1 z1), u8 has_params (then u32 bytes
+// has them), and in version 2 u32 bytes + text of what the base was made from. A step's: u8 kind,
+// u64 session id, i64 time, u16 label bytes, label, u32 tiles x (i32 layer face level tx ty, u8
+// was_pristine, u32 bytes, delta), u32 dirty areas x (i32 layer face, i64 x0 z0 x1 z1), u8
+// has_params (then u32 bytes
 // + text of the parameters before and after).
-#define HEADER_MAGIC 0x4A52474Fu // "OGRJ"
-#define RECORD_MAGIC 0x5252474Fu // "OGRR"
-#define JOURNAL_VERSION 1u
+#define HEADER_MAGIC 0x4A52474Fu  // "OGRJ"
+#define RECORD_MAGIC 0x5252474Fu  // "OGRR"
+#define JOURNAL_VERSION 1u        // parameters alone
+#define JOURNAL_VERSION_SOURCE 2u // and a base source (an older Orogen refuses it)
 #define RECORD_HEAD_BYTES 12
 // A record larger than this is damage, not a step (a step holds compressed deltas).
 #define RECORD_MAX_BYTES ((size_t)1 << 31)
@@ -241,8 +243,13 @@ static void sync_folder(const char *path) {
 }
 
 recovery_journal *recovery_journal_open(const char *path, const char *state_id,
-                                        const world_params *base, size_t keep_bytes,
-                                        og_error *err) {
+                                        const world_params *base, const char *base_source,
+                                        size_t keep_bytes, og_error *err) {
+    const int has_source = base && base_source && *base_source;
+    if (has_source && strlen(base_source) >= RECOVERY_SOURCE_MAX) {
+        og_error_set(err, "%s: the world's source description is too long", path);
+        return NULL;
+    }
     recovery_journal *j = calloc(1, sizeof *j);
     if (!j) {
         og_error_set(err, "%s: out of memory", path);
@@ -262,7 +269,7 @@ recovery_journal *recovery_journal_open(const char *path, const char *state_id,
         rc = ftruncate(j->fd, (off_t)keep_bytes); // drops a torn tail before appending
     } else {
         buf payload = {0}, out = {0};
-        put_u32(&payload, JOURNAL_VERSION);
+        put_u32(&payload, has_source ? JOURNAL_VERSION_SOURCE : JOURNAL_VERSION);
         char id[RECOVERY_STATE_CHARS] = {0};
         memcpy(id, state_id, strnlen(state_id, sizeof id));
         put(&payload, id, sizeof id);
@@ -271,6 +278,10 @@ recovery_journal *recovery_journal_open(const char *path, const char *state_id,
             put_params(&payload, base);
         else
             put_u32(&payload, 0);
+        if (has_source) {
+            put_u32(&payload, (uint32_t)strlen(base_source));
+            put(&payload, base_source, strlen(base_source));
+        }
         frame(&out, HEADER_MAGIC, &payload);
         rc = payload.oom || out.oom ? -1 : write_pieces(j->fd, out.p, out.len, &(record){0});
         if (rc == 0) rc = fdatasync(j->fd);
@@ -507,7 +518,8 @@ int recovery_journal_read(const char *path, recovery_scan *scan,
         if (crc32c_update(0, payload, len) != crc) break;
         cursor c = {payload, len, 0};
         if (header) {
-            if (get_le(&c, 4) != JOURNAL_VERSION) break;
+            const uint64_t version = get_le(&c, 4);
+            if (version != JOURNAL_VERSION && version != JOURNAL_VERSION_SOURCE) break;
             const uint8_t *id = take(&c, RECOVERY_STATE_CHARS);
             if (!id) break;
             memcpy(scan->state_id, id, RECOVERY_STATE_CHARS);
@@ -522,6 +534,13 @@ int recovery_journal_read(const char *path, recovery_scan *scan,
                 scan->has_base = 1;
             else
                 break;
+            if (version == JOURNAL_VERSION_SOURCE) {
+                uint32_t n = (uint32_t)get_le(&c, 4);
+                const uint8_t *text = n < RECOVERY_SOURCE_MAX ? take(&c, n) : NULL;
+                if (!text || !scan->has_base) break;
+                memcpy(scan->base_source, text, n);
+                scan->base_source[n] = 0;
+            }
         } else {
             recovery_kind kind;
             uint64_t session_id;

@@ -23,16 +23,19 @@ typedef enum recovery_kind {
 } recovery_kind;
 
 #define RECOVERY_STATE_CHARS 32
+#define RECOVERY_SOURCE_MAX 8192
 
 typedef struct recovery_journal recovery_journal;
 
 // Opens the journal at path for appending records onto the saved state state_id
 // ("" when the world has no tile store yet), or, for a world never saved, onto a new
-// world of the parameters base (NULL when the world has a file). keep_bytes > 0 keeps
+// world of the parameters base (NULL when the world has a file) and, for a world made
+// from a file, base_source (world_set_base_source; NULL: none). keep_bytes > 0 keeps
 // that much of an existing journal (its valid prefix, after a recovery); 0 starts a
 // new one. The file stays locked (flock) while open.
 recovery_journal *recovery_journal_open(const char *path, const char *state_id,
-                                        const world_params *base, size_t keep_bytes, og_error *err);
+                                        const world_params *base, const char *base_source,
+                                        size_t keep_bytes, og_error *err);
 // Appends one record: the step's label, tile deltas, dirty areas and parameters.
 int recovery_journal_append(recovery_journal *j, recovery_kind kind, const history_step *s,
                             og_error *err);
@@ -44,10 +47,11 @@ typedef struct recovery_scan {
     int64_t started;                         // when its first record was written (unix s)
     int has_base;                            // a never-saved world's: made from base
     world_params base;
-    int64_t last;         // when its last valid record was written
-    size_t records;       // valid records
-    size_t valid_bytes;   // the file's valid prefix
-    size_t dropped_bytes; // a torn or damaged tail after it
+    char base_source[RECOVERY_SOURCE_MAX]; // what the base was made from ("": parameters only)
+    int64_t last;                          // when its last valid record was written
+    size_t records;                        // valid records
+    size_t valid_bytes;                    // the file's valid prefix
+    size_t dropped_bytes;                  // a torn or damaged tail after it
 } recovery_scan;
 
 // Reads the journal at path: for each valid record, fn gets its kind, an id of the step

@@ -56,6 +56,7 @@ struct world {
     int unsaved_journal;
     int journal_fresh; // the journal was begun by this session, not taken over
     world_params base_params;
+    char *base_source; // world_set_base_source: the journal's base beside base_params
     // Edits go to the journal (a scratch store) until saved; the world's own store,
     // when it has one, is only read until `save` merges the journal into it. So a
     // world closed without saving leaves its files exactly as they were.
@@ -467,6 +468,7 @@ void world_close(world *w) {
     file_lock_release(&w->lock);
     history_destroy(w->history);
     world_events_release(w->own_events);
+    free(w->base_source);
     free(w);
 }
 
@@ -898,9 +900,9 @@ void world_journal_record(world *w, recovery_kind kind, const history_step *s) {
                       aside, aside);
             w->recoverable = 0;
         }
-        if (!(w->rj =
-                  recovery_journal_open(w->recover_path, w->state_id,
-                                        w->unsaved_journal ? &w->base_params : NULL, 0, &err))) {
+        if (!(w->rj = recovery_journal_open(w->recover_path, w->state_id,
+                                            w->unsaved_journal ? &w->base_params : NULL,
+                                            w->unsaved_journal ? w->base_source : NULL, 0, &err))) {
             w->journal_failed = 1;
             warn_path(w, w->path[0] ? w->path : "unsaved world",
                       "warning: %s; edits are not protected against a crash", err.msg);
@@ -935,6 +937,14 @@ void world_journal_pause(world *w, int paused) {
     w->journal_paused = paused;
 }
 
+int world_set_base_source(world *w, const char *source, og_error *err) {
+    char *copy = source && *source ? strdup(source) : NULL;
+    if (source && *source && !copy) return og_error_set(err, "out of memory");
+    free(w->base_source);
+    w->base_source = copy;
+    return 0;
+}
+
 int world_journal_continue(world *w, const char *journal, size_t keep_bytes, og_error *err) {
     w->recoverable = 0;
     w->journal_fresh = 0; // another session's edits: never removed but by save or discard
@@ -944,7 +954,8 @@ int world_journal_continue(world *w, const char *journal, size_t keep_bytes, og_
     if (journal && journal != w->recover_path)
         snprintf(w->recover_path, sizeof w->recover_path, "%s", journal);
     w->rj = recovery_journal_open(w->recover_path, w->state_id,
-                                  w->unsaved_journal ? &w->base_params : NULL, keep_bytes, err);
+                                  w->unsaved_journal ? &w->base_params : NULL,
+                                  w->unsaved_journal ? w->base_source : NULL, keep_bytes, err);
     return w->rj ? 0 : -1;
 }
 

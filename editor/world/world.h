@@ -69,6 +69,11 @@ const char *world_recovery_path(const world *w); // "" for a never-saved world
 const char *world_state_id(const world *w);      // the saved state edits build on
 // While `recover` replays the journal, its steps are not recorded again.
 void world_journal_pause(world *w, int paused);
+// A never-saved world made from a file: the text its crash journal keeps beside its base
+// parameters (the command layer's: the raster, its options and a checksum of its
+// samples), so a journal need not copy what a replay can read again from the file.
+// NULL or "" = none. Set before the world's first journaled step.
+int world_set_base_source(world *w, const char *source, og_error *err);
 // After `recover`: this session's records follow the first keep_bytes of journal (NULL:
 // the world's own), which is now this session's.
 int world_journal_continue(world *w, const char *journal, size_t keep_bytes, og_error *err);
