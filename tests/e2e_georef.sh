@@ -152,7 +152,9 @@ gdalinfo "$work/old.tif" | grep -q "Size is 300, 300"; check "of the whole world
 export OROGEN_RECOVER_DIR=$work/recover
 mkdir -p "$OROGEN_RECOVER_DIR"
 cp "$work/crop.tif" "$work/base.tif"
-run -c "new flat from=$work/base.tif; tool raise radius=2000 strength=1; stroke 5000 5000 20000 9000; hash 0 0 90000 60000"
+# (--batch - keeps a never-saved world's journal at its end, as a person typing would.)
+printf 'new flat from=%s\ntool raise radius=2000 strength=1\nstroke 5000 5000 20000 9000\nhash 0 0 90000 60000\n' "$work/base.tif" |
+    "$orogen" --batch - >"$work/out" 2>"$work/err"
 edited=$(tail -n 1 "$work/out")
 journal=$(ls "$OROGEN_RECOVER_DIR"/*.recover 2>/dev/null | head -n 1)
 [ -n "$journal" ] && [ "$(stat -c %s "$journal")" -lt 1000000 ]
