@@ -409,6 +409,11 @@ void tool_options(editor_ui *e, ui_context *ui, cmd_context *ctx) {
         volume_options(e, ui, ctx, t);
         return;
     }
+    if (b->tool != BRUSH_RAMP) {
+        int hold = b->hold;
+        if (ui_checkbox(ui, "Hold", &hold)) runf(e, ctx, "tool %s hold=%d", t, hold);
+        ui_tooltip(ui, "Held still, the brush keeps applying, 2 / spacing dabs a second");
+    }
     if (b->tool != BRUSH_RAISE) { // raise/lower is the invert pair
         int inv = b->invert;
         if (ui_checkbox(ui, "Invert", &inv)) runf(e, ctx, "tool %s invert=%d", t, inv);

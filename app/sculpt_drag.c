@@ -5,6 +5,13 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+#include <time.h>
+
+static double now_seconds(void) {
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + t.tv_nsec * 1e-9;
+}
 
 int sculpt_face_metres(const world_params *p, int face, const double hit[3], double *x, double *z) {
     double s, t, n = (double)world_grid_face_samples(p);
@@ -64,7 +71,32 @@ static void point_at(sculpt_drag *d, work_queue *q, world *w, sculpt_view view, 
         pt = (cmd_stroke_point){p[0], p[1], p[2], 1};
     }
     work_queue_add_point(q, &pt);
+    // Moved a dab's spacing: the path lays the dabs, the hold starts again from here.
+    double dx = pt.x - d->hold_anchor[0], dz = pt.z - d->hold_anchor[1];
+    if (d->points == 0 || sqrt(dx * dx + dz * dz) >= d->brush.spacing * d->brush.radius) {
+        d->hold_anchor[0] = pt.x, d->hold_anchor[1] = pt.z;
+        d->hold_from = now_seconds();
+    }
     d->points++;
+}
+
+// Queues the time held since the last hold; at least a dab's worth unless final (the
+// release: what was held up to it counts, however slow the frames were).
+static int hold(sculpt_drag *d, work_queue *q, int final) {
+    const brush *b = &d->brush;
+    if (!d->active || !b->hold || d->volume || b->tool == BRUSH_RAMP || d->points == 0 ||
+        d->held_count || (!final && work_queue_busy(q)))
+        return 0;
+    double now = now_seconds(), held = now - d->hold_from;
+    if (held < (final ? 0.001 : 0.5 * b->spacing)) return 0; // 2 / spacing dabs a second
+    char cmd[64];
+    snprintf(cmd, sizeof cmd, "stroke_hold %.4f", fmin(held, 60.0));
+    d->hold_from = now;
+    return work_queue_add(q, cmd, "sculpt", WORK_STROKE) == 0;
+}
+
+int sculpt_drag_hold(sculpt_drag *d, work_queue *q) {
+    return hold(d, q, 0);
 }
 
 void sculpt_drag_flush(sculpt_drag *d, work_queue *q, sculpt_view view) {
@@ -125,6 +157,7 @@ void sculpt_drag_begin(sculpt_drag *d, work_queue *q, cmd_context *ctx, sculpt_v
 
 int sculpt_drag_end(sculpt_drag *d, work_queue *q) {
     if (!d->active) return 0;
+    hold(d, q, 1);
     d->active = 0;
     if (d->held_count)
         d->end_held = 1; // after the held positions, once the job ends

@@ -29,6 +29,10 @@ typedef struct sculpt_drag {
     double held[SCULPT_HELD_MAX][2];
     int held_count;
     int end_held; // released during a job with positions held: stroke_end follows them
+    // The brush held still keeps dabbing (stroke_hold): the time the hold counts from,
+    // restarted when the brush has moved a dab's spacing from where it was then.
+    double hold_from;
+    double hold_anchor[2];
 } sculpt_drag;
 
 // Where the viewport is in the window (window coordinates) and what it shows.
@@ -43,6 +47,11 @@ void sculpt_drag_begin(sculpt_drag *d, work_queue *q, cmd_context *ctx, sculpt_v
                        double y, int smooth, int invert);
 // The mouse moved to (x, y) during the drag (any time, a job running or not).
 void sculpt_drag_to(sculpt_drag *d, work_queue *q, sculpt_view view, double x, double y);
+// Called every frame of a drag: once a dab's time has passed (spacing / 2 seconds) since
+// the hold began or was last queued, queues `stroke_hold SECONDS` so a brush held still
+// keeps applying (unless the tool's hold=0; not ramp or the volume tools). 1 when it
+// queued one.
+int sculpt_drag_hold(sculpt_drag *d, work_queue *q);
 // The button went up. Returns the drag's points (for the console's echo).
 int sculpt_drag_end(sculpt_drag *d, work_queue *q);
 // Picks and queues the positions held during a job (call when none runs).

@@ -46,6 +46,12 @@ void tool_settings_capture(const cmd_context *ctx, app_settings *s) {
         char *line = s->tools[s->tool_count++];
         describe(&kept, line, sizeof s->tools[0]);
         size_t n = strlen(line);
+        char *radius = strstr(line, " radius=");
+        if (radius && !ctx->radius_chosen && n + 6 < sizeof s->tools[0]) { // still the view's
+            memmove(radius + 6, radius + 1, n - (size_t)(radius + 1 - line) + 1);
+            memcpy(radius + 1, "auto_", 5);
+            n += 5;
+        }
         if (ctx->tool_size_per_tool && n + 16 < sizeof s->tools[0])
             snprintf(line + n, sizeof s->tools[0] - n, " memory=per_tool");
     }

@@ -61,7 +61,7 @@ void reset_camera(window_state *st) {
     st->cc.planet_ground = planet_ground;
     st->cc.planet_user = st;
     st->render_failed = 0;
-    if (viewport_default_camera(st->v, st->ctx->world, &err) != 0) report("camera", &err);
+    if (viewport_camera_on_land(st->v, st->ctx->world, &err) != 0) report("camera", &err);
     st->v->cam_world_serial = st->ctx->world_serial;
     st->dirty = 1;
 }
@@ -168,6 +168,8 @@ void take_changes(window_state *st) {
         for (size_t i = 0; i < n; i++) // saves and history steps leave the picture as it is
             st->world_changed |= e[i].kind == WORLD_EVENT_AREA || e[i].kind == WORLD_EVENT_PARAMS ||
                                  e[i].kind == WORLD_EVENT_REPLACED;
+        for (size_t i = 0; i < n; i++)
+            st->edited |= e[i].kind == WORLD_EVENT_HISTORY;
         for (size_t i = 0; i < n; i++)
             if (e[i].kind == WORLD_EVENT_REPLACED &&
                 st->v->cam_world_serial != st->ctx->world_serial)
@@ -448,6 +450,9 @@ static int frame_input(window_state *st, int w, int h, const ui_draw_list *dl) {
     pump_work(st);
     if (ctx->exit_requested) return -1;
     if (work_queue_busy(&st->work)) return 0;
+    // A brush held still keeps applying (Unreal, Terrain3D), at its spacing's rate.
+    sculpt_drag *held = viewport_drag_stroke(st);
+    if (held && sculpt_drag_hold(held, &st->work)) st->dirty = 1;
     take_changes(st);
     return w > 0 && h > 0;
 }

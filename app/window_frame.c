@@ -61,6 +61,27 @@ static int pointer_on_terrain(const window_state *st) {
             !ui_captures_point(st->ui, st->in.mouse_x, st->in.mouse_y));
 }
 
+// Until the user gives a radius, the brush follows the distance to the ground under the
+// cursor (a fixed size in the picture, about a twelfth of the view's height at the
+// default field of view): shown at any distance, from the first view on. Set through
+// `tool NAME auto_radius=R`, so a recording replays the same strokes.
+static void follow_ground(window_state *st, const double hit[3]) {
+    const cmd_context *ctx = st->ctx;
+    if (ctx->radius_chosen || viewport_drag_kind(st) != DRAG_NONE || !work_queue_idle(&st->work))
+        return;
+    const double *c = st->v->cam.pos;
+    double d = sqrt((hit[0] - c[0]) * (hit[0] - c[0]) + (hit[1] - c[1]) * (hit[1] - c[1]) +
+                    (hit[2] - c[2]) * (hit[2] - c[2]));
+    double want = fmin(fmax(0.08 * d, 1.0), 500.0);
+    double unit = pow(10.0, floor(log10(want)) - 1.0); // two significant digits
+    want = round(want / unit) * unit;
+    if (fabs(want / ctx->brush.radius - 1.0) < 0.25) return; // near enough: no command
+    char cmd[96];
+    snprintf(cmd, sizeof cmd, "tool %s auto_radius=%g", tool_name(&ctx->brush), want);
+    work_queue_add(&st->work, cmd, "radius", 0);
+    st->ui_dirty = 1;
+}
+
 static void update_cursor(window_state *st) {
     brush_cursor *bc = &st->v->cursor;
     double hit[3], resize_radius, resize_strength;
@@ -70,6 +91,7 @@ static void update_cursor(window_state *st) {
                   (resizing || pick_at(st, st->mouse_x, st->mouse_y, hit) == 0);
     if (!bc->visible) return;
     bc->x = hit[0], bc->y = hit[1], bc->z = hit[2]; // y: planets drape it in 3D
+    if (viewport_drag_kind(st) != DRAG_RESIZE && !st->ed.stamps.active) follow_ground(st, hit);
     if (st->ed.stamps.active) {               // the stamp's footprint: its half size, no falloff
         bc->radius = stamp_browser_half_size( // in face-local metres on a planet
             &st->ed.stamps, world_grid_sample_metres(world_get_params(st->ctx->world)));
@@ -162,6 +184,19 @@ static void refresh_stamps(window_state *st) {
     st->ui_dirty = 1;
 }
 
+// One line over the foot of the viewport until the first edit: what to do first.
+static void first_view_hint(ui_context *ui, ui_rect vr) {
+    static const char text[] = "Drag to sculpt, right-drag to look around, F1 for the keys";
+    float pad = ui_em(ui, 0.6f);
+    float w = ui_font_text_width(ui_get_font(ui), UI_FACE_SANS, text, sizeof text - 1) + 4 * pad;
+    float h = ui_em(ui, 1.8f);
+    w = fminf(w, vr.w - 2 * pad);
+    if (w <= 0 || vr.h < 4 * h) return; // no room: the view first
+    ui_panel_begin(ui, "Hint", (ui_rect){vr.x + 0.5f * (vr.w - w), vr.y + vr.h - h - pad, w, h});
+    ui_label(ui, text);
+    ui_panel_end(ui);
+}
+
 const ui_draw_list *build_ui(window_state *st, int fw, int fh) {
     editor_frame_info info = {.frame_ms = st->terrain_ms,
                               .resolution_scale = st->drawn_scale,
@@ -182,6 +217,7 @@ const ui_draw_list *build_ui(window_state *st, int fw, int fh) {
     st->frame_in.time = glfwGetTime();
     ui_begin(st->ui, &st->frame_in, (float)fw, (float)fh);
     ui_rect vr = editor_ui_build(&st->ed, st->ui, st->ctx, st->v, &info, (float)fw, (float)fh);
+    if (!st->edited) first_view_hint(st->ui, vr);
     notices_draw(&st->notices, st->ui, vr);
     const ui_draw_list *dl = ui_end(st->ui);
     clear_frame_input(&st->in);

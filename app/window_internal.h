@@ -92,6 +92,7 @@ typedef struct window_state {
     brush_cursor drawn_cursor;
     float drawn_scale;
     int drawn_w, drawn_h;
+    int edited;        // an edit made an undo step this session: the first view's hint goes
     int world_changed; // change notifications since the terrain image
     double px_scale;   // framebuffer pixels per window unit (HiDPI)
     app_settings settings;

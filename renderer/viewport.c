@@ -65,6 +65,47 @@ int viewport_default_camera(viewport *v, world *w, og_error *err) {
     return 0;
 }
 
+int viewport_camera_on_land(viewport *v, world *w, og_error *err) {
+    if (viewport_default_camera(v, w, err) != 0) return -1;
+    const world_params *p = world_get_params(w);
+    if (p->kind == WORLD_PLANET) return 0;
+    double sea = world_params_ocean_height(p), land = sea + 0.05 * p->max_height;
+    double lo = 0, hi = p->size > 0 ? (double)(p->size - 1) * p->spacing : 0;
+    double centre = 0.5 * (lo + hi), best[3] = {0, 0, 0}, best_slope = 0.4; // 22 degrees
+    int found = 0;
+    static const double rings[] = {0, 600, 1200, 2000, 3000};
+    for (int r = 0; r < 5 && !found; r++)
+        for (int a = 0; a < (r ? 12 : 1); a++) { // the gentlest land of the nearest ring
+            double x = centre + rings[r] * cos(a * M_PI / 6),
+                   z = centre + rings[r] * sin(a * M_PI / 6);
+            if (p->size > 0 && (x + 20 < lo || x + 20 > hi || z + 20 < lo || z + 20 > hi)) continue;
+            double g, gx, gz;
+            if (world_sample(w, 0, x, z, &g, err) != 0 ||
+                world_sample(w, 0, x + 20, z, &gx, err) != 0 ||
+                world_sample(w, 0, x, z + 20, &gz, err) != 0)
+                return -1;
+            double slope = hypot(gx - g, gz - g) / 20.0;
+            if (g > land && slope < best_slope) {
+                best[0] = x, best[1] = g, best[2] = z, best_slope = slope;
+                found = 1;
+            }
+        }
+    if (!found) return 0; // all sea or cliffs: the default view
+    camera *c = &v->cam;
+    c->pitch = -35; // from above: the brush lies round on the ground, a raise shows
+    double distance = fmax(900.0, 1.5 * (best[1] - sea));
+    camera_focus(c, best, distance);
+    double below = 0; // never under the ground or the sea where the camera stands
+    if (world_sample(w, 0, c->pos[0], c->pos[2], &below, err) != 0) return -1;
+    double floor_y = fmax(below, sea) + 40.0;
+    if (c->pos[1] < floor_y) { // higher, still looking at the land
+        c->pos[1] = floor_y;
+        double dx = best[0] - c->pos[0], dz = best[2] - c->pos[2];
+        c->pitch = atan2(best[1] - c->pos[1], sqrt(dx * dx + dz * dz)) * 180.0 / M_PI;
+    }
+    return 0;
+}
+
 int viewport_prepare(viewport *v, og_error *err) {
     if (!v->window_context && !v->headless) {
         v->headless = gl_headless_create(err);

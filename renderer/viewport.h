@@ -36,6 +36,11 @@ void viewport_destroy(viewport *v);
 // A view over the world's centre (or the origin of an unbounded world), a few hundred
 // metres above the ground, looking out over the terrain.
 int viewport_default_camera(viewport *v, world *w, og_error *err);
+// The editor's first view of a flat world: the default camera turned to face the nearest
+// land well above the sea (searched in rings out to 3 km from the centre), from a
+// distance that shows it whole; the default camera when there is none. Planets: as
+// viewport_default_camera.
+int viewport_camera_on_land(viewport *v, world *w, og_error *err);
 
 // Makes sure a GL context is current and the renderer exists.
 int viewport_prepare(viewport *v, og_error *err);

@@ -41,6 +41,9 @@ done
 [ -n "${VH:-}" ] && [ "$VW" -ge 200 ] && [ "$VH" -ge 200 ] && [ "$VW" -le 700 ]
 check "the viewport is found by name and a few hundred pixels wide ($VX $VY ${VW:-?} x ${VH:-?})" $?
 wait_title "pending 0$"; rc=$?; check "every tile of the first view arrives: $(title)" $rc
+# The strokes below and their boxes are placed for this view over the world's centre.
+echo "camera 0 -100 0 30 -18" >&3
+wait_title "cam (0.0, -100.0, 0.0) yaw 30.0 pitch -18.0.* - pending 0$" >/dev/null
 
 # 9 (first half). Screenshots a reviewer can look at: the first view, and the File menu open.
 import -window "$wid" "$art/gui_start.png" 2>"$work/import.err"
@@ -541,6 +544,7 @@ ask "load $work/gui.world" '^loaded' >/dev/null
 # a discard removes a journal): the window offers them; dropped here to go on.
 ask "recover discard" '^discarded' >/dev/null
 wait_title "gui.world - "; rc=$?; check "back to gui.world ($(title))" $rc
+echo "camera 0 -100 0 30 -18" >&3 # where the strokes of section 3 were made
 # Section 8 drags where the terrain was: wait until every tile in view is there again
 # (window_screenshot answers once they are), or a busy machine picks a coarser surface.
 ask "window_screenshot $work/back.png" '^window_screenshot' >/dev/null

@@ -40,6 +40,15 @@ messages() { # prints the lines ui_messages lists now
     tail -n +$((before + 1)) "$work/out" | sed -n '/^messages /,$p'
 }
 
+# Prints the names of the widgets whose name contains FILTER.
+names() {
+    local before
+    before=$(wc -l <"$work/out")
+    ask "ui_widgets \"$1\"" '^Viewport ' >/dev/null || return 1
+    sleep 0.1
+    tail -n +$((before + 1)) "$work/out" | grep -v '^Viewport ' | sed -E 's/ -?[0-9]+ -?[0-9]+ -?[0-9]+ -?[0-9]+$//'
+}
+
 # 1. The window at 1024 x 640, UI scale 1.5.
 xdotool windowsize --sync "$wid" 1024 640
 for _ in $(seq 40); do
@@ -49,6 +58,46 @@ for _ in $(seq 40); do
 done
 wait_title "pending 0$" >/dev/null
 shot first_view
+
+# 1b. A first view that invites: land under the viewport's centre, a one-line hint, a
+# brush sized by the distance to the ground; held still, it keeps raising.
+widget "Hint/Drag to sculpt, right-drag to look around, F1 for the keys" >/dev/null
+check "the first view shows the hint over the viewport" $?
+xdotool mousemove --window "$wid" $((VX + VW / 2)) $((VY + VH / 2))
+r=$(ask_until tool '^radius=' '^radius=\([3-9][0-9]\|[1-4][0-9][0-9]\)\(\.[0-9]*\)\?$')
+check "the brush's radius follows the ground under the cursor ($r)" $?
+ask tool '^radius_chosen=0$' >/dev/null; check "and no radius is chosen yet" $?
+# The point under the cursor, from the status bar: "x X  z Z  height H m".
+read -r _ px _ pz _ ph _ <<<"$(names "Status/x " | head -n 1 | sed 's|^Status/||')"
+awk -v h="$ph" 'BEGIN { exit !(h > -400 + 60) }'; check "the view's centre is land well above the sea (height $ph)" $?
+height() { ask "sample $px $pz" '^-\?[0-9]'; }
+steps() { ask history '^steps=' | sed -E 's/^steps=([0-9]+).*/\1/'; }
+# hold SECONDS: a press at the centre held still, released; prints the rise, then undoes it.
+hold() {
+    local h0 h1 n
+    h0=$(height)
+    n=$(steps)
+    xdotool mousemove --window "$wid" $((VX + VW / 2)) $((VY + VH / 2)) mousedown 1 sleep "$1" mouseup 1
+    ask_until history '^steps=' "^steps=$((n + 1)) " >/dev/null
+    h1=$(height)
+    echo undo >&3
+    ask_until "sample $px $pz" '^-\?[0-9]' "^$h0\$" >/dev/null
+    awk -v a="$h0" -v b="$h1" 'BEGIN { print b - a }'
+}
+long=$(hold 1.2)
+shot held_raise
+widget_gone "Hint/Drag*"; check "the first edit puts the hint away" $?
+short=$(hold 0.1)
+r=${r#radius=}
+awk -v l="$long" -v s="$short" -v r="$r" 'BEGIN { exit !(l > s + 5 && l > 0.1 * r) }'
+check "a brush held 1.2 s raises clearly more than a click (+$long m vs +$short m, radius $r m)" $?
+click "Dock/Hold"
+ask_until tool '^hold=' '^hold=0$' >/dev/null; check "Dock/Hold turns the held brush off" $?
+off=$(hold 1.2)
+awk -v o="$off" -v s="$short" 'BEGIN { exit !(o > 0 && o < s + 1) }'
+check "and then a press held 1.2 s lays one dab, as a click (+$off m vs +$short m)" $?
+click "Dock/Hold"
+ask_until tool '^hold=' '^hold=1$' >/dev/null; check "Dock/Hold turns it on again" $?
 line=$(ask ui_scale '^ui_scale')
 case "$line" in *1.5*) true ;; *) false ;; esac; check "the UI scale is 1.5 ($line)" $?
 inside "Menu/" 1024 640; check "the menu bar fits the window" $?
@@ -57,18 +106,10 @@ check "View opens its menu" $?
 inside "Menu/View/" 1024 640; check "every item of the View menu lies inside the window (it wraps)" $?
 shot view_menu
 key Escape
-# Prints the names of the widgets whose name contains FILTER.
-names() {
-    local before
-    before=$(wc -l <"$work/out")
-    ask "ui_widgets \"$1\"" '^Viewport ' >/dev/null || return 1
-    sleep 0.1
-    tail -n +$((before + 1)) "$work/out" | grep -v '^Viewport ' | sed -E 's/ -?[0-9]+ -?[0-9]+ -?[0-9]+ -?[0-9]+$//'
-}
 xdotool mousemove --window "$wid" $((VX + VW / 2)) $((VY + VH / 2)) # the longest status line
 sleep 0.5
 names " ms (" | grep -q '^Status/'; check "the status bar keeps the frame time ($(names Status/ | tr '\n' '|'))" $?
-names " r 20.0 m" | grep -q '^Status/'; check "and the tool" $?
+names "Status/raise r " | grep -q '^Status/'; check "and the tool" $?
 inside "Status/" 1024 640; check "the status bar fits" $?
 
 # 2. A failure where the user acted: File > Open of a file that is not a world. The

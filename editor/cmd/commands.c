@@ -465,7 +465,9 @@ static const cmd_def commands[] = {
      "deposition evaporation capacity inertia material depth (m along the view ray, volume tools) "
      "lock (surface plane), memory (shared: radius is one for all tools and strength one for "
      "the surface tools and one for the volume tools, the default; per_tool: each tool keeps "
-     "its own). Without arguments, prints the brush.",
+     "its own), auto_radius (m: a radius the editor picks from the distance to the ground; "
+     "ignored once a radius= was given, which radius_chosen=1 shows). Without arguments, "
+     "prints the brush.",
      0, 24, cmd_tool, 0},
     {"dab", "dab X Z [PRESSURE] | dab X Y Z [PRESSURE]",
      "One dab of the brush at X, Z (metres); the volume tools (fill carve vsmooth vflatten) take "

@@ -25,6 +25,7 @@ typedef struct cmd_context {
     brush tool_memory[BRUSH_TOOL_COUNT];
     unsigned tool_remembered; // bit t: tool_memory[t] holds settings
     int tool_size_per_tool;   // 0: radius and strength shared by all tools (tool memory=)
+    int radius_chosen;        // a radius= was given: the view's auto_radius= no longer applies
     unsigned tool_serial;     // counts tools picked (`tool NAME`, or a tool=... that changes
                               // it): an editor's own tool modes (stamping) give way
     struct stroke *stroke;    // the stroke stroke_begin opened (NULL: none)

@@ -36,7 +36,8 @@ static void remember_tool(cmd_context *ctx, const brush *b) {
 int cmd_tool(cmd_context *ctx, int argc, char **argv, og_error *err) {
     if (argc == 1) {
         brush_print(&ctx->brush, ctx->out);
-        fprintf(ctx->out, "memory=%s\n", ctx->tool_size_per_tool ? "per_tool" : "shared");
+        fprintf(ctx->out, "memory=%s\nradius_chosen=%d\n",
+                ctx->tool_size_per_tool ? "per_tool" : "shared", ctx->radius_chosen);
         return 0;
     }
     int t = brush_tool_parse(argv[1]);
@@ -73,13 +74,23 @@ int cmd_tool(cmd_context *ctx, int argc, char **argv, og_error *err) {
             b.strength = ctx->brush.strength;
     }
     if (t == BRUSH_RAISE) b.invert = strcmp(argv[1], "lower") == 0;
+    // auto_radius= is the radius the editor's view picks from the distance to the ground
+    // (a brush that shows at any distance) until the user gives a radius=.
+    int chosen = ctx->radius_chosen;
     for (int i = 2; i < argc; i++) {
         char buf[512], *key = NULL, *value = NULL;
         if (strncmp(argv[i], "memory=", 7) == 0) continue;
-        if (parse_setting(argv[i], buf, sizeof buf, &key, &value, err) != 0 ||
-            brush_set(&b, key, value, err) != 0)
-            return -1;
+        if (parse_setting(argv[i], buf, sizeof buf, &key, &value, err) != 0) return -1;
+        if (strcmp(key, "auto_radius") == 0) {
+            brush checked = b; // checked even when the user's radius makes it moot
+            if (brush_set(&checked, "radius", value, err) != 0) return -1;
+            if (!chosen) b.radius = checked.radius;
+            continue;
+        }
+        if (strcmp(key, "radius") == 0) chosen = 1;
+        if (brush_set(&b, key, value, err) != 0) return -1;
     }
+    ctx->radius_chosen = chosen;
     ctx->tool_size_per_tool = per_tool;
     if (argc == 2 || b.tool != ctx->brush.tool) ctx->tool_serial++; // a tool picked
     ctx->brush = b;

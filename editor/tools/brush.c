@@ -37,7 +37,9 @@ void brush_defaults(brush *b, brush_tool tool) {
     b->spacing = 0.25;
     b->hold = 1;
     b->target = tool == BRUSH_PAINT ? TILE_LAYER_MATERIAL : TILE_LAYER_COARSE;
-    b->amount = 1.0;
+    // Raise: 4 m a dab at full strength, so a one-second stroke at the default
+    // strength shows from the first view (~16 m held still); noise keeps 1 m.
+    b->amount = tool == BRUSH_RAISE ? 4.0 : 1.0;
     b->height = 0.0;
     b->noise_scale = 50.0;
     b->noise_octaves = 4.0;
