@@ -4,6 +4,7 @@
 #include "io/parse.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -54,6 +55,27 @@ static void read_number(const char *path, const param_entry *e, double lo, doubl
         *out = v;
 }
 
+// "X Y Z YAW PITCH PATH": five numbers, then the absolute path (spaces allowed).
+static void read_camera(const char *path, const param_entry *e, app_settings *s) {
+    app_world_camera c;
+    memset(&c, 0, sizeof c);
+    int used = 0;
+    if (sscanf(e->value, "%lf %lf %lf %lf %lf %n", &c.pose[0], &c.pose[1], &c.pose[2], &c.pose[3],
+               &c.pose[4], &used) != 5 ||
+        e->value[used] != '/') {
+        warn(path, e->line, "world_camera: expected X Y Z YAW PITCH /PATH");
+        return;
+    }
+    for (int i = 0; i < 5; i++)
+        if (!isfinite(c.pose[i])) {
+            warn(path, e->line, "world_camera: a number is not finite");
+            return;
+        }
+    if (s->camera_count >= SETTINGS_CAMERAS) return;
+    snprintf(c.path, sizeof c.path, "%s", e->value + used);
+    s->cameras[s->camera_count++] = c;
+}
+
 void app_settings_load(app_settings *s, const char *path) {
     param_file pf = {0};
     og_error err;
@@ -98,6 +120,8 @@ void app_settings_load(app_settings *s, const char *path) {
             if (s->tool_count < SETTINGS_TOOLS && e->key[5])
                 snprintf(s->tools[s->tool_count++], sizeof s->tools[0], "%.40s %.700s", e->key + 5,
                          e->value);
+        } else if (strncmp(e->key, "world_camera_", 13) == 0) {
+            read_camera(path, e, s);
         } else if (strncmp(e->key, "recent_", 7) == 0) {
             if (s->recent_count < SETTINGS_RECENT && e->value[0])
                 snprintf(s->recent[s->recent_count++], sizeof s->recent[0], "%s", e->value);
@@ -127,7 +151,8 @@ int app_settings_save(const app_settings *s, const char *path, og_error *err) {
     if (!path[0]) return og_error_set(err, "no settings folder (HOME is not set)");
     if (make_folders(path) != 0)
         return og_error_set(err, "%s: cannot create its folder: %s", path, strerror(errno));
-    char text[32768], num[64];
+    static char text[65536]; // the UI thread's, once at close
+    char num[64];
     size_t n = 0;
 #define PUT(...) n += (size_t)snprintf(text + n, n < sizeof text ? sizeof text - n : 0, __VA_ARGS__)
     PUT("# Orogen's editor settings (written when the editor closes).\n");
@@ -152,6 +177,12 @@ int app_settings_save(const app_settings *s, const char *path, og_error *err) {
         const char *space = strchr(s->tools[i], ' ');
         if (space && !strpbrk(s->tools[i], ";#\n"))
             PUT("tool_%.*s = %s;\n", (int)(space - s->tools[i]), s->tools[i], space + 1);
+    }
+    for (int i = 0; i < s->camera_count; i++) {
+        const double *c = s->cameras[i].pose;
+        if (!strpbrk(s->cameras[i].path, ";#\n"))
+            PUT("world_camera_%d = %.17g %.17g %.17g %.17g %.17g %s;\n", i, c[0], c[1], c[2], c[3],
+                c[4], s->cameras[i].path);
     }
 #undef PUT
     if (n >= sizeof text) return og_error_set(err, "%s: settings too long", path);
@@ -189,4 +220,28 @@ void app_settings_add_recent(app_settings *s, const char *path) {
             snprintf(list[n++], sizeof list[0], "%s", s->recent[i]);
     memcpy(s->recent, list, sizeof list);
     s->recent_count = n;
+}
+
+void app_settings_put_camera(app_settings *s, const char *path, const double pose[5]) {
+    if (!path || !path[0]) return;
+    app_world_camera list[SETTINGS_CAMERAS];
+    int n = 1;
+    absolute_path(path, list[0].path, sizeof list[0].path);
+    memcpy(list[0].pose, pose, sizeof list[0].pose);
+    for (int i = 0; i < s->camera_count && n < SETTINGS_CAMERAS; i++)
+        if (strcmp(s->cameras[i].path, list[0].path) != 0) list[n++] = s->cameras[i];
+    memcpy(s->cameras, list, (size_t)n * sizeof list[0]);
+    s->camera_count = n;
+}
+
+int app_settings_find_camera(const app_settings *s, const char *path, double pose[5]) {
+    if (!path || !path[0]) return -1;
+    char want[1024];
+    absolute_path(path, want, sizeof want);
+    for (int i = 0; i < s->camera_count; i++)
+        if (strcmp(s->cameras[i].path, want) == 0) {
+            memcpy(pose, s->cameras[i].pose, 5 * sizeof pose[0]);
+            return 0;
+        }
+    return -1;
 }

@@ -15,6 +15,14 @@
 
 #define SETTINGS_RECENT 8
 #define SETTINGS_TOOLS 16
+#define SETTINGS_CAMERAS 8
+
+// Where the camera was when a world was last left (closed, replaced, the editor quit):
+// X Y Z YAW PITCH, for the world at path (absolute). world_camera_N in the file.
+typedef struct app_world_camera {
+    char path[1024];
+    double pose[5];
+} app_world_camera;
 
 typedef struct app_settings {
     int width, height;      // window size (1280 x 800)
@@ -37,6 +45,8 @@ typedef struct app_settings {
     char tools[SETTINGS_TOOLS][768];
     int tool_count;
     char tool[32];
+    app_world_camera cameras[SETTINGS_CAMERAS]; // most recently left first
+    int camera_count;
 } app_settings;
 
 void app_settings_default(app_settings *s);
@@ -49,5 +59,9 @@ void app_settings_load(app_settings *s, const char *path);
 int app_settings_save(const app_settings *s, const char *path, og_error *err);
 // Puts path first in the recent files (once), made absolute.
 void app_settings_add_recent(app_settings *s, const char *path);
+// Keeps pose as the camera of the world at path (made absolute), first.
+void app_settings_put_camera(app_settings *s, const char *path, const double pose[5]);
+// The camera kept for the world at path: 0 and pose, or -1 when none is.
+int app_settings_find_camera(const app_settings *s, const char *path, double pose[5]);
 
 #endif

@@ -53,6 +53,13 @@ static int planet_ground(void *user, const double pos[3], double *h) {
     return planet_surface_height(st->ctx->world, pos, h, &err); // floats on the sea
 }
 
+// The camera of the world being left, kept for when it is opened again.
+static void keep_world_camera(window_state *st) {
+    const camera *c = &st->v->cam;
+    const double pose[5] = {c->pos[0], c->pos[1], c->pos[2], c->yaw, c->pitch};
+    app_settings_put_camera(&st->settings, st->cam_path, pose);
+}
+
 void reset_camera(window_state *st) {
     og_error err = {{0}};
     st->cc.walk = 0;
@@ -62,6 +69,15 @@ void reset_camera(window_state *st) {
     st->cc.planet_user = st;
     st->render_failed = 0;
     if (viewport_camera_on_land(st->v, st->ctx->world, &err) != 0) report("camera", &err);
+    // A world opened again comes back as it was left.
+    const char *path = world_path(st->ctx->world);
+    double pose[5];
+    if (app_settings_find_camera(&st->settings, path, pose) == 0) {
+        camera *c = &st->v->cam;
+        c->pos[0] = pose[0], c->pos[1] = pose[1], c->pos[2] = pose[2];
+        c->yaw = pose[3], c->pitch = pose[4];
+    }
+    snprintf(st->cam_path, sizeof st->cam_path, "%s", path);
     st->v->cam_world_serial = st->ctx->world_serial;
     st->dirty = 1;
 }
@@ -162,6 +178,7 @@ static void wake_window(void *user) {
 void take_changes(window_state *st) {
     world_event e[32];
     size_t n;
+    int other_world = 0; // another world, or this one's kind may have changed
     while ((n = world_subscription_take(st->changes, e, 32)) > 0) {
         st->dirty = 1;
         st->ui_dirty = 1;              // the panels show the world (history, file, unsaved)
@@ -170,12 +187,27 @@ void take_changes(window_state *st) {
                                  e[i].kind == WORLD_EVENT_REPLACED;
         for (size_t i = 0; i < n; i++)
             st->edited |= e[i].kind == WORLD_EVENT_HISTORY;
-        for (size_t i = 0; i < n; i++)
-            if (e[i].kind == WORLD_EVENT_REPLACED &&
-                st->v->cam_world_serial != st->ctx->world_serial)
+        for (size_t i = 0; i < n; i++) {
+            if (e[i].kind == WORLD_EVENT_SAVED) { // Save as: the camera goes with the new file
+                keep_world_camera(st);
+                snprintf(st->cam_path, sizeof st->cam_path, "%s", world_path(st->ctx->world));
+            }
+            other_world |= e[i].kind == WORLD_EVENT_REPLACED || e[i].kind == WORLD_EVENT_PARAMS;
+            if (e[i].kind != WORLD_EVENT_REPLACED) continue;
+            if (st->v->cam_world_serial != st->ctx->world_serial) { // still the last world's view
+                keep_world_camera(st);
                 reset_camera(st);
+            } else { // a command placed the camera for the new world: nothing to keep
+                snprintf(st->cam_path, sizeof st->cam_path, "%s", world_path(st->ctx->world));
+            }
+        }
         if (n < 32) break;
     }
+    // Planets have no volume tools (nor their palette buttons): raise instead, as a
+    // command, so the console, the recording, the palette and the dock agree.
+    if (other_world && world_get_params(st->ctx->world)->kind == WORLD_PLANET &&
+        brush_tool_is_volume(st->ctx->brush.tool))
+        run_commands(st, "tool raise", "planet");
 }
 
 // The UI's fonts: DejaVu from fonts-dejavu-core ($OROGEN_FONT_DIR overrides the folder),
@@ -254,6 +286,7 @@ static void save_settings(window_state *st) {
         app_settings_add_recent(s, st->ed.recent[i]);
     app_settings_add_recent(s, world_path(st->ctx->world));
     tool_settings_capture(st->ctx, s);
+    keep_world_camera(st);
     s->fly_speed = st->cc.fly_speed;
     s->dynamic_lod = st->dynamic_res;
     s->lod_pixels = st->v->settings.lod_pixels;

@@ -27,7 +27,8 @@ void update_title(window_state *st) {
                  : camera_mode(st) == 1 ? "orbit"
                                         : "fly",
                  camera_controls_speed(&st->cc), rs.levels_ready, used,
-                 brush_tool_name(st->ctx->brush.tool), st->ctx->brush.radius, st->pending);
+                 st->ed.stamps.active ? "stamp" : tool_name(&st->ctx->brush), st->ctx->brush.radius,
+                 st->pending);
     if (strcmp(title, st->title) != 0) {
         snprintf(st->title, sizeof st->title, "%s", title);
         glfwSetWindowTitle(st->win, title);

@@ -92,9 +92,11 @@ typedef struct window_state {
     brush_cursor drawn_cursor;
     float drawn_scale;
     int drawn_w, drawn_h;
-    int edited;        // an edit made an undo step this session: the first view's hint goes
-    int world_changed; // change notifications since the terrain image
-    double px_scale;   // framebuffer pixels per window unit (HiDPI)
+    int edited;          // an edit made an undo step this session: the first view's hint goes
+    char cam_path[1024]; // the file of the world the camera looks at ("" unsaved): its camera
+                         // is kept in the settings when the world is left
+    int world_changed;   // change notifications since the terrain image
+    double px_scale;     // framebuffer pixels per window unit (HiDPI)
     app_settings settings;
     char settings_path[4096], history_path[4096];
 

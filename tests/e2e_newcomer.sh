@@ -177,8 +177,13 @@ click "Menu/Help" && click "Menu/Help/Keyboard shortcuts" && key Escape
 alive; check "each dialog drawn without an id conflict" $?
 
 # 5. A planet: dragging the brush's Radius never changes the planet's radius.
-echo "new planet preset=moon" >&3
+echo "new planet preset=moon" >&3 # with vflatten, a volume tool, in hand
 line=$(ask_until nparams '^radius = ' '^radius = 1737400;$'); check "a moon ($line)" $?
+line=$(ask_until tool '^tool=' '^tool=raise$')
+check "a planet has no volume tools: raise is picked ($line)" $?
+widget "Dock/Tool: raise" >/dev/null && widget "Tools/Raise" >/dev/null && widget_gone "Tools/Carve"
+check "the dock shows raise and the palette only planet tools" $?
+wait_title " - tool raise r"; check "and the title says raise ($(title))" $?
 sweep planet raise lower smooth flatten set ramp noise terrace thermal hydraulic paint
 echo "tool raise radius=150" >&3
 read -r x y w h <<<"$(widget "Dock/Radius")"
@@ -223,6 +228,14 @@ click "Menu/File" && click "Menu/File/Export heightmap..."
 click "Export heightmap/Next"
 widget "Export options/Export to alps.exr" >/dev/null; check "File > Export heightmap proposes alps.exr for alps.world" $?
 key Escape
+# Each world's camera comes back when the world is opened again.
+echo "camera 100 200 300 45 -30" >&3
+ask_until camera '^camera ' '^camera 100.000 200.000 300.000 45.000' >/dev/null
+echo "new flat" >&3
+wait_title "Orogen - unsaved world" >/dev/null
+echo "load $work/alps.world" >&3
+line=$(ask_until camera '^camera ' '^camera 100.000 200.000 300.000 45.000 -30.000')
+check "alps.world opened again comes back to where its camera was left ($line)" $?
 
 echo "$passes passed, $failures failed"
 [ $failures = 0 ]

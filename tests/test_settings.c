@@ -42,9 +42,54 @@ static void test_recent_paths_are_absolute(void **state) {
     test_rmtree(dir);
 }
 
+// Each world's camera comes back from the settings file exactly, paths with spaces
+// included; a bad line is a warning, not a camera.
+static void test_world_cameras_round_trip(void **state) {
+    (void)state;
+    const char *dir = test_tmpdir("settings_cameras");
+    char path[PATH_MAX], world_a[PATH_MAX], world_b[PATH_MAX];
+    snprintf(path, sizeof path, "%s/settings", dir);
+    snprintf(world_a, sizeof world_a, "%s/my alps.world", dir);
+    snprintf(world_b, sizeof world_b, "%s/b.world", dir);
+    static app_settings s, back;
+    app_settings_default(&s);
+    const double a[5] = {1234.5678901234567, -99.25, 1e-3, 33.3, -41.0};
+    const double b[5] = {1, 2, 3, 4, 5};
+    app_settings_put_camera(&s, world_a, b);
+    app_settings_put_camera(&s, world_b, b);
+    app_settings_put_camera(&s, world_a, a); // again: replaces, first
+    assert_int_equal(s.camera_count, 2);
+    og_error err = {{0}};
+    assert_int_equal(app_settings_save(&s, path, &err), 0);
+    app_settings_default(&back);
+    app_settings_load(&back, path);
+    double got[5];
+    assert_int_equal(app_settings_find_camera(&back, world_a, got), 0);
+    assert_memory_equal(got, a, sizeof a);
+    assert_int_equal(app_settings_find_camera(&back, world_b, got), 0);
+    assert_memory_equal(got, b, sizeof b);
+    assert_int_equal(app_settings_find_camera(&back, "/nowhere.world", got), -1);
+    assert_int_equal(app_settings_find_camera(&back, "", got), -1);
+    for (int i = 0; i < 3 * SETTINGS_CAMERAS; i++) { // the oldest go
+        char w[64];
+        snprintf(w, sizeof w, "/w%d.world", i);
+        app_settings_put_camera(&back, w, b);
+    }
+    assert_int_equal(back.camera_count, SETTINGS_CAMERAS);
+    assert_int_equal(app_settings_find_camera(&back, world_a, got), -1);
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fputs("world_camera_0 = 1 2 nan 4 5 /x.world;\nworld_camera_1 = 1 2 3 /y.world;\n", f);
+    fclose(f);
+    app_settings_default(&back);
+    app_settings_load(&back, path);
+    assert_int_equal(back.camera_count, 0);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_recent_paths_are_absolute),
+        cmocka_unit_test(test_world_cameras_round_trip),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
