@@ -3,7 +3,8 @@
 #include <stdio.h>
 
 size_t tile_layer_bytes(tile_layer layer) {
-    switch (layer) {
+    if ((int)layer < 0) return 0;
+    switch ((tile_layer)(layer & ((1 << TILE_SLOT_SHIFT) - 1))) {
     case TILE_LAYER_COARSE:
     case TILE_LAYER_DETAIL:
         return (size_t)TILE_SAMPLES * sizeof(float);
@@ -18,6 +19,7 @@ size_t tile_layer_bytes(tile_layer layer) {
 }
 
 tile_format tile_layer_format(tile_layer layer) {
+    layer = (tile_layer)(layer & ((1 << TILE_SLOT_SHIFT) - 1));
     if (layer == TILE_LAYER_MATERIAL) return TILE_FORMAT_U8X8;
     if (layer == TILE_LAYER_DETAIL_PD || layer == TILE_LAYER_VOLUME) return TILE_FORMAT_S16X2;
     return TILE_FORMAT_F32;
@@ -25,12 +27,18 @@ tile_format tile_layer_format(tile_layer layer) {
 
 const char *tile_layer_name(tile_layer layer) {
     static const char *names[] = {"coarse", "detail", "material", "volume", "detail_pd"};
+    if ((int)layer >= 0) layer = (tile_layer)(layer & ((1 << TILE_SLOT_SHIFT) - 1));
     return (unsigned)layer < TILE_LAYER_COUNT ? names[layer] : "unknown";
 }
 
 const char *tile_key_describe(tile_key key, char *buf, size_t len) {
-    snprintf(buf, len, "%s face %d level %d tile (%d,%d)", tile_layer_name((tile_layer)key.layer),
-             key.face, key.level, key.tx, key.ty);
+    char slot[48] = "";
+    if (tile_key_slot(key) == TILE_SLOT_BASE)
+        snprintf(slot, sizeof slot, " (base)");
+    else if (tile_key_slot(key) > TILE_SLOT_BASE)
+        snprintf(slot, sizeof slot, " (edit layer %d)", (int)tile_key_slot(key));
+    snprintf(buf, len, "%s%s face %d level %d tile (%d,%d)", tile_layer_name((tile_layer)key.layer),
+             slot, key.face, key.level, key.tx, key.ty);
     return buf;
 }
 

@@ -38,7 +38,7 @@ typedef enum tile_layer {
 #define VOLUME_BRICK_Y 64
 
 typedef struct tile_key {
-    int32_t layer; // tile_layer
+    int32_t layer; // tile_layer, and above its low 8 bits the edit-layer slot (tile_key_slot)
     int32_t face;  // 0 for flat worlds, 0-5 for planet cube faces
     int32_t level; // mip level, 0 = full resolution
     int32_t tx, ty;
@@ -54,6 +54,24 @@ typedef enum tile_format {
 static inline int tile_key_equal(tile_key a, tile_key b) {
     return a.layer == b.layer && a.face == b.face && a.level == b.level && a.tx == b.tx &&
            a.ty == b.ty;
+}
+
+// Edit layers (editor/layers/layer_table.h) keep their tiles apart from the world's own by
+// a slot in key.layer above the kind: slot 0 is the composite (what everyone reads), slot
+// 1 the base under the layers (generated terrain), slot 2 and up a user layer's stable
+// id. So the store, cache, history and journal keep them apart with no new key field;
+// tile_layer_bytes/format/name take such a packed value as its kind.
+#define TILE_SLOT_SHIFT 8
+#define TILE_SLOT_BASE 1
+#define TILE_SLOT_MAX (INT32_MAX >> TILE_SLOT_SHIFT)
+static inline tile_layer tile_key_kind(tile_key key) {
+    return (tile_layer)(key.layer & ((1 << TILE_SLOT_SHIFT) - 1));
+}
+static inline int32_t tile_key_slot(tile_key key) {
+    return key.layer >> TILE_SLOT_SHIFT;
+}
+static inline int32_t tile_layer_in_slot(tile_layer kind, int32_t slot) {
+    return (int32_t)kind | slot << TILE_SLOT_SHIFT;
 }
 
 // A well-mixed 64-bit hash of a key, for hash tables.

@@ -275,7 +275,13 @@ static uint32_t header_crc(const uint8_t *b, tile_key key, int version) {
     put_u32le(k + 4, (uint32_t)key.level);
     put_u32le(k + 8, (uint32_t)key.tx);
     put_u32le(k + 12, (uint32_t)key.ty);
-    return crc32c_update(crc, k, sizeof k);
+    crc = crc32c_update(crc, k, sizeof k);
+    // An edit layer's tile also answers for its slot (the composite's, slot 0, as before).
+    if (tile_key_slot(key)) {
+        put_u32le(k, (uint32_t)tile_key_slot(key));
+        crc = crc32c_update(crc, k, 4);
+    }
+    return crc;
 }
 
 size_t tile_blob_encode(tile_layer layer, const void *data, void **blob) {
@@ -412,7 +418,7 @@ static int db_fail(const tile_store *store, og_error *err, const char *what) {
 
 static int key_valid(tile_key key, og_error *err, const char *path) {
     char desc[128];
-    if (key.layer < 0 || key.layer >= TILE_LAYER_COUNT)
+    if (key.layer < 0 || tile_key_kind(key) >= TILE_LAYER_COUNT)
         return og_error_set(err, "tile store '%s': layer %d is not a tile layer", path, key.layer);
     if (!tile_layer_bytes((tile_layer)key.layer))
         return og_error_set(err, "tile store '%s': %s: the %s layer has no payload to store", path,

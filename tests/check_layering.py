@@ -14,21 +14,22 @@ import sys
 ALLOWED = {
     "io": [],
     "ui": [],
-    "editor/params": ["io"],
-    "editor/gen": ["editor/params", "io"],
-    # Layer masks and material rules: functions of heights, below the world.
-    "editor/layers": ["editor/params", "io"],
-    "editor/world": ["editor/layers", "editor/gen", "editor/params", "io"],
-    "editor/edit": ["editor/world", "editor/layers", "editor/gen", "editor/params", "io"],
-    "editor/tools": ["editor/edit", "editor/world", "editor/layers", "editor/gen", "editor/params", "io"],
-    "editor/interchange": ["editor/edit", "editor/world", "editor/layers", "editor/gen", "editor/params", "io"],
-    "editor/cmd": ["editor/interchange", "editor/tools", "editor/edit", "editor/world", "editor/layers", "editor/gen", "editor/params",
-                   "io"],
+    # Edit layers' pure model (the stack, blends, masks, material rules): functions of
+    # heights, saved with the parameters, so below them.
+    "editor/layers": ["io"],
+    "editor/params": ["editor/layers", "io"],
+    "editor/gen": ["editor/params", "editor/layers", "io"],
+    "editor/world": ["editor/gen", "editor/params", "editor/layers", "io"],
+    "editor/edit": ["editor/world", "editor/gen", "editor/params", "editor/layers", "io"],
+    "editor/tools": ["editor/edit", "editor/world", "editor/gen", "editor/params", "editor/layers", "io"],
+    "editor/interchange": ["editor/edit", "editor/world", "editor/gen", "editor/params", "editor/layers", "io"],
+    "editor/cmd": ["editor/interchange", "editor/tools", "editor/edit", "editor/world", "editor/gen", "editor/params",
+                   "editor/layers", "io"],
     # The renderer reads the world; it knows neither the command language nor the edits.
-    "renderer": ["editor/world", "editor/layers", "editor/gen", "editor/params", "io", "ui"],
+    "renderer": ["editor/world", "editor/gen", "editor/params", "editor/layers", "io", "ui"],
     # The viewport's commands sit above both.
     "view": ["renderer", "editor/cmd", "editor/interchange", "editor/tools", "editor/edit", "editor/world",
-             "editor/layers", "editor/gen", "editor/params", "io", "ui"],
+             "editor/gen", "editor/params", "editor/layers", "io", "ui"],
     "app": None,  # everything
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')

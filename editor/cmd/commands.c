@@ -4,6 +4,7 @@
 #include "editor/edit/recover.h"
 #include "editor/cmd/edit_commands.h"
 #include "editor/cmd/interchange_commands.h"
+#include "editor/cmd/layer_commands.h"
 #include "editor/cmd/record.h"
 #include "editor/cmd/volume_commands.h"
 #include "editor/cmd/tokenize.h"
@@ -564,6 +565,19 @@ static const cmd_def commands[] = {
      "with normals and per-face UVs, and FILE_height_F.png (16-bit, with .json) and "
      "FILE_normal_F.png for the six faces F, size= pixels per side at most (1024).",
      1, 16, cmd_export, 0},
+    {"layers", "layers",
+     "Lists the edit layers, top first: * the active one, index (0 = bottom), name, kind, "
+     "blend, opacity, visible, locked and how many tiles hold its edits.",
+     0, 0, cmd_layers, 0},
+    {"layer",
+     "layer new NAME [kind=height] [blend=add|replace|max|min] [opacity=0..1] | layer select "
+     "NAME | layer set NAME [name=] [blend=] [opacity=] [visible=0|1] [locked=0|1] | layer move "
+     "NAME up|down|top|bottom|to=I | layer duplicate NAME [NEW] | layer merge NAME | layer "
+     "clear NAME | layer delete NAME",
+     "Changes the stack of edit layers over the generated terrain (one undo step each). Tools "
+     "write into the active layer (new and duplicate make theirs active); a hidden or locked "
+     "active layer refuses them. merge folds a layer into the one below, keeping what is seen.",
+     1, 8, cmd_layer, CMD_ENDS_STROKE},
     {"undo", "undo", "Undoes the last change (stroke, stamp, generate).", 0, 0, cmd_undo,
      CMD_ENDS_STROKE},
     {"redo", "redo", "Redoes the last undone change.", 0, 0, cmd_redo, CMD_ENDS_STROKE},

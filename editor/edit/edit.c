@@ -29,6 +29,11 @@ struct edit {
     // Dirty areas [0, this) have reached the mip levels and been published; a coarse
     // area past it is still open (later dabs that touch it grow it).
     size_t mips_current;
+    edit_layer_mode layer_mode;
+    // A change of the world's parameters within the edit (the layer table): applied at
+    // once, part of the step, undone by abort.
+    int has_params;
+    world_params params_before, params_after;
 };
 
 // Two areas of one grid that overlap or touch (a stroke's dabs): kept as their union.
@@ -108,7 +113,46 @@ const void *edit_snapshot(edit *e, tile_key key) {
     return before;
 }
 
+edit_layer_mode edit_get_layer_mode(const edit *e) {
+    return e->layer_mode;
+}
+
+void edit_set_layer_mode(edit *e, edit_layer_mode mode) {
+    e->layer_mode = mode;
+}
+
+int edit_set_params(edit *e, const world_params *params, og_error *err) {
+    world_params before = *world_get_params(e->world);
+    if (world_regenerate(e->world, params, err) != 0) return -1;
+    if (!e->has_params) e->params_before = before;
+    e->has_params = 1;
+    e->params_after = *world_get_params(e->world);
+    return 0;
+}
+
+// Tools change the composite; the active layer takes the change (layer_composite.h),
+// unless it is hidden or locked: then the tool is refused before it changes anything.
+static int check_active_layer(edit *e, tile_key key, og_error *err) {
+    if (e->layer_mode == EDIT_LAYER_COMPOSED || key.layer != TILE_LAYER_COARSE || key.level != 0)
+        return 0;
+    const layer_table *t = &world_get_params(e->world)->layers;
+    if (!t->count) return 0;
+    const layer_info *l = &t->layers[t->active];
+    if (!l->visible)
+        return og_error_set(err,
+                            "layer '%s' is hidden: edits to it would not show (show it with "
+                            "'layer set %s visible=1', or select another layer)",
+                            l->name, l->name);
+    if (l->locked)
+        return og_error_set(err,
+                            "layer '%s' is locked against edits (unlock it with 'layer set %s "
+                            "locked=0', or select another layer)",
+                            l->name, l->name);
+    return 0;
+}
+
 int edit_tile_acquire(edit *e, tile_key key, tile_view *view, og_error *err) {
+    if (check_active_layer(e, key, err) != 0) return -1;
     if (tile_cache_acquire_write(world_cache(e->world), key, view, err) != 0) return -1;
     pthread_mutex_lock(&e->lock);
     int rc = 0;
@@ -205,6 +249,9 @@ static void restore(edit *e) {
         memcpy(v.data, e->snaps[i].before, tile_layer_bytes((tile_layer)e->snaps[i].key.layer));
         tile_cache_release(cache, &v);
     }
+    og_error err;
+    if (e->has_params && world_regenerate(e->world, &e->params_before, &err) != 0)
+        world_warn(e->world, err.msg);
     publish_areas(e->world, e->dirty, e->dirty_count);
 }
 
@@ -264,6 +311,11 @@ int edit_record(edit *e, og_error *err) {
             last->rect = grid_rect_union(last->rect, e->dirty[i].rect);
         else if (history_step_add_dirty(step, e->dirty[i]) != 0)
             failed = og_error_set(err, "out of memory recording the undo step");
+    }
+    if (!failed && e->has_params) {
+        step->has_params = 1;
+        step->params_before = e->params_before;
+        step->params_after = e->params_after;
     }
     if (failed) {
         for (size_t i = 0; i < e->count; i++)
@@ -365,8 +417,12 @@ static double voxel_size(const world_params *p) {
     return p->spacing / (p->volume_ratio > 0 ? p->volume_ratio : 1);
 }
 
-int edit_generate(world *w, const world_params *params, og_error *err) {
+int edit_generate(world *w, const world_params *wanted, og_error *err) {
     world_params before = *world_get_params(w);
+    // The layers are the world's, whatever parameters the caller started from.
+    world_params next = *wanted;
+    next.layers = before.layers;
+    const world_params *params = &next;
     // Volume edits are stored per voxel: a new voxel size would move and stretch them.
     if (params->kind == WORLD_FLAT && before.kind == WORLD_FLAT &&
         voxel_size(params) != voxel_size(&before)) {

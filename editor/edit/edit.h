@@ -15,8 +15,27 @@ typedef struct edit edit;
 edit *edit_begin(world *w, const char *label, og_error *err);
 world *edit_world(edit *e);
 
+// How the edit's changes to the composite heights (coarse level-0 tiles, slot 0) reach
+// the edit layers (editor/edit/layer_composite.h).
+typedef enum edit_layer_mode {
+    // The tool's result is what should be seen: the active layer takes what makes the
+    // composite show it (smooth, flatten, set, terrace, erosion, import).
+    EDIT_LAYER_RESULT = 0,
+    // The tool's change is a delta the active layer adds (raise, lower, noise, stamps):
+    // its opacity scales it like everything in the layer.
+    EDIT_LAYER_DELTA,
+    // The caller keeps layers and composite in step itself (layer commands).
+    EDIT_LAYER_COMPOSED
+} edit_layer_mode;
+edit_layer_mode edit_get_layer_mode(const edit *e);
+void edit_set_layer_mode(edit *e, edit_layer_mode mode);
+// Changes the world's parameters (the layer table) as part of the edit: at once, and
+// undone with it. Returns -1 with err when the world refuses them.
+int edit_set_params(edit *e, const world_params *params, og_error *err);
+
 // Pins a level-0 tile for writing (loading or generating it if needed), snapshotting
-// it on the edit's first touch. Thread-safe: parallel dab tasks call it.
+// it on the edit's first touch. Thread-safe: parallel dab tasks call it. Refuses the
+// composite's coarse tiles while the active layer is hidden or locked (err says so).
 int edit_tile_acquire(edit *e, tile_key key, tile_view *view, og_error *err);
 void edit_tile_release(edit *e, tile_view *view);
 // Records a changed area (level-0 samples of that layer) and publishes it, except a

@@ -2,9 +2,10 @@
 
 #include "editor/edit/detail_pd.h"
 #include "editor/edit/edit_mips.h"
+#include "editor/edit/layer_composite.h"
 
 int edit_commit(edit *e, og_error *err) {
-    if (edit_mips_update(e, err) != 0) {
+    if (layer_take_edit(e, err) != 0 || edit_mips_update(e, err) != 0) {
         edit_abort(e);
         return -1;
     }

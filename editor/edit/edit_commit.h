@@ -1,6 +1,6 @@
-// Finishing an edit: the coarse mip levels and the detail layer's PD map follow the
-// changed area, then the edit becomes one undo step. What tools call at the end of a
-// stroke, dab or stamp.
+// Finishing an edit: the active edit layer takes the change (layer_composite.h), the coarse mip
+// levels and the detail layer's PD map follow the changed area, then the edit becomes one undo
+// step. What tools call at the end of a stroke, dab or stamp.
 #ifndef OROGEN_EDITOR_EDIT_COMMIT_H
 #define OROGEN_EDITOR_EDIT_COMMIT_H
 

@@ -329,6 +329,11 @@ int world_params_set(world_params *p, const char *key, const char *value, og_err
     return -1;
 }
 
+int world_params_read_entry(world_params *p, const char *key, const char *value, og_error *err) {
+    int rc = layer_table_read_entry(&p->layers, key, value, err);
+    return rc == 1 ? world_params_set(p, key, value, err) : rc;
+}
+
 int world_params_get(const world_params *p, const char *key, char *buf, size_t len) {
     const key_def *d = key ? find_def(key) : NULL;
     if (!d || !buf || !len) return -1;
@@ -506,13 +511,14 @@ int world_params_load_whole(const char *path, world_params *p, int *errors,
     for (size_t i = 0; i < pf.count; i++) {
         const param_entry *e = &pf.entries[i];
         og_error e_err;
-        int rc = world_params_set(p, e->key, e->value, &e_err);
+        int rc = world_params_read_entry(p, e->key, e->value, &e_err);
         if (rc < 0)
             param_file_diag(&pf, PARAM_ERROR, e->line, "%s", e_err.msg);
         else if (rc > 0)
             param_file_diag(&pf, PARAM_WARNING, e->line, "unknown key '%s'", e->key);
     }
     og_error v_err;
+    layer_table_finish(&p->layers, NULL);
     if (pf.count && world_params_validate(p, &v_err) != 0)
         param_file_diag(&pf, PARAM_ERROR, 0, "%s", v_err.msg);
     // Changed since saved, with lines that no longer read: damage, not an edit by hand.
@@ -558,6 +564,10 @@ char *world_params_format(const world_params *p) {
         }
         len += (size_t)snprintf(out + len, cap - len, "\n# %s\n%s = %s;\n", KEYS[i].help,
                                 KEYS[i].name, value);
+    }
+    if (p->layers.count && layer_table_format(&p->layers, &out, &len, &cap) != 0) {
+        free(out);
+        return NULL;
     }
     return out;
 }

@@ -5,6 +5,7 @@
 #ifndef OROGEN_EDITOR_WORLD_PARAMS_H
 #define OROGEN_EDITOR_WORLD_PARAMS_H
 
+#include "editor/layers/layer_table.h"
 #include "io/err.h"
 
 #include <stddef.h>
@@ -66,6 +67,9 @@ typedef struct world_params {
     // count of tiles the store held (-1 = not recorded). Written by save.
     char tiles_id[WORLD_ID_CHARS + 1];
     int64_t tiles_saved;
+    // The edit layers over the generated terrain (`layer = ...;` lines); empty in a file
+    // from before layers (the world then gives it one, editor/world/world.h).
+    layer_table layers;
 } world_params;
 
 // The built-in defaults for a kind (a pleasant landscape or an Earth-like planet).
@@ -88,6 +92,10 @@ int gen_kind_parse(const char *text);
 // ("seed: expected an integer, got 'abc'"); the parameter is unchanged on error.
 // Unknown keys return 1 (callers warn).
 int world_params_set(world_params *p, const char *key, const char *value, og_error *err);
+// world_params_set, and the keys a file has besides them: the edit layers' lines
+// (layer_table_read_entry). What the file readers call; `set` knows only the keys.
+int world_params_read_entry(world_params *p, const char *key, const char *value, og_error *err);
+
 // Formats one key's value (canonical text) into buf; returns -1 for unknown keys.
 int world_params_get(const world_params *p, const char *key, char *buf, size_t len);
 

@@ -422,6 +422,8 @@ int stamp_apply(world *w, const stamp_source *s, const stamp_placement *p, og_er
         snprintf(label, sizeof label, "stamp %s", s->name);
         edit *e = edit_begin(w, label, err);
         if (!e) return -1;
+        if (p->mode == STAMP_ADD || p->mode == STAMP_SUBTRACT)
+            edit_set_layer_mode(e, EDIT_LAYER_DELTA);
         if (stamp_apply_planet(w, &o, &g, e, err) != 0) {
             edit_abort(e);
             return -1;
@@ -441,6 +443,7 @@ int stamp_apply(world *w, const stamp_source *s, const stamp_placement *p, og_er
     snprintf(label, sizeof label, "stamp %s", s->name);
     edit *e = edit_begin(w, label, err);
     if (!e) return -1;
+    if (p->mode == STAMP_ADD || p->mode == STAMP_SUBTRACT) edit_set_layer_mode(e, EDIT_LAYER_DELTA);
     if (edit_rows_apply(e, &g, r, stamp_row, NULL, &o, err) != 0) {
         edit_abort(e);
         return -1;

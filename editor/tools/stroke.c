@@ -77,6 +77,10 @@ stroke *stroke_begin(world *w, const brush *b, og_error *err) {
     char label[128];
     snprintf(label, sizeof label, "%s stroke", brush_tool_name(b->tool));
     if (!(s->edit = edit_begin(w, label, err))) goto fail;
+    // Raise and noise add to the active layer (its opacity scales them); the other tools'
+    // results are what the layer shows (editor/edit/edit.h).
+    if (b->tool == BRUSH_RAISE || b->tool == BRUSH_NOISE)
+        edit_set_layer_mode(s->edit, EDIT_LAYER_DELTA);
     s->target = (float)b->height;
     return s;
 fail:

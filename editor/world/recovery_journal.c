@@ -415,7 +415,8 @@ static int get_params(cursor *c, world_params *p) {
                                                                            : WORLD_FLAT);
     int rc = 0;
     for (size_t i = 0; i < pf.count && rc == 0; i++)
-        rc = world_params_set(p, pf.entries[i].key, pf.entries[i].value, NULL) == 0 ? 0 : -1;
+        rc = world_params_read_entry(p, pf.entries[i].key, pf.entries[i].value, NULL) == 0 ? 0 : -1;
+    layer_table_finish(&p->layers, NULL);
     param_file_free(&pf);
     return rc;
 }
@@ -444,7 +445,7 @@ static history_step *decode_step(cursor *c, recovery_kind *kind, uint64_t *sessi
         int pristine = (int)get_le(c, 1);
         size_t bytes = (size_t)get_le(c, 4);
         const uint8_t *delta = take(c, bytes);
-        if (!delta || key.layer < 0 || key.layer >= TILE_LAYER_COUNT) {
+        if (!delta || key.layer < 0 || tile_key_kind(key) >= TILE_LAYER_COUNT) {
             c->bad = 1;
             break;
         }

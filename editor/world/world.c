@@ -1,6 +1,7 @@
 #include "editor/world/world.h"
 
 #include "editor/gen/gen.h"
+#include "editor/layers/layer_blend.h"
 #include "editor/world/history.h"
 #include "editor/params/world_grid.h"
 #include "editor/world/journal_files.h"
@@ -70,7 +71,18 @@ struct world {
 
 static int generation_source(void *user, tile_key key, void *out) {
     const world_generation *g = user;
-    return gen_tile(&g->params, key, out);
+    int32_t slot = tile_key_slot(key);
+    if (slot == 0) return gen_tile(&g->params, key, out);
+    key.layer = tile_key_kind(key);
+    if (key.layer != TILE_LAYER_COARSE) return -1; // only height layers have tiles yet
+    if (slot == TILE_SLOT_BASE) return gen_tile(&g->params, key, out);
+    // An edit layer's tile it never wrote: nothing there (NaN, editor/layers/layer_blend.h).
+    int faces = g->params.kind == WORLD_PLANET ? 6 : 1;
+    if (key.face < 0 || key.face >= faces || key.level < 0 || key.level > TILE_MAX_LEVEL) return -1;
+    float *f = out;
+    for (size_t i = 0; i < TILE_SAMPLES; i++)
+        f[i] = NAN;
+    return 0;
 }
 
 static void default_warn(void *user, const char *message) {
@@ -175,6 +187,8 @@ static world *world_alloc(const world_params *params, const world_settings *sett
     if (!w) return NULL;
     w->lock.fd = -1;
     w->params = *params;
+    // Every world has a layer for the tools to write to.
+    if (!w->params.layers.count) layer_table_default(&w->params.layers);
     if (settings) w->settings = *settings;
     if (!w->settings.warn) w->settings.warn = default_warn;
     if (!w->settings.events) w->settings.events = w->own_events = world_events_create();
@@ -191,7 +205,7 @@ static world *world_alloc(const world_params *params, const world_settings *sett
 world *world_create(const world_params *params, const world_settings *settings, og_error *err) {
     if (check_params(params, err) != 0) return NULL;
     world *w = world_alloc(params, settings);
-    if (w) w->base_params = *params;
+    if (w) w->base_params = w->params;
     if (!w) {
         og_error_set(err, "out of memory");
         return NULL;
@@ -397,6 +411,62 @@ static void find_recoverable(world *w) {
               when, scan.records, scan.records == 1 ? "" : "s", torn);
 }
 
+static int collect_composite(void *user, tile_key key) {
+    tile_key **keys = user;
+    if (key.layer != TILE_LAYER_COARSE || key.level != 0) return 0;
+    size_t n = (size_t)(*keys)[0].tx; // the count rides in element 0
+    tile_key *grown = realloc(*keys, (n + 2) * sizeof **keys);
+    if (!grown) return 1;
+    grown[n + 1] = key;
+    grown[0].tx = (int32_t)(n + 1);
+    *keys = grown;
+    return 0;
+}
+
+// A world saved before layers: its sculpted heights become the difference, in its one
+// layer, from the generated terrain, so hiding or toning the layer down works on them
+// too. The composite tiles stay as saved (the same `hash`); each layer sample is solved
+// so that base + layer gives the saved height back exactly (layer_blend_solve).
+static int adopt_edits_as_layer(world *w, og_error *err) {
+    tile_key *keys = calloc(1, sizeof *keys);
+    if (!keys) return og_error_set(err, "out of memory");
+    if (tile_store_each(w->store, collect_composite, &keys, err) != 0) {
+        free(keys);
+        return -1;
+    }
+    size_t n = (size_t)keys[0].tx;
+    const layer_info *layer = &w->params.layers.layers[0];
+    int rc = 0;
+    for (size_t i = 1; i <= n && rc == 0; i++) {
+        tile_key ck = keys[i], bk = ck, lk = ck;
+        bk.layer = tile_layer_in_slot(TILE_LAYER_COARSE, TILE_SLOT_BASE);
+        lk.layer = tile_layer_in_slot(TILE_LAYER_COARSE, layer->id);
+        tile_view c, b, l;
+        if (tile_cache_acquire(w->cache, ck, &c, err) != 0) {
+            rc = -1;
+            break;
+        }
+        if (tile_cache_acquire(w->cache, bk, &b, err) != 0) {
+            tile_cache_release(w->cache, &c);
+            rc = -1;
+            break;
+        }
+        if (tile_cache_acquire_write(w->cache, lk, &l, err) == 0) {
+            const float *cf = c.data, *bf = b.data;
+            float *lf = l.data;
+            for (size_t k = 0; k < TILE_SAMPLES; k++)
+                lf[k] = layer_blend_solve(LAYER_BLEND_ADD, 1.0f, bf[k], NAN, cf[k]);
+            tile_cache_release(w->cache, &l);
+        } else {
+            rc = -1;
+        }
+        tile_cache_release(w->cache, &b);
+        tile_cache_release(w->cache, &c);
+    }
+    free(keys);
+    return rc;
+}
+
 world *world_load(const char *path, const world_settings *settings, int *errors, og_error *err) {
     world_params p;
     int errs = 0;
@@ -416,6 +486,7 @@ world *world_load(const char *path, const world_settings *settings, int *errors,
     }
     char tiles[4096];
     if (world_params_tiles_path(&p, path, tiles, sizeof tiles, err) != 0) return NULL;
+    int before_layers = p.layers.count == 0;
     world *w = world_alloc(&p, settings);
     if (!w) {
         og_error_set(err, "out of memory");
@@ -434,7 +505,8 @@ world *world_load(const char *path, const world_settings *settings, int *errors,
                  path, cut_short);
     long owner = 0;
     int locked = failed ? -1 : lock_files(w, tiles, &owner, err);
-    if (locked < 0 || start_cache(w, err) != 0) {
+    if (locked < 0 || start_cache(w, err) != 0 ||
+        (before_layers && w->store && adopt_edits_as_layer(w, err) != 0)) {
         world_close(w);
         return NULL;
     }
@@ -635,6 +707,18 @@ int world_save(world *w, const char *path, int force, og_error *err) {
     return 0;
 }
 
+// Whether two parameter sets generate the same terrain (they may differ in layers).
+static int same_generation(const world_params *a, const world_params *b) {
+    world_params x = *a, y = *b;
+    memset(&x.layers, 0, sizeof x.layers);
+    memset(&y.layers, 0, sizeof y.layers);
+    char *tx = world_params_format(&x), *ty = world_params_format(&y);
+    int same = tx && ty && !strcmp(tx, ty);
+    free(tx);
+    free(ty);
+    return same;
+}
+
 int world_regenerate(world *w, const world_params *params, og_error *err) {
     if (check_params(params, err) != 0) return -1;
     world_params next = *params;
@@ -642,6 +726,14 @@ int world_regenerate(world *w, const world_params *params, og_error *err) {
     snprintf(next.tiles, sizeof next.tiles, "%s", w->params.tiles);
     memcpy(next.tiles_id, w->params.tiles_id, sizeof next.tiles_id);
     next.tiles_saved = w->params.tiles_saved;
+    if (!next.layers.count) next.layers = w->params.layers;
+    // Only the layer table changed (a layer command, its undo): the terrain generates
+    // the same, so the cache stays.
+    if (same_generation(&next, &w->params)) {
+        w->params = next;
+        world_publish(w, &(world_event){.kind = WORLD_EVENT_PARAMS});
+        return 0;
+    }
     // Edited tiles must reach the journal before a new cache reads it; the old cache
     // keeps running until the new one does.
     tile_cache *cache = NULL;

@@ -1,0 +1,408 @@
+// Edit layers: the composite of random stacks against the formulas on plain arrays
+// (every blend, opacity, hidden layers, empty samples, across tile edges), each layer
+// command undone and redone bit-exactly, tools on a layer against a single heightfield,
+// and a world saved before layers opening as one layer with the same heights.
+#include "editor/cmd/commands.h"
+#include "editor/edit/edit_commit.h"
+#include "editor/edit/layer_composite.h"
+#include "editor/layers/layer_blend.h"
+#include "editor/world/layer_grid.h"
+#include "support/test_support.h"
+
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static void silent(void *user, const char *message) {
+    (void)user, (void)message;
+}
+
+static world_params flat_params(int64_t size) {
+    world_params p;
+    world_params_default(&p, WORLD_FLAT);
+    p.generator = GEN_FBM;
+    p.seed = 4242;
+    p.octaves = 4;
+    p.size = size;
+    p.spacing = 1.0;
+    p.feature_size = 256.0;
+    p.max_height = 300;
+    return p;
+}
+
+static world *open_world(const world_params *p) {
+    world_settings s = {.cache_budget_bytes = (size_t)256 << 20, .workers = 2, .warn = silent};
+    og_error err;
+    world *w = world_create(p, &s, &err);
+    if (!w) fail_msg("world_create: %s", err.msg);
+    return w;
+}
+
+static uint64_t rng_next(uint64_t *s) {
+    *s ^= *s << 13;
+    *s ^= *s >> 7;
+    *s ^= *s << 17;
+    return *s;
+}
+
+static double rng_unit(uint64_t *s) {
+    return (double)(rng_next(s) >> 11) / 9007199254740992.0;
+}
+
+static float *read_rect(world *w, int face, grid_rect r) {
+    layer_grid g;
+    og_error err;
+    if (layer_grid_init(&g, world_get_params(w), TILE_LAYER_COARSE, face, &err) != 0)
+        fail_msg("%s", err.msg);
+    float *out = malloc(sizeof(float) * (size_t)((r.x1 - r.x0) * (r.z1 - r.z0)));
+    if (layer_grid_read(w, &g, r, out, &err) != 0) fail_msg("%s", err.msg);
+    return out;
+}
+
+// The blend formulas of editor/layers/layer_blend.h, written out again for the reference.
+static float reference_blend(layer_blend b, float w, float below, float v) {
+    if (v != v || w <= 0) return below;
+    float top = b == LAYER_BLEND_ADD       ? below + v
+                : b == LAYER_BLEND_REPLACE ? v
+                : b == LAYER_BLEND_MAX     ? (v > below ? v : below)
+                                           : (v < below ? v : below);
+    if (w >= 1) return top;
+    return b == LAYER_BLEND_ADD ? below + w * v : below + w * (top - below);
+}
+
+// Writes random values (some NaN) into a layer's samples r through an edit, and the same
+// into the reference array (area's layout).
+static void fill_layer(edit *e, int32_t id, int face, grid_rect r, float *ref, grid_rect area,
+                       uint64_t *seed, double nan_share) {
+    for (int64_t tz = r.z0 >> 8; tz <= (r.z1 - 1) >> 8; tz++)
+        for (int64_t tx = r.x0 >> 8; tx <= (r.x1 - 1) >> 8; tx++) {
+            tile_key key = {.layer = tile_layer_in_slot(TILE_LAYER_COARSE, id),
+                            .face = face,
+                            .tx = (int32_t)tx,
+                            .ty = (int32_t)tz};
+            tile_view v;
+            og_error err;
+            if (edit_tile_acquire(e, key, &v, &err) != 0) fail_msg("%s", err.msg);
+            float *f = v.data;
+            for (int j = 0; j < TILE_SIZE; j++)
+                for (int i = 0; i < TILE_SIZE; i++) {
+                    int64_t x = tx * TILE_SIZE + i, z = tz * TILE_SIZE + j;
+                    if (x < r.x0 || x >= r.x1 || z < r.z0 || z >= r.z1) continue;
+                    float val =
+                        rng_unit(seed) < nan_share ? NAN : (float)(rng_unit(seed) * 400.0 - 200.0);
+                    f[j * TILE_SIZE + i] = val;
+                    ref[(z - area.z0) * (area.x1 - area.x0) + (x - area.x0)] = val;
+                }
+            edit_tile_release(e, &v);
+        }
+}
+
+// Random stacks over an unbounded world, around negative tile coordinates: the composite
+// equals the formula on one big array everywhere, across tile edges.
+static void test_composite_matches_arrays(void **state) {
+    (void)state;
+    world_params p = flat_params(0);
+    world *w = open_world(&p);
+    grid_rect area = {-300, -280, 320, 290};
+    size_t n = (size_t)((area.x1 - area.x0) * (area.z1 - area.z0));
+    float *base = read_rect(w, 0, area);
+    uint64_t seed = 77;
+    for (int trial = 0; trial < 6; trial++) {
+        world_params next = *world_get_params(w);
+        layer_table *t = &next.layers;
+        layer_table_default(t);
+        int layers = 2 + trial % 4;
+        float *values[LAYER_MAX];
+        og_error err;
+        for (int i = 1; i < layers; i++) {
+            char name[16];
+            snprintf(name, sizeof name, "L%d", i);
+            layer_table_insert(t, i, name, (layer_blend)(rng_next(&seed) % LAYER_BLEND_COUNT),
+                               rng_unit(&seed) < 0.4 ? 1.0 : rng_unit(&seed), &err);
+        }
+        for (int i = 0; i < layers; i++)
+            t->layers[i].visible = rng_unit(&seed) > 0.2;
+        edit *e = edit_begin(w, "test layers", &err);
+        edit_set_layer_mode(e, EDIT_LAYER_COMPOSED);
+        if (edit_set_params(e, &next, &err) != 0) fail_msg("%s", err.msg);
+        for (int i = 0; i < layers; i++) {
+            values[i] = malloc(sizeof(float) * n);
+            for (size_t k = 0; k < n; k++)
+                values[i][k] = NAN;
+            // Each layer covers a random part of the area (its other samples stay empty).
+            int64_t x0 = area.x0 + (int64_t)(rng_unit(&seed) * 200),
+                    z0 = area.z0 + (int64_t)(rng_unit(&seed) * 200);
+            int64_t x1 = area.x1 - (int64_t)(rng_unit(&seed) * 200),
+                    z1 = area.z1 - (int64_t)(rng_unit(&seed) * 200);
+            fill_layer(e, t->layers[i].id, 0, (grid_rect){x0, z0, x1, z1}, values[i], area, &seed,
+                       0.1);
+        }
+        if (layer_recompose(e, 0, area, &err) != 0) fail_msg("%s", err.msg);
+        if (edit_commit(e, &err) != 0) fail_msg("%s", err.msg);
+        float *got = read_rect(w, 0, area);
+        size_t wrong = 0;
+        for (size_t k = 0; k < n; k++) {
+            float c = base[k];
+            for (int i = 0; i < layers; i++)
+                if (t->layers[i].visible)
+                    c = reference_blend(t->layers[i].blend, (float)t->layers[i].opacity, c,
+                                        values[i][k]);
+            if (memcmp(&c, &got[k], sizeof c) != 0 && wrong++ < 3)
+                print_error("trial %d sample %zu: formula %.9g, composite %.9g\n", trial, k, c,
+                            got[k]);
+        }
+        assert_int_equal(wrong, 0);
+        free(got);
+        for (int i = 0; i < layers; i++)
+            free(values[i]);
+        // Undo puts the terrain back exactly.
+        assert_int_equal(edit_undo(w, &err), 1);
+        got = read_rect(w, 0, area);
+        assert_memory_equal(got, base, sizeof(float) * n);
+        free(got);
+    }
+    free(base);
+    world_close(w);
+}
+
+// Solving for a layer's value gives the target back exactly wherever floats allow.
+static void test_solve_round_trips(void **state) {
+    (void)state;
+    uint64_t seed = 5;
+    size_t exact = 0, total = 0;
+    for (int i = 0; i < 200000; i++) {
+        layer_blend b = (layer_blend)(rng_next(&seed) % LAYER_BLEND_COUNT);
+        float w = rng_unit(&seed) < 0.5 ? 1.0f : (float)(0.05 + rng_unit(&seed));
+        float below = (float)(rng_unit(&seed) * 2000 - 1000);
+        float target = below + (float)(rng_unit(&seed) * 100 - 50);
+        float v = layer_blend_solve(b, w, below, NAN, target);
+        float got = layer_blend_sample(b, w, below, v);
+        if ((b == LAYER_BLEND_MAX && target < below) || (b == LAYER_BLEND_MIN && target > below)) {
+            assert_true(got == below); // the nearest such a layer can show
+            continue;
+        }
+        total++;
+        exact += got == target;
+        assert_true(fabsf(got - target) <= 1e-4f * (1 + fabsf(target)) / (w < 1 ? w : 1));
+    }
+    // Weight 1 is exact but for the rare sums no float hits; below it, rounding of w*v.
+    assert_true(exact > total * 8 / 10);
+}
+
+typedef struct session {
+    world *w;
+    cmd_context ctx;
+    FILE *out;
+} session;
+
+static void open_session(session *s, world *w) {
+    world_settings set = {.warn = silent};
+    s->w = w;
+    s->out = tmpfile();
+    cmd_context_init(&s->ctx, w, &set, s->out, OROGEN_RESOURCE_DIR);
+}
+
+static void run(session *s, const char *script) {
+    og_error err;
+    if (cmd_run(&s->ctx, script, strlen(script), "-c", &err) != 0)
+        fail_msg("%s: %s", script, err.msg);
+}
+
+static void run_fails(session *s, const char *script, const char *expect) {
+    og_error err;
+    assert_int_equal(cmd_run(&s->ctx, script, strlen(script), "-c", &err), -1);
+    if (!strstr(err.msg, expect))
+        fail_msg("'%s' said '%s', expected '%s'", script, err.msg, expect);
+}
+
+static uint64_t hash_all(session *s) {
+    uint64_t d, c;
+    og_error err;
+    if (world_hash(s->ctx.world, 0, 0, 0, 599, 599, &d, &c, &err) != 0) fail_msg("%s", err.msg);
+    return d;
+}
+
+// What `layers` prints.
+static char *listing(session *s) {
+    static char text[4096];
+    long at = ftell(s->out);
+    run(s, "layers");
+    long end = ftell(s->out);
+    fseek(s->out, at, SEEK_SET);
+    size_t n = fread(text, 1, (size_t)(end - at), s->out);
+    text[n] = 0;
+    fseek(s->out, end, SEEK_SET);
+    return text;
+}
+
+// Every layer command is one undo step: undo gives back the terrain and the table bit
+// for bit, redo the state after it.
+static void test_commands_undo_redo(void **state) {
+    (void)state;
+    world_params p = flat_params(600);
+    session s;
+    open_session(&s, open_world(&p));
+    run(&s, "tool raise radius=80 strength=0.6; stroke 100 100 400 300");
+    const char *steps[] = {
+        "layer new Hills blend=add opacity=0.7",
+        "stroke 150 400 450 120",
+        "layer new Cap blend=max",
+        "tool flatten radius=90 strength=1; stroke 300 300 320 310",
+        "layer set Hills opacity=0.25",
+        "layer set Hills visible=0",
+        "layer set Hills visible=1 name=Hills2 blend=min",
+        "layer move Cap bottom",
+        "layer move Cap to=2",
+        "layer select Sculpt",
+        "layer duplicate Hills2",
+        "layer set Hills2 locked=1",
+        "layer set Hills2 locked=0",
+        "layer merge Hills2_copy",
+        "layer merge Hills2",
+        "layer clear Cap",
+        "layer delete Cap",
+    };
+    enum { N = sizeof steps / sizeof steps[0] };
+    uint64_t hashes[N + 1];
+    static char lists[N + 1][4096];
+    hashes[0] = hash_all(&s);
+    snprintf(lists[0], sizeof lists[0], "%s", listing(&s));
+    for (int i = 0; i < N; i++) {
+        run(&s, steps[i]);
+        hashes[i + 1] = hash_all(&s);
+        snprintf(lists[i + 1], sizeof lists[i + 1], "%s", listing(&s));
+        if (!strncmp(steps[i], "layer set Hills visible=0", 25) ||
+            !strncmp(steps[i], "layer move", 10) || !strncmp(steps[i], "stroke", 6) ||
+            !strncmp(steps[i], "tool", 4))
+            assert_true(hashes[i + 1] != hashes[i]);
+    }
+    for (int i = N; i > 0; i--) {
+        run(&s, "undo");
+        assert_true(hashes[i - 1] == hash_all(&s));
+        assert_string_equal(lists[i - 1], listing(&s));
+    }
+    for (int i = 0; i < N; i++) {
+        run(&s, "redo");
+        assert_true(hashes[i + 1] == hash_all(&s));
+        assert_string_equal(lists[i + 1], listing(&s));
+    }
+    // Hiding a layer and showing it again gives the same heights back.
+    // (The first time up to rounding: a tool's result is kept bit for bit, and base plus
+    // layers may round a sample an ulp of a layer's value away from it; then exactly.)
+    run(&s, "layer new Hills3; stroke 100 500 500 100");
+    grid_rect all = {0, 0, 600, 600};
+    float *stroked = read_rect(s.ctx.world, 0, all);
+    uint64_t stroked_hash = hash_all(&s);
+    run(&s, "layer set Hills3 visible=0");
+    assert_true(hash_all(&s) != stroked_hash);
+    run(&s, "layer set Hills3 visible=1");
+    float *shown = read_rect(s.ctx.world, 0, all);
+    for (size_t k = 0; k < 600 * 600; k++)
+        assert_true(fabsf(stroked[k] - shown[k]) <= 1e-4f);
+    free(stroked);
+    free(shown);
+    uint64_t shown_hash = hash_all(&s);
+    run(&s, "layer set Hills3 visible=0; layer set Hills3 visible=1");
+    assert_true(hash_all(&s) == shown_hash);
+    // Bad input is refused with what was wrong, and changes nothing.
+    run_fails(&s, "layer new Hills3", "exists already");
+    run_fails(&s, "layer new bad/name", "not allowed");
+    run_fails(&s, "layer set Nope visible=0", "no layer named 'Nope'");
+    run_fails(&s, "layer set Hills3 opacity=2", "opacity");
+    run_fails(&s, "layer set Hills3 colour=red", "unknown setting 'colour'");
+    run_fails(&s, "layer move Hills3 sideways", "expected up, down");
+    run_fails(&s, "layer move Hills3 up", "already at the top");
+    run_fails(&s, "layer merge Sculpt", "bottom layer");
+    run_fails(&s, "layer new K kind=paint", "only height layers");
+    run(&s, "layer set Hills3 locked=1");
+    run_fails(&s, "stroke 10 10 50 50", "locked");
+    run_fails(&s, "layer clear Hills3", "locked");
+    run_fails(&s, "layer delete Hills3", "locked");
+    run(&s, "layer set Hills3 locked=0; layer set Sculpt visible=0; layer select Sculpt");
+    run_fails(&s, "stroke 10 10 50 50", "hidden");
+    run_fails(&s, "layer merge Hills3", "hidden");
+    run(&s, "layer delete Hills3");
+    run_fails(&s, "layer delete Sculpt", "only layer");
+    fclose(s.out);
+    world_close(s.ctx.world);
+}
+
+static double max_difference(session *x, session *y) {
+    grid_rect all = {0, 0, 600, 600};
+    float *a = read_rect(x->ctx.world, 0, all), *b = read_rect(y->ctx.world, 0, all);
+    double worst = 0;
+    size_t differ = 0;
+    for (size_t k = 0; k < 600 * 600; k++) {
+        worst = fmax(worst, fabs((double)a[k] - b[k]));
+        differ += a[k] != b[k];
+    }
+    print_message("    %zu samples differ, by %g m at most\n", differ, worst);
+    free(a);
+    free(b);
+    return worst;
+}
+
+// Smooth, flatten and erosion on a top layer give the same composite as on a single
+// heightfield holding the same heights; on a layer under another add layer, the same up
+// to rounding.
+static void test_tools_on_layer_match_single_heightfield(void **state) {
+    (void)state;
+    world_params p = flat_params(600);
+    const char *setup = "tool raise radius=120 strength=0.8; stroke 100 200 500 260; "
+                        "tool lower radius=60 strength=0.5; stroke 300 80 320 500";
+    const char *tools[] = {"tool smooth radius=90 strength=1; stroke 150 150 450 350",
+                           "tool flatten radius=70 strength=0.8; stroke 200 300 400 320",
+                           "tool thermal radius=120 strength=1; stroke 250 250 350 260",
+                           "tool hydraulic radius=120 strength=1; stroke 250 250 350 260",
+                           "tool raise radius=50 strength=0.5; stroke 100 100 200 500"};
+    for (size_t t = 0; t < sizeof tools / sizeof tools[0]; t++) {
+        session single, layered;
+        open_session(&single, open_world(&p));
+        open_session(&layered, open_world(&p));
+        run(&single, setup);
+        run(&layered, setup);
+        run(&layered, "layer new Work");
+        run(&single, tools[t]);
+        run(&layered, tools[t]);
+        assert_true(hash_all(&single) == hash_all(&layered));
+        // The change lives in Work: hiding it gives the heights before the tool back.
+        // (Recomposed, base + Sculpt may round a sample an ulp of Sculpt's value away
+        // from the tool's own result the composite kept: floats cannot always hold both.)
+        session before;
+        open_session(&before, open_world(&p));
+        run(&before, setup);
+        run(&layered, "layer set Work visible=0");
+        assert_true(max_difference(&before, &layered) <= 1e-4);
+        // Under an add layer: the same tool on the lower layer.
+        run(&layered,
+            "layer set Work visible=1; undo; undo; undo; layer new Top; "
+            "tool raise radius=100 strength=0.5; stroke 200 100 400 500; layer select Work");
+        run(&single, "undo; tool raise radius=100 strength=0.5; stroke 200 100 400 500");
+        run(&single, tools[t]);
+        run(&layered, tools[t]);
+        double worst = max_difference(&single, &layered);
+        if (worst > 1e-3) fail_msg("%s under a layer: differs by %g m", tools[t], worst);
+        for (session *s = &single; s; s = s == &single    ? &layered
+                                          : s == &layered ? &before
+                                                          : NULL) {
+            fclose(s->out);
+            world_close(s->ctx.world);
+        }
+    }
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_solve_round_trips),
+        cmocka_unit_test(test_composite_matches_arrays),
+        cmocka_unit_test(test_commands_undo_redo),
+        cmocka_unit_test(test_tools_on_layer_match_single_heightfield),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
