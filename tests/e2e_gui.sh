@@ -145,6 +145,10 @@ ask history '^steps=' >/dev/null
 line=$(tail -n +$((before + 1)) "$work/out" | grep -m 1 -E '^\* [0-9]+ generate ')
 [ -n "$line" ]; check "history lists the generate step ($line)" $?
 wait_title "pending 0$"
+# The first stroke lives in its edit layer: it rides on the new terrain.
+h1g=$(hash_box "$px" "$pz")
+[ "$h1g" != "$h1" ]; check "after Generate the first stroke's box is its stroke on the new terrain" $?
+h1=$h1g
 
 # 6. The in-app console: ~ opens it, typed commands run, Tab completes, ~ closes it.
 key grave
@@ -177,7 +181,7 @@ wait_title "gui.world - " && [ -s "$work/gui.world" ]
 rc=$?; check "Save as > Save writes $work/gui.world and the title names it ($(title))" $rc
 widget_gone "Save as/Path"; check "the Save as dialog closes after saving" $?
 # What was saved: the first stroke's box, and the box under the viewport's centre now
-# (Generate changed the terrain around the edited tiles: the next stroke lands elsewhere).
+# (Generate changed the terrain: the next stroke lands elsewhere).
 wait_title "pending 0$"
 read -r _ qx _ qz <<<"$(ask "pick $((VW / 2)) $((VH / 2)) $VW $VH" '^pick ')"
 saved1=$(hash_box "$px" "$pz")

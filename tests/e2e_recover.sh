@@ -34,13 +34,15 @@ area='hash -200 -200 900 900'
 saved=$("$orogen" "$work/base.world" -c "$area" 2>/dev/null)
 
 # The session's steps: each is one undo step (the last is long: some 5 s of erosion,
-# longer under the sanitizers).
+# longer under the sanitizers); layer commands among them (the stack is journaled too).
 droplets=300000
 steps=(
     "tool raise radius=30 strength=1; dab 100 100"
     "stroke 0 0 300 300 600 0"
+    "layer new Roads opacity=0.8"
     "stamp crater 500 500 scale=0.5"
     "tool lower radius=50 strength=0.7; dab 200 400"
+    "layer set Sculpt opacity=0.5"
     "undo"
     "tool smooth radius=60; stroke 100 600 700 100"
     "tool hydraulic radius=300 droplets=$droplets; stroke 0 0 300 300"

@@ -6,6 +6,7 @@
 #include "editor/edit/edit_commit.h"
 #include "editor/edit/layer_composite.h"
 #include "editor/layers/layer_blend.h"
+#include "editor/params/world_grid.h"
 #include "editor/world/layer_grid.h"
 #include "support/test_support.h"
 
@@ -15,9 +16,12 @@
 #include <cmocka.h>
 
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 static void silent(void *user, const char *message) {
     (void)user, (void)message;
@@ -76,6 +80,51 @@ static float reference_blend(layer_blend b, float w, float below, float v) {
     return b == LAYER_BLEND_ADD ? below + w * v : below + w * (top - below);
 }
 
+#define REF_MARGIN 72
+
+// The stack over one big array (the area grown by REF_MARGIN): each masked layer's
+// weights from layer_mask_evaluate over the composite below it on the big array, the
+// valid part narrowing by its border. Returns the area's samples (malloc'd).
+static float *reference_stack(const layer_table *t, const float *base, float *const *values,
+                              grid_rect big, grid_rect area) {
+    int bw = (int)(big.x1 - big.x0), bh = (int)(big.z1 - big.z0);
+    float *acc = malloc(sizeof(float) * (size_t)bw * bh);
+    float *mask = malloc(sizeof(float) * (size_t)bw * bh);
+    memcpy(acc, base, sizeof(float) * (size_t)bw * bh);
+    int margin = 0; // of the big array no longer valid
+    for (int i = 0; i < t->count; i++) {
+        const layer_info *l = &t->layers[i];
+        if (!l->visible) continue;
+        int masked = layer_mask_active(&l->mask), b = masked ? layer_mask_border(&l->mask, 1.0) : 0;
+        int inner = margin + b, iw = bw - 2 * inner, ih = bh - 2 * inner;
+        assert_true(iw > 0 && inner <= REF_MARGIN);
+        if (masked) {
+            int cw = bw - 2 * margin, ch = bh - 2 * margin;
+            float *below = malloc(sizeof(float) * (size_t)cw * ch);
+            for (int z = 0; z < ch; z++)
+                memcpy(below + (size_t)z * cw, acc + (size_t)(z + margin) * bw + margin,
+                       sizeof(float) * cw);
+            layer_mask_evaluate(&l->mask, below, iw, ih, b, 1.0, NULL, mask);
+            free(below);
+        }
+        for (int z = 0; z < ih; z++)
+            for (int x = 0; x < iw; x++) {
+                size_t k = (size_t)(z + inner) * bw + x + inner;
+                float wgt = (float)l->opacity * (masked ? mask[(size_t)z * iw + x] : 1.0f);
+                acc[k] = reference_blend(l->blend, wgt, acc[k], values[i][k]);
+            }
+        margin = inner;
+    }
+    int aw = (int)(area.x1 - area.x0), ah = (int)(area.z1 - area.z0);
+    float *out = malloc(sizeof(float) * (size_t)aw * ah);
+    for (int z = 0; z < ah; z++)
+        memcpy(out + (size_t)z * aw, acc + (size_t)(z + area.z0 - big.z0) * bw + (area.x0 - big.x0),
+               sizeof(float) * aw);
+    free(acc);
+    free(mask);
+    return out;
+}
+
 // Writes random values (some NaN) into a layer's samples r through an edit, and the same
 // into the reference array (area's layout).
 static void fill_layer(edit *e, int32_t id, int face, grid_rect r, float *ref, grid_rect area,
@@ -112,6 +161,11 @@ static void test_composite_matches_arrays(void **state) {
     grid_rect area = {-300, -280, 320, 290};
     size_t n = (size_t)((area.x1 - area.x0) * (area.z1 - area.z0));
     float *base = read_rect(w, 0, area);
+    // The reference works on one big array around the area: masks read around it.
+    grid_rect big = {area.x0 - REF_MARGIN, area.z0 - REF_MARGIN, area.x1 + REF_MARGIN,
+                     area.z1 + REF_MARGIN};
+    size_t nb = (size_t)((big.x1 - big.x0) * (big.z1 - big.z0));
+    float *base_big = read_rect(w, 0, big);
     uint64_t seed = 77;
     for (int trial = 0; trial < 6; trial++) {
         world_params next = *world_get_params(w);
@@ -128,35 +182,45 @@ static void test_composite_matches_arrays(void **state) {
         }
         for (int i = 0; i < layers; i++)
             t->layers[i].visible = rng_unit(&seed) > 0.2;
+        // Masks on some layers. (Not flow: it counts upstream area within the window it is
+        // given, so a tile's part reads it a little differently from one big array.)
+        for (int i = 0; i < layers; i++) {
+            if (rng_unit(&seed) < 0.4) continue;
+            layer_mask *m = &t->layers[i].mask;
+            char v[64];
+            snprintf(v, sizeof v, "%.1f,%.1f", rng_unit(&seed) * 200 - 150, rng_unit(&seed) * 200);
+            if (rng_unit(&seed) < 0.6) layer_mask_set_option(m, "height", v, &err);
+            if (rng_unit(&seed) < 0.5) layer_mask_set_option(m, "falloff", "15", &err);
+            snprintf(v, sizeof v, "%.1f,%.1f,4", rng_unit(&seed) * 20, 20 + rng_unit(&seed) * 40);
+            if (rng_unit(&seed) < 0.5) layer_mask_set_option(m, "slope", v, &err);
+            if (rng_unit(&seed) < 0.3) layer_mask_set_option(m, "curvature", "-3,3,1", &err);
+            if (rng_unit(&seed) < 0.3) layer_mask_set_option(m, "invert", "1", &err);
+        }
         edit *e = edit_begin(w, "test layers", &err);
         edit_set_layer_mode(e, EDIT_LAYER_COMPOSED);
         if (edit_set_params(e, &next, &err) != 0) fail_msg("%s", err.msg);
         for (int i = 0; i < layers; i++) {
-            values[i] = malloc(sizeof(float) * n);
-            for (size_t k = 0; k < n; k++)
+            values[i] = malloc(sizeof(float) * nb);
+            for (size_t k = 0; k < nb; k++)
                 values[i][k] = NAN;
             // Each layer covers a random part of the area (its other samples stay empty).
             int64_t x0 = area.x0 + (int64_t)(rng_unit(&seed) * 200),
                     z0 = area.z0 + (int64_t)(rng_unit(&seed) * 200);
             int64_t x1 = area.x1 - (int64_t)(rng_unit(&seed) * 200),
                     z1 = area.z1 - (int64_t)(rng_unit(&seed) * 200);
-            fill_layer(e, t->layers[i].id, 0, (grid_rect){x0, z0, x1, z1}, values[i], area, &seed,
+            fill_layer(e, t->layers[i].id, 0, (grid_rect){x0, z0, x1, z1}, values[i], big, &seed,
                        0.1);
         }
         if (layer_recompose(e, 0, area, &err) != 0) fail_msg("%s", err.msg);
         if (edit_commit(e, &err) != 0) fail_msg("%s", err.msg);
         float *got = read_rect(w, 0, area);
+        float *want = reference_stack(t, base_big, values, big, area);
         size_t wrong = 0;
-        for (size_t k = 0; k < n; k++) {
-            float c = base[k];
-            for (int i = 0; i < layers; i++)
-                if (t->layers[i].visible)
-                    c = reference_blend(t->layers[i].blend, (float)t->layers[i].opacity, c,
-                                        values[i][k]);
-            if (memcmp(&c, &got[k], sizeof c) != 0 && wrong++ < 3)
-                print_error("trial %d sample %zu: formula %.9g, composite %.9g\n", trial, k, c,
-                            got[k]);
-        }
+        for (size_t k = 0; k < n; k++)
+            if (memcmp(&want[k], &got[k], sizeof want[k]) != 0 && wrong++ < 3)
+                print_error("trial %d sample %zu: formula %.9g, composite %.9g\n", trial, k,
+                            want[k], got[k]);
+        free(want);
         assert_int_equal(wrong, 0);
         free(got);
         for (int i = 0; i < layers; i++)
@@ -168,6 +232,7 @@ static void test_composite_matches_arrays(void **state) {
         free(got);
     }
     free(base);
+    free(base_big);
     world_close(w);
 }
 
@@ -255,8 +320,13 @@ static void test_commands_undo_redo(void **state) {
         "layer new Cap blend=max",
         "tool flatten radius=90 strength=1; stroke 300 300 320 310",
         "layer set Hills opacity=0.25",
+        "layer mask Hills height=-inf,40 falloff=10 slope=0,30,5",
+        "layer select Hills",
+        "tool raise radius=60 strength=0.5; stroke 100 300 500 300",
         "layer set Hills visible=0",
         "layer set Hills visible=1 name=Hills2 blend=min",
+        "layer mask Hills2 curvature=-5,5,2 invert=1",
+        "layer mask Hills2 clear",
         "layer move Cap bottom",
         "layer move Cap to=2",
         "layer select Sculpt",
@@ -397,12 +467,235 @@ static void test_tools_on_layer_match_single_heightfield(void **state) {
     }
 }
 
+static world *load_world(const char *path, int expect_errors) {
+    world_settings set = {.cache_budget_bytes = (size_t)256 << 20, .workers = 2, .warn = silent};
+    og_error err;
+    int errors = 0;
+    world *w = world_load(path, &set, &errors, &err);
+    if (!w) fail_msg("world_load: %s", err.msg);
+    if (!expect_errors) assert_int_equal(errors, 0);
+    return w;
+}
+
+static void save_world(session *s, const char *path) {
+    og_error err;
+    if (world_save(s->ctx.world, path, 0, &err) != 0) fail_msg("world_save: %s", err.msg);
+}
+
+// Save and load keep the stack (names, order, blends, flags, the active layer, the
+// tiles): the same listing, the same heights, and a layer still switches off after.
+// Opened read-only (another process has the files) it is the same.
+static void test_saved_stack(void **state) {
+    (void)state;
+    const char *dir = test_tmpdir("layers_saved");
+    char path[512];
+    snprintf(path, sizeof path, "%s/stack.world", dir);
+    world_params p = flat_params(600);
+    session a;
+    open_session(&a, open_world(&p));
+    run(&a, "tool raise radius=80 strength=0.6; stroke 100 100 400 300; layer new Roads "
+            "blend=replace opacity=0.75; tool set radius=30 height=50; stroke 50 500 550 450; "
+            "layer new Snow blend=max; tool raise; stroke 300 50 300 550; layer set Roads "
+            "locked=1; layer select Snow; layer set Snow visible=0");
+    char listed[4096];
+    snprintf(listed, sizeof listed, "%s", listing(&a));
+    uint64_t h = hash_all(&a);
+    save_world(&a, path);
+    fclose(a.out);
+    world_close(a.ctx.world);
+    // While another process has the files open: read-only, the same stack.
+    int ready[2];
+    assert_int_equal(pipe(ready), 0);
+    pid_t holder = fork();
+    if (holder == 0) {
+        world *held = load_world(path, 0);
+        (void)held;
+        if (write(ready[1], "x", 1) != 1) _exit(1);
+        pause();
+        _exit(0);
+    }
+    char byte;
+    assert_int_equal(read(ready[0], &byte, 1), 1);
+    session c;
+    open_session(&c, load_world(path, 1));
+    kill(holder, SIGKILL);
+    waitpid(holder, NULL, 0);
+    close(ready[0]);
+    close(ready[1]);
+    assert_true(world_read_only(c.ctx.world)[0] != 0);
+    assert_string_equal(listing(&c), listed);
+    assert_true(hash_all(&c) == h);
+    session b; // and once that process is gone, writable
+    open_session(&b, load_world(path, 0));
+    assert_true(world_read_only(b.ctx.world)[0] == 0);
+    assert_string_equal(listing(&b), listed);
+    assert_true(hash_all(&b) == h);
+    // The layers' tiles came back: switching one off and on changes the heights and
+    // brings them back, in both.
+    for (session *s = &b; s; s = s == &b ? &c : NULL) {
+        run(s, "layer set Roads visible=0");
+        assert_true(hash_all(s) != h);
+        run(s, "layer set Roads visible=1");
+        uint64_t again = hash_all(s);
+        run(s, "layer set Roads visible=0; layer set Roads visible=1");
+        assert_true(hash_all(s) == again);
+        run(s, "layer set Snow visible=1");
+        assert_true(hash_all(s) != again);
+    }
+    for (session *s = &b; s; s = s == &b ? &c : NULL) {
+        fclose(s->out);
+        world_close(s->ctx.world);
+    }
+    test_rmtree(dir);
+}
+
+static int collect_layer_keys(void *user, tile_key key) {
+    tile_key *keys = user;
+    if (tile_key_slot(key) >= LAYER_FIRST_ID && keys[0].tx < 4000) keys[++keys[0].tx] = key;
+    return 0;
+}
+
+// A world saved before layers (a parameter file without layer lines, coarse tiles only)
+// opens as one layer named Sculpt holding its edits, with the same heights; hiding it
+// shows the generated terrain.
+static void test_world_from_before_layers(void **state) {
+    (void)state;
+    const char *dir = test_tmpdir("layers_legacy");
+    char path[512], tiles[512];
+    snprintf(path, sizeof path, "%s/old.world", dir);
+    snprintf(tiles, sizeof tiles, "%s/old.tiles", dir);
+    world_params p = flat_params(600);
+    session a;
+    open_session(&a, open_world(&p));
+    uint64_t generated = hash_all(&a);
+    run(&a, "tool raise radius=90 strength=0.8; stroke 50 50 550 500; tool smooth radius=60; "
+            "stroke 100 400 500 100; tool hydraulic radius=150; stroke 300 300 310 300");
+    uint64_t edited = hash_all(&a);
+    save_world(&a, path);
+    fclose(a.out);
+    world_close(a.ctx.world);
+    // Make the files what an Orogen from before layers wrote: no layer lines, no layer tiles.
+    og_error err;
+    tile_store *store = tile_store_open(tiles, &err);
+    if (!store) fail_msg("%s", err.msg);
+    static tile_key keys[4001];
+    keys[0].tx = 0;
+    assert_int_equal(tile_store_each(store, collect_layer_keys, keys, &err), 0);
+    assert_true(keys[0].tx > 0);
+    for (int i = 1; i <= keys[0].tx; i++)
+        assert_int_equal(tile_store_put(store, keys[i], NULL, &err), 0);
+    assert_true(tile_store_count(store, TILE_LAYER_COARSE) > 0);
+    int64_t kept = tile_store_count(store, -1);
+    tile_store_close(store);
+    world_params old;
+    int errors;
+    assert_int_equal(world_params_load(path, &old, &errors, NULL, NULL, &err), 0);
+    assert_int_equal(old.layers.count, 3 - 2); // Sculpt, as saved
+    memset(&old.layers, 0, sizeof old.layers);
+    old.tiles_saved = kept; // what the store holds now (else the world opens read-only)
+    assert_int_equal(world_params_save(path, &old, &err), 0);
+    char *text = test_read_file(path, NULL);
+    assert_null(strstr(text, "layer"));
+    free(text);
+
+    session b;
+    open_session(&b, load_world(path, 0));
+    assert_true(hash_all(&b) == edited);
+    const char *l = listing(&b);
+    if (!strstr(l, "* 0 Sculpt kind=height blend=add opacity=1 visible=1 locked=0 tiles="))
+        fail_msg("listing: %s", l);
+    assert_true(atoi(strstr(l, "tiles=") + 6) > 0);
+    run(&b, "layer set Sculpt visible=0");
+    assert_true(hash_all(&b) == generated);
+    run(&b, "layer set Sculpt visible=1");
+    // Base plus the solved layer gives the saved heights back (exactly but where a float
+    // sum cannot: an ulp of the layer's value).
+    session saved;
+    open_session(&saved, load_world(path, 1));
+    assert_true(max_difference(&saved, &b) <= 1e-4);
+    fclose(saved.out);
+    world_close(saved.ctx.world);
+    run(&b, "undo; undo");
+    assert_true(hash_all(&b) == edited);
+    fclose(b.out);
+    world_close(b.ctx.world);
+    test_rmtree(dir);
+}
+
+// A planet: a layer's dab at a cube corner reaches three faces; hiding the layer gives
+// the generated terrain back on all six, showing it the dab again (up to rounding), and
+// undo of each is exact.
+static float *read_faces(world *w, int n) {
+    float *h = malloc(sizeof(float) * 6 * (size_t)n * n);
+    og_error err;
+    for (int f = 0; f < 6; f++) {
+        layer_grid g;
+        assert_int_equal(layer_grid_init(&g, world_get_params(w), TILE_LAYER_COARSE, f, &err), 0);
+        assert_int_equal(
+            layer_grid_read(w, &g, (grid_rect){0, 0, n, n}, h + (size_t)f * n * n, &err), 0);
+    }
+    return h;
+}
+
+static void test_planet_layers(void **state) {
+    (void)state;
+    world_params p;
+    world_params_default(&p, WORLD_PLANET);
+    p.radius = 20000;
+    p.ocean_level = 20000;
+    p.octaves = 5;
+    int n = (int)world_grid_face_samples(&p);
+    session s;
+    open_session(&s, open_world(&p));
+    size_t all = 6 * (size_t)n * n;
+    float *generated = read_faces(s.ctx.world, n);
+    run(&s, "layer new Top; tool raise radius=4000 strength=1; dab 0 0");
+    float *dabbed = read_faces(s.ctx.world, n);
+    int faces_changed = 0;
+    for (int f = 0; f < 6; f++)
+        faces_changed += memcmp(generated + (size_t)f * n * n, dabbed + (size_t)f * n * n,
+                                sizeof(float) * n * n) != 0;
+    assert_true(faces_changed >= 3);
+    run(&s, "layer set Top visible=0");
+    float *hidden = read_faces(s.ctx.world, n);
+    assert_memory_equal(hidden, generated, sizeof(float) * all);
+    run(&s, "layer set Top visible=1");
+    float *shown = read_faces(s.ctx.world, n);
+    for (size_t k = 0; k < all; k++)
+        assert_true(fabsf(shown[k] - dabbed[k]) <= 1e-3f);
+    run(&s, "undo; undo");
+    float *back = read_faces(s.ctx.world, n);
+    assert_memory_equal(back, dabbed, sizeof(float) * all);
+    // A masked layer on a planet: only where the ground below is low.
+    run(&s, "layer mask Top height=-inf,0 falloff=50");
+    float *masked = read_faces(s.ctx.world, n);
+    for (size_t k = 0; k < all; k++) {
+        assert_true(isfinite(masked[k]));
+        if (generated[k] > 50.0f) assert_true(masked[k] == generated[k]);
+    }
+    run(&s, "undo");
+    free(back);
+    back = read_faces(s.ctx.world, n);
+    assert_memory_equal(back, dabbed, sizeof(float) * all);
+    free(generated);
+    free(dabbed);
+    free(hidden);
+    free(shown);
+    free(back);
+    free(masked);
+    fclose(s.out);
+    world_close(s.ctx.world);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_solve_round_trips),
         cmocka_unit_test(test_composite_matches_arrays),
         cmocka_unit_test(test_commands_undo_redo),
         cmocka_unit_test(test_tools_on_layer_match_single_heightfield),
+        cmocka_unit_test(test_saved_stack),
+        cmocka_unit_test(test_world_from_before_layers),
+        cmocka_unit_test(test_planet_layers),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

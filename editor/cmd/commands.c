@@ -1,6 +1,7 @@
 #include "editor/cmd/commands.h"
 
 #include "editor/edit/edit.h"
+#include "editor/edit/layer_generate.h"
 #include "editor/edit/recover.h"
 #include "editor/cmd/edit_commands.h"
 #include "editor/cmd/interchange_commands.h"
@@ -250,7 +251,7 @@ static int c_recover(cmd_context *ctx, int argc, char **argv, og_error *err) {
 
 static int c_generate(cmd_context *ctx, int argc, char **argv, og_error *err) {
     (void)argc, (void)argv;
-    return edit_generate(ctx->world, &ctx->next, err);
+    return layer_generate(ctx->world, &ctx->next, err);
 }
 
 static int c_generator(cmd_context *ctx, int argc, char **argv, og_error *err) {

@@ -14,10 +14,12 @@ int cmd_layers(cmd_context *ctx, int argc, char **argv, og_error *err) {
         const layer_info *l = &t->layers[i];
         size_t filled;
         if (layer_count_filled(ctx->world, l->id, &filled, err) != 0) return -1;
+        char mask[512] = "none";
+        if (layer_mask_active(&l->mask)) layer_mask_format(&l->mask, mask, sizeof mask);
         fprintf(ctx->out,
-                "%c %d %s kind=height blend=%s opacity=%g visible=%d locked=%d tiles=%zu\n",
+                "%c %d %s kind=height blend=%s opacity=%g visible=%d locked=%d tiles=%zu mask=%s\n",
                 i == t->active ? '*' : ' ', i, l->name, layer_blend_name(l->blend), l->opacity,
-                l->visible, l->locked, filled);
+                l->visible, l->locked, filled, mask);
     }
     return 0;
 }
@@ -150,6 +152,38 @@ static int layer_set(layer_change *c, int i, int argc, char **argv, og_error *er
     return 0;
 }
 
+// `layer mask NAME [KEY=VALUE ...] [clear]`: without settings prints the mask.
+static int layer_mask_set(cmd_context *ctx, layer_info *l, int argc, char **argv, og_error *err) {
+    if (argc == 3) {
+        char text[512] = "none";
+        if (layer_mask_active(&l->mask)) layer_mask_format(&l->mask, text, sizeof text);
+        fprintf(ctx->out, "%s\n", text);
+        return 0;
+    }
+    layer_mask m = l->mask;
+    for (int k = 3; k < argc; k++) {
+        if (!strcmp(argv[k], "clear")) {
+            layer_mask_init(&m);
+            continue;
+        }
+        char buf[256], *key, *value;
+        if (parse_setting(argv[k], buf, sizeof buf, &key, &value, err) != 0) return -1;
+        if (!layer_mask_key(key))
+            return og_error_set(err,
+                                "layer mask: unknown setting '%s' (height, slope, curvature, flow, "
+                                "falloff, invert, clear)",
+                                key);
+        if (!strcmp(key, "painted") && strcmp(value, "0"))
+            return og_error_set(err, "layer mask: painted: painting a mask's coverage is not "
+                                     "available yet (only painted=0)");
+        og_error why;
+        if (layer_mask_set_option(&m, key, value, &why) != 0)
+            return og_error_set(err, "layer mask: %s", why.msg);
+    }
+    l->mask = m;
+    return 0;
+}
+
 static int layer_move(layer_change *c, int i, const char *where, og_error *err) {
     layer_table *t = &c->next.layers;
     int to;
@@ -194,15 +228,15 @@ int cmd_layer(cmd_context *ctx, int argc, char **argv, og_error *err) {
         if (layer_new(ctx, argc, argv, &c, err) != 0) return -1;
         return apply_change(ctx, &c, err);
     }
-    static const char *const subs[] = {"select", "set",   "move",  "duplicate",
-                                       "merge",  "clear", "delete"};
+    static const char *const subs[] = {"select",    "set",   "mask",  "move",
+                                       "duplicate", "merge", "clear", "delete"};
     size_t s = 0;
     while (s < sizeof subs / sizeof subs[0] && strcmp(subs[s], sub))
         s++;
     if (s == sizeof subs / sizeof subs[0])
         return og_error_set(err,
-                            "layer: unknown action '%s' (new, select, set, move, duplicate, "
-                            "merge, clear, delete)",
+                            "layer: unknown action '%s' (new, select, set, mask, move, "
+                            "duplicate, merge, clear, delete)",
                             sub);
     if (argc < 3) return og_error_set(err, "layer %s: expected a layer NAME", sub);
     int i = find_layer(t, argv[2], err);
@@ -233,6 +267,7 @@ int cmd_layer(cmd_context *ctx, int argc, char **argv, og_error *err) {
         int at = layer_table_insert(t, i + 1, name, copy.blend, copy.opacity, &why);
         if (at < 0) return og_error_set(err, "layer duplicate: %s", why.msg);
         t->layers[at].visible = copy.visible;
+        t->layers[at].mask = copy.mask;
         t->active = at;
         c.copy_from = copy.id;
         c.copy_to = t->layers[at].id;
@@ -253,10 +288,20 @@ int cmd_layer(cmd_context *ctx, int argc, char **argv, og_error *err) {
                 "layer merge: layer '%s' is hidden: show it first (merging keeps what "
                 "is seen)",
                 l->visible ? below->name : l->name);
+        if (layer_mask_active(&l->mask) || layer_mask_active(&below->mask))
+            return og_error_set(err,
+                                "layer merge: layer '%s' has a mask; merging masked layers is not "
+                                "supported yet (remove it with 'layer mask %s clear')",
+                                layer_mask_active(&l->mask) ? l->name : below->name,
+                                layer_mask_active(&l->mask) ? l->name : below->name);
         c.merge_below = i - 1;
         c.recompose_ids[0] = l->id;
         layer_table_remove(t, i);
         t->active = i - 1;
+    } else if (!strcmp(sub, "mask")) {
+        if (layer_mask_set(ctx, l, argc, argv, err) != 0) return -1;
+        if (argc == 3) return 0; // printed it
+        c.recompose_ids[0] = l->id;
     } else if (!strcmp(sub, "clear")) {
         if (argc > 3) return og_error_set(err, "layer clear: expected only a NAME");
         if (refuse_locked(l, "clear", err)) return -1;

@@ -417,23 +417,29 @@ static double voxel_size(const world_params *p) {
     return p->spacing / (p->volume_ratio > 0 ? p->volume_ratio : 1);
 }
 
-int edit_generate(world *w, const world_params *wanted, og_error *err) {
-    world_params before = *world_get_params(w);
-    // The layers are the world's, whatever parameters the caller started from.
-    world_params next = *wanted;
-    next.layers = before.layers;
-    const world_params *params = &next;
+int edit_generate_check(world *w, const world_params *params, og_error *err) {
+    const world_params *before = world_get_params(w);
     // Volume edits are stored per voxel: a new voxel size would move and stretch them.
-    if (params->kind == WORLD_FLAT && before.kind == WORLD_FLAT &&
-        voxel_size(params) != voxel_size(&before)) {
+    if (params->kind == WORLD_FLAT && before->kind == WORLD_FLAT &&
+        voxel_size(params) != voxel_size(before)) {
         int has = 0;
         if (volume_has_edits(w, &has, err) != 0) return -1;
         if (has)
             return og_error_set(err,
                                 "spacing / volume_ratio: the world has volume edits (caves, "
                                 "overhangs) on %g m voxels; keep spacing / volume_ratio at %g m",
-                                voxel_size(&before), voxel_size(&before));
+                                voxel_size(before), voxel_size(before));
     }
+    return 0;
+}
+
+int edit_generate(world *w, const world_params *wanted, og_error *err) {
+    world_params before = *world_get_params(w);
+    // The layers are the world's, whatever parameters the caller started from.
+    world_params next = *wanted;
+    next.layers = before.layers;
+    const world_params *params = &next;
+    if (edit_generate_check(w, params, err) != 0) return -1;
     if (world_regenerate(w, params, err) != 0) return -1;
     history_step *s = history_step_new("generate");
     if (!s) return og_error_set(err, "out of memory recording the undo step");

@@ -67,8 +67,13 @@ int edit_redo(world *w, og_error *err);
 // Replays one step onto the world (undo: backwards), as undo and redo do, without
 // touching the history (crash recovery rebuilds it around this).
 int edit_apply_step(world *w, const history_step *s, int undo, og_error *err);
-// `generate` as an undoable step: the world switches to new parameters.
+// `generate` as an undoable step: the world switches to new parameters (its layer table
+// stays). The composite keeps its tiles as they were: layer_generate (layer_composite.h)
+// is `generate` with the layers recomposed on the new terrain.
 int edit_generate(world *w, const world_params *params, og_error *err);
+// Whether the world may switch to params: -1 with err saying why not (volume edits on
+// another voxel size).
+int edit_generate_check(world *w, const world_params *params, og_error *err);
 
 // Mip levels kept in step with level-0 edits on unbounded worlds (bounded worlds and
 // planet faces: up to the level where one tile covers everything).

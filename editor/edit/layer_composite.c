@@ -2,6 +2,7 @@
 
 #include "editor/edit/parallel.h"
 #include "editor/layers/layer_blend.h"
+#include "editor/world/layer_grid.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -18,6 +19,7 @@ typedef struct compose_job {
     edit *e;
     layer_table table; // a copy: the world's may change only between edits
     int take;          // layer_take_edit: the tool's change goes into the active layer
+    int stage;         // taking: 1 writes the active layer, 2 recomposes
     edit_layer_mode mode;
     int top_visible; // index of the highest visible layer (-1: none)
     const tile_part *parts;
@@ -30,10 +32,96 @@ static tile_key slot_key(const tile_part *p, int32_t slot) {
                       .ty = p->ty};
 }
 
+static grid_rect grow(grid_rect r, int by) {
+    return (grid_rect){r.x0 - by, r.z0 - by, r.x1 + by, r.z1 + by};
+}
+
+static size_t rect_samples(grid_rect r) {
+    return (size_t)((r.x1 - r.x0) * (r.z1 - r.z0));
+}
+
+// Samples of composite around a layer its mask reads (0 without a mask).
+static int mask_border(const layer_info *l, double spacing) {
+    return l->visible && layer_mask_active(&l->mask) ? layer_mask_border(&l->mask, spacing) : 0;
+}
+
+// The composite of the visible layers [0, upto) over r grown by extra (row-major, malloc'd
+// into *out), from the base. A masked layer reads the composite below it around its part:
+// the window starts wider by every such border and narrows layer by layer. When record is
+// a layer index, *weights (r's size) gets its weight, opacity times mask.
+static int compose_window(const compose_job *j, const layer_grid *grid, grid_rect r, int upto,
+                          int extra, int record, float *weights, float **out, og_error *err) {
+    world *w = edit_world(j->e);
+    int margin = extra;
+    for (int i = 0; i < upto; i++)
+        margin += mask_border(&j->table.layers[i], grid->spacing);
+    grid_rect outer = grow(r, margin);
+    int ow = (int)(outer.x1 - outer.x0);
+    size_t n = rect_samples(outer);
+    float *acc = malloc(sizeof(float) * n), *val = malloc(sizeof(float) * n);
+    float *below = malloc(sizeof(float) * n), *mask = malloc(sizeof(float) * n);
+    int rc = acc && val && below && mask ? 0 : og_error_set(err, "out of memory composing layers");
+    layer_grid g = *grid;
+    g.layer = (tile_layer)tile_layer_in_slot(TILE_LAYER_COARSE, TILE_SLOT_BASE);
+    if (rc == 0) rc = layer_grid_read(w, &g, outer, acc, err);
+    for (int i = 0; i < upto && rc == 0; i++) {
+        const layer_info *l = &j->table.layers[i];
+        if (!l->visible) continue;
+        int b = mask_border(l, grid->spacing), masked = layer_mask_active(&l->mask);
+        grid_rect in = grow(r, margin), apply = grow(r, margin - b);
+        int iw = (int)(in.x1 - in.x0), ih = (int)(in.z1 - in.z0);
+        int aw = (int)(apply.x1 - apply.x0), ah = (int)(apply.z1 - apply.z0);
+        g.layer = (tile_layer)tile_layer_in_slot(TILE_LAYER_COARSE, l->id);
+        if ((rc = layer_grid_read(w, &g, apply, val, err)) != 0) break;
+        float opacity = (float)l->opacity;
+        if (masked) {
+            for (int z = 0; z < ih; z++) // the composite below it, its window alone
+                memcpy(below + (size_t)z * iw,
+                       acc + (size_t)(z + in.z0 - outer.z0) * ow + (in.x0 - outer.x0),
+                       sizeof(float) * (size_t)iw);
+            layer_mask_evaluate(&l->mask, below, aw, ah, b, grid->spacing, NULL, mask);
+        }
+        for (int z = 0; z < ah; z++) {
+            float *row = acc + (size_t)(z + apply.z0 - outer.z0) * ow + (apply.x0 - outer.x0);
+            const float *v = val + (size_t)z * aw;
+            if (!masked) {
+                layer_blend_row(l->blend, opacity, row, v, row, aw);
+                continue;
+            }
+            for (int x = 0; x < aw; x++)
+                row[x] =
+                    layer_blend_sample(l->blend, opacity * mask[(size_t)z * aw + x], row[x], v[x]);
+        }
+        if (i == record && weights) {
+            int off = margin - b, rw = (int)(r.x1 - r.x0); // r within apply
+            for (int z = 0; z < (int)(r.z1 - r.z0); z++)
+                for (int x = 0; x < rw; x++)
+                    weights[(size_t)z * rw + x] =
+                        masked ? opacity * mask[(size_t)(z + off) * aw + x + off] : opacity;
+        }
+        margin -= b;
+    }
+    free(val);
+    free(below);
+    free(mask);
+    if (rc != 0) {
+        free(acc);
+        return -1;
+    }
+    // Down to r grown by extra (margin == extra now).
+    grid_rect want = grow(r, extra);
+    int ww = (int)(want.x1 - want.x0);
+    for (int z = 0; z < (int)(want.z1 - want.z0); z++)
+        memmove(acc + (size_t)z * ww,
+                acc + (size_t)(z + want.z0 - outer.z0) * ow + (want.x0 - outer.x0),
+                sizeof(float) * (size_t)ww);
+    *out = acc;
+    return 0;
+}
+
 // Moves the tool's change of one sample into the active layer's value v; returns v'.
-static float take_sample(const compose_job *j, const layer_info *l, float below, float v,
-                         float before, float now) {
-    float weight = (float)l->opacity;
+static float take_sample(const compose_job *j, const layer_info *l, float weight, float below,
+                         float v, float before, float now) {
     float shown = layer_blend_sample(l->blend, weight, below, v);
     float delta = now - before;
     if (j->mode == EDIT_LAYER_DELTA && !(l->blend == LAYER_BLEND_ADD && weight >= 1.0f))
@@ -48,84 +136,86 @@ static int compose_task(void *user, int task, og_error *err) {
     compose_job *j = user;
     const tile_part *p = &j->parts[task];
     world *w = edit_world(j->e);
-    tile_cache *cache = world_cache(w);
     tile_key ck = slot_key(p, 0);
     const float *before = NULL;
     if (j->take && !(before = edit_snapshot(j->e, ck))) return 0; // the tool left it alone
-    tile_view cv, bv;
-    if (edit_tile_acquire(j->e, ck, &cv, err) != 0) return -1;
-    if (tile_cache_acquire(cache, slot_key(p, TILE_SLOT_BASE), &bv, err) != 0) {
-        edit_tile_release(j->e, &cv);
+    layer_grid grid;
+    if (layer_grid_init(&grid, world_get_params(w), TILE_LAYER_COARSE, p->face, err) != 0)
+        return -1;
+    int64_t gx = (int64_t)p->tx * TILE_SIZE, gz = (int64_t)p->ty * TILE_SIZE;
+    // Only the world's own samples (a bounded world's edge tiles reach past it).
+    grid_rect r =
+        layer_grid_clip(&grid, (grid_rect){gx + p->x0, gz + p->z0, gx + p->x1, gz + p->z1});
+    if (grid_rect_empty(r)) return 0;
+    int x0 = (int)(r.x0 - gx), z0 = (int)(r.z0 - gz);
+    int rw = (int)(r.x1 - r.x0), rh = (int)(r.z1 - r.z0);
+    int active = j->take ? j->table.active : -1;
+    float *acc = NULL, *weight = malloc(sizeof(float) * (size_t)rw * (size_t)rh);
+    if (!weight) return og_error_set(err, "out of memory composing layers");
+    tile_view cv;
+    if (edit_tile_acquire(j->e, ck, &cv, err) != 0) {
+        free(weight);
         return -1;
     }
-    float *acc = malloc(sizeof(float) * TILE_SAMPLES);
-    int rc = acc ? 0 : og_error_set(err, "out of memory composing layers");
     float *comp = cv.data;
-    const float *base = bv.data;
-    for (int z = p->z0; z < p->z1 && acc; z++)
-        memcpy(acc + z * TILE_SIZE + p->x0, base + z * TILE_SIZE + p->x0,
-               sizeof(float) * (size_t)(p->x1 - p->x0));
-    for (int i = 0; i < j->table.count && rc == 0; i++) {
-        const layer_info *l = &j->table.layers[i];
-        if (!l->visible) continue;
+    int rc = 0;
+    if (j->stage == 1) { // the active layer takes the tool's change, over the layers below it
+        const layer_info *l = &j->table.layers[active];
+        int b = mask_border(l, grid.spacing);
         tile_view lv;
-        float weight = (float)l->opacity;
-        if (j->take && i == j->table.active) {
-            if (edit_tile_acquire(j->e, slot_key(p, l->id), &lv, err) != 0) {
-                rc = -1;
-                break;
+        rc = compose_window(j, &grid, r, active, b, -1, NULL, &acc, err);
+        if (rc == 0 && layer_mask_active(&l->mask)) {
+            float *mask = malloc(sizeof(float) * (size_t)rw * (size_t)rh);
+            if (!mask)
+                rc = og_error_set(err, "out of memory composing layers");
+            else {
+                layer_mask_evaluate(&l->mask, acc, rw, rh, b, grid.spacing, NULL, mask);
+                for (int k = 0; k < rw * rh; k++)
+                    weight[k] = (float)l->opacity * mask[k];
+                free(mask);
             }
+        } else {
+            for (int k = 0; k < rw * rh; k++)
+                weight[k] = (float)l->opacity;
+        }
+        if (rc == 0 && (rc = edit_tile_acquire(j->e, slot_key(p, l->id), &lv, err)) == 0) {
             float *val = lv.data;
-            int exact = i == j->top_visible && (j->mode == EDIT_LAYER_RESULT ||
-                                                (l->blend == LAYER_BLEND_ADD && weight >= 1.0f));
-            for (int z = p->z0; z < p->z1; z++)
-                for (int x = p->x0; x < p->x1; x++) {
-                    int k = z * TILE_SIZE + x;
-                    int changed = memcmp(&comp[k], &before[k], sizeof(float)) != 0;
-                    if (changed) val[k] = take_sample(j, l, acc[k], val[k], before[k], comp[k]);
-                    // On top, the composite keeps the tool's own result, bit for bit as
-                    // on a single heightfield, where base + layer rounds differently
-                    // (a float sum cannot always hit it: an ulp of the layer's value).
-                    acc[k] = changed && exact
-                                 ? comp[k]
-                                 : layer_blend_sample(l->blend, weight, acc[k], val[k]);
+            int bw = rw + 2 * b;
+            for (int z = 0; z < rh; z++)
+                for (int x = 0; x < rw; x++) {
+                    int k = (z + z0) * TILE_SIZE + x + x0;
+                    if (memcmp(&comp[k], &before[k], sizeof(float)) != 0)
+                        val[k] =
+                            take_sample(j, l, weight[z * rw + x], acc[(size_t)(z + b) * bw + x + b],
+                                        val[k], before[k], comp[k]);
                 }
             edit_tile_release(j->e, &lv);
-            continue;
         }
-        if (tile_cache_acquire(cache, slot_key(p, l->id), &lv, err) != 0) {
-            rc = -1;
-            break;
-        }
-        if (lv.edited) { // a tile the layer never wrote holds nothing
-            const float *val = lv.data;
-            for (int z = p->z0; z < p->z1; z++) {
-                int k = z * TILE_SIZE + p->x0;
-                layer_blend_row(l->blend, weight, acc + k, val + k, acc + k, p->x1 - p->x0);
+    } else {
+        rc = compose_window(j, &grid, r, j->table.count, 0, active, weight, &acc, err);
+        // On top at full weight, the composite keeps the tool's own result bit for bit,
+        // as on a single heightfield, where base + layer rounds differently (a float sum
+        // cannot always hit it: an ulp of the layer's value). Taking, samples the tool
+        // left alone keep their composite.
+        int exact = j->take && active == j->top_visible;
+        for (int z = 0; z < rh && rc == 0; z++)
+            for (int x = 0; x < rw; x++) {
+                int k = (z + z0) * TILE_SIZE + x + x0;
+                if (!before) {
+                    comp[k] = acc[z * rw + x];
+                    continue;
+                }
+                if (!memcmp(&comp[k], &before[k], sizeof(float))) continue;
+                const layer_info *l = &j->table.layers[active];
+                int keep = exact && weight[z * rw + x] >= 1.0f &&
+                           (j->mode == EDIT_LAYER_RESULT || l->blend == LAYER_BLEND_ADD);
+                if (!keep) comp[k] = acc[z * rw + x];
             }
-        }
-        tile_cache_release(cache, &lv);
     }
-    // Taking a tool's edit, samples it left alone keep their composite (a rectangle's
-    // edge, and every sample a top layer holds exactly: see take_sample).
-    if (rc == 0)
-        for (int z = p->z0; z < p->z1; z++) {
-            int k = z * TILE_SIZE + p->x0;
-            if (!before) {
-                memcpy(comp + k, acc + k, sizeof(float) * (size_t)(p->x1 - p->x0));
-                continue;
-            }
-            for (int x = p->x0; x < p->x1; x++, k++)
-                if (memcmp(&comp[k], &before[k], sizeof(float)) != 0) comp[k] = acc[k];
-        }
     free(acc);
-    tile_cache_release(cache, &bv);
+    free(weight);
     edit_tile_release(j->e, &cv);
-    if (rc == 0) {
-        int64_t gx = (int64_t)p->tx * TILE_SIZE, gz = (int64_t)p->ty * TILE_SIZE;
-        edit_dirty(j->e, TILE_LAYER_COARSE, p->face,
-                   (grid_rect){gx + p->x0, gz + p->z0, gx + p->x1, gz + p->z1});
-    }
+    if (rc == 0 && j->stage != 1) edit_dirty(j->e, TILE_LAYER_COARSE, p->face, r);
     return rc;
 }
 
@@ -199,7 +289,16 @@ static int run(edit *e, part_list *l, int take, og_error *err) {
     j.parts = l->parts;
     edit_layer_mode mode = edit_get_layer_mode(e);
     edit_set_layer_mode(e, EDIT_LAYER_COMPOSED); // composing writes the composite itself
-    int rc = parallel_run((int)n, compose_task, &j, err);
+    // Taking a tool's edit: first every part's active layer (reading only the layers
+    // below it), then the composite (reading them all), so no part reads what another
+    // is writing.
+    int rc = 0;
+    if (take) {
+        j.stage = 1;
+        rc = parallel_run((int)n, compose_task, &j, err);
+        j.stage = 2;
+    }
+    if (rc == 0) rc = parallel_run((int)n, compose_task, &j, err);
     edit_set_layer_mode(e, mode);
     free(l->parts);
     return rc;

@@ -42,6 +42,10 @@ int layer_table_equal(const layer_table *a, const layer_table *b) {
         if (x->id != y->id || strcmp(x->name, y->name) || x->blend != y->blend ||
             x->opacity != y->opacity || x->visible != y->visible || x->locked != y->locked)
             return 0;
+        char mx[512], my[512];
+        layer_mask_format(&x->mask, mx, sizeof mx);
+        layer_mask_format(&y->mask, my, sizeof my);
+        if (strcmp(mx, my)) return 0;
     }
     return 1;
 }
@@ -97,6 +101,7 @@ int layer_table_insert(layer_table *t, int at, const char *name, layer_blend ble
     l->blend = blend;
     l->opacity = opacity;
     l->visible = 1;
+    layer_mask_init(&l->mask);
     if (t->count > 0 && t->active >= at) t->active++;
     t->count++;
     return at;
@@ -144,9 +149,17 @@ int layer_info_set(layer_table *t, int i, const char *key, const char *value, og
     return 1;
 }
 
+int layer_mask_key(const char *key) {
+    static const char *const keys[] = {"height",  "slope",  "curvature", "flow",
+                                       "falloff", "invert", "painted"};
+    for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++)
+        if (!strcmp(keys[i], key)) return 1;
+    return 0;
+}
+
 // "NAME id=N blend=B ..." into the table's top.
 static int read_layer(layer_table *t, const char *value, og_error *err) {
-    char copy[512];
+    char copy[1024];
     if (strlen(value) >= sizeof copy) return og_error_set(err, "layer: the line is too long");
     snprintf(copy, sizeof copy, "%s", value);
     char *save = NULL, *word = strtok_r(copy, " \t", &save);
@@ -162,6 +175,7 @@ static int read_layer(layer_table *t, const char *value, og_error *err) {
     l->opacity = 1.0;
     l->visible = 1;
     l->id = -1;
+    layer_mask_init(&l->mask);
     next.count++;
     while ((word = strtok_r(NULL, " \t", &save))) {
         char *eq = strchr(word, '=');
@@ -180,6 +194,8 @@ static int read_layer(layer_table *t, const char *value, og_error *err) {
         }
         og_error why;
         int rc = layer_info_set(&next, next.count - 1, word, eq + 1, &why);
+        if (rc > 0 && layer_mask_key(word))
+            rc = layer_mask_set_option(&l->mask, word, eq + 1, &why);
         if (rc > 0 || !strcmp(word, "name"))
             return og_error_set(err, "layer '%s': unknown field '%s'", l->name, word);
         if (rc < 0) return og_error_set(err, "layer '%s': %s", l->name, why.msg);
@@ -192,7 +208,17 @@ static int read_layer(layer_table *t, const char *value, og_error *err) {
 }
 
 int layer_table_read_entry(layer_table *t, const char *key, const char *value, og_error *err) {
-    if (!strcmp(key, "layer")) return read_layer(t, value, err);
+    if (!strncmp(key, "layer.", 6)) {
+        // One key per layer (a parameter file keeps the last of a repeated key), bottom first.
+        char *end;
+        long i = strtol(key + 6, &end, 10);
+        if (*end || end == key + 6 || i < 0) return 1;
+        if (i != t->count)
+            return og_error_set(err,
+                                "%s: expected layer.%d here (one line per layer, bottom first)",
+                                key, t->count);
+        return read_layer(t, value, err);
+    }
     if (!strcmp(key, "layer_active")) {
         int i = layer_table_find(t, value);
         if (i < 0)
@@ -222,8 +248,12 @@ int layer_table_finish(layer_table *t, og_error *err) {
 }
 
 void layer_info_format(const layer_info *l, char *buf, size_t len) {
-    snprintf(buf, len, "%s id=%d blend=%s opacity=%.17g visible=%d locked=%d", l->name, (int)l->id,
-             layer_blend_name(l->blend), l->opacity, l->visible, l->locked);
+    int n = snprintf(buf, len, "%s id=%d blend=%s opacity=%.17g visible=%d locked=%d", l->name,
+                     (int)l->id, layer_blend_name(l->blend), l->opacity, l->visible, l->locked);
+    if (n > 0 && (size_t)n + 1 < len && layer_mask_active(&l->mask)) {
+        buf[n] = ' ';
+        layer_mask_format(&l->mask, buf + n + 1, len - (size_t)n - 1);
+    }
 }
 
 static int append(char **text, size_t *len, size_t *cap, const char *s) {
@@ -241,15 +271,15 @@ static int append(char **text, size_t *len, size_t *cap, const char *s) {
 }
 
 int layer_table_format(const layer_table *t, char **text, size_t *len, size_t *cap) {
-    char line[LAYER_NAME_MAX + 200];
+    char line[LAYER_NAME_MAX + 800];
     if (append(text, len, cap,
                "\n# Edit layers over the generated terrain, bottom first: NAME id=N (its tiles in "
                "the tile store) blend=add|replace|max|min opacity=0..1 visible=0|1 locked=0|1\n"))
         return -1;
     for (int i = 0; i < t->count; i++) {
-        char value[LAYER_NAME_MAX + 160];
+        char value[LAYER_NAME_MAX + 700];
         layer_info_format(&t->layers[i], value, sizeof value);
-        snprintf(line, sizeof line, "layer = %s;\n", value);
+        snprintf(line, sizeof line, "layer.%d = %s;\n", i, value);
         if (append(text, len, cap, line)) return -1;
     }
     if (t->count) {

@@ -1,11 +1,12 @@
 // A world's stack of edit layers over its base (README.md, "Layers"): order, names,
-// kinds, blends, opacity and flags. Pure data, saved in the parameter file (one
-// `layer = ...;` line per layer, bottom first) and kept in the undo history with the
+// kinds, blends, opacity, flags and masks. Pure data, saved in the parameter file (one
+// `layer.I = ...;` line per layer, bottom first) and kept in the undo history with the
 // world's other parameters. The layers' tiles live in the tile store under their id
 // (io/tile.h, tile_key_slot), so renaming or reordering a layer moves no tile.
 #ifndef OROGEN_EDITOR_LAYER_TABLE_H
 #define OROGEN_EDITOR_LAYER_TABLE_H
 
+#include "editor/layers/layer_mask.h"
 #include "io/err.h"
 
 #include <stddef.h>
@@ -30,6 +31,7 @@ typedef struct layer_info {
     layer_blend blend;
     double opacity; // 0-1
     int visible, locked;
+    layer_mask mask; // where the layer applies (editor/layers/layer_mask.h); zero: everywhere
 } layer_info;
 
 typedef struct layer_table {
@@ -68,15 +70,18 @@ void layer_table_move(layer_table *t, int from, int to);
 // Returns 0, 1 for an unknown key, or -1 with err naming the field and the bad value.
 int layer_info_set(layer_table *t, int i, const char *key, const char *value, og_error *err);
 
-// The parameter file's lines. A `layer` value: "NAME id=N blend=B opacity=O visible=V
-// locked=L", appended on top; `layer_active` names the active layer; `layer_next_id`.
-// Returns 0, 1 when key is not a layer key, -1 with err for a bad value.
+// The parameter file's lines. A `layer.I` value (I = 0 for the bottom layer, 1, ...): "NAME id=N
+// blend=B opacity=O visible=V locked=L [MASK KEY=VALUE ...]" (layer_mask_format's keys), appended
+// on top; `layer_active` names the active layer; `layer_next_id`. Returns 0, 1 when key is not a
+// layer key, -1 with err for a bad value.
 int layer_table_read_entry(layer_table *t, const char *key, const char *value, og_error *err);
 // After the last entry: checks ids are unique and fixes next_id. -1 with err if not.
 int layer_table_finish(layer_table *t, og_error *err);
 // Appends the table's lines (with a comment) to a growing text; -1 when out of memory.
 int layer_table_format(const layer_table *t, char **text, size_t *len, size_t *cap);
-// One layer's value as the file and `layers` write it.
+// Whether key is one of a mask's (height, slope, curvature, flow, falloff, invert, painted).
+int layer_mask_key(const char *key);
+// One layer's value as the file and `layers` write it (mask keys last, when it has one).
 void layer_info_format(const layer_info *l, char *buf, size_t len);
 
 #endif

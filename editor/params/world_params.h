@@ -67,7 +67,7 @@ typedef struct world_params {
     // count of tiles the store held (-1 = not recorded). Written by save.
     char tiles_id[WORLD_ID_CHARS + 1];
     int64_t tiles_saved;
-    // The edit layers over the generated terrain (`layer = ...;` lines); empty in a file
+    // The edit layers over the generated terrain (`layer.I = ...;` lines); empty in a file
     // from before layers (the world then gives it one, editor/world/world.h).
     layer_table layers;
 } world_params;
