@@ -159,6 +159,7 @@ static int compose_task(void *user, int task, og_error *err) {
     }
     float *comp = cv.data;
     int rc = 0;
+    grid_rect changed = {1, 1, 0, 0}; // part-local; empty
     if (j->stage == 1) { // the active layer takes the tool's change, over the layers below it
         const layer_info *l = &j->table.layers[active];
         int b = mask_border(l, grid.spacing);
@@ -201,21 +202,31 @@ static int compose_task(void *user, int task, og_error *err) {
         for (int z = 0; z < rh && rc == 0; z++)
             for (int x = 0; x < rw; x++) {
                 int k = (z + z0) * TILE_SIZE + x + x0;
-                if (!before) {
-                    comp[k] = acc[z * rw + x];
-                    continue;
+                float next = acc[z * rw + x];
+                if (before) {
+                    if (!memcmp(&comp[k], &before[k], sizeof(float))) continue;
+                    const layer_info *l = &j->table.layers[active];
+                    if (exact && weight[z * rw + x] >= 1.0f &&
+                        (j->mode == EDIT_LAYER_RESULT || l->blend == LAYER_BLEND_ADD))
+                        continue; // kept
                 }
-                if (!memcmp(&comp[k], &before[k], sizeof(float))) continue;
-                const layer_info *l = &j->table.layers[active];
-                int keep = exact && weight[z * rw + x] >= 1.0f &&
-                           (j->mode == EDIT_LAYER_RESULT || l->blend == LAYER_BLEND_ADD);
-                if (!keep) comp[k] = acc[z * rw + x];
+                if (!memcmp(&comp[k], &next, sizeof next)) continue;
+                comp[k] = next;
+                // What changed now (the tool's own change was published as it was made).
+                if (changed.x0 > changed.x1) changed = (grid_rect){x, z, x + 1, z + 1};
+                if (x < changed.x0) changed.x0 = x;
+                if (z < changed.z0) changed.z0 = z;
+                if (x + 1 > changed.x1) changed.x1 = x + 1;
+                if (z + 1 > changed.z1) changed.z1 = z + 1;
             }
     }
     free(acc);
     free(weight);
     edit_tile_release(j->e, &cv);
-    if (rc == 0 && j->stage != 1) edit_dirty(j->e, TILE_LAYER_COARSE, p->face, r);
+    if (rc == 0 && changed.x0 < changed.x1)
+        edit_dirty(j->e, TILE_LAYER_COARSE, p->face,
+                   (grid_rect){r.x0 + changed.x0, r.z0 + changed.z0, r.x0 + changed.x1,
+                               r.z0 + changed.z1});
     return rc;
 }
 
