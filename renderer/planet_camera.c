@@ -103,7 +103,10 @@ static int corner_height(world *w, int face, double e, double f, double *height,
     return 0;
 }
 
-int planet_ground_height(world *w, const double pos[3], double *height, og_error *err) {
+// The level-0 mesh's height at pos, its vertices raised to raise_to (the sea's surface
+// is drawn so: each vertex under it raised to it, the triangles between them flat).
+static int mesh_height(world *w, const double pos[3], double raise_to, double *height,
+                       og_error *err) {
     const world_params *p = world_get_params(w);
     int face;
     double s, t;
@@ -119,7 +122,10 @@ int planet_ground_height(world *w, const double pos[3], double *height, og_error
     const double fu = es - i, fv = et - j;
     double corner[4]; // (i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1)
     for (int k = 0; k < 4; k++)
-        if (corner_height(w, face, i + (k & 1), j + (k >> 1), &corner[k], err) != 0) return -1;
+        if (corner_height(w, face, i + (k & 1), j + (k >> 1), &corner[k], err) != 0)
+            return -1;
+        else
+            corner[k] = fmax(corner[k], raise_to);
     *height = fu + fv <= 1.0
                   ? corner[0] + (corner[1] - corner[0]) * fu + (corner[2] - corner[0]) * fv
                   : corner[3] + (corner[2] - corner[3]) * (1.0 - fu) +
@@ -127,8 +133,13 @@ int planet_ground_height(world *w, const double pos[3], double *height, og_error
     return 0;
 }
 
+int planet_ground_height(world *w, const double pos[3], double *height, og_error *err) {
+    return mesh_height(w, pos, -INFINITY, height, err);
+}
+
+// Where a cell spans the coast its drawn surface lies above both the ground and the
+// sea between its vertices: a camera 2 m over max(ground, sea) stood under it (in hilly
+// coasts, metres under), so the surface is the mesh as drawn.
 int planet_surface_height(world *w, const double pos[3], double *height, og_error *err) {
-    if (planet_ground_height(w, pos, height, err) != 0) return -1;
-    *height = fmax(*height, world_params_ocean_height(world_get_params(w)));
-    return 0;
+    return mesh_height(w, pos, world_params_ocean_height(world_get_params(w)), height, err);
 }

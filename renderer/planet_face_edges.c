@@ -35,6 +35,10 @@ static int face_bilinear(planet_renderer *r, int face, int level, double u, doub
     return 1;
 }
 
+int planet_face_height(planet_renderer *r, int face, int level, double u, double v, float *out) {
+    return face_bilinear(r, face, level, u, v, out);
+}
+
 int planet_edge_height(planet_renderer *r, int level, const double dir[3], float *out) {
     const double n = (double)r->face_samples, cell = ldexp(1.0, level);
     double sum = 0;

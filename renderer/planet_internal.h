@@ -206,9 +206,10 @@ static inline int near_ground(const planet_renderer *r) {
 }
 
 // How far a chunk's skirts hang: enough to hide the cracks between levels and faces (a
-// level's samples differ from the next one's by about a cell).
+// level's samples differ from the next one's by about a cell on gentle ground; on the
+// planet generator's ridged crests, steeper than 1 in 1, by up to two).
 static inline double skirt_depth(const planet_renderer *r, int level) {
-    return fmin(ldexp(r->cell_arc, level), 2.0 * r->params.max_height) + 0.25 * r->cell_arc;
+    return fmin(2.0 * ldexp(r->cell_arc, level), 2.0 * r->params.max_height) + 0.25 * r->cell_arc;
 }
 
 static inline double dot3(const double a[3], const double b[3]) {
@@ -248,6 +249,9 @@ chunk *planet_try_build(planet_renderer *r, const node *n);
 // edge or corner (the mean of the faces there) or past it (the neighbouring face's).
 // 1 when read, 0 while a tile is pending.
 int planet_edge_height(planet_renderer *r, int level, const double dir[3], float *out);
+// The bilinear height at sample coordinates (u, v) of a face's level (clamped to the
+// face), from whichever tiles hold them. 1 when read, 0 while a tile is pending.
+int planet_face_height(planet_renderer *r, int face, int level, double u, double v, float *out);
 // The ground's normal at unit direction dir on a face's edge, the same from every face
 // there (planet_face_edges.c). 1 when made, 0 while a tile is pending.
 int planet_edge_normal(planet_renderer *r, int level, const double dir[3], double normal[3]);

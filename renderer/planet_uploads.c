@@ -42,6 +42,24 @@ static int edge_heights(planet_renderer *r, const node *n, double s[RING], doubl
         heights[k] = NAN;
     for (int k = 0; k < GRID_VERTS; k++)
         parent_heights[k] = normals[k][0] = NAN;
+    // A vertex half a cell past its tile's first or last sample lies between that tile's
+    // samples and the next tile's: the tile alone (clamped) gave it its own sample's
+    // height, the neighbouring chunk the other's, and in rough ground the mesh under a
+    // camera stood metres off the ground it was placed over.
+    const double ox = (double)(n->bx % BLOCKS_PER_TILE) * BLOCK - 0.5,
+                 oy = (double)(n->by % BLOCKS_PER_TILE) * BLOCK - 0.5;
+    const double fx = (double)(n->bx / BLOCKS_PER_TILE) * TILE_SIZE,
+                 fy = (double)(n->by / BLOCKS_PER_TILE) * TILE_SIZE;
+    for (int gj = -1; gj <= BLOCK + 1; gj++)
+        for (int gi = -1; gi <= BLOCK + 1; gi++) {
+            const double u = ox + gi, v = oy + gj;
+            if (edge_s[gi + 1] || edge_t[gj + 1] ||
+                (u >= 0 && u <= TILE_SIZE - 1 && v >= 0 && v <= TILE_SIZE - 1))
+                continue;
+            if (!planet_face_height(r, n->face, n->level, fx + u, fy + v,
+                                    &heights[(gj + 1) * RING + gi + 1]))
+                return 0;
+        }
     if (!any) return 1;
     for (int gj = -1; gj <= BLOCK + 1; gj++)
         for (int gi = -1; gi <= BLOCK + 1; gi++) {

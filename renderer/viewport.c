@@ -205,6 +205,12 @@ static int planet_pick(viewport *v, world *w, double sx, double sy, double aspec
     double dir[3], ground = 0, t = -1;
     planet_camera_ray(&v->cam, aspect, sx, sy, dir);
     const double *c = v->cam.pos;
+    // Starting from the height under the camera: a camera below the datum (in a deep
+    // basin) is inside the datum's sphere, which no ray leaves downward.
+    og_error start_err;
+    if ((floor ? planet_ground_height(w, c, &ground, &start_err)
+               : planet_surface_height(w, c, &ground, &start_err)) != 0)
+        return -1;
     for (int i = 0; i < 12; i++) {
         double r = p->radius + ground, b = c[0] * dir[0] + c[1] * dir[1] + c[2] * dir[2];
         double cc = c[0] * c[0] + c[1] * c[1] + c[2] * c[2] - r * r, disc = b * b - cc;

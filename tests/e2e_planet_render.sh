@@ -48,11 +48,19 @@ rc=$?; check "the moon preset renders ($(cat "$work/err"))" $rc
 # near part was left out, black), and a camera 2 m up on a face edge (the neighbouring
 # face's near ground was missing: its edge stood higher than the camera); the ground
 # 2 m over a face edge and at a cube corner (the textures' pattern broke along the edge).
+# The face reproducers on the planet they were filed on (the preset's generator then:
+# land there; the planet generator puts sea over them).
 run "new planet preset=earth; camera_geo 0 20 100 90 -10; screenshot $work/planet_sea_low.png $size;
+     new planet preset=earth generator=fbm_advanced;
      camera_geo 10.004 45 2 110 -12 60 ground; screenshot $work/planet_face_edge.png $size;
      camera_geo 10 45 2 0 -8 60 ground; screenshot $work/planet_face_seam.png $size;
      camera_geo 35.2644 -45 3 200 -40 60 ground; screenshot $work/planet_face_corner.png $size"
 rc=$?; check "the issue-29 reproducers render ($(cat "$work/err"))" $rc
+# The Earth-like preset reads as a planet: continents and snowy ranges from orbit, a
+# range's ridges and valleys from 10 km (editor/gen/gen_planet.c).
+run "new planet preset=earth; camera_geo 20 10 2000000 0 -90; screenshot $work/planet_earth_ranges.png $size;
+     camera_geo 22 3 10000 30 -30 60 ground; screenshot $work/planet_earth_10km.png $size"
+rc=$?; check "the Earth-like preset's ranges render ($(cat "$work/err"))" $rc
 # Over the sea `ground` means the surface a person floats on, and pick finds the
 # surface (the floor under it on request): the camera never lands on the sea floor.
 run "new planet preset=earth; camera_geo 0 20 100 90 -10 60 ground; camera; pick 640 600;
@@ -72,7 +80,8 @@ check "seed 004's face is 15.6 m across in face-local metres (face_extent_m=$ext
 max_golden=2.0
 mkdir -p "$failed_dir"
 for name in planet_orbit planet_10km planet_2m planet_wire planet_seed004 planet_moon \
-    planet_sea_low planet_face_edge planet_face_seam planet_face_corner; do
+    planet_sea_low planet_face_edge planet_face_seam planet_face_corner planet_earth_ranges \
+    planet_earth_10km; do
     if [ -n "${OROGEN_UPDATE_GOLDEN:-}" ]; then
         mkdir -p "$golden" && cp "$work/$name.png" "$golden/$name.png"
         echo "updated $golden/$name.png"

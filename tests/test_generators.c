@@ -12,8 +12,8 @@
 #include <string.h>
 #include <cmocka.h>
 
-static const gen_kind all_generators[] = {GEN_FBM, GEN_FBM_ADVANCED, GEN_RIDGED, GEN_DIAMOND_SQUARE,
-                                          GEN_FAULTS};
+static const gen_kind all_generators[] = {
+    GEN_FBM, GEN_FBM_ADVANCED, GEN_RIDGED, GEN_DIAMOND_SQUARE, GEN_FAULTS, GEN_PLANET};
 #define GENERATOR_COUNT (sizeof all_generators / sizeof all_generators[0])
 
 static world_params flat_params(gen_kind g) {
@@ -142,8 +142,9 @@ static void test_planet_seamless(void **state) {
     p.radius = 200000.0;
     p.spacing = 200.0;
     p.max_height = 3000.0;
-    for (gen_kind g = GEN_FBM; g <= GEN_RIDGED; g++) {
-        p.generator = g;
+    const gen_kind fractal[] = {GEN_FBM, GEN_FBM_ADVANCED, GEN_RIDGED, GEN_PLANET};
+    for (size_t g = 0; g < sizeof fractal / sizeof fractal[0]; g++) {
+        p.generator = fractal[g];
         float *a = tile(&p, 0, 0, 0, 0), *b = tile(&p, 0, 0, 1, 0);
         check_border(a, b, 1);
         free(a), free(b);
@@ -253,10 +254,14 @@ static void test_mip_levels(void **state) {
             double rmse = sqrt(se / n), sd = sqrt(var);
             assert_true(n > 10000);
             assert_true(sd > 0.0);
-            if (!(rmse < 0.1 * sd))
+            // The planet generator's ridged ranges keep more weight in their finest
+            // octaves (crests are sharp), so the octave a coarser level leaves out
+            // weighs more there.
+            const double tolerance = all_generators[g] == GEN_PLANET ? 0.15 : 0.1;
+            if (!(rmse < tolerance * sd))
                 print_message("gen %d level %d rmse %g sd %g\n", (int)all_generators[g], level,
                               rmse, sd);
-            assert_true(rmse < 0.1 * sd);
+            assert_true(rmse < tolerance * sd);
             for (int dy = 0; dy < 3; dy++)
                 for (int dx = 0; dx < 3; dx++)
                     free(fine[dy][dx]);

@@ -141,6 +141,9 @@ int gen_tile(const world_params *p, tile_key key, void *out) {
     case GEN_FAULTS:
         gen_faults_tile(p, key, h);
         break;
+    case GEN_PLANET:
+        gen_planet_tile(p, key, h);
+        break;
     default:
         for (size_t k = 0; k < TILE_SAMPLES; k++)
             h[k] = (float)p->base_height;

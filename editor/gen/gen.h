@@ -7,6 +7,7 @@
 #include "editor/gen/gen_diamond.h"
 #include "editor/gen/gen_faults.h"
 #include "editor/gen/gen_hash.h"
+#include "editor/gen/gen_planet.h"
 #include "editor/gen/gen_scale.h"
 #include "editor/params/world_params.h"
 #include "io/tile.h"

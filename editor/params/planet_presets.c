@@ -6,6 +6,7 @@ typedef struct planet_preset {
     const char *name;
     double radius, max_height, ocean_level, omega, atmosphere, spacing;
     double w_factor, octaves; // the generator's gain and octaves (seed 004: 0.5 and 12.5)
+    gen_kind generator;
 } planet_preset;
 
 // All but earth have no sea (ocean_level 0 is a radius of 0).
@@ -18,11 +19,16 @@ typedef struct planet_preset {
 // and octaves down to the samples give hills and valleys at every altitude with the same
 // continents from orbit. The asteroid, whose heights are large for its size, is rough
 // already at 0.55.
+//
+// Earth and Mars take the planet generator (gen_planet.c): fBm of any gain still gave
+// one kind of rolling ground everywhere, no ranges from orbit and a plateau from 10 km;
+// warped continents, ridged ranges in belts and ridged hills read as a planet at every
+// altitude. The moon and the asteroid keep rough fBm (no tectonic ranges there).
 static const planet_preset PRESETS[] = {
-    {"earth", 6371000, 8848, 6371000, 7.2921e-5, 1.0, 100, 0.7, 18},
-    {"mars", 3389500, 10000, 0, 7.088e-5, 0.3, 100, 0.7, 18},
-    {"moon", 1737400, 6000, 0, 2.6617e-6, 0.0, 100, 0.7, 18},
-    {"asteroid", 50000, 4000, 0, 1e-3, 0.0, 10, 0.55, 18},
+    {"earth", 6371000, 8848, 6371000, 7.2921e-5, 1.0, 100, 0.7, 18, GEN_PLANET},
+    {"mars", 3389500, 10000, 0, 7.088e-5, 0.3, 100, 0.7, 18, GEN_PLANET},
+    {"moon", 1737400, 6000, 0, 2.6617e-6, 0.0, 100, 0.7, 18, GEN_FBM_ADVANCED},
+    {"asteroid", 50000, 4000, 0, 1e-3, 0.0, 10, 0.55, 18, GEN_FBM_ADVANCED},
 };
 
 size_t planet_preset_count(void) {
@@ -40,6 +46,7 @@ int planet_preset_apply(world_params *p, const char *name, og_error *err) {
             p->ocean_level = PRESETS[i].ocean_level, p->omega = PRESETS[i].omega;
             p->atmosphere = PRESETS[i].atmosphere, p->spacing = PRESETS[i].spacing;
             p->w_factor = PRESETS[i].w_factor, p->octaves = PRESETS[i].octaves;
+            p->generator = PRESETS[i].generator;
             return 0;
         }
     return og_error_set(err, "preset: unknown planet '%s' (earth, mars, moon, asteroid)", name);

@@ -22,6 +22,7 @@ typedef enum gen_kind {
     GEN_DIAMOND_SQUARE = 3, // Harris 2011's diamond-square, seamless over int32 tiles
     GEN_FAULTS = 4,         // random fault lines
     GEN_FLAT = 5,           // constant height (base_height)
+    GEN_PLANET = 6,         // warped continents, ridged ranges in belts, ridged hills
     GEN_COUNT
 } gen_kind;
 
