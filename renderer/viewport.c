@@ -247,6 +247,13 @@ int viewport_pick_shown(viewport *v, const world_params *p, double sx, double sy
     // As far as the coarsest level reaches; steps of one coarse sample near the camera.
     double reach = 0.75 * 254 * p->spacing * (double)((int64_t)1 << (v->settings.levels - 1));
     int ground = pick_ray(shown_height, v->renderer, v->cam.pos, dir, reach, p->spacing, hit);
+    // A bounded world's ground ends at its edges (the clipmap holds samples past them,
+    // which the picture does not show): a ray past them finds nothing.
+    const double pad = 1e-6 * p->spacing;
+    if (ground == 0 && p->size > 0 &&
+        (hit[0] < -pad || hit[0] > (double)(p->size - 1) * p->spacing + pad || hit[2] < -pad ||
+         hit[2] > (double)(world_params_size_z(p) - 1) * p->spacing + pad))
+        ground = -1;
     double t_ground = ground == 0 ? sqrt((hit[0] - v->cam.pos[0]) * (hit[0] - v->cam.pos[0]) +
                                          (hit[1] - v->cam.pos[1]) * (hit[1] - v->cam.pos[1]) +
                                          (hit[2] - v->cam.pos[2]) * (hit[2] - v->cam.pos[2]))
