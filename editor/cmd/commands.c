@@ -568,17 +568,19 @@ static const cmd_def commands[] = {
      1, 16, cmd_export, 0},
     {"layers", "layers",
      "Lists the edit layers, top first: * the active one, index (0 = bottom), name, kind, "
-     "blend, opacity, visible, locked and how many tiles hold its edits.",
+     "blend, opacity, visible, locked, how many tiles hold its edits and its mask.",
      0, 0, cmd_layers, 0},
     {"layer",
      "layer new NAME [kind=height] [blend=add|replace|max|min] [opacity=0..1] | layer select "
-     "NAME | layer set NAME [name=] [blend=] [opacity=] [visible=0|1] [locked=0|1] | layer move "
+     "NAME | layer set NAME [name=] [blend=] [opacity=] [visible=0|1] [locked=0|1] | layer mask "
+     "NAME [height=LO,HI] [slope=] [curvature=] [flow=] [falloff=M] [invert=0|1] [clear] | layer "
+     "move "
      "NAME up|down|top|bottom|to=I | layer duplicate NAME [NEW] | layer merge NAME | layer "
      "clear NAME | layer delete NAME",
      "Changes the stack of edit layers over the generated terrain (one undo step each). Tools "
      "write into the active layer (new and duplicate make theirs active); a hidden or locked "
      "active layer refuses them. merge folds a layer into the one below, keeping what is seen.",
-     1, 8, cmd_layer, CMD_ENDS_STROKE},
+     1, 12, cmd_layer, CMD_ENDS_STROKE},
     {"undo", "undo", "Undoes the last change (stroke, stamp, generate).", 0, 0, cmd_undo,
      CMD_ENDS_STROKE},
     {"redo", "redo", "Redoes the last undone change.", 0, 0, cmd_redo, CMD_ENDS_STROKE},
