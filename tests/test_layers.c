@@ -421,6 +421,41 @@ static double max_difference(session *x, session *y) {
 // Smooth, flatten and erosion on a top layer give the same composite as on a single
 // heightfield holding the same heights; on a layer under another add layer, the same up
 // to rounding.
+// A result tool on a faint layer (opacity 0.1): the change it stores is at most four times
+// the tool's (not ten), so the composite shows 0.1 / 0.25 of the tool's change.
+static void test_faint_layer_takes_bounded_change(void **state) {
+    (void)state;
+    world_params p = flat_params(600);
+    session single, faint;
+    open_session(&single, open_world(&p));
+    open_session(&faint, open_world(&p));
+    const char *setup = "tool raise radius=120 strength=0.8; stroke 100 200 500 260";
+    run(&single, setup);
+    run(&faint, setup);
+    grid_rect all = {0, 0, 600, 600};
+    float *before = read_rect(faint.ctx.world, 0, all);
+    const char *smooth = "tool smooth radius=90 strength=1; stroke 150 150 450 350";
+    run(&single, smooth);
+    run(&faint, "layer new Faint opacity=0.1");
+    run(&faint, smooth);
+    float *a = read_rect(single.ctx.world, 0, all), *b = read_rect(faint.ctx.world, 0, all);
+    double worst = 0, moved = 0;
+    for (size_t k = 0; k < 600 * 600; k++) {
+        double want = before[k] + 0.4 * ((double)a[k] - before[k]);
+        worst = fmax(worst, fabs(b[k] - want));
+        moved = fmax(moved, fabs((double)a[k] - before[k]));
+    }
+    assert_true(moved > 1.0); // the smooth did something
+    if (worst > 1e-3 + 1e-4 * moved) fail_msg("faint layer: %g m from 0.4 of the change", worst);
+    free(before);
+    free(a);
+    free(b);
+    fclose(single.out);
+    fclose(faint.out);
+    world_close(single.ctx.world);
+    world_close(faint.ctx.world);
+}
+
 static void test_tools_on_layer_match_single_heightfield(void **state) {
     (void)state;
     world_params p = flat_params(600);
@@ -693,6 +728,7 @@ int main(void) {
         cmocka_unit_test(test_composite_matches_arrays),
         cmocka_unit_test(test_commands_undo_redo),
         cmocka_unit_test(test_tools_on_layer_match_single_heightfield),
+        cmocka_unit_test(test_faint_layer_takes_bounded_change),
         cmocka_unit_test(test_saved_stack),
         cmocka_unit_test(test_world_from_before_layers),
         cmocka_unit_test(test_planet_layers),

@@ -119,6 +119,9 @@ static int compose_window(const compose_job *j, const layer_grid *grid, grid_rec
     return 0;
 }
 
+// Below this weight a result tool's change is not divided further (take_sample).
+#define TAKE_MIN_WEIGHT 0.25f
+
 // Moves the tool's change of one sample into the active layer's value v; returns v'.
 static float take_sample(const compose_job *j, const layer_info *l, float weight, float below,
                          float v, float before, float now) {
@@ -129,6 +132,13 @@ static float take_sample(const compose_job *j, const layer_info *l, float weight
     // The top layer shows exactly what the tool made; one lower shows it moved by the
     // tool's change, which the layers above (adds) carry up.
     float target = j->table.active == j->top_visible ? now : shown + delta;
+    if (weight < TAKE_MIN_WEIGHT) {
+        // A faint sample (a mask's soft edge, a low opacity): dividing by its weight would
+        // store a change many times the tool's, which shows the day the mask or opacity
+        // changes. Solved at TAKE_MIN_WEIGHT, it shows weight / TAKE_MIN_WEIGHT of it.
+        if (!(weight > 0.0f)) return v;
+        return layer_blend_solve(l->blend, TAKE_MIN_WEIGHT, below, v, target);
+    }
     return layer_blend_solve(l->blend, weight, below, v, target);
 }
 
