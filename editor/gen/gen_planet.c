@@ -25,8 +25,8 @@
 #define WARP 0.25      // how far the warp moves the continents' domain (noise units)
 #define SEA_SHARE 0.05 // continent values under this are sea: about 60% of the surface
 #define RANGES 0.8     // a range's crest, as a share of max_height
-#define RANGE_OCTAVE 5 // ranges' first octave: a sixteenth of the feature size
-#define HILL_OCTAVE 9  // hills' first octave
+#define RANGE_OCTAVE 5 // ranges' first octave: a 32nd of the feature size (200 km on Earth)
+#define HILL_OCTAVE 9  // hills' first octave (12 km on Earth)
 
 static double smooth(double e0, double e1, double x) {
     double t = (x - e0) / (e1 - e0);
