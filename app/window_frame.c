@@ -185,14 +185,21 @@ static void refresh_stamps(window_state *st) {
     st->ui_dirty = 1;
 }
 
-// One line over the foot of the viewport until the first edit: what to do first.
+// One line over the foot of the viewport until the first edit: what to do first (in
+// fewer words when the viewport is narrow).
 static void first_view_hint(ui_context *ui, ui_rect vr) {
-    static const char text[] = "Drag to sculpt, right-drag to look around, F1 for the keys";
-    float pad = ui_em(ui, 0.6f);
-    float w = ui_font_text_width(ui_get_font(ui), UI_FACE_SANS, text, sizeof text - 1) + 4 * pad;
-    float h = ui_em(ui, 1.8f);
-    w = fminf(w, vr.w - 2 * pad);
-    if (w <= 0 || vr.h < 4 * h) return; // no room: the view first
+    static const char *const texts[] = {
+        "Drag to sculpt, right-drag to look around, F1 for the keys",
+        "Drag: sculpt, right-drag: look, F1: keys",
+    };
+    float pad = ui_em(ui, 0.6f), h = ui_em(ui, 2.4f), w = 0;
+    const char *text = NULL;
+    for (int i = 0; i < 2 && !text; i++) {
+        w = ui_font_text_width(ui_get_font(ui), UI_FACE_SANS, texts[i], strlen(texts[i])) +
+            ui_em(ui, 3.0f);
+        if (w <= vr.w - 2 * pad) text = texts[i];
+    }
+    if (!text || vr.h < 4 * h) return; // no room: the view first
     ui_panel_begin(ui, "Hint", (ui_rect){vr.x + 0.5f * (vr.w - w), vr.y + vr.h - h - pad, w, h});
     ui_label(ui, text);
     ui_panel_end(ui);

@@ -61,7 +61,7 @@ shot first_view
 
 # 1b. A first view that invites: land under the viewport's centre, a one-line hint, a
 # brush sized by the distance to the ground; held still, it keeps raising.
-widget "Hint/Drag to sculpt, right-drag to look around, F1 for the keys" >/dev/null
+widget "Hint/Drag: sculpt, right-drag: look, F1: keys" >/dev/null # the narrow view's words
 check "the first view shows the hint over the viewport" $?
 xdotool mousemove --window "$wid" $((VX + VW / 2)) $((VY + VH / 2))
 r=$(ask_until tool '^radius=' '^radius=\([3-9][0-9]\|[1-4][0-9][0-9]\)\(\.[0-9]*\)\?$')
