@@ -53,9 +53,11 @@ sculpt_view sculpt_view_of(const window_state *st) {
 // Ctrl held inverts the tool for the stroke, Shift smooths instead (Unreal, Terrain3D);
 // for the volume tools Ctrl swaps fill and carve and Shift smooths in 3D.
 static void sculpt_begin(window_state *st, int mods) {
+    double mx, my;
+    pointer_pos(st, &mx, &my);
     st->dirty = st->ui_dirty = 1;
-    sculpt_drag_begin(&st->drag.sculpt, &st->work, st->ctx, sculpt_view_of(st), st->mouse_x,
-                      st->mouse_y, (mods & GLFW_MOD_SHIFT) != 0, (mods & GLFW_MOD_CONTROL) != 0);
+    sculpt_drag_begin(&st->drag.sculpt, &st->work, st->ctx, sculpt_view_of(st), mx, my,
+                      (mods & GLFW_MOD_SHIFT) != 0, (mods & GLFW_MOD_CONTROL) != 0);
 }
 
 static void sculpt_to(window_state *st, double x, double y) {
@@ -81,9 +83,11 @@ const char *tool_name(const brush *b) {
 }
 
 static void resize_begin(window_state *st) {
-    if (pick_at(st, st->mouse_x, st->mouse_y, st->drag.resize_at) != 0) return; // no terrain there
+    double mx, my;
+    pointer_pos(st, &mx, &my);
+    if (pick_at(st, mx, my, st->drag.resize_at) != 0) return; // no terrain there
     st->drag.kind = DRAG_RESIZE;
-    st->drag.resize_x0 = st->mouse_x, st->drag.resize_y0 = st->mouse_y;
+    st->drag.resize_x0 = mx, st->drag.resize_y0 = my;
     st->drag.resize_radius = st->drag.resize_r0 = st->ctx->brush.radius;
     st->drag.resize_strength = st->drag.resize_s0 = st->ctx->brush.strength;
 }
@@ -106,32 +110,7 @@ static void resize_end(window_state *st) {
 void viewport_drag_button(GLFWwindow *win, int button, int action, int mods) {
     window_state *st = glfwGetWindowUserPointer(win);
     st->ui_dirty = 1;
-    int b = button == GLFW_MOUSE_BUTTON_LEFT     ? 0
-            : button == GLFW_MOUSE_BUTTON_RIGHT  ? 1
-            : button == GLFW_MOUSE_BUTTON_MIDDLE ? 2
-                                                 : -1;
-    if (b >= 0) {
-        if (action == GLFW_PRESS) {
-            st->in.mouse_pressed[b] = 1;
-            double now = glfwGetTime();
-            static double last_left;
-            if (b == 0) {
-                st->in.double_click = now - last_left < 0.35;
-                last_left = now;
-            }
-        } else {
-            st->in.mouse_released[b] = 1;
-        }
-        st->in.mouse_down[b] = action == GLFW_PRESS;
-        // The UI's copy (a release even during long work: no widget stays held).
-        if (!work_queue_busy(&st->work) || action == GLFW_RELEASE)
-            queue_ui_event(st, (ui_event){.kind = UI_EVENT_BUTTON,
-                                          .button = b,
-                                          .down = action == GLFW_PRESS,
-                                          .x = st->in.mouse_x,
-                                          .y = st->in.mouse_y,
-                                          .mods = ui_mods_of(mods)});
-    }
+    input_button(st, button, action, mods);
     // While long work runs only its Cancel button answers; a stroke's release still
     // ends the stroke (queued after its points).
     if (work_queue_busy(&st->work)) {
@@ -141,8 +120,9 @@ void viewport_drag_button(GLFWwindow *win, int button, int action, int mods) {
     }
     // Presses over the UI (or outside the viewport) are the UI's; releases always end
     // the viewport's drags.
-    int ui_owns = !in_view(st, st->mouse_x, st->mouse_y) ||
-                  ui_captures_point(st->ui, st->in.mouse_x, st->in.mouse_y);
+    double mx, my;
+    pointer_pos(st, &mx, &my);
+    int ui_owns = !in_view(st, mx, my) || pointer_over_ui(st);
     if (action == GLFW_PRESS && ui_owns) return;
     st->dirty = 1;
     // Drags start where the last motion event left the cursor (not where the pointer
@@ -183,7 +163,7 @@ void viewport_drag_button(GLFWwindow *win, int button, int action, int mods) {
     if (st->drag.kind != DRAG_NONE) return; // one drag at a time
     if (button == GLFW_MOUSE_BUTTON_MIDDLE || (mods & GLFW_MOD_ALT)) {
         st->drag.kind = DRAG_ORBIT;
-        if (pick_at(st, st->mouse_x, st->mouse_y, st->drag.pivot) != 0) {
+        if (pick_at(st, mx, my, st->drag.pivot) != 0) {
             int ww, wh;
             glfwGetWindowSize(win, &ww, &wh);
             if (pick_at(st, ww * 0.5, wh * 0.5, st->drag.pivot) != 0)
@@ -193,7 +173,7 @@ void viewport_drag_button(GLFWwindow *win, int button, int action, int mods) {
     } else if (st->ed.picking_height && button == GLFW_MOUSE_BUTTON_LEFT) {
         double hit[3]; // the tool's height from the terrain (the Pick button)
         st->ed.picking_height = 0;
-        if (pick_at(st, st->mouse_x, st->mouse_y, hit) == 0) {
+        if (pick_at(st, mx, my, hit) == 0) {
             char cmd[128];
             snprintf(cmd, sizeof cmd, "tool %s height=%.6g", tool_name(&st->ctx->brush), hit[1]);
             run_commands(st, cmd, "pick");
@@ -201,13 +181,13 @@ void viewport_drag_button(GLFWwindow *win, int button, int action, int mods) {
     } else if (st->ed.shape_placing && button == GLFW_MOUSE_BUTTON_LEFT) {
         double hit[3]; // a 3D shape: its clicks, then its command
         char cmd[512];
-        if (pick_at(st, st->mouse_x, st->mouse_y, hit) == 0 &&
+        if (pick_at(st, mx, my, hit) == 0 &&
             editor_ui_shape_click(&st->ed, st->ctx, hit, cmd, sizeof cmd) == 1)
             run_commands(st, cmd, "shape");
     } else if (st->ed.stamps.active && button == GLFW_MOUSE_BUTTON_LEFT) {
         double hit[3]; // the stamp tool: one click, one stamp at the picked point
         char cmd[512];
-        if (pick_at(st, st->mouse_x, st->mouse_y, hit) == 0) {
+        if (pick_at(st, mx, my, hit) == 0) {
             double x = hit[0], z = hit[2], s, t;
             int face = -1;
             if (world_get_params(st->ctx->world)->kind == WORLD_PLANET) { // that face's metres
@@ -230,11 +210,8 @@ void viewport_drag_button(GLFWwindow *win, int button, int action, int mods) {
 
 void viewport_drag_cursor(GLFWwindow *win, double x, double y) {
     window_state *st = glfwGetWindowUserPointer(win);
-    double dx = x - st->mouse_x, dy = y - st->mouse_y;
-    st->mouse_x = x, st->mouse_y = y;
-    st->in.mouse_x = ui_px(st, x);
-    st->in.mouse_y = ui_px(st, y);
-    queue_ui_event(st, (ui_event){.kind = UI_EVENT_MOVE, .x = st->in.mouse_x, .y = st->in.mouse_y});
+    double dx, dy;
+    input_cursor(st, x, y, &dx, &dy);
     st->ui_dirty = 1;
     // The brush cursor moves with the pointer over the viewport.
     if (st->drag.kind != DRAG_NONE || st->drag.looking || in_view(st, x, y)) st->dirty = 1;

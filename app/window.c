@@ -30,13 +30,6 @@ int in_view(const window_state *st, double x, double y) {
     return ui_rect_contains(st->view_rect, (float)x, (float)y);
 }
 
-// Whether a cursor position (window coordinates) lies inside the window.
-static int in_window(GLFWwindow *win, double x, double y) {
-    int w, h;
-    glfwGetWindowSize(win, &w, &h);
-    return x >= 0 && y >= 0 && x < w && y < h;
-}
-
 // A point along the ray under (x, y) when no terrain is there: `dist` metres out.
 void point_along_ray(window_state *st, double x, double y, double dist, double out[3]) {
     ui_rect r = st->view_rect;
@@ -67,7 +60,7 @@ void reset_camera(window_state *st) {
     st->cc.planet_radius = p->kind == WORLD_PLANET ? p->radius : 0;
     st->cc.planet_ground = planet_ground;
     st->cc.planet_user = st;
-    st->render_failed = 0;
+    frame_retry_render(st);
     if (viewport_camera_on_land(st->v, st->ctx->world, &err) != 0) report("camera", &err);
     // A world opened again comes back as it was left.
     const char *path = world_path(st->ctx->world);
@@ -116,54 +109,61 @@ static void pump_work(window_state *st) {
 
 // Runs every complete line waiting on standard input, without blocking.
 static void poll_stdin(window_state *st) {
-    while (st->stdin_open) {
+    while (st->run.stdin_open) {
         struct pollfd pfd = {STDIN_FILENO, POLLIN, 0};
         if (poll(&pfd, 1, 0) <= 0 || !(pfd.revents & (POLLIN | POLLHUP))) return;
-        size_t room = sizeof st->stdin_buf - 1 - st->stdin_len;
-        ssize_t got = read(STDIN_FILENO, st->stdin_buf + st->stdin_len, room);
+        size_t room = sizeof st->run.stdin_buf - 1 - st->run.stdin_len;
+        ssize_t got = read(STDIN_FILENO, st->run.stdin_buf + st->run.stdin_len, room);
         if (got <= 0) {
-            st->stdin_open = 0; // the window stays; only the console is gone
+            st->run.stdin_open = 0; // the window stays; only the console is gone
             return;
         }
-        st->stdin_len += (size_t)got;
-        st->stdin_buf[st->stdin_len] = 0;
+        st->run.stdin_len += (size_t)got;
+        st->run.stdin_buf[st->run.stdin_len] = 0;
         char *nl;
-        while ((nl = memchr(st->stdin_buf, '\n', st->stdin_len))) {
+        while ((nl = memchr(st->run.stdin_buf, '\n', st->run.stdin_len))) {
             *nl = 0;
             if (work_queue_busy(&st->work) &&
-                cmd_text_all_flagged(st->stdin_buf, strlen(st->stdin_buf), CMD_WHILE_BUSY)) {
+                cmd_text_all_flagged(st->run.stdin_buf, strlen(st->run.stdin_buf),
+                                     CMD_WHILE_BUSY)) {
                 // A question about the window itself, answered while work runs.
                 cmd_context side = {.out = stdout};
                 og_error err = {{0}};
-                if (cmd_run(&side, st->stdin_buf, strlen(st->stdin_buf), "console", &err) != 0)
+                if (cmd_run(&side, st->run.stdin_buf, strlen(st->run.stdin_buf), "console", &err) !=
+                    0)
                     fprintf(stderr, "%s\n", err.msg);
                 fflush(stdout);
             } else {
-                run_commands(st, st->stdin_buf, "console");
+                run_commands(st, st->run.stdin_buf, "console");
             }
-            size_t used = (size_t)(nl - st->stdin_buf) + 1;
-            memmove(st->stdin_buf, nl + 1, st->stdin_len - used);
-            st->stdin_len -= used;
+            size_t used = (size_t)(nl - st->run.stdin_buf) + 1;
+            memmove(st->run.stdin_buf, nl + 1, st->run.stdin_len - used);
+            st->run.stdin_len -= used;
         }
-        if (st->stdin_len == sizeof st->stdin_buf - 1) {
-            fprintf(stderr, "console: line longer than %zu bytes ignored\n", sizeof st->stdin_buf);
-            st->stdin_len = 0;
+        if (st->run.stdin_len == sizeof st->run.stdin_buf - 1) {
+            fprintf(stderr, "console: line longer than %zu bytes ignored\n",
+                    sizeof st->run.stdin_buf);
+            st->run.stdin_len = 0;
         }
     }
 }
 
 // Window coordinates to the UI's (framebuffer) pixels.
 float ui_px(const window_state *st, double v) {
-    return (float)(v * st->px_scale);
+    return (float)(v * st->run.px_scale);
 }
 
 // Framebuffer pixels per window unit, kept from the size callbacks: asking the window
 // system on every pointer event would be a round trip to the X server each time.
+void close_after_work(window_state *st) {
+    st->run.close_after_work = 1;
+}
+
 void update_px_scale(window_state *st) {
     int ww, fw, h;
     glfwGetWindowSize(st->win, &ww, &h);
     glfwGetFramebufferSize(st->win, &fw, &h);
-    st->px_scale = ww > 0 && fw > 0 ? (double)fw / ww : 1.0;
+    st->run.px_scale = ww > 0 && fw > 0 ? (double)fw / ww : 1.0;
 }
 
 // Changes published from another thread (a job's edits, work_queue.c) must not wait
@@ -183,8 +183,9 @@ void take_changes(window_state *st) {
         st->dirty = 1;
         st->ui_dirty = 1;              // the panels show the world (history, file, unsaved)
         for (size_t i = 0; i < n; i++) // saves and history steps leave the picture as it is
-            st->world_changed |= e[i].kind == WORLD_EVENT_AREA || e[i].kind == WORLD_EVENT_PARAMS ||
-                                 e[i].kind == WORLD_EVENT_REPLACED;
+            if (e[i].kind == WORLD_EVENT_AREA || e[i].kind == WORLD_EVENT_PARAMS ||
+                e[i].kind == WORLD_EVENT_REPLACED)
+                frame_world_changed(st);
         for (size_t i = 0; i < n; i++)
             st->edited |= e[i].kind == WORLD_EVENT_HISTORY;
         for (size_t i = 0; i < n; i++) {
@@ -339,12 +340,11 @@ static void window_teardown(window_state *st) {
     cmd_context *ctx = st->ctx;
     if (ctx->session) fclose(ctx->session);
     ctx->session = NULL;
-    free(st->session_text);
+    free(st->run.session_text);
     if (st->changes) world_events_unsubscribe(st->changes);
     current_window = NULL;
     ui_messages_attach(NULL, NULL);
-    gl_target_destroy(&st->terrain);
-    gl_target_destroy(&st->terrain_smooth);
+    frame_close(st);
     for (int i = 0; i < st->ed.stamps.count; i++)
         ui_renderer_delete_texture(st->ed.stamps.entries[i].texture);
     for (int i = 0; i < 8; i++)
@@ -352,7 +352,7 @@ static void window_teardown(window_state *st) {
     ui_renderer_destroy(st->uir);
     ui_destroy(st->ui);
     ui_destroy(st->busy_ui);
-    free(st->queue);
+    input_close(st);
     ui_font_destroy(st->font);
     editor_ui_free(&st->ed);
     // The renderer's GL objects belong to this context: free them while it is current.
@@ -387,7 +387,6 @@ static int window_start(window_state *st, const app_settings *settings, const ch
     if (!st->changes) return og_error_set(err, "out of memory");
     if (!world_path(ctx->world)[0]) // a new session: a never-saved world's crash to offer?
         recover_offer_find_startup(&st->ed.recovery);
-    st->res_scale = 1.0f;
     update_px_scale(st);
     st->settings = *settings;
     snprintf(st->settings_path, sizeof st->settings_path, "%s", settings_path);
@@ -396,25 +395,22 @@ static int window_start(window_state *st, const app_settings *settings, const ch
     for (int i = 0; i < settings->recent_count; i++)
         snprintf(st->ed.recent[i], sizeof st->ed.recent[0], "%s", settings->recent[i]);
     st->ed.recent_count = settings->recent_count;
-    st->target_ms = settings->frame_target_ms;
+    frame_open(st, settings->frame_target_ms);
     st->cc.fly_speed = settings->fly_speed; // the wheel with the right button held changes it
     st->dynamic_res = settings->dynamic_lod;
     st->ed.glfw_version = glfwGetVersionString();
-    st->drawn_scale = 1.0f;
     st->gl_renderer = (const char *)glGetString(GL_RENDERER);
     og_error ui_err = {{0}};
     if (!(st->font = load_font(st->win, settings->ui_scale, &ui_err)) ||
         !(st->ui = ui_create(st->font)) || !(st->busy_ui = ui_create(st->font)) ||
-        !(st->queue = malloc(sizeof *st->queue)) ||
-        !(st->uir = ui_renderer_create(ctx->resource_dir, &ui_err)))
+        input_open(st) != 0 || !(st->uir = ui_renderer_create(ctx->resource_dir, &ui_err)))
         return og_error_set(err, "the editor's UI cannot start: %s",
                             ui_err.msg[0] ? ui_err.msg : "out of memory");
     ui_set_clipboard(st->ui, (ui_clipboard){clipboard_get, clipboard_set, st->win});
-    ui_input_queue_init(st->queue);
     // The session's commands, kept for `history script FILE` (File > Save session...).
-    ctx->session = open_memstream(&st->session_text, &st->session_len);
-    ctx->session_text = &st->session_text;
-    ctx->session_len = &st->session_len;
+    ctx->session = open_memstream(&st->run.session_text, &st->run.session_len);
+    ctx->session_text = &st->run.session_text;
+    ctx->session_len = &st->run.session_len;
     tool_settings_restore(ctx, settings, settings_path); // each tool as it was last used
     work_queue_init(&st->work, ctx, &st->ed.console, wake_window, NULL);
     st->ed.work = &st->work;
@@ -437,11 +433,7 @@ static void first_frame(window_state *st) {
     if (!v->cam_set) reset_camera(st);
     if (!v->cam_set) v->cam.fov_y = st->settings.field_of_view;
     v->settings.lod_pixels = st->settings.lod_pixels;
-    glfwGetCursorPos(st->win, &st->mouse_x, &st->mouse_y);
-    st->mouse_in = in_window(st->win, st->mouse_x, st->mouse_y);
-    st->in.mouse_x = st->mouse_in ? ui_px(st, st->mouse_x) : -1e6f; // not (0, 0): File's place
-    st->in.mouse_y = st->mouse_in ? ui_px(st, st->mouse_y) : -1e6f;
-    queue_ui_event(st, (ui_event){.kind = UI_EVENT_MOVE, .x = st->in.mouse_x, .y = st->in.mouse_y});
+    input_first_pointer(st);
     window_input_attach(st);
     printf("Orogen viewport (F1 lists every shortcut):\n");
     for (int i = 0; i < shortcut_row_count(); i++)
@@ -465,8 +457,8 @@ static int frame_input(window_state *st, int w, int h, const ui_draw_list *dl) {
         }
     }
     if (ctx->exit_requested) return -1; // `exit` ran (read only when no work runs)
-    if (st->close_after_work) {         // the close button, pressed while work ran
-        st->close_after_work = 0;
+    if (st->run.close_after_work) {     // the close button, pressed while work ran
+        st->run.close_after_work = 0;
         on_close(st->win);
         if (!world_is_modified(ctx->world)) return -1;
     }
@@ -474,11 +466,11 @@ static int frame_input(window_state *st, int w, int h, const ui_draw_list *dl) {
     if (camera_controls_move(&st->cc, &v->cam, &keys, ground_height, st)) st->dirty = 1;
     double now_s = glfwGetTime();
     if (v->settings.sun_rotation != 0) { // R: the light turns while time passes
-        double dt = fmin(now_s - st->sun_turned_at, 0.25);
+        double dt = fmin(now_s - st->run.sun_turned_at, 0.25);
         v->settings.sun_yaw = fmod(v->settings.sun_yaw + v->settings.sun_rotation * dt, 360.0);
         st->dirty = 1;
     }
-    st->sun_turned_at = now_s;
+    st->run.sun_turned_at = now_s;
     poll_stdin(st);
     pump_work(st);
     if (ctx->exit_requested) return -1;
@@ -509,7 +501,7 @@ static int frame_draw(window_state *st, int w, int h, const ui_draw_list **dl,
         take_changes(st);
         *dl = build_ui(st, w, h);
     }
-    if (st->dirty || st->pending || st->settled < 2) {
+    if (st->dirty || frame_unsettled(st)) {
         int arrived = update_view(st) > 0;
         float k = ui_px(st, 1.0);
         if (render_terrain(st, (int)roundf(st->view_rect.w * k), (int)roundf(st->view_rect.h * k),
@@ -518,7 +510,7 @@ static int frame_draw(window_state *st, int w, int h, const ui_draw_list **dl,
             st->ui_dirty = 1; // the status bar shows the new frame's figures
         }
         // A lowered frame: full size once all is still; a full-size one: smoothed then.
-        st->dirty = st->drawn_scale < 1.0f || st->smooth_owed;
+        st->dirty = frame_owes_still(st);
     }
     if (drawn) {
         compose(st, *dl, w, h);
@@ -546,7 +538,7 @@ int window_run(cmd_context *ctx, og_error *err) {
     }
     GLFWwindow *win = open_window(&settings, err);
     if (!win) return -1;
-    window_state st = {.ctx = ctx, .win = win, .stdin_open = 1, .dirty = 1, .dynamic_res = 1};
+    window_state st = {.ctx = ctx, .win = win, .run.stdin_open = 1, .dirty = 1, .dynamic_res = 1};
     if (window_start(&st, &settings, settings_path, err) != 0) {
         window_teardown(&st);
         return -1;
@@ -556,7 +548,7 @@ int window_run(cmd_context *ctx, og_error *err) {
     const ui_draw_list *dl = NULL;
     while (!glfwWindowShouldClose(win)) {
         // Input first; wake often while tiles arrive, keys fly the camera or work runs.
-        int awake = st.pending || st.settled < 2 || keys_held(&st) ||
+        int awake = frame_unsettled(&st) || keys_held(&st) ||
                     viewport_drag_kind(&st) == DRAG_SCULPT || st.v->settings.sun_rotation != 0 ||
                     !work_queue_idle(&st.work) || ui_needs_frame(st.ui);
         glfwWaitEventsTimeout(awake ? 0.01 : 0.1);

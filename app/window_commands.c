@@ -40,7 +40,7 @@ static int cmd_dynamic_resolution(cmd_context *ctx, int argc, char **argv, og_er
         return -1;
     st->dirty = st->ui_dirty = 1;
     fprintf(ctx->out, "dynamic_resolution %s (target %g ms)\n", st->dynamic_res ? "on" : "off",
-            st->target_ms);
+            frame_target_ms(st));
     return 0;
 }
 
@@ -73,23 +73,8 @@ static int cmd_window_screenshot(cmd_context *ctx, int argc, char **argv, og_err
     int w, h;
     glfwGetFramebufferSize(st->win, &w, &h);
     if (w <= 0 || h <= 0) return og_error_set(err, "window_screenshot: the window has no area");
-    float k = ui_px(st, 1.0);
     take_changes(st); // a world made earlier in the same batch of commands gets its camera
-    for (int i = 0; i < 60000 && !st->render_failed; i++) { // tiles: at most ~60 s
-        update_view(st);
-        if (st->settled >= 2) break;
-        struct timespec pause = {0, 1000000};
-        nanosleep(&pause, NULL);
-    }
-    const ui_draw_list *dl = build_ui(st, w, h);
-    st->terrain_valid = 0; // full resolution, whatever was drawn while moving
-    float keep = st->res_scale;
-    st->res_scale = 1.0f;
-    render_terrain(st, (int)roundf(st->view_rect.w * k), (int)roundf(st->view_rect.h * k), 1);
-    if (st->smooth_owed) smooth_terrain(st); // as the view shows once it is still
-    st->res_scale = keep;
-    dl = build_ui(st, w, h); // the status bar with this frame's figures
-    compose(st, dl, w, h);
+    compose(st, render_still(st, w, h), w, h);
     unsigned char *rgba = malloc((size_t)w * h * 4), *rgb = malloc((size_t)w * h * 3);
     if (!rgba || !rgb) {
         free(rgba), free(rgb);

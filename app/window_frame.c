@@ -4,8 +4,10 @@
 
 #include "editor/params/world_grid.h"
 
+#include <time.h>
+
 void update_title(window_state *st) {
-    char title[sizeof st->title], name[256];
+    char title[sizeof st->frame.title], name[256];
     const char *path = world_path(st->ctx->world);
     const char *slash = strrchr(path, '/');
     snprintf(name, sizeof name, "%s%s", path[0] ? (slash ? slash + 1 : path) : "unsaved world",
@@ -14,7 +16,7 @@ void update_title(window_state *st) {
     render_stats rs = {0};
     if (st->v->renderer) terrain_renderer_stats(st->v->renderer, &rs);
     int used = st->v->settings.levels - rs.finest_level;
-    if (st->render_failed)
+    if (st->frame.render_failed)
         snprintf(title, sizeof title, "Orogen - %s%s - the viewport failed (see the console)", name,
                  world_is_modified(st->ctx->world) ? " *" : "");
     else
@@ -28,9 +30,9 @@ void update_title(window_state *st) {
                                         : "fly",
                  camera_controls_speed(&st->cc), rs.levels_ready, used,
                  st->ed.stamps.active ? "stamp" : tool_name(&st->ctx->brush), st->ctx->brush.radius,
-                 st->pending);
-    if (strcmp(title, st->title) != 0) {
-        snprintf(st->title, sizeof st->title, "%s", title);
+                 st->frame.pending);
+    if (strcmp(title, st->frame.title) != 0) {
+        snprintf(st->frame.title, sizeof st->frame.title, "%s", title);
         glfwSetWindowTitle(st->win, title);
     }
 }
@@ -57,9 +59,10 @@ static void cursor_colour(brush_tool tool, int invert, float rgb[3]) {
 // over what they hide): the brush cursor and the status bar follow only what is seen.
 static int pointer_on_terrain(const window_state *st) {
     drag_kind drag = viewport_drag_kind(st);
-    return (drag != DRAG_NONE || in_view(st, st->mouse_x, st->mouse_y)) &&
-           (drag == DRAG_SCULPT || drag == DRAG_RESIZE ||
-            !ui_captures_point(st->ui, st->in.mouse_x, st->in.mouse_y));
+    double x, y;
+    pointer_pos(st, &x, &y);
+    return (drag != DRAG_NONE || in_view(st, x, y)) &&
+           (drag == DRAG_SCULPT || drag == DRAG_RESIZE || !pointer_over_ui(st));
 }
 
 // Until the user gives a radius, the brush follows the distance to the ground under the
@@ -85,11 +88,12 @@ static void follow_ground(window_state *st, const double hit[3]) {
 
 static void update_cursor(window_state *st) {
     brush_cursor *bc = &st->v->cursor;
-    double hit[3], resize_radius, resize_strength;
+    double hit[3], resize_radius, resize_strength, x, y;
+    pointer_pos(st, &x, &y);
     int resizing = viewport_drag_resizing(st, hit, &resize_radius, &resize_strength);
-    bc->visible = st->mouse_in && !viewport_looking(st) && viewport_drag_kind(st) != DRAG_ORBIT &&
-                  pointer_on_terrain(st) &&
-                  (resizing || pick_at(st, st->mouse_x, st->mouse_y, hit) == 0);
+    bc->visible = pointer_in_window(st) && !viewport_looking(st) &&
+                  viewport_drag_kind(st) != DRAG_ORBIT && pointer_on_terrain(st) &&
+                  (resizing || pick_at(st, x, y, hit) == 0);
     if (!bc->visible) return;
     bc->x = hit[0], bc->y = hit[1], bc->z = hit[2]; // y: planets drape it in 3D
     if (viewport_drag_kind(st) != DRAG_RESIZE && !st->ed.stamps.active) follow_ground(st, hit);
@@ -118,8 +122,8 @@ static void update_cursor(window_state *st) {
     bc->sphere = brush_tool_is_volume(b->tool) && !resizing;
     if (bc->sphere) { // where the next point would go, as big as the ball it would lay
         double p[3];
-        bc->visible = sculpt_volume_point(viewport_drag_stroke(st), b, sculpt_view_of(st),
-                                          st->mouse_x, st->mouse_y, hit, p) == 0;
+        bc->visible =
+            sculpt_volume_point(viewport_drag_stroke(st), b, sculpt_view_of(st), x, y, hit, p) == 0;
         bc->x = p[0], bc->y = p[1], bc->z = p[2];
         if (b->tool == BRUSH_FILL || b->tool == BRUSH_CARVE) {
             bc->radius *= strength;
@@ -137,24 +141,24 @@ static void update_cursor(window_state *st) {
 int update_view(window_state *st) {
     og_error err = {{0}};
     viewport *v = st->v;
-    if (st->render_failed) return -1;
+    if (st->frame.render_failed) return -1;
     int rc = terrain_renderer_update(v->renderer, st->ctx->world, &v->cam, &v->settings, &err);
     if (rc < 0) {
         report("viewport", &err);
-        st->render_failed = 1;
-        st->pending = 0;
-        st->settled = 2; // nothing to wait for
+        st->frame.render_failed = 1;
+        st->frame.pending = 0;
+        st->frame.settled = 2; // nothing to wait for
         return -1;
     }
     render_stats rs;
     terrain_renderer_stats(v->renderer, &rs);
     if (rc == 1) {
-        st->settled++;
-        st->pending = 0;
+        st->frame.settled++;
+        st->frame.pending = 0;
     } else {
         int missing = v->settings.levels - rs.finest_level - rs.levels_ready;
-        st->settled = 0;
-        st->pending = missing > 0 ? missing : 1; // else the material or detail layers
+        st->frame.settled = 0;
+        st->frame.pending = missing > 0 ? missing : 1; // else the material or detail layers
     }
     return rs.texels_uploaded > 0;
 }
@@ -206,30 +210,28 @@ static void first_view_hint(ui_context *ui, ui_rect vr) {
 }
 
 const ui_draw_list *build_ui(window_state *st, int fw, int fh) {
-    editor_frame_info info = {.frame_ms = st->terrain_ms,
-                              .resolution_scale = st->drawn_scale,
-                              .pending = st->pending,
+    editor_frame_info info = {.frame_ms = st->frame.terrain_ms,
+                              .resolution_scale = st->frame.drawn_scale,
+                              .pending = st->frame.pending,
                               .gl_renderer = st->gl_renderer,
                               .ui_scale = st->settings.ui_scale,
                               .camera_mode = camera_mode(st),
                               .dynamic_resolution = st->dynamic_res};
     info.resizing = viewport_drag_resizing(st, NULL, &info.resize_radius, &info.resize_strength);
-    double hit[3];
-    if (st->mouse_in && pointer_on_terrain(st) && pick_at(st, st->mouse_x, st->mouse_y, hit) == 0) {
+    double hit[3], x, y;
+    pointer_pos(st, &x, &y);
+    if (pointer_in_window(st) && pointer_on_terrain(st) && pick_at(st, x, y, hit) == 0) {
         info.cursor_valid = 1;
         memcpy(info.cursor, hit, sizeof hit);
     }
-    st->in.time = glfwGetTime();
     refresh_stamps(st);
-    size_t waiting = ui_input_queue_frame(st->queue, ui_wants_keyboard(st->ui), &st->frame_in);
-    st->frame_in.time = glfwGetTime();
-    ui_begin(st->ui, &st->frame_in, (float)fw, (float)fh);
+    size_t waiting;
+    ui_begin(st->ui, input_frame(st, ui_wants_keyboard(st->ui), &waiting), (float)fw, (float)fh);
     ui_rect vr = editor_ui_build(&st->ed, st->ui, st->ctx, st->v, &info, (float)fw, (float)fh);
     if (!st->edited) first_view_hint(st->ui, vr);
     notices_draw(&st->notices, st->ui, vr);
     const ui_draw_list *dl = ui_end(st->ui);
-    clear_frame_input(&st->in);
-    keys_after_ui(st, &st->frame_in);
+    input_frame_done(st);
     float k = ui_px(st, 1.0); // framebuffer pixels per window unit
     st->view_rect = (ui_rect){vr.x / k, vr.y / k, vr.w / k, vr.h / k};
     st->ui_dirty = upload_stamp_thumbnails(&st->ed.stamps) || waiting > 0; // more next frame
@@ -245,19 +247,21 @@ static double now_ms(void) {
 // cost every frame). Returns 1 when compose shows the smoothed image.
 int smooth_terrain(window_state *st) {
     og_error err = {{0}};
-    const gl_target *t = &st->terrain;
-    if (st->terrain_smooth.width != t->width || st->terrain_smooth.height != t->height) {
-        gl_target_destroy(&st->terrain_smooth);
-        if (gl_target_create(&st->terrain_smooth, t->width, t->height, &err) != 0) goto failed;
+    const gl_target *t = &st->frame.terrain;
+    if (st->frame.terrain_smooth.width != t->width ||
+        st->frame.terrain_smooth.height != t->height) {
+        gl_target_destroy(&st->frame.terrain_smooth);
+        if (gl_target_create(&st->frame.terrain_smooth, t->width, t->height, &err) != 0)
+            goto failed;
     }
-    if (viewport_antialias(st->v, t, &st->terrain_smooth, &err) != 0) goto failed;
-    st->smooth_shown = 1;
-    st->smooth_owed = 0;
+    if (viewport_antialias(st->v, t, &st->frame.terrain_smooth, &err) != 0) goto failed;
+    st->frame.smooth_shown = 1;
+    st->frame.smooth_owed = 0;
     return 1;
 failed:
     report("viewport", &err);
-    st->smooth_failed = 1;
-    st->smooth_owed = 0;
+    st->frame.smooth_failed = 1;
+    st->frame.smooth_owed = 0;
     return 0;
 }
 
@@ -271,35 +275,35 @@ int render_terrain(window_state *st, int vw, int vh, int arrived) {
     update_cursor(st);
     // The cursor is drawn with the terrain: while it moves the frame is made at the
     // moving scale too, so it follows the pointer at the frame-time goal.
-    int moving = memcmp(&v->cam, &st->drawn_cam, sizeof v->cam) != 0 ||
+    int moving = memcmp(&v->cam, &st->frame.drawn_cam, sizeof v->cam) != 0 ||
                  viewport_drag_kind(st) == DRAG_SCULPT || v->settings.sun_rotation != 0 ||
-                 memcmp(&v->cursor, &st->drawn_cursor, sizeof v->cursor) != 0 ||
+                 memcmp(&v->cursor, &st->frame.drawn_cursor, sizeof v->cursor) != 0 ||
                  viewport_drag_kind(st) == DRAG_ORBIT || keys_held(st);
-    float scale = moving && st->dynamic_res ? st->res_scale : 1.0f;
+    float scale = moving && st->dynamic_res ? st->frame.res_scale : 1.0f;
     int w = (int)fmaxf(1.0f, roundf(vw * scale)), h = (int)fmaxf(1.0f, roundf(vh * scale));
-    int changed = !st->terrain_valid || arrived || st->world_changed ||
-                  memcmp(&v->cam, &st->drawn_cam, sizeof v->cam) != 0 ||
-                  memcmp(&v->settings, &st->drawn_settings, sizeof v->settings) != 0 ||
-                  memcmp(&v->cursor, &st->drawn_cursor, sizeof v->cursor) != 0 ||
-                  w != st->drawn_w || h != st->drawn_h;
-    int wants_smooth = render_settings_smooth_edges(&v->settings) && !st->render_failed &&
-                       !st->smooth_failed && scale == 1.0f;
+    int changed = !st->frame.terrain_valid || arrived || st->frame.world_changed ||
+                  memcmp(&v->cam, &st->frame.drawn_cam, sizeof v->cam) != 0 ||
+                  memcmp(&v->settings, &st->frame.drawn_settings, sizeof v->settings) != 0 ||
+                  memcmp(&v->cursor, &st->frame.drawn_cursor, sizeof v->cursor) != 0 ||
+                  w != st->frame.drawn_w || h != st->frame.drawn_h;
+    int wants_smooth = render_settings_smooth_edges(&v->settings) && !st->frame.render_failed &&
+                       !st->frame.smooth_failed && scale == 1.0f;
     if (!changed) { // the view came to rest on a full-size image: smooth it now
-        if (wants_smooth && !moving && !st->smooth_shown && st->terrain_valid)
+        if (wants_smooth && !moving && !st->frame.smooth_shown && st->frame.terrain_valid)
             return smooth_terrain(st);
         return 0;
     }
     og_error err = {{0}};
-    if (st->terrain.width != w || st->terrain.height != h) {
-        gl_target_destroy(&st->terrain);
-        if (gl_target_create(&st->terrain, w, h, &err) != 0) {
+    if (st->frame.terrain.width != w || st->frame.terrain.height != h) {
+        gl_target_destroy(&st->frame.terrain);
+        if (gl_target_create(&st->frame.terrain, w, h, &err) != 0) {
             report("viewport", &err);
             return 0;
         }
     }
     double t0 = now_ms();
-    glBindFramebuffer(GL_FRAMEBUFFER, st->terrain.fbo);
-    if (st->render_failed) {
+    glBindFramebuffer(GL_FRAMEBUFFER, st->frame.terrain.fbo);
+    if (st->frame.render_failed) {
         glViewport(0, 0, w, h);
         glClearColor(0.1f, 0.1f, 0.12f, 1.0f);
         glClear(GL_COLOR_BUFFER_BIT);
@@ -307,20 +311,21 @@ int render_terrain(window_state *st, int vw, int vh, int arrived) {
                                      w, h, &err) != 0) {
         report("viewport", &err);
     }
-    st->smooth_shown = 0;
-    st->smooth_owed = wants_smooth;
+    st->frame.smooth_shown = 0;
+    st->frame.smooth_owed = wants_smooth;
     if (wants_smooth && !moving) smooth_terrain(st);
     glFinish(); // the frame's real cost, for the resolution controller
-    st->terrain_ms = now_ms() - t0;
+    st->frame.terrain_ms = now_ms() - t0;
     if (moving)
-        st->res_scale = dynamic_resolution_next(st->res_scale, st->terrain_ms, st->target_ms);
-    st->drawn_cam = v->cam;
-    st->drawn_settings = v->settings;
-    st->drawn_cursor = v->cursor;
-    st->drawn_scale = scale;
-    st->drawn_w = w, st->drawn_h = h;
-    st->world_changed = 0;
-    st->terrain_valid = 1;
+        st->frame.res_scale =
+            dynamic_resolution_next(st->frame.res_scale, st->frame.terrain_ms, st->frame.target_ms);
+    st->frame.drawn_cam = v->cam;
+    st->frame.drawn_settings = v->settings;
+    st->frame.drawn_cursor = v->cursor;
+    st->frame.drawn_scale = scale;
+    st->frame.drawn_w = w, st->frame.drawn_h = h;
+    st->frame.world_changed = 0;
+    st->frame.terrain_valid = 1;
     return 1;
 }
 
@@ -335,8 +340,9 @@ void compose(window_state *st, const ui_draw_list *dl, int fw, int fh) {
     float k = ui_px(st, 1.0);
     int vx = (int)roundf(st->view_rect.x * k), vy = (int)roundf(st->view_rect.y * k);
     int vw = (int)roundf(st->view_rect.w * k), vh = (int)roundf(st->view_rect.h * k);
-    const gl_target *image = st->smooth_shown ? &st->terrain_smooth : &st->terrain;
-    if (st->terrain_valid && vw > 0 && vh > 0)
+    const gl_target *image =
+        st->frame.smooth_shown ? &st->frame.terrain_smooth : &st->frame.terrain;
+    if (st->frame.terrain_valid && vw > 0 && vh > 0)
         glBlitNamedFramebuffer(image->fbo, 0, 0, 0, image->width, image->height, vx, fh - (vy + vh),
                                vx + vw, fh - vy, GL_COLOR_BUFFER_BIT, GL_LINEAR);
     og_error err = {{0}};
@@ -348,27 +354,75 @@ void compose(window_state *st, const ui_draw_list *dl, int fw, int fh) {
 void draw_busy(window_state *st, const ui_draw_list *dl, int fw, int fh) {
     cmd_job *job = st->work.job;
     double elapsed = cmd_job_elapsed_ms(job), t = now_ms();
-    if (elapsed < 150 || (t - st->busy_drawn_ms < 100 && !st->ui_dirty)) return;
-    st->busy_drawn_ms = t;
+    if (elapsed < 150 || (t - st->frame.busy_drawn_ms < 100 && !st->ui_dirty)) return;
+    st->frame.busy_drawn_ms = t;
     st->ui_dirty = 0;
-    st->in.time = glfwGetTime();
-    ui_begin(st->busy_ui, &st->in, (float)fw, (float)fh);
+    ui_begin(st->busy_ui, input_busy_frame(st), (float)fw, (float)fh);
     const char *what = (st->work.running.flags & WORK_STROKE) ? "the stroke's dabs along the drag"
                                                               : cmd_job_text(job);
     if (editor_ui_build_busy(st->busy_ui, what, cmd_job_progress(job), elapsed, (float)fw,
                              (float)fh))
         work_queue_cancel(&st->work);
     const ui_draw_list *busy = ui_end(st->busy_ui);
-    clear_frame_input(&st->in);
+    input_busy_done(st);
     compose(st, dl, fw, fh);
     og_error err = {{0}};
     if (ui_renderer_draw(st->uir, busy, st->font, fw, fh, &err) != 0) report("ui", &err);
     glfwSwapBuffers(st->win);
-    char title[sizeof st->title];
+    char title[sizeof st->frame.title];
     snprintf(title, sizeof title, "Orogen - working %.0f%% - Esc cancels",
              cmd_job_progress(job) * 100);
-    if (strcmp(title, st->title) != 0) {
-        snprintf(st->title, sizeof st->title, "%s", title);
+    if (strcmp(title, st->frame.title) != 0) {
+        snprintf(st->frame.title, sizeof st->frame.title, "%s", title);
         glfwSetWindowTitle(st->win, title);
     }
+}
+
+void frame_open(window_state *st, double target_ms) {
+    st->frame.res_scale = 1.0f;
+    st->frame.drawn_scale = 1.0f;
+    st->frame.target_ms = target_ms;
+}
+
+void frame_close(window_state *st) {
+    gl_target_destroy(&st->frame.terrain);
+    gl_target_destroy(&st->frame.terrain_smooth);
+}
+
+void frame_world_changed(window_state *st) {
+    st->frame.world_changed = 1;
+}
+
+void frame_retry_render(window_state *st) {
+    st->frame.render_failed = 0;
+}
+
+int frame_unsettled(const window_state *st) {
+    return st->frame.pending || st->frame.settled < 2;
+}
+
+int frame_owes_still(const window_state *st) {
+    return st->frame.drawn_scale < 1.0f || st->frame.smooth_owed;
+}
+
+double frame_target_ms(const window_state *st) {
+    return st->frame.target_ms;
+}
+
+const ui_draw_list *render_still(window_state *st, int fw, int fh) {
+    for (int i = 0; i < 60000 && !st->frame.render_failed; i++) { // tiles: at most ~60 s
+        update_view(st);
+        if (st->frame.settled >= 2) break;
+        struct timespec pause = {0, 1000000};
+        nanosleep(&pause, NULL);
+    }
+    build_ui(st, fw, fh);
+    float k = ui_px(st, 1.0);
+    st->frame.terrain_valid = 0; // full resolution, whatever was drawn while moving
+    float keep = st->frame.res_scale;
+    st->frame.res_scale = 1.0f;
+    render_terrain(st, (int)roundf(st->view_rect.w * k), (int)roundf(st->view_rect.h * k), 1);
+    if (st->frame.smooth_owed) smooth_terrain(st); // as the view shows once it is still
+    st->frame.res_scale = keep;
+    return build_ui(st, fw, fh); // the status bar with this frame's figures
 }

@@ -18,8 +18,9 @@ static int movement_allowed(const window_state *st) {
 void bank_keys(window_state *st) {
     double now = glfwGetTime();
     for (int i = 0; i < MOVE_KEY_COUNT; i++) {
-        if (st->key_down[i] && movement_allowed(st)) st->key_held[i] += now - st->key_since[i];
-        st->key_since[i] = now;
+        if (st->input.key_down[i] && movement_allowed(st))
+            st->input.key_held[i] += now - st->input.key_since[i];
+        st->input.key_since[i] = now;
     }
 }
 
@@ -27,7 +28,7 @@ void bank_keys(window_state *st) {
 move_keys take_keys(window_state *st) {
     bank_keys(st);
     GLFWwindow *w = st->win;
-    double *h = st->key_held;
+    double *h = st->input.key_held;
     move_keys k = {h[0], h[1], h[2], h[3], h[4], h[5], 0};
     k.fast = glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) || glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT);
     for (int i = 0; i < MOVE_KEY_COUNT; i++)
@@ -38,7 +39,7 @@ move_keys take_keys(window_state *st) {
 int keys_held(const window_state *st) {
     if (!movement_allowed(st)) return 0;
     for (int i = 0; i < MOVE_KEY_COUNT; i++)
-        if (st->key_down[i]) return 1;
+        if (st->input.key_down[i]) return 1;
     return 0;
 }
 
@@ -51,12 +52,13 @@ static void on_framebuffer_size(GLFWwindow *win, int width, int height) {
 
 static void on_cursor_enter(GLFWwindow *win, int entered) {
     window_state *st = glfwGetWindowUserPointer(win);
-    st->mouse_in = entered;
+    st->input.mouse_in = entered;
     st->dirty = 1;
     // A pointer that left (with no button held) hovers nothing: no widget stays lit and no
     // tooltip comes up for a place the pointer no longer is.
-    if (!entered && !st->in.mouse_down[0] && !st->in.mouse_down[1] && !st->in.mouse_down[2]) {
-        st->in.mouse_x = st->in.mouse_y = -1e6f;
+    if (!entered && !st->input.in.mouse_down[0] && !st->input.in.mouse_down[1] &&
+        !st->input.in.mouse_down[2]) {
+        st->input.in.mouse_x = st->input.in.mouse_y = -1e6f;
         queue_ui_event(st, (ui_event){.kind = UI_EVENT_MOVE, .x = -1e6f, .y = -1e6f});
         st->ui_dirty = 1;
     }
@@ -67,9 +69,9 @@ static void on_scroll(GLFWwindow *win, double dx, double dy) {
     window_state *st = glfwGetWindowUserPointer(win);
     st->ui_dirty = 1;
     if (work_queue_busy(&st->work)) return;
-    if (!in_view(st, st->mouse_x, st->mouse_y) ||
-        ui_captures_point(st->ui, st->in.mouse_x, st->in.mouse_y)) {
-        st->in.wheel += (float)dy;
+    if (!in_view(st, st->input.mouse_x, st->input.mouse_y) ||
+        ui_captures_point(st->ui, st->input.in.mouse_x, st->input.in.mouse_y)) {
+        st->input.in.wheel += (float)dy;
         queue_ui_event(st, (ui_event){.kind = UI_EVENT_WHEEL, .wheel = (float)dy});
         return;
     }
@@ -88,8 +90,9 @@ static void on_scroll(GLFWwindow *win, double dx, double dy) {
         return;
     }
     double pivot[3];
-    if (pick_at(st, st->mouse_x, st->mouse_y, pivot) != 0)
-        point_along_ray(st, st->mouse_x, st->mouse_y, fmax(100.0, 4.0 * st->cc.fly_speed), pivot);
+    if (pick_at(st, st->input.mouse_x, st->input.mouse_y, pivot) != 0)
+        point_along_ray(st, st->input.mouse_x, st->input.mouse_y,
+                        fmax(100.0, 4.0 * st->cc.fly_speed), pivot);
     st->cc.walk = 0;
     camera_controls_dolly(&st->cc, &st->v->cam, pivot, dy);
 }
@@ -179,7 +182,7 @@ int ui_mods_of(int glfw_mods) {
 
 void queue_ui_event(window_state *st, ui_event e) {
     e.time = glfwGetTime();
-    ui_input_queue_push(st->queue, &e);
+    ui_input_queue_push(st->input.queue, &e);
 }
 
 static void toggle_console(window_state *st) {
@@ -227,7 +230,7 @@ static void run_shortcut(window_state *st, const shortcut_key *k) {
         run_commands(st, k->arg, strchr(k->label, '+') ? k->label : "key");
         break;
     case SHORTCUT_TOOL: // one letter per tool, while the pointer is over the viewport
-        if (!viewport_looking(st) && in_view(st, st->mouse_x, st->mouse_y)) {
+        if (!viewport_looking(st) && in_view(st, st->input.mouse_x, st->input.mouse_y)) {
             int tool = editor_ui_tool_index(k->arg);
             if (tool >= 0) editor_ui_pick_tool(&st->ed, st->ctx, tool);
         }
@@ -245,7 +248,7 @@ static void run_shortcut(window_state *st, const shortcut_key *k) {
         brush_step(st, k->action);
         break;
     case SHORTCUT_FOCUS:
-        if (pick_at(st, st->mouse_x, st->mouse_y, hit) == 0)
+        if (pick_at(st, st->input.mouse_x, st->input.mouse_y, hit) == 0)
             camera_controls_focus(&st->cc, &st->v->cam, hit, st->ctx->brush.radius);
         else
             fprintf(stderr, "orogen: focus: no terrain under the cursor\n");
@@ -303,13 +306,13 @@ static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
     (void)scancode;
     window_state *st = glfwGetWindowUserPointer(win);
     st->ui_dirty = 1;
-    st->in.mods = ui_mods_of(mods);
+    st->input.in.mods = ui_mods_of(mods);
     int k = ui_key_of(key);
-    if (k >= 0 && action != GLFW_RELEASE) st->in.key_pressed[k] = 1;
+    if (k >= 0 && action != GLFW_RELEASE) st->input.in.key_pressed[k] = 1;
     if (work_queue_busy(&st->work)) { // Esc cancels long work
         if (action == GLFW_PRESS && key == GLFW_KEY_ESCAPE) work_queue_cancel(&st->work);
         for (int i = 0; i < MOVE_KEY_COUNT; i++) // a key let go is never left held
-            if (key == move_key_codes[i] && action == GLFW_RELEASE) st->key_down[i] = 0;
+            if (key == move_key_codes[i] && action == GLFW_RELEASE) st->input.key_down[i] = 0;
         // A shortcut waits in the queue and runs after the work, in order; other keys
         // (typing into panels the work hides) are dropped.
         if (action != GLFW_PRESS || key == GLFW_KEY_ESCAPE ||
@@ -329,9 +332,9 @@ static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
 
 static void key_after_ui(window_state *st, int key, int action, int mods, int taken) {
     for (int i = 0; i < MOVE_KEY_COUNT; i++) // a key let go is never left held
-        if (taken && key == move_key_codes[i] && action == GLFW_RELEASE && st->key_down[i]) {
+        if (taken && key == move_key_codes[i] && action == GLFW_RELEASE && st->input.key_down[i]) {
             bank_keys(st);
-            st->key_down[i] = 0;
+            st->input.key_down[i] = 0;
         }
     // A focused text field took it; ~ still closes the console.
     if (taken) {
@@ -349,14 +352,14 @@ static void key_after_ui(window_state *st, int key, int action, int mods, int ta
         if (key != move_key_codes[i] || action == GLFW_REPEAT) continue;
         bank_keys(st);
         // Ctrl+S is a shortcut, not a step back.
-        st->key_down[i] = action == GLFW_PRESS && !(mods & GLFW_MOD_CONTROL);
+        st->input.key_down[i] = action == GLFW_PRESS && !(mods & GLFW_MOD_CONTROL);
     }
     if (action != GLFW_PRESS) return;
     const shortcut_key *k = shortcut_find(key, shortcut_mods_of(mods));
     if (k) run_shortcut(st, k);
 }
 
-void keys_after_ui(window_state *st, const ui_input *in) {
+static void keys_after_ui(window_state *st, const ui_input *in) {
     int taken = ui_took_keys(st->ui);
     for (int i = 0; i < in->event_count; i++) {
         const ui_event *e = &in->events[i];
@@ -440,7 +443,7 @@ void on_close(GLFWwindow *win) {
     if (work_queue_busy(&st->work)) { // stop the work first, then ask as usual
         glfwSetWindowShouldClose(win, GLFW_FALSE);
         work_queue_cancel(&st->work);
-        st->close_after_work = 1;
+        close_after_work(st);
         return;
     }
     if (world_is_modified(st->ctx->world)) {
@@ -450,7 +453,7 @@ void on_close(GLFWwindow *win) {
     }
 }
 
-void clear_frame_input(ui_input *in) {
+static void clear_frame_input(ui_input *in) {
     memset(in->mouse_pressed, 0, sizeof in->mouse_pressed);
     memset(in->mouse_released, 0, sizeof in->mouse_released);
     memset(in->key_pressed, 0, sizeof in->key_pressed);
@@ -472,4 +475,99 @@ void window_input_attach(window_state *st) {
     glfwSetFramebufferSizeCallback(win, on_framebuffer_size);
     glfwSetWindowCloseCallback(win, on_close);
     glfwSetDropCallback(win, on_drop);
+}
+
+int input_open(window_state *st) {
+    if (!(st->input.queue = malloc(sizeof *st->input.queue))) return -1;
+    ui_input_queue_init(st->input.queue);
+    return 0;
+}
+
+void input_close(window_state *st) {
+    free(st->input.queue);
+    st->input.queue = NULL;
+}
+
+// Where the pointer is before any motion event: the UI hovers what is under it, or
+// nothing when it is outside the window (not (0, 0): File's place).
+void input_first_pointer(window_state *st) {
+    window_input_state *in = &st->input;
+    glfwGetCursorPos(st->win, &in->mouse_x, &in->mouse_y);
+    int w, h;
+    glfwGetWindowSize(st->win, &w, &h);
+    in->mouse_in = in->mouse_x >= 0 && in->mouse_y >= 0 && in->mouse_x < w && in->mouse_y < h;
+    in->in.mouse_x = in->mouse_in ? ui_px(st, in->mouse_x) : -1e6f;
+    in->in.mouse_y = in->mouse_in ? ui_px(st, in->mouse_y) : -1e6f;
+    queue_ui_event(st, (ui_event){.kind = UI_EVENT_MOVE, .x = in->in.mouse_x, .y = in->in.mouse_y});
+}
+
+void pointer_pos(const window_state *st, double *x, double *y) {
+    *x = st->input.mouse_x, *y = st->input.mouse_y;
+}
+
+int pointer_in_window(const window_state *st) {
+    return st->input.mouse_in;
+}
+
+int pointer_over_ui(const window_state *st) {
+    return ui_captures_point(st->ui, st->input.in.mouse_x, st->input.in.mouse_y);
+}
+
+void input_button(window_state *st, int button, int action, int mods) {
+    ui_input *in = &st->input.in;
+    int b = button == GLFW_MOUSE_BUTTON_LEFT     ? 0
+            : button == GLFW_MOUSE_BUTTON_RIGHT  ? 1
+            : button == GLFW_MOUSE_BUTTON_MIDDLE ? 2
+                                                 : -1;
+    if (b < 0) return;
+    if (action == GLFW_PRESS) {
+        in->mouse_pressed[b] = 1;
+        double now = glfwGetTime();
+        static double last_left;
+        if (b == 0) {
+            in->double_click = now - last_left < 0.35;
+            last_left = now;
+        }
+    } else {
+        in->mouse_released[b] = 1;
+    }
+    in->mouse_down[b] = action == GLFW_PRESS;
+    // The UI's copy (a release even during long work: no widget stays held).
+    if (!work_queue_busy(&st->work) || action == GLFW_RELEASE)
+        queue_ui_event(st, (ui_event){.kind = UI_EVENT_BUTTON,
+                                      .button = b,
+                                      .down = action == GLFW_PRESS,
+                                      .x = in->mouse_x,
+                                      .y = in->mouse_y,
+                                      .mods = ui_mods_of(mods)});
+}
+
+void input_cursor(window_state *st, double x, double y, double *dx, double *dy) {
+    window_input_state *in = &st->input;
+    *dx = x - in->mouse_x, *dy = y - in->mouse_y;
+    in->mouse_x = x, in->mouse_y = y;
+    in->in.mouse_x = ui_px(st, x);
+    in->in.mouse_y = ui_px(st, y);
+    queue_ui_event(st, (ui_event){.kind = UI_EVENT_MOVE, .x = in->in.mouse_x, .y = in->in.mouse_y});
+}
+
+const ui_input *input_frame(window_state *st, int wants_keyboard, size_t *waiting) {
+    st->input.in.time = glfwGetTime();
+    *waiting = ui_input_queue_frame(st->input.queue, wants_keyboard, &st->input.frame_in);
+    st->input.frame_in.time = glfwGetTime();
+    return &st->input.frame_in;
+}
+
+void input_frame_done(window_state *st) {
+    clear_frame_input(&st->input.in);
+    keys_after_ui(st, &st->input.frame_in);
+}
+
+ui_input *input_busy_frame(window_state *st) {
+    st->input.in.time = glfwGetTime();
+    return &st->input.in;
+}
+
+void input_busy_done(window_state *st) {
+    clear_frame_input(&st->input.in);
 }

@@ -10,6 +10,9 @@
 #include "app/tool_settings.h"
 #include "app/ui_messages.h"
 #include "app/viewport_drag_state.h"
+#include "app/window_frame_state.h"
+#include "app/window_input_state.h"
+#include "app/window_run_state.h"
 #include "app/work_queue.h"
 #include "editor/edit/recover.h"
 #include "editor/params/world_grid.h"
@@ -34,78 +37,39 @@
 #include <stdlib.h>
 #include <string.h>
 
-// The movement keys: W S A D E Q.
-enum { MOVE_KEY_COUNT = 6 };
-
 typedef struct window_state {
     cmd_context *ctx;
     viewport *v;
     GLFWwindow *win;
     world_subscription *changes; // the world's change notifications (another world: new camera)
     camera_controls cc;
-    double mouse_x, mouse_y; // window coordinates of the last motion event
-    int mouse_in;
+    window_run_state run;     // window.c's
+    window_input_state input; // window_input.c's
     viewport_drag_state drag; // viewport_drag.c's
+    window_frame_state frame; // window_frame.c's
     int dynamic_res;          // lower the resolution while moving (L)
-    double sun_turned_at;     // when the rotating light last turned (seconds)
-    int key_down[MOVE_KEY_COUNT];
-    double key_since[MOVE_KEY_COUNT], key_held[MOVE_KEY_COUNT]; // seconds, see bank_keys
-    int dirty;                                                  // something changed: draw a frame
-    int settled;       // frames in a row with every level current
-    int pending;       // levels (or layers) still waiting for tiles
-    int render_failed; // the renderer refused this world (a planet): said once
-    char title[512];
-    char *session_text; // the session's commands (`history script`): ctx->session's text
-    size_t session_len;
-    char stdin_buf[8192];
-    size_t stdin_len;
-    int stdin_open;
+    int dirty;                // something changed: draw a frame
 
     // The editor's UI over the viewport.
     ui_font *font;
     ui_context *ui;
     ui_renderer *uir;
     editor_ui ed;
-    notices notices; // what failed for the UI, over the viewport until dismissed
-    ui_input in;     // the latest pointer, buttons and keys (the busy UI's input)
-    // Events for the editor's UI, queued as they come and handed out a frame's share at
-    // a time (never lost or seen twice however slow a frame); frame_in is this frame's.
-    ui_input_queue *queue;
-    ui_input frame_in;
+    notices notices;   // what failed for the UI, over the viewport until dismissed
     int ui_dirty;      // input or state changed: build and draw the UI again
     ui_rect view_rect; // the viewport's part of the window (window coordinates)
     const char *gl_renderer;
 
-    // The terrain image, reused while only the UI changes; rendered at a lower
-    // resolution while the camera moves or a stroke is drawn (dynamic resolution).
-    gl_target terrain;
-    gl_target terrain_smooth; // the terrain image with its edges smoothed (full-size frames)
-    int smooth_shown;         // compose shows terrain_smooth
-    int smooth_owed;          // the image wants smoothing once the view is still
-    int smooth_failed;        // the pass failed once (reported): not tried again
-    int terrain_valid;
-    float res_scale;
-    double terrain_ms; // wall time of the last terrain frame
-    double target_ms;  // frame-time goal while moving
-    camera drawn_cam;  // what the terrain image shows
-    render_settings drawn_settings;
-    brush_cursor drawn_cursor;
-    float drawn_scale;
-    int drawn_w, drawn_h;
     int edited;          // an edit made an undo step this session: the first view's hint goes
     char cam_path[1024]; // the file of the world the camera looks at ("" unsaved): its camera
                          // is kept in the settings when the world is left
-    int world_changed;   // change notifications since the terrain image
-    double px_scale;     // framebuffer pixels per window unit (HiDPI)
     app_settings settings;
     char settings_path[4096], history_path[4096];
 
     // Every action's command text runs through this queue; long work runs off this
     // thread, and while it does the window shows its progress over the last frame.
     work_queue work;
-    ui_context *busy_ui;  // the progress bar and Cancel button of long work
-    double busy_drawn_ms; // when the progress was last drawn
-    int close_after_work; // the close button was pressed while work ran
+    ui_context *busy_ui; // the progress bar and Cancel button of long work
 } window_state;
 
 // --- window.c: the window's life, its queue and changes, picking helpers
@@ -126,6 +90,8 @@ float ui_px(const window_state *st, double v);
 // Framebuffer pixels per window unit, kept from the size callbacks: asking the window
 // system on every pointer event would be a round trip to the X server each time.
 void update_px_scale(window_state *st);
+// The close button was pressed while work ran: it is pressed again once the work ends.
+void close_after_work(window_state *st);
 // Any change redraws; another world (new, load) gets its default camera unless a
 // command placed the camera after it came (`new planet; camera_geo ...`).
 void take_changes(window_state *st);
@@ -133,20 +99,37 @@ void take_changes(window_state *st);
 // at 15 px times the monitor's content scale times the user's UI scale.
 ui_font *load_font(GLFWwindow *win, double user, og_error *err);
 
-// --- window_input.c: GLFW events
+// --- window_input.c: GLFW events, the pointer, the UI's input queue, movement keys
 
+// The queue and the pointer where it is (before the first frame). Returns -1 out of memory.
+int input_open(window_state *st);
+void input_close(window_state *st);
+// Where the pointer is before any motion event (the UI's first hover).
+void input_first_pointer(window_state *st);
+// The pointer in window coordinates (the last motion event's), and whether it is in the
+// window; over a panel, menu or dialog of the UI.
+void pointer_pos(const window_state *st, double *x, double *y);
+int pointer_in_window(const window_state *st);
+int pointer_over_ui(const window_state *st);
+// A button or motion event: the UI's input and queue follow it; *dx, *dy get the motion.
+void input_button(window_state *st, int button, int action, int mods);
+void input_cursor(window_state *st, double x, double y, double *dx, double *dy);
+// The UI frame's share of the queued events, and after the frame: the keys the UI did
+// not take become the viewport's shortcuts. waiting gets how many events wait still.
+const ui_input *input_frame(window_state *st, int wants_keyboard, size_t *waiting);
+void input_frame_done(window_state *st);
+// The busy UI's (progress and Cancel) input, and after its frame.
+ui_input *input_busy_frame(window_state *st);
+void input_busy_done(window_state *st);
 void bank_keys(window_state *st);
 // The banked time as a step for camera_controls_move; clears the bank.
 move_keys take_keys(window_state *st);
 int keys_held(const window_state *st);
 // The close button asks first when there are unsaved changes.
 void on_close(GLFWwindow *win);
-void clear_frame_input(ui_input *in);
 // Queues an event for the editor's UI (its time set now).
 void queue_ui_event(window_state *st, ui_event e);
 int ui_mods_of(int glfw_mods);
-// After a UI frame: its key events the UI did not take are the viewport's shortcuts.
-void keys_after_ui(window_state *st, const ui_input *in);
 // Sets the window's GLFW callbacks (events go to st).
 void window_input_attach(window_state *st);
 
@@ -177,6 +160,23 @@ void viewport_drag_button(GLFWwindow *win, int button, int action, int mods);
 void viewport_drag_cursor(GLFWwindow *win, double x, double y);
 
 // --- window_frame.c: the frame
+
+// The frame's state from the settings (frame-time goal while moving, ms), and its end.
+void frame_open(window_state *st, double target_ms);
+void frame_close(window_state *st);
+// The world changed (an area, new parameters, another world): the image is redrawn.
+void frame_world_changed(window_state *st);
+// Another world or camera: a renderer that refused the last one tries again.
+void frame_retry_render(window_state *st);
+// Tiles are still arriving, or the image has not settled: frames go on.
+int frame_unsettled(const window_state *st);
+// A lowered or unsmoothed image owes a still, full-size frame.
+int frame_owes_still(const window_state *st);
+double frame_target_ms(const window_state *st);
+// The still picture of window_screenshot: every tile in view arrived (at most ~60 s),
+// the terrain rendered at full resolution and smoothed as a still view is; returns the
+// UI's frame drawn over it.
+const ui_draw_list *render_still(window_state *st, int fw, int fh);
 
 void update_title(window_state *st);
 // Brings the clipmaps up to date without waiting for tiles. Returns 1 when the picture
