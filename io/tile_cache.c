@@ -320,7 +320,7 @@ tile_cache *tile_cache_create(const tile_cache_desc *desc, og_error *err) {
     return c;
 }
 
-int tile_cache_destroy(tile_cache *c, og_error *err) {
+static int destroy(tile_cache *c, int flush, og_error *err) {
     if (!c) return 0;
     pthread_mutex_lock(&c->lock);
     c->stopping = 1;
@@ -328,7 +328,7 @@ int tile_cache_destroy(tile_cache *c, og_error *err) {
     pthread_mutex_unlock(&c->lock);
     for (int i = 0; i < c->thread_count; i++)
         pthread_join(c->threads[i], NULL);
-    int rc = c->desc.store ? tile_cache_flush(c, err) : 0;
+    int rc = flush && c->desc.store ? tile_cache_flush(c, err) : 0;
     for (size_t i = 0; i < c->bucket_count; i++) {
         entry *e = c->buckets[i];
         while (e) {
@@ -345,6 +345,14 @@ int tile_cache_destroy(tile_cache *c, og_error *err) {
     free(c->threads);
     free(c);
     return rc;
+}
+
+int tile_cache_destroy(tile_cache *c, og_error *err) {
+    return destroy(c, 1, err);
+}
+
+void tile_cache_destroy_discarding(tile_cache *c) {
+    destroy(c, 0, NULL);
 }
 
 static void pin_into(entry *e, tile_view *view) {

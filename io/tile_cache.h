@@ -64,6 +64,9 @@ tile_cache *tile_cache_create(const tile_cache_desc *desc, og_error *err);
 // Stops the workers and frees everything. Dirty tiles are written back first;
 // returns -1 with err set if that write fails (the tiles are lost only then).
 int tile_cache_destroy(tile_cache *cache, og_error *err);
+// The same without writing dirty tiles back: for a store about to be deleted (a world's
+// scratch store of unsaved tiles at its close), where the write-back is wasted work.
+void tile_cache_destroy_discarding(tile_cache *c);
 
 // Never blocks on I/O or generation. TILE_READY: view pins the tile. TILE_PENDING:
 // the tile is queued; view pins the nearest coarser ready level covering the same

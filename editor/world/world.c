@@ -527,10 +527,13 @@ world *world_load(const char *path, const world_settings *settings, int *errors,
 
 void world_close(world *w) {
     if (!w) return;
-    if (w->cache) {
-        og_error err = {{0}};
-        if (stop_cache(w, &err) != 0) w->settings.warn(w->settings.warn_user, err.msg);
-    }
+    // The cache's dirty tiles would go to the scratch store, removed just below: unsaved
+    // edits live on in the crash journal, not there (writing back an 8192^2 import cost
+    // seconds at every exit).
+    tile_cache_destroy_discarding(w->cache);
+    free(w->gen);
+    w->cache = NULL;
+    w->gen = NULL;
     // The journal stays: only a save of its edits or 'recover discard' removes it, or
     // the normal end of a script that made a never-saved world (world_settings.scripted).
     recovery_journal_close(w->rj);
