@@ -139,6 +139,14 @@ typedef struct script {
 } script;
 
 // Runs the --batch files and -c texts in order; 1 at the first that fails.
+// Scripts from files or -c are the record of their edits; standard input may be a
+// person typing, whose never-saved world keeps its journal like the window's.
+static int scripts_are_records(const script *scripts, int script_count) {
+    for (int s = 0; s < script_count; s++)
+        if (scripts[s].path && !strcmp(scripts[s].path, "-")) return 0;
+    return script_count > 0;
+}
+
 static int run_scripts(cmd_context *ctx, const script *scripts, int script_count, og_error *err) {
     for (int s = 0; s < script_count && !ctx->exit_requested; s++) {
         size_t len;
@@ -176,6 +184,18 @@ static int no_display(void) {
                     "Batch mode needs no display: orogen --batch SCRIPT or orogen -c 'CMD; CMD'\n"
                     "  e.g. orogen -c 'info; sample 100 200; save my.world'\n");
     return 1;
+}
+
+// --record FILE: appended to; a FIFO (it would block), device or socket is refused.
+static FILE *open_recording(const char *path) {
+    og_error err;
+    if (file_kind_check_replace(path, &err) != 0) {
+        fprintf(stderr, "orogen: --record: %s\n", err.msg);
+        return NULL;
+    }
+    FILE *f = fopen(path, "a");
+    if (!f) fprintf(stderr, "orogen: --record: cannot open %s: %s\n", path, strerror(errno));
+    return f;
 }
 
 int main(int argc, char **argv) {
@@ -234,20 +254,9 @@ int main(int argc, char **argv) {
         fprintf(stderr, "orogen: %s\n", err.msg);
         return 1;
     }
-    // Scripts from files or -c are the record of their edits; standard input may be a
-    // person typing, whose never-saved world keeps its journal like the window's.
-    settings.scripted = script_count > 0;
-    for (int s = 0; s < script_count; s++)
-        if (scripts[s].path && !strcmp(scripts[s].path, "-")) settings.scripted = 0;
+    settings.scripted = scripts_are_records(scripts, script_count);
     FILE *recording = NULL;
-    if (record_path && file_kind_check_replace(record_path, &err) != 0) { // a FIFO would block
-        fprintf(stderr, "orogen: --record: %s\n", err.msg);
-        return 1;
-    }
-    if (record_path && !(recording = fopen(record_path, "a"))) {
-        fprintf(stderr, "orogen: --record: cannot open %s: %s\n", record_path, strerror(errno));
-        return 1;
-    }
+    if (record_path && !(recording = open_recording(record_path))) return 1;
     // One change-notification hub for every world this run opens, so the window and
     // the viewport keep their subscriptions across new and load.
     settings.events = world_events_create();
