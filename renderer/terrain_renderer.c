@@ -6,6 +6,7 @@
 #include "renderer/clipmap_mesh.h"
 #include "renderer/frustum.h"
 #include "renderer/lighting.h"
+#include "renderer/material_rule_uniforms.h"
 #include "renderer/material_textures.h"
 #include "renderer/shader.h"
 #include "renderer/planet_renderer.h"
@@ -39,11 +40,8 @@ enum {
     TV_OVERLAYS = 16,
     TV_CONTOURS = 32,
     TV_MINIFIED = 64,
-    TV_NO_ROCK = 128, // the automatic rules' materials whose weight is 0 all over the level
-    TV_NO_CLIFF = 256,
-    TV_NO_SNOW = 512,
-    TV_NO_MORPH = 1024, // the parts of a level inside its morph band's inner edge
-    TERRAIN_VARIANTS = 2048
+    TV_NO_MORPH = 128, // the parts of a level inside its morph band's inner edge
+    TERRAIN_VARIANTS = 256
 };
 
 struct terrain_renderer {
@@ -57,6 +55,7 @@ struct terrain_renderer {
     GLuint tex_heights, tex_material, tex_albedo, tex_detail, tex_detail_pd, tex_falloff;
     GLuint tex_albedo_far; // the material textures' green channels, 4 to a layer
     float albedo_mean[MATERIAL_TEXTURE_COUNT][4]; // each material texture's 1 x 1 level
+    material_rules_resolved rules; // the world's material rules this frame, in metres
     clip_window heights[RENDER_MAX_LEVELS];
     clip_window material, detail, detail_pd;
     float hmin[RENDER_MAX_LEVELS], hmax[RENDER_MAX_LEVELS];
@@ -215,10 +214,9 @@ static int create_windows(terrain_renderer *r, og_error *err) {
 static GLuint terrain_program(terrain_renderer *r, int variant, og_error *err) {
     if (r->prog_terrain[variant]) return r->prog_terrain[variant];
     static const char *const names[] = {"SHADED",   "DETAIL",   "PAINTED",  "BRUSH",
-                                        "OVERLAYS", "CONTOURS", "MINIFIED", "NO_ROCK",
-                                        "NO_CLIFF", "NO_SNOW",  "NO_MORPH"};
+                                        "OVERLAYS", "CONTOURS", "MINIFIED", "NO_MORPH"};
     r->prog_terrain[variant] = shader_program_load_flags(
-        r->shader_dir, "terrain.vert", "terrain.frag", names, 11, (unsigned)variant, err);
+        r->shader_dir, "terrain.vert", "terrain.frag", names, 8, (unsigned)variant, err);
     r->prog_frame[variant] = 0;
     return r->prog_terrain[variant];
 }
@@ -532,6 +530,8 @@ int terrain_renderer_update(terrain_renderer *r, world *w, const camera *cam,
     r->frame_texels = 0;
     if (apply_changes(r, w, err) != 0) return -1;
     r->params = *p;
+    material_rules_resolve(&p->material_rules, world_params_ocean_height(p), p->max_height,
+                           &r->rules);
     layout_levels(r, p, cam, s);
     // Meshing waits for nothing but takes CPU: a few milliseconds a frame while moving.
     int volume_ok = volume_renderer_update(r->volume, w, cam, 12.0, err);
@@ -750,6 +750,8 @@ static void set_terrain_uniforms(terrain_renderer *r, GLuint prog, const camera 
     glProgramUniform1i(prog, glGetUniformLocation(prog, "u_view_mode"), s->view);
     glProgramUniform1f(prog, glGetUniformLocation(prog, "u_contour"), (float)s->contours);
     glProgramUniform1i(prog, glGetUniformLocation(prog, "u_auto_materials"), s->auto_materials);
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "u_rules_curvature"),
+                       r->rules.uses_curvature);
     glProgramUniform1f(prog, glGetUniformLocation(prog, "u_ocean_level"),
                        (float)world_params_ocean_height(p));
     glProgramUniform1f(prog, glGetUniformLocation(prog, "u_max_height"), (float)p->max_height);
@@ -845,17 +847,18 @@ static int level_variant(const terrain_renderer *r, const camera *cam, const ren
         (r->height > 0 ? r->height : 720) / (2.0 * tan(cam->fov_y * M_PI / 360.0));
     if (!(v & TV_DETAIL) && level_nearest(r, cam, l) > 4.0 * TEX_PERIOD_NEAR * pixels_per_radian)
         v |= TV_MINIFIED;
-    // Rock, cliff and snow where the level (and the coarser one it morphs into) has
-    // no slope or height that gives them weight (materials.glsl's thresholds, with a
-    // margin for the shader's rounding): two texture lookups a fragment fewer each.
+    return v;
+}
+
+// The material rules that can have weight on level l: those whose height and slope
+// ranges meet the level's (and the coarser one it morphs into), with a margin for the
+// shader's rounding. The others are skipped: two texture lookups a fragment fewer each.
+static unsigned level_rules_live(const terrain_renderer *r, const material_rules_resolved *rules,
+                                 int l) {
     int a = r->src[l], b = l + 1 < r->levels && r->src[l + 1] >= 0 ? r->src[l + 1] : a;
     double slope = fmax(r->slope_max[a], r->slope_max[b]) * 1.01 + 1e-4;
-    if (slope < 0.55) v |= TV_NO_ROCK;
-    if (slope < 1.1) v |= TV_NO_CLIFF;
-    double ocean = world_params_ocean_height(&r->params);
-    double snow_line = ocean + (r->params.max_height - ocean) * 0.62;
-    if (fmax(r->hmax[a], r->hmax[b]) + 1.0 < snow_line - 40.0) v |= TV_NO_SNOW;
-    return v;
+    return material_rules_live(rules, fmin(r->hmin[a], r->hmin[b]) - 1.0,
+                               fmax(r->hmax[a], r->hmax[b]) + 1.0, slope);
 }
 
 static int draw_terrain(terrain_renderer *r, const camera *cam, const render_settings *s,
@@ -931,6 +934,7 @@ static int draw_terrain(terrain_renderer *r, const camera *cam, const render_set
             }
             if (prog != current) glUseProgram(current = prog);
             glProgramUniform1i(prog, glGetUniformLocation(prog, "u_level"), l);
+            material_rule_uniforms(prog, &r->rules, level_rules_live(r, &r->rules, l));
             int first = still ? 512 - n[1] : 0;
             glMultiDrawElements(GL_TRIANGLES, counts + first, GL_UNSIGNED_SHORT, offsets + first,
                                 n[still]);
@@ -1053,7 +1057,7 @@ int terrain_renderer_draw(terrain_renderer *r, world *w, const camera *cam,
             float period[2] = {(float)TEX_PERIOD_NEAR, (float)TEX_PERIOD_FAR};
             uint64_t t = volume_renderer_draw(
                 r->volume, cam, view_proj, s, r->tex_albedo, fog_density(r, s),
-                world_params_ocean_height(&r->params), r->params.max_height, period);
+                world_params_ocean_height(&r->params), r->params.max_height, period, &r->rules);
             r->stats.triangles += t;
             r->stats.draw_calls += t > 0;
         }

@@ -1,3 +1,4 @@
+#include "renderer/material_rule_uniforms.h"
 #include "renderer/volume_renderer.h"
 
 #include "editor/world/volume_grid.h"
@@ -386,7 +387,8 @@ static double positive_fmod(double a, double b) {
 
 uint64_t volume_renderer_draw(volume_renderer *vr, const camera *cam, const float view_proj[16],
                               const render_settings *s, GLuint albedo, double fog_density,
-                              double ocean_level, double max_height, const float tex_period[2]) {
+                              double ocean_level, double max_height, const float tex_period[2],
+                              const material_rules_resolved *rules) {
     if (!vr->enabled || vr->count == 0) return 0;
     GLuint prog = vr->prog;
     glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "u_view_proj"), 1, GL_FALSE,
@@ -399,6 +401,7 @@ uint64_t volume_renderer_draw(volume_renderer *vr, const camera *cam, const floa
     glProgramUniform1f(prog, glGetUniformLocation(prog, "u_ocean_level"), (float)ocean_level);
     glProgramUniform1f(prog, glGetUniformLocation(prog, "u_max_height"), (float)max_height);
     glProgramUniform1i(prog, glGetUniformLocation(prog, "u_albedo"), 0);
+    material_rule_uniforms(prog, rules, ~0u);
     render_lighting_uniforms(prog, s, fog_density);
     glBindTextureUnit(0, albedo);
     glUseProgram(prog);

@@ -7,6 +7,7 @@
 #ifndef OROGEN_RENDERER_VOLUME_RENDERER_H
 #define OROGEN_RENDERER_VOLUME_RENDERER_H
 
+#include "editor/layers/material_rules.h"
 #include "editor/world/world.h"
 #include "io/err.h"
 #include "renderer/camera.h"
@@ -37,10 +38,12 @@ int volume_renderer_update(volume_renderer *vr, world *w, const camera *cam, dou
 // The terrain program's mask uniforms (volume_mask.glsl), its sampler on texture unit.
 void volume_renderer_mask_uniforms(volume_renderer *vr, GLuint prog, const camera *cam, int unit);
 
-// Draws the meshes: albedo is the material texture array; returns triangles drawn.
+// Draws the meshes: albedo is the material texture array, rules the automatic material
+// rules; returns triangles drawn.
 uint64_t volume_renderer_draw(volume_renderer *vr, const camera *cam, const float view_proj[16],
                               const render_settings *s, GLuint albedo, double fog_density,
-                              double ocean_level, double max_height, const float tex_period[2]);
+                              double ocean_level, double max_height, const float tex_period[2],
+                              const material_rules_resolved *rules);
 
 // The nearest mesh hit along origin + t dir (dir unit), t in (0, max): 0 and *t, or -1.
 int volume_renderer_pick(const volume_renderer *vr, const double origin[3], const double dir[3],

@@ -7,6 +7,7 @@
 #include "editor/cmd/interchange_commands.h"
 #include "editor/cmd/layer_commands.h"
 #include "editor/cmd/record.h"
+#include "editor/cmd/material_commands.h"
 #include "editor/cmd/volume_commands.h"
 #include "editor/cmd/tokenize.h"
 #include "editor/gen/gen.h"
@@ -581,6 +582,19 @@ static const cmd_def commands[] = {
      "write into the active layer (new and duplicate make theirs active); a hidden or locked "
      "active layer refuses them. merge folds a layer into the one below, keeping what is seen.",
      1, 12, cmd_layer, CMD_ENDS_STROKE},
+    {"material_rules", "material_rules",
+     "Lists the automatic material rules, bottom first: which material covers unpainted "
+     "ground by height, slope and curvature.",
+     0, 0, cmd_material_rules, 0},
+    {"material_rule",
+     "material_rule add MATERIAL [height=LO,HI[,EDGE]] [slope=LO,HI[,EDGE]] "
+     "[curvature=LO,HI[,EDGE]] [breakup=B] [at=N] | set N KEY=VALUE ... | move N "
+     "up|down|top|bottom|to=M | delete N | reset",
+     "Changes the material rule stack (one undo step): heights in metres or percent of the "
+     "relief above the sea (62%, 62%+40), slopes in degrees, curvature -100 x Laplacian "
+     "(positive convex), EDGE a soft edge outside the range, off removes a term, breakup "
+     "0..1 noise on the edge; reset brings back the default stack.",
+     1, 12, cmd_material_rule, CMD_ENDS_STROKE},
     {"undo", "undo", "Undoes the last change (stroke, stamp, generate).", 0, 0, cmd_undo,
      CMD_ENDS_STROKE},
     {"redo", "redo", "Redoes the last undone change.", 0, 0, cmd_redo, CMD_ENDS_STROKE},

@@ -381,9 +381,20 @@ static int replay_task(void *user, int task, og_error *err) {
     return rc;
 }
 
+// Whether a step with parameters changed what the terrain is (else only its look).
+static int step_regenerates(const history_step *s) {
+    world_params a = s->params_before, b = s->params_after;
+    a.material_rules = b.material_rules;
+    char *ta = world_params_format(&a), *tb = world_params_format(&b);
+    int differ = !ta || !tb || strcmp(ta, tb) != 0;
+    free(ta), free(tb);
+    return differ;
+}
+
 int edit_apply_step(world *w, const history_step *s, int undo, og_error *err) {
-    if (s->has_params && world_regenerate(w, undo ? &s->params_before : &s->params_after, err) != 0)
-        return -1;
+    const world_params *to = undo ? &s->params_before : &s->params_after;
+    if (s->has_params && step_regenerates(s) && world_regenerate(w, to, err) != 0) return -1;
+    if (s->has_params) world_set_material_rules(w, &to->material_rules);
     replay_job job = {w, s, undo};
     if (parallel_run((int)s->tile_count, replay_task, &job, err) != 0) return -1;
     if (detail_pd_update(w, s->dirty, s->dirty_count, err) != 0) return -1;
@@ -411,6 +422,19 @@ int edit_redo(world *w, og_error *err) {
     world_journal_record(w, RECOVERY_REDO, s);
     world_publish(w, &(world_event){.kind = WORLD_EVENT_HISTORY});
     return 1;
+}
+
+int edit_material_rules(world *w, const material_rules *rules, const char *label, og_error *err) {
+    history_step *s = history_step_new(label);
+    if (!s) return og_error_set(err, "out of memory recording the undo step");
+    s->has_params = 1;
+    s->params_before = *world_get_params(w);
+    world_set_material_rules(w, rules);
+    s->params_after = *world_get_params(w);
+    report_dropped(w, history_push(world_history(w), s));
+    world_journal_record(w, RECOVERY_STEP, s);
+    world_publish(w, &(world_event){.kind = WORLD_EVENT_HISTORY});
+    return 0;
 }
 
 static double voxel_size(const world_params *p) {

@@ -74,6 +74,8 @@ int edit_generate(world *w, const world_params *params, og_error *err);
 // Whether the world may switch to params: -1 with err saying why not (volume edits on
 // another voxel size).
 int edit_generate_check(world *w, const world_params *params, og_error *err);
+// A change of the material rules as an undoable step labelled label (no tile changes).
+int edit_material_rules(world *w, const material_rules *rules, const char *label, og_error *err);
 
 // Mip levels kept in step with level-0 edits on unbounded worlds (bounded worlds and
 // planet faces: up to the level where one tile covers everything).

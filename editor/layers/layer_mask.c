@@ -2,6 +2,8 @@
 // each term means).
 #include "editor/layers/layer_mask.h"
 
+#include "io/parse.h"
+
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -24,14 +26,14 @@ int layer_mask_border(const layer_mask *m, double spacing) {
 }
 
 // One number of a value, the whole of [s, end).
-static int parse_number(const char *s, size_t n, double *out) {
+static int read_number(const char *s, size_t n, double *out) {
     char text[64];
     if (n == 0 || n >= sizeof text) return -1;
     memcpy(text, s, n);
     text[n] = 0;
-    char *end;
-    double v = strtod(text, &end);
-    if (*end || end == text || isnan(v)) return -1;
+    const char *end;
+    double v;
+    if (parse_scan_f64(text, &v, &end) || *end || isnan(v)) return -1;
     *out = v;
     return 0;
 }
@@ -49,7 +51,7 @@ static int parse_range(const char *key, const char *value, int allow_edge, doubl
     for (;;) {
         const char *comma = strchr(p, ',');
         size_t n = comma ? (size_t)(comma - p) : strlen(p);
-        if (count == 3 || parse_number(p, n, &v[count]))
+        if (count == 3 || read_number(p, n, &v[count]))
             return og_error_set(err, "%s=%s: expected %s (%s), two numbers%s, or off", key, value,
                                 allow_edge ? "LO,HI or LO,HI,EDGE" : "LO,HI", unit,
                                 allow_edge ? " and an optional edge width" : "");
@@ -62,15 +64,30 @@ static int parse_range(const char *key, const char *value, int allow_edge, doubl
                             allow_edge ? "LO,HI or LO,HI,EDGE" : "LO,HI", unit,
                             allow_edge ? "" : "; its edge width is falloff=M");
     if (v[0] > v[1])
-        return og_error_set(err, "%s=%s: the low end %.17g is above the high end %.17g", key, value,
-                            v[0], v[1]);
+        return og_error_set(err, "%s=%s: the low end %g is above the high end %g", key, value, v[0],
+                            v[1]);
     if (v[0] < min || v[1] > max)
         return og_error_set(err, "%s=%s: %s must lie within %g..%g", key, value, unit, min, max);
     if (count == 3 && (!isfinite(v[2]) || v[2] < 0))
-        return og_error_set(err, "%s=%s: the edge width %.17g must be a number >= 0", key, value,
+        return og_error_set(err, "%s=%s: the edge width %g must be a number >= 0", key, value,
                             v[2]);
     *out = (layer_mask_range){.on = 1, .lo = v[0], .hi = v[1], .edge = v[2] + 0.0};
     return 0;
+}
+
+int layer_mask_range_parse(const char *key, const char *value, double min, double max,
+                           const char *unit, layer_mask_range *out, og_error *err) {
+    return parse_range(key, value, 1, min, max, unit, out, err);
+}
+
+int layer_mask_range_format(const layer_mask_range *r, char *buf, size_t len) {
+    if (!r->on) return snprintf(buf, len, "off");
+    char lo[32], hi[32], edge[32];
+    parse_format_f64(lo, sizeof lo, r->lo);
+    parse_format_f64(hi, sizeof hi, r->hi);
+    parse_format_f64(edge, sizeof edge, r->edge);
+    if (r->edge != 0) return snprintf(buf, len, "%s,%s,%s", lo, hi, edge);
+    return snprintf(buf, len, "%s,%s", lo, hi);
 }
 
 static int parse_flag(const char *key, const char *value, int *out, og_error *err) {
@@ -106,7 +123,7 @@ int layer_mask_set_option(layer_mask *m, const char *key, const char *value, og_
     }
     if (!strcmp(key, "falloff")) {
         double v;
-        if (parse_number(value, strlen(value), &v) || !isfinite(v) || v < 0)
+        if (read_number(value, strlen(value), &v) || !isfinite(v) || v < 0)
             return og_error_set(err, "falloff=%s: expected metres >= 0 (the height edge width)",
                                 value);
         m->height.edge = v + 0.0;
@@ -143,33 +160,34 @@ int layer_mask_parse(layer_mask *m, const char *text, og_error *err) {
     return 0;
 }
 
-// Appends to buf as snprintf would at offset *at, counting what did not fit.
-static void append(char *buf, size_t len, int *at, const char *fmt, double a, double b, double c) {
+// Appends text to buf as snprintf would at offset *at, counting what did not fit.
+static void append(char *buf, size_t len, int *at, const char *text) {
     size_t room = (size_t)*at < len ? len - (size_t)*at : 0;
-    int n = snprintf(room ? buf + *at : NULL, room, fmt, a, b, c);
+    int n = snprintf(room ? buf + *at : NULL, room, "%s%s", *at ? " " : "", text);
     if (n > 0) *at += n;
-}
-
-static void format_range(char *buf, size_t len, int *at, const char *key, const layer_mask_range *r,
-                         int with_edge) {
-    if (!r->on) return;
-    char fmt[64];
-    snprintf(fmt, sizeof fmt, "%s%s=%%.17g,%%.17g%s", *at ? " " : "", key,
-             with_edge && r->edge != 0 ? ",%.17g" : "");
-    append(buf, len, at, fmt, r->lo, r->hi, r->edge);
 }
 
 int layer_mask_format(const layer_mask *m, char *buf, size_t len) {
     int at = 0;
     if (len) buf[0] = 0;
-    format_range(buf, len, &at, "height", &m->height, 0);
-    format_range(buf, len, &at, "slope", &m->slope, 1);
-    format_range(buf, len, &at, "curvature", &m->curvature, 1);
-    format_range(buf, len, &at, "flow", &m->flow, 1);
-    if (m->height.edge != 0)
-        append(buf, len, &at, at ? " falloff=%.17g" : "falloff=%.17g", m->height.edge, 0, 0);
-    if (m->invert) append(buf, len, &at, at ? " invert=1" : "invert=1", 0, 0, 0);
-    if (m->painted) append(buf, len, &at, at ? " painted=1" : "painted=1", 0, 0, 0);
+    const layer_mask_range *ranges[4] = {&m->height, &m->slope, &m->curvature, &m->flow};
+    const char *keys[4] = {"height", "slope", "curvature", "flow"};
+    char text[160], range[128];
+    for (int k = 0; k < 4; k++) {
+        if (!ranges[k]->on) continue;
+        layer_mask_range r = *ranges[k];
+        if (k == 0) r.edge = 0; // the height's edge is falloff's
+        layer_mask_range_format(&r, range, sizeof range);
+        snprintf(text, sizeof text, "%s=%s", keys[k], range);
+        append(buf, len, &at, text);
+    }
+    if (m->height.edge != 0) {
+        parse_format_f64(range, sizeof range, m->height.edge);
+        snprintf(text, sizeof text, "falloff=%s", range);
+        append(buf, len, &at, text);
+    }
+    if (m->invert) append(buf, len, &at, "invert=1");
+    if (m->painted) append(buf, len, &at, "painted=1");
     return at;
 }
 

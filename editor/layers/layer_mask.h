@@ -60,7 +60,7 @@ int layer_mask_set_option(layer_mask *m, const char *key, const char *value, og_
 // Applies space-separated key=value pairs (layer_mask_format's output) to m; on error
 // m is unchanged. Empty text sets nothing.
 int layer_mask_parse(layer_mask *m, const char *text, og_error *err);
-// The set keys as space-separated key=value pairs (%.17g, exact), empty when nothing
+// The set keys as space-separated key=value pairs (numbers exact, shortest), "" when nothing
 // is set; layer_mask_parse on a fresh mask gives m back bit for bit. Returns the full
 // text's length as snprintf does (>= len means it was cut).
 int layer_mask_format(const layer_mask *m, char *buf, size_t len);
@@ -78,6 +78,12 @@ void layer_mask_slope_degrees(const float *below, int w, int h, int b, double sp
 void layer_mask_curvature(const float *below, int w, int h, int b, double spacing, float *out);
 // Returns 0, or -1 when out of memory (out untouched).
 int layer_mask_flow_area(const float *below, int w, int h, int b, double spacing, float *out);
+// One range's text, "LO,HI[,EDGE]" or "off", for rules that share the masks' ranges:
+// min/max bound LO and HI, unit names them in errors ("degrees"). Format writes what
+// parse reads back exactly, as snprintf counts.
+int layer_mask_range_parse(const char *key, const char *value, double min, double max,
+                           const char *unit, layer_mask_range *out, og_error *err);
+int layer_mask_range_format(const layer_mask_range *r, char *buf, size_t len);
 // A term's weight for value v: 1 inside [lo, hi], smoothstep to 0 over the edge.
 double layer_mask_range_weight(const layer_mask_range *r, double v);
 

@@ -158,6 +158,7 @@ void world_params_default(world_params *p, world_kind kind) {
         p->omega = 7.2921e-5;
         p->spacing = 100;
     }
+    material_rules_default(&p->material_rules);
 }
 
 double world_params_ocean_height(const world_params *p) {
@@ -331,6 +332,7 @@ int world_params_set(world_params *p, const char *key, const char *value, og_err
 
 int world_params_read_entry(world_params *p, const char *key, const char *value, og_error *err) {
     int rc = layer_table_read_entry(&p->layers, key, value, err);
+    if (rc == 1) rc = material_rules_read_entry(&p->material_rules, key, value, err);
     return rc == 1 ? world_params_set(p, key, value, err) : rc;
 }
 
@@ -519,6 +521,7 @@ int world_params_load_whole(const char *path, world_params *p, int *errors,
     }
     og_error v_err;
     layer_table_finish(&p->layers, NULL);
+    material_rules_finish(&p->material_rules);
     if (pf.count && world_params_validate(p, &v_err) != 0)
         param_file_diag(&pf, PARAM_ERROR, 0, "%s", v_err.msg);
     // Changed since saved, with lines that no longer read: damage, not an edit by hand.
@@ -565,7 +568,8 @@ char *world_params_format(const world_params *p) {
         len += (size_t)snprintf(out + len, cap - len, "\n# %s\n%s = %s;\n", KEYS[i].help,
                                 KEYS[i].name, value);
     }
-    if (p->layers.count && layer_table_format(&p->layers, &out, &len, &cap) != 0) {
+    if ((p->layers.count && layer_table_format(&p->layers, &out, &len, &cap) != 0) ||
+        material_rules_format_lines(&p->material_rules, &out, &len, &cap) != 0) {
         free(out);
         return NULL;
     }

@@ -6,6 +6,7 @@
 #define OROGEN_EDITOR_WORLD_PARAMS_H
 
 #include "editor/layers/layer_table.h"
+#include "editor/layers/material_rules.h"
 #include "io/err.h"
 
 #include <stddef.h>
@@ -71,6 +72,9 @@ typedef struct world_params {
     // The edit layers over the generated terrain (`layer.I = ...;` lines); empty in a file
     // from before layers (the world then gives it one, editor/world/world.h).
     layer_table layers;
+    // The automatic material rules (`material_rule_N = ...;` lines); the default stack
+    // for a file without them.
+    material_rules material_rules;
 } world_params;
 
 // The built-in defaults for a kind (a pleasant landscape or an Earth-like planet).
@@ -94,7 +98,8 @@ int gen_kind_parse(const char *text);
 // Unknown keys return 1 (callers warn).
 int world_params_set(world_params *p, const char *key, const char *value, og_error *err);
 // world_params_set, and the keys a file has besides them: the edit layers' lines
-// (layer_table_read_entry). What the file readers call; `set` knows only the keys.
+// (layer_table_read_entry) and the material rules' (material_rules_read_entry). What the
+// file readers call; `set` knows only the keys.
 int world_params_read_entry(world_params *p, const char *key, const char *value, og_error *err);
 
 // Formats one key's value (canonical text) into buf; returns -1 for unknown keys.

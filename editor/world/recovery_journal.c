@@ -417,6 +417,7 @@ static int get_params(cursor *c, world_params *p) {
     for (size_t i = 0; i < pf.count && rc == 0; i++)
         rc = world_params_read_entry(p, pf.entries[i].key, pf.entries[i].value, NULL) == 0 ? 0 : -1;
     layer_table_finish(&p->layers, NULL);
+    material_rules_finish(&p->material_rules);
     param_file_free(&pf);
     return rc;
 }

@@ -729,6 +729,7 @@ int world_regenerate(world *w, const world_params *params, og_error *err) {
     snprintf(next.tiles, sizeof next.tiles, "%s", w->params.tiles);
     memcpy(next.tiles_id, w->params.tiles_id, sizeof next.tiles_id);
     next.tiles_saved = w->params.tiles_saved;
+    next.material_rules = w->params.material_rules; // the look: world_set_material_rules
     if (!next.layers.count) next.layers = w->params.layers;
     // Only the layer table changed (a layer command, its undo): the terrain generates
     // the same, so the cache stays.
@@ -748,6 +749,11 @@ int world_regenerate(world *w, const world_params *params, og_error *err) {
     w->params = next;
     world_publish(w, &(world_event){.kind = WORLD_EVENT_PARAMS});
     return 0;
+}
+
+void world_set_material_rules(world *w, const material_rules *rules) {
+    w->params.material_rules = *rules;
+    w->params.material_rules.implicit = 0;
 }
 
 const world_params *world_get_params(const world *w) {

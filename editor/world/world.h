@@ -89,9 +89,13 @@ int world_adopt_journal(world *w, const char *journal, size_t keep_bytes, og_err
 int world_recover_discard(world *w, og_error *err);
 
 // Replaces the generation parameters (the `generate` command): cached generated
-// tiles are dropped, edited (stored) tiles stay. On failure nothing changes (the old
-// cache runs until the new one does). Publishes WORLD_EVENT_PARAMS.
+// tiles are dropped, edited (stored) tiles stay, and so do the material rules. On failure nothing
+// changes (the old cache runs until the new one does). Publishes WORLD_EVENT_PARAMS.
 int world_regenerate(world *w, const world_params *params, og_error *err);
+
+// Replaces the automatic material rules: how the ground looks, not what it is (no tile
+// changes; the renderer reads them from the parameters each frame).
+void world_set_material_rules(world *w, const material_rules *rules);
 
 const world_params *world_get_params(const world *w);
 // The hub the world publishes its changes to (world_settings.events, or its own).

@@ -37,31 +37,51 @@ vec3 blend2(vec4 a, vec4 b, float t) {
     return (a.rgb * wa + b.rgb * wb) / (wa + wb);
 }
 
-// Harris 2011's four materials by height and slope: sand by the water, grass, rock on
-// steep ground, snow up high; cliff rock where it is steeper still. far0, far1: the far
-// scale's values of materials 0-3 and 4-7. A caller that knows rock, cliff or snow has
-// no weight anywhere it draws leaves it out (NO_ROCK, NO_CLIFF, NO_SNOW: the rest blends
-// as before, up to rounding).
-vec3 automatic_varied(float h, float slope, vec2 uv, vec4 far0, vec4 far1) {
-    float beach = u_ocean_level + max(u_max_height * 0.015, 2.0);
-    vec3 c = blend2(albedo_varied(0, uv, far0.x), albedo_varied(1, uv, far0.y),
-                    smoothstep(beach - 2.0, beach + 4.0, h));
-#ifndef NO_ROCK
-    c = blend2(vec4(c, 0.5), albedo_varied(2, uv, far0.z), smoothstep(0.55, 0.85, slope));
-#endif
-#ifndef NO_CLIFF
-    c = blend2(vec4(c, 0.5), albedo_varied(7, uv, far1.w), smoothstep(1.1, 1.5, slope));
-#endif
-#ifndef NO_SNOW
-    float snow_line = u_ocean_level + (u_max_height - u_ocean_level) * 0.62;
-    float snowy = smoothstep(snow_line - 40.0, snow_line + 40.0, h) * (1.0 - smoothstep(0.55, 0.8, slope));
-    c = blend2(vec4(c, 0.5), albedo_varied(3, uv, far0.w), snowy);
-#endif
-    return c;
+// The automatic material rules (editor/layers/material_rules.h): bottom first, each
+// lays its material over the rules below with the product of its terms' weights
+// (1 inside a range, a smoothstep edge outside it), moved by its breakup times the
+// material's far-scale variation. The default stack is Harris 2011's four materials:
+// sand by the water, grass, rock on steep ground, cliff steeper, snow up high.
+#define MAX_RULES 16
+uniform int u_rule_count;
+uniform int u_rule_material[MAX_RULES];
+// Per rule and term, where its weight starts rising, reaches 1, starts falling, reaches
+// 0 (editor/layers/material_rules.h): heights in metres, slopes as rise over run,
+// curvature as -100 x the Laplacian (positive convex).
+uniform vec4 u_rule_height[MAX_RULES], u_rule_slope[MAX_RULES], u_rule_curvature[MAX_RULES];
+uniform float u_rule_breakup[MAX_RULES];
+uniform int u_rules_live; // bit i: rule i can have weight in this draw (the rest are skipped)
+
+float rule_term(vec4 r, float v) {
+    float up = r.y > r.x ? smoothstep(r.x, r.y, v) : float(v >= r.y);
+    float down = r.w > r.z ? 1.0 - smoothstep(r.z, r.w, v) : float(v <= r.z);
+    return up * down;
 }
 
-vec3 automatic(float h, float slope, vec2 uv, vec2 uv_far) {
+// slope: rise over run; curvature as the rules read it. far0, far1: the far scale's
+// values of materials 0-3 and 4-7.
+vec3 automatic_varied(float h, float slope, float curvature, vec2 uv, vec4 far0, vec4 far1) {
+    vec4 c = vec4(0.45, 0.42, 0.38, 0.5); // no rule covers it: a neutral clay
+    bool bare = true;
+    for (int i = 0; i < u_rule_count; i++) {
+        if ((u_rules_live & (1 << i)) == 0) continue;
+        int m = u_rule_material[i];
+        float v = m < 4 ? far0[m] : far1[m - 4];
+        float w = rule_term(u_rule_height[i], h) * rule_term(u_rule_slope[i], slope) *
+                  rule_term(u_rule_curvature[i], curvature);
+        w = clamp(w + u_rule_breakup[i] * (2.0 * v - 1.0), 0.0, 1.0);
+        vec4 a = albedo_varied(m, uv, v);
+        // A first rule covering everything is the ground itself, with its texture's heights.
+        c = bare && w >= 1.0 ? a : vec4(blend2(c, a, w), 0.5);
+        bare = false;
+    }
+    return c.rgb;
+}
+
+vec3 automatic(float h, float slope, float curvature, vec2 uv, vec2 uv_far) {
     vec4 far0 = vec4(far_variation(0, uv_far), far_variation(1, uv_far), far_variation(2, uv_far),
                      far_variation(3, uv_far));
-    return automatic_varied(h, slope, uv, far0, vec4(0.0, 0.0, 0.0, far_variation(7, uv_far)));
+    vec4 far1 = vec4(far_variation(4, uv_far), far_variation(5, uv_far), far_variation(6, uv_far),
+                     far_variation(7, uv_far));
+    return automatic_varied(h, slope, curvature, uv, far0, far1);
 }

@@ -1,7 +1,7 @@
 #version 450 core
 // Terrain shading: normals from the heights' partial derivatives (Crause 2010's PD
-// normals), 8-layer material splatting over automatic sand/grass/rock/snow rules
-// (Harris 2011), parallax-mapped detail near the camera (detail_parallax.glsl), sun,
+// normals), 8-layer material splatting over the automatic material rules
+// (materials.glsl), parallax-mapped detail near the camera (detail_parallax.glsl), sun,
 // fog, the brush cursor and the debug views.
 // Built in variants (renderer/terrain_renderer.c picks one per clipmap level): SHADED
 // (else the debug views), DETAIL (the level has detail), PAINTED (paint near the
@@ -34,6 +34,7 @@ uniform vec4 u_lvl_mat[MAX_LEVELS];    // painted weights: texel of local (0,0),
 uniform vec4 u_lvl_grid[MAX_LEVELS];   // tile grid: local (0,0) modulo a tile (xy), a tile in units (z; 0: none)
 uniform int u_overlays;                // 1: the tile grid, 2: the clipmap level grids
 uniform int u_auto_materials;          // 0: unpainted ground in a neutral clay
+uniform int u_rules_curvature;         // some material rule reads curvature
 uniform vec4 u_lvl_detail[MAX_LEVELS]; // detail: sample of local (0,0), samples per unit, valid
 uniform vec2 u_tex_period;             // metres per repeat: near texture, far variation
 uniform sampler2DArray u_albedo_far;   // material m's green channel in component m % 4 of layer m / 4
@@ -84,6 +85,18 @@ vec2 gradient_at(vec4 src, vec2 p, float spacing_here) {
     float l = sample_height(src, vec2(lo.x, p.y)), r = sample_height(src, vec2(hi.x, p.y));
     float d = sample_height(src, vec2(p.x, lo.y)), u = sample_height(src, vec2(p.x, hi.y));
     return vec2(r - l, u - d) / ((hi - lo) * spacing_here);
+}
+
+// The rules' curvature: -100 x the Laplacian (1/m) over the level's samples, positive on
+// convex ground; coarser levels see broader shapes.
+float curvature_at(vec4 src, vec2 p, float spacing_here) {
+    float texel = 1.0 / src.z;
+    vec2 lo = max(p - texel, vec2(0.0)), hi = min(p + texel, vec2(CLIP_SIZE - 1.0));
+    float c = sample_height(src, p);
+    float l = sample_height(src, vec2(lo.x, p.y)), r = sample_height(src, vec2(hi.x, p.y));
+    float d = sample_height(src, vec2(p.x, lo.y)), u = sample_height(src, vec2(p.x, hi.y));
+    float step_m = texel * spacing_here;
+    return -100.0 * (l + r + d + u - 4.0 * c) / (step_m * step_m);
 }
 
 vec4 unpack4(uint v) {
@@ -176,7 +189,13 @@ void main() {
     // lookup of each texture's green channel: renderer/terrain_renderer.c packs them).
     vec4 far[2] = vec4[2](texture(u_albedo_far, vec3(uv_far, 0.0)), texture(u_albedo_far, vec3(uv_far, 1.0)));
     // Unpainted ground: the automatic rules, or a neutral clay when they are hidden.
-    vec3 auto_c = u_auto_materials != 0 ? automatic_varied(h, slope, uv, far[0], far[1])
+    float curvature = 0.0;
+    if (u_rules_curvature != 0) {
+        curvature = curvature_at(u_lvl_src_a[u_level], v_local, spacing);
+        if (alpha > 0.0)
+            curvature = mix(curvature, curvature_at(u_lvl_src_b[u_level], v_local, spacing), alpha);
+    }
+    vec3 auto_c = u_auto_materials != 0 ? automatic_varied(h, slope, curvature, uv, far[0], far[1])
                                         : vec3(0.45, 0.42, 0.38);
     vec3 c = auto_c;
 #ifdef PAINTED

@@ -38,9 +38,10 @@ void main() {
     w /= w.x + w.y + w.z;
     vec3 a = v_near / u_tex_period.x, b = v_far / u_tex_period.y;
     vec3 c = vec3(0.0);
-    if (w.x > 0.01) c += w.x * automatic(h, slope, a.zy, b.zy);
-    if (w.y > 0.01) c += w.y * automatic(h, slope, a.xz, b.xz);
-    if (w.z > 0.01) c += w.z * automatic(h, slope, a.xy, b.xy);
+    // The rules' curvature terms read 0 here: a mesh has no height grid to take it from.
+    if (w.x > 0.01) c += w.x * automatic(h, slope, 0.0, a.zy, b.zy);
+    if (w.y > 0.01) c += w.y * automatic(h, slope, 0.0, a.xz, b.xz);
+    if (w.z > 0.01) c += w.z * automatic(h, slope, 0.0, a.xy, b.xy);
     c /= max(w.x * float(w.x > 0.01) + w.y * float(w.y > 0.01) + w.z * float(w.z > 0.01), 1e-4);
     float dist = length(v_rel);
     vec3 lit = sunlit(c, n, v_rel / -max(dist, 1e-6), 24.0, 0.04);
