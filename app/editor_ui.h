@@ -72,6 +72,8 @@ typedef struct editor_ui {
     stamp_browser stamps;          // the stamp tool (stamps.active) and its options
     uint32_t material_textures[8]; // swatches of the paint materials (0: automatic)
     ui_color material_colors[8];   // and their mean colours (the Layers panel)
+    int new_rule_material;         // the Materials panel: the material Add rule uses,
+    int selected_rule;             // and the rule its buttons act on (-1: none)
     editor_host host;              // the window's side
     work_queue *work;              // where actions are queued (NULL: run at once)
     int history_request;           // Edit > History: open the History section

@@ -51,6 +51,10 @@ void world_panel(editor_ui *e, ui_context *ui, cmd_context *ctx);
 void layers_panel(editor_ui *e, ui_context *ui, cmd_context *ctx, const viewport *v);
 void history_panel(editor_ui *e, ui_context *ui, cmd_context *ctx);
 
+// --- materials_panel.c: the automatic material rules, edited by commands
+
+void materials_panel(editor_ui *e, ui_context *ui, cmd_context *ctx);
+
 // --- editor_dialogs.c: status bar and dialogs
 
 void status_bar(ui_context *ui, cmd_context *ctx, viewport *v, const editor_frame_info *info,
