@@ -43,11 +43,19 @@ enum {
     TV_NO_MORPH = 128, // the parts of a level inside its morph band's inner edge
     TERRAIN_VARIANTS = 256
 };
+#define TERRAIN_PROGRAMS 48
 
 struct terrain_renderer {
     char shader_dir[4200];
-    GLuint prog_terrain[TERRAIN_VARIANTS]; // built when first needed
-    uint64_t prog_frame[TERRAIN_VARIANTS]; // the frame its uniforms were set for
+    // Terrain programs built when first needed: a variant (TV_* bits) with the material
+    // rules it runs (RULE_CALLS, materials.glsl); the least recently used goes when full.
+    struct terrain_prog {
+        int variant;
+        char calls[MATERIAL_RULES_MAX * 12];
+        GLuint prog;
+        uint64_t used;     // the frame it last drew in
+        uint64_t uniforms; // the frame its uniforms were set for
+    } progs[TERRAIN_PROGRAMS];
     uint64_t frame;
     GLuint prog_sky, prog_water, prog_cursor;
     GLuint vao, vbo, ebo, empty_vao;
@@ -210,15 +218,42 @@ static int create_windows(terrain_renderer *r, og_error *err) {
     return 0;
 }
 
-// The terrain program for a variant (TV_* bits), built on first use.
-static GLuint terrain_program(terrain_renderer *r, int variant, og_error *err) {
-    if (r->prog_terrain[variant]) return r->prog_terrain[variant];
+// The terrain program for a variant (TV_* bits) running the rules `calls` (shaded
+// variants only), built on first use. *fresh: its uniforms are not set this frame.
+static GLuint terrain_program(terrain_renderer *r, int variant, const char *calls, int *fresh,
+                              og_error *err) {
+    if (!(variant & TV_SHADED)) calls = ""; // only the shaded view runs the rules
+    struct terrain_prog *slot = NULL;
+    for (int i = 0; i < TERRAIN_PROGRAMS; i++) {
+        struct terrain_prog *p = &r->progs[i];
+        if (p->prog && p->variant == variant && !strcmp(p->calls, calls)) {
+            p->used = r->frame;
+            if (fresh) *fresh = p->uniforms != r->frame, p->uniforms = r->frame;
+            return p->prog;
+        }
+        if (!p->prog ? !slot || slot->prog : !slot || (slot->prog && p->used < slot->used))
+            slot = p; // an empty slot, else the least recently used
+    }
     static const char *const names[] = {"SHADED",   "DETAIL",   "PAINTED",  "BRUSH",
                                         "OVERLAYS", "CONTOURS", "MINIFIED", "NO_MORPH"};
-    r->prog_terrain[variant] = shader_program_load_flags(
-        r->shader_dir, "terrain.vert", "terrain.frag", names, 8, (unsigned)variant, err);
-    r->prog_frame[variant] = 0;
-    return r->prog_terrain[variant];
+    char defines[512 + sizeof slot->calls] = "";
+    size_t n = 0;
+    for (int b = 0; b < 8; b++)
+        if (variant & (1 << b))
+            n += (size_t)snprintf(defines + n, sizeof defines - n, "#define %s\n", names[b]);
+    if (variant & TV_SHADED)
+        snprintf(defines + n, sizeof defines - n, "#define RULE_CALLS %s\n", calls);
+    GLuint prog =
+        shader_program_load_variant(r->shader_dir, "terrain.vert", "terrain.frag", defines, err);
+    if (!prog) return 0;
+    if (slot->prog) glDeleteProgram(slot->prog);
+    slot->variant = variant;
+    snprintf(slot->calls, sizeof slot->calls, "%s", calls);
+    slot->prog = prog;
+    slot->used = r->frame;
+    slot->uniforms = fresh ? r->frame : 0;
+    if (fresh) *fresh = 1;
+    return prog;
 }
 
 terrain_renderer *terrain_renderer_create(const char *resource_dir, og_error *err) {
@@ -233,7 +268,7 @@ terrain_renderer *terrain_renderer_create(const char *resource_dir, og_error *er
     r->width = 1280, r->height = 720;
     // The plain shaded terrain now, so a broken shader shows at once; other variants
     // when a level first needs them.
-    if (!terrain_program(r, TV_SHADED, err) ||
+    if (!terrain_program(r, TV_SHADED, "", NULL, err) ||
         !(r->prog_sky = shader_program_load(dir, "fullscreen.vert", "sky.frag", err)) ||
         !(r->prog_water = shader_program_load(dir, "water.vert", "water.frag", err)) ||
         !(r->prog_cursor = shader_program_load(dir, "cursor.vert", "cursor.frag", err)) ||
@@ -273,8 +308,8 @@ void terrain_renderer_destroy(terrain_renderer *r) {
     world_events_unsubscribe(r->changes);
     volume_renderer_destroy(r->volume);
     planet_renderer_destroy(r->planet);
-    for (int v = 0; v < TERRAIN_VARIANTS; v++)
-        if (r->prog_terrain[v]) glDeleteProgram(r->prog_terrain[v]);
+    for (int i = 0; i < TERRAIN_PROGRAMS; i++)
+        if (r->progs[i].prog) glDeleteProgram(r->progs[i].prog);
     glDeleteProgram(r->prog_sky);
     glDeleteProgram(r->prog_water);
     glDeleteProgram(r->prog_cursor);
@@ -923,18 +958,19 @@ static int draw_terrain(terrain_renderer *r, const camera *cam, const render_set
         }
         if (n[0] + n[1] == 0) continue;
         int base = level_variant(r, cam, s, cursor, l);
+        char calls[sizeof r->progs[0].calls];
+        material_rule_calls(&r->rules, level_rules_live(r, &r->rules, l), calls, sizeof calls);
         for (int still = 0; still < 2; still++) {
             if (n[still] == 0) continue;
-            int v = base | (still ? TV_NO_MORPH : 0);
-            GLuint prog = terrain_program(r, v, err);
+            int v = base | (still ? TV_NO_MORPH : 0), fresh = 0;
+            GLuint prog = terrain_program(r, v, calls, &fresh, err);
             if (!prog) return -1;
-            if (r->prog_frame[v] != r->frame) {
+            if (fresh) {
                 set_terrain_uniforms(r, prog, cam, s, cursor, view_proj);
-                r->prog_frame[v] = r->frame;
+                material_rule_uniforms(prog, &r->rules);
             }
             if (prog != current) glUseProgram(current = prog);
             glProgramUniform1i(prog, glGetUniformLocation(prog, "u_level"), l);
-            material_rule_uniforms(prog, &r->rules, level_rules_live(r, &r->rules, l));
             int first = still ? 512 - n[1] : 0;
             glMultiDrawElements(GL_TRIANGLES, counts + first, GL_UNSIGNED_SHORT, offsets + first,
                                 n[still]);

@@ -401,7 +401,7 @@ uint64_t volume_renderer_draw(volume_renderer *vr, const camera *cam, const floa
     glProgramUniform1f(prog, glGetUniformLocation(prog, "u_ocean_level"), (float)ocean_level);
     glProgramUniform1f(prog, glGetUniformLocation(prog, "u_max_height"), (float)max_height);
     glProgramUniform1i(prog, glGetUniformLocation(prog, "u_albedo"), 0);
-    material_rule_uniforms(prog, rules, ~0u);
+    material_rule_uniforms(prog, rules);
     render_lighting_uniforms(prog, s, fog_density);
     glBindTextureUnit(0, albedo);
     glUseProgram(prog);

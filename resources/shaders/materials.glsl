@@ -50,7 +50,6 @@ uniform int u_rule_material[MAX_RULES];
 // curvature as -100 x the Laplacian (positive convex).
 uniform vec4 u_rule_height[MAX_RULES], u_rule_slope[MAX_RULES], u_rule_curvature[MAX_RULES];
 uniform float u_rule_breakup[MAX_RULES];
-uniform int u_rules_live; // bit i: rule i can have weight in this draw (the rest are skipped)
 
 float rule_term(vec4 r, float v) {
     float up = r.y > r.x ? smoothstep(r.x, r.y, v) : float(v >= r.y);
@@ -58,23 +57,40 @@ float rule_term(vec4 r, float v) {
     return up * down;
 }
 
+// Rule i laid over c. terms says which of its terms are set (1 height, 2 slope, 4
+// curvature, 8 breakup): a constant in RULE_CALLS, so what a rule lacks is not computed.
+vec4 rule_over(vec4 c, inout bool bare, int i, int terms, float h, float slope, float curvature,
+               vec2 uv, vec4 far0, vec4 far1) {
+    int m = u_rule_material[i];
+    float v = m < 4 ? far0[m] : far1[m - 4];
+    float w = 1.0;
+    if ((terms & 1) != 0) w *= rule_term(u_rule_height[i], h);
+    if ((terms & 2) != 0) w *= rule_term(u_rule_slope[i], slope);
+    if ((terms & 4) != 0) w *= rule_term(u_rule_curvature[i], curvature);
+    if ((terms & 8) != 0) w = clamp(w + u_rule_breakup[i] * (2.0 * v - 1.0), 0.0, 1.0);
+    vec4 a = albedo_varied(m, uv, v);
+    // A first rule covering everything is the ground itself, with its texture's heights.
+    vec4 over = bare && w >= 1.0 ? a : vec4(blend2(c, a, w), 0.5);
+    bare = false;
+    return over;
+}
+
 // slope: rise over run; curvature as the rules read it. far0, far1: the far scale's
-// values of materials 0-3 and 4-7.
+// values of materials 0-3 and 4-7. RULE_CALLS, when the renderer defines it, is the
+// rules that can have weight where this program draws, as R(i, terms) in stack order:
+// a software renderer runs every iteration of a loop and both sides of an `if`, so
+// only those are in the program; without it every rule runs.
 vec3 automatic_varied(float h, float slope, float curvature, vec2 uv, vec4 far0, vec4 far1) {
     vec4 c = vec4(0.45, 0.42, 0.38, 0.5); // no rule covers it: a neutral clay
     bool bare = true;
-    for (int i = 0; i < u_rule_count; i++) {
-        if ((u_rules_live & (1 << i)) == 0) continue;
-        int m = u_rule_material[i];
-        float v = m < 4 ? far0[m] : far1[m - 4];
-        float w = rule_term(u_rule_height[i], h) * rule_term(u_rule_slope[i], slope) *
-                  rule_term(u_rule_curvature[i], curvature);
-        w = clamp(w + u_rule_breakup[i] * (2.0 * v - 1.0), 0.0, 1.0);
-        vec4 a = albedo_varied(m, uv, v);
-        // A first rule covering everything is the ground itself, with its texture's heights.
-        c = bare && w >= 1.0 ? a : vec4(blend2(c, a, w), 0.5);
-        bare = false;
-    }
+#ifdef RULE_CALLS
+#define R(i, terms) c = rule_over(c, bare, i, terms, h, slope, curvature, uv, far0, far1);
+    RULE_CALLS
+#undef R
+#else
+    for (int i = 0; i < u_rule_count; i++)
+        c = rule_over(c, bare, i, 15, h, slope, curvature, uv, far0, far1);
+#endif
     return c.rgb;
 }
 
