@@ -243,10 +243,13 @@ void material_rules_move(material_rules *r, int from, int to) {
 
 int material_rules_read_entry(material_rules *r, const char *key, const char *value,
                               og_error *err) {
-    int slot = 0, used = 0;
-    int empty = !strcmp(key, "material_rules");
-    if (!empty && (sscanf(key, "material_rule_%d%n", &slot, &used) != 1 || key[used] || slot < 1 ||
-                   slot > MATERIAL_RULES_MAX || key[14] == '0' || key[14] == '+'))
+    int empty = !strcmp(key, "material_rules"), slot = 0;
+    if (!empty && !strncmp(key, "material_rule_", 14) && key[14] >= '1' && key[14] <= '9') {
+        for (const char *d = key + 14; *d >= '0' && *d <= '9' && slot <= MATERIAL_RULES_MAX; d++)
+            slot = slot * 10 + (*d - '0');
+        if (key[14 + strspn(key + 14, "0123456789")] || slot > MATERIAL_RULES_MAX) slot = 0;
+    }
+    if (!empty && !slot)
         return strncmp(key, "material_rule", 13) ? 1
                                                  : og_error_set(err,
                                                                 "%s: not a rule key "
