@@ -15,7 +15,7 @@ tests=$2
 golden="$tests/data/golden"
 rmse_tool="$(dirname "$orogen")/image_rmse"
 work=$(mktemp -d "${TMPDIR:-/tmp}/orogen-planet-render-XXXXXX")
-failed_dir="${TMPDIR:-/tmp}/orogen-render-failures"
+failed_dir="${TMPDIR:-/tmp}/orogen-render-failures/planet" # its own: e2e_render empties its folder
 failures=0
 passes=0
 check() { if [ "$2" = 0 ]; then passes=$((passes + 1)); else echo "FAIL: $1"; failures=$((failures + 1)); fi; }

@@ -12,7 +12,7 @@ tests=$2
 golden="$tests/data/golden"
 rmse_tool="$(dirname "$orogen")/image_rmse"
 work=$(mktemp -d "${TMPDIR:-/tmp}/orogen-render-XXXXXX")
-failed_dir="${TMPDIR:-/tmp}/orogen-render-failures"
+failed_dir="${TMPDIR:-/tmp}/orogen-render-failures/flat" # its own: ctest -j runs the planet one beside it
 failures=0
 passes=0
 check() { if [ "$2" = 0 ]; then passes=$((passes + 1)); else echo "FAIL: $1"; failures=$((failures + 1)); fi; }
