@@ -306,6 +306,7 @@ int world_params_set(world_params *p, const char *key, const char *value, og_err
                 if (parse_scan_f64(at, &gt[k], &end) != 0 || !isfinite(gt[k]) ||
                     (k < 5 && *end != ',') || (k == 5 && *end))
                     return bad_value(err, d, "six numbers apart by commas, or nothing", value);
+                if (k == 5) break; // end is the terminator: nothing after it to read
                 at = end + 1;
                 while (*at == ' ')
                     at++;
