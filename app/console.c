@@ -92,6 +92,13 @@ int console_run(console *c, cmd_context *ctx, const char *text, const char *labe
     return rc;
 }
 
+void console_toggle(console *c, int key_typed) {
+    c->open = !c->open;
+    c->focus_input = c->open;
+    size_t n = strlen(c->input);
+    if (key_typed && n && (c->input[n - 1] == '`' || c->input[n - 1] == '~')) c->input[n - 1] = 0;
+}
+
 void console_load_history(console *c, const char *path) {
     FILE *f = path[0] ? fopen(path, "r") : NULL;
     if (!f) return;

@@ -44,6 +44,9 @@ int console_run(console *c, cmd_context *ctx, const char *text, const char *labe
 // atomically, creating the folder.
 void console_load_history(console *c, const char *path);
 int console_save_history(const console *c, const char *path, og_error *err);
+// The console key (` or ~) opens or closes the console; key_typed: the key also went
+// into the input line (it had the focus), and goes out of it again.
+void console_toggle(console *c, int key_typed);
 // Draws the console over r (scrollback above the input line). Enter runs the line.
 void console_draw(console *c, ui_context *ui, cmd_context *ctx, ui_rect r);
 

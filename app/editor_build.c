@@ -2,15 +2,26 @@
 // menus, dock, status bar and dialogs come from the parts in editor_ui_internal.h.
 #include "app/editor_ui_internal.h"
 #include "app/shortcuts.h"
+#include "renderer/ui_renderer.h"
 
-void editor_ui_init(editor_ui *e) {
-    memset(e, 0, sizeof *e);
+#include <stdlib.h>
+
+editor_ui *editor_ui_create(void) {
+    editor_ui *e = calloc(1, sizeof *e);
+    if (!e) return NULL;
     console_init(&e->console);
     stamp_browser_init(&e->stamps);
+    return e;
 }
 
-void editor_ui_free(editor_ui *e) {
+void editor_ui_destroy(editor_ui *e) {
+    if (!e) return;
+    for (int i = 0; i < e->stamps.count; i++)
+        ui_renderer_delete_texture(e->stamps.entries[i].texture);
+    for (int i = 0; i < 8; i++)
+        ui_renderer_delete_texture(e->material_textures[i]);
     console_free(&e->console);
+    free(e);
 }
 
 int editor_ui_run(editor_ui *e, cmd_context *ctx, const char *text) {
@@ -204,7 +215,7 @@ ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport
         snprintf(gl, sizeof gl, "Renderer: %s", info->gl_renderer ? info->gl_renderer : "?");
         char libs[256];
         snprintf(libs, sizeof libs, "GLFW %s; %s; OpenImageIO, stb_truetype, DejaVu fonts",
-                 e->glfw_version ? e->glfw_version : "?", tile_store_library_versions());
+                 info->glfw_version ? info->glfw_version : "?", tile_store_library_versions());
         const char *about[] = {"Orogen 0.1: a terrain editor", gl, libs};
         text_dialog(ui, "About", about, 3, &e->show_about, width, height);
     }

@@ -9,6 +9,7 @@
 #include "app/file_browser.h"
 #include "app/interchange_dialog.h"
 #include "app/new_planet_dialog.h"
+#include "app/notices.h"
 #include "app/recover_offer.h"
 #include "app/stamp_browser.h"
 #include "app/work_queue.h"
@@ -28,8 +29,9 @@ typedef struct editor_frame_info {
     double resize_radius, resize_strength;
     // The window's own state, shown in View (changed by commands or editor_host).
     double ui_scale;
-    int camera_mode;        // 0 fly, 1 orbit, 2 walk
-    int dynamic_resolution; // the window lowers the resolution while moving
+    int camera_mode;          // 0 fly, 1 orbit, 2 walk
+    int dynamic_resolution;   // the window lowers the resolution while moving
+    const char *glfw_version; // for Help > About
 } editor_frame_info;
 
 typedef enum editor_pending {
@@ -41,59 +43,75 @@ typedef enum editor_pending {
     PENDING_QUIT,
 } editor_pending;
 
-#define EDITOR_RECENT 8
-
 // What the panels may ask of the window holding them beyond running commands: a
 // narrow typed interface the window fills in (a NULL member is not offered).
 typedef struct editor_host {
     void *user;
     void (*set_camera_mode)(void *user, int mode); // View > Camera: 0 fly, 1 orbit, 2 walk
     void (*close)(void *user);                     // Quit, once nothing unsaved is left
+    int (*submit)(void *user, const char *text);   // a line typed in the console
 } editor_host;
 
-typedef struct editor_ui {
-    console console;
-    int show_help, show_about;
-    unsigned tool_serial_seen;      // ctx->tool_serial when last drawn: a tool command ends
-                                    // the stamp tool (the palette, dock and title agree)
-    file_browser files;             // Open and Save as
-    interchange_dialog interchange; // Import / Export heightmap options
-    double view_x, view_z;          // where the camera is (metres): default placements
-    editor_pending pending;         // an action waiting on the unsaved-changes prompt
-    int confirm_replace;            // asking before saving over a file that loaded with errors
-    int replace_lines;              // how many of its bad lines the dialog lists
-    int offer_recovery;             // the Recover unsaved edits dialog is up
-    recover_offer recovery;         // what it offers
-    char open_path[1024];
-    new_planet_dialog new_planet;     // File > New planet...
-    char planet_command[1024];        // PENDING_NEW_PLANET: the dialog's new planet command
-    char recent[EDITOR_RECENT][1024]; // worlds opened or saved lately, newest first
-    int recent_count;
-    stamp_browser stamps;          // the stamp tool (stamps.active) and its options
-    uint32_t material_textures[8]; // swatches of the paint materials (0: automatic)
-    ui_color material_colors[8];   // and their mean colours (the Layers panel)
-    int new_rule_material;         // the Materials panel: the material Add rule uses,
-    int selected_rule;             // and the rule its buttons act on (-1: none)
-    editor_host host;              // the window's side
-    work_queue *work;              // where actions are queued (NULL: run at once)
-    int history_request;           // Edit > History: open the History section
-    const char *glfw_version;      // for Help > About
-    int picking_height;            // the next click in the viewport picks the tool's height
-    int shape_placing;             // a 3D shape waits for clicks in the viewport (0: none)
-    int shape_clicks;              // clicks it has had
-    double shape_at[3];            // where the first one picked
-    long long tiles_stored;        // the World panel's count of stored tiles, and when
-    double tiles_counted_at;       // it was taken (seconds)
-} editor_ui;
+// The panels' state: only app/editor_*.c and materials_panel.c see inside it
+// (editor_ui_internal.h); the window holds it through the functions below.
+typedef struct editor_ui editor_ui;
 
-// A click in the viewport on the surface point hit while a shape is being placed:
-// 1 and the command that makes it (cmd) once it has its clicks, 0 while it waits for
-// another.
-int editor_ui_shape_click(editor_ui *e, const cmd_context *ctx, const double hit[3], char *cmd,
-                          size_t len);
+// The panels, empty (NULL: out of memory), and their end: with the textures they made,
+// so the window's GL context must be current.
+editor_ui *editor_ui_create(void);
+void editor_ui_destroy(editor_ui *e);
 
-void editor_ui_init(editor_ui *e);
-void editor_ui_free(editor_ui *e);
+// The window's side: where actions are queued (NULL: they run at once), where
+// failures show until dismissed, and what the panels may ask of the window.
+void editor_ui_attach(editor_ui *e, work_queue *work, notices *n, editor_host host);
+
+// The console the panels show: the window echoes its own actions there and keeps its
+// history between sessions (console.h).
+console *editor_ui_console(editor_ui *e);
+
+// The recent worlds, newest first: one added in front (once), and the i-th (NULL past
+// the last).
+void editor_ui_add_recent(editor_ui *e, const char *path);
+const char *editor_ui_recent(const editor_ui *e, int i);
+
+// A new session's offer to recover the edits a never-saved world left in a journal.
+void editor_ui_offer_startup_recovery(editor_ui *e);
+// Swatches of the paint materials from the renderer's procedural textures (GL current).
+void editor_ui_make_material_swatches(editor_ui *e);
+
+// Help > Keyboard shortcuts (F1).
+void editor_ui_show_help(editor_ui *e);
+// Opens a world file (one dropped on the window), asking first about unsaved changes.
+void editor_ui_open_file(editor_ui *e, cmd_context *ctx, const char *path);
+
+// What a left click in the viewport is for: the tool's drag, or a panel waiting for
+// a click on the terrain (the Pick button of a height, a 3D shape being placed, the
+// stamp tool).
+typedef enum editor_click {
+    EDITOR_CLICK_DRAG,
+    EDITOR_CLICK_PICK_HEIGHT,
+    EDITOR_CLICK_SHAPE,
+    EDITOR_CLICK_STAMP,
+} editor_click;
+editor_click editor_ui_click_wanted(const editor_ui *e);
+// That click at the terrain point hit (NULL: no terrain under it): 1 with the command
+// that carries it out in cmd and what it came from in *label, 0 when nothing runs
+// (yet: a shape may want another click).
+int editor_ui_viewport_click(editor_ui *e, const cmd_context *ctx, const double *hit, char *cmd,
+                             size_t len, const char **label);
+
+// The stamp tool: whether it is the viewport's tool, the half size of its footprint
+// (metres, for samples `spacing` apart), the wheel over the viewport with Ctrl (its
+// size) or Shift (its turn), and an image dropped to become a stamp: listed now so it
+// shows as new, the folder looked at again at once.
+int editor_ui_stamp_active(const editor_ui *e);
+double editor_ui_stamp_half_size(const editor_ui *e, double spacing);
+void editor_ui_stamp_wheel(editor_ui *e, int ctrl, int shift, double dy);
+void editor_ui_stamp_dropped(editor_ui *e, const cmd_context *ctx);
+// Before a frame: the stamps listed again when the user's folder changed (1 when they
+// were). After it: thumbnails rendered since made textures (1 when some were).
+int editor_ui_refresh_stamps(editor_ui *e, const cmd_context *ctx, double now);
+int editor_ui_upload_thumbnails(editor_ui *e);
 
 // Builds the whole editor for a width x height window; returns the rectangle left for
 // the 3D viewport.

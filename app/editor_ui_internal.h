@@ -4,6 +4,7 @@
 #define OROGEN_APP_EDITOR_UI_INTERNAL_H
 
 #include "app/editor_ui.h"
+#include "app/notices.h"
 #include "editor/cmd/tokenize.h"
 #include "editor/gen/gen.h"
 #include "editor/params/world_params.h"
@@ -16,6 +17,42 @@
 #include <stdio.h>
 #include <string.h>
 #include <time.h>
+
+#define EDITOR_RECENT 8
+
+struct editor_ui {
+    console console;
+    int show_help, show_about;
+    unsigned tool_serial_seen;      // ctx->tool_serial when last drawn: a tool command ends
+                                    // the stamp tool (the palette, dock and title agree)
+    file_browser files;             // Open and Save as
+    interchange_dialog interchange; // Import / Export heightmap options
+    double view_x, view_z;          // where the camera is (metres): default placements
+    editor_pending pending;         // an action waiting on the unsaved-changes prompt
+    int confirm_replace;            // asking before saving over a file that loaded with errors
+    int replace_lines;              // how many of its bad lines the dialog lists
+    int offer_recovery;             // the Recover unsaved edits dialog is up
+    recover_offer recovery;         // what it offers
+    char open_path[1024];
+    new_planet_dialog new_planet;     // File > New planet...
+    char planet_command[1024];        // PENDING_NEW_PLANET: the dialog's new planet command
+    char recent[EDITOR_RECENT][1024]; // worlds opened or saved lately, newest first
+    int recent_count;
+    stamp_browser stamps;          // the stamp tool (stamps.active) and its options
+    uint32_t material_textures[8]; // swatches of the paint materials (0: automatic)
+    ui_color material_colors[8];   // and their mean colours (the Layers panel)
+    int new_rule_material;         // the Materials panel: the material Add rule uses,
+    int selected_rule;             // and the rule its buttons act on (-1: none)
+    editor_host host;              // the window's side
+    work_queue *work;              // where actions are queued (NULL: run at once)
+    int history_request;           // Edit > History: open the History section
+    int picking_height;            // the next click in the viewport picks the tool's height
+    int shape_placing;             // a 3D shape waits for clicks in the viewport (0: none)
+    int shape_clicks;              // clicks it has had
+    double shape_at[3];            // where the first one picked
+    long long tiles_stored;        // the World panel's count of stored tiles, and when
+    double tiles_counted_at;       // it was taken (seconds)
+};
 
 // --- editor_build.c: running actions, building the frame
 
@@ -41,6 +78,11 @@ void palette(editor_ui *e, ui_context *ui, cmd_context *ctx, ui_rect r);
 // The current tool's name as `tool` takes it.
 const char *current_tool(const brush *b);
 void tool_options(editor_ui *e, ui_context *ui, cmd_context *ctx);
+// A click in the viewport on the surface point hit while a shape is being placed:
+// 1 and the command that makes it (cmd) once it has its clicks, 0 while it waits for
+// another.
+int editor_ui_shape_click(editor_ui *e, const cmd_context *ctx, const double hit[3], char *cmd,
+                          size_t len);
 
 // --- editor_panels.c: the dock's panels
 

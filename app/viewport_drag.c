@@ -75,7 +75,7 @@ void sculpt_end(window_state *st) {
     int points = sculpt_drag_end(&st->drag.sculpt, &st->work);
     char echo[128];
     snprintf(echo, sizeof echo, "> stroke_begin; stroke_to ... (%d points); stroke_end", points);
-    console_add(&st->ed.console, CONSOLE_ECHO, echo);
+    console_add(editor_ui_console(st->ed), CONSOLE_ECHO, echo);
 }
 
 const char *tool_name(const brush *b) {
@@ -133,7 +133,7 @@ void viewport_drag_button(GLFWwindow *win, int button, int action, int mods) {
         return;
     }
     if (button == GLFW_MOUSE_BUTTON_RIGHT && (mods & GLFW_MOD_ALT) && action == GLFW_PRESS &&
-        st->drag.kind == DRAG_NONE && !st->ed.stamps.active) {
+        st->drag.kind == DRAG_NONE && !editor_ui_stamp_active(st->ed)) {
         resize_begin(st);
         return;
     }
@@ -170,38 +170,15 @@ void viewport_drag_button(GLFWwindow *win, int button, int action, int mods) {
                 point_along_ray(st, ww * 0.5, wh * 0.5, 100.0, st->drag.pivot);
         }
         st->cc.walk = 0;
-    } else if (st->ed.picking_height && button == GLFW_MOUSE_BUTTON_LEFT) {
-        double hit[3]; // the tool's height from the terrain (the Pick button)
-        st->ed.picking_height = 0;
-        if (pick_at(st, mx, my, hit) == 0) {
-            char cmd[128];
-            snprintf(cmd, sizeof cmd, "tool %s height=%.6g", tool_name(&st->ctx->brush), hit[1]);
-            run_commands(st, cmd, "pick");
-        }
-    } else if (st->ed.shape_placing && button == GLFW_MOUSE_BUTTON_LEFT) {
-        double hit[3]; // a 3D shape: its clicks, then its command
+    } else if (editor_ui_click_wanted(st->ed) != EDITOR_CLICK_DRAG &&
+               button == GLFW_MOUSE_BUTTON_LEFT) {
+        double hit[3]; // a panel waits for this click on the terrain
         char cmd[512];
-        if (pick_at(st, mx, my, hit) == 0 &&
-            editor_ui_shape_click(&st->ed, st->ctx, hit, cmd, sizeof cmd) == 1)
-            run_commands(st, cmd, "shape");
-    } else if (st->ed.stamps.active && button == GLFW_MOUSE_BUTTON_LEFT) {
-        double hit[3]; // the stamp tool: one click, one stamp at the picked point
-        char cmd[512];
-        if (pick_at(st, mx, my, hit) == 0) {
-            double x = hit[0], z = hit[2], s, t;
-            int face = -1;
-            if (world_get_params(st->ctx->world)->kind == WORLD_PLANET) { // that face's metres
-                world_grid_direction_face(hit, &face, &s, &t);
-                sculpt_face_metres(world_get_params(st->ctx->world), face, hit, &x, &z);
-            }
-            if (stamp_browser_command(&st->ed.stamps, x, z, cmd, sizeof cmd) == 0) {
-                if (face >= 0) {
-                    size_t used = strlen(cmd);
-                    snprintf(cmd + used, sizeof cmd - used, " face=%d", face);
-                }
-                run_commands(st, cmd, "stamp");
-            }
-        }
+        const char *label = NULL;
+        int on_terrain = pick_at(st, mx, my, hit) == 0;
+        if (editor_ui_viewport_click(st->ed, st->ctx, on_terrain ? hit : NULL, cmd, sizeof cmd,
+                                     &label))
+            run_commands(st, cmd, label);
     } else {
         st->drag.kind = DRAG_SCULPT;
         sculpt_begin(st, mods);

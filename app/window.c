@@ -244,35 +244,6 @@ static viewport *attach_viewport(cmd_context *ctx, og_error *err) {
     return v;
 }
 
-// Swatches of the paint materials from the renderer's own procedural textures (a
-// 64-pixel crop of each); "automatic" shows its rules' grass, rock and snow side by side.
-static void make_material_swatches(uint32_t out[8], ui_color mean[8]) {
-    enum { SWATCH = 64 };
-    static unsigned char full[MATERIAL_TEXTURE_COUNT]
-                             [MATERIAL_TEXTURE_SIZE * MATERIAL_TEXTURE_SIZE * 4];
-    static unsigned char swatch[SWATCH * SWATCH * 4];
-    for (int t = 0; t < MATERIAL_TEXTURE_COUNT; t++)
-        material_texture_generate(t, full[t]);
-    for (int m = 0; m < 8; m++) {
-        for (int y = 0; y < SWATCH; y++)
-            for (int x = 0; x < SWATCH; x++) {
-                // Paint material m is texture m - 1 (sand .. moss); automatic shows three.
-                int t = m > 0 ? m - 1 : (x < SWATCH / 3 ? 1 : x < 2 * SWATCH / 3 ? 2 : 3);
-                const unsigned char *src =
-                    full[t] + ((size_t)(y * 2) * MATERIAL_TEXTURE_SIZE + x * 2) * 4;
-                unsigned char *dst = swatch + ((size_t)y * SWATCH + x) * 4;
-                dst[0] = src[0], dst[1] = src[1], dst[2] = src[2], dst[3] = 255;
-            }
-        double sum[3] = {0, 0, 0};
-        for (int i = 0; i < SWATCH * SWATCH; i++)
-            for (int c = 0; c < 3; c++)
-                sum[c] += swatch[i * 4 + c];
-        mean[m] = UI_RGBA((int)(sum[0] / (SWATCH * SWATCH)), (int)(sum[1] / (SWATCH * SWATCH)),
-                          (int)(sum[2] / (SWATCH * SWATCH)), 255);
-        out[m] = ui_renderer_create_texture(SWATCH, SWATCH, swatch);
-    }
-}
-
 // The window's size and place, the UI scale, the recent worlds and the console's
 // history, for the next run. A failure is only reported.
 static void save_settings(window_state *st) {
@@ -283,8 +254,11 @@ static void save_settings(window_state *st) {
         glfwGetWindowPos(st->win, &s->x, &s->y);
         s->has_position = 1;
     }
-    for (int i = st->ed.recent_count - 1; i >= 0; i--)
-        app_settings_add_recent(s, st->ed.recent[i]);
+    int recent = 0;
+    while (editor_ui_recent(st->ed, recent))
+        recent++;
+    while (recent-- > 0)
+        app_settings_add_recent(s, editor_ui_recent(st->ed, recent));
     app_settings_add_recent(s, world_path(st->ctx->world));
     tool_settings_capture(st->ctx, s);
     keep_world_camera(st);
@@ -294,7 +268,7 @@ static void save_settings(window_state *st) {
     og_error err = {{0}};
     if (app_settings_save(s, st->settings_path, &err) != 0)
         fprintf(stderr, "orogen: settings not saved: %s\n", err.msg);
-    if (console_save_history(&st->ed.console, st->history_path, &err) != 0)
+    if (console_save_history(editor_ui_console(st->ed), st->history_path, &err) != 0)
         fprintf(stderr, "orogen: console history not saved: %s\n", err.msg);
 }
 
@@ -345,16 +319,12 @@ static void window_teardown(window_state *st) {
     current_window = NULL;
     ui_messages_attach(NULL, NULL);
     frame_close(st);
-    for (int i = 0; i < st->ed.stamps.count; i++)
-        ui_renderer_delete_texture(st->ed.stamps.entries[i].texture);
-    for (int i = 0; i < 8; i++)
-        ui_renderer_delete_texture(st->ed.material_textures[i]);
     ui_renderer_destroy(st->uir);
     ui_destroy(st->ui);
     ui_destroy(st->busy_ui);
     input_close(st);
     ui_font_destroy(st->font);
-    editor_ui_free(&st->ed);
+    editor_ui_destroy(st->ed);
     // The renderer's GL objects belong to this context: free them while it is current.
     viewport_destroy(st->v);
     view_commands_set_viewport(ctx, NULL);
@@ -376,7 +346,7 @@ static void host_close(void *user) {
 static int window_start(window_state *st, const app_settings *settings, const char *settings_path,
                         og_error *err) {
     cmd_context *ctx = st->ctx;
-    editor_ui_init(&st->ed);
+    if (!(st->ed = editor_ui_create())) return og_error_set(err, "out of memory");
     og_error gl_err = {{0}};
     if (gl_require_features(&gl_err) != 0 || !(st->v = attach_viewport(ctx, &gl_err)) ||
         viewport_prepare(st->v, &gl_err) != 0)
@@ -386,19 +356,17 @@ static int window_start(window_state *st, const app_settings *settings, const ch
     st->changes = world_events_subscribe(world_event_hub(ctx->world), wake_window, NULL);
     if (!st->changes) return og_error_set(err, "out of memory");
     if (!world_path(ctx->world)[0]) // a new session: a never-saved world's crash to offer?
-        recover_offer_find_startup(&st->ed.recovery);
+        editor_ui_offer_startup_recovery(st->ed);
     update_px_scale(st);
     st->settings = *settings;
     snprintf(st->settings_path, sizeof st->settings_path, "%s", settings_path);
     app_settings_path(st->history_path, sizeof st->history_path, "console_history");
-    console_load_history(&st->ed.console, st->history_path);
-    for (int i = 0; i < settings->recent_count; i++)
-        snprintf(st->ed.recent[i], sizeof st->ed.recent[0], "%s", settings->recent[i]);
-    st->ed.recent_count = settings->recent_count;
+    console_load_history(editor_ui_console(st->ed), st->history_path);
+    for (int i = settings->recent_count - 1; i >= 0; i--) // the newest goes in last, in front
+        editor_ui_add_recent(st->ed, settings->recent[i]);
     frame_open(st, settings->frame_target_ms);
     st->cc.fly_speed = settings->fly_speed; // the wheel with the right button held changes it
     st->dynamic_res = settings->dynamic_lod;
-    st->ed.glfw_version = glfwGetVersionString();
     st->gl_renderer = (const char *)glGetString(GL_RENDERER);
     og_error ui_err = {{0}};
     if (!(st->font = load_font(st->win, settings->ui_scale, &ui_err)) ||
@@ -412,15 +380,13 @@ static int window_start(window_state *st, const app_settings *settings, const ch
     ctx->session_text = &st->run.session_text;
     ctx->session_len = &st->run.session_len;
     tool_settings_restore(ctx, settings, settings_path); // each tool as it was last used
-    work_queue_init(&st->work, ctx, &st->ed.console, wake_window, NULL);
-    st->ed.work = &st->work;
-    st->ed.host = (editor_host){st, host_set_camera_mode, host_close};
-    st->work.notices = st->ed.console.notices = &st->notices;
+    work_queue_init(&st->work, ctx, editor_ui_console(st->ed), wake_window, NULL);
+    st->work.notices = &st->notices;
+    editor_ui_attach(st->ed, &st->work, &st->notices,
+                     (editor_host){st, host_set_camera_mode, host_close, submit_console_line});
     ui_messages_attach(st->ui, st->busy_ui);
-    st->ed.console.submit = submit_console_line;
-    st->ed.console.submit_user = st;
     current_window = st;
-    make_material_swatches(st->ed.material_textures, st->ed.material_colors);
+    editor_ui_make_material_swatches(st->ed);
     return 0;
 }
 

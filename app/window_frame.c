@@ -29,8 +29,8 @@ void update_title(window_state *st) {
                  : camera_mode(st) == 1 ? "orbit"
                                         : "fly",
                  camera_controls_speed(&st->cc), rs.levels_ready, used,
-                 st->ed.stamps.active ? "stamp" : tool_name(&st->ctx->brush), st->ctx->brush.radius,
-                 st->frame.pending);
+                 editor_ui_stamp_active(st->ed) ? "stamp" : tool_name(&st->ctx->brush),
+                 st->ctx->brush.radius, st->frame.pending);
     if (strcmp(title, st->frame.title) != 0) {
         snprintf(st->frame.title, sizeof st->frame.title, "%s", title);
         glfwSetWindowTitle(st->win, title);
@@ -96,10 +96,11 @@ static void update_cursor(window_state *st) {
                   (resizing || pick_at(st, x, y, hit) == 0);
     if (!bc->visible) return;
     bc->x = hit[0], bc->y = hit[1], bc->z = hit[2]; // y: planets drape it in 3D
-    if (viewport_drag_kind(st) != DRAG_RESIZE && !st->ed.stamps.active) follow_ground(st, hit);
-    if (st->ed.stamps.active) {               // the stamp's footprint: its half size, no falloff
-        bc->radius = stamp_browser_half_size( // in face-local metres on a planet
-            &st->ed.stamps, world_grid_sample_metres(world_get_params(st->ctx->world)));
+    if (viewport_drag_kind(st) != DRAG_RESIZE && !editor_ui_stamp_active(st->ed))
+        follow_ground(st, hit);
+    if (editor_ui_stamp_active(st->ed)) {       // the stamp's footprint: its half size, no
+        bc->radius = editor_ui_stamp_half_size( // falloff, in face-local metres on a planet
+            st->ed, world_grid_sample_metres(world_get_params(st->ctx->world)));
         for (int i = 0; i < BRUSH_FALLOFF_SAMPLES; i++)
             bc->falloff[i] = 1.0f;
         bc->color[0] = bc->color[1] = bc->color[2] = 0.9f;
@@ -165,30 +166,6 @@ int update_view(window_state *st) {
 
 // Builds this frame's UI (running the commands its widgets ask for); sets the
 // viewport's rectangle. fw, fh: the framebuffer's size.
-// Textures of the stamp thumbnails, once the browser has rendered them.
-static int upload_stamp_thumbnails(stamp_browser *b) {
-    if (!b->needs_upload) return 0;
-    b->needs_upload = 0;
-    for (int i = 0; i < b->count; i++)
-        if (!b->entries[i].texture)
-            b->entries[i].texture =
-                ui_renderer_create_texture(STAMP_THUMB, STAMP_THUMB, b->entries[i].rgba);
-    return 1;
-}
-
-// Lists the stamps again when the user's stamp folder changed (an image dropped on the
-// window, stamp_add in the console, a file copied there by hand).
-static void refresh_stamps(window_state *st) {
-    stamp_browser *b = &st->ed.stamps;
-    if (!stamp_browser_stale(b, st->ctx, glfwGetTime())) return;
-    for (int i = 0; i < b->count; i++) {
-        ui_renderer_delete_texture(b->entries[i].texture);
-        b->entries[i].texture = 0;
-    }
-    stamp_browser_reload(b, st->ctx);
-    st->ui_dirty = 1;
-}
-
 // One line over the foot of the viewport until the first edit: what to do first (in
 // fewer words when the viewport is narrow).
 static void first_view_hint(ui_context *ui, ui_rect vr) {
@@ -216,7 +193,8 @@ const ui_draw_list *build_ui(window_state *st, int fw, int fh) {
                               .gl_renderer = st->gl_renderer,
                               .ui_scale = st->settings.ui_scale,
                               .camera_mode = camera_mode(st),
-                              .dynamic_resolution = st->dynamic_res};
+                              .dynamic_resolution = st->dynamic_res,
+                              .glfw_version = glfwGetVersionString()};
     info.resizing = viewport_drag_resizing(st, NULL, &info.resize_radius, &info.resize_strength);
     double hit[3], x, y;
     pointer_pos(st, &x, &y);
@@ -224,17 +202,17 @@ const ui_draw_list *build_ui(window_state *st, int fw, int fh) {
         info.cursor_valid = 1;
         memcpy(info.cursor, hit, sizeof hit);
     }
-    refresh_stamps(st);
+    if (editor_ui_refresh_stamps(st->ed, st->ctx, glfwGetTime())) st->ui_dirty = 1;
     size_t waiting;
     ui_begin(st->ui, input_frame(st, ui_wants_keyboard(st->ui), &waiting), (float)fw, (float)fh);
-    ui_rect vr = editor_ui_build(&st->ed, st->ui, st->ctx, st->v, &info, (float)fw, (float)fh);
+    ui_rect vr = editor_ui_build(st->ed, st->ui, st->ctx, st->v, &info, (float)fw, (float)fh);
     if (!st->edited) first_view_hint(st->ui, vr);
     notices_draw(&st->notices, st->ui, vr);
     const ui_draw_list *dl = ui_end(st->ui);
     input_frame_done(st);
     float k = ui_px(st, 1.0); // framebuffer pixels per window unit
     st->view_rect = (ui_rect){vr.x / k, vr.y / k, vr.w / k, vr.h / k};
-    st->ui_dirty = upload_stamp_thumbnails(&st->ed.stamps) || waiting > 0; // more next frame
+    st->ui_dirty = editor_ui_upload_thumbnails(st->ed) || waiting > 0; // more next frame
     return dl;
 }
 

@@ -82,10 +82,8 @@ static void on_scroll(GLFWwindow *win, double dx, double dy) {
     }
     int ctrl = glfwGetKey(win, GLFW_KEY_LEFT_CONTROL) || glfwGetKey(win, GLFW_KEY_RIGHT_CONTROL);
     int shift = glfwGetKey(win, GLFW_KEY_LEFT_SHIFT) || glfwGetKey(win, GLFW_KEY_RIGHT_SHIFT);
-    if (st->ed.stamps.active && (ctrl || shift)) { // the stamp preview: size and turn
-        stamp_browser *b = &st->ed.stamps;
-        if (ctrl) b->scale = fmin(20, fmax(0.1, b->scale * pow(1.1, dy)));
-        if (shift) b->rotation = fmod(b->rotation + 5 * dy + 540, 360) - 180;
+    if (editor_ui_stamp_active(st->ed) && (ctrl || shift)) { // the stamp preview: size, turn
+        editor_ui_stamp_wheel(st->ed, ctrl, shift, dy);
         st->ui_dirty = 1;
         return;
     }
@@ -104,7 +102,7 @@ static void save_shortcut(window_state *st) {
         return;
     }
     if (world_file_errors(st->ctx->world) || world_read_only(st->ctx->world)[0]) {
-        editor_ui_save(&st->ed, st->ctx); // asks first: saving would lose something
+        editor_ui_save(st->ed, st->ctx); // asks first: saving would lose something
         st->ui_dirty = 1;
         return;
     }
@@ -185,11 +183,6 @@ void queue_ui_event(window_state *st, ui_event e) {
     ui_input_queue_push(st->input.queue, &e);
 }
 
-static void toggle_console(window_state *st) {
-    st->ed.console.open = !st->ed.console.open;
-    st->ed.console.focus_input = st->ed.console.open;
-}
-
 static void brush_step(window_state *st, shortcut_action action) {
     const brush *b = &st->ctx->brush;
     const char *name = tool_name(b);
@@ -232,14 +225,14 @@ static void run_shortcut(window_state *st, const shortcut_key *k) {
     case SHORTCUT_TOOL: // one letter per tool, while the pointer is over the viewport
         if (!viewport_looking(st) && in_view(st, st->input.mouse_x, st->input.mouse_y)) {
             int tool = editor_ui_tool_index(k->arg);
-            if (tool >= 0) editor_ui_pick_tool(&st->ed, st->ctx, tool);
+            if (tool >= 0) editor_ui_pick_tool(st->ed, st->ctx, tool);
         }
         break;
     case SHORTCUT_CONSOLE:
-        toggle_console(st);
+        console_toggle(editor_ui_console(st->ed), 0);
         break;
     case SHORTCUT_HELP:
-        st->ed.show_help = 1;
+        editor_ui_show_help(st->ed);
         break;
     case SHORTCUT_RADIUS_DOWN:
     case SHORTCUT_RADIUS_UP:
@@ -278,16 +271,16 @@ static void run_shortcut(window_state *st, const shortcut_key *k) {
         save_shortcut(st);
         break;
     case SHORTCUT_SAVE_AS:
-        editor_ui_save_as(&st->ed, st->ctx);
+        editor_ui_save_as(st->ed, st->ctx);
         break;
     case SHORTCUT_OPEN:
-        editor_ui_open(&st->ed, st->ctx);
+        editor_ui_open(st->ed, st->ctx);
         break;
     case SHORTCUT_NEW_FLAT:
-        editor_ui_request(&st->ed, st->ctx, PENDING_NEW_FLAT);
+        editor_ui_request(st->ed, st->ctx, PENDING_NEW_FLAT);
         break;
     case SHORTCUT_QUIT:
-        editor_ui_request(&st->ed, st->ctx, PENDING_QUIT);
+        editor_ui_request(st->ed, st->ctx, PENDING_QUIT);
         break;
     case SHORTCUT_ACTION_COUNT:
         break;
@@ -338,12 +331,8 @@ static void key_after_ui(window_state *st, int key, int action, int mods, int ta
         }
     // A focused text field took it; ~ still closes the console.
     if (taken) {
-        if (action == GLFW_PRESS && key == GLFW_KEY_GRAVE_ACCENT && st->ed.console.open) {
-            toggle_console(st);
-            size_t n = strlen(st->ed.console.input); // the ` it typed goes with it
-            if (n && (st->ed.console.input[n - 1] == '`' || st->ed.console.input[n - 1] == '~'))
-                st->ed.console.input[n - 1] = 0;
-        }
+        if (action == GLFW_PRESS && key == GLFW_KEY_GRAVE_ACCENT && editor_ui_console(st->ed)->open)
+            console_toggle(editor_ui_console(st->ed), 1);
         return;
     }
     if (action == GLFW_PRESS && key == GLFW_KEY_ESCAPE) return; // the UI closes menus, dialogs
@@ -394,11 +383,10 @@ static void on_drop(GLFWwindow *win, int count, const char **paths) {
         char msg[4400];
         if (work_queue_busy(&st->work)) {
             snprintf(msg, sizeof msg, "%.4000s: dropped while work runs; drop it again after", p);
-            console_add(&st->ed.console, CONSOLE_ERROR, msg);
+            console_add(editor_ui_console(st->ed), CONSOLE_ERROR, msg);
             fprintf(stderr, "%s\n", msg);
         } else if (dot && (strcmp(dot, ".world") == 0 || strcmp(dot, ".planet") == 0)) {
-            snprintf(st->ed.open_path, sizeof st->ed.open_path, "%.1023s", p);
-            editor_ui_request(&st->ed, st->ctx, PENDING_OPEN);
+            editor_ui_open_file(st->ed, st->ctx, p);
         } else if (is_elevation_raster(p)) {
             // Imported centred on the point under the pointer (else where the file says).
             double hit[3], mx, my;
@@ -415,17 +403,15 @@ static void on_drop(GLFWwindow *win, int count, const char **paths) {
             char arg[4200], cmd[4300];
             cmd_quote_arg(arg, sizeof arg, p);
             snprintf(cmd, sizeof cmd, "stamp_add %s", arg);
-            stamp_browser_load(&st->ed.stamps,
-                               st->ctx); // listed before, so the new one shows as new
+            editor_ui_stamp_dropped(st->ed, st->ctx);
             run_commands(st, cmd, "drop");
-            st->ed.stamps.checked_at = 0; // look at the folder again at once
         } else {
             snprintf(
                 msg, sizeof msg,
                 "%.4000s: Orogen opens .world and .planet files, imports heightmaps (.hgt .tif "
                 ".exr .r16 ...) and makes other images stamps",
                 p);
-            console_add(&st->ed.console, CONSOLE_ERROR, msg);
+            console_add(editor_ui_console(st->ed), CONSOLE_ERROR, msg);
             fprintf(stderr, "%s\n", msg);
         }
     }
@@ -448,7 +434,7 @@ void on_close(GLFWwindow *win) {
     }
     if (world_is_modified(st->ctx->world)) {
         glfwSetWindowShouldClose(win, GLFW_FALSE);
-        editor_ui_request(&st->ed, st->ctx, PENDING_QUIT);
+        editor_ui_request(st->ed, st->ctx, PENDING_QUIT);
         st->ui_dirty = 1;
     }
 }

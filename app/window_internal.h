@@ -54,7 +54,7 @@ typedef struct window_state {
     ui_font *font;
     ui_context *ui;
     ui_renderer *uir;
-    editor_ui ed;
+    editor_ui *ed;
     notices notices;   // what failed for the UI, over the viewport until dismissed
     int ui_dirty;      // input or state changed: build and draw the UI again
     ui_rect view_rect; // the viewport's part of the window (window coordinates)

@@ -66,11 +66,14 @@ int main(void) {
         return 1;
     }
     ui_context *ui = ui_create(font);
-    editor_ui ed;
-    editor_ui_init(&ed);
-    ed.console.open = 1; // the heaviest layout: every panel and the console
+    editor_ui *ed = editor_ui_create();
+    if (!ed) {
+        fprintf(stderr, "bench_ui: out of memory\n");
+        return 1;
+    }
+    editor_ui_console(ed)->open = 1; // the heaviest layout: every panel and the console
     for (int i = 0; i < 200; i++)
-        console_add(&ed.console, CONSOLE_OUTPUT, "a line of output");
+        console_add(editor_ui_console(ed), CONSOLE_OUTPUT, "a line of output");
     editor_frame_info info = {.frame_ms = 100, .resolution_scale = 1, .gl_renderer = "bench"};
 
     // 1. Building the UI.
@@ -85,7 +88,7 @@ int main(void) {
         in.time = f / 60.0;
         double t0 = bench_now();
         ui_begin(ui, &in, WIDTH, HEIGHT);
-        view = editor_ui_build(&ed, ui, &ctx, v, &info, WIDTH, HEIGHT);
+        view = editor_ui_build(ed, ui, &ctx, v, &info, WIDTH, HEIGHT);
         const ui_draw_list *dl = ui_end(ui);
         build_ms[f] = (bench_now() - t0) * 1e3;
         vertices = dl->vtx_count;
@@ -112,7 +115,7 @@ int main(void) {
         terrain_ms[r] = (bench_now() - t0) * 1e3;
 
         ui_begin(ui, &in, WIDTH, HEIGHT);
-        editor_ui_build(&ed, ui, &ctx, v, &info, WIDTH, HEIGHT);
+        editor_ui_build(ed, ui, &ctx, v, &info, WIDTH, HEIGHT);
         const ui_draw_list *dl = ui_end(ui);
         t0 = bench_now();
         glBindFramebuffer(GL_FRAMEBUFFER, screen.fbo);
@@ -346,7 +349,7 @@ int main(void) {
     ui_renderer_destroy(uir);
     gl_target_destroy(&screen);
     gl_target_destroy(&terrain);
-    editor_ui_free(&ed);
+    editor_ui_destroy(ed);
     ui_destroy(ui);
     ui_font_destroy(font);
     viewport_destroy(v);
