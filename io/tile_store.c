@@ -1,6 +1,7 @@
 #include "io/tile_store.h"
 
 #include "io/crc32c.h"
+#include "io/path_folder.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -814,12 +815,7 @@ const char *tile_store_warning(const tile_store *store) {
 // system, the folder's or the file's permissions, or a full disk; found without writing.
 static void write_cause(const char *path, const char *sqlite_why, char *out, size_t len) {
     char dir[4200];
-    snprintf(dir, sizeof dir, "%s", path);
-    char *slash = strrchr(dir, '/');
-    if (slash)
-        slash == dir ? (void)(dir[1] = 0) : (void)(*slash = 0);
-    else
-        snprintf(dir, sizeof dir, ".");
+    path_folder(path, dir, sizeof dir);
     struct statvfs fs;
     int have_fs = statvfs(dir, &fs) == 0;
     if (have_fs && (fs.f_flag & ST_RDONLY))

@@ -4,11 +4,11 @@
 #include "io/file_kind.h"
 #include "io/file_mode.h"
 #include "io/module_load.h"
+#include "io/path_folder.h"
 
 #include <dlfcn.h>
 #include <errno.h>
 #include <fcntl.h>
-#include <libgen.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -152,12 +152,8 @@ int vdb_level_set_write(vdb_level_set *ls, const char *path, int fog, const char
                         int meta_count, og_error *err) {
     if (file_kind_check_replace(path, err) != 0) return -1;
     size_t len = strlen(path);
-    char *tmp = malloc(len + 16), *dir = strdup(path);
-    if (!tmp || !dir) {
-        free(tmp);
-        free(dir);
-        return og_error_set(err, "%s: out of memory", path);
-    }
+    char *tmp = malloc(len + 16);
+    if (!tmp) return og_error_set(err, "%s: out of memory", path);
     snprintf(tmp, len + 16, "%s.tmp-XXXXXX", path);
     int rc = -1;
     int fd = mkstemp(tmp);
@@ -177,13 +173,12 @@ int vdb_level_set_write(vdb_level_set *ls, const char *path, int fog, const char
     } else if (rename(tmp, path) != 0) {
         og_error_set(err, "%s: cannot rename the temp file into place: %s", path, strerror(errno));
     } else {
-        fsync_path(dirname(dir), O_DIRECTORY); // best effort: the file itself is durable
+        path_sync_folder(path); // best effort: the file itself is durable
         rc = 0;
     }
     if (rc != 0) unlink(tmp);
 done:
     free(tmp);
-    free(dir);
     return rc;
 }
 

@@ -5,6 +5,7 @@
 // every edit.
 #include "editor/cmd/commands.h"
 #include "editor/cmd/context.h"
+#include "io/path_folder.h"
 #include "support/test_support.h"
 
 #include <signal.h>
@@ -161,8 +162,26 @@ static void test_read_only_file_refused(void **state) {
     test_rmtree(dir);
 }
 
+// The folder each failure message and durability sync names: the root keeps its slash,
+// a bare name lives in ".", and a short buffer cuts rather than overflows.
+static void test_folder_of_path(void **state) {
+    (void)state;
+    char dir[16];
+    path_folder("/a/b/w.orogen", dir, sizeof dir);
+    assert_string_equal(dir, "/a/b");
+    path_folder("/w.orogen", dir, sizeof dir);
+    assert_string_equal(dir, "/");
+    path_folder("w.orogen", dir, sizeof dir);
+    assert_string_equal(dir, ".");
+    path_folder("rel/w.orogen", dir, sizeof dir);
+    assert_string_equal(dir, "rel");
+    path_folder("/a/very/long/folder/name/w", dir, 8);
+    assert_string_equal(dir, "/a/very");
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_folder_of_path),
         cmocka_unit_test(test_full_disk_keeps_old_files),
         cmocka_unit_test(test_read_only_file_refused),
     };

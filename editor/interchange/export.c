@@ -9,6 +9,7 @@
 #include "io/param_file.h"
 #include "io/progress.h"
 #include "io/parse.h"
+#include "io/path_folder.h"
 
 #include <errno.h>
 #include <math.h>
@@ -274,12 +275,7 @@ static void print_hints(FILE *out, const export_options *o, file_format f, const
 // Refuses before writing when the folder lacks room for bytes (with a margin).
 static int check_space(const char *path, double bytes, og_error *err) {
     char dir[4200];
-    snprintf(dir, sizeof dir, "%s", path);
-    char *slash = strrchr(dir, '/');
-    if (slash)
-        *(slash == dir ? slash + 1 : slash) = 0;
-    else
-        snprintf(dir, sizeof dir, ".");
+    path_folder(path, dir, sizeof dir);
     struct statvfs st;
     if (statvfs(dir, &st) != 0)
         return og_error_set(err, "%s: cannot reach its folder: %s", path, strerror(errno));

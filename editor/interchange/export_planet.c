@@ -5,6 +5,7 @@
 #include "editor/params/world_grid.h"
 #include "io/image_read.h"
 #include "io/param_file.h"
+#include "io/path_folder.h"
 #include "io/tile_cache.h"
 
 #include <ctype.h>
@@ -40,13 +41,13 @@ typedef struct staged_files {
 static const char *add_file(staged_files *f, const char *final_path) {
     snprintf(f->final[f->count], sizeof f->final[0], "%s", final_path);
     char dir[4200], base[4200];
-    snprintf(dir, sizeof dir, "%s", final_path);
+    path_folder(final_path, dir, sizeof dir);
     snprintf(base, sizeof base, "%s", final_path);
     // The extension stays last: the image writer picks the format by it.
     const char *name = basename(base), *dot = strrchr(name, '.');
     if (!dot) dot = name + strlen(name);
-    snprintf(f->staged[f->count], sizeof f->staged[0], "%s/.%.*s.part-%d%s", dirname(dir),
-             (int)(dot - name), name, (int)getpid(), dot);
+    snprintf(f->staged[f->count], sizeof f->staged[0], "%s/.%.*s.part-%d%s", dir, (int)(dot - name),
+             name, (int)getpid(), dot);
     return f->staged[f->count++];
 }
 
@@ -75,13 +76,7 @@ static int publish_files(staged_files *f, long long *bytes, og_error *err) {
                 unlink(f->staged[k]);
             return -1;
         }
-    char dir[4200];
-    snprintf(dir, sizeof dir, "%s", f->final[0]);
-    int fd = open(dirname(dir), O_RDONLY | O_DIRECTORY);
-    if (fd >= 0) {
-        fsync(fd); // best effort: each file was synced before its rename
-        close(fd);
-    }
+    path_sync_folder(f->final[0]); // best effort: each file was synced before its rename
     return 0;
 }
 

@@ -1,5 +1,7 @@
 #include "editor/world/journal_files.h"
 
+#include "io/path_folder.h"
+
 #include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
@@ -63,13 +65,9 @@ size_t journal_files_each(const char *own_path, void (*fn)(void *user, const cha
         count++;
     }
     char dir[4400];
-    snprintf(dir, sizeof dir, "%s", own_path);
-    char *slash = strrchr(dir, '/');
+    path_folder(own_path, dir, sizeof dir);
+    const char *slash = strrchr(own_path, '/');
     const char *base = slash ? slash + 1 : own_path;
-    if (slash)
-        slash == dir ? (void)(dir[1] = 0) : (void)(*slash = 0);
-    else
-        snprintf(dir, sizeof dir, ".");
     char base_name[1024];
     snprintf(base_name, sizeof base_name, "%s", base);
     DIR *d = opendir(dir);

@@ -2,6 +2,7 @@
 
 #include "io/crc32c.h"
 #include "io/param_file.h"
+#include "io/path_folder.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -228,18 +229,7 @@ static void *flusher_main(void *arg) {
 
 // Makes the file's name durable: its folder is synced once, when it is created.
 static void sync_folder(const char *path) {
-    char dir[4200];
-    snprintf(dir, sizeof dir, "%s", path);
-    char *slash = strrchr(dir, '/');
-    if (slash)
-        slash == dir ? (void)(dir[1] = 0) : (void)(*slash = 0);
-    else
-        snprintf(dir, sizeof dir, ".");
-    int fd = open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (fd >= 0) {
-        fsync(fd);
-        close(fd);
-    }
+    path_sync_folder(path);
 }
 
 recovery_journal *recovery_journal_open(const char *path, const char *state_id,
