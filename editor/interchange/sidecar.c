@@ -46,18 +46,25 @@ void sidecar_georef(char *out, size_t len, int comma, const char *crs, const dou
 
 static int parse_text(const char *path, const char *text, sidecar *s, og_error *err);
 
-// The number after "key": in a flat JSON object (our own files).
-static int number_field(const char *text, const char *key, double *out) {
+// Where the value of "key" starts in a flat JSON object (our own files): just after
+// its colon; NULL if the key is missing.
+static const char *field_value(const char *text, const char *key) {
     char quoted[64];
     snprintf(quoted, sizeof quoted, "\"%s\"", key);
     const char *p = strstr(text, quoted);
-    if (!p) return -1;
+    if (!p) return NULL;
     p = strchr(p + strlen(quoted), ':');
+    return p ? p + 1 : NULL;
+}
+
+// The number after "key":.
+static int number_field(const char *text, const char *key, double *out) {
+    const char *p = field_value(text, key);
     if (!p) return -1;
     char *end;
     errno = 0;
-    double v = strtod(p + 1, &end);
-    if (end == p + 1 || errno || !isfinite(v)) return -1;
+    double v = strtod(p, &end);
+    if (end == p || errno || !isfinite(v)) return -1;
     *out = v;
     return 0;
 }
@@ -83,13 +90,9 @@ int sidecar_read(const char *image_path, sidecar *s, og_error *err) {
 
 // The string after "key": (JSON escapes \" and \\ undone) into out; -1 if none.
 static int string_field(const char *text, const char *key, char *out, size_t len) {
-    char quoted[64];
-    snprintf(quoted, sizeof quoted, "\"%s\"", key);
-    const char *p = strstr(text, quoted);
+    const char *p = field_value(text, key);
     if (!p) return -1;
-    p = strchr(p + strlen(quoted), ':');
-    if (!p) return -1;
-    p += strspn(p + 1, " \t\n") + 1;
+    p += strspn(p, " \t\n");
     if (*p++ != '"') return -1;
     size_t n = 0;
     for (; *p && *p != '"'; p++) {
