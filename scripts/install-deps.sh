@@ -9,7 +9,7 @@ packages=(
   libegl1-mesa-dev libgl1-mesa-dri libglx-mesa0 mesa-utils
   libopenimageio-dev openimageio-tools
   libopenvdb-dev libboost-dev libtbb-dev libopenvdb-tools python3-openvdb
-  libsqlite3-dev sqlite3 libzstd-dev zstd
+  libsqlite3-dev sqlite3 libzstd-dev zstd libdeflate-dev
   libcglm-dev libstb-dev fonts-dejavu-core
   libmeshoptimizer-dev libcmocka-dev
   xvfb xdotool xauth assimp-utils imagemagick

@@ -5,6 +5,7 @@
 #include "editor/params/world_georef.h"
 #include "editor/world/layer_grid.h"
 #include "io/gdal_raster.h"
+#include "io/exr_write.h"
 #include "io/image_read.h"
 #include "io/param_file.h"
 #include "io/progress.h"
@@ -429,7 +430,7 @@ static int write_rect(world *w, const layer_grid *g, const char *path, const exp
         rc = image_write_samples(path, h, rep->width, rep->height, IMAGE_WRITE_UINT16, NULL, err);
         break;
     case FMT_EXR32:
-        rc = image_write_samples(path, h, rep->width, rep->height, IMAGE_WRITE_FLOAT, "Y", err);
+        rc = exr_write_float(path, h, rep->width, rep->height, "Y", err);
         break;
     case FMT_TIFF16:
     case FMT_TIFF32:
