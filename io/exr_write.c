@@ -12,6 +12,7 @@
 
 #include "io/file_kind.h"
 #include "io/file_mode.h"
+#include "io/path_folder.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -328,6 +329,7 @@ int exr_write_float(const char *path, const float *samples, int width, int heigh
     } else if (f = NULL, rename(tmp, path) != 0) {
         og_error_set(err, "%s: cannot rename the temp file into place: %s", path, strerror(errno));
     } else {
+        path_sync_folder(path); // best effort: the file itself is durable
         rc = 0;
     }
 done:
