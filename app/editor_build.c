@@ -188,7 +188,12 @@ ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport
         e->stamps.open_request = 0;
     }
     if (ui_section(ui, "Stamps", 0)) stamp_browser_draw(&e->stamps, ui, ctx, &picked);
-    if (ui_section(ui, "Layers", 0)) layers_panel(e, ui, ctx, v);
+    if (ui_section(ui, "Layers", 0)) {
+        layer_stack_panel(e, ui, ctx, v);
+        layers_panel(e, ui, ctx, v);
+    } else {
+        v->settings.mask_terms = 0; // the mask editor's overlay closes with the panel
+    }
     if (ui_section(ui, "Materials", 0)) materials_panel(e, ui, ctx);
     if (ui_section(ui, "World", 1)) world_panel(e, ui, ctx);
     if (e->history_request) { // Edit > History: the section opens

@@ -56,6 +56,10 @@ typedef struct editor_host {
 // (editor_ui_internal.h); the window holds it through the functions below.
 typedef struct editor_ui editor_ui;
 
+// Whether the current tool would be refused by the active layer (hidden or locked),
+// and why in a few words ("layer Hill is hidden: raise refused").
+int editor_ui_tool_refused(const cmd_context *ctx, char *why, size_t len);
+
 // The panels, empty (NULL: out of memory), and their end: with the textures they made,
 // so the window's GL context must be current.
 editor_ui *editor_ui_create(void);

@@ -4,6 +4,7 @@
 #define OROGEN_APP_EDITOR_UI_INTERNAL_H
 
 #include "app/editor_ui.h"
+#include "app/layers_panel_state.h"
 #include "app/notices.h"
 #include "editor/cmd/tokenize.h"
 #include "editor/gen/gen.h"
@@ -43,6 +44,7 @@ struct editor_ui {
     ui_color material_colors[8];   // and their mean colours (the Layers panel)
     int new_rule_material;         // the Materials panel: the material Add rule uses,
     int selected_rule;             // and the rule its buttons act on (-1: none)
+    layers_panel_state layers;     // the Layers panel's rows and mask editor
     editor_host host;              // the window's side
     work_queue *work;              // where actions are queued (NULL: run at once)
     int history_request;           // Edit > History: open the History section
@@ -92,6 +94,12 @@ void world_panel(editor_ui *e, ui_context *ui, cmd_context *ctx);
 // colour unpainted ground.
 void layers_panel(editor_ui *e, ui_context *ui, cmd_context *ctx, const viewport *v);
 void history_panel(editor_ui *e, ui_context *ui, cmd_context *ctx);
+
+// --- layers_panel.c, mask_editor.c: the edit layers, edited by commands
+
+// The stack's rows, New layer and, when a row's Mask is on, the mask editor.
+void layer_stack_panel(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v);
+void mask_editor(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v, const layer_info *l);
 
 // --- materials_panel.c: the automatic material rules, edited by commands
 

@@ -780,6 +780,11 @@ static void set_terrain_uniforms(terrain_renderer *r, GLuint prog, const camera 
     uniform_vec4s(prog, "u_lvl_grid", grid, RENDER_MAX_LEVELS);
     glProgramUniform1i(prog, glGetUniformLocation(prog, "u_overlays"),
                        (s->tile_grid ? 1 : 0) | (s->level_grid ? 2 : 0));
+    glProgramUniform3i(prog, glGetUniformLocation(prog, "u_mask"), s->mask_terms != 0,
+                       s->mask_invert, s->mask_terms);
+    glProgramUniform4fv(prog, glGetUniformLocation(prog, "u_mask_height"), 1, s->mask_height);
+    glProgramUniform4fv(prog, glGetUniformLocation(prog, "u_mask_slope"), 1, s->mask_slope);
+    glProgramUniform4fv(prog, glGetUniformLocation(prog, "u_mask_curvature"), 1, s->mask_curvature);
     glProgramUniform3fv(prog, glGetUniformLocation(prog, "u_level_tint"), RENDER_MAX_LEVELS,
                         &level_tints[0][0]);
     glProgramUniform1i(prog, glGetUniformLocation(prog, "u_view_mode"), s->view);
@@ -869,7 +874,8 @@ static double level_nearest(const terrain_renderer *r, const camera *cam, int l)
 // The variant level l is drawn with: only what it can show this frame.
 static int level_variant(const terrain_renderer *r, const camera *cam, const render_settings *s,
                          const brush_cursor *cursor, int l) {
-    int v = (s->tile_grid || s->level_grid ? TV_OVERLAYS : 0) | (s->contours > 0 ? TV_CONTOURS : 0);
+    int v = (s->tile_grid || s->level_grid || s->mask_terms ? TV_OVERLAYS : 0) |
+            (s->contours > 0 ? TV_CONTOURS : 0);
     if (r->detail_current && l <= 3) v |= TV_DETAIL; // as set_terrain_uniforms places it
     if (s->view != VIEW_SHADED) return v;
     v |= TV_SHADED;

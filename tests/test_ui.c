@@ -1834,6 +1834,91 @@ static void test_combo(void **state) {
     drv_free(&d);
 }
 
+// A row with a context menu and a range over a histogram.
+typedef struct row_menu {
+    int duplicate, remove, row_clicks, dragging, done;
+    double lo, hi;
+} row_menu;
+
+static void build_row_menu(drv *d) {
+    row_menu *m = d->user;
+    ui_context *ui = d->ui;
+    ui_panel_begin(ui, "Body", (ui_rect){0, 0, WIN_W, WIN_H});
+    ui_row(ui, 1, NULL, 0);
+    m->row_clicks += ui_selectable(ui, "Row", 0);
+    if (ui_context_menu_begin(ui, "Row menu")) {
+        m->duplicate += ui_menu_item(ui, "Duplicate", NULL, 1);
+        m->remove += ui_menu_item(ui, "Delete", NULL, 1);
+        ui_context_menu_end(ui);
+    }
+    ui_row(ui, 1, NULL, 60);
+    static const float bars[4] = {1, 3, 2, 0};
+    int r = ui_range(ui, "Slope", &m->lo, &m->hi, 5, 0, 100, bars, 4);
+    m->dragging += r == UI_RANGE_DRAGGING;
+    m->done += r == UI_RANGE_DONE;
+    ui_row(ui, 1, NULL, 0);
+    double amount = 3;
+    ui_slider(ui, "##Amount", &amount, 0, 10, "%.0f"); // shows 3, named Amount
+    ui_panel_end(ui);
+}
+
+static void right_click(drv *d, float x, float y) {
+    d->in.mouse_x = x, d->in.mouse_y = y;
+    d->in.mouse_pressed[1] = d->in.mouse_down[1] = 1;
+    frame(d);
+    d->in.mouse_down[1] = 0;
+    d->in.mouse_released[1] = 1;
+    frame(d);
+    d->in.mouse_released[1] = 0;
+}
+
+static void test_context_menu_and_range(void **state) {
+    (void)state;
+    row_menu m = {.lo = 20, .hi = 40};
+    drv d;
+    drv_init(&d, build_row_menu, &m);
+    assert_null(ui_widget_find(d.ui, "Body/Row menu/Delete"));
+    assert_non_null(ui_widget_find(d.ui, "Body/Amount")); // a label showing nothing: its suffix
+    ui_rect row = rect_of(&d, "Body/Row");
+    right_click(&d, row.x + 30, row.y + row.h / 2);
+    frame(&d);
+    ui_rect del = rect_of(&d, "Body/Row menu/Delete");
+    assert_true(del.x >= row.x + 29 && del.y >= row.y + row.h / 2); // at the pointer
+    assert_int_equal(m.row_clicks, 0);                              // a right click is no click
+    click_widget(&d, "Body/Row menu/Delete");
+    assert_int_equal(m.remove, 1);
+    assert_int_equal(m.duplicate + m.row_clicks, 0); // the row under the menu saw nothing
+    frame(&d);
+    assert_null(ui_widget_find(d.ui, "Body/Row menu/Delete")); // closed by the pick
+    // Opened again, a click elsewhere closes it without a pick.
+    right_click(&d, row.x + 30, row.y + row.h / 2);
+    frame(&d);
+    assert_non_null(ui_widget_find(d.ui, "Body/Row menu/Duplicate"));
+    click(&d, 700, 500);
+    frame(&d);
+    assert_null(ui_widget_find(d.ui, "Body/Row menu/Duplicate"));
+    assert_int_equal(m.duplicate, 0);
+
+    // The range: a press near the high end drags it, live, and not below the low end.
+    ui_rect r = rect_of(&d, "Body/Slope");
+    float x40 = r.x + r.w * 0.4f;
+    press(&d, x40 + 3, r.y + 10);
+    drag_to(&d, r.x + r.w * 0.7f, r.y + 10);
+    assert_true(fabs(m.hi - 70) < 0.5 && m.lo == 20);
+    assert_true(m.dragging > 0 && m.done == 0);
+    drag_to(&d, r.x + r.w * 0.1f, r.y + 10); // past the low end: stops at it
+    assert_true(m.hi == 20);
+    release(&d, r.x + r.w * 0.5f, r.y + 10);
+    assert_int_equal(m.done, 1);
+    assert_true(fabs(m.hi - 50) < 0.5);
+    // A press nearer the low end moves that end; beyond the cell it clamps to the minimum.
+    press(&d, r.x + r.w * 0.15f, r.y + 10);
+    release(&d, r.x - 50, r.y + 10);
+    assert_true(m.lo == 0 && fabs(m.hi - 50) < 0.5);
+    assert_int_equal(m.done, 2);
+    drv_free(&d);
+}
+
 // A dialog: a modal rectangle just tall enough for a combo box, whose list falls below
 // it, and a button outside the dialog.
 typedef struct dialog_combo {
@@ -2400,6 +2485,7 @@ int main(void) {
         T(test_menu_click_outside),
         T(test_menu_escape_after_text_focus_moved),
         T(test_combo),
+        T(test_context_menu_and_range),
         T(test_combo_in_a_modal_dialog),
         T(test_quick_click_on_a_list_over_a_button),
         T(test_tooltip),

@@ -35,6 +35,7 @@ typedef struct layout {
 typedef struct slot {
     ui_id id;
     float scroll, content, size_w, size_h;
+    float at_x, at_y; // a context menu: where it opened
     int open, initialised, at_bottom;
     uint64_t frame; // last frame it was used
 } slot;
@@ -115,6 +116,9 @@ struct ui_context {
     // change only when the drag ends).
     int curve_point;
     float curve_t, curve_v;
+
+    // Range widgets: the end being dragged (0 low, 1 high).
+    int range_end;
 
     // Menus and combos: one popup open at a time.
     ui_id open_popup;
@@ -214,7 +218,11 @@ static void widget_path(const ui_context *ui, const char *label, int sections, c
     for (int i = 0; i < ui->scope_depth && n < size; i++)
         if (sections || !ui->scope_section[i])
             n += (size_t)snprintf(out + n, size - n, "%s/", ui->scope_names[i]);
-    if (n < size) snprintf(out + n, size - n, "%.*s", (int)label_len(label), label);
+    // A label that shows nothing ("##Opacity": a value without its name) is named by
+    // its suffix.
+    size_t shown = label_len(label);
+    if (shown == 0 && label[0] == '#' && label[1] == '#') label += 2, shown = strlen(label);
+    if (n < size) snprintf(out + n, size - n, "%.*s", (int)shown, label);
 }
 
 // A message shown this frame, where the current scope is (label: a widget it is about).
@@ -1114,7 +1122,10 @@ int ui_slider(ui_context *ui, const char *label, double *value, double lo, doubl
                  ui->hot == id || ui->active == id ? ui->theme.accent_hot : ui->theme.accent);
     char text[192], num[64];
     snprintf(num, sizeof num, fmt ? fmt : "%.3g", *value);
-    snprintf(text, sizeof text, "%.*s: %s", (int)label_len(label), label, num);
+    if (label_len(label))
+        snprintf(text, sizeof text, "%.*s: %s", (int)label_len(label), label, num);
+    else
+        snprintf(text, sizeof text, "%s", num);
     text_in(ui, r, text, strlen(text), ui->theme.text, 1);
     return changed;
 }
@@ -1209,8 +1220,11 @@ int ui_combo(ui_context *ui, const char *label, int *index, const char *const *i
     }
     ui_draw_rect(ui->target, r, widget_colour(ui, id));
     char text[256];
-    snprintf(text, sizeof text, "%.*s: %s", (int)label_len(label), label,
-             *index >= 0 && *index < count ? items[*index] : "");
+    const char *item = *index >= 0 && *index < count ? items[*index] : "";
+    if (label_len(label))
+        snprintf(text, sizeof text, "%.*s: %s", (int)label_len(label), label, item);
+    else
+        snprintf(text, sizeof text, "%s", item);
     text_in(ui, (ui_rect){r.x, r.y, r.w - ui_em(ui, 0.8f), r.h}, text, strlen(text), ui->theme.text,
             0);
     ui_draw_text(ui->target, UI_FACE_SANS, r.x + r.w - ui_em(ui, 0.8f),
@@ -1282,10 +1296,90 @@ int ui_menu_item(ui_context *ui, const char *label, const char *shortcut, int en
     return 0;
 }
 
+int ui_context_menu_begin(ui_context *ui, const char *label) {
+    int opens = ui->last_hovered && ui->in.mouse_pressed[1];
+    ui_id id = ui_get_id(ui, label);
+    slot *s = get_slot(ui, id);
+    if (opens) {
+        ui->open_popup = id;
+        ui->popup_just_opened = 1;
+        s->at_x = ui->in.mouse_x, s->at_y = ui->in.mouse_y;
+    }
+    if (ui->open_popup != id) return 0;
+    ui_push_scope(ui, label);
+    // Kept in the window: above the pointer when there is no room below it.
+    float y = s->at_y + s->size_h > ui->height ? fmaxf(0, s->at_y - s->size_h) : s->at_y;
+    popup_begin(ui, id, s->at_x, y, ui_em(ui, 6));
+    return 1;
+}
+
+void ui_context_menu_end(ui_context *ui) {
+    ui_menu_end(ui);
+}
+
 void ui_menu_separator(ui_context *ui) {
     ui_rect line = popup_line(ui, ui_em(ui, 0.4f) + 1);
     float y = line.y + ui_em(ui, 0.2f);
     ui_draw_rect(ui->target, (ui_rect){line.x + 3, y, line.w - 6, 1}, ui->theme.border);
+}
+
+// ---- ranges ------------------------------------------------------------------------------
+
+int ui_range(ui_context *ui, const char *label, double *lo, double *hi, double edge, double min,
+             double max, const float *bars, int count) {
+    ui_id id = ui_get_id(ui, label);
+    ui_rect r = ui_next_cell(ui);
+    int hovered = over(ui, r);
+    if (hovered) ui->hot_next = id;
+    double span = max > min ? max - min : 1;
+#define RANGE_X(v) (r.x + (float)((fmin(fmax((v), min), max) - min) / span) * r.w)
+    int result = 0;
+    if (hovered && press_for(ui, id)) { // the nearer end follows the pointer
+        ui->active = id;
+        if (ui->focus && ui->focus != id) ui->focus = ui->edit_id = ui->typing_id = 0;
+        float m = ui->in.mouse_x;
+        ui->range_end = fabsf(m - RANGE_X(*hi)) < fabsf(m - RANGE_X(*lo)) ||
+                        (RANGE_X(*hi) == RANGE_X(*lo) && m > RANGE_X(*hi));
+    }
+    if (ui->active == id) {
+        double v = min + (double)((ui->in.mouse_x - r.x) / fmaxf(r.w, 1)) * span;
+        v = fmin(fmax(v, min), max);
+        double *end = ui->range_end ? hi : lo;
+        if (ui->range_end ? v < *lo : v > *hi) v = ui->range_end ? *lo : *hi;
+        if (v != *end) *end = v;
+        result = UI_RANGE_DRAGGING;
+        if (ui->in.mouse_released[0]) {
+            ui->active = 0;
+            result = UI_RANGE_DONE;
+        }
+    }
+    ui->last_id = id, ui->last_rect = r, ui->last_hovered = hovered;
+    ui_draw_rect(ui->target, r, ui->theme.widget);
+    float top = 0;
+    for (int i = 0; i < count; i++)
+        top = fmaxf(top, bars[i]);
+    for (int i = 0; i < count && top > 0; i++) { // the histogram, scaled to its highest bar
+        float bh = (r.h - 2) * bars[i] / top, x0 = r.x + r.w * (float)i / (float)count;
+        float x1 = r.x + r.w * (float)(i + 1) / (float)count;
+        if (bh > 0)
+            ui_draw_rect(ui->target, (ui_rect){x0, r.y + r.h - 1 - bh, fmaxf(x1 - x0, 1), bh},
+                         ui->theme.text_dim);
+    }
+    ui_color sel = ui->theme.accent, soft = ui->theme.accent;
+    sel = (sel & 0x00ffffffu) | 0x70000000u; // the range and its soft edges over the bars
+    soft = (soft & 0x00ffffffu) | 0x30000000u;
+    float xl = RANGE_X(*lo), xh = RANGE_X(*hi);
+    float el = RANGE_X(*lo - edge), eh = RANGE_X(*hi + edge);
+    ui_draw_rect(ui->target, (ui_rect){el, r.y, xl - el, r.h}, soft);
+    ui_draw_rect(ui->target, (ui_rect){xh, r.y, eh - xh, r.h}, soft);
+    ui_draw_rect(ui->target, (ui_rect){xl, r.y, fmaxf(xh - xl, 1), r.h}, sel);
+    ui_color handle = ui->active == id || ui->hot == id ? ui->theme.accent_hot : ui->theme.text;
+    ui_draw_rect(ui->target, (ui_rect){xl - 1, r.y, 2, r.h}, handle);
+    ui_draw_rect(ui->target, (ui_rect){xh - 1, r.y, 2, r.h}, handle);
+    ui_draw_rect_outline(ui->target, r, ui->theme.border, 1);
+#undef RANGE_X
+    record_claim(ui, id, label, r);
+    return result;
 }
 
 // ---- text editing ----------------------------------------------------------------------

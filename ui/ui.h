@@ -1,9 +1,10 @@
 // Orogen's immediate-mode UI (after microui and Dear ImGui): the UI is a function of
 // the editor's state, called every frame. Widgets are identified by ids hashed from
 // their label and the enclosing scopes ("Label##suffix" disambiguates; only "Label"
-// is shown). The library keeps only what must survive a frame: the hot, active and
-// focused widgets, drag and text-edit state, scroll offsets, open menus and sections.
-// It produces a draw list (ui_draw.h) and knows nothing of OpenGL, windows or terrain.
+// is shown; a label that shows nothing, "##Opacity", is named by its suffix and a slider
+// or combo box then shows only its value). The library keeps only what must survive a frame: the
+// hot, active and focused widgets, drag and text-edit state, scroll offsets, open menus and
+// sections. It produces a draw list (ui_draw.h) and knows nothing of OpenGL, windows or terrain.
 //
 // Sizes in layouts: > 0 pixels (use ui_em for sizes that follow the font and the UI
 // scale), < 0 a fraction of the row (-0.5 = half), 0 fills what is left (shared).
@@ -266,6 +267,15 @@ void ui_separator(ui_context *ui);
 // is done (a drag released, a point added or removed); max is the arrays' room.
 int ui_curve(ui_context *ui, const char *label, float *t, float *v, int *count, int max);
 void ui_progress(ui_context *ui, double fraction, const char *text);
+// A range [*lo, *hi] within [min, max] drawn over a histogram (bars[0..count) spread
+// across the cell, scaled to the highest; NULL for none), with a soft edge of `edge`
+// units each side shown lighter (as masks and material rules weigh them). A press
+// moves the nearer end to the pointer and a drag moves it on (never past the other
+// end). Returns UI_RANGE_DRAGGING while the ends follow a drag (*lo, *hi changed live)
+// and UI_RANGE_DONE on the frame the drag is released; 0 otherwise.
+enum { UI_RANGE_DRAGGING = 1, UI_RANGE_DONE = 2 };
+int ui_range(ui_context *ui, const char *label, double *lo, double *hi, double edge, double min,
+             double max, const float *bars, int count);
 // A collapsible section header; returns 1 while open (starts open when default_open).
 int ui_section(ui_context *ui, const char *label, int default_open);
 // A tree node: a row with an arrow that opens and closes it. While open (returns 1) the
@@ -310,5 +320,10 @@ void ui_menu_end(ui_context *ui);
 // An item with an optional shortcut text; disabled items are shown dim and return 0.
 int ui_menu_item(ui_context *ui, const char *label, const char *shortcut, int enabled);
 void ui_menu_separator(ui_context *ui);
+// A context menu: a right click on the widget built just before it opens it at the
+// pointer (above it when there is no room below). 1 while open: add ui_menu_item's,
+// then call ui_context_menu_end. Closes on a pick, Esc or a click elsewhere.
+int ui_context_menu_begin(ui_context *ui, const char *label);
+void ui_context_menu_end(ui_context *ui);
 
 #endif

@@ -47,6 +47,10 @@ uniform vec4 u_brush_tint;              // the tool's colour, and its opacity (f
 uniform vec3 u_brush_ring;              // the colour of its edge and centre
 uniform vec3 u_level_tint[MAX_LEVELS];
 uniform float u_contour;               // metres between contour lines; 0: none
+// The mask editor's overlay (render_settings.h mask_*): x on, y invert, z the terms drawn
+// (1 height, 2 slope, 4 curvature); each term's corners as rule_term reads them.
+uniform ivec3 u_mask;
+uniform vec4 u_mask_height, u_mask_slope, u_mask_curvature; // metres, degrees, -100 x Laplacian
 
 // Contour lines every u_contour metres of height, one pixel or so wide; faded out where
 // they would crowd (a steep slope seen from afar).
@@ -79,6 +83,17 @@ vec3 with_grids(vec3 c) {
 
 // Central differences one source texel apart, clamped to the level's window: past its
 // edge the toroidal texture holds samples from the far side.
+// Where the edited mask lets its layer apply: tinted there, dimmed elsewhere (the
+// terms of editor/layers/layer_mask.h over the drawn surface; flow is not drawn).
+vec3 with_mask(vec3 c, float h, float slope, float curvature) {
+    float w = 1.0;
+    if ((u_mask.z & 1) != 0) w *= rule_term(u_mask_height, h);
+    if ((u_mask.z & 2) != 0) w *= rule_term(u_mask_slope, degrees(atan(slope)));
+    if ((u_mask.z & 4) != 0) w *= rule_term(u_mask_curvature, curvature);
+    if (u_mask.y != 0) w = 1.0 - w;
+    return mix(c * 0.4, mix(c, vec3(1.0, 0.2, 0.55), 0.45), w);
+}
+
 vec2 gradient_at(vec4 src, vec2 p, float spacing_here) {
     float texel = 1.0 / src.z; // one source texel in local units
     vec2 lo = max(p - texel, vec2(0.0)), hi = min(p + texel, vec2(CLIP_SIZE - 1.0));
@@ -215,6 +230,16 @@ void main() {
     }
 #endif
     vec3 lit = sunlit(c, n, view_dir, 24.0, 0.04);
+#ifdef OVERLAYS
+    if (u_mask.x != 0) {
+        float k = curvature;
+        if ((u_mask.z & 4) != 0 && u_rules_curvature == 0) {
+            k = curvature_at(u_lvl_src_a[u_level], v_local, spacing);
+            if (alpha > 0.0) k = mix(k, curvature_at(u_lvl_src_b[u_level], v_local, spacing), alpha);
+        }
+        lit = with_mask(lit, h, slope, k);
+    }
+#endif
 
 #ifdef BRUSH
     {

@@ -1,0 +1,29 @@
+// The Layers panel's own state (app/layers_panel.c): the edit layers' rows (rename,
+// drag to reorder) and the mask editor. Only what must last between frames; the stack
+// itself is read from the world each frame and changed only by layer commands.
+#ifndef OROGEN_APP_LAYERS_PANEL_STATE_H
+#define OROGEN_APP_LAYERS_PANEL_STATE_H
+
+#include "editor/layers/layer_table.h"
+#include "editor/world/terrain_histogram.h"
+
+typedef struct layers_panel_state {
+    int32_t renaming;            // id of the layer whose name is being typed (0: none)
+    int rename_seen;             // its field has had the keyboard
+    char rename[LAYER_NAME_MAX]; // the name typed so far
+    int32_t pressed;             // id of the layer whose row the left button went down on
+    float press_y;               // where (pixels)
+    int dragging;                // it moved far enough to be a drag to another place
+    int32_t mask_layer;          // id of the layer whose mask is being edited (0: none)
+    layer_mask draft;            // its mask as dragged so far (the overlay shows it)
+    int draft_live;              // a range is being dragged: the draft is not the layer's
+    terrain_histogram hist;      // heights and slopes of the composite around the view
+    int hist_valid;              // hist was read, for hist_step of the history
+    size_t hist_step;            // the history position it was read at
+    double hist_at[2];           // and the camera's place then
+    char hist_error[256];        // why it could not be read ("" when it was)
+    char fields[4][3][32];       // the terms' low, high and edge fields as typed
+    char field_error[160];       // a typed number that is none, said under the fields
+} layers_panel_state;
+
+#endif

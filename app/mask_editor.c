@@ -1,0 +1,225 @@
+// The mask editor of the Layers panel: a layer's mask terms (height, slope, curvature,
+// flow), each on or off, with its low, high and soft-edge values typed and, for height
+// and slope, a range dragged over a histogram of the composite around the view; invert
+// and clear. While the editor is open the viewport tints where the mask (as dragged so
+// far) lets the layer apply. Each change runs one `layer mask` command.
+#include "app/editor_ui_internal.h"
+
+#include "app/layers_panel_state.h"
+
+#include <stdlib.h>
+
+enum { TERM_HEIGHT, TERM_SLOPE, TERM_CURVATURE, TERM_FLOW, TERM_COUNT };
+static const char *const term_keys[TERM_COUNT] = {"height", "slope", "curvature", "flow"};
+static const char *const term_labels[TERM_COUNT] = {"Height (m)", "Slope (degrees)",
+                                                    "Curvature (convex +)", "Flow (m2 upstream)"};
+
+static layer_mask_range *term(layer_mask *m, int k) {
+    layer_mask_range *r[TERM_COUNT] = {&m->height, &m->slope, &m->curvature, &m->flow};
+    return r[k];
+}
+
+// The `layer mask` command that sets every term of m on layer name.
+static void mask_command(const char *name, const layer_mask *m, char *cmd, size_t len) {
+    size_t n = (size_t)snprintf(cmd, len, "layer mask %s", name);
+    for (int k = 0; k < TERM_COUNT && n < len; k++) {
+        layer_mask_range r = *term((layer_mask *)m, k);
+        if (k == TERM_HEIGHT) r.edge = 0; // height's soft edge is the falloff key
+        char text[96];
+        layer_mask_range_format(&r, text, sizeof text);
+        n += (size_t)snprintf(cmd + n, len - n, " %s=%s", term_keys[k], text);
+    }
+    if (n < len)
+        snprintf(cmd + n, len - n, " falloff=%.6g invert=%d", m->height.on ? m->height.edge : 0,
+                 m->invert);
+}
+
+static void apply(editor_ui *e, cmd_context *ctx, const layer_info *l, const layer_mask *m) {
+    char cmd[1024], now[1024];
+    mask_command(l->name, m, cmd, sizeof cmd);
+    mask_command(l->name, &l->mask, now, sizeof now);
+    if (strcmp(cmd, now) != 0) editor_ui_run(e, ctx, cmd);
+}
+
+// The histogram around the camera, read again after an edit or once the camera has
+// moved a quarter of the area away (a quick read of at most 256 x 256 samples).
+static void refresh_histogram(layers_panel_state *s, cmd_context *ctx, const viewport *v,
+                              int force) {
+    history *h = world_history(ctx->world);
+    size_t step = history_position(h) * 1000003u + history_count(h);
+    double x = v->cam.pos[0], z = v->cam.pos[2];
+    double half = s->hist_valid ? (s->hist.x1 - s->hist.x0) * 0.5 : 0;
+    int moved = s->hist_valid &&
+                (fabs(x - s->hist_at[0]) > half * 0.5 || fabs(z - s->hist_at[1]) > half * 0.5);
+    if (!force && s->hist_step == step && (s->hist_valid || s->hist_error[0]) && !moved) return;
+    const world_params *p = world_get_params(ctx->world);
+    double sp = world_grid_sample_metres(p), ground = 0;
+    og_error err = {{0}};
+    world_sample(ctx->world, 0, x, z, &ground, &err);
+    // About what the view takes in from the camera's height, at least 256 samples.
+    half = fmin(fmax(fabs(v->cam.pos[1] - ground) * 3, sp * 128), sp * 65536);
+    s->hist_step = step;
+    s->hist_at[0] = x, s->hist_at[1] = z;
+    s->hist_valid = terrain_histogram_compute(ctx->world, 0, x, z, half, &s->hist, &err) == 0;
+    snprintf(s->hist_error, sizeof s->hist_error, "%.200s", s->hist_valid ? "" : err.msg);
+}
+
+// A number field showing value until typed into; Enter gives *out (inf and -inf too).
+static int number_field(layers_panel_state *s, ui_context *ui, const char *label, char *buf,
+                        size_t len, double value, double *out, const char *tip) {
+    int rc = ui_textbox_flags(ui, label, buf, len, UI_TEXTBOX_SELECT_ALL);
+    ui_tooltip(ui, tip);
+    if (rc & UI_TEXT_SUBMIT) {
+        char *end;
+        double d = strtod(buf, &end);
+        while (*end == ' ')
+            end++;
+        if (end == buf || *end || d != d) {
+            snprintf(s->field_error, sizeof s->field_error, "%s: '%s' is not a number", label, buf);
+            return 0;
+        }
+        s->field_error[0] = 0;
+        *out = d;
+        return 1;
+    }
+    if (!ui_last_focused(ui)) snprintf(buf, len, "%.6g", value);
+    return 0;
+}
+
+// One term: its checkbox, its range over the histogram (height, slope), its fields.
+static void term_rows(editor_ui *e, ui_context *ui, cmd_context *ctx, const layer_info *l, int k,
+                      int flat) {
+    layers_panel_state *s = &e->layers;
+    layer_mask_range *r = term(&s->draft, k);
+    ui_push_scope(ui, term_keys[k]);
+    ui_row(ui, 1, NULL, 0);
+    int on = r->on;
+    if (ui_checkbox(ui, term_labels[k], &on)) {
+        layer_mask m = s->draft;
+        layer_mask_range *t = term(&m, k);
+        t->on = on;
+        if (on) { // a first range: the middle of what the view shows, or a usual one
+            static const double lo[TERM_COUNT] = {0, 20, 5, 1e4},
+                                hi[TERM_COUNT] = {0, 45, 1e9, 1e12};
+            t->lo = lo[k], t->hi = hi[k], t->edge = k == TERM_SLOPE ? 5 : 0;
+            if (k == TERM_HEIGHT) {
+                double a = s->hist_valid ? s->hist.height_min : 0;
+                double b = s->hist_valid ? s->hist.height_max : 1000;
+                t->lo = round(a + (b - a) / 3), t->hi = round(a + (b - a) * 2 / 3);
+            }
+        }
+        apply(e, ctx, l, &m);
+    }
+    ui_tooltip(ui, k == TERM_FLOW ? "Where water gathers: the area draining through a sample "
+                                    "(not drawn in the view's overlay)"
+                                  : "Limit the layer to this range of the composite below it");
+    if (!r->on) {
+        ui_pop_scope(ui);
+        return;
+    }
+    if (flat && s->hist_valid && (k == TERM_HEIGHT || k == TERM_SLOPE)) {
+        double min = k == TERM_SLOPE ? 0 : s->hist.height_min;
+        double max = k == TERM_SLOPE ? 90 : s->hist.height_max;
+        if (k == TERM_HEIGHT) { // the range shows even when set beyond what the view holds
+            if (isfinite(r->lo)) min = fmin(min, r->lo);
+            if (isfinite(r->hi)) max = fmax(max, r->hi);
+            double pad = (max - min) * 0.05;
+            min -= pad, max += pad;
+        }
+        double lo = isfinite(r->lo) ? r->lo : min, hi = isfinite(r->hi) ? r->hi : max;
+        ui_row(ui, 1, NULL, ui_em(ui, 2.6f));
+        int rc = ui_range(ui, "Range", &lo, &hi, r->edge, min, max,
+                          k == TERM_SLOPE ? s->hist.slope : s->hist.height, TERRAIN_HISTOGRAM_BINS);
+        ui_tooltip(ui, k == TERM_SLOPE ? "Drag an end: the slopes the layer applies on, over how "
+                                         "much of the view has each slope"
+                                       : "Drag an end: the heights the layer applies at, over how "
+                                         "much of the view lies at each height");
+        if (rc) { // rounded as a person would type them
+            double q = k == TERM_SLOPE ? 0.5 : pow(10, floor(log10(fmax(max - min, 1e-3))) - 2);
+            r->lo = round(lo / q) * q, r->hi = round(hi / q) * q;
+            s->draft_live = rc == UI_RANGE_DRAGGING;
+            if (rc == UI_RANGE_DONE) apply(e, ctx, l, &s->draft);
+        }
+    }
+    ui_row(ui, 3, NULL, 0);
+    double lo = r->lo, hi = r->hi, edge = r->edge;
+    int set = number_field(s, ui, "Low", s->fields[k][0], sizeof s->fields[k][0], r->lo, &lo,
+                           "Where the range starts (-inf: no lower bound); Enter sets it");
+    set |= number_field(s, ui, "High", s->fields[k][1], sizeof s->fields[k][1], r->hi, &hi,
+                        "Where the range ends (inf: no upper bound); Enter sets it");
+    set |= number_field(s, ui, k == TERM_HEIGHT ? "Falloff" : "Edge", s->fields[k][2],
+                        sizeof s->fields[k][2], r->edge, &edge,
+                        "The soft edge outside the range, in the term's units (0: hard)");
+    if (set) {
+        layer_mask m = s->draft;
+        layer_mask_range *t = term(&m, k);
+        t->lo = lo, t->hi = hi, t->edge = edge;
+        apply(e, ctx, l, &m); // the command says what is wrong with a bad range
+    }
+    ui_pop_scope(ui);
+}
+
+// The overlay the terrain renderer draws: the draft's height, slope and curvature terms.
+static void set_overlay(render_settings *rs, const layer_mask *m) {
+    const layer_mask_range *r[3] = {&m->height, &m->slope, &m->curvature};
+    float *out[3] = {rs->mask_height, rs->mask_slope, rs->mask_curvature};
+    rs->mask_terms = 0;
+    for (int k = 0; k < 3; k++) {
+        if (!r[k]->on) continue;
+        rs->mask_terms |= 1 << k;
+        double lo = isfinite(r[k]->lo) ? r[k]->lo : -1e30,
+               hi = isfinite(r[k]->hi) ? r[k]->hi : 1e30;
+        double e = r[k]->edge;
+        out[k][0] = (float)(lo - e), out[k][1] = (float)lo, out[k][2] = (float)hi;
+        out[k][3] = (float)(hi + e);
+    }
+    rs->mask_invert = m->invert;
+}
+
+void mask_editor(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v, const layer_info *l) {
+    layers_panel_state *s = &e->layers;
+    const ui_theme *th = ui_get_theme(ui);
+    int flat = world_get_params(ctx->world)->kind != WORLD_PLANET;
+    if (!s->draft_live) s->draft = l->mask; // an undo or a command shows at once
+    ui_push_scope(ui, "Mask editor");
+    ui_row(ui, 1, NULL, 0);
+    ui_separator(ui);
+    char line[400];
+    snprintf(line, sizeof line, "Mask of %s: where it applies", l->name);
+    ui_label(ui, line);
+    if (flat) {
+        refresh_histogram(s, ctx, v, 0);
+        if (s->hist_valid)
+            snprintf(line, sizeof line,
+                     "Histograms of %.0f x %.0f m around the view, samples %g m "
+                     "apart",
+                     s->hist.x1 - s->hist.x0, s->hist.z1 - s->hist.z0, s->hist.spacing);
+        else
+            snprintf(line, sizeof line, "No histogram: %s", s->hist_error);
+        ui_label_wrapped(ui, line, th->text_dim);
+    } else {
+        ui_label_wrapped(ui, "On a planet the ranges are typed (no histogram or overlay)",
+                         th->text_dim);
+    }
+    for (int k = 0; k < TERM_COUNT; k++)
+        term_rows(e, ui, ctx, l, k, flat);
+    if (s->field_error[0]) ui_label_wrapped(ui, s->field_error, th->text_error);
+    float two[2] = {0, 0};
+    ui_row(ui, 2, two, 0);
+    int invert = s->draft.invert;
+    if (ui_checkbox(ui, "Invert", &invert)) {
+        layer_mask m = s->draft;
+        m.invert = invert;
+        apply(e, ctx, l, &m);
+    }
+    ui_tooltip(ui, "Apply the layer where the terms do not hold instead");
+    if (ui_button(ui, "Clear mask")) runf(e, ctx, "layer mask %s clear", l->name);
+    ui_tooltip(ui, "Remove every term: the layer applies everywhere again (undo brings it back)");
+    ui_row(ui, 1, NULL, 0);
+    if (ui_button(ui, "Close mask editor")) s->mask_layer = 0;
+    ui_pop_scope(ui);
+    if (flat && s->mask_layer)
+        set_overlay(&v->settings, &s->draft);
+    else
+        v->settings.mask_terms = 0;
+}

