@@ -389,7 +389,8 @@ static void test_commands_undo_redo(void **state) {
     run_fails(&s, "layer move Hills3 sideways", "expected up, down");
     run_fails(&s, "layer move Hills3 up", "already at the top");
     run_fails(&s, "layer merge Sculpt", "bottom layer");
-    run_fails(&s, "layer new K kind=paint", "only height layers");
+    run_fails(&s, "layer new K kind=volume", "expected height or paint");
+    run_fails(&s, "layer new K kind=paint blend=max", "blend is for height layers");
     run(&s, "layer set Hills3 locked=1");
     run_fails(&s, "stroke 10 10 50 50", "locked");
     run_fails(&s, "layer clear Hills3", "locked");

@@ -2,6 +2,7 @@
 
 #include "editor/edit/edit_commit.h"
 #include "editor/edit/layer_composite.h"
+#include "editor/edit/paint_composite.h"
 #include "io/parse.h"
 
 #include <stdlib.h>
@@ -16,9 +17,11 @@ int cmd_layers(cmd_context *ctx, int argc, char **argv, og_error *err) {
         if (layer_count_filled(ctx->world, l->id, &filled, err) != 0) return -1;
         char mask[512] = "none";
         if (layer_mask_active(&l->mask)) layer_mask_format(&l->mask, mask, sizeof mask);
+        // A paint layer has no blend: it covers by its painted coverage.
         fprintf(ctx->out,
-                "%c %d %s kind=height blend=%s opacity=%g visible=%d locked=%d tiles=%zu mask=%s\n",
-                i == t->active ? '*' : ' ', i, l->name, layer_blend_name(l->blend), l->opacity,
+                "%c %d %s kind=%s blend=%s opacity=%g visible=%d locked=%d tiles=%zu mask=%s\n",
+                i == t->active ? '*' : ' ', i, l->name, layer_kind_name(l->kind),
+                l->kind == LAYER_KIND_PAINT ? "cover" : layer_blend_name(l->blend), l->opacity,
                 l->visible, l->locked, filled, mask);
     }
     return 0;
@@ -45,6 +48,7 @@ typedef struct layer_change {
     int32_t copy_from, copy_to; // duplicate: tiles from -> to
     int32_t clear_id;           // clear: that layer's tiles to nothing
     int merge_below;            // merge: layer index below the merged one (-1: none)
+    int merge_paint;            // merge: of paint layers
 } layer_change;
 
 static int tiles_of(world *w, int32_t id, tile_key **keys, size_t *n, og_error *err) {
@@ -67,8 +71,28 @@ static int apply_change(cmd_context *ctx, const layer_change *c, og_error *err) 
     int rc = e ? 0 : -1;
     if (e) edit_set_layer_mode(e, EDIT_LAYER_COMPOSED);
     // Tile work that reads the table as it was comes first (merge), then the new table.
-    if (rc == 0 && c->merge_below >= 0)
-        rc = layer_merge_tiles(e, c->merge_below, keys[0], counts[0], err);
+    if (rc == 0 && c->merge_below >= 0) { // over the tiles of both
+        tile_key *both = malloc((counts[0] + counts[1] + 1) * sizeof *both);
+        size_t n = 0;
+        if (!both)
+            rc = og_error_set(err, "out of memory merging layers");
+        else {
+            for (int i = 0; i < 2; i++)
+                for (size_t k = 0; k < counts[i]; k++) {
+                    tile_key key = keys[i][k];
+                    key.layer = tile_layer_in_slot(tile_key_kind(key), 0); // the place
+                    size_t m = 0;
+                    while (m < n && !tile_key_equal(both[m], key))
+                        m++;
+                    if (m == n) both[n++] = key;
+                }
+            for (size_t k = 0; k < n; k++)
+                both[k].layer = tile_layer_in_slot(tile_key_kind(both[k]), c->recompose_ids[0]);
+            rc = c->merge_paint ? paint_merge_tiles(e, c->merge_below, both, n, err)
+                                : layer_merge_tiles(e, c->merge_below, both, n, err);
+            free(both);
+        }
+    }
     if (rc == 0 && c->copy_to)
         rc = layer_copy_tiles(e, c->copy_from, c->copy_to, keys[0], counts[0], err);
     if (rc == 0 && c->clear_id) rc = layer_copy_tiles(e, -1, c->clear_id, keys[0], counts[0], err);
@@ -95,15 +119,20 @@ static int refuse_locked(const layer_info *l, const char *what, og_error *err) {
 static int layer_new(cmd_context *ctx, int argc, char **argv, layer_change *c, og_error *err) {
     layer_table *t = &c->next.layers;
     layer_blend blend = LAYER_BLEND_ADD;
+    layer_kind kind = LAYER_KIND_HEIGHT;
+    int has_blend = 0;
     double opacity = 1.0;
     for (int i = 3; i < argc; i++) {
         char buf[256], *key, *value;
         if (parse_setting(argv[i], buf, sizeof buf, &key, &value, err) != 0) return -1;
         if (!strcmp(key, "kind")) {
-            if (strcmp(value, "height"))
-                return og_error_set(
-                    err, "layer new: kind: only height layers exist so far, got '%s'", value);
+            int k = layer_kind_parse(value);
+            if (k < 0)
+                return og_error_set(err, "layer new: kind: expected height or paint, got '%s'",
+                                    value);
+            kind = (layer_kind)k;
         } else if (!strcmp(key, "blend")) {
+            has_blend = 1;
             int b = layer_blend_parse(value);
             if (b < 0)
                 return og_error_set(
@@ -120,9 +149,13 @@ static int layer_new(cmd_context *ctx, int argc, char **argv, layer_change *c, o
         }
     }
     (void)ctx;
+    if (kind == LAYER_KIND_PAINT && has_blend)
+        return og_error_set(err, "layer new: blend: a paint layer covers what is below by its "
+                                 "painted coverage (blend is for height layers)");
     og_error why;
     int at = layer_table_insert(t, t->count ? t->active + 1 : 0, argv[2], blend, opacity, &why);
     if (at < 0) return og_error_set(err, "layer new: %s", why.msg);
+    t->layers[at].kind = kind;
     t->active = at;
     return 0;
 }
@@ -266,6 +299,7 @@ int cmd_layer(cmd_context *ctx, int argc, char **argv, og_error *err) {
         og_error why;
         int at = layer_table_insert(t, i + 1, name, copy.blend, copy.opacity, &why);
         if (at < 0) return og_error_set(err, "layer duplicate: %s", why.msg);
+        t->layers[at].kind = copy.kind;
         t->layers[at].visible = copy.visible;
         t->layers[at].mask = copy.mask;
         t->active = at;
@@ -288,14 +322,22 @@ int cmd_layer(cmd_context *ctx, int argc, char **argv, og_error *err) {
                 "layer merge: layer '%s' is hidden: show it first (merging keeps what "
                 "is seen)",
                 l->visible ? below->name : l->name);
-        if (layer_mask_active(&l->mask) || layer_mask_active(&below->mask))
+        if (l->kind != below->kind)
             return og_error_set(err,
-                                "layer merge: layer '%s' has a mask; merging masked layers is not "
-                                "supported yet (remove it with 'layer mask %s clear')",
-                                layer_mask_active(&l->mask) ? l->name : below->name,
-                                layer_mask_active(&l->mask) ? l->name : below->name);
+                                "layer merge: '%s' is a %s layer and '%s' below it a %s layer: "
+                                "only layers of one kind merge (move one first)",
+                                l->name, layer_kind_name(l->kind), below->name,
+                                layer_kind_name(below->kind));
         c.merge_below = i - 1;
+        c.merge_paint = l->kind == LAYER_KIND_PAINT;
         c.recompose_ids[0] = l->id;
+        c.recompose_ids[1] = below->id;
+        // Masks and (for paint) opacity are baked into the merged layer's samples.
+        if (c.merge_paint || layer_mask_active(&l->mask) || layer_mask_active(&below->mask)) {
+            if (!c.merge_paint) below->blend = LAYER_BLEND_ADD;
+            below->opacity = 1.0;
+            layer_mask_init(&below->mask);
+        }
         layer_table_remove(t, i);
         t->active = i - 1;
     } else if (!strcmp(sub, "mask")) {

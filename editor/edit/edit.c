@@ -132,12 +132,21 @@ int edit_set_params(edit *e, const world_params *params, og_error *err) {
 
 // Tools change the composite; the active layer takes the change (layer_composite.h),
 // unless it is hidden or locked: then the tool is refused before it changes anything.
+// Heights go into a height layer; paint goes into a paint layer, or with a height layer
+// active into the ground's own paint (the base, under every paint layer).
 static int check_active_layer(edit *e, tile_key key, og_error *err) {
-    if (e->layer_mode == EDIT_LAYER_COMPOSED || key.layer != TILE_LAYER_COARSE || key.level != 0)
+    if (e->layer_mode == EDIT_LAYER_COMPOSED || key.level != 0 ||
+        (key.layer != TILE_LAYER_COARSE && key.layer != TILE_LAYER_MATERIAL))
         return 0;
     const layer_table *t = &world_get_params(e->world)->layers;
     if (!t->count) return 0;
     const layer_info *l = &t->layers[t->active];
+    if (key.layer == TILE_LAYER_MATERIAL && l->kind != LAYER_KIND_PAINT) return 0;
+    if (key.layer == TILE_LAYER_COARSE && l->kind == LAYER_KIND_PAINT)
+        return og_error_set(err,
+                            "layer '%s' is a paint layer: it holds materials, not heights "
+                            "(select a height layer with 'layer select NAME' to sculpt)",
+                            l->name);
     if (!l->visible)
         return og_error_set(err,
                             "layer '%s' is hidden: edits to it would not show (show it with "

@@ -1,6 +1,9 @@
 #include "editor/edit/layer_composite.h"
 
+#include "editor/edit/height_window.h"
+#include "editor/edit/paint_composite.h"
 #include "editor/edit/parallel.h"
+#include "editor/edit/tile_parts.h"
 #include "editor/layers/layer_blend.h"
 #include "editor/world/layer_grid.h"
 
@@ -8,20 +11,13 @@
 #include <stdlib.h>
 #include <string.h>
 
-// The part of one tile to recompose: local sample columns [x0, x1), rows [z0, z1).
-typedef struct tile_part {
-    int face;
-    int32_t tx, ty;
-    int x0, z0, x1, z1;
-} tile_part;
-
 typedef struct compose_job {
     edit *e;
     layer_table table; // a copy: the world's may change only between edits
     int take;          // layer_take_edit: the tool's change goes into the active layer
     int stage;         // taking: 1 writes the active layer, 2 recomposes
     edit_layer_mode mode;
-    int top_visible; // index of the highest visible layer (-1: none)
+    int top_visible; // index of the highest visible height layer (-1: none)
     const tile_part *parts;
 } compose_job;
 
@@ -30,93 +26,6 @@ static tile_key slot_key(const tile_part *p, int32_t slot) {
                       .face = p->face,
                       .tx = p->tx,
                       .ty = p->ty};
-}
-
-static grid_rect grow(grid_rect r, int by) {
-    return (grid_rect){r.x0 - by, r.z0 - by, r.x1 + by, r.z1 + by};
-}
-
-static size_t rect_samples(grid_rect r) {
-    return (size_t)((r.x1 - r.x0) * (r.z1 - r.z0));
-}
-
-// Samples of composite around a layer its mask reads (0 without a mask).
-static int mask_border(const layer_info *l, double spacing) {
-    return l->visible && layer_mask_active(&l->mask) ? layer_mask_border(&l->mask, spacing) : 0;
-}
-
-// The composite of the visible layers [0, upto) over r grown by extra (row-major, malloc'd
-// into *out), from the base. A masked layer reads the composite below it around its part:
-// the window starts wider by every such border and narrows layer by layer. When record is
-// a layer index, *weights (r's size) gets its weight, opacity times mask.
-static int compose_window(const compose_job *j, const layer_grid *grid, grid_rect r, int upto,
-                          int extra, int record, float *weights, float **out, og_error *err) {
-    world *w = edit_world(j->e);
-    int margin = extra;
-    for (int i = 0; i < upto; i++)
-        margin += mask_border(&j->table.layers[i], grid->spacing);
-    grid_rect outer = grow(r, margin);
-    int ow = (int)(outer.x1 - outer.x0);
-    size_t n = rect_samples(outer);
-    float *acc = malloc(sizeof(float) * n), *val = malloc(sizeof(float) * n);
-    float *below = malloc(sizeof(float) * n), *mask = malloc(sizeof(float) * n);
-    int rc = acc && val && below && mask ? 0 : og_error_set(err, "out of memory composing layers");
-    layer_grid g = *grid;
-    g.layer = (tile_layer)tile_layer_in_slot(TILE_LAYER_COARSE, TILE_SLOT_BASE);
-    if (rc == 0) rc = layer_grid_read(w, &g, outer, acc, err);
-    for (int i = 0; i < upto && rc == 0; i++) {
-        const layer_info *l = &j->table.layers[i];
-        if (!l->visible) continue;
-        int b = mask_border(l, grid->spacing), masked = layer_mask_active(&l->mask);
-        grid_rect in = grow(r, margin), apply = grow(r, margin - b);
-        int iw = (int)(in.x1 - in.x0), ih = (int)(in.z1 - in.z0);
-        int aw = (int)(apply.x1 - apply.x0), ah = (int)(apply.z1 - apply.z0);
-        g.layer = (tile_layer)tile_layer_in_slot(TILE_LAYER_COARSE, l->id);
-        if ((rc = layer_grid_read(w, &g, apply, val, err)) != 0) break;
-        float opacity = (float)l->opacity;
-        if (masked) {
-            for (int z = 0; z < ih; z++) // the composite below it, its window alone
-                memcpy(below + (size_t)z * iw,
-                       acc + (size_t)(z + in.z0 - outer.z0) * ow + (in.x0 - outer.x0),
-                       sizeof(float) * (size_t)iw);
-            layer_mask_evaluate(&l->mask, below, aw, ah, b, grid->spacing, NULL, mask);
-        }
-        for (int z = 0; z < ah; z++) {
-            float *row = acc + (size_t)(z + apply.z0 - outer.z0) * ow + (apply.x0 - outer.x0);
-            const float *v = val + (size_t)z * aw;
-            if (!masked) {
-                layer_blend_row(l->blend, opacity, row, v, row, aw);
-                continue;
-            }
-            for (int x = 0; x < aw; x++)
-                row[x] =
-                    layer_blend_sample(l->blend, opacity * mask[(size_t)z * aw + x], row[x], v[x]);
-        }
-        if (i == record && weights) {
-            int off = margin - b, rw = (int)(r.x1 - r.x0); // r within apply
-            for (int z = 0; z < (int)(r.z1 - r.z0); z++)
-                for (int x = 0; x < rw; x++)
-                    weights[(size_t)z * rw + x] =
-                        masked ? opacity * mask[(size_t)(z + off) * aw + x + off] : opacity;
-        }
-        margin -= b;
-    }
-    free(val);
-    free(below);
-    free(mask);
-    if (rc != 0) {
-        free(acc);
-        return -1;
-    }
-    // Down to r grown by extra (margin == extra now).
-    grid_rect want = grow(r, extra);
-    int ww = (int)(want.x1 - want.x0);
-    for (int z = 0; z < (int)(want.z1 - want.z0); z++)
-        memmove(acc + (size_t)z * ww,
-                acc + (size_t)(z + want.z0 - outer.z0) * ow + (want.x0 - outer.x0),
-                sizeof(float) * (size_t)ww);
-    *out = acc;
-    return 0;
 }
 
 // Below this weight a result tool's change is not divided further (take_sample).
@@ -172,9 +81,9 @@ static int compose_task(void *user, int task, og_error *err) {
     grid_rect changed = {1, 1, 0, 0}; // part-local; empty
     if (j->stage == 1) { // the active layer takes the tool's change, over the layers below it
         const layer_info *l = &j->table.layers[active];
-        int b = mask_border(l, grid.spacing);
+        int b = height_window_mask_border(l, grid.spacing);
         tile_view lv;
-        rc = compose_window(j, &grid, r, active, b, -1, NULL, &acc, err);
+        rc = height_window_compose(j->e, &j->table, &grid, r, active, b, -1, NULL, &acc, err);
         if (rc == 0 && layer_mask_active(&l->mask)) {
             float *mask = malloc(sizeof(float) * (size_t)rw * (size_t)rh);
             if (!mask)
@@ -203,7 +112,8 @@ static int compose_task(void *user, int task, og_error *err) {
             edit_tile_release(j->e, &lv);
         }
     } else {
-        rc = compose_window(j, &grid, r, j->table.count, 0, active, weight, &acc, err);
+        rc = height_window_compose(j->e, &j->table, &grid, r, j->table.count, 0, active, weight,
+                                   &acc, err);
         // On top at full weight, the composite keeps the tool's own result bit for bit,
         // as on a single heightfield, where base + layer rounds differently (a float sum
         // cannot always hit it: an ulp of the layer's value). Taking, samples the tool
@@ -240,73 +150,14 @@ static int compose_task(void *user, int task, og_error *err) {
     return rc;
 }
 
-static int part_order(const void *a, const void *b) {
-    const tile_part *x = a, *y = b;
-    if (x->face != y->face) return x->face < y->face ? -1 : 1;
-    if (x->ty != y->ty) return x->ty < y->ty ? -1 : 1;
-    if (x->tx != y->tx) return x->tx < y->tx ? -1 : 1;
-    return 0;
-}
-
-// Each tile once, covering every part of it (their bounding box).
-static size_t merge_parts(tile_part *parts, size_t n) {
-    if (!n) return 0;
-    qsort(parts, n, sizeof *parts, part_order);
-    size_t out = 0;
-    for (size_t i = 1; i < n; i++) {
-        tile_part *m = &parts[out];
-        if (!part_order(m, &parts[i])) {
-            if (parts[i].x0 < m->x0) m->x0 = parts[i].x0;
-            if (parts[i].z0 < m->z0) m->z0 = parts[i].z0;
-            if (parts[i].x1 > m->x1) m->x1 = parts[i].x1;
-            if (parts[i].z1 > m->z1) m->z1 = parts[i].z1;
-        } else {
-            parts[++out] = parts[i];
-        }
-    }
-    return out + 1;
-}
-
-typedef struct part_list {
-    tile_part *parts;
-    size_t count, cap;
-} part_list;
-
-static int add_rect(part_list *l, int face, grid_rect r) {
-    if (grid_rect_empty(r)) return 0;
-    int64_t tx0 = world_grid_floor_div(r.x0, TILE_SIZE),
-            tx1 = world_grid_floor_div(r.x1 - 1, TILE_SIZE);
-    int64_t tz0 = world_grid_floor_div(r.z0, TILE_SIZE),
-            tz1 = world_grid_floor_div(r.z1 - 1, TILE_SIZE);
-    for (int64_t tz = tz0; tz <= tz1; tz++)
-        for (int64_t tx = tx0; tx <= tx1; tx++) {
-            if (l->count == l->cap) {
-                size_t cap = l->cap ? l->cap * 2 : 64;
-                tile_part *grown = realloc(l->parts, cap * sizeof *grown);
-                if (!grown) return -1;
-                l->parts = grown;
-                l->cap = cap;
-            }
-            int64_t gx = tx * TILE_SIZE, gz = tz * TILE_SIZE;
-            tile_part p = {face,
-                           (int32_t)tx,
-                           (int32_t)tz,
-                           (int)((r.x0 > gx ? r.x0 : gx) - gx),
-                           (int)((r.z0 > gz ? r.z0 : gz) - gz),
-                           (int)((r.x1 < gx + TILE_SIZE ? r.x1 : gx + TILE_SIZE) - gx),
-                           (int)((r.z1 < gz + TILE_SIZE ? r.z1 : gz + TILE_SIZE) - gz)};
-            l->parts[l->count++] = p;
-        }
-    return 0;
-}
-
-static int run(edit *e, part_list *l, int take, og_error *err) {
+// Runs over l's parts (frees them): the composite's heights, taking a tool's change
+// first when take; then the materials where a paint layer's mask reads those heights.
+static int run(edit *e, tile_parts *l, int take, og_error *err) {
     compose_job j = {.e = e, .table = world_get_params(edit_world(e))->layers, .take = take};
     j.mode = edit_get_layer_mode(e);
-    j.top_visible = -1;
-    for (int i = 0; i < j.table.count; i++)
-        if (j.table.layers[i].visible) j.top_visible = i;
-    size_t n = merge_parts(l->parts, l->count);
+    j.top_visible = layer_table_top_visible(&j.table, LAYER_KIND_HEIGHT);
+    tile_parts_merge(l);
+    size_t n = l->count;
     j.parts = l->parts;
     edit_layer_mode mode = edit_get_layer_mode(e);
     edit_set_layer_mode(e, EDIT_LAYER_COMPOSED); // composing writes the composite itself
@@ -321,29 +172,39 @@ static int run(edit *e, part_list *l, int take, og_error *err) {
     }
     if (rc == 0) rc = parallel_run((int)n, compose_task, &j, err);
     edit_set_layer_mode(e, mode);
-    free(l->parts);
+    if (rc == 0) rc = paint_recompose_masked(e, l->parts, n, err);
+    tile_parts_free(l);
     return rc;
 }
 
 int layer_recompose(edit *e, int face, grid_rect r, og_error *err) {
-    part_list l = {0};
-    if (add_rect(&l, face, r) != 0) {
-        free(l.parts);
+    tile_parts l = {0};
+    if (tile_parts_add_rect(&l, face, r) != 0) {
+        tile_parts_free(&l);
         return og_error_set(err, "out of memory composing layers");
     }
     return run(e, &l, 0, err);
 }
 
 int layer_recompose_tiles(edit *e, const tile_key *keys, size_t count, og_error *err) {
-    part_list l = {0};
+    tile_parts heights = {0}, paint = {0};
     for (size_t i = 0; i < count; i++) {
         int64_t gx = (int64_t)keys[i].tx * TILE_SIZE, gz = (int64_t)keys[i].ty * TILE_SIZE;
-        if (add_rect(&l, keys[i].face, (grid_rect){gx, gz, gx + TILE_SIZE, gz + TILE_SIZE}) != 0) {
-            free(l.parts);
+        tile_parts *l = tile_key_kind(keys[i]) == TILE_LAYER_MATERIAL ? &paint : &heights;
+        if (tile_parts_add_rect(l, keys[i].face,
+                                (grid_rect){gx, gz, gx + TILE_SIZE, gz + TILE_SIZE}) != 0) {
+            tile_parts_free(&heights);
+            tile_parts_free(&paint);
             return og_error_set(err, "out of memory composing layers");
         }
     }
-    return run(e, &l, 0, err);
+    int rc = paint_recompose(e, &paint, err);
+    tile_parts_free(&paint);
+    if (rc != 0) {
+        tile_parts_free(&heights);
+        return -1;
+    }
+    return heights.count ? run(e, &heights, 0, err) : 0;
 }
 
 int layer_take_edit(edit *e, og_error *err) {
@@ -352,21 +213,30 @@ int layer_take_edit(edit *e, og_error *err) {
     if (!t->count) return 0;
     const dirty_rect *rects;
     size_t count = edit_dirty_rects(e, &rects);
-    part_list l = {0};
-    for (size_t i = 0; i < count; i++)
-        if (rects[i].layer == TILE_LAYER_COARSE &&
-            add_rect(&l, rects[i].face, rects[i].rect) != 0) {
-            free(l.parts);
+    tile_parts l = {0}, paint = {0};
+    for (size_t i = 0; i < count; i++) {
+        tile_parts *to = rects[i].layer == TILE_LAYER_COARSE     ? &l
+                         : rects[i].layer == TILE_LAYER_MATERIAL ? &paint
+                                                                 : NULL;
+        if (to && tile_parts_add_rect(to, rects[i].face, rects[i].rect) != 0) {
+            tile_parts_free(&l);
+            tile_parts_free(&paint);
             return og_error_set(err, "out of memory composing layers");
         }
-    if (!l.count) return 0;
+    }
+    int rc = paint.count ? paint_take_edit(e, &paint, err) : 0;
+    tile_parts_free(&paint);
+    if (rc != 0 || !l.count) {
+        tile_parts_free(&l);
+        return rc;
+    }
     return run(e, &l, 1, err);
 }
 
 // ---- a layer's tiles ----------------------------------------------------------------
 
 typedef struct key_list {
-    int32_t packed;
+    int32_t slot;
     tile_key *keys;
     size_t count, cap;
     int oom;
@@ -374,7 +244,10 @@ typedef struct key_list {
 
 static int add_key(void *user, tile_key key) {
     key_list *l = user;
-    if (key.layer != l->packed || key.level != 0) return 0;
+    tile_layer kind = tile_key_kind(key);
+    if (tile_key_slot(key) != l->slot || key.level != 0 ||
+        (kind != TILE_LAYER_COARSE && kind != TILE_LAYER_MATERIAL))
+        return 0;
     if (l->count == l->cap) {
         size_t cap = l->cap ? l->cap * 2 : 64;
         tile_key *grown = realloc(l->keys, cap * sizeof *grown);
@@ -391,18 +264,24 @@ static int key_order(const void *a, const void *b) {
     if (x->face != y->face) return x->face < y->face ? -1 : 1;
     if (x->ty != y->ty) return x->ty < y->ty ? -1 : 1;
     if (x->tx != y->tx) return x->tx < y->tx ? -1 : 1;
-    return 0;
+    return (x->layer > y->layer) - (x->layer < y->layer);
 }
 
 int layer_tiles(world *w, int32_t id, tile_key **keys, size_t *count, og_error *err) {
-    key_list l = {.packed = tile_layer_in_slot(TILE_LAYER_COARSE, id)};
+    key_list l = {.slot = id};
     *keys = NULL;
     *count = 0;
-    size_t resident = tile_cache_edited_keys(world_cache(w), l.packed, NULL, 0);
-    if (resident) {
+    const tile_layer kinds[2] = {TILE_LAYER_COARSE, TILE_LAYER_MATERIAL};
+    for (int k = 0; k < 2; k++) {
+        int32_t packed = tile_layer_in_slot(kinds[k], id);
+        size_t resident = tile_cache_edited_keys(world_cache(w), packed, NULL, 0);
+        if (!resident) continue;
         tile_key *r = malloc(resident * sizeof *r);
-        if (!r) return og_error_set(err, "out of memory listing a layer's tiles");
-        resident = tile_cache_edited_keys(world_cache(w), l.packed, r, resident);
+        if (!r) {
+            free(l.keys);
+            return og_error_set(err, "out of memory listing a layer's tiles");
+        }
+        resident = tile_cache_edited_keys(world_cache(w), packed, r, resident);
         for (size_t i = 0; i < resident; i++)
             add_key(&l, r[i]);
         free(r);
@@ -438,12 +317,21 @@ int layer_count_filled(world *w, int32_t id, size_t *filled, og_error *err) {
             rc = -1;
             break;
         }
-        const float *f = v.data;
-        for (size_t k = 0; k < TILE_SAMPLES; k++)
-            if (f[k] == f[k]) {
-                ++*filled;
-                break;
-            }
+        if (tile_key_kind(keys[i]) == TILE_LAYER_MATERIAL) { // painted: any coverage
+            const uint8_t *m = v.data;
+            for (size_t k = 0; k < (size_t)TILE_SAMPLES * TILE_MATERIALS; k++)
+                if (m[k]) {
+                    ++*filled;
+                    break;
+                }
+        } else {
+            const float *f = v.data;
+            for (size_t k = 0; k < TILE_SAMPLES; k++)
+                if (f[k] == f[k]) {
+                    ++*filled;
+                    break;
+                }
+        }
         tile_cache_release(world_cache(w), &v);
     }
     free(keys);
@@ -457,11 +345,13 @@ typedef struct tiles_job {
     const tile_key *keys;
     int32_t from, to; // slots: copy from -> to; clear to (from < 0)
     layer_table table;
-    int below; // merge: the layer index merged into
+    int below;      // merge: the layer index merged into
+    float **merged; // merge: each tile's new values, written once all are computed
 } tiles_job;
 
+// The same place and kind in another slot.
 static tile_key in_slot(tile_key k, int32_t slot) {
-    k.layer = tile_layer_in_slot(TILE_LAYER_COARSE, slot);
+    k.layer = tile_layer_in_slot(tile_key_kind(k), slot);
     return k;
 }
 
@@ -469,7 +359,9 @@ static int copy_task(void *user, int task, og_error *err) {
     tiles_job *j = user;
     tile_view dst;
     if (edit_tile_acquire(j->e, in_slot(j->keys[task], j->to), &dst, err) != 0) return -1;
-    if (j->from < 0) {
+    if (j->from < 0 && tile_key_kind(j->keys[task]) == TILE_LAYER_MATERIAL) {
+        memset(dst.data, 0, tile_layer_bytes(TILE_LAYER_MATERIAL)); // no coverage
+    } else if (j->from < 0) {
         float *f = dst.data;
         for (size_t k = 0; k < TILE_SAMPLES; k++)
             f[k] = NAN;
@@ -480,7 +372,7 @@ static int copy_task(void *user, int task, og_error *err) {
             edit_tile_release(j->e, &dst);
             return -1;
         }
-        memcpy(dst.data, src.data, sizeof(float) * TILE_SAMPLES);
+        memcpy(dst.data, src.data, tile_layer_bytes(tile_key_kind(j->keys[task])));
         tile_cache_release(cache, &src);
     }
     edit_tile_release(j->e, &dst);
@@ -494,60 +386,118 @@ int layer_copy_tiles(edit *e, int32_t from, int32_t to, const tile_key *keys, si
 }
 
 // Folds layer below+1 into layer below over one tile: below's new value shows what the
-// two showed together.
+// two showed together. When either is masked, both weights (opacity x mask) are baked in:
+// the merged layer becomes an add layer at full opacity without a mask (the caller sets
+// that) holding the difference the two made.
 static int merge_task(void *user, int task, og_error *err) {
     tiles_job *j = user;
     world *w = edit_world(j->e);
-    tile_cache *cache = world_cache(w);
     tile_key key = j->keys[task];
     const layer_info *lo = &j->table.layers[j->below], *hi = &j->table.layers[j->below + 1];
-    tile_view bv, lv, hv;
-    if (tile_cache_acquire(cache, in_slot(key, TILE_SLOT_BASE), &bv, err) != 0) return -1;
-    float *acc = malloc(sizeof(float) * TILE_SAMPLES);
-    if (!acc) {
-        tile_cache_release(cache, &bv);
-        return og_error_set(err, "out of memory merging layers");
-    }
-    memcpy(acc, bv.data, sizeof(float) * TILE_SAMPLES);
-    tile_cache_release(cache, &bv);
-    int rc = 0;
-    for (int i = 0; i < j->below && rc == 0; i++) {
-        const layer_info *l = &j->table.layers[i];
-        if (!l->visible) continue;
-        tile_view v;
-        if (tile_cache_acquire(cache, in_slot(key, l->id), &v, err) != 0) {
-            rc = -1;
-            break;
-        }
-        if (v.edited) layer_blend_row(l->blend, (float)l->opacity, acc, v.data, acc, TILE_SAMPLES);
-        tile_cache_release(cache, &v);
-    }
-    if (rc == 0 && edit_tile_acquire(j->e, in_slot(key, lo->id), &lv, err) != 0) rc = -1;
+    layer_grid grid;
+    if (layer_grid_init(&grid, world_get_params(w), TILE_LAYER_COARSE, key.face, err) != 0)
+        return -1;
+    int64_t gx = (int64_t)key.tx * TILE_SIZE, gz = (int64_t)key.ty * TILE_SIZE;
+    grid_rect r = layer_grid_clip(&grid, (grid_rect){gx, gz, gx + TILE_SIZE, gz + TILE_SIZE});
+    if (grid_rect_empty(r)) return 0;
+    int rw = (int)(r.x1 - r.x0), rh = (int)(r.z1 - r.z0), x0 = (int)(r.x0 - gx),
+        z0 = (int)(r.z0 - gz);
+    int bl = height_window_mask_border(lo, grid.spacing),
+        bh = height_window_mask_border(hi, grid.spacing);
+    int lo_masked = layer_mask_active(&lo->mask), hi_masked = layer_mask_active(&hi->mask);
+    int bake = lo_masked || hi_masked;
+    // Below the two over r grown by both borders; the lower one's weight and what it shows
+    // over r grown by the upper one's border (what the upper mask reads).
+    grid_rect mid = height_window_grow(r, bh);
+    int mw = rw + 2 * bh, mh = rh + 2 * bh;
+    size_t nm = (size_t)mw * mh;
+    float *below = NULL, *lov = malloc(sizeof(float) * nm), *wl = malloc(sizeof(float) * nm),
+          *shown = malloc(sizeof(float) * nm), *wh = malloc(sizeof(float) * (size_t)rw * rh);
+    int rc = lov && wl && shown && wh ? 0 : og_error_set(err, "out of memory merging layers");
+    if (rc == 0)
+        rc = height_window_compose(j->e, &j->table, &grid, r, j->below, bl + bh, -1, NULL, &below,
+                                   err);
+    layer_grid g = grid;
+    g.layer = (tile_layer)tile_layer_in_slot(TILE_LAYER_COARSE, lo->id);
+    if (rc == 0) rc = layer_grid_read(w, &g, mid, lov, err);
     if (rc == 0) {
-        if (tile_cache_acquire(cache, in_slot(key, hi->id), &hv, err) != 0) {
-            edit_tile_release(j->e, &lv);
-            rc = -1;
+        int bw = mw + 2 * bl; // below's width
+        if (lo_masked) layer_mask_evaluate(&lo->mask, below, mw, mh, bl, grid.spacing, NULL, wl);
+        for (size_t k = 0; k < nm; k++) {
+            wl[k] = lo_masked ? wl[k] * (float)lo->opacity : (float)lo->opacity;
+            int z = (int)(k / (size_t)mw), x = (int)(k % (size_t)mw);
+            shown[k] =
+                layer_blend_sample(lo->blend, wl[k], below[(size_t)(z + bl) * bw + x + bl], lov[k]);
+        }
+        if (hi_masked) layer_mask_evaluate(&hi->mask, shown, rw, rh, bh, grid.spacing, NULL, wh);
+        for (size_t k = 0; k < (size_t)rw * rh; k++)
+            wh[k] = hi_masked ? wh[k] * (float)hi->opacity : (float)hi->opacity;
+    }
+    // The new values go aside: a neighbour's upper mask reads this tile's lower layer as
+    // it was (merge_write_task writes them when every tile is done).
+    tile_view lv, hv;
+    tile_cache *cache = world_cache(w);
+    if (rc == 0 && !(j->merged[task] = malloc(sizeof(float) * TILE_SAMPLES)))
+        rc = og_error_set(err, "out of memory merging layers");
+    if (rc == 0 && (rc = tile_cache_acquire(cache, in_slot(key, lo->id), &lv, err)) == 0) {
+        memcpy(j->merged[task], lv.data, sizeof(float) * TILE_SAMPLES);
+        tile_cache_release(cache, &lv);
+        if ((rc = tile_cache_acquire(cache, in_slot(key, hi->id), &hv, err)) == 0) {
+            float *lo_v = j->merged[task];
+            const float *hi_v = hv.data;
+            int bw = mw + 2 * bl;
+            for (int z = 0; z < rh; z++)
+                for (int x = 0; x < rw; x++) {
+                    size_t k = (size_t)(z + z0) * TILE_SIZE + x + x0,
+                           m = (size_t)(z + bh) * mw + x + bh;
+                    float b = below[(size_t)(z + bh + bl) * bw + x + bh + bl];
+                    float vh = hi_v[k], whk = wh[(size_t)z * rw + x];
+                    if (!bake) {
+                        if (vh != vh) continue; // the upper layer has nothing here
+                        float both = layer_blend_sample(hi->blend, whk, shown[m], vh);
+                        lo_v[k] = layer_blend_solve(lo->blend, wl[m], b, lo_v[k], both);
+                        continue;
+                    }
+                    int lo_none = lo_v[k] != lo_v[k] || !(wl[m] > 0.0f);
+                    int hi_none = vh != vh || !(whk > 0.0f);
+                    if (lo_none && hi_none) {
+                        lo_v[k] = NAN;
+                        continue;
+                    }
+                    float both = layer_blend_sample(hi->blend, whk, shown[m], vh);
+                    lo_v[k] = layer_blend_solve(LAYER_BLEND_ADD, 1.0f, b, NAN, both);
+                }
+            tile_cache_release(cache, &hv);
         }
     }
-    if (rc == 0) {
-        float *lo_v = lv.data;
-        const float *hi_v = hv.data;
-        float wl = (float)lo->opacity, wh = (float)hi->opacity;
-        for (size_t k = 0; k < TILE_SAMPLES; k++) {
-            if (hi_v[k] != hi_v[k]) continue; // the upper layer has nothing here
-            float shown = layer_blend_sample(lo->blend, wl, acc[k], lo_v[k]);
-            float both = layer_blend_sample(hi->blend, wh, shown, hi_v[k]);
-            lo_v[k] = layer_blend_solve(lo->blend, wl, acc[k], lo_v[k], both);
-        }
-        tile_cache_release(cache, &hv);
-        edit_tile_release(j->e, &lv);
-    }
-    free(acc);
+    free(below);
+    free(lov);
+    free(wl);
+    free(shown);
+    free(wh);
     return rc;
+}
+
+static int merge_write_task(void *user, int task, og_error *err) {
+    tiles_job *j = user;
+    tile_view v;
+    if (!j->merged[task]) return 0; // outside the world
+    if (edit_tile_acquire(j->e, in_slot(j->keys[task], j->table.layers[j->below].id), &v, err) != 0)
+        return -1;
+    memcpy(v.data, j->merged[task], sizeof(float) * TILE_SAMPLES);
+    edit_tile_release(j->e, &v);
+    return 0;
 }
 
 int layer_merge_tiles(edit *e, int below, const tile_key *keys, size_t count, og_error *err) {
     tiles_job j = {.e = e, .keys = keys, .below = below};
     j.table = world_get_params(edit_world(e))->layers;
-    return parallel_run((int)count, merge_task, &j, err);
+    if (!(j.merged = calloc(count ? count : 1, sizeof *j.merged)))
+        return og_error_set(err, "out of memory merging layers");
+    int rc = parallel_run((int)count, merge_task, &j, err);
+    if (rc == 0) rc = parallel_run((int)count, merge_write_task, &j, err);
+    for (size_t i = 0; i < count; i++)
+        free(j.merged[i]);
+    free(j.merged);
+    return rc;
 }

@@ -1,5 +1,7 @@
 #include "editor/layers/layer_table.h"
 
+#include "io/tile.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -9,6 +11,29 @@ static const char *const BLEND_NAMES[LAYER_BLEND_COUNT] = {"add", "replace", "ma
 
 const char *layer_blend_name(layer_blend b) {
     return (unsigned)b < LAYER_BLEND_COUNT ? BLEND_NAMES[b] : "unknown";
+}
+
+static const char *const KIND_NAMES[LAYER_KIND_COUNT] = {"height", "paint"};
+
+const char *layer_kind_name(layer_kind k) {
+    return (unsigned)k < LAYER_KIND_COUNT ? KIND_NAMES[k] : "unknown";
+}
+
+int layer_kind_parse(const char *text) {
+    for (int i = 0; i < LAYER_KIND_COUNT; i++)
+        if (!strcmp(text, KIND_NAMES[i])) return i;
+    return -1;
+}
+
+int layer_tile_kind(const layer_info *l) {
+    return l->kind == LAYER_KIND_PAINT ? TILE_LAYER_MATERIAL : TILE_LAYER_COARSE;
+}
+
+int layer_table_top_visible(const layer_table *t, layer_kind kind) {
+    int top = -1;
+    for (int i = 0; i < t->count; i++)
+        if (t->layers[i].visible && t->layers[i].kind == kind) top = i;
+    return top;
 }
 
 int layer_blend_parse(const char *text) {
@@ -39,8 +64,9 @@ int layer_table_equal(const layer_table *a, const layer_table *b) {
     if (a->count != b->count || a->active != b->active || a->next_id != b->next_id) return 0;
     for (int i = 0; i < a->count; i++) {
         const layer_info *x = &a->layers[i], *y = &b->layers[i];
-        if (x->id != y->id || strcmp(x->name, y->name) || x->blend != y->blend ||
-            x->opacity != y->opacity || x->visible != y->visible || x->locked != y->locked)
+        if (x->id != y->id || x->kind != y->kind || strcmp(x->name, y->name) ||
+            x->blend != y->blend || x->opacity != y->opacity || x->visible != y->visible ||
+            x->locked != y->locked)
             return 0;
         char mx[512], my[512];
         layer_mask_format(&x->mask, mx, sizeof mx);
@@ -137,6 +163,11 @@ int layer_info_set(layer_table *t, int i, const char *key, const char *value, og
         return 0;
     }
     if (!strcmp(key, "blend")) {
+        if (l->kind == LAYER_KIND_PAINT)
+            return og_error_set(err,
+                                "blend: '%s' is a paint layer: it covers what is below by its "
+                                "painted coverage (blend is for height layers)",
+                                l->name);
         int b = layer_blend_parse(value);
         if (b < 0)
             return og_error_set(err, "blend: expected add, replace, max or min, got '%s'", value);
@@ -190,6 +221,14 @@ static int read_layer(layer_table *t, const char *value, og_error *err) {
                                     "layer '%s': id: expected an integer from %d to %d, got '%s'",
                                     l->name, LAYER_FIRST_ID, 0x7fffff, eq + 1);
             l->id = (int32_t)id;
+            continue;
+        }
+        if (!strcmp(word, "kind")) {
+            int k = layer_kind_parse(eq + 1);
+            if (k < 0)
+                return og_error_set(err, "layer '%s': kind: expected height or paint, got '%s'",
+                                    l->name, eq + 1);
+            l->kind = (layer_kind)k;
             continue;
         }
         og_error why;
@@ -248,8 +287,12 @@ int layer_table_finish(layer_table *t, og_error *err) {
 }
 
 void layer_info_format(const layer_info *l, char *buf, size_t len) {
-    int n = snprintf(buf, len, "%s id=%d blend=%s opacity=%.17g visible=%d locked=%d", l->name,
-                     (int)l->id, layer_blend_name(l->blend), l->opacity, l->visible, l->locked);
+    int n =
+        l->kind == LAYER_KIND_PAINT
+            ? snprintf(buf, len, "%s id=%d kind=paint opacity=%.17g visible=%d locked=%d", l->name,
+                       (int)l->id, l->opacity, l->visible, l->locked)
+            : snprintf(buf, len, "%s id=%d blend=%s opacity=%.17g visible=%d locked=%d", l->name,
+                       (int)l->id, layer_blend_name(l->blend), l->opacity, l->visible, l->locked);
     if (n > 0 && (size_t)n + 1 < len && layer_mask_active(&l->mask)) {
         buf[n] = ' ';
         layer_mask_format(&l->mask, buf + n + 1, len - (size_t)n - 1);
@@ -272,9 +315,11 @@ static int append(char **text, size_t *len, size_t *cap, const char *s) {
 
 int layer_table_format(const layer_table *t, char **text, size_t *len, size_t *cap) {
     char line[LAYER_NAME_MAX + 800];
-    if (append(text, len, cap,
-               "\n# Edit layers over the generated terrain, bottom first: NAME id=N (its tiles in "
-               "the tile store) blend=add|replace|max|min opacity=0..1 visible=0|1 locked=0|1\n"))
+    if (append(
+            text, len, cap,
+            "\n# Edit layers over the generated terrain, bottom first: NAME id=N (its tiles in "
+            "the tile store) [kind=paint] blend=add|replace|max|min (height layers) opacity=0..1 "
+            "visible=0|1 locked=0|1\n"))
         return -1;
     for (int i = 0; i < t->count; i++) {
         char value[LAYER_NAME_MAX + 700];

@@ -25,9 +25,18 @@ typedef enum layer_blend {
     LAYER_BLEND_COUNT
 } layer_blend;
 
+// What a layer's tiles hold. Its kind is fixed when it is made.
+typedef enum layer_kind {
+    LAYER_KIND_HEIGHT = 0, // coarse heights combined by its blend (layer_blend.h)
+    LAYER_KIND_PAINT,      // material weights laid over the layers below by their coverage
+                           // (editor/layers/paint_blend.h); blend does not apply
+    LAYER_KIND_COUNT
+} layer_kind;
+
 typedef struct layer_info {
     int32_t id; // stable: its tiles' slot
     char name[LAYER_NAME_MAX];
+    layer_kind kind;
     layer_blend blend;
     double opacity; // 0-1
     int visible, locked;
@@ -51,6 +60,8 @@ int layer_table_find_id(const layer_table *t, int32_t id);
 int layer_table_equal(const layer_table *a, const layer_table *b);
 
 const char *layer_blend_name(layer_blend b);
+const char *layer_kind_name(layer_kind k);
+int layer_kind_parse(const char *text);  // -1 if not a kind
 int layer_blend_parse(const char *text); // -1 if not a blend
 
 // A layer name: 1-47 letters, digits, '_', '-' or '.' (so commands and files need no
@@ -66,12 +77,19 @@ void layer_table_remove(layer_table *t, int i);
 // Moves the layer at index from to index to (the active index follows its layer).
 void layer_table_move(layer_table *t, int from, int to);
 
-// Sets one of the layer's fields from text: name, blend, opacity, visible, locked.
+// The tile kind a layer's tiles hold (io/tile.h): coarse heights or material weights.
+int layer_tile_kind(const layer_info *l);
+// Index of the highest visible layer of that kind, or -1.
+int layer_table_top_visible(const layer_table *t, layer_kind kind);
+
+// Sets one of the layer's fields from text: name, blend (height layers), opacity, visible,
+// locked.
 // Returns 0, 1 for an unknown key, or -1 with err naming the field and the bad value.
 int layer_info_set(layer_table *t, int i, const char *key, const char *value, og_error *err);
 
 // The parameter file's lines. A `layer.I` value (I = 0 for the bottom layer, 1, ...): "NAME id=N
-// blend=B opacity=O visible=V locked=L [MASK KEY=VALUE ...]" (layer_mask_format's keys), appended
+// blend=B opacity=O visible=V locked=L [MASK KEY=VALUE ...]" (layer_mask_format's keys); a paint
+// layer's "NAME id=N kind=paint opacity=O ..." (no blend), appended
 // on top; `layer_active` names the active layer; `layer_next_id`. Returns 0, 1 when key is not a
 // layer key, -1 with err for a bad value.
 int layer_table_read_entry(layer_table *t, const char *key, const char *value, og_error *err);

@@ -74,11 +74,16 @@ static int generation_source(void *user, tile_key key, void *out) {
     int32_t slot = tile_key_slot(key);
     if (slot == 0) return gen_tile(&g->params, key, out);
     key.layer = tile_key_kind(key);
-    if (key.layer != TILE_LAYER_COARSE) return -1; // only height layers have tiles yet
+    // Layers hold heights or material weights (paint layers); the base's are generated.
+    if (key.layer != TILE_LAYER_COARSE && key.layer != TILE_LAYER_MATERIAL) return -1;
     if (slot == TILE_SLOT_BASE) return gen_tile(&g->params, key, out);
-    // An edit layer's tile it never wrote: nothing there (NaN, editor/layers/layer_blend.h).
     int faces = g->params.kind == WORLD_PLANET ? 6 : 1;
     if (key.face < 0 || key.face >= faces || key.level < 0 || key.level > TILE_MAX_LEVEL) return -1;
+    if (key.layer == TILE_LAYER_MATERIAL) { // a paint layer where it was never painted: no
+        memset(out, 0, tile_layer_bytes(TILE_LAYER_MATERIAL)); // coverage (paint_blend.h)
+        return 0;
+    }
+    // An edit layer's tile it never wrote: nothing there (NaN, editor/layers/layer_blend.h).
     float *f = out;
     for (size_t i = 0; i < TILE_SAMPLES; i++)
         f[i] = NAN;
@@ -467,6 +472,67 @@ static int adopt_edits_as_layer(world *w, og_error *err) {
     return rc;
 }
 
+// Material tiles of every slot at level 0 (the count rides in element 0).
+static int collect_paint(void *user, tile_key key) {
+    tile_key **keys = user;
+    if (tile_key_kind(key) != TILE_LAYER_MATERIAL || key.level != 0) return 0;
+    size_t n = (size_t)(*keys)[0].tx;
+    tile_key *grown = realloc(*keys, (n + 2) * sizeof **keys);
+    if (!grown) return 1;
+    grown[n + 1] = key;
+    grown[0].tx = (int32_t)(n + 1);
+    *keys = grown;
+    return 0;
+}
+
+static int same_place(const void *a, const void *b) {
+    const tile_key *x = a, *y = b;
+    if (x->face != y->face) return x->face < y->face ? -1 : 1;
+    if (x->ty != y->ty) return x->ty < y->ty ? -1 : 1;
+    if (x->tx != y->tx) return x->tx < y->tx ? -1 : 1;
+    return (x->layer > y->layer) - (x->layer < y->layer);
+}
+
+// Paint from before paint layers lives only in the composite's material tiles: where no
+// base or paint layer tile sits under a composite one, the composite is the ground's own
+// paint (the base, slot 1), so recomposing keeps it. A composite made from layers always
+// has a layer or base tile under it, so this adopts nothing twice.
+static int adopt_paint_as_base(world *w, og_error *err) {
+    tile_key *keys = calloc(1, sizeof *keys);
+    if (!keys) return og_error_set(err, "out of memory");
+    if (tile_store_each(w->store, collect_paint, &keys, err) != 0) {
+        free(keys);
+        return -1;
+    }
+    size_t n = (size_t)keys[0].tx;
+    qsort(keys + 1, n, sizeof *keys, same_place);
+    int rc = 0;
+    for (size_t i = 1; i <= n && rc == 0; i++) {
+        tile_key ck = keys[i];
+        if (tile_key_slot(ck) != 0) continue;
+        // Sorted by place then slot: the slot-0 tile comes first at its place.
+        if (i < n && keys[i + 1].face == ck.face && keys[i + 1].tx == ck.tx &&
+            keys[i + 1].ty == ck.ty)
+            continue;
+        tile_key bk = ck;
+        bk.layer = tile_layer_in_slot(TILE_LAYER_MATERIAL, TILE_SLOT_BASE);
+        tile_view c, b;
+        if (tile_cache_acquire(w->cache, ck, &c, err) != 0) {
+            rc = -1;
+            break;
+        }
+        if (tile_cache_acquire_write(w->cache, bk, &b, err) == 0) {
+            memcpy(b.data, c.data, tile_layer_bytes(TILE_LAYER_MATERIAL));
+            tile_cache_release(w->cache, &b);
+        } else {
+            rc = -1;
+        }
+        tile_cache_release(w->cache, &c);
+    }
+    free(keys);
+    return rc;
+}
+
 world *world_load(const char *path, const world_settings *settings, int *errors, og_error *err) {
     world_params p;
     int errs = 0;
@@ -506,7 +572,8 @@ world *world_load(const char *path, const world_settings *settings, int *errors,
     long owner = 0;
     int locked = failed ? -1 : lock_files(w, tiles, &owner, err);
     if (locked < 0 || start_cache(w, err) != 0 ||
-        (before_layers && w->store && adopt_edits_as_layer(w, err) != 0)) {
+        (before_layers && w->store && adopt_edits_as_layer(w, err) != 0) ||
+        (w->store && adopt_paint_as_base(w, err) != 0)) {
         world_close(w);
         return NULL;
     }

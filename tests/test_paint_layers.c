@@ -1,0 +1,491 @@
+// Paint layers: the material composite of random paint stacks (opacity, hidden layers,
+// masks reading the heights below, partial coverage, across tile edges at negative tile
+// coordinates) against the formula on plain arrays; the paint tool on a paint layer
+// against painting a world without layers; hiding, undo/redo, merging (masks and opacity
+// baked in), masked height layers merged, save/load, and paint from before paint layers
+// becoming the ground's own paint.
+#include "editor/cmd/commands.h"
+#include "editor/edit/edit_commit.h"
+#include "editor/edit/layer_composite.h"
+#include "editor/edit/paint_composite.h"
+#include "editor/layers/paint_blend.h"
+#include "editor/world/layer_grid.h"
+#include "support/test_support.h"
+
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+static void silent(void *user, const char *message) {
+    (void)user, (void)message;
+}
+
+static world_params flat_params(int64_t size) {
+    world_params p;
+    world_params_default(&p, WORLD_FLAT);
+    p.generator = GEN_FBM;
+    p.seed = 4242;
+    p.octaves = 4;
+    p.size = size;
+    p.spacing = 1.0;
+    p.feature_size = 256.0;
+    p.max_height = 300;
+    return p;
+}
+
+static world *open_world(const world_params *p) {
+    world_settings s = {.cache_budget_bytes = (size_t)256 << 20, .workers = 2, .warn = silent};
+    og_error err;
+    world *w = world_create(p, &s, &err);
+    if (!w) fail_msg("world_create: %s", err.msg);
+    return w;
+}
+
+static uint64_t rng_next(uint64_t *s) {
+    *s ^= *s << 13;
+    *s ^= *s >> 7;
+    *s ^= *s << 17;
+    return *s;
+}
+
+static double rng_unit(uint64_t *s) {
+    return (double)(rng_next(s) >> 11) / 9007199254740992.0;
+}
+
+static void *read_kind(world *w, tile_layer kind, grid_rect r) {
+    layer_grid g;
+    og_error err;
+    if (layer_grid_init(&g, world_get_params(w), kind, 0, &err) != 0) fail_msg("%s", err.msg);
+    void *out =
+        malloc(tile_layer_bytes(kind) / TILE_SAMPLES * (size_t)((r.x1 - r.x0) * (r.z1 - r.z0)));
+    if (layer_grid_read_samples(w, &g, r, out, &err) != 0) fail_msg("%s", err.msg);
+    return out;
+}
+
+// The paint formula of editor/layers/paint_blend.h, written out again for the reference.
+static void reference_paint(float *acc, float w, const uint8_t *l) {
+    int sum = 0;
+    for (int c = 0; c < TILE_MATERIALS; c++)
+        sum += l[c];
+    if (w <= 0 || !sum) return;
+    for (int c = 0; c < TILE_MATERIALS; c++)
+        acc[c] = acc[c] * (1.0f - w * ((float)sum / 255.0f)) + w * (float)l[c];
+}
+
+// Writes random weights (coverage 0..1, some samples empty) into slot's material tiles
+// over r through an edit, and the same into ref (area's layout, 8 bytes a sample).
+static void fill_paint(edit *e, int32_t slot, grid_rect r, uint8_t *ref, grid_rect area,
+                       uint64_t *seed, int full) {
+    for (int64_t tz = r.z0 >> 8; tz <= (r.z1 - 1) >> 8; tz++)
+        for (int64_t tx = r.x0 >> 8; tx <= (r.x1 - 1) >> 8; tx++) {
+            tile_key key = {.layer = tile_layer_in_slot(TILE_LAYER_MATERIAL, slot),
+                            .tx = (int32_t)tx,
+                            .ty = (int32_t)tz};
+            tile_view v;
+            og_error err;
+            if (edit_tile_acquire(e, key, &v, &err) != 0) fail_msg("%s", err.msg);
+            uint8_t *m = v.data;
+            for (int j = 0; j < TILE_SIZE; j++)
+                for (int i = 0; i < TILE_SIZE; i++) {
+                    int64_t x = tx * TILE_SIZE + i, z = tz * TILE_SIZE + j;
+                    if (x < r.x0 || x >= r.x1 || z < r.z0 || z >= r.z1) continue;
+                    uint8_t *s = m + ((size_t)j * TILE_SIZE + i) * TILE_MATERIALS;
+                    int total = full ? 255 : rng_unit(seed) < 0.2 ? 0 : (int)(rng_unit(seed) * 256);
+                    memset(s, 0, TILE_MATERIALS);
+                    for (int left = total; left > 0;) { // a few materials share the total
+                        int c = (int)(rng_next(seed) % TILE_MATERIALS);
+                        int give = left < 40 ? left : 1 + (int)(rng_unit(seed) * left);
+                        s[c] = (uint8_t)(s[c] + give);
+                        left -= give;
+                    }
+                    memcpy(ref + ((z - area.z0) * (area.x1 - area.x0) + (x - area.x0)) *
+                                     TILE_MATERIALS,
+                           s, TILE_MATERIALS);
+                }
+            edit_tile_release(e, &v);
+        }
+}
+
+// Random paint stacks over an unbounded world around negative tile coordinates, over and
+// under the height layer, with masks reading the heights: the material composite equals
+// the formula on plain arrays everywhere, across tile edges.
+static void test_paint_composite_matches_arrays(void **state) {
+    (void)state;
+    world_params p = flat_params(0);
+    world *w = open_world(&p);
+    grid_rect area = {-300, -280, 320, 290};
+    int aw = (int)(area.x1 - area.x0), ah = (int)(area.z1 - area.z0);
+    size_t n = (size_t)aw * ah;
+    float *base_h = read_kind(w, TILE_LAYER_COARSE, area);
+    uint8_t *base_m = read_kind(w, TILE_LAYER_MATERIAL, area);
+    uint64_t seed = 91;
+    for (int trial = 0; trial < 4; trial++) {
+        world_params next = *world_get_params(w);
+        layer_table *t = &next.layers;
+        og_error err;
+        layer_table_default(t); // Sculpt (height, empty: heights are the base's)
+        int paints = 2 + trial % 3;
+        for (int i = 0; i < paints; i++) {
+            char name[16];
+            snprintf(name, sizeof name, "P%d", i);
+            int at = layer_table_insert(t, i == 0 ? 0 : t->count, name, LAYER_BLEND_ADD,
+                                        rng_unit(&seed) < 0.4 ? 1.0 : rng_unit(&seed), &err);
+            t->layers[at].kind = LAYER_KIND_PAINT;
+            t->layers[at].visible = rng_unit(&seed) > 0.2;
+            layer_mask *m = &t->layers[at].mask;
+            if (rng_unit(&seed) < 0.5) {
+                char v[64];
+                snprintf(v, sizeof v, "%.1f,%.1f", rng_unit(&seed) * 100 - 50,
+                         50 + rng_unit(&seed) * 100);
+                layer_mask_set_option(m, "height", v, &err);
+                layer_mask_set_option(m, "falloff", "12", &err);
+                if (rng_unit(&seed) < 0.5) layer_mask_set_option(m, "slope", "0,20,4", &err);
+                if (rng_unit(&seed) < 0.3) layer_mask_set_option(m, "invert", "1", &err);
+            }
+        }
+        edit *e = edit_begin(w, "test paint", &err);
+        edit_set_layer_mode(e, EDIT_LAYER_COMPOSED);
+        if (edit_set_params(e, &next, &err) != 0) fail_msg("%s", err.msg);
+        uint8_t *base = malloc(n * TILE_MATERIALS), *values[LAYER_MAX] = {0};
+        memcpy(base, base_m, n * TILE_MATERIALS);
+        fill_paint(e, TILE_SLOT_BASE, (grid_rect){area.x0 + 50, area.z0, area.x1, area.z0 + 300},
+                   base, area, &seed, 1);
+        for (int i = 0; i < t->count; i++) {
+            if (t->layers[i].kind != LAYER_KIND_PAINT) continue;
+            values[i] = calloc(n, TILE_MATERIALS);
+            int64_t x0 = area.x0 + (int64_t)(rng_unit(&seed) * 200),
+                    z0 = area.z0 + (int64_t)(rng_unit(&seed) * 200);
+            int64_t x1 = area.x1 - (int64_t)(rng_unit(&seed) * 200),
+                    z1 = area.z1 - (int64_t)(rng_unit(&seed) * 200);
+            fill_paint(e, t->layers[i].id, (grid_rect){x0, z0, x1, z1}, values[i], area, &seed, 0);
+        }
+        tile_parts parts = {0};
+        tile_parts_add_rect(&parts, 0, area);
+        if (paint_recompose(e, &parts, &err) != 0) fail_msg("%s", err.msg);
+        tile_parts_free(&parts);
+        if (edit_commit(e, &err) != 0) fail_msg("%s", err.msg);
+        uint8_t *got = read_kind(w, TILE_LAYER_MATERIAL, area);
+        // The reference: masks from the heights over the area (clamped at its edges, so
+        // compare an inner window the masks' borders do not reach past).
+        float *mask = malloc(sizeof(float) * n), *acc = malloc(sizeof(float) * TILE_MATERIALS);
+        float *weights[LAYER_MAX] = {0};
+        for (int i = 0; i < t->count; i++) {
+            const layer_info *l = &t->layers[i];
+            if (l->kind != LAYER_KIND_PAINT || !l->visible) continue;
+            weights[i] = malloc(sizeof(float) * n);
+            if (layer_mask_active(&l->mask)) {
+                int b = 1;
+                float *win = malloc(sizeof(float) * (size_t)(aw - 2 * b) * (ah - 2 * b));
+                layer_mask_evaluate(&l->mask, base_h, aw - 2 * b, ah - 2 * b, b, 1.0, NULL, win);
+                for (size_t k = 0; k < n; k++)
+                    mask[k] = 0;
+                for (int z = 0; z < ah - 2 * b; z++)
+                    for (int x = 0; x < aw - 2 * b; x++)
+                        mask[(size_t)(z + b) * aw + x + b] = win[(size_t)z * (aw - 2 * b) + x];
+                free(win);
+            }
+            for (size_t k = 0; k < n; k++)
+                weights[i][k] = (float)l->opacity * (layer_mask_active(&l->mask) ? mask[k] : 1.0f);
+        }
+        size_t wrong = 0, compared = 0;
+        for (int z = 1; z < ah - 1; z++)
+            for (int x = 1; x < aw - 1; x++) {
+                size_t k = (size_t)z * aw + x;
+                for (int c = 0; c < TILE_MATERIALS; c++)
+                    acc[c] = base[k * TILE_MATERIALS + c];
+                for (int i = 0; i < t->count; i++)
+                    if (weights[i])
+                        reference_paint(acc, weights[i][k], values[i] + k * TILE_MATERIALS);
+                uint8_t want[TILE_MATERIALS];
+                paint_blend_round(acc, want);
+                compared++;
+                if (memcmp(want, got + k * TILE_MATERIALS, TILE_MATERIALS) && wrong++ < 3)
+                    print_error("trial %d sample (%d,%d): formula %d %d %d, composite %d %d %d\n",
+                                trial, x, z, want[0], want[1], want[2], got[k * 8], got[k * 8 + 1],
+                                got[k * 8 + 2]);
+            }
+        assert_int_equal(wrong, 0);
+        assert_true(compared > n / 2);
+        for (int i = 0; i < LAYER_MAX; i++) {
+            free(values[i]);
+            free(weights[i]);
+        }
+        free(mask);
+        free(acc);
+        free(base);
+        free(got);
+        // Undo puts the materials back exactly.
+        assert_int_equal(edit_undo(w, &err), 1);
+        got = read_kind(w, TILE_LAYER_MATERIAL, area);
+        assert_memory_equal(got, base_m, n * TILE_MATERIALS);
+        free(got);
+    }
+    free(base_h);
+    free(base_m);
+    world_close(w);
+}
+
+typedef struct session {
+    world *w;
+    cmd_context ctx;
+    FILE *out;
+} session;
+
+static void open_session(session *s, world *w) {
+    world_settings set = {.warn = silent};
+    s->w = w;
+    s->out = tmpfile();
+    cmd_context_init(&s->ctx, w, &set, s->out, OROGEN_RESOURCE_DIR);
+}
+
+static void close_session(session *s) {
+    fclose(s->out);
+    world_close(s->ctx.world);
+}
+
+static void run(session *s, const char *script) {
+    og_error err;
+    if (cmd_run(&s->ctx, script, strlen(script), "-c", &err) != 0)
+        fail_msg("%s: %s", script, err.msg);
+}
+
+static void run_fails(session *s, const char *script, const char *expect) {
+    og_error err;
+    assert_int_equal(cmd_run(&s->ctx, script, strlen(script), "-c", &err), -1);
+    if (!strstr(err.msg, expect))
+        fail_msg("'%s' said '%s', expected '%s'", script, err.msg, expect);
+}
+
+static const grid_rect ALL = {0, 0, 600, 600};
+#define ALL_N (600 * 600)
+
+static uint8_t *materials(session *s) {
+    return read_kind(s->ctx.world, TILE_LAYER_MATERIAL, ALL);
+}
+
+// The largest difference of one weight between two material areas.
+static int max_weight_difference(const uint8_t *a, const uint8_t *b) {
+    int worst = 0;
+    for (size_t k = 0; k < (size_t)ALL_N * TILE_MATERIALS; k++) {
+        int d = abs((int)a[k] - (int)b[k]);
+        if (d > worst) worst = d;
+    }
+    return worst;
+}
+
+static int is_automatic(const uint8_t *m) {
+    for (size_t k = 0; k < ALL_N; k++)
+        if (m[k * TILE_MATERIALS] != 255) return 0;
+    return 1;
+}
+
+static const char *const PAINT = "tool paint material=3 radius=60 strength=0.7; "
+                                 "stroke 100 100 450 300; "
+                                 "tool paint material=5 radius=40 strength=0.5; "
+                                 "stroke 300 80 200 500";
+
+// Painting a paint layer on top shows exactly what painting a world without paint layers
+// shows; the paint lives in the layer (hidden: the ground as it was), undo and redo are
+// exact, and a paint layer under another shows its paint where the upper one is clear.
+static void test_paint_tool_on_layer(void **state) {
+    (void)state;
+    world_params p = flat_params(600);
+    session single, layered;
+    open_session(&single, open_world(&p));
+    open_session(&layered, open_world(&p));
+    run(&single, PAINT);
+    run(&layered, "layer new Paint kind=paint");
+    run(&layered, PAINT);
+    uint8_t *a = materials(&single), *b = materials(&layered);
+    assert_memory_equal(a, b, (size_t)ALL_N * TILE_MATERIALS);
+    assert_false(is_automatic(b));
+    run(&layered, "layer set Paint visible=0");
+    uint8_t *hidden = materials(&layered);
+    assert_true(is_automatic(hidden));
+    run(&layered, "layer set Paint visible=1");
+    uint8_t *shown = materials(&layered);
+    // Recomposed from the layer's coverage: within rounding of the tool's own result.
+    assert_true(max_weight_difference(a, shown) <= 2);
+    run(&layered, "undo; undo");
+    uint8_t *again = materials(&layered);
+    assert_memory_equal(again, b, (size_t)ALL_N * TILE_MATERIALS);
+    free(again);
+    run(&layered, "redo; redo");
+    again = materials(&layered);
+    assert_memory_equal(again, shown, (size_t)ALL_N * TILE_MATERIALS);
+    free(again);
+    // Half-transparent: what shows is half way between the ground and the paint.
+    run(&layered, "layer set Paint opacity=0.5");
+    uint8_t *half = materials(&layered);
+    for (size_t k = 0; k < ALL_N; k++)
+        assert_true(abs((int)half[k * 8] - (255 + shown[k * 8]) / 2) <= 2);
+    free(half);
+    // Paint under a layer: where the upper one paints nothing, the lower one's paint shows
+    // as on a single world (up to rounding).
+    run(&layered, "layer set Paint opacity=1; layer new Upper kind=paint; "
+                  "tool paint material=7 radius=30 strength=1; stroke 550 550 560 580; "
+                  "layer select Paint; tool paint material=2 radius=50 strength=0.6; "
+                  "stroke 100 400 400 420");
+    run(&single, "tool paint material=2 radius=50 strength=0.6; stroke 100 400 400 420");
+    free(a);
+    free(b);
+    a = materials(&single);
+    b = materials(&layered);
+    int worst = 0;
+    for (size_t k = 0; k < ALL_N; k++) {
+        int64_t x = (int64_t)(k % 600), z = (int64_t)(k / 600);
+        if ((x - 555) * (x - 555) + (z - 565) * (z - 565) < 80 * 80) continue; // Upper's
+        for (int c = 0; c < TILE_MATERIALS; c++) {
+            int d = abs((int)a[k * 8 + c] - (int)b[k * 8 + c]);
+            if (d > worst) worst = d;
+        }
+    }
+    if (worst > 2) fail_msg("paint under a layer differs by %d", worst);
+    // Heights go into height layers only; a locked or hidden paint layer refuses paint.
+    run(&layered, "tool raise radius=20 strength=0.5");
+    run_fails(&layered, "stroke 10 10 40 40", "is a paint layer");
+    run_fails(&layered, "layer merge Paint", "only layers of one kind");
+    run(&layered, "layer set Paint locked=1; tool paint material=1");
+    run_fails(&layered, "stroke 10 10 40 40", "locked");
+    run_fails(&layered, "layer set Paint locked=0 blend=max", "blend is for height layers");
+    free(a);
+    free(b);
+    free(hidden);
+    free(shown);
+    close_session(&single);
+    close_session(&layered);
+}
+
+// Merging paint layers keeps what shows (opacity and masks baked in); merging masked
+// height layers keeps the heights; both are one undo step.
+static void test_merge_masked(void **state) {
+    (void)state;
+    world_params p = flat_params(600);
+    session s;
+    open_session(&s, open_world(&p));
+    run(&s, "layer new Lo kind=paint opacity=0.6; tool paint material=3 radius=80 strength=0.8; "
+            "stroke 100 100 500 200; layer new Hi kind=paint opacity=0.7; "
+            "tool paint material=6 radius=70 strength=0.9; stroke 200 50 300 550; "
+            "layer mask Hi height=-inf,60 falloff=20 slope=0,25,5");
+    uint8_t *before = materials(&s);
+    run(&s, "layer merge Hi");
+    uint8_t *after = materials(&s);
+    int d = max_weight_difference(before, after);
+    if (d > 2) fail_msg("merged paint differs by %d", d);
+    run(&s, "undo");
+    uint8_t *undone = materials(&s);
+    assert_memory_equal(undone, before, (size_t)ALL_N * TILE_MATERIALS);
+    free(before);
+    free(after);
+    free(undone);
+    // Heights: a masked add layer over a max layer, merged.
+    run(&s, "layer select Sculpt; tool raise radius=100 strength=0.8; stroke 100 300 500 300; "
+            "layer new Cap blend=max opacity=0.8; tool set height=80 radius=90 strength=1; "
+            "stroke 150 250 450 350; layer new Bumps; tool raise radius=60 strength=0.5; "
+            "stroke 100 100 500 500; layer mask Bumps slope=5,40,5 height=20,inf falloff=10");
+    float *h0 = read_kind(s.ctx.world, TILE_LAYER_COARSE, ALL);
+    run(&s, "layer merge Bumps");
+    float *h1 = read_kind(s.ctx.world, TILE_LAYER_COARSE, ALL);
+    double worst = 0;
+    size_t at = 0;
+    for (size_t k = 0; k < ALL_N; k++)
+        if (fabs((double)h0[k] - h1[k]) > worst) worst = fabs((double)h0[k] - h1[k]), at = k;
+    if (worst > 1e-3)
+        fail_msg("merged masked heights differ by %g m at (%zu, %zu)", worst, at % 600, at / 600);
+    // The merged layer holds the difference: hiding it shows Sculpt alone.
+    run(&s, "layer set Cap visible=0");
+    run(&s, "undo; undo");
+    float *h2 = read_kind(s.ctx.world, TILE_LAYER_COARSE, ALL);
+    assert_memory_equal(h2, h0, sizeof(float) * ALL_N);
+    free(h0);
+    free(h1);
+    free(h2);
+    close_session(&s);
+}
+
+// A saved paint stack loads the same; paint from before paint layers (only in the
+// composite's tiles) becomes the ground's own paint, under a new paint layer.
+static void test_saved_paint(void **state) {
+    (void)state;
+    char dir[] = "/tmp/orogen_paint_XXXXXX";
+    assert_non_null(mkdtemp(dir));
+    char path[256], legacy[256];
+    snprintf(path, sizeof path, "%s/a.world", dir);
+    snprintf(legacy, sizeof legacy, "%s/b.world", dir);
+    world_params p = flat_params(600);
+    session s;
+    open_session(&s, open_world(&p));
+    run(&s, "layer new Paint kind=paint opacity=0.8");
+    run(&s, PAINT);
+    run(&s, "layer mask Paint height=-inf,70 falloff=15");
+    uint8_t *saved = materials(&s);
+    og_error err;
+    if (world_save(s.ctx.world, path, 0, &err) != 0) fail_msg("%s", err.msg);
+    close_session(&s);
+    world_settings set = {.cache_budget_bytes = (size_t)256 << 20, .workers = 2, .warn = silent};
+    world *w = world_load(path, &set, NULL, &err);
+    if (!w) fail_msg("%s", err.msg);
+    open_session(&s, w);
+    uint8_t *loaded = materials(&s);
+    assert_memory_equal(saved, loaded, (size_t)ALL_N * TILE_MATERIALS);
+    run(&s, "layer set Paint visible=0");
+    uint8_t *hidden = materials(&s);
+    assert_true(is_automatic(hidden));
+    run(&s, "layer set Paint visible=1");
+    free(loaded);
+    loaded = materials(&s);
+    assert_memory_equal(saved, loaded, (size_t)ALL_N * TILE_MATERIALS);
+    close_session(&s);
+    // Paint written straight into the composite (as before paint layers).
+    w = open_world(&p);
+    open_session(&s, w);
+    edit *e = edit_begin(w, "old paint", &err);
+    edit_set_layer_mode(e, EDIT_LAYER_COMPOSED);
+    tile_view v;
+    tile_key key = {.layer = TILE_LAYER_MATERIAL, .tx = 1, .ty = 0};
+    if (edit_tile_acquire(e, key, &v, &err) != 0) fail_msg("%s", err.msg);
+    uint8_t *m = v.data;
+    for (size_t k = 0; k < TILE_SAMPLES; k += 3) {
+        memset(m + k * 8, 0, 8);
+        m[k * 8 + 2] = 200;
+        m[k * 8 + 4] = 55;
+    }
+    edit_tile_release(e, &v);
+    if (edit_commit(e, &err) != 0) fail_msg("%s", err.msg);
+    uint8_t *old = materials(&s);
+    if (world_save(w, legacy, 0, &err) != 0) fail_msg("%s", err.msg);
+    close_session(&s);
+    w = world_load(legacy, &set, NULL, &err);
+    if (!w) fail_msg("%s", err.msg);
+    open_session(&s, w);
+    run(&s, "layer new Over kind=paint; tool paint material=6 radius=60 strength=1; "
+            "stroke 300 100 400 100; layer set Over visible=0");
+    uint8_t *now = materials(&s);
+    assert_memory_equal(old, now, (size_t)ALL_N * TILE_MATERIALS);
+    close_session(&s);
+    free(saved);
+    free(loaded);
+    free(hidden);
+    free(old);
+    free(now);
+    char cmd[300];
+    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    assert_int_equal(system(cmd), 0);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_paint_composite_matches_arrays),
+        cmocka_unit_test(test_paint_tool_on_layer),
+        cmocka_unit_test(test_merge_masked),
+        cmocka_unit_test(test_saved_paint),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
