@@ -113,6 +113,31 @@ static void fill_paint(edit *e, int32_t slot, grid_rect r, uint8_t *ref, grid_re
         }
 }
 
+// Writes random coverage (some beyond 0..1, some NaN) into layer id's painted mask over r.
+static void fill_coverage(edit *e, int32_t id, grid_rect r, float *ref, grid_rect area,
+                          uint64_t *seed) {
+    for (int64_t tz = r.z0 >> 8; tz <= (r.z1 - 1) >> 8; tz++)
+        for (int64_t tx = r.x0 >> 8; tx <= (r.x1 - 1) >> 8; tx++) {
+            tile_key key = {.layer = tile_layer_in_slot(TILE_LAYER_COARSE, layer_coverage_slot(id)),
+                            .tx = (int32_t)tx,
+                            .ty = (int32_t)tz};
+            tile_view v;
+            og_error err;
+            if (edit_tile_acquire(e, key, &v, &err) != 0) fail_msg("%s", err.msg);
+            float *f = v.data;
+            for (int j = 0; j < TILE_SIZE; j++)
+                for (int i = 0; i < TILE_SIZE; i++) {
+                    int64_t x = tx * TILE_SIZE + i, z = tz * TILE_SIZE + j;
+                    if (x < r.x0 || x >= r.x1 || z < r.z0 || z >= r.z1) continue;
+                    float c = rng_unit(seed) < 0.05 ? NAN : (float)(rng_unit(seed) * 1.5 - 0.2);
+                    f[j * TILE_SIZE + i] = c;
+                    if (x >= area.x0 && x < area.x1 && z >= area.z0 && z < area.z1)
+                        ref[(z - area.z0) * (area.x1 - area.x0) + (x - area.x0)] = c;
+                }
+            edit_tile_release(e, &v);
+        }
+}
+
 // Random paint stacks over an unbounded world around negative tile coordinates, over and
 // under the height layer, with masks reading the heights: the material composite equals
 // the formula on plain arrays everywhere, across tile edges.
@@ -126,6 +151,7 @@ static void test_paint_composite_matches_arrays(void **state) {
     float *base_h = read_kind(w, TILE_LAYER_COARSE, area);
     uint8_t *base_m = read_kind(w, TILE_LAYER_MATERIAL, area);
     uint64_t seed = 91;
+    int painted_masks = 0;
     for (int trial = 0; trial < 4; trial++) {
         world_params next = *world_get_params(w);
         layer_table *t = &next.layers;
@@ -149,11 +175,13 @@ static void test_paint_composite_matches_arrays(void **state) {
                 if (rng_unit(&seed) < 0.5) layer_mask_set_option(m, "slope", "0,20,4", &err);
                 if (rng_unit(&seed) < 0.3) layer_mask_set_option(m, "invert", "1", &err);
             }
+            if (rng_unit(&seed) < 0.4) layer_mask_set_option(m, "painted", "1", &err);
         }
         edit *e = edit_begin(w, "test paint", &err);
         edit_set_layer_mode(e, EDIT_LAYER_COMPOSED);
         if (edit_set_params(e, &next, &err) != 0) fail_msg("%s", err.msg);
         uint8_t *base = malloc(n * TILE_MATERIALS), *values[LAYER_MAX] = {0};
+        float *coverage[LAYER_MAX] = {0};
         memcpy(base, base_m, n * TILE_MATERIALS);
         fill_paint(e, TILE_SLOT_BASE, (grid_rect){area.x0 + 50, area.z0, area.x1, area.z0 + 300},
                    base, area, &seed, 1);
@@ -165,6 +193,12 @@ static void test_paint_composite_matches_arrays(void **state) {
             int64_t x1 = area.x1 - (int64_t)(rng_unit(&seed) * 200),
                     z1 = area.z1 - (int64_t)(rng_unit(&seed) * 200);
             fill_paint(e, t->layers[i].id, (grid_rect){x0, z0, x1, z1}, values[i], area, &seed, 0);
+            if (t->layers[i].mask.painted) { // coverage (out of range and NaN too) over a part
+                coverage[i] = calloc(n, sizeof(float));
+                painted_masks += t->layers[i].visible;
+                fill_coverage(e, t->layers[i].id, (grid_rect){x1 - 250, z1 - 250, x1 + 30, z1 + 10},
+                              coverage[i], area, &seed);
+            }
         }
         tile_parts parts = {0};
         tile_parts_add_rect(&parts, 0, area);
@@ -183,7 +217,16 @@ static void test_paint_composite_matches_arrays(void **state) {
             if (layer_mask_active(&l->mask)) {
                 int b = 1;
                 float *win = malloc(sizeof(float) * (size_t)(aw - 2 * b) * (ah - 2 * b));
-                layer_mask_evaluate(&l->mask, base_h, aw - 2 * b, ah - 2 * b, b, 1.0, NULL, win);
+                float *painted = NULL;
+                if (coverage[i]) {
+                    painted = malloc(sizeof(float) * (size_t)(aw - 2 * b) * (ah - 2 * b));
+                    for (int z = 0; z < ah - 2 * b; z++)
+                        memcpy(painted + (size_t)z * (aw - 2 * b),
+                               coverage[i] + (size_t)(z + b) * aw + b,
+                               sizeof(float) * (aw - 2 * b));
+                }
+                layer_mask_evaluate(&l->mask, base_h, aw - 2 * b, ah - 2 * b, b, 1.0, painted, win);
+                free(painted);
                 for (size_t k = 0; k < n; k++)
                     mask[k] = 0;
                 for (int z = 0; z < ah - 2 * b; z++)
@@ -215,6 +258,7 @@ static void test_paint_composite_matches_arrays(void **state) {
         assert_true(compared > n / 2);
         for (int i = 0; i < LAYER_MAX; i++) {
             free(values[i]);
+            free(coverage[i]);
             free(weights[i]);
         }
         free(mask);
@@ -227,6 +271,7 @@ static void test_paint_composite_matches_arrays(void **state) {
         assert_memory_equal(got, base_m, n * TILE_MATERIALS);
         free(got);
     }
+    assert_true(painted_masks > 0);
     free(base_h);
     free(base_m);
     world_close(w);
@@ -480,12 +525,106 @@ static void test_saved_paint(void **state) {
     assert_int_equal(system(cmd), 0);
 }
 
+static float *read_slot(world *w, int32_t slot, grid_rect r) {
+    layer_grid g;
+    og_error err;
+    if (layer_grid_init(&g, world_get_params(w), TILE_LAYER_COARSE, 0, &err) != 0)
+        fail_msg("%s", err.msg);
+    g.layer = (tile_layer)tile_layer_in_slot(TILE_LAYER_COARSE, slot);
+    float *out = malloc(sizeof(float) * (size_t)((r.x1 - r.x0) * (r.z1 - r.z0)));
+    if (layer_grid_read(w, &g, r, out, &err) != 0) fail_msg("%s", err.msg);
+    return out;
+}
+
+// A painted mask: coverage painted with the brush (target=mask) across tile edges limits
+// a height layer exactly as the formula on plain arrays says (base + coverage x value);
+// erasing, inverting, clearing, duplicating, undo/redo and save/load keep it.
+static void test_painted_mask(void **state) {
+    (void)state;
+    world_params p = flat_params(600);
+    session s;
+    open_session(&s, open_world(&p));
+    run(&s, "layer new Hills opacity=0.8; tool raise radius=150 strength=0.8; "
+            "stroke 100 300 500 300; stroke 300 100 300 500");
+    float *full = read_kind(s.ctx.world, TILE_LAYER_COARSE, ALL);
+    run(&s, "layer mask Hills painted=1");
+    float *none = read_kind(s.ctx.world, TILE_LAYER_COARSE, ALL);
+    run_fails(&s, "layer select Sculpt; tool raise target=mask; stroke 1 1", "no painted mask");
+    run(&s, "layer select Hills; tool set target=mask height=0.5 radius=60 strength=1; "
+            "stroke 200 256 400 256; tool raise target=mask amount=4 radius=40 strength=1; "
+            "stroke 256 150 256 200; tool lower target=mask amount=1 radius=30 strength=0.3; "
+            "stroke 300 240 330 270; tool smooth target=mask radius=20 strength=1; "
+            "stroke 180 250 420 260");
+    const layer_table *t = &world_get_params(s.ctx.world)->layers;
+    int32_t id = t->layers[layer_table_find(t, "Hills")].id;
+    float *got = read_kind(s.ctx.world, TILE_LAYER_COARSE, ALL);
+    float *base = read_slot(s.ctx.world, TILE_SLOT_BASE, ALL);
+    float *v = read_slot(s.ctx.world, id, ALL);
+    float *cov = read_slot(s.ctx.world, layer_coverage_slot(id), ALL);
+    size_t wrong = 0, partial = 0, covered = 0;
+    for (size_t k = 0; k < ALL_N; k++) {
+        assert_true(cov[k] >= 0.0f && cov[k] <= 1.0f); // kept within 0..1
+        float w = 0.8f * cov[k];
+        float want = v[k] != v[k] || !(w > 0) ? base[k] : base[k] + w * v[k];
+        partial += cov[k] > 0 && cov[k] < 1;
+        covered += cov[k] > 0;
+        if (memcmp(&want, &got[k], sizeof want) && wrong++ < 3)
+            print_error("sample %zu: formula %.9g, composite %.9g\n", k, want, got[k]);
+        if (cov[k] == 0) assert_true(got[k] == none[k]);
+    }
+    assert_int_equal(wrong, 0);
+    assert_true(partial > 1000 && covered > 10000);
+    // Inverted: the layer shows where the coverage is not.
+    run(&s, "layer mask Hills invert=1");
+    float *inv = read_kind(s.ctx.world, TILE_LAYER_COARSE, ALL);
+    for (size_t k = 0; k < ALL_N; k++)
+        if (cov[k] == 0) assert_true(fabsf(inv[k] - full[k]) <= 1e-3f * (1 + fabsf(full[k])));
+    // Duplicated: the copy brings its coverage (the duplicate adds the layer again).
+    run(&s, "layer mask Hills invert=0; layer duplicate Hills; layer set Hills visible=0");
+    float *dup = read_kind(s.ctx.world, TILE_LAYER_COARSE, ALL);
+    for (size_t k = 0; k < ALL_N; k++)
+        assert_true(fabsf(dup[k] - got[k]) <= 1e-3f * (1 + fabsf(got[k])));
+    run(&s, "undo; undo");
+    // Cleared: nothing painted, one undo step.
+    run(&s, "layer mask Hills painted=clear");
+    float *cleared = read_kind(s.ctx.world, TILE_LAYER_COARSE, ALL);
+    assert_memory_equal(cleared, none, sizeof(float) * ALL_N);
+    run(&s, "undo");
+    float *back = read_kind(s.ctx.world, TILE_LAYER_COARSE, ALL);
+    assert_memory_equal(back, got, sizeof(float) * ALL_N);
+    // Saved and loaded: the same composite, and the coverage still paints.
+    char dir[] = "/tmp/orogen_mask_XXXXXX", path[256];
+    assert_non_null(mkdtemp(dir));
+    snprintf(path, sizeof path, "%s/m.world", dir);
+    og_error err;
+    if (world_save(s.ctx.world, path, 0, &err) != 0) fail_msg("%s", err.msg);
+    close_session(&s);
+    world_settings set = {.cache_budget_bytes = (size_t)256 << 20, .workers = 2, .warn = silent};
+    world *w = world_load(path, &set, NULL, &err);
+    if (!w) fail_msg("%s", err.msg);
+    open_session(&s, w);
+    float *loaded = read_kind(s.ctx.world, TILE_LAYER_COARSE, ALL);
+    assert_memory_equal(loaded, got, sizeof(float) * ALL_N);
+    run(&s, "layer set Hills visible=0; layer set Hills visible=1");
+    free(loaded);
+    loaded = read_kind(s.ctx.world, TILE_LAYER_COARSE, ALL);
+    assert_memory_equal(loaded, got, sizeof(float) * ALL_N);
+    close_session(&s);
+    char cmd[300];
+    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    assert_int_equal(system(cmd), 0);
+    float *all[] = {full, none, got, base, v, cov, inv, dup, cleared, back, loaded};
+    for (size_t i = 0; i < sizeof all / sizeof all[0]; i++)
+        free(all[i]);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_paint_composite_matches_arrays),
         cmocka_unit_test(test_paint_tool_on_layer),
         cmocka_unit_test(test_merge_masked),
         cmocka_unit_test(test_saved_paint),
+        cmocka_unit_test(test_painted_mask),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -49,12 +49,41 @@ typedef struct layer_change {
     int32_t clear_id;           // clear: that layer's tiles to nothing
     int merge_below;            // merge: layer index below the merged one (-1: none)
     int merge_paint;            // merge: of paint layers
+    // A painted mask's coverage: copied (duplicate: from -> to, layer ids) or emptied
+    // (clear: that layer's); recomposed as its layer's kind.
+    int32_t coverage_from, coverage_to, coverage_clear;
+    tile_layer coverage_kind;
 } layer_change;
 
 static int tiles_of(world *w, int32_t id, tile_key **keys, size_t *n, og_error *err) {
     *keys = NULL;
     *n = 0;
     return id ? layer_tiles(w, id, keys, n, err) : 0;
+}
+
+// Copies or empties a painted mask's coverage tiles.
+static int change_coverage(edit *e, const layer_change *c, og_error *err) {
+    int32_t from = c->coverage_clear ? -1 : layer_coverage_slot(c->coverage_from);
+    int32_t to = layer_coverage_slot(c->coverage_clear ? c->coverage_clear : c->coverage_to);
+    tile_key *keys;
+    size_t n;
+    if (layer_tiles(edit_world(e), c->coverage_clear ? to : from, &keys, &n, err) != 0) return -1;
+    int rc = layer_copy_tiles(e, from, to, keys, n, err);
+    free(keys);
+    return rc;
+}
+
+// After emptying a coverage: the composite where it was painted (as the layer's kind).
+static int recompose_coverage(edit *e, const layer_change *c, og_error *err) {
+    tile_key *keys;
+    size_t n;
+    if (layer_tiles(edit_world(e), layer_coverage_slot(c->coverage_clear), &keys, &n, err) != 0)
+        return -1;
+    for (size_t i = 0; i < n; i++)
+        keys[i].layer = tile_layer_in_slot(c->coverage_kind, c->coverage_clear);
+    int rc = layer_recompose_tiles(e, keys, n, err);
+    free(keys);
+    return rc;
 }
 
 // Runs a change as one edit (one undo step).
@@ -96,9 +125,11 @@ static int apply_change(cmd_context *ctx, const layer_change *c, og_error *err) 
     if (rc == 0 && c->copy_to)
         rc = layer_copy_tiles(e, c->copy_from, c->copy_to, keys[0], counts[0], err);
     if (rc == 0 && c->clear_id) rc = layer_copy_tiles(e, -1, c->clear_id, keys[0], counts[0], err);
+    if (rc == 0 && (c->coverage_to || c->coverage_clear)) rc = change_coverage(e, c, err);
     if (rc == 0) rc = edit_set_params(e, &c->next, err);
     for (int i = 0; i < 2 && rc == 0; i++)
         rc = layer_recompose_tiles(e, keys[i], counts[i], err);
+    if (rc == 0 && c->coverage_clear) rc = recompose_coverage(e, c, err);
     free(keys[0]);
     free(keys[1]);
     if (!e) return -1;
@@ -186,7 +217,9 @@ static int layer_set(layer_change *c, int i, int argc, char **argv, og_error *er
 }
 
 // `layer mask NAME [KEY=VALUE ...] [clear]`: without settings prints the mask.
-static int layer_mask_set(cmd_context *ctx, layer_info *l, int argc, char **argv, og_error *err) {
+// painted=clear empties the painted coverage (c->coverage_clear).
+static int layer_mask_set(cmd_context *ctx, layer_change *c, layer_info *l, int argc, char **argv,
+                          og_error *err) {
     if (argc == 3) {
         char text[512] = "none";
         if (layer_mask_active(&l->mask)) layer_mask_format(&l->mask, text, sizeof text);
@@ -204,11 +237,13 @@ static int layer_mask_set(cmd_context *ctx, layer_info *l, int argc, char **argv
         if (!layer_mask_key(key))
             return og_error_set(err,
                                 "layer mask: unknown setting '%s' (height, slope, curvature, flow, "
-                                "falloff, invert, clear)",
+                                "falloff, invert, painted, clear)",
                                 key);
-        if (!strcmp(key, "painted") && strcmp(value, "0"))
-            return og_error_set(err, "layer mask: painted: painting a mask's coverage is not "
-                                     "available yet (only painted=0)");
+        if (!strcmp(key, "painted") && !strcmp(value, "clear")) {
+            c->coverage_clear = l->id;
+            c->coverage_kind = (tile_layer)layer_tile_kind(l);
+            continue;
+        }
         og_error why;
         if (layer_mask_set_option(&m, key, value, &why) != 0)
             return og_error_set(err, "layer mask: %s", why.msg);
@@ -305,6 +340,8 @@ int cmd_layer(cmd_context *ctx, int argc, char **argv, og_error *err) {
         t->active = at;
         c.copy_from = copy.id;
         c.copy_to = t->layers[at].id;
+        c.coverage_from = copy.id; // its painted mask too
+        c.coverage_to = t->layers[at].id;
         c.recompose_ids[0] = copy.id;
     } else if (!strcmp(sub, "merge")) {
         if (argc > 3) return og_error_set(err, "layer merge: expected only a NAME");
@@ -341,7 +378,7 @@ int cmd_layer(cmd_context *ctx, int argc, char **argv, og_error *err) {
         layer_table_remove(t, i);
         t->active = i - 1;
     } else if (!strcmp(sub, "mask")) {
-        if (layer_mask_set(ctx, l, argc, argv, err) != 0) return -1;
+        if (layer_mask_set(ctx, &c, l, argc, argv, err) != 0) return -1;
         if (argc == 3) return 0; // printed it
         c.recompose_ids[0] = l->id;
     } else if (!strcmp(sub, "clear")) {
@@ -360,6 +397,8 @@ int cmd_layer(cmd_context *ctx, int argc, char **argv, og_error *err) {
         c.recompose_ids[0] = l->id;
         layer_table_remove(t, i);
     }
-    if (layer_table_equal(t, &world_get_params(ctx->world)->layers) && !c.clear_id) return 0;
+    if (layer_table_equal(t, &world_get_params(ctx->world)->layers) && !c.clear_id &&
+        !c.coverage_clear)
+        return 0;
     return apply_change(ctx, &c, err);
 }

@@ -19,6 +19,32 @@ int height_window_mask_border(const layer_info *l, double spacing) {
                : 0;
 }
 
+int height_window_coverage(world *w, const layer_info *l, const layer_grid *grid, grid_rect r,
+                           float **out, og_error *err) {
+    *out = NULL;
+    if (!l->mask.painted) return 0;
+    float *c = malloc(sizeof(float) * rect_samples(r));
+    if (!c) return og_error_set(err, "out of memory reading a painted mask");
+    layer_grid g = *grid;
+    g.layer = (tile_layer)tile_layer_in_slot(TILE_LAYER_COARSE, layer_coverage_slot(l->id));
+    if (layer_grid_read(w, &g, r, c, err) != 0) {
+        free(c);
+        return -1;
+    }
+    *out = c;
+    return 0;
+}
+
+int height_window_mask(world *w, const layer_info *l, const layer_grid *grid, grid_rect r,
+                       const float *below, int b, float *out, og_error *err) {
+    float *painted;
+    if (height_window_coverage(w, l, grid, r, &painted, err) != 0) return -1;
+    layer_mask_evaluate(&l->mask, below, (int)(r.x1 - r.x0), (int)(r.z1 - r.z0), b, grid->spacing,
+                        painted, out);
+    free(painted);
+    return 0;
+}
+
 int height_window_compose(edit *e, const layer_table *t, const layer_grid *grid, grid_rect r,
                           int upto, int extra, int record, float *weights, float **out,
                           og_error *err) {
@@ -50,7 +76,7 @@ int height_window_compose(edit *e, const layer_table *t, const layer_grid *grid,
                 memcpy(below + (size_t)z * iw,
                        acc + (size_t)(z + in.z0 - outer.z0) * ow + (in.x0 - outer.x0),
                        sizeof(float) * (size_t)iw);
-            layer_mask_evaluate(&l->mask, below, aw, ah, b, grid->spacing, NULL, mask);
+            if ((rc = height_window_mask(w, l, grid, apply, below, b, mask, err)) != 0) break;
         }
         for (int z = 0; z < ah; z++) {
             float *row = acc + (size_t)(z + apply.z0 - outer.z0) * ow + (apply.x0 - outer.x0);

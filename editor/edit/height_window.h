@@ -10,6 +10,14 @@ grid_rect height_window_grow(grid_rect r, int by);
 // Samples of composite around a height layer its mask reads (0 without a mask, hidden,
 // or a paint layer: paint does not change heights).
 int height_window_mask_border(const layer_info *l, double spacing);
+// The painted coverage of layer l's mask over r (row-major, malloc'd into *out; NULL when
+// its mask has no painted term); grid: a coarse grid of r's face.
+int height_window_coverage(world *w, const layer_info *l, const layer_grid *grid, grid_rect r,
+                           float **out, og_error *err);
+// Layer l's mask over r: its weights from the composite below it (below: r grown by b
+// samples, b its border) and its painted coverage; out r's size.
+int height_window_mask(world *w, const layer_info *l, const layer_grid *grid, grid_rect r,
+                       const float *below, int b, float *out, og_error *err);
 // The composite of the visible height layers [0, upto) of t over r grown by extra samples
 // (row-major, malloc'd into *out), from the base; grid: a coarse grid of r's face. A
 // masked layer reads the composite below it around its part: the window starts wider by

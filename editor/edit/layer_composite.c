@@ -88,12 +88,11 @@ static int compose_task(void *user, int task, og_error *err) {
             float *mask = malloc(sizeof(float) * (size_t)rw * (size_t)rh);
             if (!mask)
                 rc = og_error_set(err, "out of memory composing layers");
-            else {
-                layer_mask_evaluate(&l->mask, acc, rw, rh, b, grid.spacing, NULL, mask);
+            else if ((rc = height_window_mask(w, l, &grid, r, acc, b, mask, err)) == 0) {
                 for (int k = 0; k < rw * rh; k++)
                     weight[k] = (float)l->opacity * mask[k];
-                free(mask);
             }
+            free(mask);
         } else {
             for (int k = 0; k < rw * rh; k++)
                 weight[k] = (float)l->opacity;
@@ -207,30 +206,91 @@ int layer_recompose_tiles(edit *e, const tile_key *keys, size_t count, og_error 
     return heights.count ? run(e, &heights, 0, err) : 0;
 }
 
+// Keeps painted coverage within 0..1 over one dirty area of it.
+static int clamp_coverage(edit *e, const dirty_rect *d, og_error *err) {
+    tile_parts l = {0};
+    if (tile_parts_add_rect(&l, d->face, d->rect) != 0) {
+        tile_parts_free(&l);
+        return og_error_set(err, "out of memory painting a mask");
+    }
+    int rc = 0;
+    for (size_t i = 0; i < l.count && rc == 0; i++) {
+        const tile_part *p = &l.parts[i];
+        tile_view v;
+        tile_key key = {.layer = (int32_t)d->layer, .face = p->face, .tx = p->tx, .ty = p->ty};
+        if ((rc = edit_tile_acquire(e, key, &v, err)) != 0) break;
+        float *f = v.data;
+        for (int z = p->z0; z < p->z1; z++)
+            for (int x = p->x0; x < p->x1; x++) {
+                float *c = &f[z * TILE_SIZE + x];
+                *c = !(*c > 0.0f) ? 0.0f : *c > 1.0f ? 1.0f : *c;
+            }
+        edit_tile_release(e, &v);
+    }
+    tile_parts_free(&l);
+    return rc;
+}
+
+// A tool painted a layer's mask coverage (brush target=mask) over rects (a copy): kept
+// within 0..1, and the composite recomposed where it changed (and where the masks above
+// read that).
+static int take_coverage(edit *e, const dirty_rect *rects, size_t count, og_error *err) {
+    const world_params *params = world_get_params(edit_world(e));
+    const layer_table *t = &params->layers;
+    int rc = 0;
+    for (size_t i = 0; i < count && rc == 0; i++) {
+        int32_t slot = tile_key_slot((tile_key){.layer = (int32_t)rects[i].layer});
+        int li = layer_table_find_id(t, slot - LAYER_ID_MAX - 1);
+        if (li < 0 || (rc = clamp_coverage(e, &rects[i], err)) != 0) continue;
+        tile_parts parts = {0};
+        layer_grid g;
+        if ((rc = layer_grid_init(&g, params, TILE_LAYER_COARSE, rects[i].face, err)) != 0) break;
+        int grow = 0;
+        for (int k = li + 1; k < t->count; k++)
+            grow += height_window_mask_border(&t->layers[k], g.spacing);
+        if (t->layers[li].kind == LAYER_KIND_PAINT) {
+            if (tile_parts_add_rect(&parts, rects[i].face, rects[i].rect) != 0)
+                rc = og_error_set(err, "out of memory painting a mask");
+            else
+                rc = paint_recompose(e, &parts, err);
+            tile_parts_free(&parts);
+        } else {
+            rc = layer_recompose(e, rects[i].face, height_window_grow(rects[i].rect, grow), err);
+        }
+    }
+    return rc;
+}
+
 int layer_take_edit(edit *e, og_error *err) {
     if (edit_get_layer_mode(e) == EDIT_LAYER_COMPOSED) return 0;
     const layer_table *t = &world_get_params(edit_world(e))->layers;
     if (!t->count) return 0;
     const dirty_rect *rects;
     size_t count = edit_dirty_rects(e, &rects);
+    // Everything the tool changed is gathered first: composing adds areas of its own.
     tile_parts l = {0}, paint = {0};
-    for (size_t i = 0; i < count; i++) {
+    dirty_rect *coverage = malloc((count ? count : 1) * sizeof *coverage);
+    size_t covered = 0;
+    int rc = coverage ? 0 : og_error_set(err, "out of memory composing layers");
+    for (size_t i = 0; i < count && rc == 0; i++) {
+        tile_key probe = {.layer = (int32_t)rects[i].layer};
+        if (tile_key_kind(probe) == TILE_LAYER_COARSE && tile_key_slot(probe) > LAYER_ID_MAX)
+            coverage[covered++] = rects[i];
         tile_parts *to = rects[i].layer == TILE_LAYER_COARSE     ? &l
                          : rects[i].layer == TILE_LAYER_MATERIAL ? &paint
                                                                  : NULL;
-        if (to && tile_parts_add_rect(to, rects[i].face, rects[i].rect) != 0) {
-            tile_parts_free(&l);
-            tile_parts_free(&paint);
-            return og_error_set(err, "out of memory composing layers");
-        }
+        if (to && tile_parts_add_rect(to, rects[i].face, rects[i].rect) != 0)
+            rc = og_error_set(err, "out of memory composing layers");
     }
-    int rc = paint.count ? paint_take_edit(e, &paint, err) : 0;
-    tile_parts_free(&paint);
-    if (rc != 0 || !l.count) {
+    if (rc == 0 && paint.count) rc = paint_take_edit(e, &paint, err);
+    if (rc == 0 && l.count)
+        rc = run(e, &l, 1, err);
+    else
         tile_parts_free(&l);
-        return rc;
-    }
-    return run(e, &l, 1, err);
+    if (rc == 0) rc = take_coverage(e, coverage, covered, err);
+    tile_parts_free(&paint);
+    free(coverage);
+    return rc;
 }
 
 // ---- a layer's tiles ----------------------------------------------------------------
@@ -359,8 +419,9 @@ static int copy_task(void *user, int task, og_error *err) {
     tiles_job *j = user;
     tile_view dst;
     if (edit_tile_acquire(j->e, in_slot(j->keys[task], j->to), &dst, err) != 0) return -1;
-    if (j->from < 0 && tile_key_kind(j->keys[task]) == TILE_LAYER_MATERIAL) {
-        memset(dst.data, 0, tile_layer_bytes(TILE_LAYER_MATERIAL)); // no coverage
+    if (j->from < 0 &&
+        (tile_key_kind(j->keys[task]) == TILE_LAYER_MATERIAL || j->to > LAYER_ID_MAX)) {
+        memset(dst.data, 0, tile_layer_bytes(tile_key_kind(j->keys[task]))); // no coverage
     } else if (j->from < 0) {
         float *f = dst.data;
         for (size_t k = 0; k < TILE_SAMPLES; k++)
@@ -422,14 +483,14 @@ static int merge_task(void *user, int task, og_error *err) {
     if (rc == 0) rc = layer_grid_read(w, &g, mid, lov, err);
     if (rc == 0) {
         int bw = mw + 2 * bl; // below's width
-        if (lo_masked) layer_mask_evaluate(&lo->mask, below, mw, mh, bl, grid.spacing, NULL, wl);
+        if (lo_masked) rc = height_window_mask(w, lo, &grid, mid, below, bl, wl, err);
         for (size_t k = 0; k < nm; k++) {
             wl[k] = lo_masked ? wl[k] * (float)lo->opacity : (float)lo->opacity;
             int z = (int)(k / (size_t)mw), x = (int)(k % (size_t)mw);
             shown[k] =
                 layer_blend_sample(lo->blend, wl[k], below[(size_t)(z + bl) * bw + x + bl], lov[k]);
         }
-        if (hi_masked) layer_mask_evaluate(&hi->mask, shown, rw, rh, bh, grid.spacing, NULL, wh);
+        if (hi_masked && rc == 0) rc = height_window_mask(w, hi, &grid, r, shown, bh, wh, err);
         for (size_t k = 0; k < (size_t)rw * rh; k++)
             wh[k] = hi_masked ? wh[k] * (float)hi->opacity : (float)hi->opacity;
     }

@@ -44,9 +44,9 @@ static int layer_weights(edit *e, const layer_table *t, int i, int face, grid_re
     int b = layer_mask_border(&l->mask, grid.spacing);
     float *heights;
     if (height_window_compose(e, t, &grid, r, i, b, -1, NULL, &heights, err) != 0) return -1;
-    layer_mask_evaluate(&l->mask, heights, (int)(r.x1 - r.x0), (int)(r.z1 - r.z0), b, grid.spacing,
-                        NULL, out);
+    int rc = height_window_mask(edit_world(e), l, &grid, r, heights, b, out, err);
     free(heights);
+    if (rc != 0) return -1;
     for (size_t k = 0; k < n; k++)
         out[k] *= (float)l->opacity;
     return 0;

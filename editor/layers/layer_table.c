@@ -117,6 +117,8 @@ int layer_table_insert(layer_table *t, int at, const char *name, layer_blend ble
     if (layer_table_find(t, name) >= 0)
         return og_error_set(err, "layer '%s' exists already; choose another name", name);
     if (t->next_id < LAYER_FIRST_ID) t->next_id = LAYER_FIRST_ID;
+    if (t->next_id > LAYER_ID_MAX)
+        return og_error_set(err, "layer '%s': this world has used up its layer ids", name);
     if (at < 0) at = 0;
     if (at > t->count) at = t->count;
     memmove(&t->layers[at + 1], &t->layers[at], (size_t)(t->count - at) * sizeof t->layers[0]);
@@ -216,10 +218,10 @@ static int read_layer(layer_table *t, const char *value, og_error *err) {
         if (!strcmp(word, "id")) {
             char *end;
             long id = strtol(eq + 1, &end, 10);
-            if (*end || end == eq + 1 || id < LAYER_FIRST_ID || id > 0x7fffff)
+            if (*end || end == eq + 1 || id < LAYER_FIRST_ID || id > LAYER_ID_MAX)
                 return og_error_set(err,
                                     "layer '%s': id: expected an integer from %d to %d, got '%s'",
-                                    l->name, LAYER_FIRST_ID, 0x7fffff, eq + 1);
+                                    l->name, LAYER_FIRST_ID, LAYER_ID_MAX, eq + 1);
             l->id = (int32_t)id;
             continue;
         }
@@ -268,9 +270,9 @@ int layer_table_read_entry(layer_table *t, const char *key, const char *value, o
     if (!strcmp(key, "layer_next_id")) {
         char *end;
         long id = strtol(value, &end, 10);
-        if (*end || end == value || id < LAYER_FIRST_ID || id > 0x7fffff)
+        if (*end || end == value || id < LAYER_FIRST_ID || id > LAYER_ID_MAX)
             return og_error_set(err, "layer_next_id: expected an integer from %d to %d, got '%s'",
-                                LAYER_FIRST_ID, 0x7fffff, value);
+                                LAYER_FIRST_ID, LAYER_ID_MAX, value);
         t->next_id = (int32_t)id;
         return 0;
     }

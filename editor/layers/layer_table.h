@@ -16,6 +16,13 @@
 #define LAYER_NAME_MAX 48
 // Ids start above the tile slots of the composite (0) and the base (1).
 #define LAYER_FIRST_ID 2
+// The largest id; the slots above it hold layers' painted mask coverage (io/tile.h).
+#define LAYER_ID_MAX 0x3fffff
+// The tile slot of layer id's painted mask coverage: float 0..1 per sample in coarse
+// tiles (never painted: 0).
+static inline int32_t layer_coverage_slot(int32_t id) {
+    return id + LAYER_ID_MAX + 1;
+}
 
 typedef enum layer_blend {
     LAYER_BLEND_ADD = 0, // a signed delta added to the layers below

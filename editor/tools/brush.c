@@ -152,14 +152,21 @@ int brush_set(brush *b, const char *key, const char *value, og_error *err) {
             return og_error_set(err, "invert: '%s' is not 0, 1, true or false", value);
         n.invert = strcmp(value, "1") == 0 || strcmp(value, "true") == 0;
     } else if (strcmp(key, "target") == 0 || strcmp(key, "layer") == 0) {
-        if (strcmp(value, "coarse") == 0)
+        n.mask = strcmp(value, "mask") == 0;
+        if (strcmp(value, "coarse") == 0 || n.mask)
             n.target = TILE_LAYER_COARSE;
         else if (strcmp(value, "detail") == 0)
             n.target = TILE_LAYER_DETAIL;
         else
-            return og_error_set(err, "%s: '%s' is not coarse or detail", key, value);
+            return og_error_set(err, "%s: '%s' is not coarse, detail or mask", key, value);
         if (n.tool == BRUSH_PAINT)
             return og_error_set(err, "%s: paint always edits the material layer", key);
+        if (n.mask && n.tool != BRUSH_RAISE && n.tool != BRUSH_SMOOTH && n.tool != BRUSH_SET &&
+            n.tool != BRUSH_FLATTEN)
+            return og_error_set(err,
+                                "%s: mask: only raise, lower, smooth, set and flatten paint a "
+                                "layer's mask coverage, not %s",
+                                key, brush_tool_name(n.tool));
     } else if (strcmp(key, "face") == 0) {
         rc = parse_integer_in(value, key, 0, 5, &v, err);
         n.face = (int)v;
@@ -243,7 +250,7 @@ void brush_print(const brush *b, FILE *o) {
         fprintf(o, "\n");
     }
     fprintf(o, "spacing=%.17g\nhold=%d\ninvert=%d\ntarget=%s\nface=%d\n", b->spacing, b->hold,
-            b->invert, tile_layer_name(b->target), b->face);
+            b->invert, b->mask ? "mask" : tile_layer_name(b->target), b->face);
     switch (b->tool) {
     case BRUSH_RAISE:
         fprintf(o, "amount=%.17g\n", b->amount);

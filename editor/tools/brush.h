@@ -60,8 +60,11 @@ typedef struct brush {
     int hold;       // held still, a stroke keeps dabbing (stroke_hold); 0: it does not
     int invert;
     tile_layer target; // coarse or detail (height tools); paint always edits materials
-    int face;          // planet face edited (0 on flat worlds)
-    double amount;     // raise, noise: metres per dab at full strength
+    // target=mask: raise, lower, smooth, set and flatten paint the active layer's painted
+    // mask coverage (0..1, editor/layers/layer_table.h) instead of heights.
+    int mask;
+    int face;      // planet face edited (0 on flat worlds)
+    double amount; // raise, noise: metres per dab at full strength
     int has_height;
     double height; // flatten (optional), set (required): target height in metres
     flatten_mode flatten;

@@ -43,6 +43,30 @@ static int layer_height(stroke *s, double x, double z, float *out, og_error *err
     return 0;
 }
 
+// target=mask: the stroke paints the active layer's painted mask coverage (its own tile
+// slot, io/tile.h); the layer's composite follows at the end of the stroke.
+static int aim_at_mask(world *w, layer_grid *g, og_error *err) {
+    const layer_table *t = &world_get_params(w)->layers;
+    const layer_info *l = &t->layers[t->active];
+    if (!l->mask.painted)
+        return og_error_set(err,
+                            "target=mask: layer '%s' has no painted mask (turn it on with "
+                            "'layer mask %s painted=1')",
+                            l->name, l->name);
+    if (l->locked)
+        return og_error_set(err,
+                            "layer '%s' is locked against edits (unlock it with 'layer set %s "
+                            "locked=0', or select another layer)",
+                            l->name, l->name);
+    if (!l->visible)
+        return og_error_set(err,
+                            "layer '%s' is hidden: edits to its mask would not show (show it "
+                            "with 'layer set %s visible=1')",
+                            l->name, l->name);
+    g->layer = (tile_layer)tile_layer_in_slot(TILE_LAYER_COARSE, layer_coverage_slot(l->id));
+    return 0;
+}
+
 stroke *stroke_begin(world *w, const brush *b, og_error *err) {
     stroke *s = calloc(1, sizeof *s);
     if (!s) {
@@ -57,6 +81,7 @@ stroke *stroke_begin(world *w, const brush *b, og_error *err) {
     }
     tile_layer layer = b->tool == BRUSH_PAINT ? TILE_LAYER_MATERIAL : b->target;
     if (layer_grid_init(&s->grid, world_get_params(w), layer, b->face, err) != 0) goto fail;
+    if (b->mask && aim_at_mask(w, &s->grid, err) != 0) goto fail;
     if (b->radius / s->grid.spacing > BRUSH_MAX_RADIUS_SAMPLES) {
         og_error_set(err, "radius: %g m is %g samples of the %s layer; the limit is %g samples",
                      b->radius, b->radius / s->grid.spacing, tile_layer_name(layer),

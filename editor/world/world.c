@@ -79,6 +79,10 @@ static int generation_source(void *user, tile_key key, void *out) {
     if (slot == TILE_SLOT_BASE) return gen_tile(&g->params, key, out);
     int faces = g->params.kind == WORLD_PLANET ? 6 : 1;
     if (key.face < 0 || key.face >= faces || key.level < 0 || key.level > TILE_MAX_LEVEL) return -1;
+    if (slot > LAYER_ID_MAX) { // a painted mask's coverage where it was never painted
+        memset(out, 0, tile_layer_bytes(TILE_LAYER_COARSE));
+        return 0;
+    }
     if (key.layer == TILE_LAYER_MATERIAL) { // a paint layer where it was never painted: no
         memset(out, 0, tile_layer_bytes(TILE_LAYER_MATERIAL)); // coverage (paint_blend.h)
         return 0;
