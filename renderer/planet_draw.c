@@ -25,6 +25,10 @@ ground_program *planet_ground_variant(planet_renderer *r, int variant, og_error 
     g->wrap = glGetUniformLocation(g->prog, "u_detail_wrap");
     g->tile = glGetUniformLocation(g->prog, "u_chunk_tile");
     g->cell = glGetUniformLocation(g->prog, "u_chunk_cell");
+    g->normal_map = glGetUniformLocation(g->prog, "u_normal_map");
+    g->face_axis = glGetUniformLocation(g->prog, "u_face_axis");
+    g->slope_scale = glGetUniformLocation(g->prog, "u_slope_scale");
+    g->face_edges = glGetUniformLocation(g->prog, "u_face_edges");
     g->frame = 0;
     return g;
 }
@@ -111,6 +115,7 @@ static void ground_frame_uniforms(planet_renderer *r, GLuint prog, const ground_
     glProgramUniform4fv(prog, glGetUniformLocation(prog, "u_brush_tint"), 1, f->tint);
     glProgramUniform3fv(prog, glGetUniformLocation(prog, "u_brush_ring"), 1, f->ring);
     glProgramUniform1i(prog, glGetUniformLocation(prog, "u_falloff"), 1);
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "u_normals"), 4);
     planet_detail_bind(r->detail, prog, s, 2, 3);
     glProgramUniform1i(prog, glGetUniformLocation(prog, "u_overlays"),
                        (s->tile_grid ? 1 : 0) | (s->level_grid ? 2 : 0));
@@ -219,6 +224,23 @@ static int draw_chunk(planet_renderer *r, int i, chunk_pass *p, og_error *err) {
     glProgramUniform3f(g->prog, g->offset, (float)(c->origin[0] - cam->pos[0]),
                        (float)(c->origin[1] - cam->pos[1]), (float)(c->origin[2] - cam->pos[2]));
     glProgramUniform1i(g->prog, g->level, c->level);
+    { // its normal texture: its metres at the atlas's texel 0, texels a metre, its layer
+        const int from = c->normal_level < 0 ? c->level : c->normal_level;
+        const double texel = ldexp(r->cell_arc, from);
+        glProgramUniform1f(g->prog, g->slope_scale, (float)exp2(SLOPE_SCALE_EXPONENT * from));
+        int layer, x, y;
+        planet_normals_place(r->shown[i], &layer, &x, &y);
+        glProgramUniform4f(g->prog, g->normal_map,
+                           (float)(c->metres_lo[0] - c->metres_base[0] - (x + 1) * texel),
+                           (float)(c->metres_lo[1] - c->metres_base[1] - (y + 1) * texel),
+                           (float)(1.0 / texel), (float)layer);
+        const double *axis = r->face_axis[chunk_face(c)];
+        glProgramUniform3f(g->prog, g->face_axis, (float)axis[0], (float)axis[1], (float)axis[2]);
+        const double extent = (double)r->face_samples * r->cell_arc; // face-local metres
+        glProgramUniform4f(g->prog, g->face_edges, (float)-c->metres_base[0],
+                           (float)(extent - c->metres_base[0]), (float)-c->metres_base[1],
+                           (float)(extent - c->metres_base[1]));
+    }
     glProgramUniform4fv(g->prog, g->detail, 1, l->detail);
     if (v & V_DETAIL) { // the window of the chunk's face
         if (l->window != p->window) planet_detail_use(r->detail, p->window = l->window, 2, 3);
@@ -276,6 +298,7 @@ int planet_renderer_draw(planet_renderer *r, const camera *cam, const render_set
     cursor_frame(r, cursor, &f);
     glBindTextureUnit(0, r->albedo);
     glBindTextureUnit(1, r->falloff);
+    glBindTextureUnit(4, r->normals);
     sort_near_first(r);
     planet_choose_shown(r, cam, s, aspect);
     // Each chunk's variant and detail window, the nearest chunk first.

@@ -47,6 +47,15 @@ typedef struct planet_renderer planet_renderer;
 #define TEX_PERIOD_FAR 64.0    // the larger scale that breaks up repetition (a multiple)
 #define EARTH_RADIUS 6371000.0 // the atmosphere scales with the planet from Earth's
 #define EARTH_SCALE_HEIGHT 8000.0
+// Shading normals come from the heights this many levels finer than a chunk's own
+// (planet_normals.c): its samples then lie 6 / 2^2 = 1.5 pixels apart on the screen.
+#define NORMAL_FINER 2
+#define NORMAL_TEXELS ((BLOCK << NORMAL_FINER) + 2) // a side: the samples and one past each end
+// Slopes measured over samples 2^L cells apart are gentler than the level-0 samples' by
+// about 2^(-L x this) on the planet generator's ranges and hills (tests/test_planet_look.c
+// measures it): the material rules scale them back, so ranges are rock from orbit too.
+#define SLOPE_SCALE_EXPONENT 0.3
+#define NORMAL_ATLAS 8  // chunks' textures per side of a layer (GL allows 2048 layers, not 3072)
 #define TOP_CELLS 16    // the tops of a chunk's cells, for the ground under the camera and crests
 #define CREST_SQUARES 8 // a chunk's floors for occlusion by the horizon: its 2 x 2 cell squares
 #define CELLS_PER_SQUARE (TOP_CELLS / CREST_SQUARES) // along a side
@@ -61,6 +70,7 @@ typedef struct chunk {
     int painted;      // some vertex has painted weights
     int blended;      // how many other faces' textures it blends in (planet_face_blend)
     int level;
+    signed char normal_level;        // the level its normal texture was made from (-1: none yet)
     float top[TOP_CELLS][TOP_CELLS]; // the highest the mesh reaches over each cell (morphed or not)
     float top_max;                   // and over the whole chunk
     float morph_slip; // the farthest a morph target lies from its vertex's direction, in cells
@@ -101,7 +111,8 @@ enum {
 typedef struct ground_program {
     GLuint prog;
     GLint offset, level, morph, detail, wrap, tile, cell; // the per-chunk uniforms
-    uint64_t frame;                                       // its frame uniforms were set for
+    GLint normal_map, face_axis, slope_scale, face_edges;
+    uint64_t frame; // its frame uniforms were set for
 } ground_program;
 
 typedef struct node {
@@ -113,6 +124,8 @@ struct planet_renderer {
     char shader_dir[4200];
     ground_program ground[VARIANTS]; // built when first needed
     GLuint prog_sky, vao, empty_vao, ibo, albedo, falloff;
+    GLuint normals;         // the chunks' normal textures, a layer per chunk slot
+    double face_axis[6][3]; // each face's s axis on the cube (the normals' tangent frame)
     float albedo_mean[MATERIAL_TEXTURE_COUNT][4]; // each material texture's mean colour
     int has_albedo_mean;
     GLenum front[6];       // each face's winding seen from outside
@@ -244,6 +257,16 @@ void planet_choose_shown(planet_renderer *r, const camera *cam, const render_set
 // Chunk meshes (planet_uploads.c): builds and uploads the node's chunk when its tile is
 // resident and the frame's budget allows.
 chunk *planet_try_build(planet_renderer *r, const node *n);
+
+// Shading normals finer than the mesh (planet_normals.c): the texture array, a chunk's
+// layer made from the finest resident level down to NORMAL_FINER below its own, and made
+// again for drawn chunks once that level's tiles are there (within the frame's budget;
+// all_current stays 0 until then).
+int planet_normals_create(planet_renderer *r, og_error *err);
+void planet_normals_build(planet_renderer *r, chunk *c, const node *n);
+void planet_normals_refine(planet_renderer *r);
+// A chunk slot's place in the texture array: its layer and first texel there.
+void planet_normals_place(int slot, int *layer, int *x, int *y);
 
 // Where faces meet (planet_face_edges.c): the level's height at a direction on a face's
 // edge or corner (the mean of the faces there) or past it (the neighbouring face's).

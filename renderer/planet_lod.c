@@ -164,6 +164,7 @@ int planet_renderer_update(planet_renderer *r, world *w, const camera *cam,
         node root = {f, r->root_level, 0, 0};
         if (select_node(r, &root)) r->all_current = 0;
     }
+    planet_normals_refine(r);
     if (update_detail(r, s, err) < 0) return -1;
     r->stats.chunks_resident = r->resident;
     r->stats.finest_level = 99, r->stats.coarsest_level = -1;

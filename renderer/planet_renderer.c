@@ -118,6 +118,10 @@ planet_renderer *planet_renderer_create(const char *resource_dir, GLuint albedo,
         planet_renderer_destroy(r);
         return NULL;
     }
+    if (planet_normals_create(r, err) != 0) {
+        planet_renderer_destroy(r);
+        return NULL;
+    }
     r->ibo = make_indices();
     for (int f = 0; f < 6; f++)
         r->front[f] = face_front(f);
@@ -149,6 +153,7 @@ void planet_renderer_destroy(planet_renderer *r) {
     for (int i = 0; i < MAX_CHUNKS; i++)
         if (r->chunks[i].vbo) glDeleteBuffers(1, &r->chunks[i].vbo);
     if (r->ibo) glDeleteBuffers(1, &r->ibo);
+    if (r->normals) glDeleteTextures(1, &r->normals);
     if (r->vao) glDeleteVertexArrays(1, &r->vao);
     if (r->empty_vao) glDeleteVertexArrays(1, &r->empty_vao);
     for (int v = 0; v < VARIANTS; v++)

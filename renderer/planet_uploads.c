@@ -395,6 +395,7 @@ chunk *planet_try_build(planet_renderer *r, const node *n) {
     chunk *c = &r->chunks[slot];
     build_vertices(r, n, view.data, parent.data, material.data, s, t, edge_h, parent_edge_h,
                    (const double(*)[3])edge_n, verts, c);
+    planet_normals_build(r, c, n);
     c->cos_widest = footprint_corners(r, n, c->corner_dir);
     for (int j = 0; j <= CREST_SQUARES; j++)
         for (int i = 0; i <= CREST_SQUARES; i++) {

@@ -36,18 +36,22 @@ void viewport_destroy(viewport *v) {
 int viewport_default_camera(viewport *v, world *w, og_error *err) {
     const world_params *p = world_get_params(w);
     if (p->kind == WORLD_PLANET) {
-        // From orbit: the whole planet in view, looking down at its centre, 10 degrees
-        // from under the sun: from 3 radii out the disc reaches 70.5 degrees from its
-        // centre, so all of it is in daylight, lit a little from the side for relief.
+        // From orbit, oblique: half a radius up, the limb (48 degrees under the level)
+        // and the sky in the top of the view, the ground below lit from the side (the sun 55
+        // degrees from the camera's foot, toward the equator from the point under the sun, and on
+        // the camera's left), so relief reads by its shading and all the ground in view is in
+        // daylight (the horizon lies 48 degrees off: at most 68 degrees from under the sun).
         float sun[3];
         render_sun_direction(&v->settings, sun);
         const double sun_dir[3] = {sun[0], sun[1], sun[2]};
         double lat, lon;
         planet_lat_lon(sun_dir, &lat, &lon);
         camera_default(&v->cam);
-        planet_position(lat > 0 ? lat - 10.0 : lat + 10.0, lon, 3.0 * (p->radius + p->max_height),
+        const double away = 55.0;
+        planet_position(lat >= 0 ? lat - away : lat + away, lon, 1.5 * (p->radius + p->max_height),
                         v->cam.pos);
-        v->cam.pitch = -CAMERA_PITCH_LIMIT;
+        v->cam.yaw = lat >= 0 ? 90.0 : 270.0; // the sun (poleward of the camera) on the left
+        v->cam.pitch = -acos(1.0 / 1.5) * 180.0 / M_PI - 14.0; // the limb 14 degrees up
         v->cam_set = 1;
         return 0;
     }

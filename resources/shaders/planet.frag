@@ -38,6 +38,13 @@ uniform vec4 u_chunk_detail; // this chunk's detail samples at v_metres (0, 0), 
 uniform int u_overlays;    // 1: the tile grid, 2: the chunks' vertex grids
 uniform vec3 u_chunk_tile;  // the face's tiles: v_metres (0, 0) modulo a tile (xy), a tile (z)
 uniform vec3 u_chunk_cell;  // the chunk's vertex cells: the same for a cell of its level
+uniform sampler2DArray u_normals; // the chunks' normals (renderer/planet_normals.c)
+uniform vec4 u_normal_map; // this chunk's: v_metres at its atlas layer's texel 0, texels a
+                           // metre, the layer
+uniform vec3 u_face_axis;  // its face's s axis (the normals' tangent frame)
+uniform vec4 u_face_edges; // its face's edges in v_metres: s = -1, s = 1, t = -1, t = 1
+uniform float u_slope_scale; // the slopes the level-0 samples would show over those the
+                             // normal texture's coarser ones do (renderer/planet_draw.c)
 uniform int u_palette;     // 0: the automatic rules; 1 airless and dry (rock, gravel); 2 dry
                            // with air (sand, dirt, rock)
 
@@ -74,24 +81,48 @@ vec3 with_grids(vec3 c) {
     return c;
 }
 
-// A planet's automatic rules, fit for its scale (the flat worlds' are for a valley): a
-// beach a few metres wide, lowland grass, highland dirt, bare rock on mountains and
-// steep slopes, cliffs steeper still, and snow above a snow line that falls from 60% of
-// the relief at the equator to the sea at the poles (lat_sin: sine of the latitude).
+#if defined(SHADED) && !defined(BARE)
+in vec2 v_climate; // planet_climate's moisture and breakup (planet.vert)
+
+// A planet's automatic rules, fit for its scale (the flat worlds' are for a valley) and
+// its climate, so that no border follows a contour: warmth falls with latitude and
+// height (a lapse rate: the relief's top is as cold as the poles' lowlands), moisture
+// from planet_climate (deserts in the subtropics, forest where wet and warm, tundra where
+// cold), a beach a few metres wide, bare rock and cliffs on slopes (measured at the
+// normal texture's resolution, scaled to what the samples' slopes would be: u_slope_scale),
+// alpine ground above the tree line, snow where it is cold enough and not too steep. The
+// breakup noise moves every border by region.
 vec3 planet_automatic(float h, float slope, float lat_sin, vec2 uv, vec2 uv_far) {
     float range = max(u_max_height - u_ocean_level, 1.0), above = h - u_ocean_level;
     float beach = max(0.002 * range, 2.0), rel = above / range;
-    vec3 c = blend2(albedo(0, uv, uv_far), albedo(1, uv, uv_far),
-                    smoothstep(0.5 * beach, 1.5 * beach, above));
-    c = blend2(vec4(c, 0.5), albedo(4, uv, uv_far), smoothstep(0.12, 0.3, rel));
+    float wet = v_climate.x, breakup = v_climate.y;
+    float warmth = 1.0 - asin(clamp(abs(lat_sin), 0.0, 1.0)) / 1.5708 - 1.35 * max(rel, 0.0) +
+                   0.08 * breakup;
+    vec4 grass = albedo(1, uv, uv_far), sand = albedo(0, uv, uv_far), dirt = albedo(4, uv, uv_far);
+    vec4 gravel = albedo(5, uv, uv_far), moss = albedo(6, uv, uv_far);
+    // The lowlands: desert, steppe, grassland, forest by moisture; tundra where cold.
+    vec3 desert = sand.rgb * mix(vec3(1.0), vec3(0.86, 0.74, 0.6), 0.5 + 0.5 * breakup);
+    vec3 c = blend2(vec4(desert, 0.5), grass, smoothstep(0.22, 0.42, wet + 0.1 * breakup));
+    vec3 forest = grass.rgb * vec3(0.5, 0.62, 0.45);
+    c = mix(c, forest, smoothstep(0.5, 0.75, wet) * smoothstep(0.25, 0.45, warmth) * 0.85);
+    vec3 tundra = blend2(moss, gravel, clamp(0.5 - breakup, 0.0, 1.0)) * vec3(0.85, 0.82, 0.78);
+    c = mix(tundra, c, smoothstep(0.12, 0.3, warmth));
+    // Alpine ground above the tree line, then the beach by the sea.
+    c = blend2(vec4(c, 0.5), vec4(blend2(dirt, gravel, 0.5), 0.5),
+               smoothstep(0.22, 0.1, warmth) * smoothstep(0.08, 0.2, rel));
+    c = blend2(vec4(c, 0.5), sand, 1.0 - smoothstep(0.5 * beach, 1.5 * beach, above));
+    // Rock on steep ground and on the heights' slopes, cliffs steeper.
+    float s = slope * u_slope_scale;
     vec4 rock = albedo(2, uv, uv_far);
-    c = blend2(vec4(c, 0.5), rock, max(smoothstep(0.3, 0.5, rel), smoothstep(0.3, 0.6, slope)));
-    c = blend2(vec4(c, 0.5), albedo(7, uv, uv_far), smoothstep(0.9, 1.3, slope));
-    float snow_line = mix(0.6, -0.05, smoothstep(0.8, 0.97, abs(lat_sin)));
-    float snowy = smoothstep(snow_line - 0.03, snow_line + 0.03, rel) *
-                  (1.0 - smoothstep(0.6, 0.9, slope));
+    float rocky = max(smoothstep(0.32, 0.6, s + 0.12 * breakup),
+                      smoothstep(0.3, 0.55, rel + 0.1 * breakup) * smoothstep(0.08, 0.25, s));
+    c = blend2(vec4(c, 0.5), rock, rocky);
+    c = blend2(vec4(c, 0.5), albedo(7, uv, uv_far), smoothstep(0.9, 1.3, s));
+    // Snow where it is cold, thinning on steep slopes where it does not hold.
+    float snowy = smoothstep(0.16, 0.06, warmth) * (1.0 - smoothstep(0.55, 0.95, s));
     return blend2(vec4(c, 0.5), albedo(3, uv, uv_far), snowy);
 }
+#endif
 
 #ifdef SHADED
 // The ground's colour before lighting, its textures looked up at uv and uv_far.
@@ -102,7 +133,7 @@ vec3 ground_albedo(vec2 uv, vec2 uv_far, float slope, vec3 up) {
     vec4 steep = albedo(7, uv, uv_far);
     float lowland = 1.0 - smoothstep(-0.4, 0.2, v_height / max(u_max_height, 1e-6));
     vec3 c0 = blend2(mid, low, lowland);
-    base = blend2(vec4(c0, 0.5), steep, smoothstep(0.5, 1.0, slope));
+    base = blend2(vec4(c0, 0.5), steep, smoothstep(0.5, 1.0, slope * u_slope_scale));
     if (u_palette == 2) base *= vec3(1.15, 0.78, 0.58); // iron-red dust
     else base = vec3(dot(base, vec3(0.3, 0.5, 0.2))) * 0.9; // grey regolith
     if (u_palette == 2) { // Mars-like: ice caps at the poles
@@ -122,8 +153,24 @@ vec3 ground_albedo(vec2 uv, vec2 uv_far, float slope, vec3 up) {
 }
 #endif
 
+// The ground's normal from the chunk's normal texture (heights finer than its vertices):
+// its components along the face's s axis and across it in the tangent plane. Within a
+// texel of the face's edge it turns into the vertices' normal, which is the same from
+// every face there: the faces' texels do not line up across an edge near a cube corner,
+// and on ground rough at the samples' scale the two sides' normals differed (a step in
+// the light along the edge).
+vec3 fine_normal(vec3 up) {
+    vec2 st = (v_metres - u_normal_map.xy) * u_normal_map.z / vec2(textureSize(u_normals, 0).xy);
+    vec2 g = texture(u_normals, vec3(st, u_normal_map.w)).rg;
+    vec3 t = normalize(u_face_axis - up * dot(up, u_face_axis)), b = cross(up, t);
+    vec3 fine = g.x * t + g.y * b + sqrt(max(1.0 - dot(g, g), 0.0)) * up;
+    vec2 lo = v_metres - u_face_edges.xz, hi = u_face_edges.yw - v_metres;
+    float edge = min(min(lo.x, lo.y), min(hi.x, hi.y)) * u_normal_map.z;
+    return normalize(mix(normalize(v_normal), fine, clamp(edge, 0.0, 1.0)));
+}
+
 void main() {
-    vec3 n = normalize(v_normal), up = normalize(v_up);
+    vec3 up = normalize(v_up), n = fine_normal(up);
     float dist = length(v_rel);
     vec3 view_dir = v_rel / max(dist, 1e-6);
     float cos_slope = clamp(dot(n, up), 0.05, 1.0);

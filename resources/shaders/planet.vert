@@ -6,6 +6,7 @@
 // smoothly over a chunk's cells (a few pixels wide), and per fragment they were most of
 // a software renderer's frame. The variant defines are planet.frag's.
 #include "planet_atmosphere.glsl"
+#include "planet_climate.glsl"
 layout(location = 0) in vec3 a_pos;
 layout(location = 1) in vec3 a_normal;
 layout(location = 2) in vec3 a_up;
@@ -28,6 +29,9 @@ out vec2 v_metres;
 out vec4 v_paint0, v_paint1; // weights 0-3 and 4-7, 0..1
 out vec3 v_air, v_transmittance; // the air between the camera and the surface
 out vec3 v_sky_reflected;        // the sky the sea reflects
+#if defined(SHADED) && !defined(BARE)
+out vec2 v_climate; // planet_climate's moisture and breakup
+#endif
 void main() {
     // Geomorphing: from half that distance on, the vertex slides onto the parent's mesh.
     float m = clamp(2.0 * length(a_pos + u_offset) * u_morph - 1.0, 0.0, 1.0);
@@ -39,6 +43,9 @@ void main() {
     v_normal = a_normal;
     v_up = a_up;
     v_height = height;
+#if defined(SHADED) && !defined(BARE)
+    v_climate = planet_climate(a_up);
+#endif
     v_metres = a_metres;
 #ifdef SEAM
     v_other0 = a_other0, v_other1 = a_other1;
