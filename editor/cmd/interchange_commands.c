@@ -68,6 +68,7 @@ static int place_base(world *w, const char *path, import_source *src, import_opt
     o->has_position = 1;
     o->x = o->z = 0;
     o->anchor_centre = 0;
+    o->starting_state = 1; // the world is the raster: undo has no flat world to go back to
     src->spacing_x = src->spacing_z = p->spacing;
     if (world_set_base_source(w, source, err) != 0) return -1;
     world_journal_pause(w, source != NULL);

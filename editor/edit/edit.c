@@ -30,6 +30,7 @@ struct edit {
     // area past it is still open (later dabs that touch it grow it).
     size_t mips_current;
     edit_layer_mode layer_mode;
+    int starting_state; // edit_set_starting_state: no undo step
     // A change of the world's parameters within the edit (the layer table): applied at
     // once, part of the step, undone by abort.
     int has_params;
@@ -115,6 +116,10 @@ const void *edit_snapshot(edit *e, tile_key key) {
 
 edit_layer_mode edit_get_layer_mode(const edit *e) {
     return e->layer_mode;
+}
+
+void edit_set_starting_state(edit *e) {
+    e->starting_state = 1;
 }
 
 void edit_set_layer_mode(edit *e, edit_layer_mode mode) {
@@ -299,6 +304,11 @@ static void report_dropped(world *w, size_t dropped) {
 }
 
 int edit_record(edit *e, og_error *err) {
+    if (e->starting_state) { // nothing to go back to: no deltas to encode or keep
+        edit_publish_from(e, e->mips_current);
+        free_edit(e);
+        return 0;
+    }
     history_step *step = history_step_new(e->label);
     void **deltas = calloc(e->count ? e->count : 1, sizeof *deltas);
     size_t *sizes = calloc(e->count ? e->count : 1, sizeof *sizes);

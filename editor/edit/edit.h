@@ -29,6 +29,10 @@ typedef enum edit_layer_mode {
 } edit_layer_mode;
 edit_layer_mode edit_get_layer_mode(const edit *e);
 void edit_set_layer_mode(edit *e, edit_layer_mode mode);
+// Makes the edit the world's starting state rather than an undo step (a world made
+// from a raster is that raster): committing keeps the change and records no step, so
+// the world holds no copy of it and undo has nothing to go back to.
+void edit_set_starting_state(edit *e);
 // Changes the world's parameters (the layer table) as part of the edit: at once, and
 // undone with it. Returns -1 with err when the world refuses them.
 int edit_set_params(edit *e, const world_params *params, og_error *err);

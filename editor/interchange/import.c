@@ -397,6 +397,7 @@ int import_apply_source(world *w, const char *path, const import_source *s, cons
     snprintf(label, sizeof label, "import %s", slash ? slash + 1 : path);
     edit *e = edit_begin(w, label, err);
     if (!e) return -1;
+    if (o->starting_state) edit_set_starting_state(e);
     if (edit_rows_apply(e, &g, rect, import_row, NULL, &op, err) != 0) {
         edit_abort(e);
         return -1;

@@ -36,6 +36,7 @@ typedef struct import_options {
     import_resample resample;
     import_blend blend;
     double falloff; // metres over which the patch's edge fades into the terrain
+    int starting_state; // the world's base (new flat from=): no undo step (not a key)
 } import_options;
 
 typedef struct import_report {
