@@ -35,7 +35,7 @@ typedef struct import_options {
     tile_layer layer;
     import_resample resample;
     import_blend blend;
-    double falloff; // metres over which the patch's edge fades into the terrain
+    double falloff;     // metres over which the patch's edge fades into the terrain
     int starting_state; // the world's base (new flat from=): no undo step (not a key)
 } import_options;
 
