@@ -65,7 +65,14 @@ struct terrain_renderer {
     float albedo_mean[MATERIAL_TEXTURE_COUNT][4]; // each material texture's 1 x 1 level
     material_rules_resolved rules; // the world's material rules this frame, in metres
     clip_window heights[RENDER_MAX_LEVELS];
-    clip_window material, detail, detail_pd;
+    // Painted weights per level, from the material layer's mip levels, so paint shows at
+    // every distance. Kept only once the world has paint (paint_seen), and uploaded
+    // only while a window holds paint (mat_painted: set when paint enters it, cleared
+    // when a whole refill finds none), so unpainted ground costs nothing.
+    clip_window material[RENDER_MAX_LEVELS];
+    int mat_painted[RENDER_MAX_LEVELS];
+    int paint_seen;
+    clip_window detail, detail_pd;
     float hmin[RENDER_MAX_LEVELS], hmax[RENDER_MAX_LEVELS];
     // The steepest slope (rise over run) between neighbouring samples of each level's
     // window, re-measured when it changed and is whole (slope_stale).
@@ -82,8 +89,8 @@ struct terrain_renderer {
     int levels, finest;
     int64_t origin[RENDER_MAX_LEVELS][2]; // level sample index of local vertex (0, 0)
     int src[RENDER_MAX_LEVELS];           // level whose texture draws level l (-1: none)
-    int material_current, detail_current;
-    int material_painted; // the material window holds paint (else the automatic rules only)
+    int mat_src[RENDER_MAX_LEVELS];       // level whose material window paints level l (-1: none)
+    int detail_current;
     int64_t detail_origin[2];
 
     volume_renderer *volume; // caves, overhangs and arches near the camera
@@ -158,8 +165,8 @@ static int create_textures(terrain_renderer *r, og_error *err) {
     glTextureStorage3D(r->tex_heights, 1, GL_R32F, CLIP_TEXELS, CLIP_TEXELS, RENDER_MAX_LEVELS);
     set_filter_wrap(r->tex_heights, GL_LINEAR, GL_REPEAT);
 
-    r->tex_material = make_texture(GL_TEXTURE_2D);
-    glTextureStorage2D(r->tex_material, 1, GL_RG32UI, CLIP_TEXELS, CLIP_TEXELS);
+    r->tex_material = make_texture(GL_TEXTURE_2D_ARRAY);
+    glTextureStorage3D(r->tex_material, 1, GL_RG32UI, CLIP_TEXELS, CLIP_TEXELS, RENDER_MAX_LEVELS);
     set_filter_wrap(r->tex_material, GL_NEAREST, GL_REPEAT);
 
     r->tex_detail = make_texture(GL_TEXTURE_2D);
@@ -209,10 +216,10 @@ static int create_windows(terrain_renderer *r, og_error *err) {
     for (int l = 0; l < RENDER_MAX_LEVELS; l++)
         r->slope_max[l] = INFINITY, r->slope_stale[l] = 1;
     for (int l = 0; l < RENDER_MAX_LEVELS; l++)
-        if (clip_window_init(&r->heights[l], TILE_LAYER_COARSE, 0, l, CLIP_TEXELS) != 0)
+        if (clip_window_init(&r->heights[l], TILE_LAYER_COARSE, 0, l, CLIP_TEXELS) != 0 ||
+            clip_window_init(&r->material[l], TILE_LAYER_MATERIAL, 0, l, CLIP_TEXELS) != 0)
             return og_error_set(err, "out of memory for the clipmap levels");
-    if (clip_window_init(&r->material, TILE_LAYER_MATERIAL, 0, 0, CLIP_TEXELS) != 0 ||
-        clip_window_init(&r->detail, TILE_LAYER_DETAIL, 0, 0, DETAIL_TEXELS) != 0 ||
+    if (clip_window_init(&r->detail, TILE_LAYER_DETAIL, 0, 0, DETAIL_TEXELS) != 0 ||
         clip_window_init(&r->detail_pd, TILE_LAYER_DETAIL_PD, 0, 0, DETAIL_TEXELS) != 0)
         return og_error_set(err, "out of memory for the clipmap windows");
     return 0;
@@ -321,9 +328,10 @@ void terrain_renderer_destroy(terrain_renderer *r) {
                     r->tex_detail_pd, r->tex_falloff,  r->tex_albedo_far};
     glDeleteTextures(7, tex);
     clipmap_mesh_free(&r->mesh);
-    for (int l = 0; l < RENDER_MAX_LEVELS; l++)
+    for (int l = 0; l < RENDER_MAX_LEVELS; l++) {
         clip_window_free(&r->heights[l]);
-    clip_window_free(&r->material);
+        clip_window_free(&r->material[l]);
+    }
     clip_window_free(&r->detail);
     clip_window_free(&r->detail_pd);
     free(r);
@@ -436,12 +444,46 @@ static void slopes_changed(terrain_renderer *r, int l) {
     }
 }
 
-// Whether any texel of the material window holds paint (weight 0, "automatic", under
-// 255): the levels then draw with the painted variant.
-static int window_has_paint(const clip_window *w) {
-    size_t n = (size_t)w->size * (size_t)w->size;
-    for (size_t i = 0; i < n; i++)
-        if (w->mirror[i * w->texel_bytes] != 255) return 1;
+// Whether any texel of rect t of a material window holds paint (weight 0, "automatic",
+// under 255).
+static int rect_has_paint(const clip_window *w, texel_rect t) {
+    for (int z = t.z; z < t.z + t.h; z++) {
+        const unsigned char *row = w->mirror + ((size_t)z * w->size + t.x) * w->texel_bytes;
+        for (int x = 0; x < t.w; x++)
+            if (row[(size_t)x * w->texel_bytes] != 255) return 1;
+    }
+    return 0;
+}
+
+// Uploads what changed in level l's material window while it holds paint. A window
+// without paint is not uploaded (its level draws without the painted variant); once
+// paint enters it, all of it is.
+static void upload_material(terrain_renderer *r, int l) {
+    clip_window *w = &r->material[l];
+    if (!w->upload_all && w->upload_count == 0) return;
+    int was = r->mat_painted[l], painted = was;
+    if (w->upload_all || w->refill_started) {
+        painted = rect_has_paint(w, (texel_rect){0, 0, w->size, w->size});
+        w->refill_started = 0;
+    }
+    for (int k = 0; k < w->upload_count && !painted && !w->upload_all; k++)
+        painted = rect_has_paint(w, w->uploads[k]);
+    r->mat_painted[l] = painted;
+    if (!painted) {
+        w->upload_all = 0, w->upload_count = 0;
+        return;
+    }
+    if (!was) w->upload_all = 1; // what was skipped while it had none
+    upload_window(r, w, r->tex_material, l, GL_RG_INTEGER, GL_UNSIGNED_INT);
+}
+
+// Whether the world has paint anywhere: saved, in the journal of unsaved edits, or
+// edited in the cache (later paint changes reach the renderer as change notifications).
+static int world_has_paint(world *w) {
+    if (tile_cache_edited_keys(world_cache(w), TILE_LAYER_MATERIAL, NULL, 0) > 0) return 1;
+    tile_store *s[2] = {world_store(w), world_journal(w)};
+    for (int i = 0; i < 2; i++)
+        if (s[i] && tile_store_count(s[i], TILE_LAYER_MATERIAL) > 0) return 1;
     return 0;
 }
 
@@ -449,8 +491,8 @@ static void invalidate_all(terrain_renderer *r) {
     for (int l = 0; l < RENDER_MAX_LEVELS; l++) {
         clip_window_invalidate(&r->heights[l]);
         r->slope_max[l] = INFINITY, r->slope_stale[l] = 1;
+        clip_window_invalidate(&r->material[l]);
     }
-    clip_window_invalidate(&r->material);
     clip_window_invalidate(&r->detail);
     clip_window_invalidate(&r->detail_pd);
     if (r->volume) volume_renderer_reset(r->volume);
@@ -476,8 +518,11 @@ static void refresh_area(terrain_renderer *r, tile_cache *cache, const world_eve
     case TILE_LAYER_VOLUME:
         volume_renderer_touched(r->volume, g, 1);
         break;
-    case TILE_LAYER_MATERIAL:
-        clip_window_refresh(&r->material, cache, g.x0, g.z0, g.x1, g.z1);
+    case TILE_LAYER_MATERIAL: // tent-filtered mips too (editor/edit/material_mips.h)
+        r->paint_seen = 1;
+        for (int l = 0; l < RENDER_MAX_LEVELS; l++)
+            clip_window_refresh(&r->material[l], cache, (g.x0 >> l) - 1, (g.z0 >> l) - 1,
+                                ((g.x1 - 1) >> l) + 2, ((g.z1 - 1) >> l) + 2);
         break;
     case TILE_LAYER_DETAIL:
     case TILE_LAYER_DETAIL_PD: // slopes change one sample around the change
@@ -501,7 +546,10 @@ static int apply_changes(terrain_renderer *r, world *w, og_error *err) {
         fresh = 1;
     }
     r->world = w;
-    if (fresh) invalidate_all(r);
+    if (fresh) {
+        invalidate_all(r);
+        r->paint_seen = world_has_paint(w);
+    }
     if (fresh && r->planet) planet_renderer_forget(r->planet);
     tile_cache *cache = world_cache(w);
     world_event events[64];
@@ -590,10 +638,11 @@ int terrain_renderer_update(terrain_renderer *r, world *w, const camera *cam,
         if (ok < 0) return og_error_set(err, "the clipmap could not read level %d", l);
         if (!ok) all = 0;
     }
-    r->material_current = 0;
-    if (r->finest == 0) {
-        int ok = clip_window_update_within(&r->material, cache, r->origin[0], &budget);
-        r->material_current = ok == 1;
+    int mat_current[RENDER_MAX_LEVELS] = {0};
+    for (int l = r->finest; l < r->levels && r->paint_seen; l++) {
+        int ok = clip_window_update_within(&r->material[l], cache, r->origin[l], &budget);
+        if (ok < 0) return og_error_set(err, "the clipmap could not read the paint of level %d", l);
+        mat_current[l] = ok == 1;
         if (!ok) all = 0;
     }
     r->detail_current = 0;
@@ -623,15 +672,16 @@ int terrain_renderer_update(terrain_renderer *r, world *w, const camera *cam,
             r->slope_stale[l] = 0;
         }
     }
-    if (r->material.upload_all || r->material.upload_count > 0)
-        r->material_painted = window_has_paint(&r->material);
-    upload_window(r, &r->material, r->tex_material, -1, GL_RG_INTEGER, GL_UNSIGNED_INT);
+    for (int l = r->finest; l < r->levels && r->paint_seen; l++)
+        upload_material(r, l);
     upload_window(r, &r->detail, r->tex_detail, -1, GL_RED, GL_FLOAT);
     upload_window(r, &r->detail_pd, r->tex_detail_pd, -1, GL_RG, GL_SHORT);
-    int below = -1;
+    int below = -1, paint_below = -1;
     for (int l = r->levels - 1; l >= 0; l--) {
         if (l >= r->finest && clip_window_current(&r->heights[l], r->origin[l])) below = l;
         r->src[l] = l >= r->finest ? below : -1;
+        if (l >= r->finest && mat_current[l]) paint_below = l;
+        r->mat_src[l] = l >= r->finest ? paint_below : -1;
     }
     r->stats.texels_uploaded = r->frame_texels;
     r->stats.levels_ready = 0;
@@ -687,6 +737,21 @@ static void source_uniform(const terrain_renderer *r, int l, int s, float out[4]
     out[3] = (float)s;
 }
 
+// Where level s's painted weights are for level l's local coordinates: the window
+// texel (from its origin) of local (0,0), texels per local unit, and the texture layer
+// (-1: no paint to read there, "automatic"); wrap: the toroidal texel of its origin.
+static void paint_uniform(const terrain_renderer *r, int l, int s, float out[4], int wrap[2]) {
+    out[0] = out[1] = 0, out[2] = 1, out[3] = -1;
+    if (s < 0 || !r->mat_painted[s]) return;
+    double scale = 1.0 / (double)((int64_t)1 << (s - l));
+    for (int a = 0; a < 2; a++) {
+        out[a] = (float)((double)r->origin[l][a] * scale - (double)r->origin[s][a]);
+        wrap[a] = (int)(r->origin[s][a] & (CLIP_TEXELS - 1));
+    }
+    out[2] = (float)scale;
+    out[3] = (float)s;
+}
+
 static double reach_metres(const terrain_renderer *r) {
     return 0.5 * (CLIP_N - 1) * r->params.spacing * (double)((int64_t)1 << (r->levels - 1));
 }
@@ -712,7 +777,8 @@ static void set_terrain_uniforms(terrain_renderer *r, GLuint prog, const camera 
     float src_a[RENDER_MAX_LEVELS][4] = {{0}}, src_b[RENDER_MAX_LEVELS][4] = {{0}};
     float bounds[RENDER_MAX_LEVELS][4] = {{0}}, uv[RENDER_MAX_LEVELS][4] = {{0}};
     float mat[RENDER_MAX_LEVELS][4] = {{0}}, detail[RENDER_MAX_LEVELS][4] = {{0}};
-    float grid[RENDER_MAX_LEVELS][4] = {{0}};
+    float grid[RENDER_MAX_LEVELS][4] = {{0}}, mat_b[RENDER_MAX_LEVELS][4] = {{0}};
+    int mat_wrap[RENDER_MAX_LEVELS][4] = {{0}};
     double ratio = p->detail_ratio;
     for (int l = r->finest; l < r->levels; l++) {
         if (r->src[l] < 0) continue;
@@ -750,12 +816,8 @@ static void set_terrain_uniforms(terrain_renderer *r, GLuint prog, const camera 
         uv[l][1] = (float)positive_fmod(z0, TEX_PERIOD_NEAR);
         uv[l][2] = (float)positive_fmod(x0, TEX_PERIOD_FAR);
         uv[l][3] = (float)positive_fmod(z0, TEX_PERIOD_FAR);
-        if (r->material_current) {
-            mat[l][0] = (float)((double)r->origin[l][0] * mult - (double)r->origin[0][0]);
-            mat[l][1] = (float)((double)r->origin[l][1] * mult - (double)r->origin[0][1]);
-            mat[l][2] = (float)mult;
-            mat[l][3] = 1;
-        }
+        paint_uniform(r, l, r->mat_src[l], mat[l], &mat_wrap[l][0]);
+        paint_uniform(r, l, l + 1 < r->levels ? r->mat_src[l + 1] : -1, mat_b[l], &mat_wrap[l][2]);
         if (r->detail_current && l <= 3) {
             detail[l][0] =
                 (float)((double)r->origin[l][0] * mult * ratio - (double)r->detail_origin[0]);
@@ -797,9 +859,9 @@ static void set_terrain_uniforms(terrain_renderer *r, GLuint prog, const camera 
     glProgramUniform1f(prog, glGetUniformLocation(prog, "u_max_height"), (float)p->max_height);
     glProgramUniform2f(prog, glGetUniformLocation(prog, "u_tex_period"), (float)TEX_PERIOD_NEAR,
                        (float)TEX_PERIOD_FAR);
-    glProgramUniform2i(prog, glGetUniformLocation(prog, "u_mat_wrap"),
-                       (int)(r->origin[0][0] & (CLIP_TEXELS - 1)),
-                       (int)(r->origin[0][1] & (CLIP_TEXELS - 1)));
+    uniform_vec4s(prog, "u_lvl_mat_b", mat_b, RENDER_MAX_LEVELS);
+    glProgramUniform4iv(prog, glGetUniformLocation(prog, "u_lvl_mat_wrap"), RENDER_MAX_LEVELS,
+                        &mat_wrap[0][0]);
     glProgramUniform2f(prog, glGetUniformLocation(prog, "u_detail_wrap"),
                        (float)(r->detail_origin[0] & (DETAIL_TEXELS - 1)),
                        (float)(r->detail_origin[1] & (DETAIL_TEXELS - 1)));
@@ -879,7 +941,7 @@ static int level_variant(const terrain_renderer *r, const camera *cam, const ren
     if (r->detail_current && l <= 3) v |= TV_DETAIL; // as set_terrain_uniforms places it
     if (s->view != VIEW_SHADED) return v;
     v |= TV_SHADED;
-    if (r->material_current && r->material_painted) v |= TV_PAINTED;
+    if (r->mat_src[l] >= 0 && r->mat_painted[r->mat_src[l]]) v |= TV_PAINTED;
     if (cursor_drapes(cursor)) v |= TV_BRUSH;
     // So far that the material textures' near scale is smaller than a pixel all over
     // the level: every lookup would return the texture's 1 x 1 level (as the planet's

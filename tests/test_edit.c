@@ -306,10 +306,11 @@ static brush_dab seam_dab(const brush *b, const layer_grid *g, double cx, double
 
 // Applies the dab to the world within edit e and to ref (the samples of area), then
 // compares area (the edit's tiles are read as they are now, before its commit).
-static void dab_both(edit *e, const layer_grid *g, const brush_dab *d, void *ref, grid_rect area,
-                     const char *what) {
+// start: ref's samples as the edit began (paint measures a stroke's coverage from it).
+static void dab_both(edit *e, const layer_grid *g, const brush_dab *d, void *ref, const void *start,
+                     grid_rect area, const char *what) {
     og_error err;
-    if (brush_dab_apply_array(d, g->layer, ref, area, &err) != 0)
+    if (brush_dab_apply_array_since(d, g->layer, ref, start, area, &err) != 0)
         fail_msg("%s: brush_dab_apply_array: %s", what, err.msg);
     if (brush_dab_apply(e, g, d, &err) != 0) fail_msg("%s: brush_dab_apply: %s", what, err.msg);
     void *got = read_area(edit_world(e), g->layer, g->face, 0, area);
@@ -357,13 +358,15 @@ static void seams_bounded(tile_layer layer, const brush_tool *only, size_t only_
         og_error err;
         edit *e = edit_begin(w, brush_tool_name(b.tool), &err); // one step per tool
         assert_non_null(e);
+        void *start = read_area(w, layer, 0, 0, area);
         for (size_t q = 0; q < sizeof places / sizeof places[0]; q++) {
             brush_dab d = seam_dab(&b, &g, places[q].cx, places[q].cz, places[q].r, seed++);
             char what[128];
             snprintf(what, sizeof what, "%s%s on %s at (%g, %g) r=%g", b.invert ? "inverted " : "",
                      brush_tool_name(b.tool), tile_layer_name(layer), d.cx, d.cz, d.radius);
-            dab_both(e, &g, &d, ref, area, what);
+            dab_both(e, &g, &d, ref, start, area, what);
         }
+        free(start);
         if (edit_commit(e, &err) != 0) fail_msg("edit_commit: %s", err.msg);
     }
     free(ref);
@@ -418,20 +421,31 @@ static void seams_unbounded(tile_layer layer, const brush_tool *only, size_t onl
         brush b;
         seam_brush(&b, i);
         og_error err;
+        // Each dab's window as the edit begins.
+        enum { PLACES = sizeof places / sizeof places[0] };
+        brush_dab dabs[PLACES];
+        grid_rect areas[PLACES];
+        void *starts[PLACES];
+        for (size_t q = 0; q < PLACES; q++) {
+            dabs[q] = seam_dab(&b, &g, places[q].cx, places[q].cz, places[q].r, seed++);
+            grid_rect r = brush_dab_rect(&dabs[q]);
+            int64_t margin = (int64_t)(dabs[q].radius / 4) + 12; // > every tool's halo
+            areas[q] = (grid_rect){r.x0 - margin, r.z0 - margin, r.x1 + margin, r.z1 + margin};
+            starts[q] = read_area(w, layer, 0, 0, areas[q]);
+        }
         edit *e = edit_begin(w, brush_tool_name(b.tool), &err); // one step per tool
         assert_non_null(e);
-        for (size_t q = 0; q < sizeof places / sizeof places[0]; q++) {
-            brush_dab d = seam_dab(&b, &g, places[q].cx, places[q].cz, places[q].r, seed++);
-            grid_rect r = brush_dab_rect(&d);
-            int64_t margin = (int64_t)(d.radius / 4) + 12; // > every tool's halo
-            grid_rect area = {r.x0 - margin, r.z0 - margin, r.x1 + margin, r.z1 + margin};
+        for (size_t q = 0; q < PLACES; q++) {
+            brush_dab d = dabs[q];
+            grid_rect area = areas[q];
             void *ref = read_area(w, layer, 0, 0, area);
             char what[128];
             snprintf(what, sizeof what, "%s%s on unbounded %s at (%g, %g) r=%g",
                      b.invert ? "inverted " : "", brush_tool_name(b.tool), tile_layer_name(layer),
                      d.cx, d.cz, d.radius);
-            dab_both(e, &g, &d, ref, area, what);
+            dab_both(e, &g, &d, ref, starts[q], area, what);
             free(ref);
+            free(starts[q]);
         }
         if (edit_commit(e, &err) != 0) fail_msg("edit_commit: %s", err.msg);
     }
@@ -471,6 +485,7 @@ static void test_seams_fractional_centre(void **state) {
             og_error err;
             edit *e = edit_begin(w, brush_tool_name(b.tool), &err); // one step per tool
             assert_non_null(e);
+            void *start = read_area(w, layers[l], 0, 0, area);
             // Spans starting at a tile edge near the centre and at the rect edge far
             // from it: the dx of the same sample is then rounded in different binades.
             const dab_place places[] = {{300.37, 255.61, 200.3}, {257.3, 511.9, 150.7}};
@@ -480,8 +495,9 @@ static void test_seams_fractional_centre(void **state) {
                 snprintf(what, sizeof what, "%s%s at fractional centre (%g, %g) r=%g",
                          b.invert ? "inverted " : "", brush_tool_name(b.tool), d.cx, d.cz,
                          d.radius);
-                dab_both(e, &g, &d, ref, area, what);
+                dab_both(e, &g, &d, ref, start, area, what);
             }
+            free(start);
             if (edit_commit(e, &err) != 0) fail_msg("edit_commit: %s", err.msg);
         }
         free(ref);
@@ -1075,6 +1091,99 @@ static void test_invariant_paint(void **state) {
     size_t far = (size_t)(600 * 700 + 100) * TILE_MATERIALS;
     assert_int_equal(m[far], 255);
     free(m);
+    world_close(w);
+}
+
+// Material 4's weight (0-255) at samples (x, z0 + k), k < n, at a mip level.
+static void weights_down(world *w, int level, int64_t x, int64_t z0, int n, int *out) {
+    uint8_t *m = read_area(w, TILE_LAYER_MATERIAL, 0, level, (grid_rect){x, z0, x + 1, z0 + n});
+    for (int k = 0; k < n; k++) {
+        int sum = 0;
+        for (int c = 0; c < TILE_MATERIALS; c++)
+            sum += m[k * TILE_MATERIALS + c];
+        if (sum != 255)
+            fail_msg("level %d (%lld, %lld): weights sum to %d", level, (long long)x,
+                     (long long)(z0 + k), sum);
+        out[k] = m[k * TILE_MATERIALS + 4];
+    }
+    free(m);
+}
+
+// Paint's edge follows the brush's falloff however many dabs a stroke lays (issue 26:
+// repeated dabs used to pile up into a hard edge): across a straight stroke the weight
+// is 255 x falloff(distance / radius); a brush held still never spreads past it; a
+// second stroke lays its paint over the first; the mip levels carry the paint, and
+// undo takes it from them too.
+static void test_paint_soft_edge(void **state) {
+    (void)state;
+    world_params p = flat_params(700, 1.0);
+    world *w = open_world(&p);
+    brush b;
+    brush_defaults(&b, BRUSH_PAINT);
+    b.radius = 40;
+    b.strength = 0.5;
+    b.material = 4;
+    b.spacing = 0.05; // a dab every 2 samples: ~40 dabs reach each sample
+    const double line[] = {150, 350, 550, 350};
+    stroke_world(w, &b, line, 2);
+    enum { N = 101 };
+    int got[N];
+    weights_down(w, 0, 350, 300, N, got); // 50 samples either side of the stroke
+    for (int k = 0; k < N; k++) {
+        double t = fabs((double)(k - 50)) / b.radius;
+        double want = 255.0 * brush_falloff_weight(&b, (float)t);
+        // Never past the falloff; at half strength the dabs close in on it (within 3%).
+        if (got[k] > want + 1.0 || got[k] < want - 8.0)
+            fail_msg("%d samples from the stroke: weight %d, the falloff says %.1f", k - 50, got[k],
+                     want);
+    }
+    // Held still for five seconds on fresh ground: the edge stays where the falloff puts it.
+    stroke *s = stroke_begin(w, &b, &(og_error){0});
+    og_error err;
+    assert_non_null(s);
+    if (stroke_to(s, 350, 150, 1.0, &err) != 0 || stroke_hold(s, 5.0, &err) != 0 ||
+        stroke_end(s, &err) != 0)
+        fail_msg("held stroke: %s", err.msg);
+    int held[N];
+    weights_down(w, 0, 350, 100, N, held);
+    for (int k = 0; k < N; k++) {
+        double t = fabs((double)(k - 50)) / b.radius;
+        double want = 255.0 * brush_falloff_weight(&b, (float)t);
+        if (t >= 1.0) assert_int_equal(held[k], 0);
+        if (held[k] > want + 1.0 || held[k] < want - 1.0)
+            fail_msg("held: %d samples from the centre: weight %d, the falloff says %.1f", k - 50,
+                     held[k], want);
+    }
+    // A second stroke over the first: half way out (falloff 0.5) 0.5 + 0.5 x 0.5.
+    b.strength = 1.0;
+    stroke_world(w, &b, line, 2);
+    weights_down(w, 0, 350, 300, N, got);
+    assert_true(abs(got[50 + 20] - 191) <= 3);
+    assert_int_equal(got[50], 255);
+
+    // A patch of constant falloff: its middle reads full at every mip level that has
+    // samples inside it, and undo restores them.
+    b.falloff = FALLOFF_CONSTANT;
+    b.radius = 120;
+    dab_at(w, &b, 350, 500);
+    int level_at[5];
+    weights_down(w, 0, 350, 500, 1, &level_at[0]);
+    assert_int_equal(level_at[0], 255);
+    for (int level = 1; level <= 4; level++) {
+        weights_down(w, level, 350 >> level, 500 >> level, 1, &level_at[level]);
+        assert_int_equal(level_at[level], 255);
+    }
+    int outside;
+    weights_down(w, 3, 100 >> 3, 650 >> 3, 1, &outside);
+    assert_int_equal(outside, 0);
+    undo(w);
+    for (int level = 1; level <= 4; level++) {
+        weights_down(w, level, 350 >> level, 500 >> level, 1, &level_at[level]);
+        assert_int_equal(level_at[level], 0);
+    }
+    redo(w);
+    weights_down(w, 4, 350 >> 4, 500 >> 4, 1, &level_at[4]);
+    assert_int_equal(level_at[4], 255);
     world_close(w);
 }
 
@@ -1919,6 +2028,7 @@ int main(void) {
         cmocka_unit_test(test_stroke_hold),
         cmocka_unit_test(test_invariant_hydraulic_mass),
         cmocka_unit_test(test_invariant_paint),
+        cmocka_unit_test(test_paint_soft_edge),
         cmocka_unit_test(test_invariant_terrace),
         cmocka_unit_test(test_invariant_ramp),
         cmocka_unit_test(test_invariant_set),

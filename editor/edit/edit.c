@@ -188,6 +188,12 @@ void edit_tile_release(edit *e, tile_view *view) {
     tile_cache_release(world_cache(e->world), view);
 }
 
+// Layers whose level-0 changes reach mip levels (edit_mips_update): their areas are
+// published once those are current.
+static int has_mips(tile_layer layer) {
+    return layer == TILE_LAYER_COARSE || layer == TILE_LAYER_MATERIAL;
+}
+
 void edit_dirty(edit *e, tile_layer layer, int face, grid_rect r) {
     if (grid_rect_empty(r)) return;
     dirty_rect d = {layer, face, r};
@@ -195,7 +201,7 @@ void edit_dirty(edit *e, tile_layer layer, int face, grid_rect r) {
     // Coalesce with the previous rect of the same layer when they touch (a stroke's dabs),
     // unless that is a coarse area whose mips are done: its successor is only the new part.
     dirty_rect *last = e->dirty_count ? &e->dirty[e->dirty_count - 1] : NULL;
-    if (last && layer == TILE_LAYER_COARSE && e->dirty_count <= e->mips_current) last = NULL;
+    if (last && has_mips(layer) && e->dirty_count <= e->mips_current) last = NULL;
     if (last && joins(last, &d)) {
         last->rect = grid_rect_union(last->rect, r);
     } else {
@@ -211,14 +217,14 @@ void edit_dirty(edit *e, tile_layer layer, int face, grid_rect r) {
         if (e->dirty_count < e->dirty_cap) e->dirty[e->dirty_count++] = d;
     }
     pthread_mutex_unlock(&e->lock);
-    // Live: the viewport shows the stroke. Coarse areas wait for their mip levels
-    // (edit_mips_update publishes them), so the coarser levels are read once, current.
-    if (layer != TILE_LAYER_COARSE) world_publish_area(e->world, layer, face, r);
+    // Live: the viewport shows the stroke. Coarse and material areas wait for their mip
+    // levels (edit_mips_update publishes them), so the coarser levels are read once, current.
+    if (!has_mips(layer)) world_publish_area(e->world, layer, face, r);
 }
 
 void edit_publish_from(edit *e, size_t first) {
     for (size_t i = first; i < e->dirty_count; i++)
-        if (e->dirty[i].layer == TILE_LAYER_COARSE)
+        if (has_mips(e->dirty[i].layer))
             world_publish_area(e->world, e->dirty[i].layer, e->dirty[i].face, e->dirty[i].rect);
 }
 
@@ -357,7 +363,7 @@ int edit_record(edit *e, og_error *err) {
     free(deltas);
     free(sizes);
     // Every area was published once already, as it changed (edit_dirty) or when its mip
-    // levels were (edit_mips_update); only coarse areas no mip update saw are left.
+    // levels were (edit_mips_update); only coarse and material areas no mip update saw are left.
     edit_publish_from(e, e->mips_current);
     world *w = e->world;
     free_edit(e);

@@ -43,7 +43,8 @@ int edit_set_params(edit *e, const world_params *params, og_error *err);
 int edit_tile_acquire(edit *e, tile_key key, tile_view *view, og_error *err);
 void edit_tile_release(edit *e, tile_view *view);
 // Records a changed area (level-0 samples of that layer) and publishes it, except a
-// coarse area, published once its mip levels are current (edit_mips_update). Thread-safe.
+// coarse or material area, published once its mip levels are current (edit_mips_update).
+// Thread-safe.
 void edit_dirty(edit *e, tile_layer layer, int face, grid_rect r);
 
 // For mip and PD maintenance: a touched tile's bytes before the edit (NULL if
@@ -54,7 +55,7 @@ size_t edit_dirty_rects(edit *e, const dirty_rect **rects);
 // (edit_mips.c keeps it); later changes start new areas after them.
 size_t edit_mips_current(const edit *e);
 void edit_set_mips_current(edit *e, size_t count);
-// Publishes the coarse dirty areas from index first on (their mip levels current):
+// Publishes the coarse and material dirty areas from index first on (their mip levels current):
 // each change reaches the world's subscribers once, live or at the commit.
 void edit_publish_from(edit *e, size_t first);
 

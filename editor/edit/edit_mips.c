@@ -1,5 +1,6 @@
 #include "editor/edit/edit_mips.h"
 
+#include "editor/edit/material_mips.h"
 #include "editor/edit/parallel.h"
 #include "editor/params/world_grid.h"
 
@@ -134,7 +135,8 @@ int edit_mips_update(edit *e, og_error *err) {
     if (done == n) return 0;
     // Only the areas changed since the last call: edit_dirty starts a new area after the
     // ones done, so the parent tiles they reach are the only ones written.
-    if (edit_mips_update_from(e, done, err) != 0) return -1;
+    if (edit_mips_update_from(e, done, err) != 0 || material_mips_update_from(e, done, err) != 0)
+        return -1;
     edit_publish_from(e, done);
     edit_set_mips_current(e, n);
     return 0;

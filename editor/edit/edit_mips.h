@@ -8,10 +8,10 @@
 
 #include "editor/edit/edit.h"
 
-// Updates every mip level over the edit's coarse dirty areas changed since the last
-// call (a stroke calls it as it goes, so coarser levels show it before it ends; the
-// commit then does only what is left) and publishes those areas; the parent tiles it
-// changes become part of the edit (and so of its undo step).
+// Updates every mip level over the edit's coarse (and, on flat worlds, material:
+// material_mips.h) dirty areas changed since the last call (a stroke calls it as it goes, so
+// coarser levels show it before it ends; the commit then does only what is left) and publishes
+// those areas; the parent tiles it changes become part of the edit (and so of its undo step).
 int edit_mips_update(edit *e, og_error *err);
 // The same over the dirty areas from index first on (edit_dirty_rects). Each parent sample is set
 // to its value before the edit plus the filtered change so far, so running it again

@@ -274,12 +274,38 @@ static void paint_sample(uint8_t *m8, int m, float w, int invert) {
         m8[c] = (uint8_t)out[c];
 }
 
-static void paint_row(const brush_dab *d, uint8_t *row, int64_t z, int64_t x0, int64_t x1,
-                      float *w) {
-    row_weights(d, z, x0, x1, w);
-    for (int64_t i = 0; i < x1 - x0; i++)
-        if (w[i] > 0.0f)
-            paint_sample(row + i * TILE_MATERIALS, d->brush->material, w[i], d->brush->invert);
+// Paint works as a painting program's brush: a stroke (one edit) has a coverage per
+// sample, 0 to 1, that each dab moves toward its falloff by the strength and never
+// past it, and the sample shows the weights from before the stroke with the material
+// laid over them at that coverage. So however many dabs a stroke lays (or a brush held
+// still), its edge keeps the falloff's profile instead of hardening as dabs pile up;
+// a new stroke lays its paint over the last. The coverage is read back from the weights
+// (before -> now), so it needs no store of its own. before: the sample's weights when
+// the stroke began.
+static float paint_coverage(const uint8_t *before, const uint8_t *now, int m, int invert) {
+    float b = (float)before[m], n = (float)now[m];
+    float c =
+        invert ? (b > 0.0f ? (b - n) / b : 1.0f) : (b < 255.0f ? (n - b) / (255.0f - b) : 1.0f);
+    return c < 0.0f ? 0.0f : c > 1.0f ? 1.0f : c;
+}
+
+static void paint_row(const brush_dab *d, uint8_t *row, const uint8_t *before, int64_t z,
+                      int64_t x0, int64_t x1, float *w) {
+    brush_dab shape = *d; // the falloff alone: the strength is the rate toward it
+    shape.strength = 1.0f;
+    row_weights(&shape, z, x0, x1, w);
+    const int m = d->brush->material, invert = d->brush->invert;
+    for (int64_t i = 0; i < x1 - x0; i++) {
+        uint8_t *now = row + i * TILE_MATERIALS;
+        const uint8_t *was = before ? before + i * TILE_MATERIALS : now;
+        float c = paint_coverage(was, now, m, invert);
+        if (!(w[i] > c)) continue;
+        c += d->strength * (w[i] - c);
+        uint8_t out[TILE_MATERIALS];
+        memcpy(out, was, sizeof out);
+        paint_sample(out, m, c, invert);
+        memcpy(now, out, sizeof out);
+    }
 }
 
 static int is_pointwise(const brush *b) {
@@ -408,6 +434,13 @@ static int neighbourhood(const brush_dab *d, float *heights, float *weight, grid
 
 typedef struct dab_rows {
     const brush_dab *d;
+    // paint: where the weights as the stroke began are (paint_row): the edit's snapshots
+    // of the tiles (e, with the grid's layer and face), or an array over before_area
+    edit *e;
+    tile_layer layer;
+    int face;
+    const uint8_t *before;
+    grid_rect before_area;
     // pointwise tools on a flat disc: per row of the dab's rect, the columns [a, b) its
     // falloff can reach (NULL: the whole rect)
     int64_t (*span)[2];
@@ -451,6 +484,21 @@ HOT_LOOP static void copy_weighted(float *dst, const float *src, const float *we
         dst[i] = weight[i] > 0.0f ? src[i] : dst[i];
 }
 
+// The weights of samples [x, ...) of row z as the stroke began (within one tile), or
+// NULL: as they are now (the dab is the stroke).
+static const uint8_t *stroke_start(const dab_rows *j, int64_t z, int64_t x) {
+    if (j->before) {
+        grid_rect a = j->before_area;
+        return j->before + ((z - a.z0) * (a.x1 - a.x0) + (x - a.x0)) * TILE_MATERIALS;
+    }
+    if (!j->e) return NULL;
+    int64_t tx = world_grid_floor_div(x, TILE_SIZE), tz = world_grid_floor_div(z, TILE_SIZE);
+    const uint8_t *t =
+        edit_snapshot(j->e, (tile_key){j->layer, j->face, 0, (int32_t)tx, (int32_t)tz});
+    return t ? t + ((z - tz * TILE_SIZE) * TILE_SIZE + (x - tx * TILE_SIZE)) * TILE_MATERIALS
+             : NULL;
+}
+
 static void dab_row(void *user, void *row, int64_t z, int64_t x0, int64_t x1) {
     dab_rows *j = user;
     if (!j->heights) { // pointwise tools: only the disc's part of the row
@@ -464,7 +512,8 @@ static void dab_row(void *user, void *row, int64_t z, int64_t x0, int64_t x1) {
     for (int64_t s = x0; s < x1; s += TILE_SIZE) { // array rows can be longer than a tile
         int64_t e = s + TILE_SIZE < x1 ? s + TILE_SIZE : x1;
         if (!j->heights && j->d->brush->tool == BRUSH_PAINT) {
-            paint_row(j->d, (uint8_t *)row + (s - x0) * TILE_MATERIALS, z, s, e, w);
+            paint_row(j->d, (uint8_t *)row + (s - x0) * TILE_MATERIALS, stroke_start(j, z, s), z, s,
+                      e, w);
         } else if (!j->heights) {
             height_row(j->d, (float *)row + (s - x0), z, s, e, w);
         } else {
@@ -550,11 +599,17 @@ static int read_array(void *src, grid_rect r, float *out, og_error *err) {
 
 int brush_dab_apply_array(const brush_dab *d, tile_layer layer, void *data, grid_rect area,
                           og_error *err) {
+    return brush_dab_apply_array_since(d, layer, data, NULL, area, err);
+}
+
+int brush_dab_apply_array_since(const brush_dab *d, tile_layer layer, void *data,
+                                const void *stroke_start, grid_rect area, og_error *err) {
     grid_rect r = grid_rect_intersect(brush_dab_rect(d), area);
     if (grid_rect_empty(r)) return 0;
     array_source src = {data, area};
     dab_rows rows;
     if (prepare(d, layer, r, read_array, &src, &rows, NULL, err) != 0) return -1;
+    if (layer == TILE_LAYER_MATERIAL) rows.before = stroke_start, rows.before_area = area;
     edit_rows_apply_array(layer, data, area, r, dab_row, &rows);
     release(&rows);
     return 0;
@@ -627,6 +682,7 @@ int brush_dab_begin(edit *e, const layer_grid *g, const brush_dab *d, brush_dab_
         return -1;
     }
     j->rows.d = &j->d;
+    j->rows.e = e, j->rows.layer = g->layer, j->rows.face = g->face;
     *out = j;
     return 0;
 }

@@ -77,5 +77,10 @@ void brush_dab_area_free(brush_dab_area *a);
 // With area = the whole bounded world this is the same operation as brush_dab_apply.
 int brush_dab_apply_array(const brush_dab *d, tile_layer layer, void *data, grid_rect area,
                           og_error *err);
+// The same as one dab of a stroke that began with the samples stroke_start (the same
+// layout as data; NULL: data as it is, the dab its own stroke). Paint needs it: a
+// stroke's coverage is measured from where it began (brush_dab.c paint_row).
+int brush_dab_apply_array_since(const brush_dab *d, tile_layer layer, void *data,
+                                const void *stroke_start, grid_rect area, og_error *err);
 
 #endif

@@ -4,8 +4,8 @@
 // (materials.glsl), parallax-mapped detail near the camera (detail_parallax.glsl), sun,
 // fog, the brush cursor and the debug views.
 // Built in variants (renderer/terrain_renderer.c picks one per clipmap level): SHADED
-// (else the debug views), DETAIL (the level has detail), PAINTED (paint near the
-// camera), BRUSH (the cursor shows), OVERLAYS (a View menu grid), CONTOURS. A software
+// (else the debug views), DETAIL (the level has detail), PAINTED (the level's
+// material window holds paint), BRUSH (the cursor shows), OVERLAYS (a View menu grid), CONTOURS. A software
 // renderer runs every branch of an `if` for every fragment, so what a level cannot show
 // is left out of its program rather than skipped at run time.
 #include "terrain_common.glsl"
@@ -30,7 +30,9 @@ uniform int u_view_mode;
 
 uniform vec4 u_lvl_bounds[MAX_LEVELS]; // the world's extent in local units (x0, z0, x1, z1)
 uniform vec4 u_lvl_uv[MAX_LEVELS];     // local (0,0) in metres modulo the texture periods
-uniform vec4 u_lvl_mat[MAX_LEVELS];    // painted weights: texel of local (0,0), texels per unit, valid
+uniform vec4 u_lvl_mat[MAX_LEVELS];    // painted weights: window texel of local (0,0), texels per unit, layer (-1: none)
+uniform vec4 u_lvl_mat_b[MAX_LEVELS];  // the same from the next coarser level (morph target)
+uniform ivec4 u_lvl_mat_wrap[MAX_LEVELS]; // toroidal texel of those windows' origins (xy, zw)
 uniform vec4 u_lvl_grid[MAX_LEVELS];   // tile grid: local (0,0) modulo a tile (xy), a tile in units (z; 0: none)
 uniform int u_overlays;                // 1: the tile grid, 2: the clipmap level grids
 uniform int u_auto_materials;          // 0: unpainted ground in a neutral clay
@@ -39,8 +41,7 @@ uniform vec4 u_lvl_detail[MAX_LEVELS]; // detail: sample of local (0,0), samples
 uniform vec2 u_tex_period;             // metres per repeat: near texture, far variation
 uniform sampler2DArray u_albedo_far;   // material m's green channel in component m % 4 of layer m / 4
 
-uniform usampler2D u_material;         // 8 x uint8 weights per texel (RG32UI), toroidal
-uniform ivec2 u_mat_wrap;              // texel of the window's origin sample
+uniform usampler2DArray u_material;    // 8 x uint8 weights per texel (RG32UI), a layer per level, toroidal
 uniform vec4 u_brush;                  // centre relative to the camera (xz), radius, visible
 uniform sampler2D u_falloff;           // the brush's falloff curve over 0..1 of the radius (64x1)
 uniform vec4 u_brush_tint;              // the tool's colour, and its opacity (follows strength)
@@ -118,20 +119,26 @@ vec4 unpack4(uint v) {
     return vec4(float(v & 255u), float((v >> 8) & 255u), float((v >> 16) & 255u), float(v >> 24));
 }
 
-// The 8 painted weights (sum 1), bilinear over the level-0 material window.
-void painted_weights(vec2 t, out vec4 w0, out vec4 w1) {
-    vec2 f = t - 0.5;
-    ivec2 i = ivec2(floor(f));
-    vec2 a = f - vec2(i);
-    w0 = vec4(0.0), w1 = vec4(0.0);
+// The 8 painted weights (sum 1) at local point p, bilinear between the samples of a
+// level's material window (lm, wrap: u_lvl_mat*). False, with the weights of unpainted
+// ground, where the window has none (no paint there, or p outside it).
+bool painted_weights(vec4 lm, ivec2 wrap, vec2 p, out vec4 w0, out vec4 w1) {
+    w0 = vec4(1.0, 0.0, 0.0, 0.0), w1 = vec4(0.0);
+    vec2 t = lm.xy + p * lm.z;
+    if (lm.w < 0.0 || any(lessThan(t, vec2(0.0))) || any(greaterThanEqual(t, vec2(CLIP_SIZE - 1.0))))
+        return false;
+    ivec2 i = ivec2(floor(t));
+    vec2 a = t - vec2(i);
+    w0 = vec4(0.0);
     for (int k = 0; k < 4; k++) {
         ivec2 o = ivec2(k & 1, k >> 1);
         float wt = (o.x == 1 ? a.x : 1.0 - a.x) * (o.y == 1 ? a.y : 1.0 - a.y);
-        uvec2 v = texelFetch(u_material, (i + o + u_mat_wrap) & 255, 0).rg;
+        uvec2 v = texelFetch(u_material, ivec3((i + o + wrap) & 255, int(lm.w)), 0).rg;
         w0 += unpack4(v.x) * wt;
         w1 += unpack4(v.y) * wt;
     }
     w0 /= 255.0, w1 /= 255.0;
+    return true;
 }
 
 void main() {
@@ -214,12 +221,15 @@ void main() {
                                         : vec3(0.45, 0.42, 0.38);
     vec3 c = auto_c;
 #ifdef PAINTED
-    vec4 lm = u_lvl_mat[u_level];
-    if (lm.w > 0.0) {
-        vec2 mt = lm.xy + v_local * lm.z;
-        if (all(greaterThanEqual(mt, vec2(1.0))) && all(lessThan(mt, vec2(254.0)))) {
-            vec4 w0, w1;
-            painted_weights(mt, w0, w1);
+    {
+        vec4 w0, w1;
+        ivec4 wrap = u_lvl_mat_wrap[u_level];
+        if (painted_weights(u_lvl_mat[u_level], wrap.xy, v_local, w0, w1)) {
+            if (alpha > 0.0) { // toward the coarser level's weights, as the heights morph
+                vec4 b0, b1;
+                painted_weights(u_lvl_mat_b[u_level], wrap.zw, v_local, b0, b1);
+                w0 = mix(w0, b0, alpha), w1 = mix(w1, b1, alpha);
+            }
             // Weight 0 is "automatic"; 1..7 paint sand, grass, rock, snow, dirt, gravel, moss.
             c = auto_c * w0.x;
             c += albedo_varied(0, uv, far[0].x).rgb * w0.y + albedo_varied(1, uv, far[0].y).rgb * w0.z
