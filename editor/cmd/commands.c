@@ -543,14 +543,16 @@ static const cmd_def commands[] = {
      "scale=/offset= (height = stored x scale + offset) or the file's FILE.json sidecar say "
      "otherwise. Row 0, column 0 lands at x, z (default 0, 0 or the sidecar's origin), columns "
      "toward +X, rows toward +Z; anchor=centre centres it there. spacing= metres per sample "
-     "(default: the file's georeferencing, else one world sample per pixel); layer coarse|detail; "
+     "(default: the file's georeferencing, else one world sample per pixel); layer coarse|detail, "
+     "or new|NAME: into a new or the named height layer (made active); "
      "resample nearest|bilinear|bicubic; blend replace|add|max|min with falloff= metres at the "
      "edge; channel= names an image channel. Voids (nodata, NaN) are filled and counted.",
      1, 18, cmd_import, CMD_ENDS_STROKE},
     {"export",
-     "export FILE [region=X0,Z0,X1,Z1] [preset=] [layer=] [bits=] [min= max= | scale= "
+     "export FILE [region=X0,Z0,X1,Z1] [preset=] [layer=] [layers=] [bits=] [min= max= | scale= "
      "offset=] | export N FILE.obj [size=]",
-     "Writes a heightmap of the region (metres, corners; default the whole bounded world) by "
+     "Writes a heightmap of the region (metres, corners; default the whole bounded world; "
+     "layers=NAME: one height layer's signed change, layers=upto=NAME: the layers up to it) by "
      "the extension: .png 16-bit, .tif float GeoTIFF (bits=16: 16-bit TIFF), .exr float "
      "(channel Y), .r16/.raw 16-bit little-endian; plus FILE.json with spacing, origin and the "
      "height mapping (16-bit: the region's range, or min/max or scale/offset). Prints the "

@@ -52,6 +52,10 @@ int cmd_import(cmd_context *ctx, int argc, char **argv, og_error *err) {
     import_report r;
     if (import_apply(ctx->world, argv[1], &o, &r, err) != 0) return -1;
     print_import(ctx->out, argv[1], &r, o.layer, seconds_since(&t0));
+    if (o.edit_layer[0]) { // the layer it went into (layer=new named it after the file)
+        const layer_table *t = &world_get_params(ctx->world)->layers;
+        fprintf(ctx->out, "into layer %s\n", t->layers[t->active].name);
+    }
     return 0;
 }
 
@@ -100,7 +104,7 @@ world *cmd_world_from_raster(cmd_context *ctx, const char *path, int argc, char 
                              og_error *err) {
     import_options o;
     if (parse_import_options(argc, argv, first, &o, err) != 0) return NULL;
-    if (o.layer != TILE_LAYER_COARSE) {
+    if (o.layer != TILE_LAYER_COARSE || o.edit_layer[0]) {
         og_error_set(err, "new flat from=: the raster becomes the coarse layer (no layer=)");
         return NULL;
     }
@@ -256,6 +260,9 @@ int cmd_export(cmd_context *ctx, int argc, char **argv, og_error *err) {
         return 0;
     }
     if (export_vdb_wanted(argv[1])) {
+        if (o.layers != EXPORT_LAYERS_COMPOSITE)
+            return og_error_set(
+                err, "%s: layers= applies to heightmap exports (.png .tif .exr .r16)", argv[1]);
         export_vdb_report v;
         if (export_vdb_file(ctx->world, argv[1], &o, &v, err) != 0) return -1;
         fprintf(ctx->out,

@@ -45,10 +45,9 @@ int height_window_mask(world *w, const layer_info *l, const layer_grid *grid, gr
     return 0;
 }
 
-int height_window_compose(edit *e, const layer_table *t, const layer_grid *grid, grid_rect r,
+int height_window_compose(world *w, const layer_table *t, const layer_grid *grid, grid_rect r,
                           int upto, int extra, int record, float *weights, float **out,
                           og_error *err) {
-    world *w = edit_world(e);
     int margin = extra;
     for (int i = 0; i < upto; i++)
         margin += height_window_mask_border(&t->layers[i], grid->spacing);

@@ -4,7 +4,7 @@
 #ifndef OROGEN_EDITOR_HEIGHT_WINDOW_H
 #define OROGEN_EDITOR_HEIGHT_WINDOW_H
 
-#include "editor/edit/edit.h"
+#include "editor/world/layer_grid.h"
 
 grid_rect height_window_grow(grid_rect r, int by);
 // Samples of composite around a height layer its mask reads (0 without a mask, hidden,
@@ -23,7 +23,7 @@ int height_window_mask(world *w, const layer_info *l, const layer_grid *grid, gr
 // masked layer reads the composite below it around its part: the window starts wider by
 // every such border and narrows layer by layer. When record is a layer index, weights
 // (r's size) gets its weight, opacity times mask (-1, NULL: none).
-int height_window_compose(edit *e, const layer_table *t, const layer_grid *grid, grid_rect r,
+int height_window_compose(world *w, const layer_table *t, const layer_grid *grid, grid_rect r,
                           int upto, int extra, int record, float *weights, float **out,
                           og_error *err);
 

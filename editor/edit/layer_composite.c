@@ -83,7 +83,8 @@ static int compose_task(void *user, int task, og_error *err) {
         const layer_info *l = &j->table.layers[active];
         int b = height_window_mask_border(l, grid.spacing);
         tile_view lv;
-        rc = height_window_compose(j->e, &j->table, &grid, r, active, b, -1, NULL, &acc, err);
+        rc = height_window_compose(edit_world(j->e), &j->table, &grid, r, active, b, -1, NULL, &acc,
+                                   err);
         if (rc == 0 && layer_mask_active(&l->mask)) {
             float *mask = malloc(sizeof(float) * (size_t)rw * (size_t)rh);
             if (!mask)
@@ -111,8 +112,8 @@ static int compose_task(void *user, int task, og_error *err) {
             edit_tile_release(j->e, &lv);
         }
     } else {
-        rc = height_window_compose(j->e, &j->table, &grid, r, j->table.count, 0, active, weight,
-                                   &acc, err);
+        rc = height_window_compose(edit_world(j->e), &j->table, &grid, r, j->table.count, 0, active,
+                                   weight, &acc, err);
         // On top at full weight, the composite keeps the tool's own result bit for bit,
         // as on a single heightfield, where base + layer rounds differently (a float sum
         // cannot always hit it: an ulp of the layer's value). Taking, samples the tool
@@ -476,8 +477,8 @@ static int merge_task(void *user, int task, og_error *err) {
           *shown = malloc(sizeof(float) * nm), *wh = malloc(sizeof(float) * (size_t)rw * rh);
     int rc = lov && wl && shown && wh ? 0 : og_error_set(err, "out of memory merging layers");
     if (rc == 0)
-        rc = height_window_compose(j->e, &j->table, &grid, r, j->below, bl + bh, -1, NULL, &below,
-                                   err);
+        rc = height_window_compose(edit_world(j->e), &j->table, &grid, r, j->below, bl + bh, -1,
+                                   NULL, &below, err);
     layer_grid g = grid;
     g.layer = (tile_layer)tile_layer_in_slot(TILE_LAYER_COARSE, lo->id);
     if (rc == 0) rc = layer_grid_read(w, &g, mid, lov, err);

@@ -43,7 +43,8 @@ static int layer_weights(edit *e, const layer_table *t, int i, int face, grid_re
         return -1;
     int b = layer_mask_border(&l->mask, grid.spacing);
     float *heights;
-    if (height_window_compose(e, t, &grid, r, i, b, -1, NULL, &heights, err) != 0) return -1;
+    if (height_window_compose(edit_world(e), t, &grid, r, i, b, -1, NULL, &heights, err) != 0)
+        return -1;
     int rc = height_window_mask(edit_world(e), l, &grid, r, heights, b, out, err);
     free(heights);
     if (rc != 0) return -1;

@@ -1,5 +1,6 @@
 #include "editor/interchange/export.h"
 
+#include "editor/interchange/export_layer_read.h"
 #include "editor/interchange/export_layers.h"
 #include "editor/interchange/sidecar.h"
 #include "editor/params/world_georef.h"
@@ -79,6 +80,19 @@ int export_options_set(export_options *o, const char *key, const char *value, og
         else
             return og_error_set(err, "layer: expected coarse|detail|normals|materials, got '%s'",
                                 value);
+    } else if (!strcmp(key, "layers")) {
+        const char *name = value;
+        o->layers = EXPORT_LAYERS_DELTA;
+        if (!strcmp(value, "composite")) {
+            o->layers = EXPORT_LAYERS_COMPOSITE;
+            return 0;
+        }
+        if (!strncmp(value, "upto=", 5)) o->layers = EXPORT_LAYERS_UPTO, name += 5;
+        og_error why;
+        if (layer_name_check(name, &why) != 0)
+            return og_error_set(err, "layers: expected composite, a layer's NAME or upto=NAME; %s",
+                                why.msg);
+        snprintf(o->layers_name, sizeof o->layers_name, "%s", name);
     } else if (!strcmp(key, "tiles")) {
         if (parse_pair(value, 'x', &o->tiles_x, &o->tiles_y) != 0 || o->tiles_x < 1 ||
             o->tiles_y < 1)
@@ -330,8 +344,8 @@ static int mapping_16bit(const export_options *o, double lo, double hi, double *
 // Reads rectangle r of the layer into h a band of tile rows at a time (reading is
 // most of an export's time: tiles are loaded or generated), reporting progress in the
 // current part and stopping when cancelled. The last step of the part is the write.
-static int read_reporting_progress(world *w, const layer_grid *g, const char *path, grid_rect r,
-                                   float *h, og_error *err) {
+static int read_reporting_progress(world *w, const layer_grid *g, const export_options *o,
+                                   const char *path, grid_rect r, float *h, og_error *err) {
     og_progress *progress = og_progress_current();
     const int64_t width = r.x1 - r.x0;
     const int64_t first = world_grid_floor_div(r.z0, TILE_SIZE);
@@ -342,7 +356,9 @@ static int read_reporting_progress(world *w, const layer_grid *g, const char *pa
         grid_rect band = r;
         band.z0 = b == 0 ? r.z0 : (first + b) * TILE_SIZE;
         band.z1 = b == bands - 1 ? r.z1 : (first + b + 1) * TILE_SIZE;
-        if (layer_grid_read(w, g, band, h + (band.z0 - r.z0) * width, err) != 0) return -1;
+        if (export_layers_read(w, g, (int)o->layers, o->layers_name, band,
+                               h + (band.z0 - r.z0) * width, err) != 0)
+            return -1;
     }
     if (og_progress_report(progress, bands, bands + 1) != 0)
         return og_error_set(err, "%s: cancelled (nothing written)", path);
@@ -350,8 +366,8 @@ static int read_reporting_progress(world *w, const layer_grid *g, const char *pa
 }
 
 // The lowest and highest heights of rectangle r, read a band of tile rows at a time.
-static int rect_height_range(world *w, const layer_grid *g, const char *path, grid_rect r,
-                             double *lo, double *hi, og_error *err) {
+static int rect_height_range(world *w, const layer_grid *g, const export_options *o,
+                             const char *path, grid_rect r, double *lo, double *hi, og_error *err) {
     const int64_t width = r.x1 - r.x0;
     float *band = malloc(sizeof(float) * (size_t)width * TILE_SIZE);
     if (!band)
@@ -366,7 +382,8 @@ static int rect_height_range(world *w, const layer_grid *g, const char *path, gr
         }
         int64_t z1 = (world_grid_floor_div(z0, TILE_SIZE) + 1) * TILE_SIZE;
         if (z1 > r.z1) z1 = r.z1;
-        rc = layer_grid_read(w, g, (grid_rect){r.x0, z0, r.x1, z1}, band, err);
+        rc = export_layers_read(w, g, (int)o->layers, o->layers_name,
+                                (grid_rect){r.x0, z0, r.x1, z1}, band, err);
         for (int64_t i = 0; rc == 0 && i < (z1 - z0) * width; i++) {
             *lo = fmin(*lo, band[i]);
             *hi = fmax(*hi, band[i]);
@@ -389,7 +406,7 @@ static int write_rect(world *w, const layer_grid *g, const char *path, const exp
     float *h = malloc(sizeof(float) * (size_t)n);
     if (!h) return og_error_set(err, "%s: out of memory for %lld samples", path, (long long)n);
     int rc = -1;
-    if (read_reporting_progress(w, g, path, r, h, err) != 0) goto done;
+    if (read_reporting_progress(w, g, o, path, r, h, err) != 0) goto done;
     rep->min = INFINITY, rep->max = -INFINITY;
     for (int64_t i = 0; i < n; i++) {
         rep->min = fmin(rep->min, h[i]);
@@ -456,6 +473,10 @@ static int write_rect(world *w, const layer_grid *g, const char *path, const exp
     char extra[8192] = "";
     if (o->preset != EXPORT_PRESET_NONE)
         snprintf(extra, sizeof extra, "  \"preset\": \"%s\"", export_preset_name(o->preset));
+    if (o->layers != EXPORT_LAYERS_COMPOSITE) // what the heights are: a layer's change or a part
+        snprintf(extra + strlen(extra), sizeof extra - strlen(extra),
+                 "%s  \"layers\": \"%s\",\n  \"edit_layer\": \"%s\"", extra[0] ? ",\n" : "",
+                 o->layers == EXPORT_LAYERS_DELTA ? "change" : "upto", o->layers_name);
     if (world_georef_present(wp))
         sidecar_georef(extra + strlen(extra), sizeof extra - strlen(extra), extra[0] != 0,
                        wp->geo_crs, gt);
@@ -535,7 +556,7 @@ static int export_tiles(world *w, const layer_grid *g, const char *path, const e
         double lo = 0, hi = 0;
         const int given = o->has_scale || o->has_min_max == 3;
         grid_rect used = {r.x0, r.z0, r.x0 + used_w, r.z0 + used_h};
-        if (!given && rect_height_range(w, g, path, used, &lo, &hi, err) != 0) return -1;
+        if (!given && rect_height_range(w, g, o, path, used, &lo, &hi, err) != 0) return -1;
         if (mapping_16bit(o, lo, hi, &rep.scale, &rep.offset, err) != 0) return -1;
         if (given)
             snprintf(mapping, sizeof mapping,
@@ -688,8 +709,20 @@ static int resolve_region(world *w, const char *path, const export_options *o, l
     return 0;
 }
 
+_Static_assert((int)EXPORT_LAYERS_DELTA == (int)EXPORT_READ_CHANGE &&
+                   (int)EXPORT_LAYERS_UPTO == (int)EXPORT_READ_UPTO,
+               "export_layer_read.h reads export_layers values");
+
+// layers= picks what a heightmap holds; the other exports take the composite.
+static int composite_only(const char *path, const export_options *o, og_error *err) {
+    if (o->layers == EXPORT_LAYERS_COMPOSITE) return 0;
+    return og_error_set(err, "%s: layers= applies to heightmap exports (.png .tif .exr .r16)",
+                        path);
+}
+
 int export_layer_file(world *w, const char *path, const export_options *o, char *files,
                       size_t files_len, og_error *err) {
+    if (composite_only(path, o, err) != 0) return -1;
     if (world_get_params(w)->kind == WORLD_PLANET)
         return og_error_set(err, "%s: layer images are exported from flat worlds", path);
     layer_grid g;
@@ -716,6 +749,7 @@ int export_mesh_file(world *w, const char *path, const export_options *o, export
         return og_error_set(err, "%s: meshes are exported from flat worlds", path);
     if (o->layer != TILE_LAYER_COARSE)
         return og_error_set(err, "%s: meshes are made of the coarse layer", path);
+    if (composite_only(path, o, err) != 0) return -1;
     layer_grid g;
     export_mesh_options m = {.simplify = o->simplify, .solid = o->solid, .centred = o->centred};
     if (resolve_region(w, path, o, &g, &m.rect, err) != 0) return -1;
@@ -732,7 +766,9 @@ int export_heightmap(world *w, const char *path, const export_options *o, FILE *
     if (format_of(path, o->bits, &f, err) != 0) return -1;
     layer_grid g;
     grid_rect r;
-    if (resolve_region(w, path, o, &g, &r, err) != 0) return -1;
+    if (export_layers_check(w, path, (int)o->layers, o->layers_name, o->layer, err) != 0 ||
+        resolve_region(w, path, o, &g, &r, err) != 0)
+        return -1;
     int64_t w64 = r.x1 - r.x0, h64 = r.z1 - r.z0;
     if (o->tiles_x * o->tiles_y > 1) return export_tiles(w, &g, path, o, f, r, hints, report, err);
     if (o->shard_count > 1)

@@ -7,6 +7,7 @@
 
 #include "editor/interchange/export_mesh.h"
 #include "editor/world/world.h"
+#include "editor/layers/layer_table.h"
 #include "io/err.h"
 #include "io/tile.h"
 
@@ -25,6 +26,12 @@ typedef enum export_preset {
     EXPORT_PRESET_HOUDINI,
     EXPORT_PRESET_BLENDER
 } export_preset;
+
+typedef enum export_layers {
+    EXPORT_LAYERS_COMPOSITE = 0,
+    EXPORT_LAYERS_DELTA,
+    EXPORT_LAYERS_UPTO
+} export_layers;
 
 typedef struct export_options {
     int has_region;
@@ -45,6 +52,11 @@ typedef struct export_options {
     double simplify;
     int solid, centred;
     int image_layer; // layer=normals (1) or materials (2): that layer as images instead
+    // layers=composite (the default), layers=NAME (one height layer's signed change: what
+    // it adds to the layers below it) or layers=upto=NAME (the composite of the layers up
+    // to NAME); heightmaps only.
+    export_layers layers;
+    char layers_name[LAYER_NAME_MAX];
     // .vdb: voxel metres (0 = the world's volume voxel), narrow band half width in
     // voxels, a density fog volume beside the level set, and how far the solid reaches
     // below the region's lowest ground (metres; < 0: 16 voxels).

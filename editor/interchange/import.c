@@ -54,9 +54,16 @@ int import_options_set(import_options *o, const char *key, const char *value, og
         if (pick(value, key, names, 3, &i, err) != 0) return -1;
         o->anchor_centre = i > 0;
     } else if (!strcmp(key, "layer")) {
-        static const char *const names[] = {"coarse", "detail"};
-        if (pick(value, key, names, 2, &i, err) != 0) return -1;
-        o->layer = i ? TILE_LAYER_DETAIL : TILE_LAYER_COARSE;
+        // The grid (coarse, detail) or an edit layer: new, or a layer's name.
+        if (!strcmp(value, "coarse") || !strcmp(value, "detail")) {
+            o->layer = !strcmp(value, "detail") ? TILE_LAYER_DETAIL : TILE_LAYER_COARSE;
+        } else {
+            og_error why;
+            if (strcmp(value, "new") && layer_name_check(value, &why) != 0)
+                return og_error_set(
+                    err, "layer: expected coarse, detail, new or a layer's name; %s", why.msg);
+            snprintf(o->edit_layer, sizeof o->edit_layer, "%s", value);
+        }
     } else if (!strcmp(key, "resample")) {
         static const char *const names[] = {"nearest", "bilinear", "bicubic"};
         if (pick(value, key, names, 3, &i, err) != 0) return -1;
@@ -334,6 +341,38 @@ int import_apply(world *w, const char *path, const import_options *o, import_rep
     return rc;
 }
 
+// layer=new|NAME: the table with that layer made (named after the file) or picked, active.
+static int aim_at_layer(layer_table *t, const import_options *o, const char *file, og_error *err) {
+    if (strcmp(o->edit_layer, "new")) {
+        int i = layer_table_find(t, o->edit_layer);
+        if (i < 0)
+            return og_error_set(err, "layer: no layer named '%s' (layer=new makes one)",
+                                o->edit_layer);
+        if (t->layers[i].kind != LAYER_KIND_HEIGHT)
+            return og_error_set(err, "layer: '%s' is a paint layer: heights go into a height layer",
+                                o->edit_layer);
+        t->active = i;
+        return 0;
+    }
+    char stem[LAYER_NAME_MAX - 8], name[LAYER_NAME_MAX];
+    size_t n = 0;
+    for (const char *c = file; *c && *c != '.' && n + 1 < sizeof stem; c++) // letters kept
+        stem[n++] = (char)((*c >= 'a' && *c <= 'z') || (*c >= 'A' && *c <= 'Z') ||
+                                   (*c >= '0' && *c <= '9') || *c == '-'
+                               ? *c
+                               : '_');
+    stem[n] = 0;
+    if (!n) snprintf(stem, sizeof stem, "import");
+    snprintf(name, sizeof name, "%s", stem);
+    for (int k = 2; layer_table_find(t, name) >= 0 && k < 1000; k++)
+        snprintf(name, sizeof name, "%s_%d", stem, k);
+    og_error why;
+    int at = layer_table_insert(t, t->count ? t->active + 1 : 0, name, LAYER_BLEND_ADD, 1.0, &why);
+    if (at < 0) return og_error_set(err, "layer=new: %s", why.msg);
+    t->active = at;
+    return 0;
+}
+
 int import_apply_source(world *w, const char *path, const import_source *s, const import_options *o,
                         import_report *report, og_error *err) {
     const world_params *p = world_get_params(w);
@@ -395,10 +434,14 @@ int import_apply_source(world *w, const char *path, const import_source *s, cons
     char label[300];
     const char *slash = strrchr(path, '/');
     snprintf(label, sizeof label, "import %s", slash ? slash + 1 : path);
+    world_params next = *p;
+    if (o->edit_layer[0] && aim_at_layer(&next.layers, o, slash ? slash + 1 : path, err) != 0)
+        return -1;
     edit *e = edit_begin(w, label, err);
     if (!e) return -1;
     if (o->starting_state) edit_set_starting_state(e);
-    if (edit_rows_apply(e, &g, rect, import_row, NULL, &op, err) != 0) {
+    if ((o->edit_layer[0] && edit_set_params(e, &next, err) != 0) ||
+        edit_rows_apply(e, &g, rect, import_row, NULL, &op, err) != 0) {
         edit_abort(e);
         return -1;
     }

@@ -12,6 +12,7 @@
 
 #include "editor/interchange/sidecar.h"
 #include "editor/world/world.h"
+#include "editor/layers/layer_table.h"
 #include "io/err.h"
 #include "io/raster.h"
 #include "io/tile.h"
@@ -33,6 +34,9 @@ typedef struct import_options {
     int has_position, anchor_centre;
     double x, z; // metres
     tile_layer layer;
+    // layer=new or layer=NAME: the import goes into a new height layer (named after the
+    // file) or the named one, made active, in the same undo step; "" for the active layer.
+    char edit_layer[LAYER_NAME_MAX];
     import_resample resample;
     import_blend blend;
     double falloff;     // metres over which the patch's edge fades into the terrain
