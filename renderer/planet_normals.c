@@ -61,8 +61,10 @@ static void upload(planet_renderer *r, int slot, int texels, const float *data) 
     glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
 }
 
-// The level whose heights a chunk's normals want.
-static int normal_target(int level) {
+// The level whose heights a chunk's normals want: its own under the sea, whose surface
+// is drawn flat (no finer tiles generated for ground nobody sees).
+static int normal_target(const planet_renderer *r, const chunk *c, int level) {
+    if (c->hmax < world_params_ocean_height(&r->params)) return level;
     return level > NORMAL_FINER ? level - NORMAL_FINER : 0;
 }
 
@@ -150,7 +152,7 @@ static int build_from(planet_renderer *r, chunk *c, const node *n, int lk) {
 }
 
 void planet_normals_build(planet_renderer *r, chunk *c, const node *n) {
-    for (int lk = normal_target(n->level); lk <= n->level; lk++)
+    for (int lk = normal_target(r, c, n->level); lk <= n->level; lk++)
         if (build_from(r, c, n, lk)) return;
     // A neighbouring tile of the chunk's own level is pending: the local vertical until
     // it comes (planet_normals_refine tries again).
@@ -166,7 +168,7 @@ void planet_normals_refine(planet_renderer *r) {
     int made = 0;
     for (int i = 0; i < r->draw_count; i++) {
         chunk *c = &r->chunks[r->draw_list[i]];
-        const int target = normal_target(c->level);
+        const int target = normal_target(r, c, c->level);
         if (c->normal_level >= 0 && c->normal_level <= target) continue;
         if (made > 0 && now_ms() - start > 0.5 * BUILD_BUDGET_MS) {
             r->all_current = 0;

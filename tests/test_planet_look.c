@@ -1,0 +1,236 @@
+// The Earth-like planet reads as a planet at every altitude (issue 29, finding 4): seen
+// over a mountain range from 2,000, 500, 100 and 10 km, the land is
+//  - shaded by its relief: the median luminance step between neighbouring land pixels
+//    is at least the pose's `relief` (a flat colour with a few contour lines has a
+//    median of 0: the lines are too few to move it; closer, more relief per pixel);
+//  - coloured by more than its height: of the land's chromaticity variance (colour with
+//    the light's brightness divided out), at least OTHER_THAN_HEIGHT lies within pixels
+//    of one height (70 m bins of the drawn ground's height, from the depth buffer), so
+//    materials follow slope, climate and region, not contour bands.
+// The look before per-chunk normal textures and the climate rules (6b1a195) failed both
+// at every altitude but one: relief steps 0.3, 0.7, 1.7, 3.2 and colour beside height
+// 0.19, 0.17, 0.10 (0.86 at 10 km, in snow and rock); after, 1.8, 3.7, 19, 24 and 0.79,
+// 0.48, 0.62, 0.93. Frames that fail are written to $TMPDIR/orogen-look-failures/.
+#include "editor/params/planet_presets.h"
+#include "editor/world/world.h"
+#include "io/image_read.h"
+#include "renderer/camera.h"
+#include "renderer/gl_context.h"
+#include "renderer/gl_target.h"
+#include "renderer/planet_camera.h"
+#include "renderer/terrain_renderer.h"
+
+#include <epoxy/gl.h>
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <cmocka.h>
+
+#define W 320
+#define H 180
+#define OTHER_THAN_HEIGHT 0.3
+#define HEIGHT_BIN 70.0 // metres
+#define HEIGHT_BINS 256
+
+static gl_headless *ctx;
+static gl_target target;
+static terrain_renderer *renderer;
+static world *earth;
+
+static void quiet(void *u, const char *m) {
+    (void)u, (void)m;
+}
+
+static int setup(void **state) {
+    (void)state;
+    og_error err = {{0}};
+    if (!(ctx = gl_headless_create(&err)) || gl_require_features(&err) != 0 ||
+        gl_target_create(&target, W, H, &err) != 0 ||
+        !(renderer = terrain_renderer_create(OROGEN_RESOURCE_DIR, &err))) {
+        fprintf(stderr, "test_planet_look: %s\n", err.msg);
+        return -1;
+    }
+    terrain_renderer_set_view_size(renderer, W, H);
+    world_params wp;
+    world_params_default(&wp, WORLD_PLANET);
+    if (planet_preset_apply(&wp, "earth", &err) != 0) return -1;
+    world_settings ws = {.cache_budget_bytes = (size_t)1 << 30, .workers = 2, .warn = quiet};
+    return (earth = world_create(&wp, &ws, &err)) ? 0 : -1;
+}
+
+static int teardown(void **state) {
+    (void)state;
+    world_close(earth);
+    terrain_renderer_destroy(renderer);
+    gl_target_destroy(&target);
+    gl_headless_destroy(ctx);
+    return 0;
+}
+
+static double now_s(void) {
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return t.tv_sec + t.tv_nsec * 1e-9;
+}
+
+// Draws the pose once every chunk wanted is there (or 60 s pass) and reads it back: its
+// colours, and the height above the datum of the ground each pixel shows (NAN: none).
+static void render(const camera *c, unsigned char *rgb, double *height) {
+    og_error err = {{0}};
+    render_settings s;
+    render_settings_default(&s);
+    const double t0 = now_s();
+    int rc;
+    while ((rc = terrain_renderer_update(renderer, earth, c, &s, &err)) == 0 && now_s() - t0 < 60) {
+        struct timespec nap = {0, 1000000};
+        nanosleep(&nap, NULL);
+    }
+    assert_true(rc >= 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, target.fbo);
+    assert_int_equal(terrain_renderer_draw(renderer, earth, c, &s, NULL, W, H, &err), 0);
+    assert_int_equal(gl_target_read_rgb(&target, rgb, &err), 0); // top row first
+    static float depth[W * H];
+    glReadPixels(0, 0, W, H, GL_DEPTH_COMPONENT, GL_FLOAT, depth); // bottom row first
+    double f[3], rt[3], up[3];
+    planet_camera_basis(c, f, rt, up);
+    const double radius = world_get_params(earth)->radius;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            const float d = depth[(H - 1 - y) * W + x]; // reversed z: 0 is infinitely far
+            height[y * W + x] = NAN;
+            if (!(d > 0.0f)) continue;
+            double dir[3], pos[3];
+            camera_basis_ray(c, rt, up, f, (double)W / H, (x + 0.5) / W, (y + 0.5) / H, dir);
+            const double along = c->near_m / d / (dir[0] * f[0] + dir[1] * f[1] + dir[2] * f[2]);
+            for (int a = 0; a < 3; a++)
+                pos[a] = c->pos[a] + dir[a] * along;
+            height[y * W + x] = sqrt(pos[0] * pos[0] + pos[1] * pos[1] + pos[2] * pos[2]) - radius;
+        }
+}
+
+static double luminance(const unsigned char *p) {
+    return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+}
+
+static int by_value(const void *a, const void *b) {
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+typedef struct look {
+    int land;           // land pixels
+    double relief_step; // median luminance step to the next land pixel (right, down)
+    double other_share; // chromaticity variance within height bins over all of it
+} look;
+
+// The two measures over a frame and its heights.
+static look measure(const unsigned char *shaded, const double *height, double sea) {
+    static unsigned char land[W * H];
+    static int bin[W * H];
+    static double steps[W * H];
+    look out = {0};
+    for (int i = 0; i < W * H; i++) {
+        land[i] = height[i] > sea + 1.0; // the sea is drawn at its level
+        bin[i] = land[i] ? (int)fmin((height[i] - sea) / HEIGHT_BIN, HEIGHT_BINS - 1) : 0;
+        out.land += land[i];
+    }
+    int n = 0;
+    for (int y = 0; y + 1 < H; y++)
+        for (int x = 0; x + 1 < W; x++) {
+            const int i = y * W + x;
+            if (!land[i] || !land[i + 1] || !land[i + W]) continue;
+            const double l = luminance(shaded + 3 * i);
+            steps[n++] = fabs(luminance(shaded + 3 * (i + 1)) - l) +
+                         fabs(luminance(shaded + 3 * (i + W)) - l);
+        }
+    if (n > 0) {
+        qsort(steps, (size_t)n, sizeof steps[0], by_value);
+        out.relief_step = steps[n / 2];
+    }
+    // Chromaticity (r, g over the sum) per height bin: the share of its variance left
+    // within the bins.
+    static double sum[HEIGHT_BINS][2], sum2[HEIGHT_BINS], count[HEIGHT_BINS];
+    memset(sum, 0, sizeof sum), memset(sum2, 0, sizeof sum2), memset(count, 0, sizeof count);
+    double all[2] = {0, 0}, all2 = 0, total = 0;
+    for (int i = 0; i < W * H; i++) {
+        if (!land[i]) continue;
+        const unsigned char *p = shaded + 3 * i;
+        const double s = (double)p[0] + p[1] + p[2] + 1.0;
+        const double c[2] = {p[0] / s, p[1] / s};
+        const int b = bin[i];
+        sum[b][0] += c[0], sum[b][1] += c[1], sum2[b] += c[0] * c[0] + c[1] * c[1], count[b]++;
+        all[0] += c[0], all[1] += c[1], all2 += c[0] * c[0] + c[1] * c[1], total++;
+    }
+    if (total < 2) return out;
+    const double variance = all2 - (all[0] * all[0] + all[1] * all[1]) / total;
+    double within = 0;
+    for (int b = 0; b < HEIGHT_BINS; b++)
+        if (count[b] > 0)
+            within += sum2[b] - (sum[b][0] * sum[b][0] + sum[b][1] * sum[b][1]) / count[b];
+    out.other_share = variance > 0 ? within / variance : 0;
+    return out;
+}
+
+static void save_failure(const char *name, const unsigned char *rgb) {
+    const char *tmp = getenv("TMPDIR");
+    char dir[4200], path[4400];
+    snprintf(dir, sizeof dir, "%s/orogen-look-failures", tmp ? tmp : "/tmp");
+    mkdir(dir, 0755);
+    snprintf(path, sizeof path, "%s/%s.png", dir, name);
+    og_error err;
+    image_write_rgb8(path, rgb, W, H, &err);
+}
+
+static void test_relief_and_colour(void **state) {
+    (void)state;
+    // Over the ranges of the Earth-like preset's big continent (seed 1337), looking north.
+    static const struct {
+        const char *name;
+        double lat, lon, altitude, pitch, relief;
+    } poses[] = {
+        {"2000km", 22.0, 5.7, 2e6, -90, 1.2},
+        {"500km", 18.0, 5.7, 5e5, -50, 2.0},
+        {"100km", 21.0, 5.7, 1e5, -25, 6.0},
+        {"10km", 21.8, 5.7, 1e4, -12, 10.0},
+    };
+    static unsigned char shaded[W * H * 3];
+    static double height[W * H];
+    int failed = 0;
+    for (size_t k = 0; k < sizeof poses / sizeof poses[0]; k++) {
+        camera c;
+        camera_default(&c);
+        const world_params *p = world_get_params(earth);
+        double ground = 0;
+        og_error err;
+        planet_position(poses[k].lat, poses[k].lon, p->radius, c.pos);
+        assert_int_equal(planet_surface_height(earth, c.pos, &ground, &err), 0);
+        const double above = poses[k].altitude < 5e4 ? ground : 0.0;
+        planet_position(poses[k].lat, poses[k].lon, p->radius + above + poses[k].altitude, c.pos);
+        c.yaw = 0, c.pitch = poses[k].pitch;
+        render(&c, shaded, height);
+        const look l = measure(shaded, height, world_params_ocean_height(p));
+        const int ok = l.land > W * H / 10 && l.relief_step >= poses[k].relief &&
+                       l.other_share >= OTHER_THAN_HEIGHT;
+        printf("%-7s land %5.1f%%  relief step %4.1f (>= %.1f)  colour beside height %.2f "
+               "(>= %.2f)%s\n",
+               poses[k].name, 100.0 * l.land / (W * H), l.relief_step, poses[k].relief,
+               l.other_share, OTHER_THAN_HEIGHT, ok ? "" : "  FAIL");
+        if (!ok) {
+            failed++;
+            save_failure(poses[k].name, shaded);
+        }
+    }
+    assert_int_equal(failed, 0);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {cmocka_unit_test(test_relief_and_colour)};
+    return cmocka_run_group_tests(tests, setup, teardown);
+}
