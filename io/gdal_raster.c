@@ -9,8 +9,8 @@
 
 typedef int (*read_fn)(const char *, int, long long, float **, int *, int *, int *, int *,
                        gdal_georef *, char *, size_t, og_error *);
-typedef int (*write_fn)(const char *, const float *, int, int, int, const double[6], const char *,
-                        og_error *);
+typedef int (*write_fn)(const char *, const float *, int, int, int, double, double, const double[6],
+                        const char *, og_error *);
 
 static struct {
     pthread_once_t once;
@@ -29,7 +29,7 @@ static void load_module(void) {
                           module.why, sizeof module.why);
     if (!h) return;
     module.read = (read_fn)dlsym(h, "orogen_gdal_module_read_georef");
-    module.write = (write_fn)dlsym(h, "orogen_gdal_module_write_geotiff_crs");
+    module.write = (write_fn)dlsym(h, "orogen_gdal_module_write_geotiff_mapped");
     if (module.read && module.write) return;
     snprintf(module.why, sizeof module.why, "liborogen_gdal.so is not Orogen's GDAL module");
     module.read = NULL;
@@ -54,11 +54,12 @@ int gdal_raster_read(const char *path, int max_size, long long max_samples, floa
 }
 
 int gdal_raster_write_geotiff(const char *path, const float *samples, int width, int height,
-                              int uint16, const double geotransform[6], const char *crs,
-                              og_error *err) {
+                              int uint16, double scale, double offset, const double geotransform[6],
+                              const char *crs, og_error *err) {
     if (file_kind_check_replace(path, err) != 0) return -1;
     if (!gdal_raster_available(NULL, 0))
         return og_error_set(err, "%s: GeoTIFF export needs GDAL, which is unavailable: %s", path,
                             module.why);
-    return module.write(path, samples, width, height, uint16, geotransform, crs ? crs : "", err);
+    return module.write(path, samples, width, height, uint16, scale, offset, geotransform,
+                        crs ? crs : "", err);
 }

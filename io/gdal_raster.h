@@ -16,6 +16,7 @@
 typedef struct gdal_georef {
     double geotransform[6];
     int geographic;
+    int mapped; // the band's scale and offset were applied: the samples are metres
     char crs[GDAL_CRS_MAX];
 } gdal_georef;
 
@@ -29,10 +30,11 @@ int gdal_raster_read(const char *path, int max_size, long long max_samples, floa
                      size_t desc_len, og_error *err);
 
 // A GeoTIFF of samples (float32, or uint16 when uint16: samples then hold whole numbers
-// 0 .. 65535) with that geotransform and coordinate reference system (WKT or an
-// authority code; "" = none: local metres), written atomically.
+// 0 .. 65535, and the band says metres = stored x scale + offset) with that
+// geotransform and coordinate reference system (WKT or an authority code; "" = none:
+// local metres), written atomically. Units: metres.
 int gdal_raster_write_geotiff(const char *path, const float *samples, int width, int height,
-                              int uint16, const double geotransform[6], const char *crs,
-                              og_error *err);
+                              int uint16, double scale, double offset, const double geotransform[6],
+                              const char *crs, og_error *err);
 
 #endif

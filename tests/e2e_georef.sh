@@ -71,8 +71,16 @@ for k, (col, row) in {"upperLeft": (0, 0), "lowerLeft": (0, h), "upperRight": (w
 ds_src, ds_out = gdal.Open(src), gdal.Open(out)
 sv = ds_src.GetRasterBand(1).ReadAsArray(c, r, w, h).astype(np.float64)
 ov = ds_out.GetRasterBand(1).ReadAsArray().astype(np.float64)
+band = ds_out.GetRasterBand(1)
+if out.endswith(".tif") and band.GetUnitType() != "m":
+    fail("the band's unit is '%s', not metres" % band.GetUnitType())
 if os.path.exists(out + ".json"):
     sc = json.load(open(out + ".json"))
+    # A 16-bit GeoTIFF says its mapping itself, as GDAL readers apply it (gdalinfo: Offset, Scale).
+    if out.endswith(".tif") and "16" in sc["format"] and \
+            (band.GetScale() != sc["height_scale"] or band.GetOffset() != sc["height_offset"]):
+        fail("band scale %s offset %s, the sidecar's %s %s" % (band.GetScale(), band.GetOffset(),
+                                                           sc["height_scale"], sc["height_offset"]))
     ov = ov * sc["height_scale"] + sc["height_offset"]
     step = sc["height_scale"] if "16" in sc["format"] else 0
     if sc.get("geotransform") is None:
@@ -97,6 +105,13 @@ grep -q '^geo_transform = -72.00041666666667, 0.0008333333333333334, 0, 45.00041
 check "the world file keeps the geotransform" $?
 same_place "$dem" "$work/a.tif" 0 0 1201 1201; check "float GeoTIFF: the DEM's CRS, corners and samples" $?
 same_place "$dem" "$work/b.tif" 0 0 1201 1201; check "16-bit GeoTIFF: the DEM's CRS, corners and samples" $?
+# Without its sidecar the 16-bit GeoTIFF still gives metres (GDAL's band scale and offset).
+cp "$work/b.tif" "$work/bare16.tif"
+run -c "new flat from=$work/bare16.tif; export $work/from_bare16.tif"
+grep -q "GTiff UInt16, x [0-9.]* + 115 (the band's scale and offset)" "$work/out"
+check "new flat from a 16-bit GeoTIFF without its sidecar" $?
+half_step16=$($py -c "import json; print(json.load(open('$work/b.tif.json'))['height_scale'] / 2)")
+same_place "$dem" "$work/from_bare16.tif" 0 0 1201 1201 "$half_step16"; check "its heights are the DEM's to half a 16-bit step" $?
 # region 6000,9250 .. 20000,30000 m at the world's spacing: its first and last samples.
 read -r c0 r0 w h <<<"$($py -c "
 import math

@@ -451,8 +451,8 @@ static int write_rect(world *w, const layer_grid *g, const char *path, const exp
         break;
     case FMT_TIFF16:
     case FMT_TIFF32:
-        rc = gdal_raster_write_geotiff(path, h, rep->width, rep->height, f == FMT_TIFF16, gt,
-                                       wp->geo_crs, err);
+        rc = gdal_raster_write_geotiff(path, h, rep->width, rep->height, f == FMT_TIFF16,
+                                       rep->scale, rep->offset, gt, wp->geo_crs, err);
         break;
     case FMT_R16:
         rc = write_r16(path, h, n, err);

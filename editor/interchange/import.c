@@ -121,6 +121,12 @@ static int height_mapping(const char *path, const raster *r, const import_option
         snprintf(how, how_len, "stored 0..%.9g mapped to %.9g..%.9g m", top, o->min, o->max);
         return 0;
     }
+    if (sc && r->georef.mapped) { // e.g. our 16-bit GeoTIFF: the band says what its sidecar says
+        *scale = 1.0;
+        *offset = 0.0;
+        snprintf(how, how_len, "metres by the file's own scale and offset");
+        return 0;
+    }
     if (sc) {
         *scale = sc->scale;
         *offset = sc->offset;

@@ -139,6 +139,7 @@ EXPORT int orogen_gdal_module_read_georef(const char *path, int max_size, long l
     double offset = GDALGetRasterOffset(band, &has_offset);
     if (!has_scale) scale = 1.0;
     if (!has_offset) offset = 0.0;
+    geo->mapped = scale != 1.0 || offset != 0.0;
     const char *units = GDALGetRasterUnitType(band);
     const double to_metres = unit_is_feet(units) ? 0.3048 : 1.0;
     const float nodata_f = (float)nodata;
@@ -156,9 +157,14 @@ EXPORT int orogen_gdal_module_read_georef(const char *path, int max_size, long l
         geotransform[1] = geotransform[5] = 0.0; // no georeferencing
     }
     crs_text(ds, geo->crs, sizeof geo->crs, &geo->geographic);
-    snprintf(desc, desc_len, "%s %s%s%s%s", GDALGetDriverShortName(GDALGetDatasetDriver(ds)),
+    char mapping[96] = "";
+    if (geo->mapped)
+        snprintf(mapping, sizeof mapping, ", x %.9g + %.9g (the band's scale and offset)", scale,
+                 offset);
+    snprintf(desc, desc_len, "%s %s%s%s%s%s", GDALGetDriverShortName(GDALGetDatasetDriver(ds)),
              GDALGetDataTypeName(GDALGetRasterDataType(band)), has_nodata ? ", nodata " : "",
-             has_nodata ? "set" : "", to_metres != 1.0 ? ", feet converted to metres" : "");
+             has_nodata ? "set" : "", mapping,
+             to_metres != 1.0 ? ", feet converted to metres" : "");
     *samples = out;
     out = NULL;
     *width = w;
@@ -172,10 +178,12 @@ done:
 
 // A float32 or uint16 GeoTIFF (deflate, tiled) with the given geotransform and
 // coordinate reference system, written to a temp file beside path and renamed into place.
-EXPORT int orogen_gdal_module_write_geotiff_crs(const char *path, const float *samples, int width,
-                                                int height, int uint16,
-                                                const double geotransform[6], const char *crs,
-                                                og_error *err) {
+// A uint16 band carries scale and offset (metres = stored x scale + offset), as GDAL
+// readers apply them.
+EXPORT int orogen_gdal_module_write_geotiff_mapped(const char *path, const float *samples,
+                                                   int width, int height, int uint16, double scale,
+                                                   double offset, const double geotransform[6],
+                                                   const char *crs, og_error *err) {
     pthread_once(&registered, register_drivers);
     GDALDriverH drv = GDALGetDriverByName("GTiff");
     if (!drv) return og_error_set(err, "%s: GDAL has no GeoTIFF driver", path);
@@ -206,7 +214,10 @@ EXPORT int orogen_gdal_module_write_geotiff_crs(const char *path, const float *s
         OSRDestroySpatialReference(srs);
     }
     GDALRasterBandH band = GDALGetRasterBand(ds, 1);
-    if (!uint16) GDALSetRasterUnitType(band, "m"); // 16-bit: the sidecar maps to metres
+    GDALSetRasterUnitType(band, "m");
+    if (uint16)
+        ok = ok && GDALSetRasterScale(band, scale) == CE_None &&
+             GDALSetRasterOffset(band, offset) == CE_None;
     ok = ok && GDALRasterIO(band, GF_Write, 0, 0, width, height, (void *)samples, width, height,
                             GDT_Float32, 0, 0) == CE_None;
     GDALClose(ds); // flushes; errors land in CPLGetLastErrorMsg
