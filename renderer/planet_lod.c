@@ -117,13 +117,23 @@ static int update_detail(planet_renderer *r, const render_settings *s, og_error 
     return 0;
 }
 
+// Whether the chunks built for a stay right for b: the edit layer table aside (a layer
+// command's changes arrive as area events), the parameters are the same.
+static int same_terrain(const world_params *a, const world_params *b) {
+    if (!memcmp(a, b, sizeof *a)) return 1;
+    world_params x = *a, y = *b;
+    memset(&x.layers, 0, sizeof x.layers);
+    memset(&y.layers, 0, sizeof y.layers);
+    return !memcmp(&x, &y, sizeof x);
+}
+
 int planet_renderer_update(planet_renderer *r, world *w, const camera *cam,
                            const render_settings *s, double aspect, int height_px, og_error *err) {
     r->split_pixels = s->lod_pixels >= 1 ? s->lod_pixels : 6.0; // render lod_pixels=
     r->update_start_ms = now_ms();
     const world_params *p = world_get_params(w);
     if (p->kind != WORLD_PLANET) return og_error_set(err, "planet renderer: not a planet");
-    if (r->world != w || memcmp(&r->params, p, sizeof *p) != 0) {
+    if (r->world != w || !same_terrain(&r->params, p)) {
         planet_drop_all(r);
         planet_detail_forget(r->detail);
     }

@@ -10,6 +10,7 @@
 #include "editor/edit/paint_composite.h"
 #include "editor/layers/paint_blend.h"
 #include "editor/world/layer_grid.h"
+#include "io/tile_store.h"
 #include "support/test_support.h"
 
 #include <setjmp.h>
@@ -618,6 +619,103 @@ static void test_painted_mask(void **state) {
         free(all[i]);
 }
 
+// A layer command changes the layer table only: subscribers hear WORLD_EVENT_LAYERS and
+// the areas it recomposed, never WORLD_EVENT_PARAMS (on which the viewport and the planet
+// renderer rebuild everything).
+static void test_layer_commands_publish_layers(void **state) {
+    (void)state;
+    world_params p = flat_params(600);
+    session s;
+    open_session(&s, open_world(&p));
+    run(&s, "layer new Hills; tool raise radius=40 strength=0.5; stroke 100 100 150 120; "
+            "layer new Paint kind=paint; tool paint material=3 radius=30; stroke 400 400");
+    world_subscription *sub = world_events_subscribe(world_event_hub(s.ctx.world), NULL, NULL);
+    const char *steps[] = {"layer set Hills opacity=0.5", "layer set Paint visible=0",
+                           "layer mask Hills slope=0,20", "undo",
+                           "layer move Hills top",        "layer set Hills visible=0"};
+    for (size_t k = 0; k < sizeof steps / sizeof steps[0]; k++) {
+        run(&s, steps[k]);
+        world_event e[64];
+        size_t n = world_subscription_take(sub, e, 64);
+        int layers = 0, params = 0, areas = 0;
+        for (size_t i = 0; i < n; i++) {
+            layers += e[i].kind == WORLD_EVENT_LAYERS;
+            params += e[i].kind == WORLD_EVENT_PARAMS;
+            if (e[i].kind == WORLD_EVENT_AREA && e[i].level == 0) {
+                areas++;
+                assert_true(e[i].rect.x0 >= 0 && e[i].rect.x1 <= 600);
+                // Only around what the layers hold (Hills near 100..150, Paint near 400).
+                assert_true(e[i].rect.x1 - e[i].rect.x0 <= 300);
+            }
+        }
+        // (Moving Hills over the paint layer changes nothing seen: no area.)
+        if (params || !layers || (!areas && strncmp(steps[k], "layer move", 10)))
+            fail_msg("%s: %d params, %d layers, %d areas", steps[k], params, layers, areas);
+    }
+    world_events_unsubscribe(sub);
+    close_session(&s);
+}
+
+static int64_t stored(world *w, tile_layer kind, int32_t slot) {
+    return tile_store_count(world_store(w), tile_layer_in_slot(kind, slot));
+}
+
+// Deleting and merging empty the layer's tiles in the same step: saving drops them from
+// the store, and undo (after the save) brings the layer back whole.
+static void test_removed_layers_leave_store(void **state) {
+    (void)state;
+    char dir[] = "/tmp/orogen_drop_XXXXXX", path[256];
+    assert_non_null(mkdtemp(dir));
+    snprintf(path, sizeof path, "%s/d.world", dir);
+    world_params p = flat_params(600);
+    session s;
+    open_session(&s, open_world(&p));
+    run(&s, "layer new Gone; tool raise radius=60 strength=0.5; stroke 100 100 500 500; "
+            "layer mask Gone painted=1; tool raise target=mask radius=80 strength=1; "
+            "stroke 100 100 300 300; layer new P kind=paint; tool paint material=2 radius=50; "
+            "stroke 100 500 500 100; layer new P2 kind=paint; tool paint material=4 radius=40; "
+            "stroke 300 100 300 500");
+    float *h0 = read_kind(s.ctx.world, TILE_LAYER_COARSE, ALL);
+    uint8_t *m0 = materials(&s);
+    const layer_table *t = &world_get_params(s.ctx.world)->layers;
+    int32_t gone = t->layers[layer_table_find(t, "Gone")].id,
+            p2 = t->layers[layer_table_find(t, "P2")].id;
+    og_error err;
+    if (world_save(s.ctx.world, path, 0, &err) != 0) fail_msg("%s", err.msg);
+    assert_true(stored(s.ctx.world, TILE_LAYER_COARSE, gone) > 0);
+    assert_true(stored(s.ctx.world, TILE_LAYER_COARSE, layer_coverage_slot(gone)) > 0);
+    assert_true(stored(s.ctx.world, TILE_LAYER_MATERIAL, p2) > 0);
+    run(&s, "layer delete Gone; layer merge P2");
+    if (world_save(s.ctx.world, path, 0, &err) != 0) fail_msg("%s", err.msg);
+    assert_int_equal(stored(s.ctx.world, TILE_LAYER_COARSE, gone), 0);
+    assert_int_equal(stored(s.ctx.world, TILE_LAYER_COARSE, layer_coverage_slot(gone)), 0);
+    assert_int_equal(stored(s.ctx.world, TILE_LAYER_MATERIAL, p2), 0);
+    run(&s, "undo; undo");
+    float *h1 = read_kind(s.ctx.world, TILE_LAYER_COARSE, ALL);
+    uint8_t *m1 = materials(&s);
+    assert_memory_equal(h0, h1, sizeof(float) * ALL_N);
+    assert_memory_equal(m0, m1, (size_t)ALL_N * TILE_MATERIALS);
+    run(&s, "layer set Gone visible=0; layer set Gone visible=1; layer set P2 visible=0; "
+            "layer set P2 visible=1");
+    free(h1);
+    free(m1);
+    h1 = read_kind(s.ctx.world, TILE_LAYER_COARSE, ALL);
+    m1 = materials(&s);
+    for (size_t k = 0; k < ALL_N; k++)
+        assert_true(fabsf(h0[k] - h1[k]) <= 1e-4f * (1 + fabsf(h0[k])));
+    assert_true(max_weight_difference(m0, m1) <= 2);
+    if (world_save(s.ctx.world, path, 0, &err) != 0) fail_msg("%s", err.msg);
+    assert_true(stored(s.ctx.world, TILE_LAYER_COARSE, gone) > 0);
+    close_session(&s);
+    free(h0);
+    free(h1);
+    free(m0);
+    free(m1);
+    char cmd[300];
+    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    assert_int_equal(system(cmd), 0);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_paint_composite_matches_arrays),
@@ -625,6 +723,8 @@ int main(void) {
         cmocka_unit_test(test_merge_masked),
         cmocka_unit_test(test_saved_paint),
         cmocka_unit_test(test_painted_mask),
+        cmocka_unit_test(test_layer_commands_publish_layers),
+        cmocka_unit_test(test_removed_layers_leave_store),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -140,6 +140,14 @@ static int apply_change(cmd_context *ctx, const layer_change *c, og_error *err) 
     return edit_commit(e, err);
 }
 
+// A layer leaving the table empties its tiles and painted coverage in the same step (the
+// undo history keeps what they held), so saving drops them from the store.
+static void forget_tiles(layer_change *c, const layer_info *l) {
+    c->clear_id = l->id;
+    c->coverage_clear = l->id;
+    c->coverage_kind = (tile_layer)layer_tile_kind(l);
+}
+
 static int refuse_locked(const layer_info *l, const char *what, og_error *err) {
     if (!l->locked) return 0;
     return og_error_set(err,
@@ -368,6 +376,7 @@ int cmd_layer(cmd_context *ctx, int argc, char **argv, og_error *err) {
         c.merge_below = i - 1;
         c.merge_paint = l->kind == LAYER_KIND_PAINT;
         c.recompose_ids[0] = l->id;
+        forget_tiles(&c, l); // the merged layer's
         c.recompose_ids[1] = below->id;
         // Masks and (for paint) opacity are baked into the merged layer's samples.
         if (c.merge_paint || layer_mask_active(&l->mask) || layer_mask_active(&below->mask)) {
@@ -395,6 +404,7 @@ int cmd_layer(cmd_context *ctx, int argc, char **argv, og_error *err) {
                                 l->name);
         if (refuse_locked(l, "delete", err)) return -1;
         c.recompose_ids[0] = l->id;
+        forget_tiles(&c, l);
         layer_table_remove(t, i);
     }
     if (layer_table_equal(t, &world_get_params(ctx->world)->layers) && !c.clear_id &&

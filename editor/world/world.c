@@ -664,6 +664,42 @@ static int check_overwrite(const world *w, const char *path, og_error *err) {
                         why.msg, path);
 }
 
+typedef struct orphans {
+    const layer_table *table;
+    tile_store_write *writes;
+    size_t count, cap;
+    int oom;
+} orphans;
+
+// A tile of a layer no longer in the table (its id or its painted mask's slot).
+static int collect_orphan(void *user, tile_key key) {
+    orphans *o = user;
+    int32_t slot = tile_key_slot(key);
+    if (slot < LAYER_FIRST_ID) return 0;
+    int32_t id = slot > LAYER_ID_MAX ? slot - LAYER_ID_MAX - 1 : slot;
+    if (layer_table_find_id(o->table, id) >= 0) return 0;
+    if (o->count == o->cap) {
+        size_t cap = o->cap ? o->cap * 2 : 64;
+        tile_store_write *grown = realloc(o->writes, cap * sizeof *grown);
+        if (!grown) return o->oom = 1;
+        o->writes = grown;
+        o->cap = cap;
+    }
+    o->writes[o->count++] = (tile_store_write){key, NULL};
+    return 0;
+}
+
+// Deleted and merged layers leave their tiles empty (the undo history holds what they
+// were, and an empty tile is what a missing one generates): the saved store drops them.
+static int drop_removed_layers(tile_store *target, const layer_table *t, og_error *err) {
+    orphans o = {.table = t};
+    int rc = tile_store_each(target, collect_orphan, &o, err);
+    if (rc == 0 && o.oom) rc = og_error_set(err, "out of memory saving");
+    if (rc == 0 && o.count) rc = tile_store_put_batch(target, o.writes, o.count, err);
+    free(o.writes);
+    return rc;
+}
+
 // Writes the world's files at path (tiles beside it) once world_save has checked
 // that it may; on failure the world keeps working as before.
 static int save_files(world *w, const char *path, world_params p, const char *tiles,
@@ -682,6 +718,7 @@ static int save_files(world *w, const char *path, world_params p, const char *ti
     char state_id[WORLD_ID_CHARS + 1];
     int rc = new_world_id(state_id, err);
     if (rc == 0) rc = tile_store_merge_from(target, sources, count, !same_store, state_id, err);
+    if (rc == 0) rc = drop_removed_layers(target, &p.layers, err);
     // The world's id goes into the store and, with its tile count, into the file, so
     // a store that later goes missing, empty or is swapped is noticed on load.
     if (rc == 0 && !p.tiles_id[0]) rc = new_world_id(p.tiles_id, err);
@@ -806,7 +843,7 @@ int world_regenerate(world *w, const world_params *params, og_error *err) {
     // the same, so the cache stays.
     if (same_generation(&next, &w->params)) {
         w->params = next;
-        world_publish(w, &(world_event){.kind = WORLD_EVENT_PARAMS});
+        world_publish(w, &(world_event){.kind = WORLD_EVENT_LAYERS});
         return 0;
     }
     // Edited tiles must reach the journal before a new cache reads it; the old cache

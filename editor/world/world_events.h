@@ -22,6 +22,9 @@ typedef enum world_event_kind {
     WORLD_EVENT_SAVED,    // the world was written to its files (its path may be new)
     WORLD_EVENT_HISTORY,  // the undo history changed (a step added, undone, redone, dropped)
     WORLD_EVENT_REPLACED, // another world became the document (new, load)
+    // Only the edit layer table changed (a layer command, its undo): generated tiles stay;
+    // the composite's changes arrive as WORLD_EVENT_AREA.
+    WORLD_EVENT_LAYERS,
 } world_event_kind;
 
 typedef struct world_event {
