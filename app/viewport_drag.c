@@ -47,7 +47,7 @@ int camera_mode(const window_state *st) {
 }
 
 sculpt_view sculpt_view_of(const window_state *st) {
-    return (sculpt_view){st->v, st->view_rect};
+    return (sculpt_view){st->v, view_rect(st)};
 }
 
 // Ctrl held inverts the tool for the stroke, Shift smooths instead (Unreal, Terrain3D);
@@ -75,7 +75,7 @@ void sculpt_end(window_state *st) {
     int points = sculpt_drag_end(&st->drag.sculpt, &st->work);
     char echo[128];
     snprintf(echo, sizeof echo, "> stroke_begin; stroke_to ... (%d points); stroke_end", points);
-    console_add(editor_ui_console(st->ed), CONSOLE_ECHO, echo);
+    console_add(editor_ui_console(panels_editor(st)), CONSOLE_ECHO, echo);
 }
 
 const char *tool_name(const brush *b) {
@@ -133,7 +133,7 @@ void viewport_drag_button(GLFWwindow *win, int button, int action, int mods) {
         return;
     }
     if (button == GLFW_MOUSE_BUTTON_RIGHT && (mods & GLFW_MOD_ALT) && action == GLFW_PRESS &&
-        st->drag.kind == DRAG_NONE && !editor_ui_stamp_active(st->ed)) {
+        st->drag.kind == DRAG_NONE && !editor_ui_stamp_active(panels_editor(st))) {
         resize_begin(st);
         return;
     }
@@ -141,7 +141,7 @@ void viewport_drag_button(GLFWwindow *win, int button, int action, int mods) {
         if (action == GLFW_RELEASE) {
             if (st->drag.kind == DRAG_ORBIT) st->drag.kind = DRAG_NONE;
         } else if (st->drag.kind == DRAG_NONE) { // the orbit camera turns about the view's centre
-            ui_rect r = st->view_rect;
+            ui_rect r = view_rect(st);
             double cx = r.x + r.w * 0.5, cy = r.y + r.h * 0.5;
             st->drag.kind = DRAG_ORBIT;
             if (pick_at(st, cx, cy, st->drag.pivot) != 0)
@@ -170,14 +170,14 @@ void viewport_drag_button(GLFWwindow *win, int button, int action, int mods) {
                 point_along_ray(st, ww * 0.5, wh * 0.5, 100.0, st->drag.pivot);
         }
         st->cc.walk = 0;
-    } else if (editor_ui_click_wanted(st->ed) != EDITOR_CLICK_DRAG &&
+    } else if (editor_ui_click_wanted(panels_editor(st)) != EDITOR_CLICK_DRAG &&
                button == GLFW_MOUSE_BUTTON_LEFT) {
         double hit[3]; // a panel waits for this click on the terrain
         char cmd[512];
         const char *label = NULL;
         int on_terrain = pick_at(st, mx, my, hit) == 0;
-        if (editor_ui_viewport_click(st->ed, st->ctx, on_terrain ? hit : NULL, cmd, sizeof cmd,
-                                     &label))
+        if (editor_ui_viewport_click(panels_editor(st), st->ctx, on_terrain ? hit : NULL, cmd,
+                                     sizeof cmd, &label))
             run_commands(st, cmd, label);
     } else {
         st->drag.kind = DRAG_SCULPT;

@@ -20,19 +20,19 @@ void report(const char *what, const og_error *err) {
 // The terrain point under window position (x, y): the ray through that pixel marched
 // against the heights the renderer holds (what is on screen), one coarse sample steps.
 int pick_at(window_state *st, double x, double y, double hit[3]) {
-    ui_rect r = st->view_rect;
+    ui_rect r = view_rect(st);
     if (!st->v->renderer || r.w <= 0 || r.h <= 0) return -1;
     return viewport_pick_loaded(st->v, st->ctx->world, (x - r.x) / r.w, (y - r.y) / r.h,
                                 (double)r.w / r.h, hit);
 }
 
 int in_view(const window_state *st, double x, double y) {
-    return ui_rect_contains(st->view_rect, (float)x, (float)y);
+    return ui_rect_contains(view_rect(st), (float)x, (float)y);
 }
 
 // A point along the ray under (x, y) when no terrain is there: `dist` metres out.
 void point_along_ray(window_state *st, double x, double y, double dist, double out[3]) {
-    ui_rect r = st->view_rect;
+    ui_rect r = view_rect(st);
     double dir[3];
     camera_ray(&st->v->cam, r.w > 0 && r.h > 0 ? (double)r.w / r.h : 1.0,
                r.w > 0 ? (x - r.x) / r.w : 0.5, r.h > 0 ? (y - r.y) / r.h : 0.5, dir);
@@ -50,7 +50,7 @@ static int planet_ground(void *user, const double pos[3], double *h) {
 static void keep_world_camera(window_state *st) {
     const camera *c = &st->v->cam;
     const double pose[5] = {c->pos[0], c->pos[1], c->pos[2], c->yaw, c->pitch};
-    app_settings_put_camera(&st->settings, st->cam_path, pose);
+    app_settings_put_camera(&st->settings, st->run.cam_path, pose);
 }
 
 void reset_camera(window_state *st) {
@@ -70,7 +70,7 @@ void reset_camera(window_state *st) {
         c->pos[0] = pose[0], c->pos[1] = pose[1], c->pos[2] = pose[2];
         c->yaw = pose[3], c->pitch = pose[4];
     }
-    snprintf(st->cam_path, sizeof st->cam_path, "%s", path);
+    snprintf(st->run.cam_path, sizeof st->run.cam_path, "%s", path);
     st->v->cam_world_serial = st->ctx->world_serial;
     st->dirty = 1;
 }
@@ -85,12 +85,6 @@ void run_commands(window_state *st, const char *text, const char *label) {
     work_queue_add(&st->work, text, label, WORK_ECHO);
     st->ui_dirty = 1;
     st->dirty = 1;
-}
-
-static int submit_console_line(void *user, const char *text) {
-    window_state *st = user;
-    run_commands(st, text, "console");
-    return 0;
 }
 
 // Runs what is queued (waiting up to a frame for work to end); after it the window
@@ -179,7 +173,7 @@ void take_changes(window_state *st) {
     world_event e[32];
     size_t n;
     int other_world = 0; // another world, or this one's kind may have changed
-    while ((n = world_subscription_take(st->changes, e, 32)) > 0) {
+    while ((n = world_subscription_take(st->run.changes, e, 32)) > 0) {
         st->dirty = 1;
         st->ui_dirty = 1;              // the panels show the world (history, file, unsaved)
         for (size_t i = 0; i < n; i++) // saves and history steps leave the picture as it is
@@ -187,11 +181,12 @@ void take_changes(window_state *st) {
                 e[i].kind == WORLD_EVENT_REPLACED)
                 frame_world_changed(st);
         for (size_t i = 0; i < n; i++)
-            st->edited |= e[i].kind == WORLD_EVENT_HISTORY;
+            if (e[i].kind == WORLD_EVENT_HISTORY) panels_world_edited(st);
         for (size_t i = 0; i < n; i++) {
             if (e[i].kind == WORLD_EVENT_SAVED) { // Save as: the camera goes with the new file
                 keep_world_camera(st);
-                snprintf(st->cam_path, sizeof st->cam_path, "%s", world_path(st->ctx->world));
+                snprintf(st->run.cam_path, sizeof st->run.cam_path, "%s",
+                         world_path(st->ctx->world));
             }
             other_world |= e[i].kind == WORLD_EVENT_REPLACED || e[i].kind == WORLD_EVENT_PARAMS;
             if (e[i].kind != WORLD_EVENT_REPLACED) continue;
@@ -199,7 +194,8 @@ void take_changes(window_state *st) {
                 keep_world_camera(st);
                 reset_camera(st);
             } else { // a command placed the camera for the new world: nothing to keep
-                snprintf(st->cam_path, sizeof st->cam_path, "%s", world_path(st->ctx->world));
+                snprintf(st->run.cam_path, sizeof st->run.cam_path, "%s",
+                         world_path(st->ctx->world));
             }
         }
         if (n < 32) break;
@@ -209,22 +205,6 @@ void take_changes(window_state *st) {
     if (other_world && world_get_params(st->ctx->world)->kind == WORLD_PLANET &&
         brush_tool_is_volume(st->ctx->brush.tool))
         run_commands(st, "tool raise", "planet");
-}
-
-// The UI's fonts: DejaVu from fonts-dejavu-core ($OROGEN_FONT_DIR overrides the folder),
-// at 15 px times the monitor's content scale times the user's UI scale.
-ui_font *load_font(GLFWwindow *win, double user, og_error *err) {
-    const char *dir = getenv("OROGEN_FONT_DIR");
-    if (!dir || !*dir) dir = "/usr/share/fonts/truetype/dejavu";
-    char sans[4200], mono[4200], why[512];
-    snprintf(sans, sizeof sans, "%s/DejaVuSans.ttf", dir);
-    snprintf(mono, sizeof mono, "%s/DejaVuSansMono.ttf", dir);
-    float xs = 1, ys = 1;
-    glfwGetWindowContentScale(win, &xs, &ys);
-    ui_font *f =
-        ui_font_create(sans, mono, roundf(15.0f * fmaxf(xs, 1.0f) * (float)user), why, sizeof why);
-    if (!f) og_error_set(err, "the UI's font: %s (install fonts-dejavu-core)", why);
-    return f;
 }
 
 // Makes the viewport the console's view commands use: this window's context, its renderer.
@@ -254,29 +234,16 @@ static void save_settings(window_state *st) {
         glfwGetWindowPos(st->win, &s->x, &s->y);
         s->has_position = 1;
     }
-    int recent = 0;
-    while (editor_ui_recent(st->ed, recent))
-        recent++;
-    while (recent-- > 0)
-        app_settings_add_recent(s, editor_ui_recent(st->ed, recent));
+    panels_keep(st); // the recent worlds, the console's history
     app_settings_add_recent(s, world_path(st->ctx->world));
     tool_settings_capture(st->ctx, s);
     keep_world_camera(st);
     s->fly_speed = st->cc.fly_speed;
-    s->dynamic_lod = st->dynamic_res;
+    s->dynamic_lod = frame_dynamic_resolution(st);
     s->lod_pixels = st->v->settings.lod_pixels;
     og_error err = {{0}};
-    if (app_settings_save(s, st->settings_path, &err) != 0)
+    if (app_settings_save(s, st->run.settings_path, &err) != 0)
         fprintf(stderr, "orogen: settings not saved: %s\n", err.msg);
-    if (console_save_history(editor_ui_console(st->ed), st->history_path, &err) != 0)
-        fprintf(stderr, "orogen: console history not saved: %s\n", err.msg);
-}
-
-static const char *clipboard_get(void *user) {
-    return glfwGetClipboardString(user);
-}
-static void clipboard_set(void *user, const char *text) {
-    glfwSetClipboardString(user, text);
 }
 
 // GLFW and a window with an EGL OpenGL 4.5 core context, placed as the settings say.
@@ -309,22 +276,18 @@ static GLFWwindow *open_window(const app_settings *settings, og_error *err) {
     return win;
 }
 
-// Frees whatever of the window exists (a start that failed half way, or the end).
+// Frees whatever of the window exists (a start that failed half way, or the end):
+// each part closes its own.
 static void window_teardown(window_state *st) {
     cmd_context *ctx = st->ctx;
     if (ctx->session) fclose(ctx->session);
     ctx->session = NULL;
     free(st->run.session_text);
-    if (st->changes) world_events_unsubscribe(st->changes);
+    if (st->run.changes) world_events_unsubscribe(st->run.changes);
     current_window = NULL;
-    ui_messages_attach(NULL, NULL);
     frame_close(st);
-    ui_renderer_destroy(st->uir);
-    ui_destroy(st->ui);
-    ui_destroy(st->busy_ui);
+    panels_close(st);
     input_close(st);
-    ui_font_destroy(st->font);
-    editor_ui_destroy(st->ed);
     // The renderer's GL objects belong to this context: free them while it is current.
     viewport_destroy(st->v);
     view_commands_set_viewport(ctx, NULL);
@@ -332,61 +295,35 @@ static void window_teardown(window_state *st) {
     glfwTerminate();
 }
 
-// The panels' side of the window (editor_host).
-static void host_set_camera_mode(void *user, int mode) {
-    set_camera_mode(user, mode);
-}
-
-static void host_close(void *user) {
-    window_state *st = user;
-    glfwSetWindowShouldClose(st->win, GLFW_TRUE);
-}
-
 // The window's state from the settings: the viewport, the UI, the console, the queue.
 static int window_start(window_state *st, const app_settings *settings, const char *settings_path,
                         og_error *err) {
     cmd_context *ctx = st->ctx;
-    if (!(st->ed = editor_ui_create())) return og_error_set(err, "out of memory");
     og_error gl_err = {{0}};
     if (gl_require_features(&gl_err) != 0 || !(st->v = attach_viewport(ctx, &gl_err)) ||
         viewport_prepare(st->v, &gl_err) != 0)
         return og_error_set(err, "the window's OpenGL context cannot run the viewport: %s",
                             gl_err.msg);
     camera_controls_init(&st->cc);
-    st->changes = world_events_subscribe(world_event_hub(ctx->world), wake_window, NULL);
-    if (!st->changes) return og_error_set(err, "out of memory");
-    if (!world_path(ctx->world)[0]) // a new session: a never-saved world's crash to offer?
-        editor_ui_offer_startup_recovery(st->ed);
+    st->run.changes = world_events_subscribe(world_event_hub(ctx->world), wake_window, NULL);
+    if (!st->run.changes) return og_error_set(err, "out of memory");
     update_px_scale(st);
     st->settings = *settings;
-    snprintf(st->settings_path, sizeof st->settings_path, "%s", settings_path);
-    app_settings_path(st->history_path, sizeof st->history_path, "console_history");
-    console_load_history(editor_ui_console(st->ed), st->history_path);
-    for (int i = settings->recent_count - 1; i >= 0; i--) // the newest goes in last, in front
-        editor_ui_add_recent(st->ed, settings->recent[i]);
+    snprintf(st->run.settings_path, sizeof st->run.settings_path, "%s", settings_path);
     frame_open(st, settings->frame_target_ms);
+    frame_set_dynamic_resolution(st, settings->dynamic_lod);
     st->cc.fly_speed = settings->fly_speed; // the wheel with the right button held changes it
-    st->dynamic_res = settings->dynamic_lod;
-    st->gl_renderer = (const char *)glGetString(GL_RENDERER);
-    og_error ui_err = {{0}};
-    if (!(st->font = load_font(st->win, settings->ui_scale, &ui_err)) ||
-        !(st->ui = ui_create(st->font)) || !(st->busy_ui = ui_create(st->font)) ||
-        input_open(st) != 0 || !(st->uir = ui_renderer_create(ctx->resource_dir, &ui_err)))
-        return og_error_set(err, "the editor's UI cannot start: %s",
-                            ui_err.msg[0] ? ui_err.msg : "out of memory");
-    ui_set_clipboard(st->ui, (ui_clipboard){clipboard_get, clipboard_set, st->win});
+    if (panels_open(st, err) != 0) return -1;
+    if (input_open(st) != 0)
+        return og_error_set(err, "the editor's UI cannot start: out of memory");
     // The session's commands, kept for `history script FILE` (File > Save session...).
     ctx->session = open_memstream(&st->run.session_text, &st->run.session_len);
     ctx->session_text = &st->run.session_text;
     ctx->session_len = &st->run.session_len;
     tool_settings_restore(ctx, settings, settings_path); // each tool as it was last used
-    work_queue_init(&st->work, ctx, editor_ui_console(st->ed), wake_window, NULL);
-    st->work.notices = &st->notices;
-    editor_ui_attach(st->ed, &st->work, &st->notices,
-                     (editor_host){st, host_set_camera_mode, host_close, submit_console_line});
-    ui_messages_attach(st->ui, st->busy_ui);
+    work_queue_init(&st->work, ctx, editor_ui_console(panels_editor(st)), wake_window, NULL);
+    st->work.notices = panels_notices(st);
     current_window = st;
-    editor_ui_make_material_swatches(st->ed);
     return 0;
 }
 
@@ -455,7 +392,7 @@ static int frame_draw(window_state *st, int w, int h, const ui_draw_list **dl,
     // The UI is rebuilt after input or changes; the terrain image only when what
     // it shows changed (a hover or a keystroke in a text field never re-renders it).
     int drawn = 0;
-    if (st->ui_dirty || st->dirty || ui_needs_frame(st->ui) || !*dl) {
+    if (st->ui_dirty || st->dirty || panels_need_frame(st) || !*dl) {
         *dl = build_ui(st, w, h);
         drawn = 1;
     }
@@ -470,8 +407,8 @@ static int frame_draw(window_state *st, int w, int h, const ui_draw_list **dl,
     if (st->dirty || frame_unsettled(st)) {
         int arrived = update_view(st) > 0;
         float k = ui_px(st, 1.0);
-        if (render_terrain(st, (int)roundf(st->view_rect.w * k), (int)roundf(st->view_rect.h * k),
-                           arrived)) {
+        ui_rect vr = view_rect(st);
+        if (render_terrain(st, (int)roundf(vr.w * k), (int)roundf(vr.h * k), arrived)) {
             drawn = 1;
             st->ui_dirty = 1; // the status bar shows the new frame's figures
         }
@@ -504,7 +441,7 @@ int window_run(cmd_context *ctx, og_error *err) {
     }
     GLFWwindow *win = open_window(&settings, err);
     if (!win) return -1;
-    window_state st = {.ctx = ctx, .win = win, .run.stdin_open = 1, .dirty = 1, .dynamic_res = 1};
+    window_state st = {.ctx = ctx, .win = win, .run.stdin_open = 1, .dirty = 1};
     if (window_start(&st, &settings, settings_path, err) != 0) {
         window_teardown(&st);
         return -1;
@@ -516,7 +453,7 @@ int window_run(cmd_context *ctx, og_error *err) {
         // Input first; wake often while tiles arrive, keys fly the camera or work runs.
         int awake = frame_unsettled(&st) || keys_held(&st) ||
                     viewport_drag_kind(&st) == DRAG_SCULPT || st.v->settings.sun_rotation != 0 ||
-                    !work_queue_idle(&st.work) || ui_needs_frame(st.ui);
+                    !work_queue_idle(&st.work) || panels_need_frame(&st);
         glfwWaitEventsTimeout(awake ? 0.01 : 0.1);
         int w, h;
         glfwGetFramebufferSize(win, &w, &h);

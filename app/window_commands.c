@@ -6,19 +6,6 @@
 // The window whose UI the ui_widgets command reports (one window per process).
 window_state *current_window;
 
-// Changes the UI scale: a new font at the new size (the renderer re-uploads its atlas).
-static int set_ui_scale(window_state *st, double scale, og_error *err) {
-    ui_font *f = load_font(st->win, scale, err);
-    if (!f) return -1;
-    ui_set_font(st->ui, f);
-    ui_set_font(st->busy_ui, f);
-    ui_font_destroy(st->font);
-    st->font = f;
-    st->settings.ui_scale = scale;
-    st->ui_dirty = 1;
-    return 0;
-}
-
 // ui_scale [FACTOR]: the editor's UI scale (times the monitor's content scale).
 static int cmd_ui_scale(cmd_context *ctx, int argc, char **argv, og_error *err) {
     window_state *st = current_window;
@@ -29,17 +16,18 @@ static int cmd_ui_scale(cmd_context *ctx, int argc, char **argv, og_error *err) 
     }
     double v;
     if (parse_number_in(argv[1], "FACTOR", 0.5, 4, &v, err) != 0) return -1;
-    return set_ui_scale(st, v, err);
+    return panels_set_scale(st, v, err);
 }
 
 // dynamic_resolution [on|off]: lower the viewport's resolution while moving (L).
 static int cmd_dynamic_resolution(cmd_context *ctx, int argc, char **argv, og_error *err) {
     window_state *st = current_window;
     if (!st) return og_error_set(err, "dynamic_resolution: no editor window is open");
-    if (argc > 1 && parse_switch(argv[1], "dynamic_resolution", &st->dynamic_res, err) != 0)
-        return -1;
+    int on = frame_dynamic_resolution(st);
+    if (argc > 1 && parse_switch(argv[1], "dynamic_resolution", &on, err) != 0) return -1;
+    frame_set_dynamic_resolution(st, on);
     st->dirty = st->ui_dirty = 1;
-    fprintf(ctx->out, "dynamic_resolution %s (target %g ms)\n", st->dynamic_res ? "on" : "off",
+    fprintf(ctx->out, "dynamic_resolution %s (target %g ms)\n", on ? "on" : "off",
             frame_target_ms(st));
     return 0;
 }
@@ -48,19 +36,7 @@ static int cmd_dynamic_resolution(cmd_context *ctx, int argc, char **argv, og_er
 static int cmd_ui_widgets(cmd_context *ctx, int argc, char **argv, og_error *err) {
     window_state *st = current_window;
     if (!st) return og_error_set(err, "ui_widgets: no editor window is open");
-    float k = ui_px(st, 1.0);
-    const char *filter = argc > 1 ? argv[1] : NULL;
-    fprintf(ctx->out, "Viewport %.0f %.0f %.0f %.0f\n", st->view_rect.x, st->view_rect.y,
-            st->view_rect.w, st->view_rect.h);
-    // While long work runs, its progress bar and Cancel button are listed after the rest.
-    ui_context *uis[2] = {st->ui, work_queue_busy(&st->work) ? st->busy_ui : NULL};
-    for (int u = 0; u < 2 && uis[u]; u++)
-        for (size_t i = 0; i < ui_widget_count(uis[u]); i++) {
-            const ui_widget_info *w = ui_widget_at(uis[u], i);
-            if (!w->name[0] || (filter && !strstr(w->name, filter))) continue;
-            fprintf(ctx->out, "%s %.0f %.0f %.0f %.0f\n", w->name, w->rect.x / k, w->rect.y / k,
-                    w->rect.w / k, w->rect.h / k);
-        }
+    panels_list_widgets(st, ctx->out, argc > 1 ? argv[1] : NULL);
     return 0;
 }
 

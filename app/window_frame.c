@@ -29,7 +29,7 @@ void update_title(window_state *st) {
                  : camera_mode(st) == 1 ? "orbit"
                                         : "fly",
                  camera_controls_speed(&st->cc), rs.levels_ready, used,
-                 editor_ui_stamp_active(st->ed) ? "stamp" : tool_name(&st->ctx->brush),
+                 editor_ui_stamp_active(panels_editor(st)) ? "stamp" : tool_name(&st->ctx->brush),
                  st->ctx->brush.radius, st->frame.pending);
     if (strcmp(title, st->frame.title) != 0) {
         snprintf(st->frame.title, sizeof st->frame.title, "%s", title);
@@ -96,11 +96,11 @@ static void update_cursor(window_state *st) {
                   (resizing || pick_at(st, x, y, hit) == 0);
     if (!bc->visible) return;
     bc->x = hit[0], bc->y = hit[1], bc->z = hit[2]; // y: planets drape it in 3D
-    if (viewport_drag_kind(st) != DRAG_RESIZE && !editor_ui_stamp_active(st->ed))
+    if (viewport_drag_kind(st) != DRAG_RESIZE && !editor_ui_stamp_active(panels_editor(st)))
         follow_ground(st, hit);
-    if (editor_ui_stamp_active(st->ed)) {       // the stamp's footprint: its half size, no
-        bc->radius = editor_ui_stamp_half_size( // falloff, in face-local metres on a planet
-            st->ed, world_grid_sample_metres(world_get_params(st->ctx->world)));
+    if (editor_ui_stamp_active(panels_editor(st))) { // the stamp's footprint: its half size, no
+        bc->radius = editor_ui_stamp_half_size(      // falloff, in face-local metres on a planet
+            panels_editor(st), world_grid_sample_metres(world_get_params(st->ctx->world)));
         for (int i = 0; i < BRUSH_FALLOFF_SAMPLES; i++)
             bc->falloff[i] = 1.0f;
         bc->color[0] = bc->color[1] = bc->color[2] = 0.9f;
@@ -164,56 +164,25 @@ int update_view(window_state *st) {
     return rs.texels_uploaded > 0;
 }
 
-// Builds this frame's UI (running the commands its widgets ask for); sets the
-// viewport's rectangle. fw, fh: the framebuffer's size.
-// One line over the foot of the viewport until the first edit: what to do first (in
-// fewer words when the viewport is narrow).
-static void first_view_hint(ui_context *ui, ui_rect vr) {
-    static const char *const texts[] = {
-        "Drag to sculpt, right-drag to look around, F1 for the keys",
-        "Drag: sculpt, right-drag: look, F1: keys",
-    };
-    float pad = ui_em(ui, 0.6f), h = ui_em(ui, 2.4f), w = 0;
-    const char *text = NULL;
-    for (int i = 0; i < 2 && !text; i++) {
-        w = ui_font_text_width(ui_get_font(ui), UI_FACE_SANS, texts[i], strlen(texts[i])) +
-            ui_em(ui, 3.0f);
-        if (w <= vr.w - 2 * pad) text = texts[i];
-    }
-    if (!text || vr.h < 4 * h) return; // no room: the view first
-    ui_panel_begin(ui, "Hint", (ui_rect){vr.x + 0.5f * (vr.w - w), vr.y + vr.h - h - pad, w, h});
-    ui_label(ui, text);
-    ui_panel_end(ui);
-}
-
-const ui_draw_list *build_ui(window_state *st, int fw, int fh) {
-    editor_frame_info info = {.frame_ms = st->frame.terrain_ms,
-                              .resolution_scale = st->frame.drawn_scale,
-                              .pending = st->frame.pending,
-                              .gl_renderer = st->gl_renderer,
-                              .ui_scale = st->settings.ui_scale,
-                              .camera_mode = camera_mode(st),
-                              .dynamic_resolution = st->dynamic_res,
-                              .glfw_version = glfwGetVersionString()};
-    info.resizing = viewport_drag_resizing(st, NULL, &info.resize_radius, &info.resize_strength);
+void frame_status(window_state *st, editor_frame_info *info) {
+    info->frame_ms = st->frame.terrain_ms;
+    info->resolution_scale = st->frame.drawn_scale;
+    info->pending = st->frame.pending;
+    info->dynamic_resolution = st->frame.dynamic_res;
     double hit[3], x, y;
     pointer_pos(st, &x, &y);
     if (pointer_in_window(st) && pointer_on_terrain(st) && pick_at(st, x, y, hit) == 0) {
-        info.cursor_valid = 1;
-        memcpy(info.cursor, hit, sizeof hit);
+        info->cursor_valid = 1;
+        memcpy(info->cursor, hit, sizeof hit);
     }
-    if (editor_ui_refresh_stamps(st->ed, st->ctx, glfwGetTime())) st->ui_dirty = 1;
-    size_t waiting;
-    ui_begin(st->ui, input_frame(st, ui_wants_keyboard(st->ui), &waiting), (float)fw, (float)fh);
-    ui_rect vr = editor_ui_build(st->ed, st->ui, st->ctx, st->v, &info, (float)fw, (float)fh);
-    if (!st->edited) first_view_hint(st->ui, vr);
-    notices_draw(&st->notices, st->ui, vr);
-    const ui_draw_list *dl = ui_end(st->ui);
-    input_frame_done(st);
-    float k = ui_px(st, 1.0); // framebuffer pixels per window unit
-    st->view_rect = (ui_rect){vr.x / k, vr.y / k, vr.w / k, vr.h / k};
-    st->ui_dirty = editor_ui_upload_thumbnails(st->ed) || waiting > 0; // more next frame
-    return dl;
+}
+
+int frame_dynamic_resolution(const window_state *st) {
+    return st->frame.dynamic_res;
+}
+
+void frame_set_dynamic_resolution(window_state *st, int on) {
+    st->frame.dynamic_res = on;
 }
 
 static double now_ms(void) {
@@ -257,7 +226,7 @@ int render_terrain(window_state *st, int vw, int vh, int arrived) {
                  viewport_drag_kind(st) == DRAG_SCULPT || v->settings.sun_rotation != 0 ||
                  memcmp(&v->cursor, &st->frame.drawn_cursor, sizeof v->cursor) != 0 ||
                  viewport_drag_kind(st) == DRAG_ORBIT || keys_held(st);
-    float scale = moving && st->dynamic_res ? st->frame.res_scale : 1.0f;
+    float scale = moving && st->frame.dynamic_res ? st->frame.res_scale : 1.0f;
     int w = (int)fmaxf(1.0f, roundf(vw * scale)), h = (int)fmaxf(1.0f, roundf(vh * scale));
     int changed = !st->frame.terrain_valid || arrived || st->frame.world_changed ||
                   memcmp(&v->cam, &st->frame.drawn_cam, sizeof v->cam) != 0 ||
@@ -311,20 +280,19 @@ int render_terrain(window_state *st, int vw, int vh, int arrived) {
 void compose(window_state *st, const ui_draw_list *dl, int fw, int fh) {
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(0, 0, fw, fh);
-    const ui_theme *t = ui_get_theme(st->ui);
-    glClearColor((t->bg & 255) / 255.0f, ((t->bg >> 8) & 255) / 255.0f,
-                 ((t->bg >> 16) & 255) / 255.0f, 1);
+    ui_color bg = panels_background(st);
+    glClearColor((bg & 255) / 255.0f, ((bg >> 8) & 255) / 255.0f, ((bg >> 16) & 255) / 255.0f, 1);
     glClear(GL_COLOR_BUFFER_BIT);
     float k = ui_px(st, 1.0);
-    int vx = (int)roundf(st->view_rect.x * k), vy = (int)roundf(st->view_rect.y * k);
-    int vw = (int)roundf(st->view_rect.w * k), vh = (int)roundf(st->view_rect.h * k);
+    ui_rect vr = view_rect(st);
+    int vx = (int)roundf(vr.x * k), vy = (int)roundf(vr.y * k);
+    int vw = (int)roundf(vr.w * k), vh = (int)roundf(vr.h * k);
     const gl_target *image =
         st->frame.smooth_shown ? &st->frame.terrain_smooth : &st->frame.terrain;
     if (st->frame.terrain_valid && vw > 0 && vh > 0)
         glBlitNamedFramebuffer(image->fbo, 0, 0, 0, image->width, image->height, vx, fh - (vy + vh),
                                vx + vw, fh - vy, GL_COLOR_BUFFER_BIT, GL_LINEAR);
-    og_error err = {{0}};
-    if (dl && ui_renderer_draw(st->uir, dl, st->font, fw, fh, &err) != 0) report("ui", &err);
+    panels_draw(st, dl, fw, fh);
 }
 
 // While long work runs: the last frame with a progress bar and a Cancel button over
@@ -335,17 +303,11 @@ void draw_busy(window_state *st, const ui_draw_list *dl, int fw, int fh) {
     if (elapsed < 150 || (t - st->frame.busy_drawn_ms < 100 && !st->ui_dirty)) return;
     st->frame.busy_drawn_ms = t;
     st->ui_dirty = 0;
-    ui_begin(st->busy_ui, input_busy_frame(st), (float)fw, (float)fh);
     const char *what = (st->work.running.flags & WORK_STROKE) ? "the stroke's dabs along the drag"
                                                               : cmd_job_text(job);
-    if (editor_ui_build_busy(st->busy_ui, what, cmd_job_progress(job), elapsed, (float)fw,
-                             (float)fh))
-        work_queue_cancel(&st->work);
-    const ui_draw_list *busy = ui_end(st->busy_ui);
-    input_busy_done(st);
+    const ui_draw_list *busy = build_busy_ui(st, what, cmd_job_progress(job), elapsed, fw, fh);
     compose(st, dl, fw, fh);
-    og_error err = {{0}};
-    if (ui_renderer_draw(st->uir, busy, st->font, fw, fh, &err) != 0) report("ui", &err);
+    panels_draw(st, busy, fw, fh);
     glfwSwapBuffers(st->win);
     char title[sizeof st->frame.title];
     snprintf(title, sizeof title, "Orogen - working %.0f%% - Esc cancels",
@@ -399,7 +361,8 @@ const ui_draw_list *render_still(window_state *st, int fw, int fh) {
     st->frame.terrain_valid = 0; // full resolution, whatever was drawn while moving
     float keep = st->frame.res_scale;
     st->frame.res_scale = 1.0f;
-    render_terrain(st, (int)roundf(st->view_rect.w * k), (int)roundf(st->view_rect.h * k), 1);
+    ui_rect vr = view_rect(st);
+    render_terrain(st, (int)roundf(vr.w * k), (int)roundf(vr.h * k), 1);
     if (st->frame.smooth_owed) smooth_terrain(st); // as the view shows once it is still
     st->frame.res_scale = keep;
     return build_ui(st, fw, fh); // the status bar with this frame's figures

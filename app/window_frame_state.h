@@ -31,6 +31,7 @@ typedef struct window_frame_state {
     int render_failed;    // the renderer refused this world (a planet): said once
     char title[512];      // the window's title as last set
     double busy_drawn_ms; // when the progress of long work was last drawn
+    int dynamic_res;      // lower the resolution while moving (L, dynamic_resolution)
 } window_frame_state;
 
 #endif

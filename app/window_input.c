@@ -70,7 +70,7 @@ static void on_scroll(GLFWwindow *win, double dx, double dy) {
     st->ui_dirty = 1;
     if (work_queue_busy(&st->work)) return;
     if (!in_view(st, st->input.mouse_x, st->input.mouse_y) ||
-        ui_captures_point(st->ui, st->input.in.mouse_x, st->input.in.mouse_y)) {
+        panels_capture_point(st, st->input.in.mouse_x, st->input.in.mouse_y)) {
         st->input.in.wheel += (float)dy;
         queue_ui_event(st, (ui_event){.kind = UI_EVENT_WHEEL, .wheel = (float)dy});
         return;
@@ -82,8 +82,9 @@ static void on_scroll(GLFWwindow *win, double dx, double dy) {
     }
     int ctrl = glfwGetKey(win, GLFW_KEY_LEFT_CONTROL) || glfwGetKey(win, GLFW_KEY_RIGHT_CONTROL);
     int shift = glfwGetKey(win, GLFW_KEY_LEFT_SHIFT) || glfwGetKey(win, GLFW_KEY_RIGHT_SHIFT);
-    if (editor_ui_stamp_active(st->ed) && (ctrl || shift)) { // the stamp preview: size, turn
-        editor_ui_stamp_wheel(st->ed, ctrl, shift, dy);
+    if (editor_ui_stamp_active(panels_editor(st)) &&
+        (ctrl || shift)) { // the stamp preview: size, turn
+        editor_ui_stamp_wheel(panels_editor(st), ctrl, shift, dy);
         st->ui_dirty = 1;
         return;
     }
@@ -102,7 +103,7 @@ static void save_shortcut(window_state *st) {
         return;
     }
     if (world_file_errors(st->ctx->world) || world_read_only(st->ctx->world)[0]) {
-        editor_ui_save(st->ed, st->ctx); // asks first: saving would lose something
+        editor_ui_save(panels_editor(st), st->ctx); // asks first: saving would lose something
         st->ui_dirty = 1;
         return;
     }
@@ -225,14 +226,14 @@ static void run_shortcut(window_state *st, const shortcut_key *k) {
     case SHORTCUT_TOOL: // one letter per tool, while the pointer is over the viewport
         if (!viewport_looking(st) && in_view(st, st->input.mouse_x, st->input.mouse_y)) {
             int tool = editor_ui_tool_index(k->arg);
-            if (tool >= 0) editor_ui_pick_tool(st->ed, st->ctx, tool);
+            if (tool >= 0) editor_ui_pick_tool(panels_editor(st), st->ctx, tool);
         }
         break;
     case SHORTCUT_CONSOLE:
-        console_toggle(editor_ui_console(st->ed), 0);
+        console_toggle(editor_ui_console(panels_editor(st)), 0);
         break;
     case SHORTCUT_HELP:
-        editor_ui_show_help(st->ed);
+        editor_ui_show_help(panels_editor(st));
         break;
     case SHORTCUT_RADIUS_DOWN:
     case SHORTCUT_RADIUS_UP:
@@ -260,8 +261,9 @@ static void run_shortcut(window_state *st, const shortcut_key *k) {
         turn_light(st);
         break;
     case SHORTCUT_DYNAMIC_RES:
-        run_commands(st, st->dynamic_res ? "dynamic_resolution off" : "dynamic_resolution on",
-                     "key");
+        run_commands(
+            st, frame_dynamic_resolution(st) ? "dynamic_resolution off" : "dynamic_resolution on",
+            "key");
         break;
     case SHORTCUT_MORE_LEVELS:
     case SHORTCUT_FEWER_LEVELS:
@@ -271,16 +273,16 @@ static void run_shortcut(window_state *st, const shortcut_key *k) {
         save_shortcut(st);
         break;
     case SHORTCUT_SAVE_AS:
-        editor_ui_save_as(st->ed, st->ctx);
+        editor_ui_save_as(panels_editor(st), st->ctx);
         break;
     case SHORTCUT_OPEN:
-        editor_ui_open(st->ed, st->ctx);
+        editor_ui_open(panels_editor(st), st->ctx);
         break;
     case SHORTCUT_NEW_FLAT:
-        editor_ui_request(st->ed, st->ctx, PENDING_NEW_FLAT);
+        editor_ui_request(panels_editor(st), st->ctx, PENDING_NEW_FLAT);
         break;
     case SHORTCUT_QUIT:
-        editor_ui_request(st->ed, st->ctx, PENDING_QUIT);
+        editor_ui_request(panels_editor(st), st->ctx, PENDING_QUIT);
         break;
     case SHORTCUT_ACTION_COUNT:
         break;
@@ -331,8 +333,9 @@ static void key_after_ui(window_state *st, int key, int action, int mods, int ta
         }
     // A focused text field took it; ~ still closes the console.
     if (taken) {
-        if (action == GLFW_PRESS && key == GLFW_KEY_GRAVE_ACCENT && editor_ui_console(st->ed)->open)
-            console_toggle(editor_ui_console(st->ed), 1);
+        if (action == GLFW_PRESS && key == GLFW_KEY_GRAVE_ACCENT &&
+            editor_ui_console(panels_editor(st))->open)
+            console_toggle(editor_ui_console(panels_editor(st)), 1);
         return;
     }
     if (action == GLFW_PRESS && key == GLFW_KEY_ESCAPE) return; // the UI closes menus, dialogs
@@ -349,7 +352,7 @@ static void key_after_ui(window_state *st, int key, int action, int mods, int ta
 }
 
 static void keys_after_ui(window_state *st, const ui_input *in) {
-    int taken = ui_took_keys(st->ui);
+    int taken = panels_took_keys(st);
     for (int i = 0; i < in->event_count; i++) {
         const ui_event *e = &in->events[i];
         if (e->kind != UI_EVENT_KEY) continue;
@@ -383,10 +386,10 @@ static void on_drop(GLFWwindow *win, int count, const char **paths) {
         char msg[4400];
         if (work_queue_busy(&st->work)) {
             snprintf(msg, sizeof msg, "%.4000s: dropped while work runs; drop it again after", p);
-            console_add(editor_ui_console(st->ed), CONSOLE_ERROR, msg);
+            console_add(editor_ui_console(panels_editor(st)), CONSOLE_ERROR, msg);
             fprintf(stderr, "%s\n", msg);
         } else if (dot && (strcmp(dot, ".world") == 0 || strcmp(dot, ".planet") == 0)) {
-            editor_ui_open_file(st->ed, st->ctx, p);
+            editor_ui_open_file(panels_editor(st), st->ctx, p);
         } else if (is_elevation_raster(p)) {
             // Imported centred on the point under the pointer (else where the file says).
             double hit[3], mx, my;
@@ -403,7 +406,7 @@ static void on_drop(GLFWwindow *win, int count, const char **paths) {
             char arg[4200], cmd[4300];
             cmd_quote_arg(arg, sizeof arg, p);
             snprintf(cmd, sizeof cmd, "stamp_add %s", arg);
-            editor_ui_stamp_dropped(st->ed, st->ctx);
+            editor_ui_stamp_dropped(panels_editor(st), st->ctx);
             run_commands(st, cmd, "drop");
         } else {
             snprintf(
@@ -411,7 +414,7 @@ static void on_drop(GLFWwindow *win, int count, const char **paths) {
                 "%.4000s: Orogen opens .world and .planet files, imports heightmaps (.hgt .tif "
                 ".exr .r16 ...) and makes other images stamps",
                 p);
-            console_add(editor_ui_console(st->ed), CONSOLE_ERROR, msg);
+            console_add(editor_ui_console(panels_editor(st)), CONSOLE_ERROR, msg);
             fprintf(stderr, "%s\n", msg);
         }
     }
@@ -434,7 +437,7 @@ void on_close(GLFWwindow *win) {
     }
     if (world_is_modified(st->ctx->world)) {
         glfwSetWindowShouldClose(win, GLFW_FALSE);
-        editor_ui_request(st->ed, st->ctx, PENDING_QUIT);
+        editor_ui_request(panels_editor(st), st->ctx, PENDING_QUIT);
         st->ui_dirty = 1;
     }
 }
@@ -496,7 +499,7 @@ int pointer_in_window(const window_state *st) {
 }
 
 int pointer_over_ui(const window_state *st) {
-    return ui_captures_point(st->ui, st->input.in.mouse_x, st->input.in.mouse_y);
+    return panels_capture_point(st, st->input.in.mouse_x, st->input.in.mouse_y);
 }
 
 void input_button(window_state *st, int button, int action, int mods) {

@@ -11,6 +11,7 @@
 #include "app/ui_messages.h"
 #include "app/viewport_drag_state.h"
 #include "app/window_frame_state.h"
+#include "app/window_panels_state.h"
 #include "app/window_input_state.h"
 #include "app/window_run_state.h"
 #include "app/work_queue.h"
@@ -38,38 +39,25 @@
 #include <string.h>
 
 typedef struct window_state {
+    // What every part shares: the command context and the viewport the window shows,
+    // the GLFW window, the camera's controls, the queue every action's command text runs
+    // through (long work runs off this thread; meanwhile the window shows its progress
+    // over the last frame), the settings, and what is to be drawn again.
     cmd_context *ctx;
     viewport *v;
     GLFWwindow *win;
-    world_subscription *changes; // the world's change notifications (another world: new camera)
     camera_controls cc;
-    window_run_state run;     // window.c's
-    window_input_state input; // window_input.c's
-    viewport_drag_state drag; // viewport_drag.c's
-    window_frame_state frame; // window_frame.c's
-    int dynamic_res;          // lower the resolution while moving (L)
-    int dirty;                // something changed: draw a frame
-
-    // The editor's UI over the viewport.
-    ui_font *font;
-    ui_context *ui;
-    ui_renderer *uir;
-    editor_ui *ed;
-    notices notices;   // what failed for the UI, over the viewport until dismissed
-    int ui_dirty;      // input or state changed: build and draw the UI again
-    ui_rect view_rect; // the viewport's part of the window (window coordinates)
-    const char *gl_renderer;
-
-    int edited;          // an edit made an undo step this session: the first view's hint goes
-    char cam_path[1024]; // the file of the world the camera looks at ("" unsaved): its camera
-                         // is kept in the settings when the world is left
-    app_settings settings;
-    char settings_path[4096], history_path[4096];
-
-    // Every action's command text runs through this queue; long work runs off this
-    // thread, and while it does the window shows its progress over the last frame.
     work_queue work;
-    ui_context *busy_ui; // the progress bar and Cancel button of long work
+    app_settings settings;
+    int dirty;    // something changed: draw a frame
+    int ui_dirty; // input or state changed: build and draw the UI again
+
+    // Each part's own state, touched only by its file (the others call its functions).
+    window_run_state run;       // window.c: the window's life, the loop, changes, stdin
+    window_input_state input;   // window_input.c: GLFW events, the UI's input queue
+    viewport_drag_state drag;   // viewport_drag.c: drags, mouse look, the camera mode
+    window_frame_state frame;   // window_frame.c: the terrain image, its resolution
+    window_panels_state panels; // window_panels.c: the editor's panels over the viewport
 } window_state;
 
 // --- window.c: the window's life, its queue and changes, picking helpers
@@ -95,9 +83,6 @@ void close_after_work(window_state *st);
 // Any change redraws; another world (new, load) gets its default camera unless a
 // command placed the camera after it came (`new planet; camera_geo ...`).
 void take_changes(window_state *st);
-// The UI's fonts: DejaVu from fonts-dejavu-core ($OROGEN_FONT_DIR overrides the folder),
-// at 15 px times the monitor's content scale times the user's UI scale.
-ui_font *load_font(GLFWwindow *win, double user, og_error *err);
 
 // --- window_input.c: GLFW events, the pointer, the UI's input queue, movement keys
 
@@ -182,7 +167,11 @@ void update_title(window_state *st);
 // Brings the clipmaps up to date without waiting for tiles. Returns 1 when the picture
 // changed (texels arrived), 0 when not, -1 when this world cannot be drawn.
 int update_view(window_state *st);
-const ui_draw_list *build_ui(window_state *st, int fw, int fh);
+// The frame's figures for the status bar: its time, resolution, levels waiting, the
+// terrain point under the pointer, whether the resolution drops while moving.
+void frame_status(window_state *st, editor_frame_info *info);
+int frame_dynamic_resolution(const window_state *st);
+void frame_set_dynamic_resolution(window_state *st, int on);
 // The still, full-size terrain image with its edges smoothed into terrain_smooth: one
 // pass over the image, never a new render (and never while moving, where it would
 // cost every frame). Returns 1 when compose shows the smoothed image.
@@ -197,6 +186,40 @@ void compose(window_state *st, const ui_draw_list *dl, int fw, int fh);
 // While long work runs: the last frame with a progress bar and a Cancel button over
 // its status bar, drawn at most ten times a second (none for work under 150 ms).
 void draw_busy(window_state *st, const ui_draw_list *dl, int fw, int fh);
+
+// --- window_panels.c: the editor's panels over the viewport
+
+// The panels from the settings (recent worlds, UI scale), the console's history, the
+// fonts, UI contexts and renderer; -1 with err when they cannot start. Closing frees
+// whatever of them exists (GL context current).
+int panels_open(window_state *st, og_error *err);
+void panels_close(window_state *st);
+// Into the settings: the recent worlds; the console's history to its file.
+void panels_keep(window_state *st);
+// The panels, asked through editor_ui.h's functions; where failures show for the UI.
+editor_ui *panels_editor(window_state *st);
+notices *panels_notices(window_state *st);
+// The viewport's part of the window as the last UI frame laid it out (window units).
+ui_rect view_rect(const window_state *st);
+// An edit made an undo step: the first view's hint goes.
+void panels_world_edited(window_state *st);
+// The UI animates or waits on input; it took this frame's keys; it is under (x, y).
+int panels_need_frame(const window_state *st);
+int panels_took_keys(const window_state *st);
+int panels_capture_point(const window_state *st, float x, float y);
+// The UI scale (ui_scale): a new font at the new size.
+int panels_set_scale(window_state *st, double scale, og_error *err);
+// ui_widgets: the Viewport's rectangle, then every named widget of the last frame.
+void panels_list_widgets(const window_state *st, FILE *out, const char *filter);
+// Builds this frame's UI (running the commands its widgets ask for); sets the
+// viewport's rectangle. fw, fh: the framebuffer's size.
+const ui_draw_list *build_ui(window_state *st, int fw, int fh);
+// While long work runs: its progress bar and Cancel button (Cancel cancels it).
+const ui_draw_list *build_busy_ui(window_state *st, const char *what, double fraction,
+                                  double elapsed_ms, int fw, int fh);
+// The UI theme's background, and a UI frame drawn over the window.
+ui_color panels_background(const window_state *st);
+void panels_draw(window_state *st, const ui_draw_list *dl, int fw, int fh);
 
 // --- window_commands.c: the window's commands
 
