@@ -155,7 +155,7 @@ ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport
     e->offer_recovery = recover_offer_update(&e->recovery, ctx->world);
     if (ctx->tool_serial != e->tool_serial_seen) { // a tool picked from anywhere ends stamping
         e->tool_serial_seen = ctx->tool_serial;
-        e->stamps.active = 0;
+        stamp_browser_deactivate(&e->stamps);
     }
     e->replace_lines = problem_lines(world_file_problems(ctx->world)) +
                        (world_file_errors(ctx->world) ? 2 : 0) +
@@ -183,10 +183,8 @@ ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport
         snprintf(tool_title, sizeof tool_title, "Tool: %s##Tool", current_tool(&ctx->brush));
     if (ui_section(ui, tool_title, 1) && !e->stamps.active) tool_options(e, ui, ctx);
     int picked = 0;
-    if (e->stamps.open_request) { // the palette's Stamp button shows the browser
-        ui_section_set(ui, "Stamps", 1);
-        e->stamps.open_request = 0;
-    }
+    if (stamp_browser_take_open_request(&e->stamps)) // the palette's Stamp button
+        ui_section_set(ui, "Stamps", 1);             // shows the browser
     if (ui_section(ui, "Stamps", 0)) stamp_browser_draw(&e->stamps, ui, ctx, &picked);
     if (ui_section(ui, "Layers", 0)) {
         layer_stack_panel(e, ui, ctx, v);

@@ -166,10 +166,8 @@ static void view_menu(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *
         if (ui_menu_item(ui, label, NULL, fabs(info->ui_scale - scales[i]) > 1e-6))
             runf(e, ctx, "ui_scale %g", scales[i]); // a new font, between frames
     }
-    if (ui_menu_item(ui, "Console", shortcut_label(SHORTCUT_CONSOLE, NULL), 1)) {
-        e->console.open = !e->console.open;
-        e->console.focus_input = e->console.open;
-    }
+    if (ui_menu_item(ui, "Console", shortcut_label(SHORTCUT_CONSOLE, NULL), 1))
+        console_toggle(&e->console, 0);
     ui_menu_end(ui);
 }
 

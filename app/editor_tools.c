@@ -157,12 +157,9 @@ void editor_ui_pick_tool(editor_ui *e, cmd_context *ctx, int index) {
     if (index >= 0 && !tool_available(ctx, (size_t)index)) return;
     if (index >= 0 && index < (int)TOOL_COUNT) {
         runf(e, ctx, "tool %s", tools[index].name);
-        e->stamps.active = 0;
+        stamp_browser_deactivate(&e->stamps);
     } else if (index == (int)TOOL_COUNT) { // the stamp tool: the browser shows its stamps
-        stamp_browser_load(&e->stamps, ctx);
-        if (e->stamps.selected < 0 && e->stamps.count > 0) e->stamps.selected = 0;
-        e->stamps.active = e->stamps.selected >= 0;
-        e->stamps.open_request = 1;
+        stamp_browser_activate(&e->stamps, ctx);
     }
 }
 

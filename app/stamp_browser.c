@@ -115,7 +115,7 @@ void stamp_browser_load(stamp_browser *b, const cmd_context *ctx) {
          line = strtok(NULL, "\n")) {
         stamp_entry *e = &b->entries[b->count];
         if (sscanf(line, "%127s %15s", e->name, e->kind) != 2) continue;
-        e->texture = 0; // made by the window from rgba
+        e->texture = 0; // made by the panels from rgba (editor_window.c)
         stamp_source s;
         og_error err;
         if (stamp_find(e->name, ctx->resource_dir, ctx->stamp_dir, &s, &err) != 0) continue;
@@ -180,4 +180,21 @@ void stamp_browser_draw(stamp_browser *b, ui_context *ui, cmd_context *ctx, int 
     ui_tooltip(ui, "coarse: the terrain's shape; detail: fine relief");
     ui_combo(ui, "Mirror##stamp", &b->mirror, mirrors, 4);
     ui_tooltip(ui, "Mirror the stamp across its x or z axis");
+}
+
+void stamp_browser_activate(stamp_browser *b, const cmd_context *ctx) {
+    stamp_browser_load(b, ctx);
+    if (b->selected < 0 && b->count > 0) b->selected = 0;
+    b->active = b->selected >= 0;
+    b->open_request = 1;
+}
+
+void stamp_browser_deactivate(stamp_browser *b) {
+    b->active = 0;
+}
+
+int stamp_browser_take_open_request(stamp_browser *b) {
+    int asked = b->open_request;
+    b->open_request = 0;
+    return asked;
 }

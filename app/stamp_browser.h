@@ -28,7 +28,7 @@ typedef struct stamp_browser {
     int active;             // the stamp tool is the viewport's tool
     int open_request;       // show the browser's section (the palette's Stamp button)
     int loaded;             // the stamps are listed and their thumbnails rendered
-    int needs_upload;       // thumbnails rendered since the window last made textures of them
+    int needs_upload;       // thumbnails rendered since the panels last made textures of them
     long long folder_stamp; // the user folder's modification time when it was listed
     double checked_at;      // when that was last compared (seconds)
     double scale, rotation, intensity;
@@ -37,11 +37,18 @@ typedef struct stamp_browser {
 
 // Placement defaults; no stamps listed yet.
 void stamp_browser_init(stamp_browser *b);
-// Lists the stamps and renders their thumbnails (CPU; the window uploads them when
+// Lists the stamps and renders their thumbnails (CPU; the panels upload them when
 // needs_upload is set), once: on first use, as reading the library takes a moment.
 void stamp_browser_load(stamp_browser *b, const cmd_context *ctx);
+// The stamp tool becomes the viewport's tool (the palette's Stamp button): the stamps
+// listed, the first selected when none is, the browser's section shown; or it ends
+// (another tool was picked).
+void stamp_browser_activate(stamp_browser *b, const cmd_context *ctx);
+void stamp_browser_deactivate(stamp_browser *b);
+// Whether the browser's section is to be shown (once: the request is taken).
+int stamp_browser_take_open_request(stamp_browser *b);
 // 1 when the user stamp folder changed since the stamps were listed (looked at once a
-// second: `now` in seconds): the window then frees the thumbnails' textures and calls
+// second: `now` in seconds): the panels then free the thumbnails' textures and call
 // stamp_browser_reload.
 int stamp_browser_stale(stamp_browser *b, const cmd_context *ctx, double now);
 // Lists the stamps again; a stamp that was not there before becomes the selected one
