@@ -5,14 +5,16 @@
 #include <unistd.h>
 
 // Workers sleep on a condition variable between jobs; a job hands out task
-// numbers through an atomic counter so uneven tasks balance themselves.
+// numbers through an atomic counter so uneven tasks balance themselves. A worker
+// joins a job only while it is open, so the caller never waits for a late wake-up.
 static struct {
     pthread_once_t once;
     pthread_mutex_t lock;
     pthread_cond_t start, done;
     int threads; // including the caller
     unsigned generation;
-    int busy; // workers still inside the current job
+    int busy;   // workers that joined the current job and are still inside it
+    int closed; // the caller ran out of tasks: workers waking later stay out of the job
     parallel_task_fn fn;
     void *user;
     int tasks;
@@ -51,6 +53,9 @@ static void *worker(void *arg) {
         while (pool.generation == seen)
             pthread_cond_wait(&pool.start, &pool.lock);
         seen = pool.generation;
+        // Woken too late (a loaded machine): the job is over, or done by the others.
+        if (pool.closed) continue;
+        pool.busy++;
         pthread_mutex_unlock(&pool.lock);
         drain();
         pthread_mutex_lock(&pool.lock);
@@ -99,12 +104,16 @@ int parallel_run(int tasks, parallel_task_fn fn, void *user, og_error *err) {
     pool.failed = 0;
     pool.first = err;
     atomic_store(&pool.next, 0);
-    pool.busy = pool.threads - 1;
+    pool.busy = 0;
+    pool.closed = 0;
     pool.generation++;
     pthread_cond_broadcast(&pool.start);
     pthread_mutex_unlock(&pool.lock);
     drain();
+    // Every task is taken: wait only for the workers running one, not for those the
+    // scheduler has yet to wake (on a busy machine that can take milliseconds).
     pthread_mutex_lock(&pool.lock);
+    pool.closed = 1;
     while (pool.busy > 0)
         pthread_cond_wait(&pool.done, &pool.lock);
     int failed = pool.failed;
