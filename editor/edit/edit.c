@@ -12,8 +12,9 @@
 
 typedef struct snapshot {
     tile_key key;
-    int pristine; // the tile had never been edited (it was generated)
-    void *before;
+    int pristine;   // the tile had never been edited (it was generated)
+    void *before;   // a whole tile's bytes, of which only `part`'s are copied
+    grid_rect part; // tile-local samples acquired for writing (a bounding box)
 } snapshot;
 
 struct edit {
@@ -75,7 +76,7 @@ static snapshot *add_snap(edit *e, tile_key key, int pristine, void *before) {
         e->snaps = s;
         e->cap = cap;
     }
-    e->snaps[e->count++] = (snapshot){key, pristine, before};
+    e->snaps[e->count++] = (snapshot){key, pristine, before, {0, 0, 0, 0}};
     if (e->count * 2 > e->index_size) { // grow: reindex places the new one too
         if (reindex(e, e->index_size ? e->index_size * 2 : 256) != 0) {
             e->count--;
@@ -106,10 +107,11 @@ world *edit_world(edit *e) {
     return e->world;
 }
 
-const void *edit_snapshot(edit *e, tile_key key) {
+const void *edit_snapshot(edit *e, tile_key key, grid_rect *part) {
     pthread_mutex_lock(&e->lock);
     snapshot *s = find_snap(e, key);
     const void *before = s ? s->before : NULL;
+    if (part) *part = s ? s->part : (grid_rect){0, 0, 0, 0};
     pthread_mutex_unlock(&e->lock);
     return before;
 }
@@ -165,23 +167,51 @@ static int check_active_layer(edit *e, tile_key key, og_error *err) {
     return 0;
 }
 
-int edit_tile_acquire(edit *e, tile_key key, tile_view *view, og_error *err) {
+// Copies the tile's samples in part but not yet in s->part into the snapshot (they
+// are unchanged: every write of the edit stays inside what it acquired), and grows
+// s->part to the bounding box of both.
+static void capture(snapshot *s, const void *data, grid_rect part) {
+    grid_rect had = s->part, now = grid_rect_empty(had) ? part : grid_rect_union(had, part);
+    if (!memcmp(&now, &had, sizeof now)) return;
+    size_t el = tile_layer_bytes((tile_layer)s->key.layer) / TILE_SAMPLES;
+    uint8_t *dst = s->before;
+    const uint8_t *src = data;
+    for (int64_t z = now.z0; z < now.z1; z++) {
+        size_t row = (size_t)z * TILE_SIZE * el;
+        if (grid_rect_empty(had) || z < had.z0 || z >= had.z1) {
+            size_t at = row + (size_t)now.x0 * el;
+            memcpy(dst + at, src + at, (size_t)(now.x1 - now.x0) * el);
+            continue;
+        }
+        size_t left = row + (size_t)now.x0 * el, right = row + (size_t)had.x1 * el;
+        memcpy(dst + left, src + left, (size_t)(had.x0 - now.x0) * el);
+        memcpy(dst + right, src + right, (size_t)(now.x1 - had.x1) * el);
+    }
+    s->part = now;
+}
+
+int edit_tile_acquire_part(edit *e, tile_key key, grid_rect part, tile_view *view, og_error *err) {
+    part = grid_rect_intersect(part, (grid_rect){0, 0, TILE_SIZE, TILE_SIZE});
     if (check_active_layer(e, key, err) != 0) return -1;
     if (tile_cache_acquire_write(world_cache(e->world), key, view, err) != 0) return -1;
     pthread_mutex_lock(&e->lock);
     int rc = 0;
-    if (!find_snap(e, key)) {
-        size_t bytes = tile_layer_bytes((tile_layer)key.layer);
-        void *copy = malloc(bytes);
-        if (copy) memcpy(copy, view->data, bytes);
-        if (!copy || !add_snap(e, key, !view->edited, copy)) {
+    snapshot *s = find_snap(e, key);
+    if (!s) {
+        void *copy = malloc(tile_layer_bytes((tile_layer)key.layer));
+        if (!copy || !(s = add_snap(e, key, !view->edited, copy))) {
             free(copy);
             rc = og_error_set(err, "out of memory keeping the undo copy of a tile");
         }
     }
+    if (s && !grid_rect_empty(part)) capture(s, view->data, part);
     pthread_mutex_unlock(&e->lock);
     if (rc != 0) tile_cache_release(world_cache(e->world), view);
     return rc;
+}
+
+int edit_tile_acquire(edit *e, tile_key key, tile_view *view, og_error *err) {
+    return edit_tile_acquire_part(e, key, (grid_rect){0, 0, TILE_SIZE, TILE_SIZE}, view, err);
 }
 
 void edit_tile_release(edit *e, tile_view *view) {
@@ -266,7 +296,13 @@ static void restore(edit *e) {
             world_warn(e->world, err.msg);
             continue;
         }
-        memcpy(v.data, e->snaps[i].before, tile_layer_bytes((tile_layer)e->snaps[i].key.layer));
+        const snapshot *s = &e->snaps[i];
+        size_t el = tile_layer_bytes((tile_layer)s->key.layer) / TILE_SAMPLES;
+        for (int64_t z = s->part.z0; z < s->part.z1; z++) {
+            size_t at = ((size_t)z * TILE_SIZE + (size_t)s->part.x0) * el;
+            memcpy((uint8_t *)v.data + at, (const uint8_t *)s->before + at,
+                   (size_t)(s->part.x1 - s->part.x0) * el);
+        }
         tile_cache_release(cache, &v);
     }
     og_error err;
@@ -292,8 +328,8 @@ static int encode_task(void *user, int task, og_error *err) {
     snapshot *s = &j->e->snaps[task];
     tile_view v;
     if (tile_cache_acquire(world_cache(j->e->world), s->key, &v, err) != 0) return -1;
-    int rc = history_delta_encode((tile_layer)s->key.layer, s->before, v.data, &j->deltas[task],
-                                  &j->sizes[task]);
+    int rc = history_delta_encode_part((tile_layer)s->key.layer, s->before, v.data, s->part,
+                                       &j->deltas[task], &j->sizes[task]);
     tile_cache_release(world_cache(j->e->world), &v);
     return rc != 0 ? og_error_set(err, "out of memory recording the undo step") : 0;
 }
@@ -354,11 +390,15 @@ int edit_record(edit *e, og_error *err) {
     // A never-edited tile the edit touched without changing (the brush's edge): back to
     // generated terrain, as if untouched, so a later `generate` changes it like its
     // neighbours; the undo step has no record of it, so a replay (recover) agrees.
+    // The journal rarely holds such a tile: look before deleting (a delete is a
+    // synchronous write, milliseconds per tile on every stamp that grazes one).
     tile_cache *cache = world_cache(e->world);
+    tile_store *journal = world_journal(e->world);
     for (size_t i = 0; i < e->count; i++) {
         og_error ignored;
-        if (!sizes[i] && e->snaps[i].pristine && tile_cache_discard(cache, e->snaps[i].key) == 0)
-            tile_store_put(world_journal(e->world), e->snaps[i].key, NULL, &ignored);
+        if (!sizes[i] && e->snaps[i].pristine && tile_cache_discard(cache, e->snaps[i].key) == 0 &&
+            journal && tile_store_has(journal, e->snaps[i].key))
+            tile_store_put(journal, e->snaps[i].key, NULL, &ignored);
     }
     free(deltas);
     free(sizes);

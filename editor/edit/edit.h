@@ -41,6 +41,10 @@ int edit_set_params(edit *e, const world_params *params, og_error *err);
 // it on the edit's first touch. Thread-safe: parallel dab tasks call it. Refuses the
 // composite's coarse tiles while the active layer is hidden or locked (err says so).
 int edit_tile_acquire(edit *e, tile_key key, tile_view *view, og_error *err);
+// The same when the caller writes only the tile-local samples `part` (x, z in [0,
+// TILE_SIZE)): only they are copied for undo (the first time), and only they are
+// compared and encoded at the commit, so a small change costs little in a big tile.
+int edit_tile_acquire_part(edit *e, tile_key key, grid_rect part, tile_view *view, og_error *err);
 void edit_tile_release(edit *e, tile_view *view);
 // Records a changed area (level-0 samples of that layer) and publishes it, except a
 // coarse or material area, published once its mip levels are current (edit_mips_update).
@@ -48,8 +52,10 @@ void edit_tile_release(edit *e, tile_view *view);
 void edit_dirty(edit *e, tile_layer layer, int face, grid_rect r);
 
 // For mip and PD maintenance: a touched tile's bytes before the edit (NULL if
-// untouched), and the changed areas so far.
-const void *edit_snapshot(edit *e, tile_key key);
+// untouched), and the changed areas so far. Only the samples in *part (tile-local:
+// what the edit acquired so far, NULL to ignore) are kept: the tile's other samples
+// are unchanged, and the snapshot's bytes there are undefined.
+const void *edit_snapshot(edit *e, tile_key key, grid_rect *part);
 size_t edit_dirty_rects(edit *e, const dirty_rect **rects);
 // How many of the dirty areas have reached the mip levels and been published
 // (edit_mips.c keeps it); later changes start new areas after them.

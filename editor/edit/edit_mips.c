@@ -40,16 +40,17 @@ static int child_changes(level_job *j, int64_t cx0, int64_t cz0, int64_t w, int6
         for (int64_t tx = floor_div(cx0, TILE_SIZE); tx <= floor_div(cx0 + w - 1, TILE_SIZE);
              tx++) {
             tile_key key = {TILE_LAYER_COARSE, j->face, j->level - 1, (int32_t)tx, (int32_t)ty};
-            const float *before = edit_snapshot(j->e, key);
-            if (!before) continue;
+            grid_rect part; // only there can the child differ from before
+            const float *before = edit_snapshot(j->e, key, &part);
+            if (!before || grid_rect_empty(part)) continue;
             tile_view v;
             og_error err;
             if (tile_cache_acquire(cache, key, &v, &err) != 0) continue; // outside the world
             const float *after = v.data;
-            int64_t x0 = tx * TILE_SIZE > cx0 ? tx * TILE_SIZE : cx0;
-            int64_t x1 = (tx + 1) * TILE_SIZE < cx0 + w ? (tx + 1) * TILE_SIZE : cx0 + w;
-            int64_t z0 = ty * TILE_SIZE > cz0 ? ty * TILE_SIZE : cz0;
-            int64_t z1 = (ty + 1) * TILE_SIZE < cz0 + h ? (ty + 1) * TILE_SIZE : cz0 + h;
+            int64_t px0 = tx * TILE_SIZE + part.x0, px1 = tx * TILE_SIZE + part.x1;
+            int64_t pz0 = ty * TILE_SIZE + part.z0, pz1 = ty * TILE_SIZE + part.z1;
+            int64_t x0 = px0 > cx0 ? px0 : cx0, x1 = px1 < cx0 + w ? px1 : cx0 + w;
+            int64_t z0 = pz0 > cz0 ? pz0 : cz0, z1 = pz1 < cz0 + h ? pz1 : cz0 + h;
             for (int64_t z = z0; z < z1; z++) {
                 size_t t = (size_t)((z - ty * TILE_SIZE) * TILE_SIZE - tx * TILE_SIZE);
                 float *row = win + (z - cz0) * w - cx0;
@@ -95,13 +96,15 @@ static int parent_tile_task(void *user, int task, og_error *err) {
     if (child_changes(j, cx0, cz0, cw, ch, win)) {
         tile_key key = {TILE_LAYER_COARSE, j->face, j->level, (int32_t)tx, (int32_t)tz};
         tile_view v;
-        if (edit_tile_acquire(j->e, key, &v, err) != 0) {
+        grid_rect local = {sub.x0 - tx * TILE_SIZE, sub.z0 - tz * TILE_SIZE,
+                           sub.x1 - tx * TILE_SIZE, sub.z1 - tz * TILE_SIZE};
+        if (edit_tile_acquire_part(j->e, key, local, &v, err) != 0) {
             rc = -1;
         } else {
             // The parent as it was before the edit plus the whole change so far, so the
             // update can run again while a stroke goes on (the viewport shows it live).
             float *t = v.data;
-            const float *was = edit_snapshot(j->e, key);
+            const float *was = edit_snapshot(j->e, key, NULL);
             for (int64_t z = 0; z < ph; z++) {
                 size_t row =
                     (size_t)((sub.z0 + z - tz * TILE_SIZE) * TILE_SIZE + (sub.x0 - tx * TILE_SIZE));

@@ -33,7 +33,9 @@ static int rows_task(void *user, int task, og_error *err) {
     if (grid_rect_empty(t) || (j->wanted && !j->wanted(j->user, t))) return 0;
     tile_key key = {j->g->layer, j->g->face, 0, (int32_t)tx, (int32_t)tz};
     tile_view v;
-    if (edit_tile_acquire(j->e, key, &v, err) != 0) return -1;
+    grid_rect local = {t.x0 - tx * TILE_SIZE, t.z0 - tz * TILE_SIZE, t.x1 - tx * TILE_SIZE,
+                       t.z1 - tz * TILE_SIZE};
+    if (edit_tile_acquire_part(j->e, key, local, &v, err) != 0) return -1;
     size_t bytes = sample_bytes(j->g->layer);
     for (int64_t z = t.z0; z < t.z1; z++) {
         size_t at = (size_t)((z - tz * TILE_SIZE) * TILE_SIZE + (t.x0 - tx * TILE_SIZE));

@@ -34,6 +34,14 @@ static tile_key slot_key(const tile_part *p, int32_t slot) {
 // Moves the tool's change of one sample into the active layer's value v; returns v'.
 static float take_sample(const compose_job *j, const layer_info *l, float weight, float below,
                          float v, float before, float now) {
+    if (l->blend == LAYER_BLEND_ADD && weight >= 1.0f && !isnan(v)) {
+        // The common layer, inline: what layer_blend_solve returns when no ulp step is
+        // needed (the value kept if it already shows the target, else target - below).
+        float target = j->table.active == j->top_visible ? now : (below + v) + (now - before);
+        if (isnan(target) || below + v == target) return v;
+        float solved = target - below;
+        if (below + solved == target) return solved;
+    }
     float shown = layer_blend_sample(l->blend, weight, below, v);
     float delta = now - before;
     if (j->mode == EDIT_LAYER_DELTA && !(l->blend == LAYER_BLEND_ADD && weight >= 1.0f))
@@ -51,13 +59,21 @@ static float take_sample(const compose_job *j, const layer_info *l, float weight
     return layer_blend_solve(l->blend, weight, below, v, target);
 }
 
+// Whether the tool left the sample at (x, z) of a tile as it was: outside the part
+// it acquired (where the snapshot holds nothing), or bit for bit the same.
+static int kept(grid_rect touched, int x, int z, const float *now, const float *before) {
+    if (x < touched.x0 || x >= touched.x1 || z < touched.z0 || z >= touched.z1) return 1;
+    return !memcmp(now, before, sizeof *now);
+}
+
 static int compose_task(void *user, int task, og_error *err) {
     compose_job *j = user;
     const tile_part *p = &j->parts[task];
     world *w = edit_world(j->e);
     tile_key ck = slot_key(p, 0);
     const float *before = NULL;
-    if (j->take && !(before = edit_snapshot(j->e, ck))) return 0; // the tool left it alone
+    grid_rect touched = {0, 0, 0, 0}; // tile-local: the only samples the tool can have changed
+    if (j->take && !(before = edit_snapshot(j->e, ck, &touched))) return 0; // left alone
     layer_grid grid;
     if (layer_grid_init(&grid, world_get_params(w), TILE_LAYER_COARSE, p->face, err) != 0)
         return -1;
@@ -71,8 +87,9 @@ static int compose_task(void *user, int task, og_error *err) {
     int active = j->take ? j->table.active : -1;
     float *acc = NULL, *weight = malloc(sizeof(float) * (size_t)rw * (size_t)rh);
     if (!weight) return og_error_set(err, "out of memory composing layers");
+    grid_rect local = {x0, z0, x0 + rw, z0 + rh};
     tile_view cv;
-    if (edit_tile_acquire(j->e, ck, &cv, err) != 0) {
+    if (edit_tile_acquire_part(j->e, ck, local, &cv, err) != 0) {
         free(weight);
         return -1;
     }
@@ -98,13 +115,14 @@ static int compose_task(void *user, int task, og_error *err) {
             for (int k = 0; k < rw * rh; k++)
                 weight[k] = (float)l->opacity;
         }
-        if (rc == 0 && (rc = edit_tile_acquire(j->e, slot_key(p, l->id), &lv, err)) == 0) {
+        if (rc == 0 &&
+            (rc = edit_tile_acquire_part(j->e, slot_key(p, l->id), local, &lv, err)) == 0) {
             float *val = lv.data;
             int bw = rw + 2 * b;
             for (int z = 0; z < rh; z++)
                 for (int x = 0; x < rw; x++) {
                     int k = (z + z0) * TILE_SIZE + x + x0;
-                    if (memcmp(&comp[k], &before[k], sizeof(float)) != 0)
+                    if (!kept(touched, x + x0, z + z0, comp + k, before + k))
                         val[k] =
                             take_sample(j, l, weight[z * rw + x], acc[(size_t)(z + b) * bw + x + b],
                                         val[k], before[k], comp[k]);
@@ -124,7 +142,7 @@ static int compose_task(void *user, int task, og_error *err) {
                 int k = (z + z0) * TILE_SIZE + x + x0;
                 float next = acc[z * rw + x];
                 if (before) {
-                    if (!memcmp(&comp[k], &before[k], sizeof(float))) continue;
+                    if (kept(touched, x + x0, z + z0, comp + k, before + k)) continue;
                     const layer_info *l = &j->table.layers[active];
                     if (exact && weight[z * rw + x] >= 1.0f &&
                         (j->mode == EDIT_LAYER_RESULT || l->blend == LAYER_BLEND_ADD))

@@ -48,6 +48,11 @@ void history_step_free(history_step *s);
 // Thread-safe (pure).
 int history_delta_encode(tile_layer layer, const void *before, const void *after, void **delta,
                          size_t *bytes);
+// The same over the tile-local samples `part` only (the rest of the tile is the same
+// before and after): the cost follows the changed area, not the tile. Its delta says
+// which part it covers; history_tile_apply takes either kind.
+int history_delta_encode_part(tile_layer layer, const void *before, const void *after,
+                              grid_rect part, void **delta, size_t *bytes);
 // Adds an encoded delta to a step (takes ownership of delta).
 int history_step_add_delta(history_step *s, tile_key key, int was_pristine, void *delta,
                            size_t bytes);
