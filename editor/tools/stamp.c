@@ -307,6 +307,30 @@ static int make_op(const world_params *params, const stamp_source *s, const stam
     return 0;
 }
 
+// Whether a tile's part of a flat stamp's rect can hold a sample of its rotated
+// footprint (|u|, |v| < 1): the rect's corners stick out past the square, and a tile
+// there left untouched is not snapshotted, compared, or regenerated after the step.
+// Separating axes of the part (grown by a sample: conservative) and the footprint.
+static int stamp_wanted(void *user, grid_rect part) {
+    const stamp_op *o = user;
+    if (o->sphere) return 1;
+    double x0 = (double)(part.x0 - 1) * o->spacing - o->p->x;
+    double x1 = (double)part.x1 * o->spacing - o->p->x;
+    double z0 = (double)(part.z0 - 1) * o->spacing - o->p->z;
+    double z1 = (double)part.z1 * o->spacing - o->p->z;
+    double ex = fabs(o->cos_r) * o->half_w + fabs(o->sin_r) * o->half_h;
+    double ez = fabs(o->sin_r) * o->half_w + fabs(o->cos_r) * o->half_h;
+    if (x0 > ex || x1 < -ex || z0 > ez || z1 < -ez) return 0;
+    double umin = INFINITY, umax = -INFINITY, vmin = INFINITY, vmax = -INFINITY;
+    for (int c = 0; c < 4; c++) {
+        double dx = c & 1 ? x1 : x0, dz = c & 2 ? z1 : z0;
+        double u = (o->cos_r * dx + o->sin_r * dz) / o->half_w;
+        double v = (-o->sin_r * dx + o->cos_r * dz) / o->half_h;
+        umin = fmin(umin, u), umax = fmax(umax, u), vmin = fmin(vmin, v), vmax = fmax(vmax, v);
+    }
+    return !(umin > 1.0 || umax < -1.0 || vmin > 1.0 || vmax < -1.0);
+}
+
 // The base height the max, min and blend modes work from, over the footprint's heights
 // (gathered over every face a planet's footprint covers, then settled).
 typedef struct base_scan {
@@ -444,7 +468,7 @@ int stamp_apply(world *w, const stamp_source *s, const stamp_placement *p, og_er
     edit *e = edit_begin(w, label, err);
     if (!e) return -1;
     if (p->mode == STAMP_ADD || p->mode == STAMP_SUBTRACT) edit_set_layer_mode(e, EDIT_LAYER_DELTA);
-    if (edit_rows_apply(e, &g, r, stamp_row, NULL, &o, err) != 0) {
+    if (edit_rows_apply(e, &g, r, stamp_row, stamp_wanted, &o, err) != 0) {
         edit_abort(e);
         return -1;
     }
