@@ -1,5 +1,7 @@
 #include "editor/world/history.h"
 
+#include <math.h>
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 #include <zstd.h>
@@ -61,20 +63,24 @@ static size_t element_bytes(tile_layer layer) {
 }
 
 // A delta covers a part of its tile: PART_MAGIC, u16 x0 z0 x1 z1 (tile-local samples,
-// little-endian), u8 codec, then the part's XOR split into planes (one per byte of an
-// element, w x h bytes each, row by row): raw, or as zero runs (zero_runs_encode).
-// Deltas of older journals are a bare zstd frame of the whole tile's planes (magic
-// 28 B5 2F FD): history_tile_apply still reads them.
+// little-endian), then the part's XOR split into planes (one per byte of an element,
+// w x h bytes each, row by row), each as u8 codec, u32 size and its bytes: raw, as
+// zero runs (zero_runs_encode), or as a zstd frame. Deltas of older journals are a
+// bare zstd frame of the whole tile's planes (magic 28 B5 2F FD): history_tile_apply
+// still reads them.
 #define PART_MAGIC "OGp1"
-#define PART_HEADER 13
-enum { PART_RAW = 0, PART_ZERO_RUNS = 1 };
+#define PART_HEADER 12
+#define PLANE_HEADER 5
+enum { PLANE_RAW = 0, PLANE_ZERO_RUNS = 1, PLANE_ZSTD = 2 };
+// zstd level 1 where it is tried (plane_wants_zstd).
+#define PLANE_ZSTD_LEVEL 1
 
 // ---- zero runs --------------------------------------------------------------------
 // The XOR of a step is zero wherever it left a tile alone, and its high planes are
 // mostly zero where it changed it; the low planes are noise no codec shrinks much.
-// So the only compression is dropping zero runs (8-byte words), which runs at memory
-// speed: zstd took 180 us for one dab's 66 KB (the commit's whole budget is 100 us)
-// for 0.43 of the raw size where this gets about 0.5.
+// Every plane first drops its zero runs (8-byte words) at memory speed: zstd took 180
+// us for one dab's 66 KB of planes (the whole commit's budget is 100 us), mostly on
+// the noise. zstd then gets only the planes whose bytes say it will gain.
 // Stream: tokens (varint zeros, varint literal count, the literal bytes) to the end.
 
 static uint64_t word_at(const uint8_t *p) {
@@ -189,6 +195,78 @@ static int part_differs(const uint8_t *a, const uint8_t *b, size_t el, grid_rect
     return 0;
 }
 
+// A compression context per thread, kept for its life: making one per plane (as
+// ZSTD_compress does) costs more than compressing a dab's plane.
+static pthread_key_t cctx_key;
+static pthread_once_t cctx_once = PTHREAD_ONCE_INIT;
+
+static void free_cctx(void *c) {
+    ZSTD_freeCCtx(c);
+}
+
+static void make_cctx_key(void) {
+    pthread_key_create(&cctx_key, free_cctx);
+}
+
+static ZSTD_CCtx *thread_cctx(void) {
+    pthread_once(&cctx_once, make_cctx_key);
+    ZSTD_CCtx *c = pthread_getspecific(cctx_key);
+    if (!c && (c = ZSTD_createCCtx()) != NULL && pthread_setspecific(cctx_key, c) != 0) {
+        ZSTD_freeCCtx(c);
+        c = NULL;
+    }
+    return c;
+}
+
+// Whether zstd should try a plane whose zero runs took `size` bytes (at runs): when
+// the bytes' entropy, estimated from every 4th, is well under their count. Noise
+// (a float's low bytes) is not worth zstd's time; a high plane's few values are.
+static int plane_wants_zstd(const uint8_t *runs, size_t size) {
+    if (size < 256) return 0;
+    uint32_t count[256] = {0};
+    size_t n = 0;
+    for (size_t i = 0; i < size; i += 4, n++)
+        count[runs[i]]++;
+    double bits = 0;
+    for (int v = 0; v < 256; v++)
+        if (count[v]) bits += count[v] * log2((double)n / count[v]);
+    return bits < 0.7 * 8.0 * (double)n;
+}
+
+static void put_u32(uint8_t *p, size_t v) {
+    p[0] = (uint8_t)v, p[1] = (uint8_t)(v >> 8), p[2] = (uint8_t)(v >> 16);
+    p[3] = (uint8_t)(v >> 24);
+}
+
+static size_t get_u32(const uint8_t *p) {
+    return (size_t)p[0] | (size_t)p[1] << 8 | (size_t)p[2] << 16 | (size_t)p[3] << 24;
+}
+
+// Writes one plane of n bytes at o (room for PLANE_HEADER + n): the smallest of its
+// encodings tried. Returns the bytes written.
+static size_t encode_plane(const uint8_t *plane, size_t n, uint8_t *o) {
+    uint8_t *body = o + PLANE_HEADER;
+    size_t size = zero_runs_encode(plane, n, body, n);
+    o[0] = PLANE_ZERO_RUNS;
+    if (!size) {
+        memcpy(body, plane, size = n);
+        o[0] = PLANE_RAW;
+    }
+    ZSTD_CCtx *c = size > 0 && plane_wants_zstd(body, size) ? thread_cctx() : NULL;
+    uint8_t *frame = c ? malloc(ZSTD_compressBound(n)) : NULL;
+    if (frame) {
+        size_t comp =
+            ZSTD_compressCCtx(c, frame, ZSTD_compressBound(n), plane, n, PLANE_ZSTD_LEVEL);
+        if (!ZSTD_isError(comp) && comp < size) {
+            memcpy(body, frame, size = comp);
+            o[0] = PLANE_ZSTD;
+        }
+        free(frame);
+    }
+    put_u32(o + 1, size);
+    return PLANE_HEADER + size;
+}
+
 int history_delta_encode_part(tile_layer layer, const void *before, const void *after,
                               grid_rect part, void **delta, size_t *bytes) {
     *delta = NULL;
@@ -196,8 +274,8 @@ int history_delta_encode_part(tile_layer layer, const void *before, const void *
     part = grid_rect_intersect(part, (grid_rect){0, 0, TILE_SIZE, TILE_SIZE});
     size_t el = element_bytes(layer);
     if (grid_rect_empty(part) || !part_differs(before, after, el, part)) return 0;
-    size_t raw = (size_t)((part.x1 - part.x0) * (part.z1 - part.z0)) * el;
-    uint8_t *planes = malloc(raw), *out = malloc(PART_HEADER + raw);
+    size_t n = (size_t)((part.x1 - part.x0) * (part.z1 - part.z0)), raw = n * el;
+    uint8_t *planes = malloc(raw), *out = malloc(PART_HEADER + el * PLANE_HEADER + raw);
     if (!planes || !out) {
         free(planes);
         free(out);
@@ -207,11 +285,10 @@ int history_delta_encode_part(tile_layer layer, const void *before, const void *
     put_u16(out + 4, part.x0), put_u16(out + 6, part.z0);
     put_u16(out + 8, part.x1), put_u16(out + 10, part.z1);
     split_planes(before, after, el, part, planes);
-    size_t size = zero_runs_encode(planes, raw, out + PART_HEADER, raw);
-    out[12] = size ? PART_ZERO_RUNS : PART_RAW;
-    if (!size) memcpy(out + PART_HEADER, planes, size = raw);
+    size_t size = PART_HEADER;
+    for (size_t k = 0; k < el; k++)
+        size += encode_plane(planes + k * n, n, out + size);
     free(planes);
-    size += PART_HEADER;
     uint8_t *fit = realloc(out, size);
     *delta = fit ? fit : out;
     *bytes = size;
@@ -249,27 +326,45 @@ static void xor_planes(uint8_t *data, size_t el, grid_rect part, const uint8_t *
     }
 }
 
+// Decodes a part delta's planes (after its header: bytes of them) into planes.
+static int decode_planes(const uint8_t *d, size_t bytes, size_t el, size_t n, uint8_t *planes) {
+    const uint8_t *end = d + bytes;
+    for (size_t k = 0; k < el; k++) {
+        if ((size_t)(end - d) < PLANE_HEADER) return -1;
+        int codec = d[0];
+        size_t size = get_u32(d + 1);
+        d += PLANE_HEADER;
+        if (size > (size_t)(end - d)) return -1;
+        uint8_t *plane = planes + k * n;
+        if (codec == PLANE_RAW) {
+            if (size != n) return -1;
+            memcpy(plane, d, n);
+        } else if (codec == PLANE_ZERO_RUNS) {
+            if (zero_runs_decode(d, size, plane, n) != 0) return -1;
+        } else if (codec == PLANE_ZSTD) {
+            size_t got = ZSTD_decompress(plane, n, d, size);
+            if (ZSTD_isError(got) || got != n) return -1;
+        } else {
+            return -1;
+        }
+        d += size;
+    }
+    return d == end ? 0 : -1;
+}
+
 int history_tile_apply(const history_tile *t, void *data) {
     tile_layer layer = (tile_layer)t->key.layer;
     size_t el = element_bytes(layer);
     const uint8_t *d = t->delta;
     grid_rect part = {0, 0, TILE_SIZE, TILE_SIZE};
     int legacy = !(t->bytes >= PART_HEADER && memcmp(d, PART_MAGIC, 4) == 0);
-    int codec = legacy ? -1 : d[12];
     if (!legacy) {
         part = (grid_rect){get_u16(d + 4), get_u16(d + 6), get_u16(d + 8), get_u16(d + 10)};
         d += PART_HEADER;
-        if (part.x1 > TILE_SIZE || part.z1 > TILE_SIZE || grid_rect_empty(part) ||
-            (codec != PART_RAW && codec != PART_ZERO_RUNS))
-            return -1;
+        if (part.x1 > TILE_SIZE || part.z1 > TILE_SIZE || grid_rect_empty(part)) return -1;
     }
-    size_t raw = (size_t)((part.x1 - part.x0) * (part.z1 - part.z0)) * el;
+    size_t n = (size_t)((part.x1 - part.x0) * (part.z1 - part.z0)), raw = n * el;
     size_t have = t->bytes - (size_t)(d - (const uint8_t *)t->delta);
-    if (codec == PART_RAW) {
-        if (have != raw) return -1;
-        xor_planes(data, el, part, d);
-        return 0;
-    }
     uint8_t *planes = malloc(raw);
     if (!planes) return -1;
     int rc = 0;
@@ -277,7 +372,7 @@ int history_tile_apply(const history_tile *t, void *data) {
         size_t got = ZSTD_decompress(planes, raw, d, have);
         rc = ZSTD_isError(got) || got != raw ? -1 : 0;
     } else {
-        rc = zero_runs_decode(d, have, planes, raw);
+        rc = decode_planes(d, have, el, n, planes);
     }
     if (rc == 0) xor_planes(data, el, part, planes);
     free(planes);
