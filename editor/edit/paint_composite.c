@@ -158,13 +158,17 @@ static void touch(grid_rect *c, int x, int z) {
 
 // Moves the tool's change of the part's changed samples into the target (base or paint
 // layer tile t) and writes the composite the stack now shows into comp.
-static void take(const paint_job *j, paint_part *q, const uint8_t *before, uint8_t *comp,
-                 uint8_t *t, int keep_tool, grid_rect *changed) {
+// before holds only the samples of `touched` (tile-local, edit_snapshot): the tool
+// changed none outside it.
+static void take(const paint_job *j, paint_part *q, const uint8_t *before, grid_rect touched,
+                 uint8_t *comp, uint8_t *t, int keep_tool, grid_rect *changed) {
     for (int z = 0; z < q->rh; z++)
         for (int x = 0; x < q->rw; x++) {
             size_t k = (size_t)z * q->rw + x;
             size_t at = ((size_t)(z + q->z0) * TILE_SIZE + x + q->x0) * TILE_MATERIALS;
-            if (!memcmp(comp + at, before + at, TILE_MATERIALS)) continue;
+            if (x + q->x0 < touched.x0 || x + q->x0 >= touched.x1 || z + q->z0 < touched.z0 ||
+                z + q->z0 >= touched.z1 || !memcmp(comp + at, before + at, TILE_MATERIALS))
+                continue;
             float keep = q->keep[k], *xk = q->x + k * TILE_MATERIALS;
             if (!(keep > 0.0f)) continue; // covered above: nothing the tool did can show
             float div = keep > TAKE_MIN_KEEP ? keep : TAKE_MIN_KEEP, want[TILE_MATERIALS];
@@ -201,7 +205,8 @@ static int paint_task(void *user, int task, og_error *err) {
     const tile_part *p = &j->parts[task];
     tile_key ck = material_key(p->face, p->tx, p->ty, 0);
     const uint8_t *before = NULL;
-    if (j->take && !(before = edit_snapshot(j->e, ck))) return 0; // the tool left it alone
+    grid_rect touched = {0, 0, 0, 0};
+    if (j->take && !(before = edit_snapshot(j->e, ck, &touched))) return 0; // left alone
     layer_grid grid;
     if (layer_grid_init(&grid, world_get_params(edit_world(j->e)), TILE_LAYER_MATERIAL, p->face,
                         err) != 0)
@@ -216,7 +221,8 @@ static int paint_task(void *user, int task, og_error *err) {
                     .z0 = (int)(r.z0 - gz)};
     int rc = compose_part(j, p, r, &q, err);
     tile_view cv, tv = {0};
-    if (rc == 0) rc = edit_tile_acquire(j->e, ck, &cv, err);
+    grid_rect local = {q.x0, q.z0, q.x0 + q.rw, q.z0 + q.rh};
+    if (rc == 0) rc = edit_tile_acquire_part(j->e, ck, local, &cv, err);
     if (rc != 0) {
         part_free(&q);
         return -1;
@@ -228,9 +234,10 @@ static int paint_task(void *user, int task, og_error *err) {
         int above = 0; // a visible paint layer above the target
         for (int i = j->target + 1; i < j->table.count; i++)
             above |= j->table.layers[i].visible && j->table.layers[i].kind == LAYER_KIND_PAINT;
-        rc = edit_tile_acquire(j->e, material_key(p->face, p->tx, p->ty, slot), &tv, err);
+        rc = edit_tile_acquire_part(j->e, material_key(p->face, p->tx, p->ty, slot), local, &tv,
+                                    err);
         if (rc == 0) {
-            take(j, &q, before, comp, tv.data, !above, &changed);
+            take(j, &q, before, touched, comp, tv.data, !above, &changed);
             edit_tile_release(j->e, &tv);
         }
     } else {
