@@ -493,8 +493,9 @@ static const uint8_t *stroke_start(const dab_rows *j, int64_t z, int64_t x) {
     }
     if (!j->e) return NULL;
     int64_t tx = world_grid_floor_div(x, TILE_SIZE), tz = world_grid_floor_div(z, TILE_SIZE);
+    // The row's span lies in the part this dab acquired, so the snapshot holds it.
     const uint8_t *t =
-        edit_snapshot(j->e, (tile_key){j->layer, j->face, 0, (int32_t)tx, (int32_t)tz});
+        edit_snapshot(j->e, (tile_key){j->layer, j->face, 0, (int32_t)tx, (int32_t)tz}, NULL);
     return t ? t + ((z - tz * TILE_SIZE) * TILE_SIZE + (x - tx * TILE_SIZE)) * TILE_MATERIALS
              : NULL;
 }
