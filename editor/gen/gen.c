@@ -1,6 +1,7 @@
 // Generator dispatch and the fractal (fBm / ridged) generators.
 #include "editor/gen/gen.h"
 
+#include "editor/gen/gen_craters.h"
 #include "editor/gen/gen_noise.h"
 #include "editor/params/world_grid.h"
 
@@ -57,7 +58,7 @@ void gen_fractal_tile(const world_params *p, tile_key key, float *out) {
     gen_fractal f = fractal_for(p, key.level);
     double scale = 1.0 / gen_feature_size(p);
     float *shape = NULL;
-    int advanced = p->generator == GEN_FBM_ADVANCED;
+    int advanced = p->generator == GEN_FBM_ADVANCED || p->generator == GEN_CRATERS;
     if (advanced) shape = malloc(sizeof(float) * TILE_SAMPLES);
     gen_fractal sf = shaping_fractal(p);
 
@@ -143,6 +144,10 @@ int gen_tile(const world_params *p, tile_key key, void *out) {
         break;
     case GEN_PLANET:
         gen_planet_tile(p, key, h);
+        break;
+    case GEN_CRATERS:
+        gen_fractal_tile(p, key, h);
+        gen_craters_add(p, key, h);
         break;
     default:
         for (size_t k = 0; k < TILE_SAMPLES; k++)

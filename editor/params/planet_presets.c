@@ -27,7 +27,7 @@ typedef struct planet_preset {
 static const planet_preset PRESETS[] = {
     {"earth", 6371000, 8848, 6371000, 7.2921e-5, 1.0, 100, 0.7, 18, GEN_PLANET},
     {"mars", 3389500, 10000, 0, 7.088e-5, 0.3, 100, 0.7, 18, GEN_PLANET},
-    {"moon", 1737400, 6000, 0, 2.6617e-6, 0.0, 100, 0.7, 18, GEN_FBM_ADVANCED},
+    {"moon", 1737400, 6000, 0, 2.6617e-6, 0.0, 100, 0.7, 18, GEN_CRATERS},
     {"asteroid", 50000, 4000, 0, 1e-3, 0.0, 10, 0.55, 18, GEN_FBM_ADVANCED},
 };
 

@@ -49,7 +49,7 @@ static const key_def KEYS[] = {
     {"kind", V_KIND, F(kind), 0, 0, 0, "what the world is: flat or planet"},
     {"generator", V_GEN, F(generator), 0, 0, 0,
      "terrain generator: fbm (0), fbm_advanced (1), ridged (2), diamond_square (3), faults (4), "
-     "flat (5), planet (6)"},
+     "flat (5), planet (6), craters (7)"},
     {"seed", V_I64, F(seed), 0, 0, NO_LO | NO_HI,
      "random seed, any integer (the generators use it modulo 2^32)"},
     {"octaves", V_F64, F(octaves), 0, 30, LO_OPEN,
@@ -117,7 +117,7 @@ static const key_def KEYS[] = {
 #define KEY_COUNT (sizeof KEYS / sizeof KEYS[0])
 
 static const char *const GEN_NAMES[GEN_COUNT] = {
-    "fbm", "fbm_advanced", "ridged", "diamond_square", "faults", "flat", "planet"};
+    "fbm", "fbm_advanced", "ridged", "diamond_square", "faults", "flat", "planet", "craters"};
 
 static const char *const KIND_NAMES[] = {"flat", "planet"};
 
@@ -256,7 +256,7 @@ int world_params_set(world_params *p, const char *key, const char *value, og_err
         if (g < 0)
             return bad_value(err, d,
                              "a generator name (fbm, fbm_advanced, ridged, diamond_square, "
-                             "faults, flat, planet) or index 0..6",
+                             "faults, flat, planet, craters) or index 0..7",
                              value);
         p->generator = (gen_kind)g;
         return 0;

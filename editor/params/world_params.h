@@ -24,6 +24,7 @@ typedef enum gen_kind {
     GEN_FAULTS = 4,         // random fault lines
     GEN_FLAT = 5,           // constant height (base_height)
     GEN_PLANET = 6,         // warped continents, ridged ranges in belts, ridged hills
+    GEN_CRATERS = 7,        // GEN_FBM_ADVANCED with impact craters at every scale
     GEN_COUNT
 } gen_kind;
 
