@@ -2030,9 +2030,9 @@ static void test_history_part_deltas(void **state) {
         size_t bytes = tile_layer_bytes(layer), el = bytes / TILE_SAMPLES;
         uint8_t *before = malloc(bytes), *after = malloc(bytes), *t = malloc(bytes);
         assert_non_null(before), assert_non_null(after), assert_non_null(t);
+        for (size_t i = 0; i < bytes; i++)
+            before[i] = (uint8_t)xorshift(&seed);
         for (int round = 0; round < 40; round++) {
-            for (size_t i = 0; i < bytes; i++)
-                before[i] = (uint8_t)xorshift(&seed);
             memcpy(after, before, bytes);
             int64_t x0 = xorshift(&seed) % TILE_SIZE, z0 = xorshift(&seed) % TILE_SIZE;
             grid_rect part = {x0, z0, x0 + 1 + xorshift(&seed) % (TILE_SIZE - x0),
