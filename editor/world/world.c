@@ -606,10 +606,10 @@ void world_close(world *w) {
     w->cache = NULL;
     w->gen = NULL;
     // The journal stays: only a save of its edits or 'recover discard' removes it, or
-    // the normal end of a script that began it (world_settings.scripted): the script is
-    // the record of those edits, and each run would otherwise set the last one aside.
+    // the normal end of a script that made a never-saved world (world_settings.scripted).
     recovery_journal_close(w->rj);
-    if (w->settings.scripted && w->journal_fresh && w->recover_path[0]) unlink(w->recover_path);
+    if (w->settings.scripted && w->unsaved_journal && w->journal_fresh && w->recover_path[0])
+        unlink(w->recover_path);
     close_stores(w);
     file_lock_release(&w->lock);
     history_destroy(w->history);
@@ -1087,6 +1087,7 @@ void world_journal_record(world *w, recovery_kind kind, const history_step *s) {
             return;
         }
         w->unsaved_journal = 1;
+        w->journal_fresh = 1;
     }
     if (!w->rj) {
         struct stat st;
@@ -1116,7 +1117,6 @@ void world_journal_record(world *w, recovery_kind kind, const history_step *s) {
                       "warning: %s; edits are not protected against a crash", err.msg);
             return;
         }
-        w->journal_fresh = 1;
     }
     if (recovery_journal_append(w->rj, kind, s, &err) != 0) {
         w->journal_failed = 1;

@@ -24,9 +24,8 @@ typedef struct world_settings {
     // the world makes a private hub, freed with it.
     world_events *events;
     // A script drives this run (-c, --batch FILE): the script is the record of its edits,
-    // so a journal the run began (a never-saved or a saved world's) is removed when the
-    // world closes (a kill leaves it for `recover`; a journal taken over by `recover` or
-    // set aside stays).
+    // so a never-saved world's journal the run began is removed when the world closes
+    // (a kill leaves it for `recover`; a journal taken over by `recover` stays).
     int scripted;
 } world_settings;
 
