@@ -46,6 +46,9 @@ void status_bar(ui_context *ui, cmd_context *ctx, viewport *v, const editor_fram
     if (stamps->active)
         snprintf(tool, sizeof tool, "stamp %s x%.2f", stamps->entries[stamps->selected].name,
                  stamps->scale);
+    char why[160];
+    int refused = !stamps->active && editor_ui_tool_refused(ctx, why, sizeof why);
+    if (refused) snprintf(tool, sizeof tool, "%.90s", why); // the active layer's refusal
     render_stats rs = {0};
     if (v->renderer) terrain_renderer_stats(v->renderer, &rs);
     snprintf(frame, sizeof frame, "%.0f ms (%.0f%%) %.0fk tris%s", info->frame_ms,
@@ -89,7 +92,10 @@ void status_bar(ui_context *ui, cmd_context *ctx, viewport *v, const editor_fram
         cols[i] = need[order[i]] + fmaxf(room - sum, 0) / (float)shown;
     ui_row(ui, shown, cols, r.h - 2 * ui_em(ui, 0.3f)); // the panel's padding above and below
     for (int i = 0; i < n; i++) {
-        ui_label(ui, texts[order[i]]);
+        if (refused && order[i] == 2)
+            ui_label_colored(ui, texts[2], ui_get_theme(ui)->text_error);
+        else
+            ui_label(ui, texts[order[i]]);
         ui_tooltip(ui, tips[order[i]]);
     }
     ui_panel_end(ui);

@@ -44,6 +44,9 @@ struct editor_ui {
     ui_color material_colors[8];   // and their mean colours (the Layers panel)
     int new_rule_material;         // the Materials panel: the material Add rule uses,
     int selected_rule;             // and the rule its buttons act on (-1: none)
+    row_drag rule_drag;            // a rule's row dragged to another place in the stack
+    char rule_fields[4][3][32];    // the picked rule's ranges (height, slope, curvature) and
+                                   // breakup as typed
     layers_panel_state layers;     // the Layers panel's rows and mask editor
     editor_host host;              // the window's side
     work_queue *work;              // where actions are queued (NULL: run at once)

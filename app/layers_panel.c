@@ -1,7 +1,7 @@
 // The Layers panel: the world's edit layers top first, each a row with its eye and lock,
 // its name (click: the tools' layer; double click: rename; drag: move it in the stack;
-// right click: duplicate, merge down, clear, delete), its blend and opacity, and a Mask
-// button opening the mask editor: each term's range over a histogram of the composite's
+// right click: rename, duplicate, merge down, clear, delete, export), its blend and opacity, and a
+// Mask button opening the mask editor: each term's range over a histogram of the composite's
 // heights and slopes around the view, drawn live over the terrain while it is dragged.
 // Every change runs a layer command (echoed, one undo step); nothing here writes world
 // data. The histogram is a read-only query (editor/world/terrain_histogram.h), made
@@ -10,17 +10,26 @@
 
 #include "app/layers_panel_state.h"
 
-// The active layer refuses height tools when hidden or locked (editor/edit/edit.c).
+// As editor/edit/edit.c refuses a tool on the active layer: height tools on a paint
+// layer, any tool on a hidden or locked one (paint on a height layer goes to the ground's
+// own paint, refused never), mask painting without a painted mask.
 int editor_ui_tool_refused(const cmd_context *ctx, char *why, size_t len) {
     const layer_table *t = &world_get_params(ctx->world)->layers;
     const brush *b = &ctx->brush;
-    if (!t->count || b->tool == BRUSH_PAINT || brush_tool_is_volume(b->tool) ||
-        b->target == TILE_LAYER_DETAIL)
+    if (!t->count || brush_tool_is_volume(b->tool) || (b->target == TILE_LAYER_DETAIL && !b->mask))
         return 0;
     const layer_info *l = &t->layers[t->active];
-    if (l->visible && !l->locked) return 0;
-    snprintf(why, len, "layer %s is %s: %s refused", l->name, l->visible ? "locked" : "hidden",
-             current_tool(b));
+    int paint = b->tool == BRUSH_PAINT && !b->mask;
+    if (paint && l->kind != LAYER_KIND_PAINT) return 0;
+    if (!paint && !b->mask && l->kind == LAYER_KIND_PAINT)
+        snprintf(why, len, "layer %s holds paint: %s refused", l->name, current_tool(b));
+    else if (!l->visible || l->locked)
+        snprintf(why, len, "layer %s is %s: %s refused", l->name, l->visible ? "locked" : "hidden",
+                 current_tool(b));
+    else if (b->mask && !l->mask.painted)
+        snprintf(why, len, "layer %s has no painted mask: %s refused", l->name, current_tool(b));
+    else
+        return 0;
     return 1;
 }
 
@@ -88,6 +97,13 @@ static void layer_menu(editor_ui *e, ui_context *ui, cmd_context *ctx, const lay
     if (ui_menu_item(ui, "Merge down", NULL, i > 0)) runf(e, ctx, "layer merge %s", l->name);
     if (ui_menu_item(ui, "Clear", NULL, 1)) runf(e, ctx, "layer clear %s", l->name);
     if (ui_menu_item(ui, "Delete", NULL, t->count > 1)) runf(e, ctx, "layer delete %s", l->name);
+    if (ui_menu_item(ui, "Export...", NULL, l->kind == LAYER_KIND_HEIGHT)) {
+        // Its export command in the console, the file name and region to adjust there.
+        snprintf(e->console.input, sizeof e->console.input, "export %s.exr layers=%s", l->name,
+                 l->name);
+        e->console.open = 1;
+        e->console.focus_input = 1;
+    }
     ui_context_menu_end(ui);
 }
 
@@ -122,17 +138,13 @@ static ui_rect layer_row(editor_ui *e, ui_context *ui, cmd_context *ctx, const l
         const ui_input *in = ui_get_input(ui);
         int clicked = ui_selectable(ui, label, i == t->active);
         name_rect = ui_last_rect(ui);
-        if (ui_last_hovered(ui) && in->mouse_pressed[0]) {
-            s->pressed = l->id;
-            s->press_y = in->mouse_y;
-            s->dragging = 0;
-        }
+        row_drag_watch(&s->drag, ui, i);
         if (ui_last_hovered(ui) && in->double_click) {
             s->renaming = l->id;
             s->rename_seen = 0;
             snprintf(s->rename, sizeof s->rename, "%s", l->name);
             ui_focus(ui, "Rename");
-        } else if (clicked && !s->dragging && i != t->active) {
+        } else if (clicked && !row_drag_active(&s->drag) && i != t->active) {
             runf(e, ctx, "layer select %s", l->name);
         }
         ui_tooltip(ui, "Click: tools write to this layer; double click: rename; drag: move it "
@@ -161,7 +173,9 @@ static ui_rect layer_row(editor_ui *e, ui_context *ui, cmd_context *ctx, const l
     for (int b = 0; b < LAYER_BLEND_COUNT; b++)
         blends[b] = layer_blend_name((layer_blend)b);
     int blend = (int)l->blend;
-    if (ui_combo(ui, "##Blend", &blend, blends, LAYER_BLEND_COUNT))
+    if (l->kind == LAYER_KIND_PAINT)
+        ui_label_colored(ui, "paint", th->text_dim);
+    else if (ui_combo(ui, "##Blend", &blend, blends, LAYER_BLEND_COUNT))
         runf(e, ctx, "layer set %s blend=%s", l->name, blends[blend]);
     ui_tooltip(ui,
                "Blend: add: its heights add to the layers below; replace: its own heights; max, "
@@ -174,37 +188,6 @@ static ui_rect layer_row(editor_ui *e, ui_context *ui, cmd_context *ctx, const l
     return name_rect;
 }
 
-// While a name is dragged: where it would land (the row under the pointer), a line
-// there, and on release the move.
-static void drag_to_reorder(editor_ui *e, ui_context *ui, cmd_context *ctx, const layer_table *t,
-                            const ui_rect *names) {
-    layers_panel_state *s = &e->layers;
-    const ui_input *in = ui_get_input(ui);
-    int from = s->pressed ? layer_table_find_id(t, s->pressed) : -1;
-    if (from < 0) {
-        s->pressed = 0;
-        return;
-    }
-    if (fabsf(in->mouse_y - s->press_y) > ui_em(ui, 0.6f)) s->dragging = 1;
-    int to = -1;
-    for (int i = 0; i < t->count; i++) // the row whose span holds the pointer
-        if (in->mouse_y >= names[i].y - ui_em(ui, 1.0f) &&
-            in->mouse_y < names[i].y + names[i].h + ui_em(ui, 0.6f))
-            to = i;
-    if (s->dragging && to >= 0 && to != from) {
-        ui_rect r = names[to];
-        float y = to > from ? r.y - ui_em(ui, 0.1f) : r.y + r.h + ui_em(ui, 1.5f);
-        ui_draw_rect(ui_draw_target(ui), (ui_rect){r.x - ui_em(ui, 3.2f), y, r.w + ui_em(ui, 6), 2},
-                     ui_get_theme(ui)->accent_hot);
-    }
-    if (!in->mouse_down[0]) {
-        if (s->dragging && to >= 0 && to != from)
-            runf(e, ctx, "layer move %s to=%d", t->layers[from].name, to);
-        s->pressed = 0;
-        s->dragging = 0;
-    }
-}
-
 void layer_stack_panel(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v) {
     const layer_table *t = &world_get_params(ctx->world)->layers;
     layers_panel_state *s = &e->layers;
@@ -213,20 +196,26 @@ void layer_stack_panel(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport 
     for (int i = t->count - 1; i >= 0; i--) // top first, as it covers the others
         names[i] = layer_row(e, ui, ctx, t, i);
     if (s->renaming && layer_table_find_id(t, s->renaming) < 0) s->renaming = 0;
-    drag_to_reorder(e, ui, ctx, t, names);
+    int from, to;
+    if (row_drag_update(&s->drag, ui, names, t->count, &from, &to))
+        runf(e, ctx, "layer move %s to=%d", t->layers[from].name, to);
     ui_pop_scope(ui);
     ui_row(ui, 1, NULL, 0);
     char line[160];
     if (editor_ui_tool_refused(ctx, line, sizeof line))
         ui_label_wrapped(ui, line, ui_get_theme(ui)->text_error);
-    if (ui_button(ui, "New layer") && t->count < LAYER_MAX) {
-        char name[LAYER_NAME_MAX];
-        fresh_name(t, name, sizeof name);
-        runf(e, ctx, "layer new %s", name);
+    for (int paint = 0; paint < 2; paint++) {
+        if (ui_button(ui, paint ? "New paint layer" : "New layer") && t->count < LAYER_MAX) {
+            char name[LAYER_NAME_MAX];
+            fresh_name(t, name, sizeof name);
+            runf(e, ctx, "layer new %s%s", name, paint ? " kind=paint" : "");
+        }
+        ui_tooltip(ui, t->count >= LAYER_MAX ? "The stack is full (32 layers)"
+                       : paint ? "A new empty paint layer above the active one: the paint "
+                                 "tool writes materials to it"
+                               : "A new empty height layer above the active one; the "
+                                 "sculpting tools write to it");
     }
-    ui_tooltip(ui, t->count < LAYER_MAX
-                       ? "A new empty layer above the active one; the tools write to it"
-                       : "The stack is full (32 layers)");
     int m = s->mask_layer ? layer_table_find_id(t, s->mask_layer) : -1;
     if (m < 0) {
         s->mask_layer = 0;

@@ -4,6 +4,7 @@
 #ifndef OROGEN_APP_LAYERS_PANEL_STATE_H
 #define OROGEN_APP_LAYERS_PANEL_STATE_H
 
+#include "app/row_drag.h"
 #include "editor/layers/layer_table.h"
 #include "editor/world/terrain_histogram.h"
 
@@ -11,9 +12,7 @@ typedef struct layers_panel_state {
     int32_t renaming;            // id of the layer whose name is being typed (0: none)
     int rename_seen;             // its field has had the keyboard
     char rename[LAYER_NAME_MAX]; // the name typed so far
-    int32_t pressed;             // id of the layer whose row the left button went down on
-    float press_y;               // where (pixels)
-    int dragging;                // it moved far enough to be a drag to another place
+    row_drag drag;               // a layer's name dragged to another place in the stack
     int32_t mask_layer;          // id of the layer whose mask is being edited (0: none)
     layer_mask draft;            // its mask as dragged so far (the overlay shows it)
     int draft_live;              // a range is being dragged: the draft is not the layer's

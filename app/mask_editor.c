@@ -6,6 +6,7 @@
 #include "app/editor_ui_internal.h"
 
 #include "app/layers_panel_state.h"
+#include "app/value_field.h"
 
 #include <stdlib.h>
 
@@ -30,8 +31,8 @@ static void mask_command(const char *name, const layer_mask *m, char *cmd, size_
         n += (size_t)snprintf(cmd + n, len - n, " %s=%s", term_keys[k], text);
     }
     if (n < len)
-        snprintf(cmd + n, len - n, " falloff=%.6g invert=%d", m->height.on ? m->height.edge : 0,
-                 m->invert);
+        snprintf(cmd + n, len - n, " falloff=%.6g invert=%d painted=%d",
+                 m->height.on ? m->height.edge : 0, m->invert, m->painted);
 }
 
 static void apply(editor_ui *e, cmd_context *ctx, const layer_info *l, const layer_mask *m) {
@@ -64,26 +65,24 @@ static void refresh_histogram(layers_panel_state *s, cmd_context *ctx, const vie
     snprintf(s->hist_error, sizeof s->hist_error, "%.200s", s->hist_valid ? "" : err.msg);
 }
 
-// A number field showing value until typed into; Enter gives *out (inf and -inf too).
+// A number field (value_field.h); Enter gives *out (inf and -inf too), or says what is
+// wrong under the fields.
 static int number_field(layers_panel_state *s, ui_context *ui, const char *label, char *buf,
                         size_t len, double value, double *out, const char *tip) {
-    int rc = ui_textbox_flags(ui, label, buf, len, UI_TEXTBOX_SELECT_ALL);
-    ui_tooltip(ui, tip);
-    if (rc & UI_TEXT_SUBMIT) {
-        char *end;
-        double d = strtod(buf, &end);
-        while (*end == ' ')
-            end++;
-        if (end == buf || *end || d != d) {
-            snprintf(s->field_error, sizeof s->field_error, "%s: '%s' is not a number", label, buf);
-            return 0;
-        }
-        s->field_error[0] = 0;
-        *out = d;
-        return 1;
+    char shown[32];
+    snprintf(shown, sizeof shown, "%.6g", value);
+    if (!value_field(ui, label, buf, len, shown, tip)) return 0;
+    char *end;
+    double d = strtod(buf, &end);
+    while (*end == ' ')
+        end++;
+    if (end == buf || *end || d != d) {
+        snprintf(s->field_error, sizeof s->field_error, "%s: '%s' is not a number", label, buf);
+        return 0;
     }
-    if (!ui_last_focused(ui)) snprintf(buf, len, "%.6g", value);
-    return 0;
+    s->field_error[0] = 0;
+    *out = d;
+    return 1;
 }
 
 // One term: its checkbox, its range over the histogram (height, slope), its fields.
@@ -213,6 +212,16 @@ void mask_editor(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v, co
         apply(e, ctx, l, &m);
     }
     ui_tooltip(ui, "Apply the layer where the terms do not hold instead");
+    int painted = s->draft.painted;
+    if (ui_checkbox(ui, "Painted", &painted)) {
+        layer_mask m = s->draft;
+        m.painted = painted;
+        apply(e, ctx, l, &m);
+    }
+    ui_tooltip(ui, "A painted coverage multiplies the terms: paint it with a height tool aimed "
+                   "at the mask (tool raise target=mask; lower erases)");
+    if (ui_button(ui, "Clear paint")) runf(e, ctx, "layer mask %s painted=clear", l->name);
+    ui_tooltip(ui, "Empty the painted coverage (undo brings it back)");
     if (ui_button(ui, "Clear mask")) runf(e, ctx, "layer mask %s clear", l->name);
     ui_tooltip(ui, "Remove every term: the layer applies everywhere again (undo brings it back)");
     ui_row(ui, 1, NULL, 0);

@@ -135,6 +135,11 @@ static void update_cursor(window_state *st) {
     }
     cursor_colour(tool, invert, bc->color);
     bc->opacity = (float)(0.12 + 0.5 * strength);
+    char why[160];
+    if (editor_ui_tool_refused(st->ctx, why, sizeof why)) { // hidden or locked: a grey ring
+        bc->color[0] = bc->color[1] = bc->color[2] = 0.5f;
+        bc->opacity = 0.05f;
+    }
 }
 
 // Brings the clipmaps up to date without waiting for tiles. Returns 1 when the picture

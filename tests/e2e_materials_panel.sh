@@ -2,8 +2,9 @@
 # End-to-end: the Materials panel in the real window (Xvfb, xdotool, widgets found by
 # name): the rule stack listed top first with each material's swatch and ranges, a rule
 # picked and moved, Edit putting its command in the console, Delete, Add rule, Default
-# rules; every click a material_rule command (echoed, one undo step each), read back
-# through the console. On a planet the panel says the planet draws its own rules. The
+# rules, a rule's range typed in place and a rule dragged to another place; every
+# click a material_rule command (echoed, one undo step each), read back through the
+# console. On a planet the panel says the planet draws its own rules. The
 # UI runs strict (an id conflict would stop the editor). Screenshots go to
 # ${OROGEN_TEST_ARTIFACTS:-build/test-artifacts}.
 # Usage: e2e_materials_panel.sh OROGEN TESTS_DIR
@@ -78,6 +79,22 @@ key Return
 ask_until history 'material_rule set' 'material_rule set 5 height=62%+40,inf,80 slope=0,28.8108,9.849' >/dev/null
 check "Edit fills the console with the rule's set command, which runs" $?
 shot edit
+
+# 3b. The picked rule edited in place: its height's low end typed; a drag of a rule's
+# row onto another moves it there.
+xdotool windowfocus --sync "$wid" 2>/dev/null # typing goes to the window
+click "Dock/Rules/5 snow"
+reveal "Dock/Rule editor/height/Low"
+fill "Dock/Rule editor/height/Low" 500
+key Return
+ask_until material_rules '^rule 5: ' '^rule 5: snow height=500,inf,80 ' >/dev/null
+check "typing the picked rule's height Low runs material_rule set 5 height=500,inf,80" $?
+reveal "Dock/Rules/5 snow"
+drag_onto "Dock/Rules/2 grass" "Dock/Rules/4 cliff"
+s=$(stack_until "sand rock cliff grass snow "); check "dragging grass's row onto cliff's moves it there ($s)" $?
+shot rule_editor
+echo "undo; undo" >&3
+s=$(stack_until "sand grass rock cliff snow "); check "undo twice: the default stack again ($s)" $?
 
 # 4. Delete, Add rule, Default rules.
 click "Dock/Rules/4 cliff"

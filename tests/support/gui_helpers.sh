@@ -108,3 +108,32 @@ fill() {
     xdotool type --delay 20 "$2"
     sleep 0.3
 }
+# Scrolls the dock (the wheel over it) until the widget NAME lies within the rows of
+# the viewport (as tall as the dock), up to 12 notches.
+reveal() {
+    local x y w h vx vy vw vh
+    read -r vx vy vw vh <<<"$(widget Viewport)"
+    for _ in $(seq 12); do
+        read -r x y w h <<<"$(widget "$1")"
+        [ -n "${h:-}" ] || return 1
+        [ $((y + h)) -le $((vy + vh)) ] && [ "$y" -ge "$vy" ] && return 0
+        xdotool mousemove --window "$wid" $((x + w / 2)) $((vy + vh / 2)) click "$([ "$y" -ge "$vy" ] && echo 5 || echo 4)"
+        sleep 0.3
+    done
+    return 1
+}
+# A left drag from the centre of the widget NAME down or up to the height of TARGET's
+# centre, in four moves (a row dragged to another place in a list).
+drag_onto() { # NAME TARGET
+    local x y w h ty th
+    read -r x y w h <<<"$(widget "$1")"
+    read -r _ ty _ th <<<"$(widget "$2")"
+    [ -n "${h:-}" ] && [ -n "${th:-}" ] || return 1
+    xdotool mousemove --window "$wid" $((x + w / 2)) $((y + h / 2)) mousedown 1
+    for f in 1 2 3 4; do
+        sleep 0.1
+        xdotool mousemove --window "$wid" $((x + w / 2)) $((y + h / 2 + (ty + th / 2 - y - h / 2) * f / 4))
+    done
+    sleep 0.3
+    xdotool mouseup 1
+}
