@@ -1,11 +1,12 @@
 // The Layers panel: the world's edit layers top first, each a row with its eye and lock,
 // its name (click: the tools' layer; double click: rename; drag: move it in the stack;
-// right click: rename, duplicate, merge down, clear, delete, export), its blend and opacity, and a
-// Mask button opening the mask editor: each term's range over a histogram of the composite's
-// heights and slopes around the view, drawn live over the terrain while it is dragged.
-// Every change runs a layer command (echoed, one undo step); nothing here writes world
-// data. The histogram is a read-only query (editor/world/terrain_histogram.h), made
-// while no job runs: the window builds its panels only then (app/work_queue.h).
+// right click: rename, duplicate, merge down, clear, delete, export), its blend and
+// opacity, and a Mask button opening the mask editor (app/mask_editor.c): each term's
+// range over a histogram of the composite's heights and slopes around the view, drawn
+// live over the terrain while it is dragged. Every change runs a layer command (echoed,
+// one undo step); nothing here writes world data. The histogram is a read-only query
+// (editor/world/terrain_histogram.h), made while no job runs: the window builds its
+// panels only then (app/work_queue.h).
 #include "app/editor_ui_internal.h"
 
 #include "app/layers_panel_state.h"

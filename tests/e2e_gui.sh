@@ -294,12 +294,6 @@ cp "$2/../resources/stamps/hills.png" "$work/my_hills.png"
 echo "stamp_add $work/my_hills.png" >&3
 widget "Dock/Stamps/my_hills" >/dev/null; check "an image made a user stamp shows in the browser (Dock/Stamps/my_hills)" $?
 widget "Dock/Tool: stamp my_hills" >/dev/null; check "and becomes the selected stamp" $?
-# The Layers section: the height layer a tool sculpts, the paint material, the rules.
-click "Dock/Layers"
-click "Dock/Height layers/Detail: fine relief (parallax)"
-line=$(ask_until tool '^target=' '^target=detail$'); check "Layers > Detail makes the tool sculpt the detail layer ($line)" $?
-click "Dock/Height layers/Coarse: the terrain's shape"
-ask_until tool '^target=' '^target=coarse$' >/dev/null; check "Layers > Coarse back to the coarse layer" $?
 # The open section runs below the dock's bottom: the wheel over the dock scrolls it.
 scroll_into_view() { # NAME: wheel down over the dock until NAME lies above the status bar
     local x y w h
@@ -311,6 +305,14 @@ scroll_into_view() { # NAME: wheel down over the dock until NAME lies above the 
     done
     return 1
 }
+# The Layers section: the height layer a tool sculpts, the paint material, the rules
+# (below the edit layers' rows).
+click "Dock/Layers"
+scroll_into_view "Dock/Height layers/Detail: fine relief (parallax)"
+click "Dock/Height layers/Detail: fine relief (parallax)"
+line=$(ask_until tool '^target=' '^target=detail$'); check "Layers > Detail makes the tool sculpt the detail layer ($line)" $?
+click "Dock/Height layers/Coarse: the terrain's shape"
+ask_until tool '^target=' '^target=coarse$' >/dev/null; check "Layers > Coarse back to the coarse layer" $?
 scroll_into_view "Dock/Material layer/Automatic material rules"
 check "the wheel scrolls the dock to the material layer" $?
 click "Dock/Material layer/snow"

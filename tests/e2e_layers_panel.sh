@@ -101,8 +101,8 @@ shot two_layers
 click "Dock/Stack/Layer_3/Visible"
 s=$(stack_until "*Layer_3:0  Layer_2:1  Sculpt:1 "); check "the eye hides Layer_3 ($s)" $?
 hash_is "$h1"; check "hidden, Layer_3 leaves the composite as after Layer_2's stroke" $?
-widget "Dock/layer Layer_3 is hidden*" >/dev/null
-check "the dock says the active layer refuses the tool" $?
+widget "Dock/layer Layer_3 is hidden*" >/dev/null && widget "Status/layer Layer_3 is hidden: raise refused" >/dev/null
+check "the dock and the status bar say the active layer refuses the tool" $?
 sculpt
 ask_until ui_messages "'Layer_3' is hidden" "is hidden: edits to it would not show" >/dev/null
 check "a stroke on the hidden layer is refused with the reason, shown in the window" $?
