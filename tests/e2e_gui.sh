@@ -325,7 +325,7 @@ line=$(ask_until render '^render ' 'auto_materials=off'); check "unticking the a
 click "Dock/Material layer/Automatic material rules"
 ask_until render '^render ' 'auto_materials=on' >/dev/null; check "ticking shows them again" $?
 read -r x y w h <<<"$(widget "Dock/")"
-xdotool mousemove --window "$wid" $((x + w / 2)) $((WIN_H / 2)) click --repeat 10 4 # back to the top
+xdotool mousemove --window "$wid" $((x + w / 2)) $((WIN_H / 2)) click --repeat 20 4 # back to the top
 sleep 0.3
 click "Dock/Layers" # closed again
 click "Tools/Paint" && click "Dock/Materials/rock"

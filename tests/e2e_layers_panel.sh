@@ -117,8 +117,12 @@ s=$(stack_until " Layer_2:1  Sculpt:1 *Layer_3:1 "); check "a drag of its name m
 ask_until history 'layer move' 'layer move Layer_3' >/dev/null; check "the drag ran layer move: one undo step" $?
 
 # 4. A double click on Layer_2's name types a new one: Hill.
-read -r x y w h <<<"$(widget "Dock/Stack/Layer_2/Layer_2")"
-xdotool mousemove --window "$wid" $((x + w / 2)) $((y + h / 2)) click --repeat 2 --delay 80 1
+# (Again when a loaded machine's slow frames took the two clicks for two single ones.)
+for _ in 1 2 3; do
+    read -r x y w h <<<"$(widget "Dock/Stack/Layer_2/Layer_2")"
+    xdotool mousemove --window "$wid" $((x + w / 2)) $((y + h / 2)) click --repeat 2 --delay 60 1
+    widget "Dock/Stack/Layer_2/Rename" 12 >/dev/null && break
+done
 widget "Dock/Stack/Layer_2/Rename" >/dev/null; check "a double click opens the name for typing" $?
 sleep 0.4
 key ctrl+a
