@@ -151,20 +151,13 @@ static int compose_task(void *user, int task, og_error *err) {
                 if (!memcmp(&comp[k], &next, sizeof next)) continue;
                 comp[k] = next;
                 // What changed now (the tool's own change was published as it was made).
-                if (changed.x0 > changed.x1) changed = (grid_rect){x, z, x + 1, z + 1};
-                if (x < changed.x0) changed.x0 = x;
-                if (z < changed.z0) changed.z0 = z;
-                if (x + 1 > changed.x1) changed.x1 = x + 1;
-                if (z + 1 > changed.z1) changed.z1 = z + 1;
+                tile_part_touch(&changed, x, z);
             }
     }
     free(acc);
     free(weight);
     edit_tile_release(j->e, &cv);
-    if (rc == 0 && changed.x0 < changed.x1)
-        edit_dirty(j->e, TILE_LAYER_COARSE, p->face,
-                   (grid_rect){r.x0 + changed.x0, r.z0 + changed.z0, r.x0 + changed.x1,
-                               r.z0 + changed.z1});
+    if (rc == 0) tile_part_publish(j->e, TILE_LAYER_COARSE, p->face, r, changed);
     return rc;
 }
 

@@ -147,15 +147,6 @@ static int compose_part(const paint_job *j, const tile_part *p, grid_rect r, pai
     return rc;
 }
 
-// Grows a changed area (part-local) by one sample.
-static void touch(grid_rect *c, int x, int z) {
-    if (c->x0 > c->x1) *c = (grid_rect){x, z, x + 1, z + 1};
-    if (x < c->x0) c->x0 = x;
-    if (z < c->z0) c->z0 = z;
-    if (x + 1 > c->x1) c->x1 = x + 1;
-    if (z + 1 > c->z1) c->z1 = z + 1;
-}
-
 // Moves the tool's change of the part's changed samples into the target (base or paint
 // layer tile t) and writes the composite the stack now shows into comp.
 // before holds only the samples of `touched` (tile-local, edit_snapshot): the tool
@@ -195,7 +186,7 @@ static void take(const paint_job *j, paint_part *q, const uint8_t *before, grid_
             paint_blend_round(now, shown);
             if (memcmp(shown, comp + at, TILE_MATERIALS)) {
                 memcpy(comp + at, shown, TILE_MATERIALS);
-                touch(changed, x, z);
+                tile_part_touch(changed, x, z);
             }
         }
 }
@@ -248,15 +239,12 @@ static int paint_task(void *user, int task, og_error *err) {
                 paint_blend_round(q.acc + ((size_t)z * q.rw + x) * TILE_MATERIALS, shown);
                 if (!memcmp(shown, comp + at, TILE_MATERIALS)) continue;
                 memcpy(comp + at, shown, TILE_MATERIALS);
-                touch(&changed, x, z);
+                tile_part_touch(&changed, x, z);
             }
     }
     edit_tile_release(j->e, &cv);
     part_free(&q);
-    if (rc == 0 && changed.x0 < changed.x1)
-        edit_dirty(j->e, TILE_LAYER_MATERIAL, p->face,
-                   (grid_rect){r.x0 + changed.x0, r.z0 + changed.z0, r.x0 + changed.x1,
-                               r.z0 + changed.z1});
+    if (rc == 0) tile_part_publish(j->e, TILE_LAYER_MATERIAL, p->face, r, changed);
     return rc;
 }
 

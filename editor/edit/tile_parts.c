@@ -64,3 +64,10 @@ void tile_parts_free(tile_parts *l) {
     free(l->parts);
     *l = (tile_parts){0};
 }
+
+void tile_part_publish(edit *e, tile_layer kind, int face, grid_rect r, grid_rect changed) {
+    if (changed.x0 >= changed.x1) return;
+    edit_dirty(
+        e, kind, face,
+        (grid_rect){r.x0 + changed.x0, r.z0 + changed.z0, r.x0 + changed.x1, r.z0 + changed.z1});
+}

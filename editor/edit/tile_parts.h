@@ -3,6 +3,7 @@
 #ifndef OROGEN_EDITOR_TILE_PARTS_H
 #define OROGEN_EDITOR_TILE_PARTS_H
 
+#include "editor/edit/edit.h"
 #include "editor/params/world_grid.h"
 
 #include <stddef.h>
@@ -25,5 +26,16 @@ int tile_parts_add_rect(tile_parts *l, int face, grid_rect r);
 // Sorts by face and tile and merges each tile's parts into their bounding box.
 void tile_parts_merge(tile_parts *l);
 void tile_parts_free(tile_parts *l);
+
+// Grows changed (local to a part; empty: x0 > x1) by the sample (x, z).
+static inline void tile_part_touch(grid_rect *changed, int x, int z) {
+    if (changed->x0 > changed->x1) *changed = (grid_rect){x, z, x + 1, z + 1};
+    if (x < changed->x0) changed->x0 = x;
+    if (z < changed->z0) changed->z0 = z;
+    if (x + 1 > changed->x1) changed->x1 = x + 1;
+    if (z + 1 > changed->z1) changed->z1 = z + 1;
+}
+// Marks changed (local to the samples r of a part) dirty in the edit, when not empty.
+void tile_part_publish(edit *e, tile_layer kind, int face, grid_rect r, grid_rect changed);
 
 #endif
