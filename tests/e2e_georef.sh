@@ -130,6 +130,15 @@ check "new flat from the PNG" $status
 half_step=$($py -c "import json; print(json.load(open('$work/p.png.json'))['height_scale'] / 2)")
 same_place "$dem" "$work/from_png.tif" 0 0 1201 1201 "$half_step"; check "a world from the exported PNG has the DEM's place (16-bit steps)" $?
 
+# An import onto a world with no place gives it the file's (one undo step with the
+# samples); a world that has a place keeps it.
+run -c "new flat; set size 1300; set spacing 30; generate; import $dem spacing=30 x=300 z=600; export $work/adopt.tif region=300,600,36300,36600; import $dem spacing=30 x=0 z=0; undo; undo; export $work/undone.tif"
+check "import onto a world without a place" $status
+[ "$(grep -c "the world takes the file's place" "$work/out")" = 1 ]; check "it takes the first file's place only" $?
+same_place "$dem" "$work/adopt.tif" 0 0 1201 1201; check "the world's export there has the DEM's CRS, corners and samples" $?
+gdalinfo -json "$work/undone.tif" | $py -c "import json, sys; sys.exit(0 if not json.load(sys.stdin).get('coordinateSystem', {}).get('wkt') else 1)"
+check "undone, the world has no place again" $?
+
 # 2. Worlds of the data's own shape: a 1201 x 800 crop and a 403 x 344 one (even sides).
 for win in "0 0 1201 800" "100 50 403 344"; do
     read -r c r w h <<<"$win"

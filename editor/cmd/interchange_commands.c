@@ -42,6 +42,9 @@ static void print_import(FILE *out, const char *path, const import_report *r, ti
             path, r->width, r->height, r->source, r->spacing_x, r->spacing_z, r->min, r->max,
             r->mapping, (long long)r->voids, r->x0, r->z0, r->x1, r->z1,
             layer == TILE_LAYER_DETAIL ? "detail" : "coarse", (long long)r->samples, seconds);
+    if (r->adopted_georef)
+        fprintf(out, "the world takes the file's place on the Earth (its coordinate system and "
+                     "geotransform; undo gives it back)\n");
 }
 
 int cmd_import(cmd_context *ctx, int argc, char **argv, og_error *err) {

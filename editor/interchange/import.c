@@ -3,6 +3,7 @@
 #include "editor/edit/edit_commit.h"
 #include "editor/edit/edit_rows.h"
 #include "editor/interchange/sidecar.h"
+#include "editor/params/world_georef.h"
 #include "editor/world/layer_grid.h"
 #include "io/parse.h"
 
@@ -338,6 +339,26 @@ int import_preview_mapping(const char *path, const import_preview *p, const impo
                           offset, how, how_len, err);
 }
 
+// A world with no place on the Earth yet takes the raster's, in the same step. GDAL's
+// geotransform maps pixel corners and a sample lies at its pixel's centre: world corner
+// coordinate C is world sample C - 1/2, at raster sample u0 + (C - 1/2) du, whose corner
+// coordinate is that + 1/2 (du = world spacing / raster spacing; the same down rows).
+static int adopt_georef(world_params *next, const gdal_georef *geo, const import_op *op) {
+    const double *a = geo->geotransform;
+    if (world_georef_present(next) || a[1] * a[5] - a[2] * a[4] == 0) return 0;
+    const double du = next->spacing / op->sx, dv = next->spacing / op->sz;
+    const double u = -op->x0 / op->sx + 0.5 * (1 - du), v = -op->z0 / op->sz + 0.5 * (1 - dv);
+    double *g = next->geo_transform;
+    g[0] = a[0] + u * a[1] + v * a[2];
+    g[1] = a[1] * du;
+    g[2] = a[2] * dv;
+    g[3] = a[3] + u * a[4] + v * a[5];
+    g[4] = a[4] * du;
+    g[5] = a[5] * dv;
+    snprintf(next->geo_crs, sizeof next->geo_crs, "%s", geo->crs);
+    return 1;
+}
+
 int import_apply(world *w, const char *path, const import_options *o, import_report *report,
                  og_error *err) {
     import_source s;
@@ -446,7 +467,8 @@ int import_apply_source(world *w, const char *path, const import_source *s, cons
     edit *e = edit_begin(w, label, err);
     if (!e) return -1;
     if (o->starting_state) edit_set_starting_state(e);
-    if ((o->edit_layer[0] && edit_set_params(e, &next, err) != 0) ||
+    rep.adopted_georef = adopt_georef(&next, &r->georef, &op);
+    if (((o->edit_layer[0] || rep.adopted_georef) && edit_set_params(e, &next, err) != 0) ||
         edit_rows_apply(e, &g, rect, import_row, NULL, &op, err) != 0) {
         edit_abort(e);
         return -1;

@@ -52,6 +52,7 @@ typedef struct import_report {
     int64_t samples;             // layer samples written
     char mapping[160];           // how stored values became metres
     char source[300];            // what was read
+    int adopted_georef;          // the world had no place: it took the raster's
 } import_report;
 
 void import_options_defaults(import_options *o);

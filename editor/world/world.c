@@ -823,6 +823,10 @@ static int same_generation(const world_params *a, const world_params *b) {
     world_params x = *a, y = *b;
     memset(&x.layers, 0, sizeof x.layers);
     memset(&y.layers, 0, sizeof y.layers);
+    // Where the world lies on the Earth does not change its terrain either.
+    memset(x.geo_transform, 0, sizeof x.geo_transform);
+    memset(y.geo_transform, 0, sizeof y.geo_transform);
+    x.geo_crs[0] = y.geo_crs[0] = 0;
     char *tx = world_params_format(&x), *ty = world_params_format(&y);
     int same = tx && ty && !strcmp(tx, ty);
     free(tx);
@@ -839,8 +843,9 @@ int world_regenerate(world *w, const world_params *params, og_error *err) {
     next.tiles_saved = w->params.tiles_saved;
     next.material_rules = w->params.material_rules; // the look: world_set_material_rules
     if (!next.layers.count) next.layers = w->params.layers;
-    // Only the layer table changed (a layer command, its undo): the terrain generates
-    // the same, so the cache stays.
+    // Only the layer table or the georeference changed (a layer command, an import
+    // giving the world its place, their undo): the terrain generates the same, so the
+    // cache stays.
     if (same_generation(&next, &w->params)) {
         w->params = next;
         world_publish(w, &(world_event){.kind = WORLD_EVENT_LAYERS});
