@@ -110,9 +110,10 @@ static void resize_end(window_state *st) {
 void viewport_drag_button(GLFWwindow *win, int button, int action, int mods) {
     window_state *st = glfwGetWindowUserPointer(win);
     st->ui_dirty = 1;
+    if (input_defer_button(st, button, action, mods)) return;
     input_button(st, button, action, mods);
-    // While long work runs only its Cancel button answers; a stroke's release still
-    // ends the stroke (queued after its points).
+    // While long work runs only its Cancel button answers (other presses wait, see
+    // deferred_input.h); a stroke's release still ends the stroke (queued after its points).
     if (work_queue_busy(&st->work)) {
         if (action == GLFW_RELEASE && button == GLFW_MOUSE_BUTTON_LEFT) sculpt_end(st);
         if (action == GLFW_RELEASE) st->drag.kind = DRAG_NONE, st->drag.looking = 0;
@@ -187,6 +188,7 @@ void viewport_drag_button(GLFWwindow *win, int button, int action, int mods) {
 
 void viewport_drag_cursor(GLFWwindow *win, double x, double y) {
     window_state *st = glfwGetWindowUserPointer(win);
+    if (input_defer_cursor(st, x, y)) return;
     double dx, dy;
     input_cursor(st, x, y, &dx, &dy);
     st->ui_dirty = 1;

@@ -99,6 +99,7 @@ static void pump_work(window_state *st) {
         if (memcmp(&before, &st->v->cam, sizeof before) != 0) st->cc.walk = 0; // `camera`
     }
     viewport_drag_after_work(st);
+    input_replay_deferred(st);
 }
 
 // Runs every complete line waiting on standard input, without blocking.

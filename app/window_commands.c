@@ -70,6 +70,15 @@ static int cmd_window_screenshot(cmd_context *ctx, int argc, char **argv, og_err
     return 0;
 }
 
+// ui_input_waiting: 0 once the window has acted on every input event it was given and
+// run what they asked for (tests wait on it instead of sleeping).
+static int cmd_ui_input_waiting(cmd_context *ctx, int argc, char **argv, og_error *err) {
+    (void)argc, (void)argv;
+    if (!current_window) return og_error_set(err, "ui_input_waiting: no editor window is open");
+    fprintf(ctx->out, "ui_input_waiting %zu\n", input_waiting(current_window));
+    return 0;
+}
+
 static const cmd_def window_commands[] = {
     {"window_screenshot", "window_screenshot FILE",
      "Writes the whole editor window (UI and viewport) to an RGB PNG once every tile in view has "
@@ -87,6 +96,11 @@ static const cmd_def window_commands[] = {
      "Lists the editor window's named widgets of the last frame as NAME X Y W H (window pixels; "
      "names containing FILTER), and the Viewport's rectangle first.",
      0, 1, cmd_ui_widgets, CMD_NOT_RECORDED | CMD_WHILE_BUSY},
+    {"ui_input_waiting", "ui_input_waiting",
+     "Prints how many of the mouse and key events the editor window was given it has not yet "
+     "acted on (queued for its UI, or held while work runs), plus the commands queued behind "
+     "the work running: 0 once the window has caught up (long work may still run).",
+     0, 0, cmd_ui_input_waiting, CMD_NOT_RECORDED | CMD_WHILE_BUSY},
 };
 
 int window_commands_register(og_error *err) {

@@ -68,7 +68,7 @@ static void on_scroll(GLFWwindow *win, double dx, double dy) {
     (void)dx;
     window_state *st = glfwGetWindowUserPointer(win);
     st->ui_dirty = 1;
-    if (work_queue_busy(&st->work)) return;
+    if (input_defer_scroll(st, dx, dy)) return;
     if (!in_view(st, st->input.mouse_x, st->input.mouse_y) ||
         panels_capture_point(st, st->input.in.mouse_x, st->input.in.mouse_y)) {
         st->input.in.wheel += (float)dy;
@@ -154,7 +154,7 @@ static int ui_key_of(int key) {
 static void on_char(GLFWwindow *win, unsigned int codepoint) {
     window_state *st = glfwGetWindowUserPointer(win);
     st->ui_dirty = 1;
-    if (work_queue_busy(&st->work)) return;
+    if (input_defer_char(st, codepoint)) return;
     char u[5] = {0};
     if (codepoint < 0x80)
         u[0] = (char)codepoint;
@@ -301,6 +301,7 @@ static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
     (void)scancode;
     window_state *st = glfwGetWindowUserPointer(win);
     st->ui_dirty = 1;
+    if (input_defer_key(st, key, action, mods)) return; // typed during a job: after it
     st->input.in.mods = ui_mods_of(mods);
     int k = ui_key_of(key);
     if (k >= 0 && action != GLFW_RELEASE) st->input.in.key_pressed[k] = 1;
@@ -308,11 +309,7 @@ static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
         if (action == GLFW_PRESS && key == GLFW_KEY_ESCAPE) work_queue_cancel(&st->work);
         for (int i = 0; i < MOVE_KEY_COUNT; i++) // a key let go is never left held
             if (key == move_key_codes[i] && action == GLFW_RELEASE) st->input.key_down[i] = 0;
-        // A shortcut waits in the queue and runs after the work, in order; other keys
-        // (typing into panels the work hides) are dropped.
-        if (action != GLFW_PRESS || key == GLFW_KEY_ESCAPE ||
-            !shortcut_find(key, shortcut_mods_of(mods)))
-            return;
+        return; // the rest waits for the work's end (input_defer_key)
     }
     // Shift, Ctrl, Alt alone are no event of their own: they travel as the mods of the rest
     // (queued, each would take a frame before the key they go with).
@@ -454,6 +451,8 @@ static void clear_frame_input(ui_input *in) {
 void window_input_attach(window_state *st) {
     GLFWwindow *win = st->win;
     glfwSetWindowUserPointer(win, st);
+    st->input.deferred.handlers =
+        (deferred_handlers){viewport_drag_button, viewport_drag_cursor, on_key, on_char, on_scroll};
     glfwSetMouseButtonCallback(win, viewport_drag_button);
     glfwSetCursorPosCallback(win, viewport_drag_cursor);
     glfwSetCursorEnterCallback(win, on_cursor_enter);

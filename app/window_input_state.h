@@ -4,6 +4,7 @@
 #ifndef OROGEN_APP_WINDOW_INPUT_STATE_H
 #define OROGEN_APP_WINDOW_INPUT_STATE_H
 
+#include "app/deferred_input.h"
 #include "ui/ui.h"
 
 // The movement keys: W S A D E Q.
@@ -19,6 +20,7 @@ typedef struct window_input_state {
     ui_input frame_in;
     int key_down[MOVE_KEY_COUNT];
     double key_since[MOVE_KEY_COUNT], key_held[MOVE_KEY_COUNT]; // seconds, see bank_keys
+    deferred_input deferred; // what came while a job ran, replayed after it
 } window_input_state;
 
 #endif

@@ -118,6 +118,21 @@ int ui_mods_of(int glfw_mods);
 // Sets the window's GLFW callbacks (events go to st).
 void window_input_attach(window_state *st);
 
+// --- busy_input.c: input that comes while a job runs waits and is replayed after it
+
+// Each takes a GLFW event when it must wait (a job runs and the event is not for the busy
+// UI or Esc): 1, and the handler returns at once.
+int input_defer_button(window_state *st, int button, int action, int mods);
+int input_defer_cursor(window_state *st, double x, double y);
+int input_defer_key(window_state *st, int key, int action, int mods);
+int input_defer_char(window_state *st, unsigned codepoint);
+int input_defer_scroll(window_state *st, double dx, double dy);
+// Once the job has ended: the events that waited, through the window's handlers, in order.
+void input_replay_deferred(window_state *st);
+// What the window has been given and not yet acted on: input events queued for the UI or
+// held during a job, and commands queued behind the job running (ui_input_waiting).
+size_t input_waiting(const window_state *st);
+
 // --- viewport_drag.c: the viewport's drags, mouse look, the camera mode
 
 drag_kind viewport_drag_kind(const window_state *st);
