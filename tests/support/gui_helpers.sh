@@ -88,25 +88,40 @@ widget_gone() {
     done
     return 1
 }
-# Clicks the centre of the widget NAME (see widget), then gives the UI a frame to react.
+# Waits (up to about 10 s) until the window has acted on every mouse and key event sent
+# to it and run the commands they queued (ui_input_waiting 0, twice: the second answer
+# comes from a later turn of its loop, after it read what the X server had for it).
+settle() {
+    local zeros=0 line
+    for _ in $(seq 200); do
+        line=$(ask_tries=100 ask ui_input_waiting '^ui_input_waiting ') || return 1
+        if [ "$line" = "ui_input_waiting 0" ]; then
+            zeros=$((zeros + 1))
+            [ $zeros = 2 ] && return 0
+        else
+            zeros=0
+            sleep 0.05
+        fi
+    done
+    return 1
+}
+# Clicks the centre of the widget NAME (see widget), then waits for the UI to act on it.
 click() {
     local x y w h
     read -r x y w h <<<"$(widget "$1")" || return 1
     [ -n "$h" ] || { echo "click: no widget '$1' in the window" >&2; return 1; }
     xdotool mousemove --window "$wid" $((x + w / 2)) $((y + h / 2)) click 1
-    sleep 0.3
+    settle
 }
-key() { xdotool key "$@"; sleep 0.3; }
+key() { xdotool key "$@" && settle; }
 is_png() { [ -s "$1" ] && [ "$(head -c 4 "$1" | od -An -c | tr -d ' ')" = "211PNG" ]; }
 # Types TEXT into the field NAME: a click focuses it and selects its text (the fields of
-# these dialogs replace their text when typed into); the pause lets a slow frame take
-# the click before the keys come.
+# these dialogs replace their text when typed into).
 fill() {
     click "$1" || return 1
-    sleep 0.5
     key ctrl+a
-    xdotool type --delay 20 "$2"
-    sleep 0.3
+    xdotool type --delay 20 -- "$2"
+    settle
 }
 # Scrolls the dock (the wheel over it) until the widget NAME lies within the rows of
 # the viewport (as tall as the dock), up to 12 notches.
