@@ -177,7 +177,15 @@ void history_panel(editor_ui *e, ui_context *ui, cmd_context *ctx) {
     long saved = world_path(ctx->world)[0] ? history_saved_position(h) : -1;
     if (saved == 0)
         ui_label_colored(ui, "(saved before the first step)", ui_get_theme(ui)->text_dim);
-    ui_push_scope(ui, "Steps");
+    // The steps in a list of their own, at most 8 rows tall: a new step, an undo or a redo
+    // scrolls it to the current step (as Photoshop's and Blender's history lists do)
+    // without moving the rest of the dock; otherwise it stays where the user left it.
+    if (n == 0) return;
+    float row = ui_em(ui, 1.4f) + ui_em(ui, 0.2f), pad = ui_em(ui, 0.3f);
+    ui_row(ui, 1, NULL, (float)(n < 8 ? n : 8) * row - ui_em(ui, 0.2f) + 2 * pad);
+    ui_panel_begin(ui, "Steps", ui_next_cell(ui));
+    int reveal = e->history_seen[0] != n || e->history_seen[1] != pos;
+    e->history_seen[0] = n, e->history_seen[1] = pos;
     float cols[2] = {0, ui_em(ui, 5.5f)};
     ui_row(ui, 2, cols, 0);
     for (size_t i = 0; i < n; i++) {
@@ -193,6 +201,7 @@ void history_panel(editor_ui *e, ui_context *ui, cmd_context *ctx) {
                 strcat(cmds, "redo;");
             if (cmds[0]) editor_ui_run(e, ctx, cmds);
         }
+        if (reveal && i + 1 == (pos ? pos : 1)) ui_reveal_last(ui);
         ui_tooltip(ui, i < pos ? "Applied: click to undo the steps after it"
                                : "Undone: click to redo up to here");
         // The step's memory, and the saved state marked.
@@ -202,5 +211,5 @@ void history_panel(editor_ui *e, ui_context *ui, cmd_context *ctx) {
         ui_tooltip(ui, saved == (long)i + 1 ? "Undo memory of the step; the world was saved here"
                                             : "Undo memory of the step");
     }
-    ui_pop_scope(ui);
+    ui_panel_end(ui);
 }

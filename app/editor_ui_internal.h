@@ -51,6 +51,7 @@ struct editor_ui {
     editor_host host;              // the window's side
     work_queue *work;              // where actions are queued (NULL: run at once)
     int history_request;           // Edit > History: open the History section
+    size_t history_seen[2];        // its steps and position when last drawn
     int picking_height;            // the next click in the viewport picks the tool's height
     int shape_placing;             // a 3D shape waits for clicks in the viewport (0: none)
     int shape_clicks;              // clicks it has had

@@ -143,6 +143,8 @@ struct ui_context {
     slot slots[SLOTS_MAX];
     ui_clipboard clipboard;
     int wants_mouse, wants_keyboard, needs_frame;
+    ui_id panel_ids[LAYOUT_MAX]; // the open panels, innermost last (ui_reveal_last)
+    int panel_depth;
     locale_t c_locale;
 };
 
@@ -406,6 +408,7 @@ void ui_begin(ui_context *ui, const ui_input *in, float width, float height) {
     ui->keys_spent = 0;
     ui->scope_depth = 0;
     ui->layout_depth = 0;
+    ui->panel_depth = 0;
     ui->needs_frame = 0;
     ui->popup_rect_prev = ui->popup_rect;
     ui->popup_rect = (ui_rect){0, 0, 0, 0};
@@ -675,9 +678,29 @@ void ui_panel_begin(ui_context *ui, const char *name, ui_rect r) {
     }
     claim_id(ui, id, "");
     record_widget(ui, "", r);
+    if (ui->panel_depth < LAYOUT_MAX) ui->panel_ids[ui->panel_depth] = id;
+    ui->panel_depth++;
+}
+
+void ui_reveal_last(ui_context *ui) {
+    if (ui->layout_depth == 0 || ui->panel_depth == 0 || ui->panel_depth > LAYOUT_MAX) return;
+    const layout *l = &ui->layouts[ui->layout_depth - 1];
+    if (l->col == 0) return;
+    ui_rect c = l->cells[l->col - 1], view = ui_draw_clip(ui->target);
+    float pad = ui_em(ui, 0.3f), below = c.y + c.h - (view.y + view.h - pad),
+          above = view.y + pad - c.y;
+    slot *s = get_slot(ui, ui->panel_ids[ui->panel_depth - 1]);
+    if (below > 0.5f)
+        s->scroll += below;
+    else if (above > 0.5f)
+        s->scroll -= above;
+    else
+        return;
+    ui->needs_frame = 1; // the panel scrolls on the next frame
 }
 
 void ui_panel_end(ui_context *ui) {
+    if (ui->panel_depth > 0) ui->panel_depth--;
     ui->scope_depth = depth_below_sections(ui); // the panel's last section ends
     if (ui->scope_depth == 0) return;
     ui_id id = ui->scope_ids[ui->scope_depth - 1];

@@ -207,6 +207,9 @@ void ui_split(const ui_context *ui, ui_rect r, int horizontal, int n, const floa
 // when the content is taller than it.
 void ui_panel_begin(ui_context *ui, const char *name, ui_rect r);
 void ui_panel_end(ui_context *ui);
+// Scrolls the open panel so the widget just placed shows, from the next frame (the
+// History list following its current step).
+void ui_reveal_last(ui_context *ui);
 
 // --- widgets (each takes the next layout cell) -------------------------------------
 void ui_label(ui_context *ui, const char *text);
