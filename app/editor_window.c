@@ -66,13 +66,20 @@ static int stamp_click(const editor_ui *e, const cmd_context *ctx, const double 
     return 1;
 }
 
+double editor_ui_picked_height(const cmd_context *ctx, const double hit[3]) {
+    const world_params *p = world_get_params(ctx->world);
+    if (p->kind != WORLD_PLANET) return hit[1];
+    return sqrt(hit[0] * hit[0] + hit[1] * hit[1] + hit[2] * hit[2]) - p->radius;
+}
+
 int editor_ui_viewport_click(editor_ui *e, const cmd_context *ctx, const double *hit, char *cmd,
                              size_t len, const char **label) {
     switch (editor_ui_click_wanted(e)) {
     case EDITOR_CLICK_PICK_HEIGHT: // the tool's height from the terrain (the Pick button)
         e->picking_height = 0;
         if (!hit) return 0;
-        snprintf(cmd, len, "tool %s height=%.6g", current_tool(&ctx->brush), hit[1]);
+        snprintf(cmd, len, "tool %s height=%.6g", current_tool(&ctx->brush),
+                 editor_ui_picked_height(ctx, hit));
         *label = "pick";
         return 1;
     case EDITOR_CLICK_SHAPE: // a 3D shape: its clicks, then its command

@@ -56,6 +56,15 @@ static void sculpt_begin(window_state *st, int mods) {
     double mx, my;
     pointer_pos(st, &mx, &my);
     st->dirty = st->ui_dirty = 1;
+    // Set height with no height given yet sets the ground to the height where the drag
+    // begins (as Unreal's flatten), as a command: the dock shows it and a replay has it.
+    double hit[3];
+    if (st->ctx->brush.tool == BRUSH_SET && !st->ctx->brush.has_height &&
+        pick_at(st, mx, my, hit) == 0) {
+        char cmd[96];
+        snprintf(cmd, sizeof cmd, "tool set height=%.6g", editor_ui_picked_height(st->ctx, hit));
+        run_commands(st, cmd, "sculpt");
+    }
     sculpt_drag_begin(&st->drag.sculpt, &st->work, st->ctx, sculpt_view_of(st), mx, my,
                       (mods & GLFW_MOD_SHIFT) != 0, (mods & GLFW_MOD_CONTROL) != 0);
 }
