@@ -1372,6 +1372,27 @@ static void test_stroke_hold(void **state) {
     world_close(w);
 }
 
+// A ramp lays its dab at the end: a drag (stroke_begin, stroke_to..., stroke_end, as the
+// window runs it) counts it before, so the window's end of a drag keeps the ramp (it
+// dropped drags that had "laid no dab"); one point is no ramp.
+static void test_ramp_counts_its_dab(void **state) {
+    (void)state;
+    world_params p = flat_params(700, 1.0);
+    world *w = open_world(&p);
+    brush b;
+    brush_defaults(&b, BRUSH_RAMP);
+    og_error err;
+    stroke *s = stroke_begin(w, &b, &err);
+    assert_non_null(s);
+    assert_int_equal(stroke_to(s, 300, 300, 1, &err), 0);
+    assert_int_equal(stroke_dab_count(s), 0);
+    assert_int_equal(stroke_to(s, 340, 300, 1, &err), 0);
+    assert_int_equal(stroke_dab_count(s), 1);
+    assert_int_equal(stroke_end(s, &err), 0);
+    assert_int_equal(history_count(world_history(w)), 1);
+    world_close(w);
+}
+
 static void test_stroke_rejects_bad_points(void **state) {
     (void)state;
     world_params p = flat_params(700, 1.0);
@@ -2107,6 +2128,7 @@ int main(void) {
         cmocka_unit_test(test_invariant_flatten_converges),
         cmocka_unit_test(test_invariant_thermal_talus),
         cmocka_unit_test(test_stroke_hold),
+        cmocka_unit_test(test_ramp_counts_its_dab),
         cmocka_unit_test(test_invariant_hydraulic_mass),
         cmocka_unit_test(test_invariant_paint),
         cmocka_unit_test(test_paint_soft_edge),

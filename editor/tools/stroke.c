@@ -274,5 +274,10 @@ void stroke_cancel(stroke *s) {
 }
 
 long stroke_dab_count(const stroke *s) {
-    return s->volume ? volume_stroke_dabs(s->volume) : s->dabs;
+    if (s->volume) return volume_stroke_dabs(s->volume);
+    // A ramp lays its one dab at the end, from the first point to the last: a drag
+    // (the window's stroke_begin, stroke_to..., stroke_end) counts it before then.
+    int ramp_due = s->started && s->brush.tool == BRUSH_RAMP && s->dabs == 0 &&
+                   (s->first_x != s->last_x || s->first_z != s->last_z);
+    return s->dabs + ramp_due;
 }
