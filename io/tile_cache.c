@@ -473,6 +473,18 @@ int tile_cache_discard(tile_cache *c, tile_key key) {
     return rc;
 }
 
+int tile_cache_mark_generated(tile_cache *c, tile_key key) {
+    pthread_mutex_lock(&c->lock);
+    entry *e = find(c, key, (uint32_t)tile_key_hash(key));
+    int rc = -1;
+    if (e && e->state == ENTRY_READY && e->pins == 0 && e->data) {
+        e->dirty = e->edited = 0;
+        rc = 0;
+    }
+    pthread_mutex_unlock(&c->lock);
+    return rc;
+}
+
 void tile_cache_release(tile_cache *c, tile_view *view) {
     if (!view || !view->handle_) return;
     pthread_mutex_lock(&c->lock);

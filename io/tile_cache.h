@@ -82,6 +82,11 @@ void tile_cache_release(tile_cache *cache, tile_view *view);
 // generates it afresh (undo back to never-edited terrain). Returns -1 if the tile is
 // pinned or still being produced (it then stays), 0 otherwise.
 int tile_cache_discard(tile_cache *cache, tile_key key);
+// The resident tile holds generated terrain again (undo back to never-edited terrain):
+// it stays in memory, shown without a gap, but as if just generated (not dirty nor
+// edited), so it is never written back and a later generate replaces it. Returns -1 if
+// the tile is not resident, pinned or still being produced.
+int tile_cache_mark_generated(tile_cache *cache, tile_key key);
 
 // Keys of the resident tiles of a layer that hold edits (loaded from a store, or
 // written since generated): up to max into out; returns how many there are.

@@ -435,13 +435,15 @@ static int replay_task(void *user, int task, og_error *err) {
     if (history_tile_apply(t, v.data) != 0)
         rc = og_error_set(err, "undo data of a tile is damaged (out of memory?)");
     tile_cache_release(cache, &v);
-    // Back to never-edited terrain: forget the copy so it regenerates (a later
-    // `generate` must change it like any untouched tile).
-    // A tile saved since then is not pristine any more: the saved store holds it.
+    // Back to never-edited terrain: the tile holds its generated heights again and
+    // counts as generated (a later `generate` changes it like any untouched tile). It
+    // stays in memory: forgetting it would leave the viewport a gap until it
+    // regenerated. A tile saved since then is not pristine any more: the saved store
+    // holds it.
     tile_store *saved = world_store(j->world);
     og_error ignored;
     if (j->undo && t->was_pristine && !(saved && tile_store_has(saved, t->key)) &&
-        tile_cache_discard(cache, t->key) == 0)
+        tile_cache_mark_generated(cache, t->key) == 0)
         tile_store_put(world_journal(j->world), t->key, NULL, &ignored);
     return rc;
 }
