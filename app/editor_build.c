@@ -194,11 +194,13 @@ ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport
     }
     if (ui_section(ui, "Materials", 0)) materials_panel(e, ui, ctx);
     if (ui_section(ui, "World", 1)) world_panel(e, ui, ctx);
+    int show_history = e->history_request;
     if (e->history_request) { // Edit > History: the section opens
         ui_section_set(ui, "History", 1);
         e->history_request = 0;
     }
     if (ui_section(ui, "History", 1)) history_panel(e, ui, ctx);
+    if (show_history) ui_reveal_last(ui); // and the dock scrolls to its steps
     ui_panel_end(ui);
     status_bar(ui, ctx, v, info, &e->stamps, (ui_rect){0, height - status, width, status});
 
