@@ -91,6 +91,7 @@ void editor_ui_open_file(editor_ui *e, cmd_context *ctx, const char *path);
 // The height of a picked terrain point as the tools' height= takes it: metres up on a
 // flat world, above the radius on a planet.
 double editor_ui_picked_height(const cmd_context *ctx, const double hit[3]);
+
 // What a left click in the viewport is for: the tool's drag, or a panel waiting for
 // a click on the terrain (the Pick button of a height, a 3D shape being placed, the
 // stamp tool).
