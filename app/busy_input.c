@@ -9,14 +9,6 @@ static deferred_input *queue_of(window_state *st) {
     return &st->input.deferred;
 }
 
-// Whether (x, y), window coordinates, is on one of the busy UI's widgets (Cancel).
-static int on_busy_ui(window_state *st, double x, double y) {
-    float ux = ui_px(st, x), uy = ui_px(st, y);
-    for (size_t i = 0; i < ui_widget_count(st->busy_ui); i++)
-        if (ui_rect_contains(ui_widget_at(st->busy_ui, i)->rect, ux, uy)) return 1;
-    return 0;
-}
-
 // Where the pointer is as the events that wait leave it (the last motion event's, else).
 static void pointer_after_queue(window_state *st, double *x, double *y) {
     deferred_input *d = queue_of(st);
@@ -40,7 +32,7 @@ int input_defer_button(window_state *st, int button, int action, int mods) {
         }
         if (!d->held_late[button] && d->count == 0) return 0; // a drag from before the job
         d->held_late[button] = 0;
-    } else if (d->count == 0 && on_busy_ui(st, x, y)) {
+    } else if (d->count == 0 && panels_busy_widget_at(st, ui_px(st, x), ui_px(st, y))) {
         d->held_live[button] = 1;
         return 0;
     } else {

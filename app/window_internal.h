@@ -222,6 +222,8 @@ void panels_world_edited(window_state *st);
 int panels_need_frame(const window_state *st);
 int panels_took_keys(const window_state *st);
 int panels_capture_point(const window_state *st, float x, float y);
+// A widget of the progress bar of long work (its Cancel button) is under (x, y) (UI units).
+int panels_busy_widget_at(const window_state *st, float x, float y);
 // The UI scale (ui_scale): a new font at the new size.
 int panels_set_scale(window_state *st, double scale, og_error *err);
 // ui_widgets: the Viewport's rectangle, then every named widget of the last frame.

@@ -115,6 +115,13 @@ int panels_capture_point(const window_state *st, float x, float y) {
     return ui_captures_point(st->panels.ui, x, y);
 }
 
+int panels_busy_widget_at(const window_state *st, float x, float y) {
+    const ui_context *busy = st->panels.busy_ui;
+    for (size_t i = 0; i < ui_widget_count(busy); i++)
+        if (ui_rect_contains(ui_widget_at(busy, i)->rect, x, y)) return 1;
+    return 0;
+}
+
 // Changes the UI scale: a new font at the new size (the renderer re-uploads its atlas).
 int panels_set_scale(window_state *st, double scale, og_error *err) {
     window_panels_state *p = &st->panels;
