@@ -122,6 +122,11 @@ hash_is "$h1"; check "clicking the undone step in History redoes it" $?
 click "Dock/History" && widget_gone "Dock/Steps/1 raise stroke"
 click "Menu/Edit" && click "Menu/Edit/History"
 widget "Dock/Steps/1 raise stroke" >/dev/null; check "Edit > History opens the History section" $?
+# It also scrolled the dock down to the steps: the wheel takes it back to its top, where
+# the sections the next steps open are.
+read -r x y w h <<<"$(widget "Dock/")"
+xdotool mousemove --window "$wid" $((x + w / 2)) $((y + 30)) click --repeat 10 4
+settle
 
 # 4c. View > Smooth edges turns the anti-aliasing off and on (render antialias=).
 click "Menu/View" && click "Menu/View/Smooth edges: on"
