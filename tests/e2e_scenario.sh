@@ -36,12 +36,16 @@ step_line() { # N
 }
 # The coarse heights of a box around the point the viewport's centre shows.
 box() { ask "hash $((cx - 150)) $((cz - 150)) $((cx + 150)) $((cz + 150))" '^[0-9a-f]\{16\}$'; }
-# A left drag across the viewport's centre (x offsets from it in pixels).
-drag() { # DX0 DX1 [MODIFIER]
+# A left drag across the viewport's centre (x offsets from it in pixels); each part
+# waits for the window to act (the stroke's first dab done before the moves come, so
+# every point is picked on the terrain as it is).
+drag() { # DX0 DX1
     local y=$((VY + VH / 2)) x0=$((VX + VW / 2 + $1)) x1=$((VX + VW / 2 + $2))
-    xdotool mousemove --window "$wid" $x0 $y ${3:+keydown $3} mousedown 1 \
-        mousemove --window "$wid" $(((x0 + x1) / 2)) $y mousemove --window "$wid" $x1 $y \
-        mouseup 1 ${3:+keyup $3}
+    xdotool mousemove --window "$wid" $x0 $y mousedown 1
+    settle
+    xdotool mousemove --window "$wid" $(((x0 + x1) / 2)) $y mousemove --window "$wid" $x1 $y
+    settle
+    xdotool mouseup 1
 }
 messages() { # the lines ui_messages lists now
     local before
