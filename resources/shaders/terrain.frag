@@ -82,8 +82,6 @@ vec3 with_grids(vec3 c) {
     return c;
 }
 
-// Central differences one source texel apart, clamped to the level's window: past its
-// edge the toroidal texture holds samples from the far side.
 // Where the edited mask lets its layer apply: tinted there, dimmed elsewhere (the
 // terms of editor/layers/layer_mask.h over the drawn surface; flow is not drawn).
 vec3 with_mask(vec3 c, float h, float slope, float curvature) {
@@ -95,8 +93,13 @@ vec3 with_mask(vec3 c, float h, float slope, float curvature) {
     return mix(c * 0.4, mix(c, vec3(1.0, 0.2, 0.55), 0.45), w);
 }
 
+// Central differences clamped to the level's window (past its edge the toroidal texture
+// holds samples from the far side): a source texel apart on level 0, as the
+// full-resolution mesh's vertex normals; half a texel apart on the coarser levels, the
+// mean slope under one of their texels (a texel apart blurred it over two, which cost
+// RMSE against the full-resolution mesh).
 vec2 gradient_at(vec4 src, vec2 p, float spacing_here) {
-    float texel = 1.0 / src.z; // one source texel in local units
+    float texel = (src.w == 0.0 ? 1.0 : 0.5) / src.z; // in local units
     vec2 lo = max(p - texel, vec2(0.0)), hi = min(p + texel, vec2(CLIP_SIZE - 1.0));
     float l = sample_height(src, vec2(lo.x, p.y)), r = sample_height(src, vec2(hi.x, p.y));
     float d = sample_height(src, vec2(p.x, lo.y)), u = sample_height(src, vec2(p.x, hi.y));
