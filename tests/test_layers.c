@@ -9,6 +9,7 @@
 #include "editor/params/world_grid.h"
 #include "editor/world/layer_grid.h"
 #include "support/test_support.h"
+#include "support/test_world.h"
 
 #include <setjmp.h>
 #include <stdarg.h>
@@ -22,42 +23,6 @@
 #include <string.h>
 #include <sys/wait.h>
 #include <unistd.h>
-
-static void silent(void *user, const char *message) {
-    (void)user, (void)message;
-}
-
-static world_params flat_params(int64_t size) {
-    world_params p;
-    world_params_default(&p, WORLD_FLAT);
-    p.generator = GEN_FBM;
-    p.seed = 4242;
-    p.octaves = 4;
-    p.size = size;
-    p.spacing = 1.0;
-    p.feature_size = 256.0;
-    p.max_height = 300;
-    return p;
-}
-
-static world *open_world(const world_params *p) {
-    world_settings s = {.cache_budget_bytes = (size_t)256 << 20, .workers = 2, .warn = silent};
-    og_error err;
-    world *w = world_create(p, &s, &err);
-    if (!w) fail_msg("world_create: %s", err.msg);
-    return w;
-}
-
-static uint64_t rng_next(uint64_t *s) {
-    *s ^= *s << 13;
-    *s ^= *s >> 7;
-    *s ^= *s << 17;
-    return *s;
-}
-
-static double rng_unit(uint64_t *s) {
-    return (double)(rng_next(s) >> 11) / 9007199254740992.0;
-}
 
 static float *read_rect(world *w, int face, grid_rect r) {
     layer_grid g;
@@ -143,8 +108,9 @@ static void fill_layer(edit *e, int32_t id, int face, grid_rect r, float *ref, g
                 for (int i = 0; i < TILE_SIZE; i++) {
                     int64_t x = tx * TILE_SIZE + i, z = tz * TILE_SIZE + j;
                     if (x < r.x0 || x >= r.x1 || z < r.z0 || z >= r.z1) continue;
-                    float val =
-                        rng_unit(seed) < nan_share ? NAN : (float)(rng_unit(seed) * 400.0 - 200.0);
+                    float val = test_rng_unit(seed) < nan_share
+                                    ? NAN
+                                    : (float)(test_rng_unit(seed) * 400.0 - 200.0);
                     f[j * TILE_SIZE + i] = val;
                     ref[(z - area.z0) * (area.x1 - area.x0) + (x - area.x0)] = val;
                 }
@@ -156,8 +122,8 @@ static void fill_layer(edit *e, int32_t id, int face, grid_rect r, float *ref, g
 // equals the formula on one big array everywhere, across tile edges.
 static void test_composite_matches_arrays(void **state) {
     (void)state;
-    world_params p = flat_params(0);
-    world *w = open_world(&p);
+    world_params p = test_flat_fbm_params(0);
+    world *w = test_world_open(&p);
     grid_rect area = {-300, -280, 320, 290};
     size_t n = (size_t)((area.x1 - area.x0) * (area.z1 - area.z0));
     float *base = read_rect(w, 0, area);
@@ -177,24 +143,26 @@ static void test_composite_matches_arrays(void **state) {
         for (int i = 1; i < layers; i++) {
             char name[16];
             snprintf(name, sizeof name, "L%d", i);
-            layer_table_insert(t, i, name, (layer_blend)(rng_next(&seed) % LAYER_BLEND_COUNT),
-                               rng_unit(&seed) < 0.4 ? 1.0 : rng_unit(&seed), &err);
+            layer_table_insert(t, i, name, (layer_blend)(test_rng_next(&seed) % LAYER_BLEND_COUNT),
+                               test_rng_unit(&seed) < 0.4 ? 1.0 : test_rng_unit(&seed), &err);
         }
         for (int i = 0; i < layers; i++)
-            t->layers[i].visible = rng_unit(&seed) > 0.2;
+            t->layers[i].visible = test_rng_unit(&seed) > 0.2;
         // Masks on some layers. (Not flow: it counts upstream area within the window it is
         // given, so a tile's part reads it a little differently from one big array.)
         for (int i = 0; i < layers; i++) {
-            if (rng_unit(&seed) < 0.4) continue;
+            if (test_rng_unit(&seed) < 0.4) continue;
             layer_mask *m = &t->layers[i].mask;
             char v[64];
-            snprintf(v, sizeof v, "%.1f,%.1f", rng_unit(&seed) * 200 - 150, rng_unit(&seed) * 200);
-            if (rng_unit(&seed) < 0.6) layer_mask_set_option(m, "height", v, &err);
-            if (rng_unit(&seed) < 0.5) layer_mask_set_option(m, "falloff", "15", &err);
-            snprintf(v, sizeof v, "%.1f,%.1f,4", rng_unit(&seed) * 20, 20 + rng_unit(&seed) * 40);
-            if (rng_unit(&seed) < 0.5) layer_mask_set_option(m, "slope", v, &err);
-            if (rng_unit(&seed) < 0.3) layer_mask_set_option(m, "curvature", "-3,3,1", &err);
-            if (rng_unit(&seed) < 0.3) layer_mask_set_option(m, "invert", "1", &err);
+            snprintf(v, sizeof v, "%.1f,%.1f", test_rng_unit(&seed) * 200 - 150,
+                     test_rng_unit(&seed) * 200);
+            if (test_rng_unit(&seed) < 0.6) layer_mask_set_option(m, "height", v, &err);
+            if (test_rng_unit(&seed) < 0.5) layer_mask_set_option(m, "falloff", "15", &err);
+            snprintf(v, sizeof v, "%.1f,%.1f,4", test_rng_unit(&seed) * 20,
+                     20 + test_rng_unit(&seed) * 40);
+            if (test_rng_unit(&seed) < 0.5) layer_mask_set_option(m, "slope", v, &err);
+            if (test_rng_unit(&seed) < 0.3) layer_mask_set_option(m, "curvature", "-3,3,1", &err);
+            if (test_rng_unit(&seed) < 0.3) layer_mask_set_option(m, "invert", "1", &err);
         }
         edit *e = edit_begin(w, "test layers", &err);
         edit_set_layer_mode(e, EDIT_LAYER_COMPOSED);
@@ -204,10 +172,10 @@ static void test_composite_matches_arrays(void **state) {
             for (size_t k = 0; k < nb; k++)
                 values[i][k] = NAN;
             // Each layer covers a random part of the area (its other samples stay empty).
-            int64_t x0 = area.x0 + (int64_t)(rng_unit(&seed) * 200),
-                    z0 = area.z0 + (int64_t)(rng_unit(&seed) * 200);
-            int64_t x1 = area.x1 - (int64_t)(rng_unit(&seed) * 200),
-                    z1 = area.z1 - (int64_t)(rng_unit(&seed) * 200);
+            int64_t x0 = area.x0 + (int64_t)(test_rng_unit(&seed) * 200),
+                    z0 = area.z0 + (int64_t)(test_rng_unit(&seed) * 200);
+            int64_t x1 = area.x1 - (int64_t)(test_rng_unit(&seed) * 200),
+                    z1 = area.z1 - (int64_t)(test_rng_unit(&seed) * 200);
             fill_layer(e, t->layers[i].id, 0, (grid_rect){x0, z0, x1, z1}, values[i], big, &seed,
                        0.1);
         }
@@ -242,10 +210,10 @@ static void test_solve_round_trips(void **state) {
     uint64_t seed = 5;
     size_t exact = 0, total = 0;
     for (int i = 0; i < 200000; i++) {
-        layer_blend b = (layer_blend)(rng_next(&seed) % LAYER_BLEND_COUNT);
-        float w = rng_unit(&seed) < 0.5 ? 1.0f : (float)(0.05 + rng_unit(&seed));
-        float below = (float)(rng_unit(&seed) * 2000 - 1000);
-        float target = below + (float)(rng_unit(&seed) * 100 - 50);
+        layer_blend b = (layer_blend)(test_rng_next(&seed) % LAYER_BLEND_COUNT);
+        float w = test_rng_unit(&seed) < 0.5 ? 1.0f : (float)(0.05 + test_rng_unit(&seed));
+        float below = (float)(test_rng_unit(&seed) * 2000 - 1000);
+        float target = below + (float)(test_rng_unit(&seed) * 100 - 50);
         float v = layer_blend_solve(b, w, below, NAN, target);
         float got = layer_blend_sample(b, w, below, v);
         if ((b == LAYER_BLEND_MAX && target < below) || (b == LAYER_BLEND_MIN && target > below)) {
@@ -267,7 +235,7 @@ typedef struct session {
 } session;
 
 static void open_session(session *s, world *w) {
-    world_settings set = {.warn = silent};
+    world_settings set = {.warn = test_silent};
     s->w = w;
     s->out = tmpfile();
     cmd_context_init(&s->ctx, w, &set, s->out, OROGEN_RESOURCE_DIR);
@@ -310,9 +278,9 @@ static char *listing(session *s) {
 // for bit, redo the state after it.
 static void test_commands_undo_redo(void **state) {
     (void)state;
-    world_params p = flat_params(600);
+    world_params p = test_flat_fbm_params(600);
     session s;
-    open_session(&s, open_world(&p));
+    open_session(&s, test_world_open(&p));
     run(&s, "tool raise radius=80 strength=0.6; stroke 100 100 400 300");
     const char *steps[] = {
         "layer new Hills blend=add opacity=0.7",
@@ -426,10 +394,10 @@ static double max_difference(session *x, session *y) {
 // the tool's (not ten), so the composite shows 0.1 / 0.25 of the tool's change.
 static void test_faint_layer_takes_bounded_change(void **state) {
     (void)state;
-    world_params p = flat_params(600);
+    world_params p = test_flat_fbm_params(600);
     session single, faint;
-    open_session(&single, open_world(&p));
-    open_session(&faint, open_world(&p));
+    open_session(&single, test_world_open(&p));
+    open_session(&faint, test_world_open(&p));
     const char *setup = "tool raise radius=120 strength=0.8; stroke 100 200 500 260";
     run(&single, setup);
     run(&faint, setup);
@@ -459,7 +427,7 @@ static void test_faint_layer_takes_bounded_change(void **state) {
 
 static void test_tools_on_layer_match_single_heightfield(void **state) {
     (void)state;
-    world_params p = flat_params(600);
+    world_params p = test_flat_fbm_params(600);
     const char *setup = "tool raise radius=120 strength=0.8; stroke 100 200 500 260; "
                         "tool lower radius=60 strength=0.5; stroke 300 80 320 500";
     const char *tools[] = {"tool smooth radius=90 strength=1; stroke 150 150 450 350",
@@ -469,8 +437,8 @@ static void test_tools_on_layer_match_single_heightfield(void **state) {
                            "tool raise radius=50 strength=0.5; stroke 100 100 200 500"};
     for (size_t t = 0; t < sizeof tools / sizeof tools[0]; t++) {
         session single, layered;
-        open_session(&single, open_world(&p));
-        open_session(&layered, open_world(&p));
+        open_session(&single, test_world_open(&p));
+        open_session(&layered, test_world_open(&p));
         run(&single, setup);
         run(&layered, setup);
         run(&layered, "layer new Work");
@@ -481,7 +449,7 @@ static void test_tools_on_layer_match_single_heightfield(void **state) {
         // (Recomposed, base + Sculpt may round a sample an ulp of Sculpt's value away
         // from the tool's own result the composite kept: floats cannot always hold both.)
         session before;
-        open_session(&before, open_world(&p));
+        open_session(&before, test_world_open(&p));
         run(&before, setup);
         run(&layered, "layer set Work visible=0");
         assert_true(max_difference(&before, &layered) <= 1e-4);
@@ -504,7 +472,8 @@ static void test_tools_on_layer_match_single_heightfield(void **state) {
 }
 
 static world *load_world(const char *path, int expect_errors) {
-    world_settings set = {.cache_budget_bytes = (size_t)256 << 20, .workers = 2, .warn = silent};
+    world_settings set = {
+        .cache_budget_bytes = (size_t)256 << 20, .workers = 2, .warn = test_silent};
     og_error err;
     int errors = 0;
     world *w = world_load(path, &set, &errors, &err);
@@ -526,9 +495,9 @@ static void test_saved_stack(void **state) {
     const char *dir = test_tmpdir("layers_saved");
     char path[512];
     snprintf(path, sizeof path, "%s/stack.world", dir);
-    world_params p = flat_params(600);
+    world_params p = test_flat_fbm_params(600);
     session a;
-    open_session(&a, open_world(&p));
+    open_session(&a, test_world_open(&p));
     run(&a, "tool raise radius=80 strength=0.6; stroke 100 100 400 300; layer new Roads "
             "blend=replace opacity=0.75; tool set radius=30 height=50; stroke 50 500 550 450; "
             "layer new Snow blend=max; tool raise; stroke 300 50 300 550; layer set Roads "
@@ -600,9 +569,9 @@ static void test_world_from_before_layers(void **state) {
     char path[512], tiles[512];
     snprintf(path, sizeof path, "%s/old.world", dir);
     snprintf(tiles, sizeof tiles, "%s/old.tiles", dir);
-    world_params p = flat_params(600);
+    world_params p = test_flat_fbm_params(600);
     session a;
-    open_session(&a, open_world(&p));
+    open_session(&a, test_world_open(&p));
     uint64_t generated = hash_all(&a);
     run(&a, "tool raise radius=90 strength=0.8; stroke 50 50 550 500; tool smooth radius=60; "
             "stroke 100 400 500 100; tool hydraulic radius=150; stroke 300 300 310 300");
@@ -682,7 +651,7 @@ static void test_planet_layers(void **state) {
     p.octaves = 5;
     int n = (int)world_grid_face_samples(&p);
     session s;
-    open_session(&s, open_world(&p));
+    open_session(&s, test_world_open(&p));
     size_t all = 6 * (size_t)n * n;
     float *generated = read_faces(s.ctx.world, n);
     run(&s, "layer new Top; tool raise radius=4000 strength=1; dab 0 0");

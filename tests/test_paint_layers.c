@@ -12,6 +12,7 @@
 #include "editor/world/layer_grid.h"
 #include "io/tile_store.h"
 #include "support/test_support.h"
+#include "support/test_world.h"
 
 #include <setjmp.h>
 #include <stdarg.h>
@@ -23,42 +24,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
-
-static void silent(void *user, const char *message) {
-    (void)user, (void)message;
-}
-
-static world_params flat_params(int64_t size) {
-    world_params p;
-    world_params_default(&p, WORLD_FLAT);
-    p.generator = GEN_FBM;
-    p.seed = 4242;
-    p.octaves = 4;
-    p.size = size;
-    p.spacing = 1.0;
-    p.feature_size = 256.0;
-    p.max_height = 300;
-    return p;
-}
-
-static world *open_world(const world_params *p) {
-    world_settings s = {.cache_budget_bytes = (size_t)256 << 20, .workers = 2, .warn = silent};
-    og_error err;
-    world *w = world_create(p, &s, &err);
-    if (!w) fail_msg("world_create: %s", err.msg);
-    return w;
-}
-
-static uint64_t rng_next(uint64_t *s) {
-    *s ^= *s << 13;
-    *s ^= *s >> 7;
-    *s ^= *s << 17;
-    return *s;
-}
-
-static double rng_unit(uint64_t *s) {
-    return (double)(rng_next(s) >> 11) / 9007199254740992.0;
-}
 
 static void *read_kind(world *w, tile_layer kind, grid_rect r) {
     layer_grid g;
@@ -98,11 +63,13 @@ static void fill_paint(edit *e, int32_t slot, grid_rect r, uint8_t *ref, grid_re
                     int64_t x = tx * TILE_SIZE + i, z = tz * TILE_SIZE + j;
                     if (x < r.x0 || x >= r.x1 || z < r.z0 || z >= r.z1) continue;
                     uint8_t *s = m + ((size_t)j * TILE_SIZE + i) * TILE_MATERIALS;
-                    int total = full ? 255 : rng_unit(seed) < 0.2 ? 0 : (int)(rng_unit(seed) * 256);
+                    int total = full                        ? 255
+                                : test_rng_unit(seed) < 0.2 ? 0
+                                                            : (int)(test_rng_unit(seed) * 256);
                     memset(s, 0, TILE_MATERIALS);
                     for (int left = total; left > 0;) { // a few materials share the total
-                        int c = (int)(rng_next(seed) % TILE_MATERIALS);
-                        int give = left < 40 ? left : 1 + (int)(rng_unit(seed) * left);
+                        int c = (int)(test_rng_next(seed) % TILE_MATERIALS);
+                        int give = left < 40 ? left : 1 + (int)(test_rng_unit(seed) * left);
                         s[c] = (uint8_t)(s[c] + give);
                         left -= give;
                     }
@@ -130,7 +97,8 @@ static void fill_coverage(edit *e, int32_t id, grid_rect r, float *ref, grid_rec
                 for (int i = 0; i < TILE_SIZE; i++) {
                     int64_t x = tx * TILE_SIZE + i, z = tz * TILE_SIZE + j;
                     if (x < r.x0 || x >= r.x1 || z < r.z0 || z >= r.z1) continue;
-                    float c = rng_unit(seed) < 0.05 ? NAN : (float)(rng_unit(seed) * 1.5 - 0.2);
+                    float c =
+                        test_rng_unit(seed) < 0.05 ? NAN : (float)(test_rng_unit(seed) * 1.5 - 0.2);
                     f[j * TILE_SIZE + i] = c;
                     if (x >= area.x0 && x < area.x1 && z >= area.z0 && z < area.z1)
                         ref[(z - area.z0) * (area.x1 - area.x0) + (x - area.x0)] = c;
@@ -144,8 +112,8 @@ static void fill_coverage(edit *e, int32_t id, grid_rect r, float *ref, grid_rec
 // the formula on plain arrays everywhere, across tile edges.
 static void test_paint_composite_matches_arrays(void **state) {
     (void)state;
-    world_params p = flat_params(0);
-    world *w = open_world(&p);
+    world_params p = test_flat_fbm_params(0);
+    world *w = test_world_open(&p);
     grid_rect area = {-300, -280, 320, 290};
     int aw = (int)(area.x1 - area.x0), ah = (int)(area.z1 - area.z0);
     size_t n = (size_t)aw * ah;
@@ -162,21 +130,22 @@ static void test_paint_composite_matches_arrays(void **state) {
         for (int i = 0; i < paints; i++) {
             char name[16];
             snprintf(name, sizeof name, "P%d", i);
-            int at = layer_table_insert(t, i == 0 ? 0 : t->count, name, LAYER_BLEND_ADD,
-                                        rng_unit(&seed) < 0.4 ? 1.0 : rng_unit(&seed), &err);
+            int at =
+                layer_table_insert(t, i == 0 ? 0 : t->count, name, LAYER_BLEND_ADD,
+                                   test_rng_unit(&seed) < 0.4 ? 1.0 : test_rng_unit(&seed), &err);
             t->layers[at].kind = LAYER_KIND_PAINT;
-            t->layers[at].visible = rng_unit(&seed) > 0.2;
+            t->layers[at].visible = test_rng_unit(&seed) > 0.2;
             layer_mask *m = &t->layers[at].mask;
-            if (rng_unit(&seed) < 0.5) {
+            if (test_rng_unit(&seed) < 0.5) {
                 char v[64];
-                snprintf(v, sizeof v, "%.1f,%.1f", rng_unit(&seed) * 100 - 50,
-                         50 + rng_unit(&seed) * 100);
+                snprintf(v, sizeof v, "%.1f,%.1f", test_rng_unit(&seed) * 100 - 50,
+                         50 + test_rng_unit(&seed) * 100);
                 layer_mask_set_option(m, "height", v, &err);
                 layer_mask_set_option(m, "falloff", "12", &err);
-                if (rng_unit(&seed) < 0.5) layer_mask_set_option(m, "slope", "0,20,4", &err);
-                if (rng_unit(&seed) < 0.3) layer_mask_set_option(m, "invert", "1", &err);
+                if (test_rng_unit(&seed) < 0.5) layer_mask_set_option(m, "slope", "0,20,4", &err);
+                if (test_rng_unit(&seed) < 0.3) layer_mask_set_option(m, "invert", "1", &err);
             }
-            if (rng_unit(&seed) < 0.4) layer_mask_set_option(m, "painted", "1", &err);
+            if (test_rng_unit(&seed) < 0.4) layer_mask_set_option(m, "painted", "1", &err);
         }
         edit *e = edit_begin(w, "test paint", &err);
         edit_set_layer_mode(e, EDIT_LAYER_COMPOSED);
@@ -189,10 +158,10 @@ static void test_paint_composite_matches_arrays(void **state) {
         for (int i = 0; i < t->count; i++) {
             if (t->layers[i].kind != LAYER_KIND_PAINT) continue;
             values[i] = calloc(n, TILE_MATERIALS);
-            int64_t x0 = area.x0 + (int64_t)(rng_unit(&seed) * 200),
-                    z0 = area.z0 + (int64_t)(rng_unit(&seed) * 200);
-            int64_t x1 = area.x1 - (int64_t)(rng_unit(&seed) * 200),
-                    z1 = area.z1 - (int64_t)(rng_unit(&seed) * 200);
+            int64_t x0 = area.x0 + (int64_t)(test_rng_unit(&seed) * 200),
+                    z0 = area.z0 + (int64_t)(test_rng_unit(&seed) * 200);
+            int64_t x1 = area.x1 - (int64_t)(test_rng_unit(&seed) * 200),
+                    z1 = area.z1 - (int64_t)(test_rng_unit(&seed) * 200);
             fill_paint(e, t->layers[i].id, (grid_rect){x0, z0, x1, z1}, values[i], area, &seed, 0);
             if (t->layers[i].mask.painted) { // coverage (out of range and NaN too) over a part
                 coverage[i] = calloc(n, sizeof(float));
@@ -285,7 +254,7 @@ typedef struct session {
 } session;
 
 static void open_session(session *s, world *w) {
-    world_settings set = {.warn = silent};
+    world_settings set = {.warn = test_silent};
     s->w = w;
     s->out = tmpfile();
     cmd_context_init(&s->ctx, w, &set, s->out, OROGEN_RESOURCE_DIR);
@@ -342,10 +311,10 @@ static const char *const PAINT = "tool paint material=3 radius=60 strength=0.7; 
 // exact, and a paint layer under another shows its paint where the upper one is clear.
 static void test_paint_tool_on_layer(void **state) {
     (void)state;
-    world_params p = flat_params(600);
+    world_params p = test_flat_fbm_params(600);
     session single, layered;
-    open_session(&single, open_world(&p));
-    open_session(&layered, open_world(&p));
+    open_session(&single, test_world_open(&p));
+    open_session(&layered, test_world_open(&p));
     run(&single, PAINT);
     run(&layered, "layer new Paint kind=paint");
     run(&layered, PAINT);
@@ -413,9 +382,9 @@ static void test_paint_tool_on_layer(void **state) {
 // height layers keeps the heights; both are one undo step.
 static void test_merge_masked(void **state) {
     (void)state;
-    world_params p = flat_params(600);
+    world_params p = test_flat_fbm_params(600);
     session s;
-    open_session(&s, open_world(&p));
+    open_session(&s, test_world_open(&p));
     run(&s, "layer new Lo kind=paint opacity=0.6; tool paint material=3 radius=80 strength=0.8; "
             "stroke 100 100 500 200; layer new Hi kind=paint opacity=0.7; "
             "tool paint material=6 radius=70 strength=0.9; stroke 200 50 300 550; "
@@ -465,9 +434,9 @@ static void test_saved_paint(void **state) {
     char path[256], legacy[256];
     snprintf(path, sizeof path, "%s/a.world", dir);
     snprintf(legacy, sizeof legacy, "%s/b.world", dir);
-    world_params p = flat_params(600);
+    world_params p = test_flat_fbm_params(600);
     session s;
-    open_session(&s, open_world(&p));
+    open_session(&s, test_world_open(&p));
     run(&s, "layer new Paint kind=paint opacity=0.8");
     run(&s, PAINT);
     run(&s, "layer mask Paint height=-inf,70 falloff=15");
@@ -475,7 +444,8 @@ static void test_saved_paint(void **state) {
     og_error err;
     if (world_save(s.ctx.world, path, 0, &err) != 0) fail_msg("%s", err.msg);
     close_session(&s);
-    world_settings set = {.cache_budget_bytes = (size_t)256 << 20, .workers = 2, .warn = silent};
+    world_settings set = {
+        .cache_budget_bytes = (size_t)256 << 20, .workers = 2, .warn = test_silent};
     world *w = world_load(path, &set, NULL, &err);
     if (!w) fail_msg("%s", err.msg);
     open_session(&s, w);
@@ -490,7 +460,7 @@ static void test_saved_paint(void **state) {
     assert_memory_equal(saved, loaded, (size_t)ALL_N * TILE_MATERIALS);
     close_session(&s);
     // Paint written straight into the composite (as before paint layers).
-    w = open_world(&p);
+    w = test_world_open(&p);
     open_session(&s, w);
     edit *e = edit_begin(w, "old paint", &err);
     edit_set_layer_mode(e, EDIT_LAYER_COMPOSED);
@@ -542,9 +512,9 @@ static float *read_slot(world *w, int32_t slot, grid_rect r) {
 // erasing, inverting, clearing, duplicating, undo/redo and save/load keep it.
 static void test_painted_mask(void **state) {
     (void)state;
-    world_params p = flat_params(600);
+    world_params p = test_flat_fbm_params(600);
     session s;
-    open_session(&s, open_world(&p));
+    open_session(&s, test_world_open(&p));
     run(&s, "layer new Hills opacity=0.8; tool raise radius=150 strength=0.8; "
             "stroke 100 300 500 300; stroke 300 100 300 500");
     float *full = read_kind(s.ctx.world, TILE_LAYER_COARSE, ALL);
@@ -600,7 +570,8 @@ static void test_painted_mask(void **state) {
     og_error err;
     if (world_save(s.ctx.world, path, 0, &err) != 0) fail_msg("%s", err.msg);
     close_session(&s);
-    world_settings set = {.cache_budget_bytes = (size_t)256 << 20, .workers = 2, .warn = silent};
+    world_settings set = {
+        .cache_budget_bytes = (size_t)256 << 20, .workers = 2, .warn = test_silent};
     world *w = world_load(path, &set, NULL, &err);
     if (!w) fail_msg("%s", err.msg);
     open_session(&s, w);
@@ -624,9 +595,9 @@ static void test_painted_mask(void **state) {
 // renderer rebuild everything).
 static void test_layer_commands_publish_layers(void **state) {
     (void)state;
-    world_params p = flat_params(600);
+    world_params p = test_flat_fbm_params(600);
     session s;
-    open_session(&s, open_world(&p));
+    open_session(&s, test_world_open(&p));
     run(&s, "layer new Hills; tool raise radius=40 strength=0.5; stroke 100 100 150 120; "
             "layer new Paint kind=paint; tool paint material=3 radius=30; stroke 400 400");
     world_subscription *sub = world_events_subscribe(world_event_hub(s.ctx.world), NULL, NULL);
@@ -667,9 +638,9 @@ static void test_removed_layers_leave_store(void **state) {
     char dir[] = "/tmp/orogen_drop_XXXXXX", path[256];
     assert_non_null(mkdtemp(dir));
     snprintf(path, sizeof path, "%s/d.world", dir);
-    world_params p = flat_params(600);
+    world_params p = test_flat_fbm_params(600);
     session s;
-    open_session(&s, open_world(&p));
+    open_session(&s, test_world_open(&p));
     run(&s, "layer new Gone; tool raise radius=60 strength=0.5; stroke 100 100 500 500; "
             "layer mask Gone painted=1; tool raise target=mask radius=80 strength=1; "
             "stroke 100 100 300 300; layer new P kind=paint; tool paint material=2 radius=50; "
