@@ -197,7 +197,9 @@ void mask_editor(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v, co
             snprintf(line, sizeof line, "No histogram: %s", s->hist_error);
         ui_label_wrapped(ui, line, th->text_dim);
     } else {
-        ui_label_wrapped(ui, "On a planet the ranges are typed (no histogram or overlay)",
+        ui_label_wrapped(ui,
+                         "On a planet the ranges are typed (no histogram); the view tints where "
+                         "the mask applies",
                          th->text_dim);
     }
     for (int k = 0; k < TERM_COUNT; k++)
@@ -227,7 +229,7 @@ void mask_editor(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v, co
     ui_row(ui, 1, NULL, 0);
     if (ui_button(ui, "Close mask editor")) s->mask_layer = 0;
     ui_pop_scope(ui);
-    if (flat && s->mask_layer)
+    if (s->mask_layer)
         set_overlay(&v->settings, &s->draft);
     else
         v->settings.mask_terms = 0;

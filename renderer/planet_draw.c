@@ -119,6 +119,11 @@ static void ground_frame_uniforms(planet_renderer *r, GLuint prog, const ground_
     planet_detail_bind(r->detail, prog, s, 2, 3);
     glProgramUniform1i(prog, glGetUniformLocation(prog, "u_overlays"),
                        (s->tile_grid ? 1 : 0) | (s->level_grid ? 2 : 0));
+    glProgramUniform3i(prog, glGetUniformLocation(prog, "u_mask"), s->mask_terms != 0,
+                       s->mask_invert, s->mask_terms);
+    glProgramUniform4fv(prog, glGetUniformLocation(prog, "u_mask_height"), 1, s->mask_height);
+    glProgramUniform4fv(prog, glGetUniformLocation(prog, "u_mask_slope"), 1, s->mask_slope);
+    glProgramUniform4fv(prog, glGetUniformLocation(prog, "u_mask_curvature"), 1, s->mask_curvature);
 }
 
 // The variant a chunk is drawn with: only what it can show this frame.
@@ -136,7 +141,7 @@ static int chunk_variant(const planet_renderer *r, const chunk *c, const ground_
     // there (it is zero until edited) and some of the chunk is nearer than the
     // detail's fade-out distance.
     int v = detail[3] > 0 && to_chunk - c->reach < s->detail_distance ? V_DETAIL : 0;
-    if (s->tile_grid || s->level_grid) v |= V_OVERLAYS;
+    if (s->tile_grid || s->level_grid || s->mask_terms) v |= V_OVERLAYS;
     if (f->brush[3] > 0) { // the cursor reaches the chunk (raised to the sea where under it)
         double d2 = 0;
         for (int k = 0; k < 3; k++) {

@@ -38,7 +38,7 @@ typedef struct render_settings {
                                // slope) colour unpainted ground; off: a neutral clay (1)
     double lod_pixels;         // planets: pixels a sample may cover before its chunk splits (6)
     int antialias;             // edges smoothed in the finished image (renderer/antialias.h) (1)
-    // A layer mask being edited, drawn over flat terrain (the Layers panel's mask editor):
+    // A layer mask being edited, drawn over the terrain (the Layers panel's mask editor):
     // mask_terms bits 1 height, 2 slope, 4 curvature (0: none drawn), each term's corners
     // where its weight starts rising, reaches 1, starts falling, reaches 0 (metres,
     // degrees, -100 x Laplacian; +-1e30 for open ends), mask_invert as the mask's invert.

@@ -47,6 +47,10 @@ uniform float u_slope_scale; // the slopes the level-0 samples would show over t
                              // normal texture's coarser ones do (renderer/planet_draw.c)
 uniform int u_palette;     // 0: the automatic rules; 1 airless and dry (rock, gravel); 2 dry
                            // with air (sand, dirt, rock)
+// The mask editor's overlay, as on flat worlds (render_settings.h mask_*): x on, y invert,
+// z the terms drawn (1 height, 2 slope, 4 curvature); each term's corners.
+uniform ivec3 u_mask;
+uniform vec4 u_mask_height, u_mask_slope, u_mask_curvature; // metres, degrees, -100 x Laplacian
 
 vec3 level_colour(int l) {
     const vec3 c[6] = vec3[6](vec3(0.9, 0.3, 0.3), vec3(0.9, 0.7, 0.2), vec3(0.4, 0.8, 0.3),
@@ -169,6 +173,40 @@ vec3 fine_normal(vec3 up) {
     return normalize(mix(normalize(v_normal), fine, clamp(edge, 0.0, 1.0)));
 }
 
+#ifdef OVERLAYS
+// The rules' curvature, -100 x the Laplacian (positive convex), from the normal texture:
+// the divergence of the gradient its neighbouring texels give. Each gradient component is
+// signed along the direction the metres grow on the screen (metre_axes), as the faces'
+// tangent frames differ in handedness. Coarser chunks' textures see broader shapes.
+float curvature_here(vec3 up) {
+    vec3 t = normalize(u_face_axis - up * dot(up, u_face_axis)), b = cross(up, t), ta, ba;
+    metre_axes(up, ta, ba);
+    vec2 sgn = vec2(dot(t, ta) < 0.0 ? -1.0 : 1.0, dot(b, ba) < 0.0 ? -1.0 : 1.0);
+    vec2 size = vec2(textureSize(u_normals, 0).xy);
+    vec2 st = (v_metres - u_normal_map.xy) * u_normal_map.z / size;
+    float lap = 0.0;
+    for (int k = 0; k < 2; k++) {
+        vec2 d = (k == 0 ? vec2(1.0, 0.0) : vec2(0.0, 1.0)) / size;
+        vec2 a = texture(u_normals, vec3(st + d, u_normal_map.w)).rg;
+        vec2 c = texture(u_normals, vec3(st - d, u_normal_map.w)).rg;
+        float ga = -a[k] / sqrt(max(1.0 - dot(a, a), 1e-4)), gc = -c[k] / sqrt(max(1.0 - dot(c, c), 1e-4));
+        lap += sgn[k] * (ga - gc) * 0.5 * u_normal_map.z; // a texel is 1 / z metres
+    }
+    return -100.0 * lap;
+}
+
+// Where the edited mask lets its layer apply: tinted there, dimmed elsewhere (the terms
+// of editor/layers/layer_mask.h over the drawn surface; slopes scaled to the samples').
+vec3 with_mask(vec3 c, float slope, vec3 up) {
+    float w = 1.0;
+    if ((u_mask.z & 1) != 0) w *= rule_term(u_mask_height, v_height);
+    if ((u_mask.z & 2) != 0) w *= rule_term(u_mask_slope, degrees(atan(slope * u_slope_scale)));
+    if ((u_mask.z & 4) != 0) w *= rule_term(u_mask_curvature, curvature_here(up));
+    if (u_mask.y != 0) w = 1.0 - w;
+    return mix(c * 0.4, mix(c, vec3(1.0, 0.2, 0.55), 0.45), w);
+}
+#endif
+
 void main() {
     vec3 up = normalize(v_up), n = fine_normal(up);
     float dist = length(v_rel);
@@ -246,6 +284,7 @@ vec3 base = ground_albedo(uv, uv_far, slope, up);
 #endif
 #ifdef OVERLAYS
     c = with_grids(c);
+    if (u_mask.x != 0) c = with_mask(c, slope, up);
 #endif
 #ifdef SHADED // the air between the camera and the ground
     {
