@@ -134,13 +134,11 @@ static void rule_editor(editor_ui *e, ui_context *ui, cmd_context *ctx, int n,
 void materials_panel(editor_ui *e, ui_context *ui, cmd_context *ctx) {
     const world_params *p = world_get_params(ctx->world);
     ui_row(ui, 1, NULL, 0);
-    if (p->kind == WORLD_PLANET) {
+    if (p->kind == WORLD_PLANET)
         ui_label_wrapped(ui,
-                         "A planet draws its own material rules (by latitude, height and "
-                         "slope).",
+                         "These rules lay over the planet's own look (by climate, latitude, "
+                         "height and slope).",
                          ui_get_theme(ui)->text_dim);
-        return;
-    }
     const material_rules *rules = &p->material_rules;
     const ui_color *means = material_means();
     const ui_color dim = ui_get_theme(ui)->text_dim;
@@ -209,7 +207,9 @@ void materials_panel(editor_ui *e, ui_context *ui, cmd_context *ctx) {
                        : "The stack is full (16 rules)");
     ui_row(ui, 1, NULL, 0);
     if (ui_button(ui, "Default rules")) runf(e, ctx, "material_rule reset");
-    ui_tooltip(ui, "Bring back the default stack: sand, grass, rock, cliff, snow (one undo "
-                   "step)");
+    ui_tooltip(ui, p->kind == WORLD_PLANET
+                       ? "Back to no rules: the planet's own look (one undo step)"
+                       : "Bring back the default stack: sand, grass, rock, cliff, snow (one "
+                         "undo step)");
     if (*sel >= 0 && *sel < rules->count) rule_editor(e, ui, ctx, *sel + 1, &rules->rule[*sel]);
 }

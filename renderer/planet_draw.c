@@ -3,6 +3,7 @@
 #include "renderer/planet_internal.h"
 #include "renderer/planet_renderer.h"
 
+#include "renderer/material_rule_uniforms.h"
 #include "renderer/planet_camera.h"
 #include "renderer/shader.h"
 
@@ -14,8 +15,8 @@ ground_program *planet_ground_variant(planet_renderer *r, int variant, og_error 
     ground_program *g = &r->ground[variant];
     if (g->prog) return g;
     static const char *const names[] = {"SHADED", "DETAIL",   "SEA",      "PAINTED", "BARE",
-                                        "BRUSH",  "OVERLAYS", "MINIFIED", "SEAM"};
-    g->prog = shader_program_load_flags(r->shader_dir, "planet.vert", "planet.frag", names, 9,
+                                        "BRUSH",  "OVERLAYS", "MINIFIED", "SEAM",    "RULES"};
+    g->prog = shader_program_load_flags(r->shader_dir, "planet.vert", "planet.frag", names, 10,
                                         (unsigned)variant, err);
     if (!g->prog) return NULL;
     g->offset = glGetUniformLocation(g->prog, "u_offset");
@@ -124,6 +125,9 @@ static void ground_frame_uniforms(planet_renderer *r, GLuint prog, const ground_
     glProgramUniform4fv(prog, glGetUniformLocation(prog, "u_mask_height"), 1, s->mask_height);
     glProgramUniform4fv(prog, glGetUniformLocation(prog, "u_mask_slope"), 1, s->mask_slope);
     glProgramUniform4fv(prog, glGetUniformLocation(prog, "u_mask_curvature"), 1, s->mask_curvature);
+    material_rule_uniforms(prog, &r->rules);
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "u_rules_curvature"),
+                       r->rules.uses_curvature);
 }
 
 // The variant a chunk is drawn with: only what it can show this frame.
@@ -168,6 +172,7 @@ static int chunk_variant(const planet_renderer *r, const chunk *c, const ground_
         v |= V_SEA;
     if (c->painted) v |= V_PAINTED;
     if (c->blended) v |= V_SEAM;
+    if (material_rules_live(&r->rules, c->lowest - 1.0, c->hmax + 1.0, 1e30)) v |= V_RULES;
     return v;
 }
 
@@ -281,6 +286,11 @@ int planet_renderer_draw(planet_renderer *r, const camera *cam, const render_set
     double t0 = now_ms();
     double aspect = (double)width / (double)(height > 0 ? height : 1);
     ground_frame f = {.cam = cam, .s = s};
+    // The world's material rules over the planet's look, resolved as the shaders read
+    // them (their sea level as u_ocean_level's).
+    const world_params *p = &r->params;
+    material_rules_resolve(&p->material_rules, fmax(world_params_ocean_height(p), -p->max_height),
+                           p->max_height, &r->rules);
     planet_camera_view_projection(cam, aspect, f.view_proj);
     glViewport(0, 0, width, height);
     glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);

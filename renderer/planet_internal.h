@@ -5,6 +5,7 @@
 #ifndef OROGEN_RENDERER_PLANET_INTERNAL_H
 #define OROGEN_RENDERER_PLANET_INTERNAL_H
 
+#include "editor/layers/material_rules.h"
 #include "editor/params/world_grid.h"
 #include "editor/world/world.h"
 #include "io/err.h"
@@ -105,7 +106,8 @@ enum {
     V_OVERLAYS = 64,
     V_MINIFIED = 128,
     V_SEAM = 256,
-    VARIANTS = 512
+    V_RULES = 512,
+    VARIANTS = 1024
 };
 
 typedef struct ground_program {
@@ -151,6 +153,7 @@ struct planet_renderer {
     double split_pixels;      // a sample wider than this on screen: its chunk splits
     int draw_count;
     int draw_list[MAX_CHUNKS];
+    material_rules_resolved rules; // this frame: the world's material rules (V_RULES)
     // Drawing: the chosen chunks nearest first, those hidden by nearer ground left out.
     int shown_count;
     int shown[MAX_CHUNKS];

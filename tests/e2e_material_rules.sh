@@ -105,12 +105,19 @@ for bad in "material_rule set 9 height=1,2|expected a rule number 1..5, got '9'"
            "material_rule set 2 colour=red|colour=red: unknown rule key" \
            "material_rule add lava|material=lava: expected sand, grass" \
            "material_rule move 5 up|rule 5 is already at the top" \
-           "material_rule spin 2|expected add, set, move, delete or reset, got 'spin'" \
-           "new planet; material_rules|the material rules are a flat world's"; do
+           "material_rule spin 2|expected add, set, move, delete or reset, got 'spin'"; do
     run -c "${bad%%|*}"
     [ $status != 0 ] && grep -qF -- "${bad#*|}" "$work/err"
     check "'${bad%%|*}' is refused: ${bad#*|} ($(cat "$work/err"))" $?
 done
+
+# A planet's rules lay over its own look: none at first, then as on a flat world.
+run -c "new planet preset=moon; material_rules; material_rule add snow height=1000,inf,50;
+        material_rules; material_rule reset; material_rules"
+[ $status = 0 ] && grep -q "^material_rules: 0 rules, .*over the planet's own look" "$work/out" &&
+    grep -q '^rule 1: snow height=1000,inf,50$' "$work/out" &&
+    [ "$(grep -c '^material_rules: 0 rules' "$work/out")" = 2 ]
+check "a planet starts with no rules, takes them and resets to none ($(cat "$work/err"))" $?
 
 # 3. Save and load keep the stack; an old file gets the default stack; a bad line is
 # an error naming the file and line.

@@ -4,7 +4,7 @@
 # picked and moved, Edit putting its command in the console, Delete, Add rule, Default
 # rules, a rule's range typed in place and a rule dragged to another place; every
 # click a material_rule command (echoed, one undo step each), read back through the
-# console. On a planet the panel says the planet draws its own rules. The
+# console. On a planet the panel says the rules lay over its own look, and takes them. The
 # UI runs strict (an id conflict would stop the editor). Screenshots go to
 # ${OROGEN_TEST_ARTIFACTS:-build/test-artifacts}.
 # Usage: e2e_materials_panel.sh OROGEN TESTS_DIR
@@ -109,10 +109,14 @@ echo "undo" >&3
 s=$(stack_until "sand grass rock snow sand "); check "undo takes Default rules back ($s)" $?
 shot after
 
-# 5. A planet: the panel says it draws its own rules; drawn without an id conflict.
+# 5. A planet: no rules at first, over its own look; Add rule adds one; drawn without
+# an id conflict.
 echo "new planet preset=moon" >&3
-widget "Dock/A planet draws its own*" 40 >/dev/null
-check "on a planet the panel says the planet draws its own rules" $?
+widget "Dock/These rules lay over*" 40 >/dev/null
+check "on a planet the panel says the rules lay over the planet's own look" $?
+s=$(stack_until ""); check "a planet starts with no rules ($s)" $?
+click "Dock/Add rule"
+s=$(stack_until "sand "); check "Add rule adds one on a planet ($s)" $?
 alive; check "the editor is alive: no widget id conflict ($(tail -c 300 "$work/err"))" $?
 shot planet
 

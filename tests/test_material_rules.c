@@ -179,6 +179,47 @@ static void test_file_lines(void **state) {
     test_rmtree(dir);
 }
 
+// A planet's rules lay over its own look: none by default, and a planet file saved before
+// planets took rules (save wrote the flat default stack) reads as none; rules a person
+// wrote stay.
+static void test_planet_stack(void **state) {
+    (void)state;
+    world_params p, back;
+    world_params_default(&p, WORLD_PLANET);
+    assert_int_equal(p.material_rules.count, 0);
+    char dir[4096], path[4200];
+    snprintf(dir, sizeof dir, "%s", test_tmpdir("planet-rules"));
+    snprintf(path, sizeof path, "%s/p.planet", dir);
+    static const char old[] = "radius = 6371000;\nmax_height = 8848;\n"
+                              "material_rule_1 = sand;\n"
+                              "material_rule_2 = grass height=1%+6,inf,6;\n"
+                              "material_rule_3 = rock slope=40.3645,90,11.5537;\n"
+                              "material_rule_4 = cliff slope=56.3099,90,8.5836;\n"
+                              "material_rule_5 = snow height=62%+40,inf,80 "
+                              "slope=0,28.8108,9.849;\n";
+    test_write_file(path, old, sizeof old - 1);
+    int errors = -1;
+    og_error err = {{0}};
+    if (world_params_load(path, &back, &errors, NULL, NULL, &err)) fail_msg("%s", err.msg);
+    assert_int_equal(errors, 0);
+    assert_int_equal(back.kind, WORLD_PLANET);
+    assert_int_equal(back.material_rules.count, 0);
+    // The same lines in a flat world's file are that world's rules.
+    snprintf(path, sizeof path, "%s/w.world", dir);
+    test_write_file(path, old, sizeof old - 1);
+    if (world_params_load(path, &back, &errors, NULL, NULL, &err)) fail_msg("%s", err.msg);
+    assert_int_equal(back.material_rules.count, 5);
+    // A planet's own rules survive save and load.
+    snprintf(path, sizeof path, "%s/q.planet", dir);
+    material_rule snow = rule_of("snow height=3000,inf,50 slope=0,30,5");
+    material_rules_insert(&p.material_rules, 0, &snow, NULL);
+    if (world_params_save(path, &p, &err)) fail_msg("%s", err.msg);
+    if (world_params_load(path, &back, &errors, NULL, NULL, &err)) fail_msg("%s", err.msg);
+    assert_int_equal(errors, 0);
+    assert_true(material_rules_equal(&back.material_rules, &p.material_rules));
+    test_rmtree(dir);
+}
+
 // Relative heights follow the world's sea and max_height; corners as the shaders take them.
 static void test_resolve(void **state) {
     (void)state;
@@ -257,11 +298,9 @@ static void test_undo(void **state) {
 
 int main(void) {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_text_round_trip),
-        cmocka_unit_test(test_bad_rules),
-        cmocka_unit_test(test_file_lines),
-        cmocka_unit_test(test_resolve),
-        cmocka_unit_test(test_undo),
+        cmocka_unit_test(test_text_round_trip), cmocka_unit_test(test_bad_rules),
+        cmocka_unit_test(test_file_lines),      cmocka_unit_test(test_planet_stack),
+        cmocka_unit_test(test_resolve),         cmocka_unit_test(test_undo),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -23,21 +23,15 @@ static void print_rule(cmd_context *ctx, const world_params *p, int i) {
     fputc('\n', ctx->out);
 }
 
-static int refuse_planet(cmd_context *ctx, const char *what, og_error *err) {
-    if (world_get_params(ctx->world)->kind != WORLD_PLANET) return 0;
-    return og_error_set(err,
-                        "%s: the material rules are a flat world's; a planet draws its own "
-                        "(by latitude, height and slope)",
-                        what);
-}
-
 int cmd_material_rules(cmd_context *ctx, int argc, char **argv, og_error *err) {
-    (void)argc, (void)argv;
-    if (refuse_planet(ctx, "material_rules", err)) return -1;
+    (void)argc, (void)argv, (void)err;
     const world_params *p = world_get_params(ctx->world);
     const material_rules *rules = &p->material_rules;
-    fprintf(ctx->out, "material_rules: %d rule%s, bottom first (each covers the ones below)\n",
-            rules->count, rules->count == 1 ? "" : "s");
+    fprintf(ctx->out, "material_rules: %d rule%s, bottom first (each covers the ones below)%s\n",
+            rules->count, rules->count == 1 ? "" : "s",
+            p->kind == WORLD_PLANET ? ", over the planet's own look (climate, latitude, height "
+                                      "and slope)"
+                                    : "");
     for (int i = 0; i < rules->count; i++)
         print_rule(ctx, p, i);
     return 0;
@@ -140,13 +134,15 @@ static int rule_move(cmd_context *ctx, material_rules *next, int from, const cha
 }
 
 int cmd_material_rule(cmd_context *ctx, int argc, char **argv, og_error *err) {
-    if (refuse_planet(ctx, "material_rule", err)) return -1;
     material_rules next = world_get_params(ctx->world)->material_rules;
     const char *verb = argv[1];
     if (!strcmp(verb, "add")) return rule_add(ctx, &next, argc, argv, err);
     if (!strcmp(verb, "reset")) {
         if (argc > 2) return og_error_set(err, "material_rule reset: takes no arguments");
-        material_rules_default(&next);
+        if (world_get_params(ctx->world)->kind == WORLD_PLANET)
+            material_rules_planet_default(&next);
+        else
+            material_rules_default(&next);
         if (commit(ctx, &next, argc, argv, err)) return -1;
         fprintf(ctx->out, "material_rules: the default stack (%d rules)\n", next.count);
         return 0;

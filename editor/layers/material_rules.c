@@ -39,6 +39,17 @@ void material_rules_default(material_rules *r) {
     r->implicit = 1;
 }
 
+void material_rules_planet_default(material_rules *r) {
+    memset(r, 0, sizeof *r);
+    r->implicit = 1;
+}
+
+void material_rules_planet_adopt(material_rules *r) {
+    material_rules flat;
+    material_rules_default(&flat);
+    if (r->implicit || material_rules_equal(r, &flat)) material_rules_planet_default(r);
+}
+
 static int same_height(const material_height *a, const material_height *b) {
     return a->relative == b->relative && a->percent == b->percent && a->metres == b->metres;
 }

@@ -55,6 +55,13 @@ int material_parse(const char *text);
 // above 62% of the relief on gentle slopes (what materials.glsl hard-coded before);
 // implicit (see above).
 void material_rules_default(material_rules *r);
+// A planet's default: no rules, so the planet's own look (by climate, latitude, height and
+// slope) shows; its rules lay over that look as a flat world's lay over the first rule.
+// Implicit as above.
+void material_rules_planet_default(material_rules *r);
+// For a planet's file once read: planet files saved before planets took rules hold the
+// flat default stack (save wrote it; it drew nothing), which reads as the planet default.
+void material_rules_planet_adopt(material_rules *r);
 int material_rules_equal(const material_rules *a, const material_rules *b);
 
 // A rule from its text, "MATERIAL [height=LO,HI[,EDGE]] [slope=...] [curvature=...]

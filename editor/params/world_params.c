@@ -158,7 +158,10 @@ void world_params_default(world_params *p, world_kind kind) {
         p->omega = 7.2921e-5;
         p->spacing = 100;
     }
-    material_rules_default(&p->material_rules);
+    if (kind == WORLD_PLANET)
+        material_rules_planet_default(&p->material_rules);
+    else
+        material_rules_default(&p->material_rules);
 }
 
 double world_params_ocean_height(const world_params *p) {
@@ -523,6 +526,7 @@ int world_params_load_whole(const char *path, world_params *p, int *errors,
     og_error v_err;
     layer_table_finish(&p->layers, NULL);
     material_rules_finish(&p->material_rules);
+    if (p->kind == WORLD_PLANET) material_rules_planet_adopt(&p->material_rules);
     if (pf.count && world_params_validate(p, &v_err) != 0)
         param_file_diag(&pf, PARAM_ERROR, 0, "%s", v_err.msg);
     // Changed since saved, with lines that no longer read: damage, not an edit by hand.

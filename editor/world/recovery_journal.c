@@ -408,6 +408,7 @@ static int get_params(cursor *c, world_params *p) {
         rc = world_params_read_entry(p, pf.entries[i].key, pf.entries[i].value, NULL) == 0 ? 0 : -1;
     layer_table_finish(&p->layers, NULL);
     material_rules_finish(&p->material_rules);
+    if (p->kind == WORLD_PLANET) material_rules_planet_adopt(&p->material_rules);
     param_file_free(&pf);
     return rc;
 }

@@ -7,7 +7,8 @@
 // under the sea), PAINTED (painted weights), BARE (a planet without a sea: bare
 // ground), BRUSH (the cursor reaches it), OVERLAYS (a View menu grid is on), MINIFIED
 // (so far that the material textures' near scale is below a pixel), SEAM (near a face's
-// edge: the neighbouring faces' textures blend in). A software
+// edge: the neighbouring faces' textures blend in), RULES (the world's material rules lay
+// over the planet's look: planet_rules.glsl). A software
 // renderer runs every branch of an `if` for every fragment, so what a chunk cannot show
 // is left out of its program rather than skipped at run time.
 #include "materials.glsl"
@@ -85,6 +86,9 @@ vec3 with_grids(vec3 c) {
     return c;
 }
 
+#include "planet_curvature.glsl"
+#include "planet_rules.glsl"
+
 #if defined(SHADED) && !defined(BARE)
 in vec2 v_climate; // planet_climate's moisture and breakup (planet.vert)
 
@@ -147,6 +151,9 @@ vec3 ground_albedo(vec2 uv, vec2 uv_far, float slope, vec3 up) {
 #else
     base = planet_automatic(v_height, slope, up.y, uv, uv_far);
 #endif
+#ifdef RULES
+    base = planet_rules(base, v_height, slope * u_slope_scale, up, uv, uv_far);
+#endif
 #ifdef PAINTED // as the flat viewport blends the weights
     base = base * v_paint0.x + albedo(0, uv, uv_far).rgb * v_paint0.y +
            albedo(1, uv, uv_far).rgb * v_paint0.z + albedo(2, uv, uv_far).rgb * v_paint0.w +
@@ -174,27 +181,6 @@ vec3 fine_normal(vec3 up) {
 }
 
 #ifdef OVERLAYS
-// The rules' curvature, -100 x the Laplacian (positive convex), from the normal texture:
-// the divergence of the gradient its neighbouring texels give. Each gradient component is
-// signed along the direction the metres grow on the screen (metre_axes), as the faces'
-// tangent frames differ in handedness. Coarser chunks' textures see broader shapes.
-float curvature_here(vec3 up) {
-    vec3 t = normalize(u_face_axis - up * dot(up, u_face_axis)), b = cross(up, t), ta, ba;
-    metre_axes(up, ta, ba);
-    vec2 sgn = vec2(dot(t, ta) < 0.0 ? -1.0 : 1.0, dot(b, ba) < 0.0 ? -1.0 : 1.0);
-    vec2 size = vec2(textureSize(u_normals, 0).xy);
-    vec2 st = (v_metres - u_normal_map.xy) * u_normal_map.z / size;
-    float lap = 0.0;
-    for (int k = 0; k < 2; k++) {
-        vec2 d = (k == 0 ? vec2(1.0, 0.0) : vec2(0.0, 1.0)) / size;
-        vec2 a = texture(u_normals, vec3(st + d, u_normal_map.w)).rg;
-        vec2 c = texture(u_normals, vec3(st - d, u_normal_map.w)).rg;
-        float ga = -a[k] / sqrt(max(1.0 - dot(a, a), 1e-4)), gc = -c[k] / sqrt(max(1.0 - dot(c, c), 1e-4));
-        lap += sgn[k] * (ga - gc) * 0.5 * u_normal_map.z; // a texel is 1 / z metres
-    }
-    return -100.0 * lap;
-}
-
 // Where the edited mask lets its layer apply: tinted there, dimmed elsewhere (the terms
 // of editor/layers/layer_mask.h over the drawn surface; slopes scaled to the samples').
 vec3 with_mask(vec3 c, float slope, vec3 up) {
