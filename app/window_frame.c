@@ -224,6 +224,7 @@ failed:
 int render_terrain(window_state *st, int vw, int vh, int arrived) {
     viewport *v = st->v;
     if (vw <= 0 || vh <= 0) return 0;
+    v->aspect = (double)vw / vh; // a new planet's first view fits its disc in this view
     update_cursor(st);
     // The cursor is drawn with the terrain: while it moves the frame is made at the
     // moving scale too, so it follows the pointer at the frame-time goal.

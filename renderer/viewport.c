@@ -36,22 +36,25 @@ void viewport_destroy(viewport *v) {
 int viewport_default_camera(viewport *v, world *w, og_error *err) {
     const world_params *p = world_get_params(w);
     if (p->kind == WORLD_PLANET) {
-        // From orbit, oblique: half a radius up, the limb (48 degrees under the level)
-        // and the sky in the top of the view, the ground below lit from the side (the sun 55
-        // degrees from the camera's foot, toward the equator from the point under the sun, and on
-        // the camera's left), so relief reads by its shading and all the ground in view is in
-        // daylight (the horizon lies 48 degrees off: at most 68 degrees from under the sun).
+        // The whole disc from orbit, lit, as a globe viewer opens: the camera looks at the
+        // centre from the day side, 28 degrees from the point under the sun (toward the
+        // equator and west of it), so the sun stands above and to the right of the view,
+        // relief reads by its shading and all but a sliver at the limb is in daylight. The
+        // disc (radius plus highest peak) fills DISC of the view's half-height, or of its
+        // half-width when the view is taller than wide.
+        const double DISC = 0.8;
         float sun[3];
         render_sun_direction(&v->settings, sun);
         const double sun_dir[3] = {sun[0], sun[1], sun[2]};
         double lat, lon;
         planet_lat_lon(sun_dir, &lat, &lon);
         camera_default(&v->cam);
-        const double away = 55.0;
-        planet_position(lat >= 0 ? lat - away : lat + away, lon, 1.5 * (p->radius + p->max_height),
-                        v->cam.pos);
-        v->cam.yaw = lat >= 0 ? 90.0 : 270.0; // the sun (poleward of the camera) on the left
-        v->cam.pitch = -acos(1.0 / 1.5) * 180.0 / M_PI - 14.0; // the limb 14 degrees up
+        const double narrow = v->aspect > 0 ? fmin(v->aspect, 1.0) : 1.0;
+        const double half = atan(DISC * narrow * tan(0.5 * v->cam.fov_y * M_PI / 180.0));
+        const double distance = (p->radius + p->max_height) / sin(half);
+        planet_position(lat >= 0 ? lat - 20.0 : lat + 20.0, lon - 22.0, distance, v->cam.pos);
+        v->cam.yaw = 0.0; // north up
+        v->cam.pitch = -CAMERA_PITCH_LIMIT;
         v->cam_set = 1;
         return 0;
     }
@@ -165,6 +168,7 @@ int viewport_screenshot(viewport *v, world *w, const char *path, int width, int 
                         og_error *err) {
     if (viewport_prepare(v, err) != 0) return -1;
     terrain_renderer_set_view_size(v->renderer, width, height);
+    v->aspect = (double)width / height;
     if (viewport_settle(v, w, err) != 0) return -1;
     gl_target target, smooth = {0};
     if (gl_target_create(&target, width, height, err) != 0) return -1;

@@ -28,13 +28,16 @@ typedef struct viewport {
     antialias *aa; // made when first used
     char resource_dir[4096];
     double wait_seconds; // how long a screenshot waits for tiles (default 600)
+    double aspect;       // width over height of the view shown (0: not known, taken as 1)
 } viewport;
 
 viewport *viewport_create(const char *resource_dir);
 void viewport_destroy(viewport *v);
 
 // A view over the world's centre (or the origin of an unbounded world), a few hundred
-// metres above the ground, looking out over the terrain.
+// metres above the ground, looking out over the terrain. Planets: the whole disc from
+// orbit, north up, seen from the day side with the sun behind the camera's right
+// shoulder (the visible hemisphere lit), inside the view whatever its aspect.
 int viewport_default_camera(viewport *v, world *w, og_error *err);
 // The editor's first view of a flat world: the default camera turned to face the nearest
 // land well above the sea (searched in rings out to 3 km from the centre), from a

@@ -258,11 +258,11 @@ run "new planet; camera_geo 10 10 nan"
 grep -q "ALT" "$work/err"; check "NaN altitude refused" $?
 
 # A camera placed for the flat world before `new planet` is not the planet's: the batch
-# shows the new world from its default camera (from half a radius up, 55 degrees toward
-# the equator from under the default sun at 35 N, 45 E, looking east with the limb in
-# view: oblique, all of the ground in view in daylight), not from the planet's centre.
+# shows the new world from its default camera (the whole disc from the day side, 28
+# degrees from under the default sun at 35 N, 45 E, north up; test_planet_first_view
+# measures it), not from the planet's centre.
 run "camera 400 -50 600 30 -25; new planet preset=moon; screenshot $work/after_new.png 64 36; camera"
-grep -q '^camera_geo -20.000000 45.000000 [0-9.]* 90.000 -62.190' "$work/out"
+grep -q '^camera_geo 15.000000 23.000000 [0-9.]* 0.000 -89.900' "$work/out"
 rc=$?; check "after new planet a batch screenshot places the planet's own camera ($(grep '^camera' "$work/out" | tr '\n' ' '))" $rc
 
 echo "$passes passed, $failures failed"

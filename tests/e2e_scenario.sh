@@ -260,6 +260,9 @@ widget "Unsaved changes/Discard" 8 >/dev/null && click "Unsaved changes/Discard"
 planet=$(ask_until nparams '^radius = ' '^radius = [0-9]*;$')
 ask_until info '^kind=' '^kind=planet$' >/dev/null; check "File > New planet makes a planet ($planet)" $?
 wait_title "pending 0$" >/dev/null
+# It opens on the whole disc from the day side, north up (test_planet_first_view measures it).
+line=$(ask camera '^camera_geo '); case "$line" in "camera_geo 15.000000 23.000000 "*" 0.000 -89.900 "*) true ;; *) false ;; esac
+check "the new planet opens on the whole lit disc ($line)" $?
 r0=$(ask tool '^radius=')
 read -r x y w h <<<"$(widget "Dock/Radius")"
 xdotool mousemove --window "$wid" $((x + w / 4)) $((y + h / 2)) mousedown 1 \
