@@ -920,6 +920,72 @@ static void test_invariant_smooth(void **state) {
     world_close(w);
 }
 
+// The smooth dab against the blur written plainly: two box means of radius r/8 along
+// rows, then two along columns, summed in double, the dab's samples moved toward them
+// by the falloff. Radii whose box lengths take one, two and three power-of-two runs.
+static void test_smooth_matches_plain_blur(void **state) {
+    (void)state;
+    enum { N = 240 };
+    float *heights = malloc(N * N * sizeof *heights);
+    double *a = malloc(N * N * sizeof *a), *c = malloc(N * N * sizeof *c);
+    const double radii[] = {12, 40, 64, 64};
+    double worst = 0;
+    for (size_t t = 0; t < 4; t++) {
+        for (int z = 0; z < N; z++) // relief of hundreds of metres with a rough part
+            for (int x = 0; x < N; x++)
+                heights[z * N + x] = (float)(900.0 + 120.0 * sin(x * 0.05) * cos(z * 0.07) +
+                                             (double)((x * 7 + z * 13) % 17) - 0.01 * x * z);
+        for (int i = 0; i < N * N; i++)
+            a[i] = heights[i];
+        brush b;
+        brush_defaults(&b, BRUSH_SMOOTH);
+        b.strength = 0.8;
+        b.invert = t == 3;
+        brush_dab d = {.brush = &b,
+                       .cx = 120.3,
+                       .cz = 119.6,
+                       .radius = radii[t],
+                       .strength = (float)b.strength,
+                       .spacing = 1.0};
+        og_error err;
+        assert_int_equal(
+            brush_dab_apply_array(&d, TILE_LAYER_COARSE, heights, (grid_rect){0, 0, N, N}, &err),
+            0);
+        int k = (int)fmax(1.0, floor(d.radius / 8.0));
+        for (int pass = 0; pass < 4; pass++) { // the dab stays 4k inside the array
+            int step = pass < 2 ? 1 : N;
+            for (int z = 2 * k; z < N - 2 * k; z++)
+                for (int x = 2 * k; x < N - 2 * k; x++) {
+                    double sum = 0;
+                    for (int j = -k; j <= k; j++)
+                        sum += a[z * N + x + j * step];
+                    c[z * N + x] = sum / (2 * k + 1);
+                }
+            memcpy(a, c, N * N * sizeof *a);
+        }
+        grid_rect r = brush_dab_rect(&d);
+        for (int64_t z = r.z0; z < r.z1; z++)
+            for (int64_t x = r.x0; x < r.x1; x++) {
+                double dx = x - d.cx, dz = z - d.cz,
+                       u = fmin(1.0, sqrt(dx * dx + dz * dz) / d.radius);
+                double w = (1.0 - u * u * (3.0 - 2.0 * u)) * d.strength * (b.invert ? -1 : 1);
+                double old = 900.0 + 120.0 * sin(x * 0.05) * cos(z * 0.07) +
+                             (double)((x * 7 + z * 13) % 17) - 0.01 * x * z;
+                old = (float)old;
+                double want = old + w * (a[z * N + x] - old);
+                double off = fabs(heights[z * N + x] - want);
+                worst = fmax(worst, off);
+                if (off > 2e-4)
+                    fail_msg("radius %g, sample (%lld, %lld): %.6f, the plain blur gives %.6f",
+                             d.radius, (long long)x, (long long)z, heights[z * N + x], want);
+            }
+    }
+    print_message("smooth vs plain blur: largest difference %.3g m (heights ~900 m)\n", worst);
+    free(heights);
+    free(a);
+    free(c);
+}
+
 static void test_invariant_flatten_converges(void **state) {
     (void)state;
     world_params p = flat_params(700, 1.0);
@@ -2125,6 +2191,7 @@ int main(void) {
         cmocka_unit_test(test_property_random_edits_undo_redo),
         cmocka_unit_test(test_history_budget_drops_oldest),
         cmocka_unit_test(test_invariant_smooth),
+        cmocka_unit_test(test_smooth_matches_plain_blur),
         cmocka_unit_test(test_invariant_flatten_converges),
         cmocka_unit_test(test_invariant_thermal_talus),
         cmocka_unit_test(test_stroke_hold),

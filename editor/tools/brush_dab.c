@@ -1,6 +1,8 @@
 #include "editor/tools/brush_dab.h"
 
 #include "editor/edit/edit_rows.h"
+#include "editor/tools/box_blur.h"
+#include "editor/tools/hot_loop.h"
 #include "editor/gen/gen_noise.h"
 #include "io/progress.h"
 
@@ -16,15 +18,6 @@ static inline float keep_finite(float v, float old) {
     v = v > (float)BRUSH_HEIGHT_LIMIT ? (float)BRUSH_HEIGHT_LIMIT : v;
     return v < (float)-BRUSH_HEIGHT_LIMIT ? (float)-BRUSH_HEIGHT_LIMIT : v;
 }
-
-// The hot loops get an AVX2 clone picked at run time (same results: no FMA, and
-// sqrt is exact in both). Not under ThreadSanitizer: its instrumented ifunc resolver
-// runs before the sanitizer starts and crashes the program at load.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_THREAD__)
-#define HOT_LOOP __attribute__((target_clones("avx2", "default")))
-#else
-#define HOT_LOOP
-#endif
 
 // dx of sample k of a row is fdx0 + k, k counted from the dab's own first column:
 // the same float whatever span (tile) the sample is computed in.
@@ -327,45 +320,6 @@ static int halo_of(const brush_dab *d) {
     }
 }
 
-// Box blur of radius k along columns, edges clamped: a running sum per column,
-// updated row by row, so the inner loops run across independent columns and
-// vectorise. Rows are blurred the same way on a transposed copy.
-// In 16 x 16 blocks: a plain transpose of a dab's area (100 KB at r = 64) writes
-// every sample to another cache line and was a third of the smooth dab's time.
-static void transpose(const float *src, float *dst, int64_t w, int64_t h) {
-    enum { B = 16 };
-    for (int64_t z0 = 0; z0 < h; z0 += B)
-        for (int64_t x0 = 0; x0 < w; x0 += B) {
-            int64_t z1 = z0 + B < h ? z0 + B : h, x1 = x0 + B < w ? x0 + B : w;
-            for (int64_t x = x0; x < x1; x++)
-                for (int64_t z = z0; z < z1; z++)
-                    dst[x * h + z] = src[z * w + x];
-        }
-}
-
-// Only rows [r0, r1) and columns [c0, c1) of dst are computed: the smoothed samples
-// the dab keeps depend on no others (each pass needs k fewer at each side).
-HOT_LOOP static void box_columns(const float *src, float *dst, int64_t w, int64_t h, int k,
-                                 double *sum, int64_t r0, int64_t r1, int64_t c0, int64_t c1) {
-    double inv = 1.0 / (2 * k + 1);
-    for (int64_t x = c0; x < c1; x++)
-        sum[x] = 0.0;
-    for (int64_t i = r0 - k; i <= r0 + k; i++) {
-        const float *s = src + (i < 0 ? 0 : i >= h ? h - 1 : i) * w;
-        for (int64_t x = c0; x < c1; x++)
-            sum[x] += s[x];
-    }
-    for (int64_t i = r0; i < r1; i++) {
-        float *o = dst + i * w;
-        for (int64_t x = c0; x < c1; x++)
-            o[x] = (float)(sum[x] * inv);
-        int64_t add = i + k + 1, sub = i - k;
-        const float *a = src + (add >= h ? h - 1 : add) * w, *r = src + (sub < 0 ? 0 : sub) * w;
-        for (int64_t x = c0; x < c1; x++)
-            sum[x] += (double)a[x] - (double)r[x];
-    }
-}
-
 // Moves each sample with weight > 0 toward its smoothed value by its weight (away when
 // inverting); the others keep their bits. Branch-free, so it vectorises.
 HOT_LOOP static void blend_smoothed(float *heights, const float *smoothed, const float *weight,
@@ -384,35 +338,25 @@ static int neighbourhood(const brush_dab *d, float *heights, float *weight, grid
     int64_t w = area.x1 - area.x0, h = area.z1 - area.z0;
     int halo = halo_of(d);
     grid_rect inner = {area.x0 + halo, area.z0 + halo, area.x1 - halo, area.z1 - halo};
-    memset(weight, 0, (size_t)(w * h) * sizeof *weight);
-    for (int64_t z = inner.z0; z < inner.z1; z++)
-        row_weights(d, z, inner.x0, inner.x1, weight + (z - area.z0) * w + halo);
+    // 0 in the halo; row_weights writes every inner sample.
+    memset(weight, 0, (size_t)(halo * w) * sizeof *weight);
+    memset(weight + (h - halo) * w, 0, (size_t)(halo * w) * sizeof *weight);
+    for (int64_t z = inner.z0; z < inner.z1; z++) {
+        float *row = weight + (z - area.z0) * w;
+        memset(row, 0, (size_t)halo * sizeof *row);
+        memset(row + w - halo, 0, (size_t)halo * sizeof *row);
+        row_weights(d, z, inner.x0, inner.x1, row + halo);
+    }
     const brush *b = d->brush;
     if (b->tool == BRUSH_SMOOTH) {
-        int k = halo / 2;
-        float *a = malloc((size_t)(w * h) * sizeof *a), *c = malloc((size_t)(w * h) * sizeof *c);
-        double *scratch = malloc((size_t)(w > h ? w : h) * sizeof *scratch);
-        if (!a || !c || !scratch) {
-            free(a);
-            free(c);
-            free(scratch);
+        const float *c = box_blur_twice(heights, w, h, halo / 2);
+        if (!c) {
             return og_error_set(err, "out of memory smoothing (%lld x %lld samples)", (long long)w,
                                 (long long)h);
         }
-        // Rows first (on the transposed copy, every row of the area), then columns (the
-        // inner columns): two box passes each, each needing k fewer samples per side.
-        transpose(heights, a, w, h);
-        box_columns(a, c, h, w, k, scratch, k, w - k, 0, h);
-        box_columns(c, a, h, w, k, scratch, 2 * k, w - 2 * k, 0, h);
-        transpose(a, c, h, w);
-        box_columns(c, a, w, h, k, scratch, k, h - k, halo, w - halo);
-        box_columns(a, c, w, h, k, scratch, halo, h - halo, halo, w - halo);
-        free(scratch);
         for (int64_t z = halo; z < h - halo; z++) // weights are 0 outside the inner rect
             blend_smoothed(heights + z * w + halo, c + z * w + halo, weight + z * w + halo,
                            b->invert, w - 2 * halo);
-        free(a);
-        free(c);
         return 0;
     }
     if (w > INT32_MAX / (h ? h : 1)) return og_error_set(err, "brush area too large");

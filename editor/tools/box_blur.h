@@ -1,0 +1,16 @@
+#ifndef OROGEN_BOX_BLUR_H
+#define OROGEN_BOX_BLUR_H
+
+#include <stdint.h>
+
+// Two box blurs of radius k >= 1 along rows, then two along columns, of a w x h area
+// of floats (row-major), into an array of w x h floats that the calling thread owns
+// until its next call. Only its samples at least 2k from every edge of the area are
+// written (the others would need samples past it). Along rows each sum of 2k + 1
+// samples is added in a tree whose shape depends on k alone, down columns in double
+// (exact), so a sample's result is the same float wherever the area starts (the tiled
+// and the plain-array path agree).
+// NULL: out of memory.
+const float *box_blur_twice(const float *in, int64_t w, int64_t h, int k);
+
+#endif
