@@ -16,6 +16,8 @@
 #include "editor/world/world.h"
 #include "editor/params/world_grid.h"
 #include "io/tile_cache.h"
+#include "renderer/camera.h"
+#include "renderer/viewport.h"
 #include "io/tile_store.h"
 #include "support/test_support.h"
 
@@ -1399,6 +1401,77 @@ static void test_brush_set_rejects_bad_values(void **state) {
     assert_true(copy.radius == 12.5);
 }
 
+// Thermal erosion at its defaults shows from the first view of the default world (issue
+// 26): held still for a second where the window's first view looks, with the radius the
+// window gives at that distance, it moves the ground metres, as a hydraulic stroke does.
+// The old defaults (talus 25, 50 iterations, the kernel at the grid's spacing only)
+// moved it at most 0.9 m there (0.06 m on average).
+static void test_thermal_defaults_visible(void **state) {
+    (void)state;
+    world_params p;
+    world_params_default(&p, WORLD_FLAT);
+    og_error err = {{0}};
+    int errors = 0;
+    if (world_params_load(OROGEN_RESOURCE_DIR "/default.world", &p, &errors, NULL, NULL, &err) !=
+            0 ||
+        errors)
+        fail_msg("default.world: %s", err.msg);
+    world *w = open_world(&p);
+    viewport *v = viewport_create(OROGEN_RESOURCE_DIR);
+    assert_non_null(v);
+    if (viewport_camera_on_land(v, w, &err) != 0) fail_msg("first view: %s", err.msg);
+    // The ground under the view's centre, marching along its ray.
+    double dir[3], hit[3] = {0, 0, 0}, t = 0, g = 0;
+    camera_ray(&v->cam, 16.0 / 10.0, 0.5, 0.5, dir);
+    for (; t < 20000; t += 1.0) {
+        for (int a = 0; a < 3; a++)
+            hit[a] = v->cam.pos[a] + dir[a] * t;
+        if (world_sample(w, 0, hit[0], hit[2], &g, &err) != 0) fail_msg("sample: %s", err.msg);
+        if (hit[1] <= g) break;
+    }
+    assert_true(t < 20000);
+    viewport_destroy(v);
+    const double radius = 0.08 * t; // the window's radius until one is chosen
+    enum { N = 81 };                // samples 2 m apart over the brush
+    static double before[N * N];
+    for (int pass = 0; pass < 2; pass++) {
+        double most = 0, sum = 0;
+        int inside = 0;
+        for (int j = 0; j < N; j++)
+            for (int i = 0; i < N; i++) {
+                double x = hit[0] + (i - N / 2) * radius / (N / 2),
+                       z = hit[2] + (j - N / 2) * radius / (N / 2), h;
+                if (world_sample(w, 0, x, z, &h, &err) != 0) fail_msg("sample: %s", err.msg);
+                if (pass == 0) {
+                    before[j * N + i] = h;
+                    continue;
+                }
+                double d = fabs(h - before[j * N + i]);
+                most = fmax(most, d);
+                if (hypot(x - hit[0], z - hit[2]) < radius) sum += d, inside++;
+            }
+        if (pass == 1) {
+            printf(
+                "thermal at its defaults, held 1 s at the first view (%.1f, %.1f, radius %.0f m): "
+                "moved the ground up to %.2f m, %.2f m on average over the brush\n",
+                hit[0], hit[2], radius, most, sum / inside);
+            assert_true(most > 4.0);
+            assert_true(sum / inside > 1.0);
+            break;
+        }
+        cmd_context ctx;
+        cmd_context_init(&ctx, w, NULL, stdout, OROGEN_RESOURCE_DIR);
+        char script[256];
+        snprintf(script, sizeof script,
+                 "tool thermal radius=%.17g; stroke_begin; stroke_to %.17g %.17g; "
+                 "stroke_hold 1; stroke_end",
+                 radius, hit[0], hit[2]);
+        if (cmd_run(&ctx, script, strlen(script), "test", &err) != 0)
+            fail_msg("%s: %s", script, err.msg);
+    }
+    world_close(w);
+}
+
 // A brush held still keeps applying: 2 / spacing dabs a second, fractions carried, none
 // with hold=0; the dabs raise the ground under it.
 static void test_stroke_hold(void **state) {
@@ -2194,6 +2267,7 @@ int main(void) {
         cmocka_unit_test(test_smooth_matches_plain_blur),
         cmocka_unit_test(test_invariant_flatten_converges),
         cmocka_unit_test(test_invariant_thermal_talus),
+        cmocka_unit_test(test_thermal_defaults_visible),
         cmocka_unit_test(test_stroke_hold),
         cmocka_unit_test(test_ramp_counts_its_dab),
         cmocka_unit_test(test_invariant_hydraulic_mass),

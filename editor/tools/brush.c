@@ -48,7 +48,7 @@ void brush_defaults(brush *b, brush_tool tool) {
     b->terrace_sharpness = 0.8;
     // 25 degrees and 50 passes: a stroke across the default world's hills visibly slumps
     // them (35 and 20 left ~1 m there, as most of its slopes are below 35 degrees).
-    b->thermal = (thermal_params){.talus_deg = 25.0f, .iterations = 50, .rate = 0.5f};
+    b->thermal = (thermal_params){.talus_deg = 12.0f, .iterations = 100, .rate = 0.5f};
     hydraulic_params_default(&b->hydraulic);
     b->hydraulic.droplets = 2000;
     b->material = 1;

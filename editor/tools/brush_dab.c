@@ -1,4 +1,5 @@
 #include "editor/tools/brush_dab.h"
+#include "editor/tools/thermal_brush.h"
 
 #include "editor/edit/edit_rows.h"
 #include "editor/tools/box_blur.h"
@@ -362,7 +363,7 @@ static int neighbourhood(const brush_dab *d, float *heights, float *weight, grid
     if (w > INT32_MAX / (h ? h : 1)) return og_error_set(err, "brush area too large");
     erosion_grid g = {heights, weight, (int)w, (int)h, (float)d->spacing, og_progress_current()};
     if (b->tool == BRUSH_THERMAL) {
-        erosion_thermal(&g, &b->thermal);
+        thermal_brush_erode(&g, &b->thermal, thermal_brush_block(d->radius));
     } else {
         hydraulic_params p = b->hydraulic;
         p.seed = d->seed;
