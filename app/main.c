@@ -308,6 +308,7 @@ int main(int argc, char **argv) {
         status = 1;
     }
     fflush(stdout);
+    if (status != 0) world_keep_journal(ctx.world);
     viewport_destroy(ctx.view_state);
     world_close(ctx.world);
     world_events_release(settings.events);

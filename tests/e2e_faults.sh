@@ -93,7 +93,7 @@ random_step() {
     esac
 }
 
-trials=0 recovered=0 lost=0
+trials=0 recovered=0 lost=0 finished=0
 for ((s = 0; s < sequences; s++)); do
     depth=0 redoable=0
     script="$probe; history"
@@ -129,6 +129,7 @@ for ((s = 0; s < sequences; s++)); do
         sleep "$(awk -v r=$RANDOM -v s=$span_ms 'BEGIN { printf "%.3f", r / 32768 * s / 1000 * 1.1 }')"
         kill -9 $app 2>/dev/null
         wait $app 2>/dev/null
+        ended=$? # 0: the script ran to its end before the kill
         app=
         shown=$(($(probe_lines "$work/t.out" | wc -l) / 4 - 1)) # steps whose result was printed
         [ $shown -lt 0 ] && shown=0
@@ -144,7 +145,21 @@ for ((s = 0; s < sequences; s++)); do
         done
         want=$(printf '%s\n' "${ref[@]:$((state * 4)):4}")
         must=${records_after[shown]:-0} # every step printed before the kill
-        if [ "$records" -ge "$must" ] && [ "${records_after[state]}" = "$records" ] &&
+        all_shown=0
+        [ $shown -ge $((${#records_after[@]} - 1)) ] && all_shown=1
+        if [ $ended = 0 ] || { [ $all_shown = 1 ] && [ ! -e "$work/t/base.world.recover" ]; }; then
+            # A script that succeeded is the record of its edits: it removed its journal
+            # (a kill during its exit, after the last step, may come after that), and the
+            # world is as saved.
+            finished=$((finished + 1))
+            want=$(printf '%s\n' "${ref[@]:0:4}")
+            if [ $records = 0 ] && [ "$got" = "$want" ] && [ ! -e "$work/t/base.world.recover" ]; then
+                recovered=$((recovered + 1))
+            else
+                lost=$((lost + 1))
+                fail "kill trial $trials (sequence $s: $script): ended before the kill, but left $records journal records or changed the world: got '$got', want '$want'"
+            fi
+        elif [ "$records" -ge "$must" ] && [ "${records_after[state]}" = "$records" ] &&
             [ "$got" = "$want" ] &&
             { [ $records = 0 ] || [ -s "$work/t/base.world.recover" ]; }; then
             recovered=$((recovered + 1))
@@ -154,7 +169,7 @@ for ((s = 0; s < sequences; s++)); do
         fi
     done
 done
-echo "kill -9 trials: $trials, recovered exactly: $recovered, lost: $lost"
+echo "kill -9 trials: $trials, recovered exactly: $recovered (of which $finished ended before the kill), lost: $lost"
 
 # ---- mutated parameter files --------------------------------------------------------
 

@@ -295,6 +295,35 @@ n2=$(count)
 [ "$n1" = "$n0" ] && [ "$n2" = $((n0 + 1)) ]
 check "a script leaves no never-saved journal, standard input keeps one ($n0 -> $n1 -> $n2)" $?
 
+# A script that fails after its edits (here its save cannot be written, as on a full
+# disk) keeps the journal: nothing else holds those edits.
+"$orogen" -c "tool raise radius=30 strength=1; dab 10 10; save /proc/no/w.world" >/dev/null 2>&1
+n3=$(count)
+[ "$n3" = $((n2 + 1)) ]
+check "a script whose save fails keeps its never-saved journal ($n2 -> $n3)" $?
+
+# The same for a saved world: each scripted run on it used to set the last run's journal
+# aside, and WORLD.recover.old* piled up without limit. A journal another session left
+# (here standard input's, maybe a person typing) is still set aside and kept, and a
+# failed script keeps its own.
+sdir=$(mktemp -d "${TMPDIR:-/tmp}/orogen-scripted.XXXXXX")
+"$orogen" -c "new flat; size 256; generate; save $sdir/w.world" >/dev/null 2>&1
+for run in 1 2 3; do
+    "$orogen" -c "load $sdir/w.world; tool raise radius=30 strength=1; dab 10 10" >/dev/null 2>&1
+done
+n_saved=$(find "$sdir" -name 'w.world.recover*' | wc -l)
+echo "load $sdir/w.world; tool raise radius=30 strength=1; dab 10 10" |
+    "$orogen" --batch - >/dev/null 2>&1
+"$orogen" -c "load $sdir/w.world; tool raise radius=30 strength=1; dab 30 30" >/dev/null 2>&1
+n_aside=$(find "$sdir" -name 'w.world.recover.old*' | wc -l)
+n_own=$(find "$sdir" -name 'w.world.recover' | wc -l)
+"$orogen" -c "load $sdir/w.world; tool raise radius=30 strength=1; dab 50 50; save /proc/no/w.world" \
+    >/dev/null 2>&1
+n_failed=$(find "$sdir" -name 'w.world.recover' | wc -l)
+[ "$n_saved" = 0 ] && [ "$n_aside" = 1 ] && [ "$n_own" = 0 ] && [ "$n_failed" = 1 ]
+check "scripts on a saved world leave no journal; another session's is set aside and kept; a failed script keeps its own ($n_saved, $n_aside, $n_own, $n_failed)" $?
+rm -rf "$sdir"
+
 # One writer: while the editor has the world open, a second orogen opens it read-only
 # and cannot save over it, but can save elsewhere.
 start

@@ -56,6 +56,7 @@ struct world {
     // was created with.
     int unsaved_journal;
     int journal_fresh; // the journal was begun by this session, not taken over
+    int keep_journal;  // the script driving this run failed: its journal stays
     world_params base_params;
     char *base_source; // world_set_base_source: the journal's base beside base_params
     // Edits go to the journal (a scratch store) until saved; the world's own store,
@@ -606,9 +607,11 @@ void world_close(world *w) {
     w->cache = NULL;
     w->gen = NULL;
     // The journal stays: only a save of its edits or 'recover discard' removes it, or
-    // the normal end of a script that made a never-saved world (world_settings.scripted).
+    // the successful end of a script that began it (world_settings.scripted): the script
+    // is the record of those edits, and each run on a saved world would otherwise set
+    // the last one aside. A failed script (a save on a full disk) keeps it.
     recovery_journal_close(w->rj);
-    if (w->settings.scripted && w->unsaved_journal && w->journal_fresh && w->recover_path[0])
+    if (w->settings.scripted && w->journal_fresh && !w->keep_journal && w->recover_path[0])
         unlink(w->recover_path);
     close_stores(w);
     file_lock_release(&w->lock);
@@ -1092,7 +1095,6 @@ void world_journal_record(world *w, recovery_kind kind, const history_step *s) {
             return;
         }
         w->unsaved_journal = 1;
-        w->journal_fresh = 1;
     }
     if (!w->rj) {
         struct stat st;
@@ -1122,12 +1124,17 @@ void world_journal_record(world *w, recovery_kind kind, const history_step *s) {
                       "warning: %s; edits are not protected against a crash", err.msg);
             return;
         }
+        w->journal_fresh = 1;
     }
     if (recovery_journal_append(w->rj, kind, s, &err) != 0) {
         w->journal_failed = 1;
         warn_path(w, w->path[0] ? w->path : "unsaved world",
                   "warning: %s; edits are not protected against a crash", err.msg);
     }
+}
+
+void world_keep_journal(world *w) {
+    w->keep_journal = 1;
 }
 
 int world_session_journaled(const world *w) {

@@ -24,8 +24,9 @@ typedef struct world_settings {
     // the world makes a private hub, freed with it.
     world_events *events;
     // A script drives this run (-c, --batch FILE): the script is the record of its edits,
-    // so a never-saved world's journal the run began is removed when the world closes
-    // (a kill leaves it for `recover`; a journal taken over by `recover` stays).
+    // so a journal the run began (of a never-saved or a saved world) is removed when the
+    // world closes, unless the script failed (world_keep_journal). A kill leaves it for
+    // `recover`; a journal taken over by `recover` or set aside stays.
     int scripted;
 } world_settings;
 
@@ -79,6 +80,9 @@ int world_set_base_source(world *w, const char *source, og_error *err);
 int world_journal_continue(world *w, const char *journal, size_t keep_bytes, og_error *err);
 // Whether this session has written a journal (edited, or recovered) since its last save.
 int world_session_journaled(const world *w);
+// The script driving this run failed (a save on a full disk, a bad command): the journal
+// it began stays when the world closes, for `recover`.
+void world_keep_journal(world *w);
 // The folder of never-saved worlds' journals ($OROGEN_RECOVER_DIR, else
 // $XDG_STATE_HOME/orogen/recover, else ~/.local/state/orogen/recover), created if need be.
 int world_recovery_dir(char *out, size_t len, og_error *err);
