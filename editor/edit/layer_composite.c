@@ -66,6 +66,20 @@ static int kept(grid_rect touched, int x, int z, const float *now, const float *
     return !memcmp(now, before, sizeof *now);
 }
 
+// Copies a row of the new composite over the old where they differ bit for bit (NaN
+// payloads and signed zeros included), widening changed by the span that did.
+static void store_row(float *comp, const float *next, int n, int z, grid_rect *changed) {
+    if (!memcmp(comp, next, sizeof *comp * (size_t)n)) return;
+    int first = 0, last = n - 1;
+    while (!memcmp(&comp[first], &next[first], sizeof *comp))
+        first++;
+    while (!memcmp(&comp[last], &next[last], sizeof *comp))
+        last--;
+    memcpy(comp + first, next + first, sizeof *comp * (size_t)(last + 1 - first));
+    tile_part_touch(changed, first, z);
+    tile_part_touch(changed, last, z);
+}
+
 static int compose_task(void *user, int task, og_error *err) {
     compose_job *j = user;
     const tile_part *p = &j->parts[task];
@@ -137,17 +151,19 @@ static int compose_task(void *user, int task, og_error *err) {
         // cannot always hit it: an ulp of the layer's value). Taking, samples the tool
         // left alone keep their composite.
         int exact = j->take && active == j->top_visible;
-        for (int z = 0; z < rh && rc == 0; z++)
+        if (!before && rc == 0) // recomposing: whole rows at memory speed
+            for (int z = 0; z < rh; z++)
+                store_row(comp + (size_t)(z + z0) * TILE_SIZE + x0, acc + (size_t)z * rw, rw, z,
+                          &changed);
+        for (int z = 0; z < rh && rc == 0 && before; z++)
             for (int x = 0; x < rw; x++) {
                 int k = (z + z0) * TILE_SIZE + x + x0;
                 float next = acc[z * rw + x];
-                if (before) {
-                    if (kept(touched, x + x0, z + z0, comp + k, before + k)) continue;
-                    const layer_info *l = &j->table.layers[active];
-                    if (exact && weight[z * rw + x] >= 1.0f &&
-                        (j->mode == EDIT_LAYER_RESULT || l->blend == LAYER_BLEND_ADD))
-                        continue; // kept
-                }
+                if (kept(touched, x + x0, z + z0, comp + k, before + k)) continue;
+                const layer_info *l = &j->table.layers[active];
+                if (exact && weight[z * rw + x] >= 1.0f &&
+                    (j->mode == EDIT_LAYER_RESULT || l->blend == LAYER_BLEND_ADD))
+                    continue; // kept
                 if (!memcmp(&comp[k], &next, sizeof next)) continue;
                 comp[k] = next;
                 // What changed now (the tool's own change was published as it was made).
