@@ -23,6 +23,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <signal.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 static void *read_kind(world *w, tile_layer kind, grid_rect r) {
@@ -687,7 +689,157 @@ static void test_removed_layers_leave_store(void **state) {
     assert_int_equal(system(cmd), 0);
 }
 
-int main(void) {
+// ---- kill -9 ----------------------------------------------------------------------
+
+// A session of paint layers (two, a mask reading the heights, strokes on both, a hidden
+// and shown layer, an undo), as one killed process runs it and an uninterrupted one.
+static const char *const KILLED_SESSION =
+    "layer new Paint kind=paint opacity=0.8; tool paint material=3 radius=60 strength=0.7; "
+    "stroke 100 100 450 300; layer new Moss kind=paint; tool paint material=6 radius=40 "
+    "strength=0.5; stroke 300 80 200 500; layer mask Paint height=-inf,70 falloff=15; "
+    "layer select Paint; tool paint material=5 radius=30 strength=0.6; stroke 500 100 500 550; "
+    "layer set Moss visible=0; layer set Moss visible=1; tool paint material=2 radius=50 "
+    "strength=0.9; stroke 50 550 550 50; undo; stroke 150 450 450 150";
+
+// The killed process (this program run again with --killed-session DIR): saves the base
+// world as DIR/a.world and DIR/b.world, runs the session on b, says so on stdout and
+// waits to be killed, its journal (b.world.recover) left as the kill leaves it.
+static int killed_session(const char *dir) {
+    char a[4200], b[4200];
+    snprintf(a, sizeof a, "%s/a.world", dir);
+    snprintf(b, sizeof b, "%s/b.world", dir);
+    world_params p = test_flat_fbm_params(600);
+    session s;
+    open_session(&s, test_world_open(&p));
+    og_error err;
+    run(&s, "tool raise radius=80 strength=0.6; stroke 100 100 500 400");
+    if (world_save(s.ctx.world, a, 0, &err) != 0 || world_save(s.ctx.world, b, 0, &err) != 0) {
+        fprintf(stderr, "killed session: %s\n", err.msg);
+        return 1;
+    }
+    if (cmd_run(&s.ctx, KILLED_SESSION, strlen(KILLED_SESSION), "-c", &err) != 0) {
+        fprintf(stderr, "killed session: %s\n", err.msg);
+        return 1;
+    }
+    printf("ready\n");
+    fflush(stdout);
+    for (;;)
+        pause();
+}
+
+static world *load_saved(const char *path) {
+    world_settings set = {
+        .cache_budget_bytes = (size_t)256 << 20, .workers = 2, .warn = test_silent};
+    og_error err;
+    world *w = world_load(path, &set, NULL, &err);
+    if (!w) fail_msg("%s: %s", path, err.msg);
+    return w;
+}
+
+// What the test compares: the material composite, each paint layer's own weights and
+// its painted coverage, the heights and the layer listing.
+typedef struct paint_state {
+    uint8_t *composite, *layer[2];
+    float *heights;
+    char listing[2048];
+} paint_state;
+
+static void paint_state_read(session *s, paint_state *out) {
+    out->composite = materials(s);
+    const layer_table *t = &world_get_params(s->ctx.world)->layers;
+    for (int i = 0; i < 2; i++) {
+        int at = layer_table_find(t, i ? "Moss" : "Paint");
+        assert_true(at >= 0);
+        layer_grid g;
+        og_error err;
+        if (layer_grid_init(&g, world_get_params(s->ctx.world), TILE_LAYER_MATERIAL, 0, &err))
+            fail_msg("%s", err.msg);
+        g.layer = (tile_layer)tile_layer_in_slot(TILE_LAYER_MATERIAL, t->layers[at].id);
+        out->layer[i] = malloc((size_t)ALL_N * TILE_MATERIALS);
+        if (layer_grid_read_samples(s->ctx.world, &g, ALL, out->layer[i], &err) != 0)
+            fail_msg("%s", err.msg);
+    }
+    out->heights = read_slot(s->ctx.world, 0, ALL);
+    rewind(s->out);
+    run(s, "layers");
+    size_t n = fread(out->listing, 1, sizeof out->listing - 1, s->out);
+    out->listing[n] = 0;
+    rewind(s->out);
+    assert_int_equal(ftruncate(fileno(s->out), 0), 0);
+}
+
+static void paint_state_expect_equal(const paint_state *a, const paint_state *b) {
+    assert_memory_equal(a->composite, b->composite, (size_t)ALL_N * TILE_MATERIALS);
+    for (int i = 0; i < 2; i++)
+        assert_memory_equal(a->layer[i], b->layer[i], (size_t)ALL_N * TILE_MATERIALS);
+    assert_memory_equal(a->heights, b->heights, sizeof(float) * ALL_N);
+    assert_string_equal(a->listing, b->listing);
+}
+
+static void paint_state_free(paint_state *a) {
+    free(a->composite);
+    free(a->layer[0]);
+    free(a->layer[1]);
+    free(a->heights);
+}
+
+// A process painting paint layers is killed with SIGKILL after its last step: `recover`
+// on its world replays the journal to exactly what the same session shows uninterrupted
+// (composite, each layer's weights, heights, the listing), and its steps undo alike.
+static void test_killed_paint_session_recovers(void **state) {
+    (void)state;
+    char dir[] = "/tmp/orogen_paint_kill_XXXXXX";
+    assert_non_null(mkdtemp(dir));
+    int out[2];
+    assert_int_equal(pipe(out), 0);
+    pid_t child = fork();
+    if (child == 0) { // a fresh program: no thread of this one's pools is missing in it
+        dup2(out[1], 1);
+        close(out[0]);
+        execl("/proc/self/exe", "test_paint_layers", "--killed-session", dir, (char *)NULL);
+        _exit(127);
+    }
+    close(out[1]);
+    char line[16] = "";
+    ssize_t got = read(out[0], line, sizeof line - 1);
+    assert_true(got > 0 && !strncmp(line, "ready", 5));
+    kill(child, SIGKILL);
+    int status;
+    assert_int_equal(waitpid(child, &status, 0), child);
+    assert_true(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL);
+    close(out[0]);
+
+    char a[4200], b[4200];
+    snprintf(a, sizeof a, "%s/a.world", dir);
+    snprintf(b, sizeof b, "%s/b.world", dir);
+    session whole, recovered;
+    open_session(&whole, load_saved(a));
+    run(&whole, KILLED_SESSION);
+    open_session(&recovered, load_saved(b));
+    run(&recovered, "recover");
+    paint_state x, y;
+    paint_state_read(&whole, &x);
+    paint_state_read(&recovered, &y);
+    assert_false(is_automatic(x.composite));
+    paint_state_expect_equal(&x, &y);
+    paint_state_free(&x);
+    paint_state_free(&y);
+    run(&whole, "undo; undo");
+    run(&recovered, "undo; undo");
+    paint_state_read(&whole, &x);
+    paint_state_read(&recovered, &y);
+    paint_state_expect_equal(&x, &y);
+    paint_state_free(&x);
+    paint_state_free(&y);
+    close_session(&whole);
+    close_session(&recovered);
+    char cmd[300];
+    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    assert_int_equal(system(cmd), 0);
+}
+
+int main(int argc, char **argv) {
+    if (argc == 3 && !strcmp(argv[1], "--killed-session")) return killed_session(argv[2]);
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_paint_composite_matches_arrays),
         cmocka_unit_test(test_paint_tool_on_layer),
@@ -696,6 +848,7 @@ int main(void) {
         cmocka_unit_test(test_painted_mask),
         cmocka_unit_test(test_layer_commands_publish_layers),
         cmocka_unit_test(test_removed_layers_leave_store),
+        cmocka_unit_test(test_killed_paint_session_recovers),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

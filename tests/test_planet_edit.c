@@ -4,6 +4,8 @@
 // centre through the falloff), for every pointwise tool and the ramp; smoothing reaches
 // over the edge and erosion flows over it as one simulation; one undo restores all
 // faces; the change notifications name each face.
+#include "editor/cmd/commands.h"
+#include "editor/cmd/context.h"
 #include "editor/edit/edit.h"
 #include "editor/gen/gen_noise.h"
 #include "editor/params/world_grid.h"
@@ -20,6 +22,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <cmocka.h>
@@ -512,6 +515,176 @@ static void test_stamp_over_the_corner(void **state) {
     world_close(w);
 }
 
+// ---- paint layers across faces ---------------------------------------------------
+
+// All six faces' material weights (TILE_MATERIALS bytes a sample).
+static uint8_t *read_materials(world *w) {
+    uint8_t *m = malloc((size_t)6 * N * N * TILE_MATERIALS);
+    og_error err;
+    for (int f = 0; f < 6; f++) {
+        layer_grid g;
+        assert_int_equal(layer_grid_init(&g, world_get_params(w), TILE_LAYER_MATERIAL, f, &err), 0);
+        assert_int_equal(layer_grid_read_samples(w, &g, (grid_rect){0, 0, N, N},
+                                                 m + (size_t)f * N * N * TILE_MATERIALS, &err),
+                         0);
+    }
+    return m;
+}
+
+static void command(world *w, const char *text) {
+    cmd_context ctx;
+    FILE *out = tmpfile();
+    cmd_context_init(&ctx, w, NULL, out, OROGEN_RESOURCE_DIR);
+    og_error err;
+    if (cmd_run(&ctx, text, strlen(text), "test", &err) != 0) fail_msg("%s: %s", text, err.msg);
+    fclose(out);
+}
+
+static brush paint_brush(float radius, float strength) {
+    brush b;
+    brush_defaults(&b, BRUSH_PAINT);
+    og_error err;
+    assert_int_equal(brush_set(&b, "face", "4", &err), 0);
+    assert_int_equal(brush_set(&b, "material", "3", &err), 0); // snow
+    b.radius = radius;
+    b.strength = strength;
+    return b;
+}
+
+// A paint layer's dab at a face's edge and at a corner: every face its cap reaches shows
+// the dab as evaluated on the sphere (from the automatic ground, material 3 takes the
+// coverage strength x falloff of each sample's great-circle distance, within a unit of
+// 255 for rounding; the automatic channel the rest), the others nothing; and a stroke
+// over the corner on a paint layer shows what the same stroke shows on a planet without
+// paint layers.
+static void test_paint_layer_across_faces(void **state) {
+    (void)state;
+    for (int k = 0; k < 2; k++) {
+        world *w = planet_of("flat");
+        command(w, "layer new Paint kind=paint");
+        brush b = paint_brush(2500, 0.8f);
+        one_dab(w, &b, PLACES[k].x, PLACES[k].z);
+        uint8_t *m = read_materials(w);
+        double centre[3];
+        direction(4, PLACES[k].x / SPACING, PLACES[k].z / SPACING, centre);
+        int touched[6] = {0}, worst = 0;
+        for (int f = 0; f < 6; f++)
+            for (int j = 0; j < N; j++)
+                for (int i = 0; i < N; i++) {
+                    double d[3];
+                    direction(f, i, j, d);
+                    const uint8_t *s = m + ((size_t)f * N * N + (size_t)j * N + i) * TILE_MATERIALS;
+                    double t = angle_between(d, centre) * RADIUS / b.radius;
+                    double c = b.strength * brush_falloff_weight(&b, (float)t);
+                    int want = (int)lround(255.0 * c), off = abs(s[3] - want);
+                    int rest = 0;
+                    for (int ch = 1; ch < TILE_MATERIALS; ch++)
+                        rest += ch == 3 ? 0 : s[ch];
+                    if (rest || s[0] + s[3] != 255) off = 255;
+                    worst = off > worst ? off : worst;
+                    if (s[3]) touched[f] = 1;
+                }
+        int faces = 0;
+        for (int f = 0; f < 6; f++)
+            faces += touched[f];
+        print_message("paint layer dab at the %s: %d faces painted, largest difference from the "
+                      "sphere reference %d of 255\n",
+                      PLACES[k].name, faces, worst);
+        assert_int_equal(faces, PLACES[k].faces);
+        assert_true(worst <= 1);
+        free(m);
+        world_close(w);
+    }
+    // A stroke over the corner: a paint layer's composite is what painting the ground shows.
+    world *layered = planet_of("flat"), *single = planet_of("flat");
+    command(layered, "layer new Paint kind=paint");
+    brush b = paint_brush(1500, 0.6f);
+    og_error err;
+    for (world *w = layered; w; w = w == layered ? single : NULL) {
+        stroke *s = stroke_begin(w, &b, &err);
+        assert_non_null(s);
+        assert_int_equal(stroke_to(s, (N - 40) * SPACING, (N - 10) * SPACING, 1.0, &err), 0);
+        assert_int_equal(stroke_to(s, (N + 30) * SPACING, (N + 25) * SPACING, 1.0, &err), 0);
+        assert_int_equal(stroke_end(s, &err), 0);
+    }
+    uint8_t *a = read_materials(layered), *c = read_materials(single);
+    int faces = 0;
+    for (int f = 0; f < 6; f++) {
+        const uint8_t *face = a + (size_t)f * N * N * TILE_MATERIALS;
+        for (size_t k = 0; k < (size_t)N * N; k++)
+            if (face[k * TILE_MATERIALS + 3]) {
+                faces++;
+                break;
+            }
+    }
+    assert_int_equal(faces, 3);
+    assert_memory_equal(a, c, (size_t)6 * N * N * TILE_MATERIALS);
+    free(a);
+    free(c);
+    world_close(layered);
+    world_close(single);
+}
+
+// A paint layer's slope mask reads the heights across face edges: over a raised dab at a
+// corner (a flat planet, so the dab's profile is the only slope: its slope known in
+// closed form from the falloff), a paint layer masked to slopes over 5 degrees shows its
+// paint where the sphere's slope is over 6.5 and none under 2.5 (on the dab's top, and
+// past its rim where the paint still reaches), on samples next to the edges as everywhere (a mask
+// reading a face's edge samples twice would halve the slope there).
+static void test_paint_mask_across_faces(void **state) {
+    (void)state;
+    world *w = planet_of("flat");
+    brush raise;
+    brush_defaults(&raise, BRUSH_RAISE);
+    og_error err;
+    assert_int_equal(brush_set(&raise, "face", "4", &err), 0);
+    raise.radius = 2500;
+    raise.strength = 1;
+    raise.amount = 400;
+    one_dab(w, &raise, PLACES[1].x, PLACES[1].z);
+    command(w, "layer new Snow kind=paint; layer mask Snow slope=5,90,1");
+    brush b = paint_brush(4000, 1.0f);
+    one_dab(w, &b, PLACES[1].x, PLACES[1].z);
+    uint8_t *m = read_materials(w);
+    double centre[3];
+    direction(4, PLACES[1].x / SPACING, PLACES[1].z / SPACING, centre);
+    int steep = 0, gentle = 0, steep_edge = 0, gentle_edge = 0, wrong = 0, wrong_edge = 0;
+    for (int f = 0; f < 6; f++)
+        for (int j = 0; j < N; j++)
+            for (int i = 0; i < N; i++) {
+                double d[3];
+                direction(f, i, j, d);
+                double t = angle_between(d, centre) * RADIUS / raise.radius;
+                if (t > 0.95 && t < 1.05) continue; // the dab's rim
+                const float e = 1e-3f;
+                double dh = t >= 1.0 ? 0.0 // flat ground past the dab
+                                     : raise.amount *
+                                           (brush_falloff_weight(&raise, (float)t + e) -
+                                            brush_falloff_weight(&raise, (float)t - e)) /
+                                           (2.0 * e) / raise.radius;
+                double slope = atan(fabs(dh)) * 180.0 / M_PI;
+                int edge = i < 2 || j < 2 || i >= N - 2 || j >= N - 2;
+                const uint8_t *s = m + ((size_t)f * N * N + (size_t)j * N + i) * TILE_MATERIALS;
+                double paint_t = angle_between(d, centre) * RADIUS / b.radius;
+                int painted = s[3] > 0, full = brush_falloff_weight(&b, (float)paint_t) > 0.02;
+                if (!full) continue; // the paint does not reach
+                if (slope > 6.5) {
+                    steep++, steep_edge += edge;
+                    if (!painted) wrong++, wrong_edge += edge;
+                } else if (slope < 2.5) {
+                    gentle++, gentle_edge += edge;
+                    if (painted) wrong++, wrong_edge += edge;
+                }
+            }
+    print_message("slope mask over the corner: %d steep samples (%d by an edge), %d gentle (%d "
+                  "by an edge), %d wrong (%d by an edge)\n",
+                  steep, steep_edge, gentle, gentle_edge, wrong, wrong_edge);
+    assert_true(steep_edge > 100 && gentle_edge > 100);
+    assert_int_equal(wrong, 0);
+    free(m);
+    world_close(w);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_raise),
@@ -526,6 +699,8 @@ int main(void) {
         cmocka_unit_test(test_undo_and_notifications),
         cmocka_unit_test(test_stroke_over_the_edge),
         cmocka_unit_test(test_stamp_over_the_corner),
+        cmocka_unit_test(test_paint_layer_across_faces),
+        cmocka_unit_test(test_paint_mask_across_faces),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
