@@ -21,7 +21,7 @@ typedef int (*column_fn)(void *, int, int, int, int, const float *, int);
 typedef int (*merge_fn)(void *, void *);
 typedef long long (*active_fn)(void *);
 typedef int (*fill_fn)(void *, const int *);
-typedef int (*sign_fn)(void *, int (*)(void *, int, int, int), void *);
+typedef int (*sign_fn)(void *, const int *, int (*)(void *, int, int, int), void *);
 typedef int (*write_fn)(void *, const char *, int, const char *const *, int, char *, size_t);
 typedef void (*free_fn)(void *);
 
@@ -96,9 +96,12 @@ int vdb_level_set_fill_inside(vdb_level_set *ls, const int32_t box[6], og_error 
     return 0;
 }
 
-int vdb_level_set_sign(vdb_level_set *ls, int (*inside)(void *user, int i, int j, int k),
-                       void *user, og_error *err) {
-    if (module.sign(ls, inside, user) != 0)
+int vdb_level_set_sign(vdb_level_set *ls, const int32_t box[6],
+                       int (*inside)(void *user, int i, int j, int k), void *user, og_error *err) {
+    int b[6];
+    for (int c = 0; c < 6; c++)
+        b[c] = box[c];
+    if (module.sign(ls, b, inside, user) != 0)
         return og_error_set(err, "OpenVDB: could not sign the level set's inactive values");
     return 0;
 }

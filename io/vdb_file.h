@@ -26,9 +26,10 @@ int vdb_level_set_merge(vdb_level_set *dst, vdb_level_set *src, og_error *err);
 // as whole tiles where it can; the box must hold no voxel set before.
 int vdb_level_set_fill_inside(vdb_level_set *ls, const int32_t box[6], og_error *err);
 // Gives every inactive value still at +background the sign inside() says (1 inside,
-// 0 outside, -1 failed): leaf voxels at themselves, tiles at their centre.
-int vdb_level_set_sign(vdb_level_set *ls, int (*inside)(void *user, int i, int j, int k),
-                       void *user, og_error *err);
+// 0 outside, -1 failed); inside() is 0 outside the inclusive index box i0, j0, k0, i1,
+// j1, k1. A tile crossing the box's sides is split until each part has one sign.
+int vdb_level_set_sign(vdb_level_set *ls, const int32_t box[6],
+                       int (*inside)(void *user, int i, int j, int k), void *user, og_error *err);
 long long vdb_level_set_active_voxels(vdb_level_set *ls);
 // Prunes and writes path atomically (temp file
 // beside it, fsync, rename) with meta_count key/value pairs of metadata (meta[2m],

@@ -218,7 +218,10 @@ static int sign_space(vdb_job *j, const export_options *o, og_error *err) {
                 return -1;
         }
     j->err = err;
-    return vdb_level_set_sign(j->sets[0], inside_at, j, err);
+    // Where inside_at can say inside: the region's columns, from the floor up.
+    const int32_t solid[6] = {(int32_t)j->c0[0],     (int32_t)j->floor_y, (int32_t)j->c0[1],
+                              (int32_t)j->c1[0] - 1, INT32_MAX / 2,       (int32_t)j->c1[1] - 1};
+    return vdb_level_set_sign(j->sets[0], solid, inside_at, j, err);
 }
 
 static int region_columns(world *w, const export_options *o, double ev, int64_t c0[2],

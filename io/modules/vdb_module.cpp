@@ -6,12 +6,14 @@
 #include <openvdb/tools/LevelSetUtil.h>
 #include <openvdb/tools/Prune.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cmath>
 #include <cstring>
 #include <exception>
 #include <mutex>
 #include <new>
+#include <vector>
 
 #define OROGEN_EXPORT extern "C"
 
@@ -105,29 +107,76 @@ OROGEN_EXPORT int orogen_vdb_module_fill_inside(void *handle, const int box[6]) 
     }
 }
 
-// Every inactive voxel or tile not yet signed (+background) asks inside() at its voxel
-// (a tile at its centre when its corners are inside too; a tile never holds the
-// surface, so that tells). OpenVDB's
-// own signedFloodFill guesses signs along z from neighbouring nodes, which is wrong for
-// an open heightfield band; here the caller's field decides.
-OROGEN_EXPORT int orogen_vdb_module_sign(void *handle, int (*inside)(void *, int, int, int),
-                                         void *user) {
+namespace {
+
+// inside() over box b, or 2 when b may hold both signs: it crosses the solid's box, or
+// its corners and centre disagree (where b lies within the solid's box and holds no band
+// voxel, the ground cannot cross it, so those nine tell).
+int box_sign(const openvdb::CoordBBox &b, const openvdb::CoordBBox &solid,
+             int (*inside)(void *, int, int, int), void *user) {
+    if (!b.hasOverlap(solid)) return 0;
+    if (!solid.isInside(b)) return 2;
+    const openvdb::Coord lo = b.min(), hi = b.max();
+    int in = inside(user, (lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2);
+    for (int c = 0; c < 8 && in >= 0; c++) {
+        int at = inside(user, c & 1 ? hi[0] : lo[0], c & 2 ? hi[1] : lo[1], c & 4 ? hi[2] : lo[2]);
+        if (at < 0) return -1;
+        if (at != in) return 2;
+    }
+    return in;
+}
+
+// Signs box b of an inactive +background tile, halving it where it holds both signs.
+int sign_box(level_set *ls, const openvdb::CoordBBox &b, const openvdb::CoordBBox &solid,
+             int (*inside)(void *, int, int, int), void *user) {
+    int in = b.volume() == 1 ? inside(user, b.min()[0], b.min()[1], b.min()[2])
+                             : box_sign(b, solid, inside, user);
+    if (in < 0) return -1;
+    if (in == 1) ls->grid->tree().fill(b, -ls->background, false);
+    if (in != 2) return 0;
+    const openvdb::Coord lo = b.min(), hi = b.max();
+    const openvdb::Coord mid((lo[0] + hi[0]) >> 1, (lo[1] + hi[1]) >> 1, (lo[2] + hi[2]) >> 1);
+    for (int c = 0; c < 8; c++) {
+        openvdb::Coord a(c & 1 ? mid[0] + 1 : lo[0], c & 2 ? mid[1] + 1 : lo[1],
+                         c & 4 ? mid[2] + 1 : lo[2]);
+        openvdb::Coord z(c & 1 ? hi[0] : mid[0], c & 2 ? hi[1] : mid[1], c & 4 ? hi[2] : mid[2]);
+        if (a[0] > z[0] || a[1] > z[1] || a[2] > z[2]) continue; // a side of one voxel
+        if (sign_box(ls, openvdb::CoordBBox(a, z), solid, inside, user) != 0) return -1;
+    }
+    return 0;
+}
+
+} // namespace
+
+// Every inactive voxel or tile not yet signed (+background) asks inside() (1 inside,
+// 0 outside, -1 failed): a leaf voxel at itself; a tile outside the solid's box
+// (inclusive i0 j0 k0 i1 j1 k1, where inside() can be 1) stays outside, one within it
+// takes the sign its corners and centre agree on, and one crossing the box's sides (an
+// 8^3 tile over the region's last columns or its floor) is halved until each part is
+// one sign. OpenVDB's own signedFloodFill guesses signs along z from neighbouring
+// nodes, which is wrong for an open heightfield band; here the caller's field decides.
+OROGEN_EXPORT int orogen_vdb_module_sign(void *handle, const int box[6],
+                                         int (*inside)(void *, int, int, int), void *user) {
     level_set *ls = static_cast<level_set *>(handle);
     try {
         ls->acc.clear();
+        // Nothing over the highest band voxel is solid (the band covers the solid's top).
+        const int top = std::min(box[4], ls->grid->evalActiveVoxelBoundingBox().max()[1]);
+        const openvdb::CoordBBox solid(openvdb::Coord(box[0], box[1], box[2]),
+                                       openvdb::Coord(box[3], top, box[5]));
+        std::vector<openvdb::CoordBBox> mixed; // split after the walk: it changes the tree
         for (auto it = ls->grid->tree().beginValueOff(); it; ++it) {
             if (*it != ls->background) continue;
             openvdb::CoordBBox b;
             it.getBoundingBox(b);
-            const openvdb::Coord lo = b.min(), hi = b.max(), n = b.dim();
-            // A tile is one sign: where it reaches out of the solid's box it stays outside.
-            int in = inside(user, lo[0], lo[1], lo[2]);
-            if (in > 0 && n[0] > 1) in = inside(user, hi[0], hi[1], hi[2]);
-            if (in > 0 && n[0] > 1)
-                in = inside(user, lo[0] + n[0] / 2, lo[1] + n[1] / 2, lo[2] + n[2] / 2);
+            int in = b.volume() == 1 ? inside(user, b.min()[0], b.min()[1], b.min()[2])
+                                     : box_sign(b, solid, inside, user);
             if (in < 0) return -1;
-            if (in) it.setValue(-ls->background);
+            if (in == 1) it.setValue(-ls->background);
+            if (in == 2) mixed.push_back(b);
         }
+        for (const openvdb::CoordBBox &b : mixed)
+            if (sign_box(ls, b, solid, inside, user) != 0) return -1;
         return 0;
     } catch (...) {
         return -1;
