@@ -1,10 +1,12 @@
 #include "renderer/terrain_renderer.h"
 
 #include "editor/world/world_events.h"
+#include "renderer/clip_cells.h"
 #include "renderer/clip_window.h"
 #include "renderer/clip_window_upload.h"
 #include "renderer/clipmap_mesh.h"
 #include "renderer/frustum.h"
+#include "renderer/ground_occlusion.h"
 #include "renderer/lighting.h"
 #include "renderer/material_rule_uniforms.h"
 #include "renderer/material_textures.h"
@@ -44,6 +46,7 @@ enum {
     TERRAIN_VARIANTS = 256
 };
 #define TERRAIN_PROGRAMS 48
+#define PIECES_MAX 512 // drawable parts of a level (clipmap_mesh.h pieces)
 
 struct terrain_renderer {
     char shader_dir[4200];
@@ -74,6 +77,11 @@ struct terrain_renderer {
     int paint_seen;
     clip_window detail, detail_pd;
     float hmin[RENDER_MAX_LEVELS], hmax[RENDER_MAX_LEVELS];
+    // The same per cell of each window, for culling blocks (rebuilt once a changed
+    // window is whole: cells_stale).
+    clip_cells cells[RENDER_MAX_LEVELS];
+    int cells_stale[RENDER_MAX_LEVELS];
+    ground_occlusion occlusion; // this frame's ground hiding farther blocks
     // The steepest slope (rise over run) between neighbouring samples of each level's
     // window, re-measured when it changed and is whole (slope_stale).
     double slope_max[RENDER_MAX_LEVELS];
@@ -396,6 +404,7 @@ static void upload_window(terrain_renderer *r, clip_window *w, GLuint tex, int l
                           GLenum type) {
     // A whole upload or the first band of a fill from nothing starts the bounds afresh.
     if (layer >= 0 && w->layer == TILE_LAYER_COARSE && (w->upload_all || w->upload_count > 0)) {
+        r->cells_stale[layer] = 1;
         scan_bounds(r, layer, w->uploads, w->upload_count, w->upload_all, w->refill_started);
         w->refill_started = 0;
     }
@@ -491,6 +500,7 @@ static void invalidate_all(terrain_renderer *r) {
     for (int l = 0; l < RENDER_MAX_LEVELS; l++) {
         clip_window_invalidate(&r->heights[l]);
         r->slope_max[l] = INFINITY, r->slope_stale[l] = 1;
+        r->cells[l].cells = 0, r->cells_stale[l] = 1;
         clip_window_invalidate(&r->material[l]);
     }
     clip_window_invalidate(&r->detail);
@@ -670,6 +680,10 @@ int terrain_renderer_update(terrain_renderer *r, world *w, const camera *cam,
         if (r->slope_stale[l] && clip_window_current(hw, r->origin[l])) {
             measure_slopes(r, l, 0, 0, hw->size, hw->size);
             r->slope_stale[l] = 0;
+        }
+        if (r->cells_stale[l] && clip_window_current(hw, r->origin[l])) {
+            clip_cells_build(&r->cells[l], hw);
+            r->cells_stale[l] = 0;
         }
     }
     for (int l = r->finest; l < r->levels && r->paint_seen; l++)
@@ -903,14 +917,34 @@ static void set_terrain_uniforms(terrain_renderer *r, GLuint prog, const camera 
                         &r->albedo_mean[0][0]);
 }
 
-// The camera-relative bounding box of a piece of level l, for culling.
+// The heights a piece of level l can take: its source's samples under it and, where
+// it morphs, the coarser source's (bilinear between the samples around it); the
+// sources' whole bounds where their cells are not built.
+static void piece_heights(const terrain_renderer *r, int l, const clip_piece *pc, int morphs,
+                          float *lo, float *hi) {
+    int s = r->src[l], c = morphs && l + 1 < r->levels && r->src[l + 1] >= 0 ? r->src[l + 1] : s;
+    *lo = INFINITY, *hi = -INFINITY;
+    for (int k = 0; k < (c != s ? 2 : 1); k++) {
+        int src = k == 0 ? s : c, shift = src - l;
+        double i0 = (double)(r->origin[l][0] + pc->x0), i1 = (double)(r->origin[l][0] + pc->x1);
+        double j0 = (double)(r->origin[l][1] + pc->z0), j1 = (double)(r->origin[l][1] + pc->z1);
+        // In src's samples: the floor at the low end, the ceiling at the high end.
+        float a, b;
+        if (r->cells_stale[src] ||
+            !clip_cells_range(&r->cells[src], floor_to_i64(ldexp(i0, -shift)),
+                              floor_to_i64(ldexp(j0, -shift)), -floor_to_i64(-ldexp(i1, -shift)),
+                              -floor_to_i64(-ldexp(j1, -shift)), &a, &b))
+            a = r->hmin[src], b = r->hmax[src];
+        *lo = fminf(*lo, a), *hi = fmaxf(*hi, b);
+    }
+}
+
+// The camera-relative bounding box of a piece of level l between heights lo and hi.
 static void piece_box(const terrain_renderer *r, int l, const clip_piece *pc, const camera *cam,
-                      float mn[3], float mx[3]) {
+                      float lo, float hi, float mn[3], float mx[3]) {
     double ls = r->params.spacing * (double)((int64_t)1 << l);
     double x0 = (double)r->origin[l][0] * ls - cam->pos[0],
            z0 = (double)r->origin[l][1] * ls - cam->pos[2];
-    int s = r->src[l], c = l + 1 < r->levels && r->src[l + 1] >= 0 ? r->src[l + 1] : s;
-    float lo = fminf(r->hmin[s], r->hmin[c]), hi = fmaxf(r->hmax[s], r->hmax[c]);
     mn[0] = (float)(x0 + pc->x0 * ls), mx[0] = (float)(x0 + pc->x1 * ls);
     mn[1] = (float)(lo - cam->pos[1]), mx[1] = (float)(hi - cam->pos[1]);
     mn[2] = (float)(z0 + pc->z0 * ls), mx[2] = (float)(z0 + pc->z1 * ls);
@@ -964,13 +998,81 @@ static unsigned level_rules_live(const terrain_renderer *r, const material_rules
                                fmax(r->hmax[a], r->hmax[b]) + 1.0, slope);
 }
 
+// A level's drawable part and its squared distance from the camera (level units).
+typedef struct piece_order {
+    float distance2;
+    int piece;
+} piece_order;
+
+static int nearer_first(const void *a, const void *b) {
+    const piece_order *p = a, *q = b;
+    return (p->distance2 > q->distance2) - (p->distance2 < q->distance2);
+}
+
+// Whether the camera is above the ground drawn under it (ground_occlusion.h's argument
+// needs it): the highest sample around it in the finest level drawn and the one it
+// morphs into.
+static int camera_above_ground(const terrain_renderer *r, const camera *cam) {
+    int l = r->finest;
+    if (l >= r->levels || r->src[l] < 0) return 0;
+    double ls = r->params.spacing * (double)((int64_t)1 << l);
+    int64_t x = floor_to_i64(cam->pos[0] / ls) - r->origin[l][0];
+    int64_t z = floor_to_i64(cam->pos[2] / ls) - r->origin[l][1];
+    if (x < 0 || z < 0 || x + 1 >= CLIP_N || z + 1 >= CLIP_N) return 0;
+    clip_piece under = {
+        .x0 = (uint16_t)x, .z0 = (uint16_t)z, .x1 = (uint16_t)(x + 1), .z1 = (uint16_t)(z + 1)};
+    float lo, hi;
+    piece_heights(r, l, &under, 1, &lo, &hi);
+    return cam->pos[1] > hi + 0.01 + 1e-6 * fabs(hi);
+}
+
+// Whether a camera-relative box is hidden by the ground added so far.
+static int box_hidden(const terrain_renderer *r, const float mn[3], const float mx[3]) {
+    double pts[8][3];
+    for (int k = 0; k < 8; k++)
+        pts[k][0] = (k & 1) ? mx[0] : mn[0], pts[k][1] = (k & 2) ? mx[1] : mn[1],
+        pts[k][2] = (k & 4) ? mx[2] : mn[2];
+    return ground_occlusion_hidden(&r->occlusion, (const double(*)[3])pts, 8);
+}
+
+// The solid under a drawn piece's ground (its box from its lowest point less a margin
+// for float rounding, as deep again as the piece is wide), cut to a bounded world's
+// extent (lo, hi: level l's local units), outside which the ground is not drawn.
+static void add_solid_under(terrain_renderer *r, int l, const float mn[3], const float mx[3],
+                            const double lo[2], const double hi[2], const camera *cam) {
+    double ls = r->params.spacing * (double)((int64_t)1 << l);
+    double x0 = mn[0], x1 = mx[0], z0 = mn[2], z1 = mx[2];
+    double ox = (double)r->origin[l][0] * ls - cam->pos[0],
+           oz = (double)r->origin[l][1] * ls - cam->pos[2];
+    x0 = fmax(x0, ox + lo[0] * ls), x1 = fmin(x1, ox + hi[0] * ls);
+    z0 = fmax(z0, oz + lo[1] * ls), z1 = fmin(z1, oz + hi[1] * ls);
+    if (!(x0 < x1 && z0 < z1)) return;
+    double top = mn[1] - 0.01 - 1e-6 * fabs(mn[1] + cam->pos[1]);
+    double bottom = top - fmax(x1 - x0, z1 - z0);
+    double pts[8][3];
+    for (int k = 0; k < 8; k++)
+        pts[k][0] = (k & 1) ? x1 : x0, pts[k][1] = (k & 2) ? top : bottom,
+        pts[k][2] = (k & 4) ? z1 : z0;
+    ground_occlusion_add_solid(&r->occlusion, (const double(*)[3])pts, 8);
+}
+
 static int draw_terrain(terrain_renderer *r, const camera *cam, const render_settings *s,
                         const brush_cursor *cursor, const float view_proj[16], og_error *err) {
     frustum f;
     frustum_from_matrix(&f, view_proj);
     int m = r->mesh.m;
-    GLsizei counts[512];
-    const void *offsets[512];
+    GLsizei counts[PIECES_MAX];
+    const void *offsets[PIECES_MAX];
+    const int occlude = s->culling && s->view != VIEW_WIREFRAME &&
+                        !volume_renderer_active(r->volume) && camera_above_ground(r, cam);
+    if (occlude) {
+        double eye[3] = {0, 0, 0}, forward[3], right[3], up[3];
+        camera_forward(cam, forward), camera_right(cam, right), camera_up(cam, up);
+        const double ty =
+            tan((cam->fov_y >= 1 && cam->fov_y <= 170 ? cam->fov_y : 60) * M_PI / 360.0);
+        ground_occlusion_begin(&r->occlusion, eye, forward, right, up,
+                               ty * r->width / (r->height > 0 ? r->height : 1), ty);
+    }
     glBindVertexArray(r->vao);
     r->frame++;
     if (cursor_drapes(cursor)) // the falloff curve, once a frame
@@ -1003,23 +1105,39 @@ static int draw_terrain(terrain_renderer *r, const camera *cam, const render_set
         float view[2] = {(float)(cam->pos[0] / ls - (double)r->origin[l][0]),
                          (float)(cam->pos[2] / ls - (double)r->origin[l][1])};
         float reach = MORPH_START - 0.01f;
-        int n[2] = {0, 0}; // [0]: parts that may morph, [1]: parts that never do
-        for (size_t i = 0; i < r->mesh.piece_count && n[0] + n[1] < 512; i++) {
+        // The parts this level may draw, nearest first (so that nearer ground hides
+        // what lies behind it, and the depth test rejects more fragments early).
+        piece_order order[PIECES_MAX];
+        int candidates = 0;
+        for (size_t i = 0; i < r->mesh.piece_count && candidates < PIECES_MAX; i++) {
             const clip_piece *pc = &r->mesh.pieces[i];
             if (pc->x1 < lo[0] || pc->x0 > hi[0] || pc->z1 < lo[1] || pc->z0 > hi[1]) continue;
             if (pc->kind == CLIP_PIECE_INTERIOR && l != r->finest) continue;
             if (pc->kind == CLIP_PIECE_TRIM &&
                 (l == r->finest || (pc->trim != (int)trims[0] && pc->trim != (int)trims[1])))
                 continue;
-            if (s->culling && (pc->kind == CLIP_PIECE_BLOCK || pc->kind == CLIP_PIECE_FIXUP ||
-                               pc->kind == CLIP_PIECE_INTERIOR)) {
-                float mn[3], mx[3];
-                piece_box(r, l, pc, cam, mn, mx);
-                if (!frustum_test_aabb(&f, mn, mx)) continue;
-            }
+            float dx = fmaxf(fmaxf(pc->x0 - view[0], view[0] - pc->x1), 0.0f);
+            float dz = fmaxf(fmaxf(pc->z0 - view[1], view[1] - pc->z1), 0.0f);
+            order[candidates++] = (piece_order){dx * dx + dz * dz, (int)i};
+        }
+        qsort(order, (size_t)candidates, sizeof order[0], nearer_first);
+        int n[2] = {0, 0}; // [0]: parts that may morph, [1]: parts that never do
+        for (int o = 0; o < candidates && n[0] + n[1] < PIECES_MAX; o++) {
+            const clip_piece *pc = &r->mesh.pieces[order[o].piece];
             int still = !morphs || (pc->x0 >= view[0] - reach && pc->x1 <= view[0] + reach &&
                                     pc->z0 >= view[1] - reach && pc->z1 <= view[1] + reach);
-            int k = still ? 511 - n[1]++ : n[0]++; // the still parts fill from the end
+            if (s->culling && (pc->kind == CLIP_PIECE_BLOCK || pc->kind == CLIP_PIECE_FIXUP ||
+                               pc->kind == CLIP_PIECE_INTERIOR)) {
+                float mn[3], mx[3], h0, h1;
+                piece_heights(r, l, pc, !still, &h0, &h1);
+                piece_box(r, l, pc, cam, h0, h1, mn, mx);
+                if (!frustum_test_aabb(&f, mn, mx)) continue;
+                if (occlude) {
+                    if (box_hidden(r, mn, mx)) continue;
+                    add_solid_under(r, l, mn, mx, lo, hi, cam);
+                }
+            }
+            int k = still ? PIECES_MAX - 1 - n[1]++ : n[0]++; // the still parts fill from the end
             counts[k] = (GLsizei)pc->count;
             offsets[k] = (const void *)(uintptr_t)(pc->first * sizeof(uint16_t));
             r->stats.triangles += pc->count / 3;
@@ -1039,7 +1157,7 @@ static int draw_terrain(terrain_renderer *r, const camera *cam, const render_set
             }
             if (prog != current) glUseProgram(current = prog);
             glProgramUniform1i(prog, glGetUniformLocation(prog, "u_level"), l);
-            int first = still ? 512 - n[1] : 0;
+            int first = still ? PIECES_MAX - n[1] : 0;
             glMultiDrawElements(GL_TRIANGLES, counts + first, GL_UNSIGNED_SHORT, offsets + first,
                                 n[still]);
             r->stats.draw_calls++;

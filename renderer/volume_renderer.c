@@ -498,6 +498,10 @@ int volume_renderer_pick(const volume_renderer *vr, const double origin[3], cons
     return 0;
 }
 
+int volume_renderer_active(const volume_renderer *vr) {
+    return vr->enabled && vr->count > 0;
+}
+
 int volume_renderer_replaces(const volume_renderer *vr, double x, double y, double z) {
     if (!vr->enabled || vr->count == 0) return 0;
     double v = vr->grid.voxel;

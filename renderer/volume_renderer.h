@@ -50,5 +50,7 @@ int volume_renderer_pick(const volume_renderer *vr, const double origin[3], cons
                          double max, double *t);
 // Whether the heightfield at (x, y, z) metres is hidden (a mesh draws the ground there).
 int volume_renderer_replaces(const volume_renderer *vr, double x, double y, double z);
+// Whether any volume ground is drawn (it replaces the heightfield's ground there).
+int volume_renderer_active(const volume_renderer *vr);
 
 #endif

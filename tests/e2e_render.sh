@@ -208,5 +208,16 @@ fi
 "$rmse_tool" "$golden/seams.png" "$work/seams.png" --max 1.0 --diff "$failed_dir/seams-diff.png" >"$work/rmse" 2>&1
 rc=$?; check "no shading seam along the clipmap level edges (slope view vs golden: $(cat "$work/rmse"))" $rc
 
+# Blocks hidden by nearer ground (and outside the view) are left out, and the picture is
+# the same: low over the cliffs, looking across them (`render culling=off` draws all).
+run "camera 1000 250 1500 0 -5; screenshot $work/occ_on.png 480 270; render culling=off;
+     screenshot $work/occ_off.png 480 270"
+rc=$?; check "a low view with and without culling ($(cat "$work/err"))" $rc
+tris_on=$(sed -n 's/^screenshot .*occ_on\.png.* triangles=\([0-9]*\).*/\1/p' "$work/out")
+tris_off=$(sed -n 's/^screenshot .*occ_off\.png.* triangles=\([0-9]*\).*/\1/p' "$work/out")
+less "${tris_on:-x}" "${tris_off:-x}"; check "culling draws fewer triangles ($tris_on against $tris_off)" $?
+r=$(rmse "$work/occ_on.png" "$work/occ_off.png")
+less "$r" 0.001; check "and the same picture (RMSE $r)" $?
+
 echo "e2e_render: $passes passed, $failures failed"
 [ $failures = 0 ]

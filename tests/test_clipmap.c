@@ -1,11 +1,13 @@
 // Clipmap geometry and level windows: the pieces tile every level exactly once around
 // the finer level for each of its four positions; the toroidal window holds exactly
 // the samples of its origin after any move, copies only what entered, never blocks,
-// and re-reads edited samples.
+// and re-reads edited samples; its cells' height bounds hold every sample of a range.
 #include "io/tile_cache.h"
+#include "renderer/clip_cells.h"
 #include "renderer/clip_window.h"
 #include "renderer/clipmap_mesh.h"
 
+#include <math.h>
 #include <pthread.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -302,12 +304,75 @@ static void test_window_fills_within_a_budget(void **state) {
     assert_int_equal(tile_cache_destroy(c, &err), 0);
 }
 
+// The cells' bounds of any range of samples are those of its samples (a window whose
+// mirror is rotated by its origin, ranges partly outside it clamped to it).
+static void test_cells_bound_every_range(void **state) {
+    (void)state;
+    clip_window w;
+    assert_int_equal(clip_window_init(&w, TILE_LAYER_COARSE, 0, 3, 256), 0);
+    const int n = w.size;
+    w.have[0] = -1000 + 37, w.have[1] = 5 * 256 + 200; // not a multiple of the size
+    float *m = (float *)w.mirror;
+    uint32_t seed = 12345;
+    for (int k = 0; k < n * n; k++) {
+        seed = seed * 1664525u + 1013904223u;
+        m[k] = (float)(seed >> 8) / 65536.0f - 128.0f;
+    }
+    clip_cells cells;
+    w.has_data = 0;
+    clip_cells_build(&cells, &w);
+    float lo, hi;
+    assert_int_equal(
+        clip_cells_range(&cells, w.have[0], w.have[1], w.have[0] + 3, w.have[1] + 3, &lo, &hi),
+        0); // not built from a window without its samples
+    w.has_data = 1;
+    clip_cells_build(&cells, &w);
+    for (int t = 0; t < 2000; t++) {
+        seed = seed * 1664525u + 1013904223u;
+        int64_t i0 = w.have[0] - 20 + (int64_t)(seed >> 8) % (n + 10);
+        int64_t j0 = w.have[1] - 20 + (int64_t)(seed >> 20) % (n + 10);
+        seed = seed * 1664525u + 1013904223u;
+        int64_t i1 = i0 + (int64_t)(seed >> 8) % 40, j1 = j0 + (int64_t)(seed >> 20) % 40;
+        float want_lo = INFINITY, want_hi = -INFINITY;
+        for (int64_t z = j0; z <= j1; z++)
+            for (int64_t x = i0; x <= i1; x++) {
+                if (x < w.have[0] || z < w.have[1] || x >= w.have[0] + n || z >= w.have[1] + n)
+                    continue;
+                float v = m[(size_t)(z & (n - 1)) * n + (size_t)(x & (n - 1))];
+                want_lo = fminf(want_lo, v), want_hi = fmaxf(want_hi, v);
+            }
+        int got = clip_cells_range(&cells, i0, j0, i1, j1, &lo, &hi);
+        if (want_lo > want_hi) { // wholly outside the window
+            assert_int_equal(got, 0);
+            continue;
+        }
+        assert_int_equal(got, 1);
+        if (!(lo <= want_lo && hi >= want_hi))
+            fail_msg("range [%lld, %lld] x [%lld, %lld]: bounds %g .. %g miss %g .. %g",
+                     (long long)i0, (long long)i1, (long long)j0, (long long)j1, lo, hi, want_lo,
+                     want_hi);
+    }
+    // And tight to the cells around a range: a spike shows only in ranges near it.
+    memset(w.mirror, 0, (size_t)n * n * sizeof(float));
+    int64_t sx = w.have[0] + 100, sz = w.have[1] + 60;
+    m[(size_t)(sz & (n - 1)) * n + (size_t)(sx & (n - 1))] = 1000.0f;
+    clip_cells_build(&cells, &w);
+    assert_int_equal(clip_cells_range(&cells, sx, sz, sx, sz, &lo, &hi), 1);
+    assert_true(hi == 1000.0f && lo == 0.0f);
+    assert_int_equal(clip_cells_range(&cells, sx + 17, sz - 40, sx + 60, sz + 40, &lo, &hi), 1);
+    assert_true(hi == 0.0f);
+    assert_int_equal(clip_cells_range(&cells, sx - 40, sz + 17, sx + 40, sz + 50, &lo, &hi), 1);
+    assert_true(hi == 0.0f);
+    clip_window_free(&w);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_window_fills_within_a_budget),
         cmocka_unit_test(test_pieces_tile_each_level_once),
         cmocka_unit_test(test_bad_sizes_are_refused),
         cmocka_unit_test(test_window_moves_toroidally),
+        cmocka_unit_test(test_cells_bound_every_range),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
