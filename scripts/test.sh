@@ -3,7 +3,8 @@
 #   scripts/test.sh              Release build
 #   scripts/test.sh --sanitize   the same suite under ASan + UBSan
 #   scripts/test.sh --thread     the threaded engine's tests (edits, the parallel pool,
-#                                the tile cache, change notifications, the EXR writer)
+#                                the tile cache, change notifications, the EXR writer,
+#                                hydraulic erosion's bands)
 #                                under TSan
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -21,7 +22,7 @@ case "${1:-}" in
 --thread)
   "$root/scripts/install-deps.sh"
   dir="$root/build-tsan"
-  tsan_tests=(test_edit test_cache test_parallel test_world_events test_tokenize test_cmd_job test_sculpt_drag
+  tsan_tests=(test_edit test_cache test_parallel test_world_events test_tokenize test_cmd_job test_sculpt_drag test_erosion
     test_exr_write)
   cmake -S "$root" -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DOROGEN_TSAN=ON \
     -DOROGEN_WERROR=ON >/dev/null

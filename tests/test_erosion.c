@@ -15,6 +15,7 @@
 
 // Test hook in erosion.c (not part of the public header).
 void erosion_allow_avx2(int allow);
+void erosion_allow_threads(int allow);
 
 static uint32_t hash2(uint32_t i, uint32_t j, uint32_t seed) {
     uint32_t x = i * 0x9E3779B1u ^ (j + 0x7F4A7C15u) * 0x85EBCA77u ^ seed * 0xC2B2AE3Du;
@@ -400,6 +401,28 @@ static void test_hydraulic_deterministic(void **state) {
     grid_free(&a), grid_free(&b), grid_free(&c);
 }
 
+// Droplets run in bands of columns on every core: on one thread, the same bits. Wide
+// enough for five bands (three of them at once).
+static void test_hydraulic_threads_change_nothing(void **state) {
+    (void)state;
+    grid a = grid_new(360, 90, 1.0f), b = grid_new(360, 90, 1.0f);
+    noisy_slope(&a, 3.0f, 12);
+    brush_weights(&a, 5);
+    memcpy(b.h, a.h, cells(&a) * sizeof(float));
+    memcpy(b.w, a.w, cells(&a) * sizeof(float));
+    hydraulic_params p = hydraulic(0xBA5Dull, 30000);
+    hydraulic_report ra, rb;
+    erosion_hydraulic(&a.g, &p, &ra);
+    erosion_allow_threads(0);
+    erosion_hydraulic(&b.g, &p, &rb);
+    erosion_allow_threads(1);
+    assert_memory_equal(a.h, b.h, cells(&a) * sizeof(float));
+    assert_true(ra.eroded == rb.eroded && ra.deposited == rb.deposited &&
+                ra.dropped == rb.dropped && ra.droplets == rb.droplets && ra.steps == rb.steps);
+    assert_true(ra.eroded > 10.0);
+    grid_free(&a), grid_free(&b);
+}
+
 static void test_hydraulic_smooths(void **state) {
     (void)state;
     grid t = grid_new(128, 128, 1.0f);
@@ -635,6 +658,7 @@ int main(void) {
         cmocka_unit_test(test_hydraulic_mass),
         cmocka_unit_test(test_hydraulic_never_touches_zero_weight),
         cmocka_unit_test(test_hydraulic_deterministic),
+        cmocka_unit_test(test_hydraulic_threads_change_nothing),
         cmocka_unit_test(test_hydraulic_smooths),
         cmocka_unit_test(test_scale_invariant),
         cmocka_unit_test(test_extremes_stay_finite),

@@ -1,5 +1,6 @@
 #include "editor/tools/erosion.h"
 
+#include "editor/edit/parallel.h"
 #include "io/progress.h"
 
 #include <math.h>
@@ -421,6 +422,7 @@ typedef struct droplet_ctx {
     // What earlier drops could not place because of float rounding; the next drop adds
     // it, so a whole call loses at most one rounding.
     double carry;
+    float end_x, end_y; // where the last droplet died
 } droplet_ctx;
 
 // A droplet may stand at (x, y) when its bilinear cell lies in the grid and all four
@@ -605,6 +607,7 @@ static void droplet_run(droplet_ctx *c, const hydraulic_params *p, float spacing
         water *= 1.0f - p->evaporation;
         x = nx, y = ny;
     }
+    c->end_x = x, c->end_y = y;
     const double load = sediment + c->carry;
     if (load > 0.0) {
         const double added = drop_disc(c, x, y, load);
@@ -613,6 +616,79 @@ static void droplet_run(droplet_ctx *c, const hydraulic_params *p, float spacing
     } else {
         c->carry = load;
     }
+}
+
+// Droplets run in bands of columns, a band's droplets one after another in the order
+// they were drawn. A droplet reaches at most max_lifetime cells from its start, plus
+// the disc and its bilinear cell, so bands two apart never touch the same cell: the
+// even bands run at the same time, then the odd ones. Which droplet runs where, and
+// the random stream each walks with, depend on the seed and the grid alone, so the
+// heights are the same on any number of threads.
+typedef struct band_job {
+    const droplet_ctx *base;
+    const hydraulic_params *p;
+    float spacing;
+    uint64_t walk_seed;
+    const float (*start)[2];  // the chunk's starts, in drawing order
+    const uint32_t *order;    // indices into start, band by band
+    const size_t *band_first; // band b's droplets: order[band_first[b] .. band_first[b + 1])
+    int64_t first_droplet;    // the chunk's first droplet's number in the call
+    int parity;               // the bands this run takes: parity, parity + 2, ...
+    droplet_ctx *ends;        // per band: its carry and where its last droplet died
+    hydraulic_report *reports;
+    og_progress *progress;
+    atomic_long *done;
+    long total;
+} band_job;
+
+static int band_task(void *user, int task, og_error *err) {
+    band_job *j = user;
+    const int b = 2 * task + j->parity;
+    if (og_progress_cancelled(j->progress)) return og_error_set(err, "cancelled");
+    droplet_ctx c = *j->base;
+    c.carry = j->ends[b].carry;
+    hydraulic_report r = {0};
+    const size_t a = j->band_first[b], e = j->band_first[b + 1];
+    for (size_t m = a; m < e; m++) {
+        if (m + SPAWN_AHEAD < e) { // a start is a random spot, far from the last droplet's
+            const float *ahead = j->start[j->order[m + SPAWN_AHEAD]];
+            prefetch_disc(&c, ahead[0], ahead[1]);
+        }
+        const uint32_t k = j->order[m];
+        uint64_t rng = j->walk_seed ^ ((uint64_t)(j->first_droplet + k) * 0xD1B54A32D192ED03ull);
+        droplet_run(&c, j->p, j->spacing, j->start[k][0], j->start[k][1], &rng, &r);
+        r.droplets++;
+        if ((r.droplets & 1023) == 0) {
+            long done = atomic_fetch_add(j->done, 1024) + 1024;
+            if (og_progress_report(j->progress, done, j->total) != 0)
+                return og_error_set(err, "cancelled");
+        }
+    }
+    if (e > a) j->ends[b] = c;
+    hydraulic_report *t = &j->reports[b];
+    t->eroded += r.eroded, t->deposited += r.deposited, t->dropped += r.dropped;
+    t->droplets += r.droplets, t->steps += r.steps;
+    return 0;
+}
+
+// Droplets are drawn and run this many at a time (bounded memory for any count).
+enum { CHUNK = 1 << 16 };
+
+// Test hook (not in the header): 0 runs the bands one after another on the caller, so
+// tests can check that the threads change nothing.
+void erosion_allow_threads(int allow);
+static atomic_int allow_threads = 1;
+void erosion_allow_threads(int allow) {
+    atomic_store(&allow_threads, allow);
+}
+
+static int run_bands(int tasks, band_job *job, og_error *err) {
+    if (atomic_load_explicit(&allow_threads, memory_order_relaxed))
+        return parallel_run(tasks, band_task, job, err);
+    int rc = 0;
+    for (int t = 0; t < tasks && rc == 0; t++)
+        rc = band_task(job, t, err);
+    return rc;
 }
 
 void erosion_hydraulic(erosion_grid *g, const hydraulic_params *p, hydraulic_report *report) {
@@ -632,7 +708,16 @@ void erosion_hydraulic(erosion_grid *g, const hydraulic_params *p, hydraulic_rep
     // The droplets read clamped weights (clamping was an eighth of their work).
     float *wt = malloc((size_t)W * H * sizeof *wt);
     droplet_ctx c = {.h = g->heights, .wt = wt, .W = W, .H = H};
-    if (!spawn_cell || !guide || !spawn_cdf || !wt || disc_build(&c.disc, p->radius_cells, W))
+    const int reach = (int)ceilf(p->radius_cells);
+    const int band_width = 2 * (p->max_lifetime + reach + 2);
+    const int bands = (W + band_width - 1) / band_width;
+    float(*start)[2] = malloc(CHUNK * sizeof *start);
+    uint32_t *order = malloc(CHUNK * sizeof *order);
+    size_t *band_first = calloc((size_t)bands + 2, sizeof *band_first);
+    droplet_ctx *ends = calloc((size_t)bands, sizeof *ends);
+    hydraulic_report *reports = calloc((size_t)bands, sizeof *reports);
+    if (!spawn_cell || !guide || !spawn_cdf || !wt || !start || !order || !band_first || !ends ||
+        !reports || disc_build(&c.disc, p->radius_cells, W))
         goto done;
     for (size_t k = 0; k < (size_t)W * H; k++)
         wt[k] = wclamp(g->weight[k]);
@@ -657,35 +742,71 @@ void erosion_hydraulic(erosion_grid *g, const hydraulic_params *p, hydraulic_rep
         guide[m] = (uint32_t)k;
     }
 
-    // Start points come from their own stream and are drawn SPAWN_AHEAD droplets early,
-    // so the memory around them can be prefetched: a start is a random spot of the grid,
-    // far from the last droplet's (about 10% faster on 1024^2).
-    uint64_t spawn_rng = p->seed, walk_rng = p->seed ^ 0x6A09E667F3BCC909ull;
-    float ahead[SPAWN_AHEAD][2];
-    for (int n = 0; n < p->droplets + SPAWN_AHEAD; n++) {
-        if (n >= SPAWN_AHEAD) {
-            const float *xy = ahead[n % SPAWN_AHEAD];
-            droplet_run(&c, p, g->spacing, xy[0], xy[1], &walk_rng, &rep);
-            rep.droplets++;
-            if ((rep.droplets & 1023) == 0 &&
-                og_progress_report(g->progress, rep.droplets, p->droplets) != 0)
-                break;
+    uint64_t spawn_rng = p->seed;
+    atomic_long done_count;
+    atomic_init(&done_count, 0);
+    band_job job = {.base = &c,
+                    .p = p,
+                    .spacing = g->spacing,
+                    .walk_seed = p->seed ^ 0x6A09E667F3BCC909ull,
+                    .start = (const float(*)[2])start,
+                    .order = order,
+                    .band_first = band_first,
+                    .ends = ends,
+                    .reports = reports,
+                    .progress = g->progress,
+                    .done = &done_count,
+                    .total = p->droplets};
+    int cancelled = 0;
+    for (int first = 0; first < p->droplets && !cancelled; first += CHUNK) {
+        const int n = p->droplets - first < CHUNK ? p->droplets - first : CHUNK;
+        for (int m = 0; m < n; m++) {
+            // The first entry whose running sum exceeds `pick` (the last one if none
+            // does): start at the guide, then walk either way, so rounding in the cuts
+            // is harmless.
+            const double u = (double)(rng_next(&spawn_rng) >> 11) * 0x1p-53, pick = u * total;
+            size_t k = guide[(size_t)(u * (double)count)];
+            while (k < count - 1 && spawn_cdf[k] <= pick)
+                k++;
+            while (k > 0 && spawn_cdf[k - 1] > pick)
+                k--;
+            const int i = (int)(spawn_cell[k] % (uint32_t)W),
+                      j = (int)(spawn_cell[k] / (uint32_t)W);
+            float x = (float)i + rng_unit(&spawn_rng), y = (float)j + rng_unit(&spawn_rng);
+            if ((int)x != i) x = (float)i; // rounded up into the next cell
+            if ((int)y != j) y = (float)j;
+            start[m][0] = x, start[m][1] = y;
         }
-        if (n >= p->droplets) continue;
-        // The first entry whose running sum exceeds `pick` (the last one if none does):
-        // start at the guide, then walk either way, so rounding in the cuts is harmless.
-        const double u = (double)(rng_next(&spawn_rng) >> 11) * 0x1p-53, pick = u * total;
-        size_t k = guide[(size_t)(u * (double)count)];
-        while (k < count - 1 && spawn_cdf[k] <= pick)
-            k++;
-        while (k > 0 && spawn_cdf[k - 1] > pick)
-            k--;
-        const int i = (int)(spawn_cell[k] % (uint32_t)W), j = (int)(spawn_cell[k] / (uint32_t)W);
-        float x = (float)i + rng_unit(&spawn_rng), y = (float)j + rng_unit(&spawn_rng);
-        if ((int)x != i) x = (float)i; // rounded up into the next cell
-        if ((int)y != j) y = (float)j;
-        ahead[n % SPAWN_AHEAD][0] = x, ahead[n % SPAWN_AHEAD][1] = y;
-        prefetch_disc(&c, x, y);
+        // Each band's droplets together, in drawing order (a counting sort).
+        memset(band_first, 0, ((size_t)bands + 2) * sizeof *band_first);
+        for (int m = 0; m < n; m++)
+            band_first[(int)start[m][0] / band_width + 2]++;
+        for (int b = 0; b < bands; b++)
+            band_first[b + 2] += band_first[b + 1];
+        for (int m = 0; m < n; m++)
+            order[band_first[(int)start[m][0] / band_width + 1]++] = (uint32_t)m;
+        job.first_droplet = first;
+        og_error err;
+        for (int parity = 0; parity < 2 && !cancelled; parity++) {
+            job.parity = parity;
+            int tasks = (bands - parity + 1) / 2;
+            cancelled = run_bands(tasks, &job, &err) != 0;
+        }
+    }
+    // What the bands' last drops could not place for rounding lands where the last
+    // band's last droplet died.
+    double carry = 0.0;
+    int last = -1;
+    for (int b = 0; b < bands; b++) {
+        rep.eroded += reports[b].eroded, rep.deposited += reports[b].deposited;
+        rep.dropped += reports[b].dropped, rep.droplets += reports[b].droplets;
+        rep.steps += reports[b].steps;
+        carry += ends[b].carry;
+        if (reports[b].droplets) last = b;
+    }
+    if (!cancelled && last >= 0 && carry > 0.0) {
+        c.carry = 0.0;
+        rep.dropped += drop_disc(&c, ends[last].end_x, ends[last].end_y, carry);
     }
 
 done:
@@ -694,5 +815,10 @@ done:
     free(guide);
     free(wt);
     free(spawn_cdf);
+    free(start);
+    free(order);
+    free(band_first);
+    free(ends);
+    free(reports);
     if (report) *report = rep;
 }

@@ -8,8 +8,11 @@
 //  - A cell whose weight is 0 never changes, to the bit (the hydraulic kernel may store
 //    its own bits back); it may be read. Negative or NaN weights count as 0, weights
 //    above 1 as 1.
-//  - Deterministic: the output depends only on the inputs (no threads, no global
-//    state); the hydraulic kernel draws from its own PRNG seeded by `seed`.
+//  - Deterministic: the output depends only on the inputs (no global state); the
+//    hydraulic kernel draws from its own PRNG seeded by `seed` and runs its droplets
+//    in bands of columns on the editing pool's threads (editor/edit/parallel.h, so
+//    call it from the editor's thread), bands that cannot touch a common cell at the
+//    same time: the same heights on any number of threads.
 //  - Finite heights in (|h| <= 1e9 m, not checked), finite heights out. Invalid grids
 //    or parameters (see the validate functions) leave the grid untouched, as does
 //    running out of memory.
