@@ -133,6 +133,39 @@ static void test_terms_match_formulas(void **state) {
         assert_true(out[i] == 0);
 }
 
+// The slope term's shortcut (weights 1 and 0 decided on the rise over run, the atan only
+// on the soft edges) gives bit for bit the weights of the slope in degrees: random
+// ranges (hard and soft edges, open ends, 0 and 90) over random ground, steep and gentle.
+static void test_slope_shortcut_exact(void **state) {
+    (void)state;
+    enum { W = 31, H = 29, B = 1 };
+    int ww = W + 2 * B, wh = H + 2 * B;
+    float below[(W + 2 * B) * (H + 2 * B)], degrees[W * H], out[W * H];
+    int soft = 0;
+    for (int round = 0; round < 600; round++) {
+        double relief = round % 3 == 0 ? 2.0 : round % 3 == 1 ? 30.0 : 400.0;
+        double spacing = 1 + rnd() * 9;
+        for (int i = 0; i < ww * wh; i++)
+            below[i] = (float)(rnd() * relief);
+        if (round % 7 == 0) below[40] = NAN;
+        layer_mask m;
+        layer_mask_init(&m);
+        double lo = rnd() < 0.2 ? 0 : rnd() * 90, hi = rnd() < 0.2 ? 90 : lo + rnd() * (90 - lo);
+        double edge = rnd() < 0.3 ? 0 : rnd() * 20;
+        m.slope = (layer_mask_range){.on = 1, .lo = lo, .hi = hi, .edge = edge};
+        layer_mask_evaluate(&m, below, W, H, B, spacing, NULL, out);
+        layer_mask_slope_degrees(below, W, H, B, spacing, degrees);
+        for (int i = 0; i < W * H; i++) {
+            float want = (float)layer_mask_range_weight(&m.slope, degrees[i]);
+            if (memcmp(&out[i], &want, sizeof want))
+                fail_msg("slope=%.9g,%.9g,%.9g at %.9g degrees: %.9g, wanted %.9g", lo, hi, edge,
+                         degrees[i], out[i], want);
+            soft += want > 0 && want < 1;
+        }
+    }
+    assert_true(soft > 1000); // the soft edges were exercised, not only 0 and 1
+}
+
 // A cone h = 500 - k r: the slope is atan(k) everywhere off the apex.
 static void test_cone_slope(void **state) {
     (void)state;
@@ -432,7 +465,7 @@ int main(void) {
         cmocka_unit_test(test_cone_slope),     cmocka_unit_test(test_paraboloid_curvature),
         cmocka_unit_test(test_valley_flow),    cmocka_unit_test(test_window_independence),
         cmocka_unit_test(test_round_trip),     cmocka_unit_test(test_bad_inputs),
-        cmocka_unit_test(test_short_border),
+        cmocka_unit_test(test_short_border),   cmocka_unit_test(test_slope_shortcut_exact),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -233,6 +233,48 @@ void layer_mask_slope_degrees(const float *below, int w, int h, int b, double sp
         }
 }
 
+// out *= the slope term's weight. Where the gradient's rise over run lies clearly inside
+// [LO, HI] the weight is 1, clearly outside the soft edges 0, both known without the atan
+// (most samples: the atan was most of a masked layer's cost); between, the degrees as
+// layer_mask_slope_degrees takes them. "Clearly": a ten-thousandth of a degree, far over
+// the degrees' float rounding, so the result is the same bit for bit.
+static void multiply_slope_weights(const layer_mask_range *r, const float *below, int w, int h,
+                                   int b, double spacing, float *out) {
+    const double eps = 1e-4, rad = M_PI / 180.0;
+    double lo = r->lo, hi = r->hi, edge = r->edge;
+#define TAN2(deg) (tan((deg)*rad) * tan((deg)*rad))
+    double in_lo2 = lo <= 0 ? -1.0 : lo + eps < 90 ? TAN2(lo + eps) : INFINITY;
+    double in_hi2 = hi >= 90 ? INFINITY : hi - eps > 0 ? TAN2(hi - eps) : -1.0;
+    double zero_lo2 = lo - edge - eps > 0 ? TAN2(lo - edge - eps) : -1.0;
+    double zero_hi2 = hi + edge + eps < 90 ? TAN2(hi + edge + eps) : INFINITY;
+#undef TAN2
+    int ww = w + 2 * b, wh = h + 2 * b;
+    const double across = 2 * spacing; // run() inside the window: a border of 1 or more
+    for (int y = 0; y < h; y++) {
+        const float *row = below + (size_t)(y + b) * (size_t)ww + (size_t)b;
+        for (int x = 0; x < w; x++) {
+            double gx, gy;
+            if (b > 0) {
+                gx = ((double)row[x + 1] - (double)row[x - 1]) / across;
+                gy = ((double)row[x + ww] - (double)row[x - ww]) / across;
+            } else {
+                gx = (at(below, ww, wh, b, x + 1, y) - at(below, ww, wh, b, x - 1, y)) /
+                     run(ww, b, x, spacing);
+                gy = (at(below, ww, wh, b, x, y + 1) - at(below, ww, wh, b, x, y - 1)) /
+                     run(wh, b, y, spacing);
+            }
+            double g2 = gx * gx + gy * gy;
+            float *o = &out[(size_t)y * (size_t)w + (size_t)x];
+            if (g2 >= in_lo2 && g2 <= in_hi2) continue; // weight 1
+            if (g2 < zero_lo2 || g2 > zero_hi2) {
+                *o = 0;
+                continue;
+            }
+            *o *= (float)layer_mask_range_weight(r, (float)(atan(sqrt(g2)) * (180.0 / M_PI)));
+        }
+    }
+}
+
 void layer_mask_curvature(const float *below, int w, int h, int b, double spacing, float *out) {
     int ww = w + 2 * b, wh = h + 2 * b;
     double scale = -100.0 / (spacing * spacing);
@@ -340,7 +382,10 @@ void layer_mask_evaluate(const layer_mask *m, const float *below, int w, int h, 
             memset(out, 0, count * sizeof *out); // no memory: the layer applies nowhere
             return;
         }
-        if (t == 0) layer_mask_slope_degrees(below, w, h, b, spacing, values);
+        if (t == 0) {
+            multiply_slope_weights(terms[t], below, w, h, b, spacing, out);
+            continue;
+        }
         if (t == 1) layer_mask_curvature(below, w, h, b, spacing, values);
         if (t == 2 && layer_mask_flow_area(below, w, h, b, spacing, values)) {
             memset(out, 0, count * sizeof *out);
