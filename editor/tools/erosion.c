@@ -1,6 +1,7 @@
 #include "editor/tools/erosion.h"
 
 #include "editor/edit/parallel.h"
+#include "editor/tools/hot_loop.h"
 #include "io/progress.h"
 
 #include <math.h>
@@ -380,6 +381,12 @@ typedef struct disc {
     int *di, *dj;
     ptrdiff_t *off; // dj * width + di
     float *w;
+    // The same disc as rows of `lanes` cells (a multiple of 8, from di = -reach), the
+    // weights 0 past its edge, so eroding it runs 8 cells at a time: row r starts at
+    // row_off[r] from the centre, its weights at row_w + r * lanes.
+    int rows, lanes;
+    ptrdiff_t *row_off;
+    float *row_w;
 } disc;
 
 static int disc_build(disc *d, float r, int width) {
@@ -407,11 +414,25 @@ static int disc_build(disc *d, float r, int width) {
     }
     for (int k = 0; k < d->count; k++)
         d->w[k] = (float)(d->w[k] / sum);
+    d->rows = 2 * d->reach + 1;
+    d->lanes = (2 * d->reach + 1 + 7) / 8 * 8;
+    d->row_off = malloc((size_t)d->rows * sizeof *d->row_off);
+    d->row_w = calloc((size_t)d->rows * (size_t)d->lanes, sizeof *d->row_w);
+    if (!d->row_off || !d->row_w) return -1;
+    for (int r = 0; r < d->rows; r++)
+        d->row_off[r] = (ptrdiff_t)(r - d->reach) * width - d->reach;
+    for (int k = 0; k < d->count; k++)
+        d->row_w[(d->dj[k] + d->reach) * d->lanes + d->di[k] + d->reach] = d->w[k];
     return 0;
 }
 
+// Columns right of the centre the row layout reaches (its padding included).
+static int disc_reach_right(const disc *d) {
+    return d->lanes - d->reach - 1;
+}
+
 static void disc_free(disc *d) {
-    free(d->di), free(d->dj), free(d->off), free(d->w);
+    free(d->di), free(d->dj), free(d->off), free(d->w), free(d->row_off), free(d->row_w);
 }
 
 typedef struct droplet_ctx {
@@ -465,32 +486,45 @@ static inline double erode_cell(droplet_ctx *c, ptrdiff_t n, float amount, float
     return (double)old - (double)nw;
 }
 
-// Erodes the disc around the node nearest (x, y); returns the height removed. Four
-// running sums (in a fixed order, so still deterministic) keep the additions from
-// serialising the loop.
+// The disc's rows, 8 cells at a time (erode_cell's arithmetic; cells past the disc
+// get a weight of 0 and so their own bits back). One double sum per lane, added up in
+// a fixed order at the end: still deterministic, and the loop vectorises.
+HOT_LOOP static double erode_rows(float *h, const float *wt, const disc *d, ptrdiff_t centre,
+                                  float amount, float floor_h) {
+    double lane[8] = {0};
+    for (int r = 0; r < d->rows; r++) {
+        float *row = h + centre + d->row_off[r];
+        const float *rw = wt + centre + d->row_off[r], *dw = d->row_w + (size_t)r * d->lanes;
+        for (int t0 = 0; t0 < d->lanes; t0 += 8)
+            for (int t = 0; t < 8; t++) {
+                const float old = row[t0 + t];
+                float room = old - floor_h, take = amount * dw[t0 + t] * rw[t0 + t];
+                room = room > 0.0f ? room : 0.0f;
+                take = take < room ? take : room;
+                const float nw = old - take;
+                row[t0 + t] = nw;
+                lane[t] += (double)old - (double)nw;
+            }
+    }
+    return ((lane[0] + lane[1]) + (lane[2] + lane[3])) +
+           ((lane[4] + lane[5]) + (lane[6] + lane[7]));
+}
+
+// Erodes the disc around the node nearest (x, y); returns the height removed.
 static double erode_disc(droplet_ctx *c, float x, float y, float amount, float floor_h) {
     const int ci = (int)(x + 0.5f), cj = (int)(y + 0.5f);
     const ptrdiff_t centre = (ptrdiff_t)cj * c->W + ci;
     const disc *d = &c->disc;
-    double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
-    if (ci - d->reach >= 0 && ci + d->reach < c->W && cj - d->reach >= 0 && cj + d->reach < c->H) {
-        int k = 0;
-        for (; k + 4 <= d->count; k += 4) {
+    if (ci - d->reach >= 0 && ci + disc_reach_right(d) < c->W && cj - d->reach >= 0 &&
+        cj + d->reach < c->H)
+        return erode_rows(c->h, c->wt, d, centre, amount, floor_h);
+    double s0 = 0.0;
+    for (int k = 0; k < d->count; k++) {
+        int i = ci + d->di[k], j = cj + d->dj[k];
+        if (i >= 0 && i < c->W && j >= 0 && j < c->H)
             s0 += erode_cell(c, centre + d->off[k], amount, d->w[k], floor_h);
-            s1 += erode_cell(c, centre + d->off[k + 1], amount, d->w[k + 1], floor_h);
-            s2 += erode_cell(c, centre + d->off[k + 2], amount, d->w[k + 2], floor_h);
-            s3 += erode_cell(c, centre + d->off[k + 3], amount, d->w[k + 3], floor_h);
-        }
-        for (; k < d->count; k++)
-            s0 += erode_cell(c, centre + d->off[k], amount, d->w[k], floor_h);
-    } else {
-        for (int k = 0; k < d->count; k++) {
-            int i = ci + d->di[k], j = cj + d->dj[k];
-            if (i >= 0 && i < c->W && j >= 0 && j < c->H)
-                s0 += erode_cell(c, centre + d->off[k], amount, d->w[k], floor_h);
-        }
     }
-    return (s0 + s1) + (s2 + s3);
+    return s0;
 }
 
 // Lays `amount` over the weighted cells of the disc around the node nearest (x, y),
@@ -708,7 +742,8 @@ void erosion_hydraulic(erosion_grid *g, const hydraulic_params *p, hydraulic_rep
     // The droplets read clamped weights (clamping was an eighth of their work).
     float *wt = malloc((size_t)W * H * sizeof *wt);
     droplet_ctx c = {.h = g->heights, .wt = wt, .W = W, .H = H};
-    const int reach = (int)ceilf(p->radius_cells);
+    // The disc's row layout reaches furthest right: its padding to 8 cells.
+    const int reach = ((2 * (int)ceilf(p->radius_cells) + 1 + 7) / 8) * 8;
     const int band_width = 2 * (p->max_lifetime + reach + 2);
     const int bands = (W + band_width - 1) / band_width;
     float(*start)[2] = malloc(CHUNK * sizeof *start);
