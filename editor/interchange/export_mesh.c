@@ -3,6 +3,7 @@
 #include "editor/interchange/export_solid.h"
 #include "editor/interchange/heightfield_error.h"
 #include "editor/interchange/heightfield_simplify.h"
+#include "editor/interchange/mesh_manifold.h"
 #include "editor/world/layer_grid.h"
 #include "io/image_read.h"
 #include "io/param_file.h"
@@ -150,53 +151,55 @@ static void bounds(mesh *m) {
         }
 }
 
-// Simplifies to within error_m metres (meshoptimizer), borders kept so tiles still meet.
-// Simplifies within error_m metres of vertical deviation, measured at every grid sample
-// (grid NULL: a volume surface, judged by meshoptimizer's own estimate). meshoptimizer
-// targets a 3D error and may fold triangles over steep ground, so each result is
-// measured and, if it strays or folds, redone with a smaller target; if none passes,
-// the mesh stays whole. *achieved_m: the measured maximum.
-// Simplifies within error_m metres. A heightfield (grid) becomes right triangles of a
-// regular hierarchy (heightfield_simplify.h: no folds, no cracks, the border included),
-// its true vertical deviation measured at every sample and the threshold lowered until
-// it keeps to error_m; *achieved_m is that measured maximum. A volume surface (grid
-// NULL) goes to meshoptimizer, *achieved_m its own estimate.
+// Simplifies a volume surface (caves, overhangs) to within error_m metres by
+// meshoptimizer's own 3D estimate (*achieved_m), the region's sides kept so tiles still
+// meet, then makes it manifold again: collapsing edges can leave faces on one edge, a
+// sliver of no area or two faces on the same vertices (Blender drops those).
+static int simplify_solid(volume_mesh *sm, double error_m, double *achieved_m, og_error *err) {
+    if (sm->index_count == 0) return 0;
+    uint32_t *out = malloc(sizeof(uint32_t) * sm->index_count);
+    if (!out) return og_error_set(err, "out of memory simplifying");
+    const float scale = meshopt_simplifyScale(sm->pos, sm->vertex_count, 3 * sizeof(float));
+    float result = 0;
+    sm->index_count = meshopt_simplify(out, sm->index, sm->index_count, sm->pos, sm->vertex_count,
+                                       3 * sizeof(float), 0, (float)(error_m / scale),
+                                       meshopt_SimplifyLockBorder, &result);
+    *achieved_m = (double)result * scale;
+    free(sm->index);
+    sm->index = out;
+    mesh_manifold_report manifold;
+    return mesh_make_manifold(sm, &manifold, err);
+}
+
+// Simplifies a heightfield within error_m metres: right triangles of a regular
+// hierarchy (heightfield_simplify.h: no folds, no cracks, the border included), its true
+// vertical deviation measured at every sample and the threshold lowered until it keeps
+// to error_m; *achieved_m is that measured maximum.
 static int simplify(mesh *m, const heightfield_grid *grid, double error_m, double *achieved_m) {
     uint32_t *out = NULL;
     size_t n = 0;
-    if (!grid) {
-        out = malloc(sizeof(uint32_t) * m->indices);
-        if (!out) return -1;
-        const float scale = meshopt_simplifyScale(m->v, m->vertices, sizeof(float) * VERTEX_FLOATS);
-        float result = 0;
-        n = meshopt_simplify(out, m->idx, m->indices, m->v, m->vertices,
-                             sizeof(float) * VERTEX_FLOATS, 0, (float)(error_m / scale),
-                             meshopt_SimplifyLockBorder, &result);
-        *achieved_m = (double)result * scale;
-    } else {
-        heightfield_rtin r;
-        if (heightfield_rtin_build(&r, grid->h, grid->w, grid->d) != 0) return -1;
-        double threshold = error_m;
-        for (int attempt = 0;; attempt++) {
+    heightfield_rtin r;
+    if (heightfield_rtin_build(&r, grid->h, grid->w, grid->d) != 0) return -1;
+    double threshold = error_m;
+    for (int attempt = 0;; attempt++) {
+        free(out);
+        if (heightfield_rtin_mesh(&r, attempt < 8 ? threshold : 0, &out, &n) != 0) break;
+        heightfield_error e;
+        if (heightfield_error_measure(grid, m->v, VERTEX_FLOATS, out, n, &e) != 0) {
             free(out);
-            if (heightfield_rtin_mesh(&r, attempt < 8 ? threshold : 0, &out, &n) != 0) break;
-            heightfield_error e;
-            if (heightfield_error_measure(grid, m->v, VERTEX_FLOATS, out, n, &e) != 0) {
-                free(out);
-                out = NULL;
-                break;
-            }
-            *achieved_m = e.max_deviation;
-            if ((e.max_deviation <= error_m && e.folded == 0 && e.uncovered == 0) || attempt >= 8)
-                break;
-            // The split errors are along long edges; inside a triangle the ground may
-            // stray further: aim lower by the overshoot.
-            double shrink = 0.95 * error_m / e.max_deviation;
-            threshold *= shrink < 0.8 ? shrink : 0.8;
+            out = NULL;
+            break;
         }
-        heightfield_rtin_free(&r);
-        if (!out) return -1;
+        *achieved_m = e.max_deviation;
+        if ((e.max_deviation <= error_m && e.folded == 0 && e.uncovered == 0) || attempt >= 8)
+            break;
+        // The split errors are along long edges; inside a triangle the ground may
+        // stray further: aim lower by the overshoot.
+        double shrink = 0.95 * error_m / e.max_deviation;
+        threshold *= shrink < 0.8 ? shrink : 0.8;
     }
+    heightfield_rtin_free(&r);
+    if (!out) return -1;
     free(m->idx);
     m->idx = out;
     m->indices = n;
@@ -406,6 +409,10 @@ int export_mesh(world *w, const char *path, const export_mesh_options *o, export
                             "%s: %lld x %lld samples is over the mesh limit of %lld: export "
                             "a smaller region",
                             path, (long long)W, (long long)D, (long long)EXPORT_MESH_MAX_SAMPLES);
+    // Simplifying a closed solid could open it (a collapse that crowds an edge loses a face).
+    if (o->solid && o->simplify > 0)
+        return og_error_set(
+            err, "%s: solid=1 and simplify= together are not supported yet: pick one", path);
     float *h = malloc(sizeof(float) * (size_t)(W * D));
     if (!h) return og_error_set(err, "%s: out of memory", path);
     mesh m = {0};
@@ -415,11 +422,17 @@ int export_mesh(world *w, const char *path, const export_mesh_options *o, export
     if (layer_grid_read(w, &g, r, h, err) != 0) goto done;
     double ox = (double)r.x0 * g.spacing, oz = (double)r.z0 * g.spacing;
     if (o->centred) ox = -(double)(W - 1) * g.spacing / 2, oz = -(double)(D - 1) * g.spacing / 2;
+    rep->achieved_error = 0;
     int volume = 0;
     if (export_solid_has_volume(w, r, &volume, err) != 0) goto done;
     if (volume) { // caves and overhangs: the solid's surface, the heightfield's included
         volume_mesh sm;
         if (export_solid_surface(w, r, o->solid, &sm, err) != 0) goto done;
+        rep->input_triangles = sm.index_count / 3;
+        if (o->simplify > 0 && simplify_solid(&sm, o->simplify, &rep->achieved_error, err) != 0) {
+            volume_mesh_free(&sm);
+            goto done;
+        }
         int built = from_solid(&sm, (double)r.x0 * g.spacing, (double)r.z0 * g.spacing,
                                (double)(W - 1) * g.spacing, (double)(D - 1) * g.spacing,
                                o->centred ? ox : (double)r.x0 * g.spacing,
@@ -433,16 +446,14 @@ int export_mesh(world *w, const char *path, const export_mesh_options *o, export
         og_error_set(err, "%s: out of memory for the mesh", path);
         goto done;
     }
-    rep->input_triangles = m.indices / 3;
-    rep->achieved_error = 0;
+    if (!volume) rep->input_triangles = m.indices / 3;
     og_progress *progress = og_progress_current();
     if (og_progress_report(progress, 1, 4) != 0) {
         og_error_set(err, "%s: cancelled", path);
         goto done;
     }
     heightfield_grid grid = {h, W, D, g.spacing, ox, oz};
-    if (o->simplify > 0 &&
-        simplify(&m, volume ? NULL : &grid, o->simplify, &rep->achieved_error) != 0) {
+    if (o->simplify > 0 && !volume && simplify(&m, &grid, o->simplify, &rep->achieved_error) != 0) {
         og_error_set(err, "%s: out of memory simplifying", path);
         goto done;
     }
@@ -451,11 +462,6 @@ int export_mesh(world *w, const char *path, const export_mesh_options *o, export
         for (int64_t i = 0; i < W * D; i++)
             lo = fminf(lo, h[i]), hi = fmaxf(hi, h[i]);
         float floor_y = lo - fmaxf(1.0f, 0.05f * (hi - lo));
-        if (o->simplify > 0) {
-            og_error_set(err, "%s: solid=1 and simplify= together are not supported yet: pick one",
-                         path);
-            goto done;
-        }
         if (add_base(&m, W, D, floor_y) != 0) {
             og_error_set(err, "%s: out of memory for the base", path);
             goto done;
