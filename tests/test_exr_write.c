@@ -21,27 +21,6 @@
 #include <setjmp.h>
 #include <cmocka.h>
 
-static char dir[4096];
-
-static int setup(void **state) {
-    (void)state;
-    snprintf(dir, sizeof dir, "%s", test_tmpdir("exr"));
-    return 0;
-}
-static int teardown(void **state) {
-    (void)state;
-    test_rmtree(dir);
-    return 0;
-}
-
-static const char *in_dir(const char *name) {
-    static char path[2][4200];
-    static int k;
-    k ^= 1;
-    snprintf(path[k], sizeof path[k], "%s/%s", dir, name);
-    return path[k];
-}
-
 // Samples of kind: 0 terrain-like (compresses), 1 random bits (does not: stored
 // blocks), 2 one value, 3 odd floats (-0, subnormals, extremes, NaN, infinities).
 static float *samples(int w, int h, int kind, unsigned seed) {
@@ -76,8 +55,8 @@ static void read_back_equal(const char *name, const float *want, int w, int h) {
     int gw, gh, kind, bits;
     char desc[256];
     og_error err = {{0}};
-    int rc = image_read_channel(in_dir(name), "Y", 65536, &got, &gw, &gh, &kind, &bits, desc,
-                                sizeof desc, &err);
+    int rc = image_read_channel(test_in_folder(name), "Y", 65536, &got, &gw, &gh, &kind, &bits,
+                                desc, sizeof desc, &err);
     if (rc != 0) fail_msg("%s", err.msg);
     assert_int_equal(gw, w);
     assert_int_equal(gh, h);
@@ -97,7 +76,8 @@ static void test_round_trip(void **state) {
             const int w = sizes[i][0], h = sizes[i][1];
             float *s = samples(w, h, kind, (unsigned)(i * 7 + kind));
             og_error err = {{0}};
-            if (exr_write_float(in_dir("r.exr"), s, w, h, "Y", &err) != 0) fail_msg("%s", err.msg);
+            if (exr_write_float(test_in_folder("r.exr"), s, w, h, "Y", &err) != 0)
+                fail_msg("%s", err.msg);
             read_back_equal("r.exr", s, w, h);
             free(s);
         }
@@ -109,16 +89,16 @@ static void test_same_values_as_openimageio(void **state) {
     const int w = 300, h = 70;
     float *s = samples(w, h, 0, 5);
     og_error err = {{0}};
-    assert_int_equal(exr_write_float(in_dir("ours.exr"), s, w, h, "Y", &err), 0);
-    assert_int_equal(image_write_samples(in_dir("oiio.exr"), s, w, h, IMAGE_WRITE_FLOAT, "Y", &err),
-                     0);
+    assert_int_equal(exr_write_float(test_in_folder("ours.exr"), s, w, h, "Y", &err), 0);
+    assert_int_equal(
+        image_write_samples(test_in_folder("oiio.exr"), s, w, h, IMAGE_WRITE_FLOAT, "Y", &err), 0);
     read_back_equal("ours.exr", s, w, h);
     read_back_equal("oiio.exr", s, w, h);
     free(s);
 }
 
 static char *file_bytes(const char *name, size_t *len) {
-    char *b = test_read_file(in_dir(name), len);
+    char *b = test_read_file(test_in_folder(name), len);
     assert_non_null(b);
     return b;
 }
@@ -131,8 +111,8 @@ static void test_same_bytes_any_threads(void **state) {
     for (int i = 0; i < w * h; i += 7)
         s[i] += (float)(i % 13); // some blocks less compressible than others
     og_error err = {{0}};
-    assert_int_equal(exr_write_float(in_dir("all1.exr"), s, w, h, "Y", &err), 0);
-    assert_int_equal(exr_write_float(in_dir("all2.exr"), s, w, h, "Y", &err), 0);
+    assert_int_equal(exr_write_float(test_in_folder("all1.exr"), s, w, h, "Y", &err), 0);
+    assert_int_equal(exr_write_float(test_in_folder("all2.exr"), s, w, h, "Y", &err), 0);
     cpu_set_t all, one;
     assert_int_equal(sched_getaffinity(0, sizeof all, &all), 0);
     CPU_ZERO(&one);
@@ -142,7 +122,7 @@ static void test_same_bytes_any_threads(void **state) {
             break;
         }
     assert_int_equal(sched_setaffinity(0, sizeof one, &one), 0);
-    int rc = exr_write_float(in_dir("one.exr"), s, w, h, "Y", &err);
+    int rc = exr_write_float(test_in_folder("one.exr"), s, w, h, "Y", &err);
     sched_setaffinity(0, sizeof all, &all);
     assert_int_equal(rc, 0);
     size_t l1, l2, l3;
@@ -157,7 +137,7 @@ static void test_same_bytes_any_threads(void **state) {
 }
 
 static int temp_files_left(void) {
-    DIR *d = opendir(dir);
+    DIR *d = opendir(test_folder());
     struct dirent *e;
     int n = 0;
     while ((e = readdir(d)))
@@ -171,21 +151,21 @@ static void test_mode_and_refusals(void **state) {
     float s[4] = {1, 2, 3, 4};
     og_error err = {{0}};
     mode_t old = umask(027);
-    int rc = exr_write_float(in_dir("mode.exr"), s, 2, 2, "Y", &err);
+    int rc = exr_write_float(test_in_folder("mode.exr"), s, 2, 2, "Y", &err);
     umask(old);
     assert_int_equal(rc, 0);
     struct stat st;
-    assert_int_equal(stat(in_dir("mode.exr"), &st), 0);
+    assert_int_equal(stat(test_in_folder("mode.exr"), &st), 0);
     assert_int_equal(st.st_mode & 0777, 0640);
 
-    assert_int_equal(exr_write_float(in_dir("z.exr"), s, 0, 2, "Y", &err), -1);
+    assert_int_equal(exr_write_float(test_in_folder("z.exr"), s, 0, 2, "Y", &err), -1);
     assert_non_null(strstr(err.msg, "z.exr: cannot write a 0 x 2 image"));
-    assert_int_equal(exr_write_float(in_dir("n.exr"), s, 2, 2, "", &err), -1);
+    assert_int_equal(exr_write_float(test_in_folder("n.exr"), s, 2, 2, "", &err), -1);
     assert_non_null(strstr(err.msg, "n.exr: EXR channel names"));
-    assert_int_equal(exr_write_float(in_dir("no/such/folder.exr"), s, 2, 2, "Y", &err), -1);
+    assert_int_equal(exr_write_float(test_in_folder("no/such/folder.exr"), s, 2, 2, "Y", &err), -1);
     assert_non_null(strstr(err.msg, "folder.exr: cannot create a temp file"));
-    assert_int_equal(exr_write_float(dir, s, 2, 2, "Y", &err), -1); // a folder
-    assert_non_null(strstr(err.msg, dir));
+    assert_int_equal(exr_write_float(test_folder(), s, 2, 2, "Y", &err), -1); // a folder
+    assert_non_null(strstr(err.msg, test_folder()));
     assert_int_equal(temp_files_left(), 0);
 }
 
@@ -196,5 +176,5 @@ int main(void) {
         cmocka_unit_test(test_same_bytes_any_threads),
         cmocka_unit_test(test_mode_and_refusals),
     };
-    return cmocka_run_group_tests(tests, setup, teardown);
+    return cmocka_run_group_tests(tests, test_folder_setup, test_folder_teardown);
 }

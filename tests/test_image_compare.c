@@ -16,30 +16,9 @@
 #include <stdint.h>
 #include <cmocka.h>
 
-static char dir[4096];
-
-static int setup(void **state) {
-    (void)state;
-    snprintf(dir, sizeof dir, "%s", test_tmpdir("compare"));
-    return 0;
-}
-static int teardown(void **state) {
-    (void)state;
-    test_rmtree(dir);
-    return 0;
-}
-
-static const char *in_dir(const char *name) {
-    static char path[3][4200];
-    static int k;
-    k = (k + 1) % 3;
-    snprintf(path[k], sizeof path[k], "%s/%s", dir, name);
-    return path[k];
-}
-
 static void write_rgb(const char *name, const unsigned char *rgb, int w, int h) {
     og_error err;
-    if (image_write_rgb8(in_dir(name), rgb, w, h, &err) != 0) fail_msg("%s", err.msg);
+    if (image_write_rgb8(test_in_folder(name), rgb, w, h, &err) != 0) fail_msg("%s", err.msg);
 }
 
 static void test_rmse_identical_is_zero(void **state) {
@@ -85,20 +64,23 @@ static void test_rmse_files(void **state) {
     write_rgb("wide.png", a, 4, 1);
     double rmse = -1;
     og_error err;
-    assert_int_equal(image_rmse_files(in_dir("a.png"), in_dir("b.png"), &rmse, &err), 0);
+    assert_int_equal(
+        image_rmse_files(test_in_folder("a.png"), test_in_folder("b.png"), &rmse, &err), 0);
     assert_float_equal(rmse, 3.0, 1e-12);
 
     // Sizes differ: both files and both sizes named.
     char want[9000];
-    snprintf(want, sizeof want, "%s is 2x2 but %s is 4x1", in_dir("a.png"), in_dir("wide.png"));
-    assert_int_equal(image_rmse_files(in_dir("a.png"), in_dir("wide.png"), &rmse, &err), -1);
+    snprintf(want, sizeof want, "%s is 2x2 but %s is 4x1", test_in_folder("a.png"),
+             test_in_folder("wide.png"));
+    assert_int_equal(
+        image_rmse_files(test_in_folder("a.png"), test_in_folder("wide.png"), &rmse, &err), -1);
     if (strcmp(err.msg, want) != 0) fail_msg("\"%s\" != \"%s\"", err.msg, want);
 
     // Unreadable: the message names the file that is.
-    const char *missing = in_dir("missing.png");
-    assert_int_equal(image_rmse_files(in_dir("a.png"), missing, &rmse, &err), -1);
+    const char *missing = test_in_folder("missing.png");
+    assert_int_equal(image_rmse_files(test_in_folder("a.png"), missing, &rmse, &err), -1);
     assert_non_null(strstr(err.msg, missing));
-    assert_int_equal(image_rmse_files(missing, in_dir("a.png"), &rmse, &err), -1);
+    assert_int_equal(image_rmse_files(missing, test_in_folder("a.png"), &rmse, &err), -1);
     assert_non_null(strstr(err.msg, missing));
 }
 
@@ -132,35 +114,37 @@ static void test_tool(void **state) {
     write_rgb("twide.png", a, 4, 1);
     char out[256], args[9000];
 
-    snprintf(args, sizeof args, "'%s' '%s'", in_dir("ta.png"), in_dir("ta.png"));
+    snprintf(args, sizeof args, "'%s' '%s'", test_in_folder("ta.png"), test_in_folder("ta.png"));
     assert_int_equal(run_tool(args, out, sizeof out), 0);
     assert_string_equal(out, "rmse=0.000000\n");
 
-    snprintf(args, sizeof args, "'%s' '%s' --max 3", in_dir("ta.png"), in_dir("tb.png"));
+    snprintf(args, sizeof args, "'%s' '%s' --max 3", test_in_folder("ta.png"),
+             test_in_folder("tb.png"));
     assert_int_equal(run_tool(args, out, sizeof out), 0); // equal to the limit passes
     assert_string_equal(out, "rmse=3.000000\n");
 
-    snprintf(args, sizeof args, "'%s' '%s' --max 2.5 --diff '%s'", in_dir("ta.png"),
-             in_dir("tb.png"), in_dir("diff.png"));
+    snprintf(args, sizeof args, "'%s' '%s' --max 2.5 --diff '%s'", test_in_folder("ta.png"),
+             test_in_folder("tb.png"), test_in_folder("diff.png"));
     assert_int_equal(run_tool(args, out, sizeof out), 1);
     assert_string_equal(out, "rmse=3.000000\n");
     unsigned char *d;
     int w, h;
     og_error err;
-    assert_int_equal(image_read_rgb8(in_dir("diff.png"), &d, &w, &h, &err), 0);
+    assert_int_equal(image_read_rgb8(test_in_folder("diff.png"), &d, &w, &h, &err), 0);
     assert_int_equal(w, 2);
     assert_int_equal(h, 2);
     const unsigned char want[12] = {24, 0, 0, 0, 24, 0, 0, 0, 24, 0, 0, 0};
     assert_memory_equal(d, want, 12);
     free(d);
 
-    snprintf(args, sizeof args, "'%s' '%s'", in_dir("ta.png"), in_dir("twide.png"));
+    snprintf(args, sizeof args, "'%s' '%s'", test_in_folder("ta.png"), test_in_folder("twide.png"));
     assert_int_equal(run_tool(args, out, sizeof out), 2); // size mismatch
-    snprintf(args, sizeof args, "'%s' '%s'", in_dir("ta.png"), in_dir("none.png"));
+    snprintf(args, sizeof args, "'%s' '%s'", test_in_folder("ta.png"), test_in_folder("none.png"));
     assert_int_equal(run_tool(args, out, sizeof out), 2); // unreadable
-    snprintf(args, sizeof args, "'%s'", in_dir("ta.png"));
+    snprintf(args, sizeof args, "'%s'", test_in_folder("ta.png"));
     assert_int_equal(run_tool(args, out, sizeof out), 2); // usage
-    snprintf(args, sizeof args, "'%s' '%s' --max x", in_dir("ta.png"), in_dir("tb.png"));
+    snprintf(args, sizeof args, "'%s' '%s' --max x", test_in_folder("ta.png"),
+             test_in_folder("tb.png"));
     assert_int_equal(run_tool(args, out, sizeof out), 2); // bad number
 }
 
@@ -173,5 +157,5 @@ int main(void) {
         cmocka_unit_test(test_diff_amplified_and_clamped),
         cmocka_unit_test(test_tool),
     };
-    return cmocka_run_group_tests(tests, setup, teardown);
+    return cmocka_run_group_tests(tests, test_folder_setup, test_folder_teardown);
 }

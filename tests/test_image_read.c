@@ -28,31 +28,11 @@ const char *__asan_default_options(void) {
     return "fast_unwind_on_malloc=0";
 }
 
-static char dir[4096];
-
-static int setup(void **state) {
-    (void)state;
-    snprintf(dir, sizeof dir, "%s", test_tmpdir("image"));
-    return 0;
-}
-static int teardown(void **state) {
-    (void)state;
-    test_rmtree(dir);
-    return 0;
-}
-
-static const char *in_dir(const char *name) {
-    static char path[2][4200];
-    static int k;
-    k ^= 1;
-    snprintf(path[k], sizeof path[k], "%s/%s", dir, name);
-    return path[k];
-}
-
 // oiiotool SRC ARGS -o DST, inside the scratch folder.
 static void oiiotool(const char *src, const char *args, const char *dst) {
     char cmd[12000];
-    snprintf(cmd, sizeof cmd, "oiiotool '%s' %s -o '%s'", in_dir(src), args, in_dir(dst));
+    snprintf(cmd, sizeof cmd, "oiiotool '%s' %s -o '%s'", test_in_folder(src), args,
+             test_in_folder(dst));
     if (system(cmd) != 0) fail_msg("failed (is openimageio-tools installed?): %s", cmd);
 }
 
@@ -64,7 +44,7 @@ static void write_pgm(const char *name, int w, int h, int maxval, const unsigned
         if (maxval > 255) buf[n++] = (char)(v[i] >> 8);
         buf[n++] = (char)(v[i] & 0xFF);
     }
-    test_write_file(in_dir(name), buf, (size_t)n);
+    test_write_file(test_in_folder(name), buf, (size_t)n);
 }
 
 // PFM with channels 1 ("Pf") or 3 ("PF"): little-endian floats, rows bottom to top.
@@ -78,14 +58,14 @@ static void write_pfm(const char *name, int w, int h, int channels, const float 
             for (int b = 0; b < 4; b++)
                 buf[n++] = (char)(u >> (8 * b));
         }
-    test_write_file(in_dir(name), buf, (size_t)n);
+    test_write_file(test_in_folder(name), buf, (size_t)n);
 }
 
 static float *read_ok(const char *name, int w, int h) {
     float *px = (float *)1;
     int gw = -1, gh = -1;
     og_error err = {{0}};
-    if (image_read_luminance(in_dir(name), &px, &gw, &gh, &err) != 0)
+    if (image_read_luminance(test_in_folder(name), &px, &gw, &gh, &err) != 0)
         fail_msg("%s: %s", name, err.msg);
     assert_non_null(px);
     assert_int_equal(gw, w);
@@ -183,16 +163,17 @@ static void test_rgb_and_rgba_png(void **state) {
         free(px);
     }
     char cmd[9000];
-    snprintf(cmd, sizeof cmd, "iinfo '%s' | grep -q '4 channel, uint8 png'", in_dir("rgba.png"));
+    snprintf(cmd, sizeof cmd, "iinfo '%s' | grep -q '4 channel, uint8 png'",
+             test_in_folder("rgba.png"));
     assert_int_equal(system(cmd), 0);
 }
 
 static void test_errors_name_the_file(void **state) {
     (void)state;
-    read_fails(in_dir("missing.png"), "cannot open");
-    test_write_file(in_dir("text.png"), "just some text\n", 15);
-    read_fails(in_dir("text.png"), "not an image");
-    read_fails(dir, "folder");
+    read_fails(test_in_folder("missing.png"), "cannot open");
+    test_write_file(test_in_folder("text.png"), "just some text\n", 15);
+    read_fails(test_in_folder("text.png"), "not an image");
+    read_fails(test_folder(), "folder");
     float *px = NULL;
     int w, h;
     assert_int_equal(image_read_luminance(NULL, &px, &w, &h, NULL), -1); // err may be NULL
@@ -202,12 +183,14 @@ static void test_errors_name_the_file(void **state) {
 static void test_size_limit(void **state) {
     (void)state;
     char cmd[9000];
-    snprintf(cmd, sizeof cmd, "oiiotool --create 16384x1 1 -d uint8 -o '%s'", in_dir("ok.png"));
+    snprintf(cmd, sizeof cmd, "oiiotool --create 16384x1 1 -d uint8 -o '%s'",
+             test_in_folder("ok.png"));
     assert_int_equal(system(cmd), 0);
-    snprintf(cmd, sizeof cmd, "oiiotool --create 1x16385 1 -d uint8 -o '%s'", in_dir("tall.png"));
+    snprintf(cmd, sizeof cmd, "oiiotool --create 1x16385 1 -d uint8 -o '%s'",
+             test_in_folder("tall.png"));
     assert_int_equal(system(cmd), 0);
     free(read_ok("ok.png", 16384, 1));
-    read_fails(in_dir("tall.png"), "1 x 16385, larger than the 16384 x 16384 limit");
+    read_fails(test_in_folder("tall.png"), "1 x 16385, larger than the 16384 x 16384 limit");
 }
 
 static void test_truncated_png(void **state) {
@@ -220,16 +203,16 @@ static void test_truncated_png(void **state) {
         v[i] = (float)(s >> 8) / 16777216.0f;
     }
     og_error err;
-    assert_int_equal(image_write_gray16(in_dir("full.png"), v, N, N, &err), 0);
+    assert_int_equal(image_write_gray16(test_in_folder("full.png"), v, N, N, &err), 0);
     free(v);
     size_t len;
-    char *bytes = test_read_file(in_dir("full.png"), &len);
+    char *bytes = test_read_file(test_in_folder("full.png"), &len);
     assert_non_null(bytes);
-    test_write_file(in_dir("cut.png"), bytes, len / 2);
-    test_write_file(in_dir("head.png"), bytes, 40); // the signature and part of IHDR
+    test_write_file(test_in_folder("cut.png"), bytes, len / 2);
+    test_write_file(test_in_folder("head.png"), bytes, 40); // the signature and part of IHDR
     free(bytes);
-    read_fails(in_dir("cut.png"), "cut.png");
-    read_fails(in_dir("head.png"), "head.png");
+    read_fails(test_in_folder("cut.png"), "cut.png");
+    read_fails(test_in_folder("head.png"), "head.png");
 }
 
 static void test_not_finite_pixels(void **state) {
@@ -237,16 +220,16 @@ static void test_not_finite_pixels(void **state) {
     const float v[6] = {0.5f, 0.25f, 1.0f, 2.0f, NAN, INFINITY};
     write_pfm("nan.pfm", 3, 2, 1, v);
     oiiotool("nan.pfm", "-d float", "nan.exr");
-    read_fails(in_dir("nan.exr"), "pixel (1, 1) is not finite");
+    read_fails(test_in_folder("nan.exr"), "pixel (1, 1) is not finite");
     const float w[6] = {0.5f, 0.25f, 1.0f, 2.0f, 3.0f, -INFINITY};
     write_pfm("inf.pfm", 3, 2, 1, w);
     oiiotool("inf.pfm", "-d half", "inf.exr");
-    read_fails(in_dir("inf.exr"), "pixel (2, 1) is not finite");
+    read_fails(test_in_folder("inf.exr"), "pixel (2, 1) is not finite");
     // Infinite green and blue cancel to NaN in the luminance: still caught.
     const float c[6] = {0.1f, 0.2f, 0.3f, 0.0f, INFINITY, -INFINITY};
     write_pfm("cinf.pfm", 2, 1, 3, c);
     oiiotool("cinf.pfm", "-d float", "cinf.tif");
-    read_fails(in_dir("cinf.tif"), "pixel (1, 0) is not finite");
+    read_fails(test_in_folder("cinf.tif"), "pixel (1, 0) is not finite");
 }
 
 static int count_entries(const char *path) {
@@ -262,7 +245,7 @@ static int count_entries(const char *path) {
 static void test_write_gray16_round_trip(void **state) {
     (void)state;
     char sub[4200];
-    snprintf(sub, sizeof sub, "%s/w", dir);
+    snprintf(sub, sizeof sub, "%s/w", test_folder());
     char cmd[8800];
     snprintf(cmd, sizeof cmd, "mkdir '%s'", sub);
     assert_int_equal(system(cmd), 0);
@@ -291,7 +274,7 @@ static void test_write_gray16_round_trip(void **state) {
     assert_non_null(strstr(err.msg, "pixel (1, 0)"));
     assert_int_equal(image_write_gray16(path, v, 0, 2, &err), -1);
     assert_non_null(strstr(err.msg, path));
-    snprintf(path, sizeof path, "%s/no/such/folder/out.png", dir);
+    snprintf(path, sizeof path, "%s/no/such/folder/out.png", test_folder());
     assert_int_equal(image_write_gray16(path, v, 4, 2, &err), -1);
     assert_non_null(strstr(err.msg, path));
     assert_int_equal(count_entries(sub), 1);
@@ -301,7 +284,8 @@ static unsigned char *read_rgb_ok(const char *name, int w, int h) {
     unsigned char *px = (unsigned char *)1;
     int gw = -1, gh = -1;
     og_error err = {{0}};
-    if (image_read_rgb8(in_dir(name), &px, &gw, &gh, &err) != 0) fail_msg("%s: %s", name, err.msg);
+    if (image_read_rgb8(test_in_folder(name), &px, &gw, &gh, &err) != 0)
+        fail_msg("%s: %s", name, err.msg);
     assert_non_null(px);
     assert_int_equal(gw, w);
     assert_int_equal(gh, h);
@@ -311,7 +295,7 @@ static unsigned char *read_rgb_ok(const char *name, int w, int h) {
 static void test_write_rgb8_round_trip(void **state) {
     (void)state;
     char sub[4200];
-    snprintf(sub, sizeof sub, "%s/rgbw", dir);
+    snprintf(sub, sizeof sub, "%s/rgbw", test_folder());
     char cmd[8800];
     snprintf(cmd, sizeof cmd, "mkdir '%s'", sub);
     assert_int_equal(system(cmd), 0);
@@ -345,7 +329,7 @@ static void test_write_rgb8_round_trip(void **state) {
     assert_non_null(strstr(err.msg, path));
     assert_int_equal(image_write_rgb8(path, v, W, IMAGE_MAX_SIZE + 1, &err), -1);
     assert_non_null(strstr(err.msg, "1 to 16384 per side"));
-    snprintf(path, sizeof path, "%s/no/such/folder/out.png", dir);
+    snprintf(path, sizeof path, "%s/no/such/folder/out.png", test_folder());
     assert_int_equal(image_write_rgb8(path, v, W, H, &err), -1);
     assert_non_null(strstr(err.msg, path));
     assert_int_equal(image_write_rgb8(NULL, v, W, H, NULL), -1); // err may be NULL
@@ -402,18 +386,18 @@ static void test_read_rgb8_errors(void **state) {
     unsigned char *px = (unsigned char *)1;
     int w = -1, h = -1;
     og_error err;
-    const char *path = in_dir("absent.png");
+    const char *path = test_in_folder("absent.png");
     assert_int_equal(image_read_rgb8(path, &px, &w, &h, &err), -1);
     assert_null(px);
     assert_int_equal(w, 0);
     assert_int_equal(h, 0);
     assert_non_null(strstr(err.msg, path));
     assert_non_null(strstr(err.msg, "cannot open"));
-    test_write_file(in_dir("rtext.png"), "not a png\n", 10);
-    path = in_dir("rtext.png");
+    test_write_file(test_in_folder("rtext.png"), "not a png\n", 10);
+    path = test_in_folder("rtext.png");
     assert_int_equal(image_read_rgb8(path, &px, &w, &h, &err), -1);
     assert_non_null(strstr(err.msg, path));
-    assert_int_equal(image_read_rgb8(dir, &px, &w, &h, &err), -1);
+    assert_int_equal(image_read_rgb8(test_folder(), &px, &w, &h, &err), -1);
     assert_non_null(strstr(err.msg, "folder"));
 }
 
@@ -434,5 +418,5 @@ int main(void) {
         cmocka_unit_test(test_read_rgb8_alpha_and_float),
         cmocka_unit_test(test_read_rgb8_errors),
     };
-    return cmocka_run_group_tests(tests, setup, teardown);
+    return cmocka_run_group_tests(tests, test_folder_setup, test_folder_teardown);
 }

@@ -1,5 +1,6 @@
 #include "support/test_support.h"
 
+#include <errno.h>
 #include <ftw.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -26,6 +27,32 @@ static int remove_entry(const char *path, const struct stat *st, int flag, struc
 
 void test_rmtree(const char *path) {
     nftw(path, remove_entry, 16, FTW_DEPTH | FTW_PHYS);
+}
+
+static char folder[4096];
+
+int test_folder_setup(void **state) {
+    (void)state;
+    snprintf(folder, sizeof folder, "%s", test_tmpdir(program_invocation_short_name));
+    return 0;
+}
+
+int test_folder_teardown(void **state) {
+    (void)state;
+    test_rmtree(folder);
+    return 0;
+}
+
+const char *test_folder(void) {
+    return folder;
+}
+
+const char *test_in_folder(const char *name) {
+    static char path[4][4200];
+    static int k;
+    k = (k + 1) % 4;
+    snprintf(path[k], sizeof path[k], "%s/%s", folder, name);
+    return path[k];
 }
 
 void test_write_file(const char *path, const void *data, size_t len) {
