@@ -10,16 +10,9 @@
 # Usage: e2e_gui.sh OROGEN TESTS_DIR
 set -u
 orogen=$1
-work=$(mktemp -d "${TMPDIR:-/tmp}/orogen-gui-XXXXXX")
-art=${OROGEN_TEST_ARTIFACTS:-$(dirname "$orogen")/test-artifacts}
-mkdir -p "$art"
-mkdir -p "$art"
-failures=0
-passes=0
-started=$(date +%s)
-check() { if [ "$2" = 0 ]; then passes=$((passes + 1)); else echo "FAIL: $1"; failures=$((failures + 1)); fi; }
-
 . "$2/support/window_session.sh"
+begin_window_test gui
+started=$(date +%s)
 require_tools Xvfb xdotool import
 
 start_xvfb 1400x900

@@ -13,17 +13,9 @@
 # Usage: e2e_layers_panel.sh OROGEN TESTS_DIR
 set -u
 orogen=$1
-work=$(mktemp -d "${TMPDIR:-/tmp}/orogen-layers-XXXXXX")
-art=${OROGEN_TEST_ARTIFACTS:-$(dirname "$orogen")/test-artifacts}
-mkdir -p "$art"
-failures=0
-passes=0
-check() { if [ "$2" = 0 ]; then passes=$((passes + 1)); else echo "FAIL: $1"; failures=$((failures + 1)); fi; }
-
 . "$2/support/window_session.sh"
+begin_window_test layers
 require_tools Xvfb xdotool import
-export HOME="$work/home"
-mkdir -p "$HOME"
 start_xvfb 1400x900
 open_editor "$orogen"
 . "$2/support/gui_helpers.sh"
@@ -192,5 +184,4 @@ check "at UI scale 1.5 the panel fits the dock ($(echo "$out" | wc -l) widgets; 
 shot scale_1_5
 alive; check "the editor is alive: no widget id conflict ($(tail -c 300 "$work/err"))" $?
 
-echo "$passes passed, $failures failed"
-[ $failures = 0 ]
+end_window_test

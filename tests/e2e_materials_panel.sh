@@ -10,17 +10,9 @@
 # Usage: e2e_materials_panel.sh OROGEN TESTS_DIR
 set -u
 orogen=$1
-work=$(mktemp -d "${TMPDIR:-/tmp}/orogen-materials-XXXXXX")
-art=${OROGEN_TEST_ARTIFACTS:-$(dirname "$orogen")/test-artifacts}
-mkdir -p "$art"
-failures=0
-passes=0
-check() { if [ "$2" = 0 ]; then passes=$((passes + 1)); else echo "FAIL: $1"; failures=$((failures + 1)); fi; }
-
 . "$2/support/window_session.sh"
+begin_window_test materials
 require_tools Xvfb xdotool import
-export HOME="$work/home"
-mkdir -p "$HOME"
 start_xvfb 1400x900
 open_editor "$orogen"
 . "$2/support/gui_helpers.sh"
@@ -120,5 +112,4 @@ s=$(stack_until "sand "); check "Add rule adds one on a planet ($s)" $?
 alive; check "the editor is alive: no widget id conflict ($(tail -c 300 "$work/err"))" $?
 shot planet
 
-echo "$passes passed, $failures failed"
-[ $failures = 0 ]
+end_window_test

@@ -5,17 +5,9 @@
 # Every step is checked through commands; screenshots are kept in build/test-artifacts.
 set -u
 orogen=$(realpath "$1")
-work=$(mktemp -d "${TMPDIR:-/tmp}/orogen-newcomer-XXXXXX")
-art=${OROGEN_TEST_ARTIFACTS:-$(dirname "$orogen")/test-artifacts}
-mkdir -p "$art"
-failures=0
-passes=0
-check() { if [ "$2" = 0 ]; then passes=$((passes + 1)); else echo "FAIL: $1"; failures=$((failures + 1)); fi; }
-
 . "$2/support/window_session.sh"
+begin_window_test newcomer
 require_tools Xvfb xdotool import
-export HOME="$work/home"
-mkdir -p "$HOME"
 export OROGEN_UI_SCALE=1.5
 start_xvfb 1280x800
 open_editor sh -c 'cd "$HOME" && exec "$0"' "$orogen" # started from the home folder
@@ -237,5 +229,4 @@ echo "load $work/alps.world" >&3
 line=$(ask_until camera '^camera ' '^camera 100.000 200.000 300.000 45.000 -30.000')
 check "alps.world opened again comes back to where its camera was left ($line)" $?
 
-echo "$passes passed, $failures failed"
-[ $failures = 0 ]
+end_window_test

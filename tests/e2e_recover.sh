@@ -7,15 +7,9 @@
 # Usage: e2e_recover.sh OROGEN TESTS_DIR
 set -u
 orogen=$1
-work=$(mktemp -d "${TMPDIR:-/tmp}/orogen-recover-XXXXXX")
-failures=0
-passes=0
-check() { if [ "$2" = 0 ]; then passes=$((passes + 1)); else echo "FAIL: $1"; failures=$((failures + 1)); fi; }
-
 . "$2/support/window_session.sh"
+begin_window_test recover
 require_tools Xvfb xdotool import
-art=${OROGEN_TEST_ARTIFACTS:-$(dirname "$orogen")/test-artifacts}
-mkdir -p "$art"
 start_xvfb 1024x768
 app=
 cleanup() {
@@ -349,5 +343,4 @@ exec 3>&-
     grep -q "w.world.recover: 1 step.*recoverable"
 check "a quit without saving keeps the journal, and 'recover list' offers it" $?
 
-echo "$passes passed, $failures failed"
-[ $failures = 0 ]
+end_window_test

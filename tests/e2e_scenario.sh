@@ -10,17 +10,9 @@
 # build/test-artifacts/scenario_*.png.
 set -u
 orogen=$(realpath "$1")
-work=$(mktemp -d "${TMPDIR:-/tmp}/orogen-scenario-XXXXXX")
-art=${OROGEN_TEST_ARTIFACTS:-$(dirname "$orogen")/test-artifacts}
-mkdir -p "$art"
-failures=0
-passes=0
-check() { if [ "$2" = 0 ]; then passes=$((passes + 1)); else echo "FAIL: $1"; failures=$((failures + 1)); fi; }
-
 . "$2/support/window_session.sh"
+begin_window_test scenario
 require_tools Xvfb xdotool import
-export HOME="$work/home"
-mkdir -p "$HOME"
 start_xvfb 1600x1000
 . "$2/support/gui_helpers.sh"
 shot() { import -window "$wid" "$art/scenario_$1.png" 2>/dev/null; }

@@ -4,12 +4,8 @@
 # undo and redo, saving, console screenshots. Usage: e2e_window.sh OROGEN TESTS_DIR
 set -u
 orogen=$1
-work=$(mktemp -d "${TMPDIR:-/tmp}/orogen-window-XXXXXX")
-failures=0
-passes=0
-check() { if [ "$2" = 0 ]; then passes=$((passes + 1)); else echo "FAIL: $1"; failures=$((failures + 1)); fi; }
-
 . "$2/support/window_session.sh"
+begin_window_test window
 require_tools Xvfb xdotool
 
 start_xvfb 1400x900
@@ -271,5 +267,4 @@ rc=$?
 rc2=$?; check "the history script replays to the same hash (status $rc, $hf vs $(tail -n 1 "$work/replay2.out"); $(head -c 300 "$work/replay2.err"))" $rc2
 [ $status = 0 ] && [ $failures = 0 ] || tail -n 30 "$work/err"
 
-echo "$passes passed, $failures failed"
-[ $failures = 0 ]
+end_window_test

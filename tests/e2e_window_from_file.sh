@@ -7,12 +7,8 @@
 # Usage: e2e_window_from_file.sh OROGEN TESTS_DIR
 set -u
 orogen=$1
-work=$(mktemp -d "${TMPDIR:-/tmp}/orogen-from-file-XXXXXX")
-failures=0
-passes=0
-check() { if [ "$2" = 0 ]; then passes=$((passes + 1)); else echo "FAIL: $1"; failures=$((failures + 1)); fi; }
-
 . "$2/support/window_session.sh"
+begin_window_test from-file
 require_tools Xvfb xdotool
 dem="$2/data/dem/N22W160.hgt"
 journals() { find "$work/state" -name '*.recover' 2>/dev/null | wc -l; }
@@ -56,5 +52,4 @@ status=$(exit_status)
 [ "$status" = 0 ]; check "Discard quits (status $status)" $?
 [ "$(journals)" = 0 ]; check "Discard drops the journal ($(journals))" $?
 
-echo "$passes passed, $failures failed"
-[ "$failures" = 0 ]
+end_window_test

@@ -1,6 +1,6 @@
 # Sourced by the tests that drive the real editor window (e2e_window, e2e_gui,
-# e2e_window_golden): the tools they need, a private X server, and the editor's
-# environment. Needs $work (the test's folder) set.
+# e2e_scenario, ...): their folders and counters (begin_window_test), the tools they
+# need, a private X server, and the editor's environment.
 
 # require_tools TOOL...: fails the test at once when one is missing.
 require_tools() {
@@ -26,13 +26,39 @@ start_xvfb() {
 # caught by the other tests, which run the same code without a GL driver.
 if [ -n "${ASAN_OPTIONS:-}" ]; then export ASAN_OPTIONS="$ASAN_OPTIONS:detect_leaks=0"; fi
 # The editor keeps its settings between runs, and user stamps in the data folder:
-# keep both inside the test.
-export XDG_CONFIG_HOME="$work/config"
-export XDG_DATA_HOME="$work/data"
-# Never-saved worlds' crash journals, and the offer to recover them at start, too.
-export XDG_STATE_HOME="$work/state"
-unset OROGEN_RECOVER_DIR
-unset OROGEN_STAMP_DIR
+# keep both inside the test. Never-saved worlds' crash journals, and the offer to
+# recover them at start, too.
+keep_editor_state_in_work() {
+    export XDG_CONFIG_HOME="$work/config"
+    export XDG_DATA_HOME="$work/data"
+    export XDG_STATE_HOME="$work/state"
+    unset OROGEN_RECOVER_DIR
+    unset OROGEN_STAMP_DIR
+}
+[ -n "${work:-}" ] && keep_editor_state_in_work
+
+# check DESCRIPTION STATUS: counts a pass, or prints and counts a failure.
+check() { if [ "$2" = 0 ]; then passes=$((passes + 1)); else echo "FAIL: $1"; failures=$((failures + 1)); fi; }
+
+# begin_window_test NAME: the test's folder $work (removed at exit), the screenshots'
+# folder $art, the counters, and a private HOME; the editor's state goes inside $work.
+# Needs $orogen (the binary; $art sits beside it unless OROGEN_TEST_ARTIFACTS says).
+begin_window_test() {
+    work=$(mktemp -d "${TMPDIR:-/tmp}/orogen-$1-XXXXXX")
+    art=${OROGEN_TEST_ARTIFACTS:-$(dirname "$orogen")/test-artifacts}
+    mkdir -p "$art"
+    failures=0
+    passes=0
+    export HOME="$work/home"
+    mkdir -p "$HOME"
+    keep_editor_state_in_work
+}
+
+# end_window_test: the counts, and the test's status.
+end_window_test() {
+    echo "$passes passed, $failures failed"
+    [ "$failures" = 0 ]
+}
 
 # open_editor COMMAND...: runs the editor with its console on $work/stdin (held open on
 # fd 3) and its output in $work/out and $work/err ($app is its pid); the editor and the X
