@@ -10,7 +10,15 @@
 // The look before per-chunk normal textures and the climate rules (6b1a195) failed both
 // at every altitude but one: relief steps 0.3, 0.7, 1.7, 3.2 and colour beside height
 // 0.19, 0.17, 0.10 (0.86 at 10 km, in snow and rock); after, 1.8, 3.7, 19, 24 and 0.79,
-// 0.48, 0.62, 0.93. Frames that fail are written to $TMPDIR/orogen-look-failures/.
+// 0.48, 0.62, 0.93. And
+//  - its snow fields are not flat white: of the pixels inside them (at least MIN_SNOW),
+//    at most MAX_FLAT_SNOW within FLAT_SNOW of their median luminance (lit by the
+//    relief, broken into patches); before the snow's shading: 0.53, 0.61, 0.56 from
+//    2,000, 500 and 100 km and 0.65 over the border below, after 0.14, 0.41, 0.42, 0.44;
+//  - the desert blends into grassland over a width (a pose over their border, straight
+//    down from 500 km): at least MIN_BORDER_WIDTH pixels of mixed colour per pixel of
+//    the desert's outline (a hard border: 3.0; blended by moisture's patches: 5.8).
+// Frames that fail are written to $TMPDIR/orogen-look-failures/.
 #include "editor/params/planet_presets.h"
 #include "editor/world/world.h"
 #include "io/image_read.h"
@@ -38,6 +46,12 @@
 #define OTHER_THAN_HEIGHT 0.3
 #define HEIGHT_BIN 70.0 // metres
 #define HEIGHT_BINS 256
+#define FLAT_SNOW 4.0 // luminance
+#define MIN_SNOW 300  // snow pixels for its flatness to count
+#define MAX_FLAT_SNOW 0.49
+#define MIN_BORDER_WIDTH 4.5 // pixels (at 320 x 180, from 500 km)
+#define SAND_GREEN -0.03     // greenness (g - r over the sum) of sand and grassland from orbit
+#define GRASS_GREEN 0.08
 
 static gl_headless *ctx;
 static gl_target target;
@@ -125,10 +139,31 @@ static int by_value(const void *a, const void *b) {
 }
 
 typedef struct look {
-    int land;           // land pixels
-    double relief_step; // median luminance step to the next land pixel (right, down)
-    double other_share; // chromaticity variance within height bins over all of it
+    int land;            // land pixels
+    double relief_step;  // median luminance step to the next land pixel (right, down)
+    double other_share;  // chromaticity variance within height bins over all of it
+    int snow;            // snow pixels inside a snow field (their four neighbours snow too)
+    double snow_flat;    // the share of them within FLAT_SNOW of the field's median
+    double border_width; // desert to grassland: pixels of mixed colour per pixel of outline
 } look;
+
+// Snow: bright and grey (white under any light); desert: sand's warm hue; green: more
+// green than red. Chromaticity of the pixel (r, g, b over their sum).
+static int is_snow(const unsigned char *p) {
+    const int hi = p[0] > p[1] ? (p[0] > p[2] ? p[0] : p[2]) : (p[1] > p[2] ? p[1] : p[2]);
+    const int lo = p[0] < p[1] ? (p[0] < p[2] ? p[0] : p[2]) : (p[1] < p[2] ? p[1] : p[2]);
+    return luminance(p) > 140 && hi - lo < 0.1 * hi;
+}
+
+// Where a colour lies between sand's (0) and grassland's (1) as seen from orbit, by its
+// warmth (red over blue) and greenness (green over red), each over the sum; outside
+// 0..1 for colours beyond either, NAN for colours of neither kind (rock, snow, sea).
+static double sand_to_green(const unsigned char *p) {
+    const double sum = (double)p[0] + p[1] + p[2] + 1.0;
+    const double warm = (p[0] - (double)p[2]) / sum, green = (p[1] - (double)p[0]) / sum;
+    if (warm < 0.025 && green < 0.04) return NAN;
+    return (green - SAND_GREEN) / (GRASS_GREEN - SAND_GREEN);
+}
 
 // The two measures over a frame and its heights.
 static look measure(const unsigned char *shaded, const double *height, double sea) {
@@ -154,6 +189,44 @@ static look measure(const unsigned char *shaded, const double *height, double se
         qsort(steps, (size_t)n, sizeof steps[0], by_value);
         out.relief_step = steps[n / 2];
     }
+    // Snow fields: how much of their inside is one flat white (a field lit alike all over).
+    n = 0;
+    for (int y = 1; y + 1 < H; y++)
+        for (int x = 1; x + 1 < W; x++) {
+            const int i = y * W + x;
+            if (land[i] && is_snow(shaded + 3 * i) && is_snow(shaded + 3 * (i - 1)) &&
+                is_snow(shaded + 3 * (i + 1)) && is_snow(shaded + 3 * (i - W)) &&
+                is_snow(shaded + 3 * (i + W)))
+                steps[n++] = luminance(shaded + 3 * i);
+        }
+    out.snow = n;
+    if (n > 0) {
+        qsort(steps, (size_t)n, sizeof steps[0], by_value);
+        int flat = 0;
+        for (int k = 0; k < n; k++)
+            flat += fabs(steps[k] - steps[n / 2]) <= FLAT_SNOW;
+        out.snow_flat = (double)flat / n;
+    }
+    // Desert beside grassland: a hard border passes from one to the other within a pixel
+    // or two, a blended one through mixed colours over a width. The border's width: the
+    // land pixels of mixed colour over the desert's outline (desert pixels with a
+    // neighbour that is not desert).
+    int mixed = 0, outline = 0;
+    for (int y = 1; y + 1 < H; y++)
+        for (int x = 1; x + 1 < W; x++) {
+            const int i = y * W + x;
+            if (!land[i]) continue;
+            const double t = sand_to_green(shaded + 3 * i);
+            mixed += t >= 0.2 && t <= 0.8;
+            if (!(t < 0.2)) continue;
+            const int around[4] = {i - 1, i + 1, i - W, i + W};
+            for (int k = 0; k < 4; k++)
+                if (land[around[k]] && !(sand_to_green(shaded + 3 * around[k]) < 0.2)) {
+                    outline++;
+                    break;
+                }
+        }
+    out.border_width = outline > 0 ? (double)mixed / outline : 0;
     // Chromaticity (r, g over the sum) per height bin: the share of its variance left
     // within the bins.
     static double sum[HEIGHT_BINS][2], sum2[HEIGHT_BINS], count[HEIGHT_BINS];
@@ -194,11 +267,11 @@ static void test_relief_and_colour(void **state) {
     static const struct {
         const char *name;
         double lat, lon, altitude, pitch, relief;
+        int border; // the desert's border with grassland in view: its width is measured
     } poses[] = {
-        {"2000km", 22.0, 5.7, 2e6, -90, 1.2},
-        {"500km", 18.0, 5.7, 5e5, -50, 2.0},
-        {"100km", 21.0, 5.7, 1e5, -25, 6.0},
-        {"10km", 21.8, 5.7, 1e4, -12, 10.0},
+        {"2000km", 22.0, 5.7, 2e6, -90, 1.2, 0}, {"500km", 18.0, 5.7, 5e5, -50, 2.0, 0},
+        {"100km", 21.0, 5.7, 1e5, -25, 6.0, 0},  {"10km", 21.8, 5.7, 1e4, -12, 10.0, 0},
+        {"border", 24.0, 0.5, 5e5, -90, 2.0, 1}, // west of the range, straight down
     };
     static unsigned char shaded[W * H * 3];
     static double height[W * H];
@@ -217,11 +290,14 @@ static void test_relief_and_colour(void **state) {
         render(&c, shaded, height);
         const look l = measure(shaded, height, world_params_ocean_height(p));
         const int ok = l.land > W * H / 10 && l.relief_step >= poses[k].relief &&
-                       l.other_share >= OTHER_THAN_HEIGHT;
+                       l.other_share >= OTHER_THAN_HEIGHT &&
+                       (l.snow < MIN_SNOW || l.snow_flat <= MAX_FLAT_SNOW) &&
+                       (!poses[k].border || l.border_width >= MIN_BORDER_WIDTH);
         printf("%-7s land %5.1f%%  relief step %4.1f (>= %.1f)  colour beside height %.2f "
-               "(>= %.2f)%s\n",
+               "(>= %.2f)  snow %d, flat %.2f (<= %.2f)  border width %.1f%s\n",
                poses[k].name, 100.0 * l.land / (W * H), l.relief_step, poses[k].relief,
-               l.other_share, OTHER_THAN_HEIGHT, ok ? "" : "  FAIL");
+               l.other_share, OTHER_THAN_HEIGHT, l.snow, l.snow_flat, MAX_FLAT_SNOW, l.border_width,
+               ok ? "" : "  FAIL");
         if (!ok) {
             failed++;
             save_failure(poses[k].name, shaded);

@@ -90,7 +90,7 @@ vec3 with_grids(vec3 c) {
 #include "planet_rules.glsl"
 
 #if defined(SHADED) && !defined(BARE)
-in vec2 v_climate; // planet_climate's moisture and breakup (planet.vert)
+in vec3 v_climate; // planet_climate's moisture, breakup and patches (planet.vert)
 
 // A planet's automatic rules, fit for its scale (the flat worlds' are for a valley) and
 // its climate, so that no border follows a contour: warmth falls with latitude and
@@ -103,14 +103,16 @@ in vec2 v_climate; // planet_climate's moisture and breakup (planet.vert)
 vec3 planet_automatic(float h, float slope, float lat_sin, vec2 uv, vec2 uv_far) {
     float range = max(u_max_height - u_ocean_level, 1.0), above = h - u_ocean_level;
     float beach = max(0.002 * range, 2.0), rel = above / range;
-    float wet = v_climate.x, breakup = v_climate.y;
+    float patches = v_climate.z, wet = v_climate.x + 0.2 * patches, breakup = v_climate.y;
     float warmth = 1.0 - asin(clamp(abs(lat_sin), 0.0, 1.0)) / 1.5708 - 1.35 * max(rel, 0.0) +
                    0.08 * breakup;
     vec4 grass = albedo(1, uv, uv_far), sand = albedo(0, uv, uv_far), dirt = albedo(4, uv, uv_far);
     vec4 gravel = albedo(5, uv, uv_far), moss = albedo(6, uv, uv_far);
     // The lowlands: desert, steppe, grassland, forest by moisture; tundra where cold.
     vec3 desert = sand.rgb * mix(vec3(1.0), vec3(0.86, 0.74, 0.6), 0.5 + 0.5 * breakup);
-    vec3 c = blend2(vec4(desert, 0.5), grass, smoothstep(0.22, 0.42, wet + 0.1 * breakup));
+    // A plain mix over a width of moisture (the texture-height blend drew a hard line),
+    // its border broken into patches by the moisture's fine octaves.
+    vec3 c = mix(desert, grass.rgb, smoothstep(0.14, 0.5, wet + 0.1 * breakup));
     vec3 forest = grass.rgb * vec3(0.5, 0.62, 0.45);
     c = mix(c, forest, smoothstep(0.5, 0.75, wet) * smoothstep(0.25, 0.45, warmth) * 0.85);
     vec3 tundra = blend2(moss, gravel, clamp(0.5 - breakup, 0.0, 1.0)) * vec3(0.85, 0.82, 0.78);
@@ -126,9 +128,15 @@ vec3 planet_automatic(float h, float slope, float lat_sin, vec2 uv, vec2 uv_far)
                       smoothstep(0.3, 0.55, rel + 0.1 * breakup) * smoothstep(0.08, 0.25, s));
     c = blend2(vec4(c, 0.5), rock, rocky);
     c = blend2(vec4(c, 0.5), albedo(7, uv, uv_far), smoothstep(0.9, 1.3, s));
-    // Snow where it is cold, thinning on steep slopes where it does not hold.
-    float snowy = smoothstep(0.16, 0.06, warmth) * (1.0 - smoothstep(0.55, 0.95, s));
-    return blend2(vec4(c, 0.5), albedo(3, uv, uv_far), snowy);
+    // Snow where it is cold enough and the ground flat enough to hold it, both limits
+    // broken into patches; a little below white so the light on its slopes is not lost
+    // in the exposure's shoulder (flat white fields from orbit).
+    // Dry heights get less of it (bare high plateaus, as Tibet's).
+    float cold = smoothstep(0.16, 0.05, warmth + 0.07 * patches + 0.08 * (0.5 - wet));
+    float holds = 1.0 - smoothstep(0.3, 0.6, s + 0.2 * patches);
+    vec4 snow = albedo(3, uv, uv_far);
+    snow.rgb *= 0.8 + 0.12 * patches; // wind-packed and drifted
+    return blend2(vec4(c, 0.5), snow, cold * holds);
 }
 #endif
 
@@ -218,7 +226,12 @@ void main() {
         }
     }
 #endif
-    float diffuse = max(dot(n, u_sun_dir), 0.0);
+    // The light on ground whose normal texture is coarse: its slopes steepened part of the
+    // way back to the samples' (u_slope_scale), so ranges seen from far off keep the
+    // relief their finer ground has instead of reading as smooth domes.
+    vec3 lit_n = normalize(up + (n - up * dot(n, up)) * clamp(sqrt(u_slope_scale), 1.0, 2.5) /
+                                    max(dot(n, up), 0.05));
+    float diffuse = max(dot(lit_n, u_sun_dir), 0.0);
     float day = smoothstep(-0.1, 0.2, dot(up, u_sun_dir));
     vec3 ambient = vec3(0.10, 0.13, 0.18) * (0.25 + 0.75 * day);
 #ifndef SHADED

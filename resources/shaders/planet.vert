@@ -30,7 +30,7 @@ out vec4 v_paint0, v_paint1; // weights 0-3 and 4-7, 0..1
 out vec3 v_air, v_transmittance; // the air between the camera and the surface
 out vec3 v_sky_reflected;        // the sky the sea reflects
 #if defined(SHADED) && !defined(BARE)
-out vec2 v_climate; // planet_climate's moisture and breakup
+out vec3 v_climate; // planet_climate's moisture, breakup and patches
 #endif
 void main() {
     // Geomorphing: from half that distance on, the vertex slides onto the parent's mesh.
@@ -44,7 +44,7 @@ void main() {
     v_up = a_up;
     v_height = height;
 #if defined(SHADED) && !defined(BARE)
-    v_climate = planet_climate(a_up);
+    v_climate = planet_climate(a_up, length(rel));
 #endif
     v_metres = a_metres;
 #ifdef SEAM
