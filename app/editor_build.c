@@ -21,6 +21,7 @@ void editor_ui_destroy(editor_ui *e) {
     for (int i = 0; i < 8; i++)
         ui_renderer_delete_texture(e->material_textures[i]);
     console_free(&e->console);
+    terrain_flow_field_free(&e->layers.flow);
     free(e);
 }
 

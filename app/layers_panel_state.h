@@ -16,7 +16,9 @@ typedef struct layers_panel_state {
     int32_t mask_layer;          // id of the layer whose mask is being edited (0: none)
     layer_mask draft;            // its mask as dragged so far (the overlay shows it)
     int draft_live;              // a range is being dragged: the draft is not the layer's
-    terrain_histogram hist;      // heights and slopes of the composite around the view
+    terrain_histogram hist;      // the composite around the view, its terms binned
+    terrain_flow_field flow;     // the flow there, for the overlay (freed by editor_ui_destroy)
+    unsigned flow_serial;        // counts the fields read
     int hist_valid;              // hist was read, for hist_step of the history
     size_t hist_step;            // the history position it was read at
     double hist_at[2];           // and the camera's place then

@@ -1,8 +1,8 @@
 // The mask editor of the Layers panel: a layer's mask terms (height, slope, curvature,
-// flow), each on or off, with its low, high and soft-edge values typed and, for height
-// and slope, a range dragged over a histogram of the composite around the view; invert
-// and clear. While the editor is open the viewport tints where the mask (as dragged so
-// far) lets the layer apply. Each change runs one `layer mask` command.
+// flow), each on or off, with its low, high and soft-edge values typed and, on flat
+// worlds, a range dragged over a histogram of the composite around the view (flow's on a
+// log scale); invert and clear. While the editor is open the viewport tints where the mask (as
+// dragged so far) lets the layer apply. Each change runs one `layer mask` command.
 #include "app/editor_ui_internal.h"
 
 #include "app/layers_panel_state.h"
@@ -61,7 +61,9 @@ static void refresh_histogram(layers_panel_state *s, cmd_context *ctx, const vie
     half = fmin(fmax(fabs(v->cam.pos[1] - ground) * 3, sp * 128), sp * 65536);
     s->hist_step = step;
     s->hist_at[0] = x, s->hist_at[1] = z;
-    s->hist_valid = terrain_histogram_compute(ctx->world, 0, x, z, half, &s->hist, &err) == 0;
+    s->hist_valid =
+        terrain_histogram_compute_flow(ctx->world, 0, x, z, half, &s->hist, &s->flow, &err) == 0;
+    s->flow_serial++;
     snprintf(s->hist_error, sizeof s->hist_error, "%.200s", s->hist_valid ? "" : err.msg);
 }
 
@@ -85,7 +87,79 @@ static int number_field(layers_panel_state *s, ui_context *ui, const char *label
     return 1;
 }
 
-// One term: its checkbox, its range over the histogram (height, slope), its fields.
+// v to two significant digits, as a person would type it.
+static double two_digits(double v) {
+    if (!(v != 0) || !isfinite(v)) return v;
+    double q = pow(10, floor(log10(fabs(v))) - 1);
+    return round(v / q) * q;
+}
+
+// What a term's histogram spans and holds, and the tooltip of its range.
+typedef struct term_histogram {
+    double min, max; // the range's ends (flow: log10 of m2)
+    const float *bars;
+    const char *tip;
+} term_histogram;
+
+static term_histogram histogram_of(const terrain_histogram *h, int k) {
+    switch (k) {
+    case TERM_HEIGHT:
+        return (term_histogram){h->height_min, h->height_max, h->height,
+                                "Drag an end: the heights the layer applies at, over how much of "
+                                "the view lies at each height"};
+    case TERM_SLOPE:
+        return (term_histogram){0, 90, h->slope,
+                                "Drag an end: the slopes the layer applies on, over how much of "
+                                "the view has each slope"};
+    case TERM_CURVATURE:
+        return (term_histogram){h->curvature_min, h->curvature_max, h->curvature,
+                                "Drag an end: the curvatures the layer applies at (convex right, "
+                                "concave left), over how much of the view has each"};
+    default:
+        return (term_histogram){log10(h->flow_min), log10(h->flow_max), h->flow,
+                                "Drag an end: the upstream areas the layer applies at (log scale: "
+                                "channels right), over how much of the view drains each"};
+    }
+}
+
+// A term's range dragged over its histogram (flow on a log10 scale); the command runs
+// when the drag is released.
+static void histogram_range(editor_ui *e, ui_context *ui, cmd_context *ctx, const layer_info *l,
+                            int k, layer_mask_range *r) {
+    layers_panel_state *s = &e->layers;
+    term_histogram th = histogram_of(&s->hist, k);
+    const int log_scale = k == TERM_FLOW;
+    double rlo = r->lo, rhi = r->hi;
+    if (log_scale) rlo = rlo > 0 ? log10(rlo) : -INFINITY, rhi = rhi > 0 ? log10(rhi) : -INFINITY;
+    double min = th.min, max = th.max;
+    if (k != TERM_SLOPE) { // the range shows even when set beyond what the view holds
+        if (isfinite(rlo)) min = fmin(min, rlo);
+        if (isfinite(rhi)) max = fmax(max, rhi);
+        double pad = (max - min) * 0.05;
+        min -= pad, max += pad;
+    }
+    double lo = isfinite(rlo) ? rlo : min, hi = isfinite(rhi) ? rhi : max;
+    double edge = log_scale
+                      ? (r->edge > 0 && rhi > -INFINITY ? log10(pow(10, hi) + r->edge) - hi : 0)
+                      : r->edge;
+    ui_row(ui, 1, NULL, ui_em(ui, 2.6f));
+    int rc = ui_range(ui, "Range", &lo, &hi, edge, min, max, th.bars, TERRAIN_HISTOGRAM_BINS);
+    ui_tooltip(ui, th.tip);
+    if (!rc) return;
+    double lo_seen = lo, hi_seen = hi;
+    if (log_scale) {
+        r->lo = two_digits(pow(10, lo)), r->hi = two_digits(pow(10, hi));
+    } else { // rounded as a person would type them
+        double q = k == TERM_SLOPE ? 0.5 : pow(10, floor(log10(fmax(max - min, 1e-3))) - 2);
+        r->lo = round(lo / q) * q, r->hi = round(hi / q) * q;
+    }
+    if (!isfinite(rlo) && lo_seen == min) r->lo = rlo; // an open end left alone stays open
+    if (!isfinite(rhi) && hi_seen == max) r->hi = rhi;
+    s->draft_live = rc == UI_RANGE_DRAGGING;
+    if (rc == UI_RANGE_DONE) apply(e, ctx, l, &s->draft);
+}
+
+// One term: its checkbox, its range over the histogram (flat worlds), its fields.
 static void term_rows(editor_ui *e, ui_context *ui, cmd_context *ctx, const layer_info *l, int k,
                       int flat) {
     layers_panel_state *s = &e->layers;
@@ -105,41 +179,22 @@ static void term_rows(editor_ui *e, ui_context *ui, cmd_context *ctx, const laye
                 double a = s->hist_valid ? s->hist.height_min : 0;
                 double b = s->hist_valid ? s->hist.height_max : 1000;
                 t->lo = round(a + (b - a) / 3), t->hi = round(a + (b - a) * 2 / 3);
+            } else if (k == TERM_CURVATURE && s->hist_valid) { // the more convex ground
+                t->lo = two_digits(s->hist.curvature_max / 2), t->hi = INFINITY;
+            } else if (k == TERM_FLOW && s->hist_valid) { // the channels
+                double a = log10(s->hist.flow_min), b = log10(s->hist.flow_max);
+                t->lo = two_digits(pow(10, a + (b - a) * 0.6)), t->hi = INFINITY;
             }
         }
         apply(e, ctx, l, &m);
     }
-    ui_tooltip(ui, k == TERM_FLOW ? "Where water gathers: the area draining through a sample "
-                                    "(not drawn in the view's overlay)"
+    ui_tooltip(ui, k == TERM_FLOW ? "Where water gathers: the area draining through a sample"
                                   : "Limit the layer to this range of the composite below it");
     if (!r->on) {
         ui_pop_scope(ui);
         return;
     }
-    if (flat && s->hist_valid && (k == TERM_HEIGHT || k == TERM_SLOPE)) {
-        double min = k == TERM_SLOPE ? 0 : s->hist.height_min;
-        double max = k == TERM_SLOPE ? 90 : s->hist.height_max;
-        if (k == TERM_HEIGHT) { // the range shows even when set beyond what the view holds
-            if (isfinite(r->lo)) min = fmin(min, r->lo);
-            if (isfinite(r->hi)) max = fmax(max, r->hi);
-            double pad = (max - min) * 0.05;
-            min -= pad, max += pad;
-        }
-        double lo = isfinite(r->lo) ? r->lo : min, hi = isfinite(r->hi) ? r->hi : max;
-        ui_row(ui, 1, NULL, ui_em(ui, 2.6f));
-        int rc = ui_range(ui, "Range", &lo, &hi, r->edge, min, max,
-                          k == TERM_SLOPE ? s->hist.slope : s->hist.height, TERRAIN_HISTOGRAM_BINS);
-        ui_tooltip(ui, k == TERM_SLOPE ? "Drag an end: the slopes the layer applies on, over how "
-                                         "much of the view has each slope"
-                                       : "Drag an end: the heights the layer applies at, over how "
-                                         "much of the view lies at each height");
-        if (rc) { // rounded as a person would type them
-            double q = k == TERM_SLOPE ? 0.5 : pow(10, floor(log10(fmax(max - min, 1e-3))) - 2);
-            r->lo = round(lo / q) * q, r->hi = round(hi / q) * q;
-            s->draft_live = rc == UI_RANGE_DRAGGING;
-            if (rc == UI_RANGE_DONE) apply(e, ctx, l, &s->draft);
-        }
-    }
+    if (flat && s->hist_valid) histogram_range(e, ui, ctx, l, k, r);
     ui_row(ui, 3, NULL, 0);
     double lo = r->lo, hi = r->hi, edge = r->edge;
     int set = number_field(s, ui, "Low", s->fields[k][0], sizeof s->fields[k][0], r->lo, &lo,
@@ -158,12 +213,18 @@ static void term_rows(editor_ui *e, ui_context *ui, cmd_context *ctx, const laye
     ui_pop_scope(ui);
 }
 
-// The overlay the terrain renderer draws: the draft's height, slope and curvature terms.
-static void set_overlay(render_settings *rs, const layer_mask *m) {
-    const layer_mask_range *r[3] = {&m->height, &m->slope, &m->curvature};
-    float *out[3] = {rs->mask_height, rs->mask_slope, rs->mask_curvature};
+// The overlay the terrain renderer draws: the draft's terms, flow over the field read
+// with the histograms (flat worlds).
+static void set_overlay(render_settings *rs, const layer_mask *m, const terrain_flow_field *f,
+                        unsigned serial) {
+    const layer_mask_range *r[4] = {&m->height, &m->slope, &m->curvature, &m->flow};
+    float *out[4] = {rs->mask_height, rs->mask_slope, rs->mask_curvature, rs->mask_flow};
     rs->mask_terms = 0;
-    for (int k = 0; k < 3; k++) {
+    rs->mask_flow_area = f->area;
+    rs->mask_flow_w = f->w, rs->mask_flow_h = f->h;
+    rs->mask_flow_x0 = f->x0, rs->mask_flow_z0 = f->z0, rs->mask_flow_spacing = f->spacing;
+    rs->mask_flow_serial = serial;
+    for (int k = 0; k < 4; k++) {
         if (!r[k]->on) continue;
         rs->mask_terms |= 1 << k;
         double lo = isfinite(r[k]->lo) ? r[k]->lo : -1e30,
@@ -230,7 +291,7 @@ void mask_editor(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v, co
     if (ui_button(ui, "Close mask editor")) s->mask_layer = 0;
     ui_pop_scope(ui);
     if (s->mask_layer)
-        set_overlay(&v->settings, &s->draft);
+        set_overlay(&v->settings, &s->draft, &s->flow, s->flow_serial);
     else
         v->settings.mask_terms = 0;
 }

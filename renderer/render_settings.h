@@ -39,11 +39,20 @@ typedef struct render_settings {
     double lod_pixels;         // planets: pixels a sample may cover before its chunk splits (6)
     int antialias;             // edges smoothed in the finished image (renderer/antialias.h) (1)
     // A layer mask being edited, drawn over the terrain (the Layers panel's mask editor):
-    // mask_terms bits 1 height, 2 slope, 4 curvature (0: none drawn), each term's corners
+    // mask_terms bits 1 height, 2 slope, 4 curvature, 8 flow (0: none drawn), each term's corners
     // where its weight starts rising, reaches 1, starts falling, reaches 0 (metres,
     // degrees, -100 x Laplacian; +-1e30 for open ends), mask_invert as the mask's invert.
     int mask_terms, mask_invert;
     float mask_height[4], mask_slope[4], mask_curvature[4];
+    // Flat worlds: the flow term (mask_terms bit 8) over a field of upstream areas (m2)
+    // the app read around the view, w x h samples `spacing` metres apart from (x0, z0),
+    // row-major, not owned; serial changes when the field does. Where it has no field
+    // the flow term is not drawn.
+    float mask_flow[4];
+    const float *mask_flow_area;
+    int mask_flow_w, mask_flow_h;
+    double mask_flow_x0, mask_flow_z0, mask_flow_spacing;
+    unsigned mask_flow_serial;
 } render_settings;
 
 void render_settings_default(render_settings *s);

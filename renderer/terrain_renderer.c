@@ -8,6 +8,7 @@
 #include "renderer/frustum.h"
 #include "renderer/ground_occlusion.h"
 #include "renderer/lighting.h"
+#include "renderer/mask_flow_texture.h"
 #include "renderer/material_rule_uniforms.h"
 #include "renderer/material_textures.h"
 #include "renderer/shader.h"
@@ -64,7 +65,8 @@ struct terrain_renderer {
     GLuint vao, vbo, ebo, empty_vao;
     clipmap_mesh mesh;
     GLuint tex_heights, tex_material, tex_albedo, tex_detail, tex_detail_pd, tex_falloff;
-    GLuint tex_albedo_far; // the material textures' green channels, 4 to a layer
+    GLuint tex_albedo_far;       // the material textures' green channels, 4 to a layer
+    mask_flow_texture mask_flow; // the mask editor's flow field
     float albedo_mean[MATERIAL_TEXTURE_COUNT][4]; // each material texture's 1 x 1 level
     material_rules_resolved rules; // the world's material rules this frame, in metres
     clip_window heights[RENDER_MAX_LEVELS];
@@ -325,6 +327,7 @@ void terrain_renderer_destroy(terrain_renderer *r) {
     planet_renderer_destroy(r->planet);
     for (int i = 0; i < TERRAIN_PROGRAMS; i++)
         if (r->progs[i].prog) glDeleteProgram(r->progs[i].prog);
+    mask_flow_texture_destroy(&r->mask_flow);
     glDeleteProgram(r->prog_sky);
     glDeleteProgram(r->prog_water);
     glDeleteProgram(r->prog_cursor);
@@ -913,6 +916,7 @@ static void set_terrain_uniforms(terrain_renderer *r, GLuint prog, const camera 
     volume_renderer_mask_uniforms(r->volume, prog, cam, 6);
     glProgramUniform1i(prog, glGetUniformLocation(prog, "u_albedo_far"), 7);
     glBindTextureUnit(7, r->tex_albedo_far);
+    mask_flow_texture_bind(&r->mask_flow, prog, s, cam, 8);
     glProgramUniform4fv(prog, glGetUniformLocation(prog, "u_albedo_mean"), MATERIAL_TEXTURE_COUNT,
                         &r->albedo_mean[0][0]);
 }

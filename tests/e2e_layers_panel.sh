@@ -5,7 +5,7 @@
 # alone) and a stroke on it refused where the user acted, shown again, moved down by a
 # drag of its name, renamed by a double click, masked by slope in the mask editor (a
 # range dragged over the histogram, then typed), the context menu's Duplicate and
-# Delete, and the Materials panel's rule ranges typed in place. Every action is a layer
+# Delete, curvature and flow ranges over their histograms (flow's dragged), and the Materials panel's rule ranges typed in place. Every action is a layer
 # or material_rule command read back through the console (`layers`, `history`, `hash`).
 # At 1024 x 640 and UI scale 1.5 every row of the panel lies inside the dock. The UI
 # runs strict (an id conflict stops the editor). Screenshots go to
@@ -65,6 +65,20 @@ sculpt() { # a left drag across the viewport's centre, dy pixels below it
     sleep 0.5
 }
 h0=$(hash_now)
+# A range's end dragged: NAME FROM MID TO OF [SHOT]: from FROM/OF of its width through
+# MID/OF to TO/OF, the screenshot SHOT taken before the release.
+drag_range() {
+    local x y w h
+    read -r x y w h <<<"$(widget "$1")"
+    xdotool mousemove --window "$wid" $((x + w * $2 / $5)) $((y + h / 2)) mousedown 1
+    sleep 0.2
+    xdotool mousemove --window "$wid" $((x + w * $3 / $5)) $((y + h / 2))
+    sleep 0.2
+    xdotool mousemove --window "$wid" $((x + w * $4 / $5)) $((y + h / 2))
+    sleep 0.4
+    [ -n "${6:-}" ] && shot "$6"
+    xdotool mouseup 1
+}
 # A click the slow software renderer may take a frame or two to see (or that landed
 # where the widget was a frame before): again until the widget WANT appears.
 click_until() { # NAME WANT
@@ -132,16 +146,8 @@ click_until "Dock/Mask editor/slope/Slope (degrees)" "Dock/Mask editor/slope/Ran
 line=$(ask_until "layer mask Hill" 'slope=\|none' 'slope=20,45,5'); rc=$?
 check "its Slope box gives Hill a slope term ($line; $(tail -n 2 "$work/err" | tr '\n' ' '))" $rc
 reveal "Dock/Mask editor/slope/High"
-read -r x y w h <<<"$(widget "Dock/Mask editor/slope/Range")"
 # The low end (20 of 90 degrees) dragged to about 5.
-xdotool mousemove --window "$wid" $((x + w * 20 / 90)) $((y + h / 2)) mousedown 1
-sleep 0.2
-xdotool mousemove --window "$wid" $((x + w * 12 / 90)) $((y + h / 2))
-sleep 0.2
-xdotool mousemove --window "$wid" $((x + w * 5 / 90)) $((y + h / 2))
-sleep 0.4
-shot mask_drag
-xdotool mouseup 1
+drag_range "Dock/Mask editor/slope/Range" 20 12 5 90 mask_drag
 line=$(ask_until "layer mask Hill" 'slope=' 'slope=[3-7]\(\.5\)\?,45,5'); check "dragging the range's low end sets it ($line)" $?
 hmd=$(hash_now)
 fill "Dock/Mask editor/slope/High" 12
@@ -168,6 +174,28 @@ sleep 0.4
 click "Dock/Stack/Hill_copy/Layer menu/Delete"
 s=$(stack_until "*Hill:1  Sculpt:1  Layer_3:1 "); check "Delete from the right-click menu ($s)" $?
 hash_is "$hm1"; check "after duplicate and delete the composite is as before" $?
+
+# 6b. Curvature and flow get their histograms too; the flow range's low end dragged
+# over its log scale (the viewport tints the channels the range holds). Slope and
+# curvature are switched off again first, so the picture shows flow alone.
+reveal "Dock/Mask editor/slope/Slope (degrees)"
+click "Dock/Mask editor/slope/Slope (degrees)"
+reveal "Dock/Mask editor/curvature/Curvature (convex +)"
+click_until "Dock/Mask editor/curvature/Curvature (convex +)" "Dock/Mask editor/curvature/Range"
+check "Curvature's box shows its range over a histogram" $?
+click "Dock/Mask editor/curvature/Curvature (convex +)"
+line=$(ask_until "layer mask Hill" 'slope=\|curvature=\|^none' '^none$'); check "the boxes take the slope and curvature terms off ($line)" $?
+reveal "Dock/Mask editor/flow/Flow (m2 upstream)"
+click_until "Dock/Mask editor/flow/Flow (m2 upstream)" "Dock/Mask editor/flow/Range"
+check "Flow's box shows its range over a histogram" $?
+f0=$(ask_until "layer mask Hill" 'flow=' 'flow=[0-9.e+]*,inf'); check "flow starts at the view's channels, open above ($f0)" $?
+reveal "Dock/Mask editor/flow/High"
+drag_range "Dock/Mask editor/flow/Range" 6 4 3 10
+f1=$(ask_until "layer mask Hill" 'flow=' 'flow=[0-9.e+]*,inf')
+lo0=$(echo "$f0" | sed -n 's/.*flow=\([^,]*\),.*/\1/p'); lo1=$(echo "$f1" | sed -n 's/.*flow=\([^,]*\),.*/\1/p')
+awk -v a="$lo0" -v b="$lo1" 'BEGIN { exit !(b > 0 && b < a) }'
+check "dragging flow's low end left lowers it, the top stays open ($f0 -> $f1)" $?
+shot mask_flow
 
 # 7. At 1024 x 640 and UI scale 1.5 every widget of the stack and the mask editor lies
 # inside the dock (the Layers header's width).

@@ -4,6 +4,8 @@
 // bounded world clamps the area to its extent, and an area outside it is an error.
 #include "editor/world/terrain_histogram.h"
 
+#include "editor/layers/layer_mask.h"
+
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -74,6 +76,53 @@ static void test_level_zero_counts_every_sample(void **state) {
     world_close(w);
 }
 
+// Curvature and flow: the mask's own terms (layer_mask_curvature over the inner samples,
+// layer_mask_flow_area over the area) binned; the flow field is those areas.
+static void test_curvature_and_flow(void **state) {
+    (void)state;
+    world *w = open_world();
+    terrain_histogram h;
+    terrain_flow_field f = {0};
+    og_error err;
+    assert_int_equal(terrain_histogram_compute_flow(w, 0, 200, 300, 40, &h, &f, &err), 0);
+    enum { N = 81 };
+    static float v[N * N], k[(N - 2) * (N - 2)], area[N * N];
+    for (int z = 0; z < N; z++)
+        for (int x = 0; x < N; x++) {
+            double d;
+            assert_int_equal(world_sample(w, 0, 160 + x, 260 + z, &d, &err), 0);
+            v[z * N + x] = (float)d;
+        }
+    assert_true(f.w == N && f.h == N && f.x0 == 160 && f.z0 == 260 && f.spacing == 1.0);
+    layer_mask_curvature(v, N - 2, N - 2, 1, 1.0, k);
+    assert_int_equal(layer_mask_flow_area(v, N, N, 0, 1.0, area), 0);
+    assert_memory_equal(area, f.area, sizeof area);
+    const int bins = TERRAIN_HISTOGRAM_BINS;
+    double kb[TERRAIN_HISTOGRAM_BINS] = {0}, fb[TERRAIN_HISTOGRAM_BINS] = {0}, most = 0;
+    int below = 0;
+    for (int i = 0; i < (N - 2) * (N - 2); i++) {
+        double at = (k[i] - h.curvature_min) / (h.curvature_max - h.curvature_min) * bins;
+        kb[at < 0 ? 0 : at >= bins ? bins - 1 : (int)at] += 1.0 / ((N - 2) * (N - 2));
+        below += k[i] < h.curvature_min;
+    }
+    for (int i = 0; i < N * N; i++)
+        most = fmax(most, area[i]);
+    assert_true(h.flow_min == 1.0 && h.flow_max == most && most > 100);
+    for (int i = 0; i < N * N; i++) {
+        double at = (double)(float)log10(fmax(area[i], 1.0)) / log10(most) * bins;
+        fb[at >= bins ? bins - 1 : (int)at] += 1.0 / (N * N);
+    }
+    for (int b = 0; b < bins; b++)
+        if (fabs(kb[b] - h.curvature[b]) > 1e-5 || fabs(fb[b] - h.flow[b]) > 1e-5)
+            fail_msg("bin %d: curvature %g (want %g), flow %g (want %g)", b, h.curvature[b], kb[b],
+                     h.flow[b], fb[b]);
+    // The curvatures' range leaves 1% out at each end.
+    assert_true(below == (N - 2) * (N - 2) / 100 || below == (N - 2) * (N - 2) / 100 - 1);
+    terrain_flow_field_free(&f);
+    assert_null(f.area);
+    world_close(w);
+}
+
 static void test_wide_areas_and_edges(void **state) {
     (void)state;
     world *w = open_world();
@@ -96,6 +145,7 @@ static void test_wide_areas_and_edges(void **state) {
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_level_zero_counts_every_sample),
+        cmocka_unit_test(test_curvature_and_flow),
         cmocka_unit_test(test_wide_areas_and_edges),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -1,5 +1,6 @@
 #include "editor/world/terrain_histogram.h"
 
+#include "editor/layers/layer_mask.h"
 #include "editor/params/world_grid.h"
 #include "io/tile_cache.h"
 
@@ -28,8 +29,76 @@ static int read_grid(world *w, int face, int level, int64_t gx0, int64_t gz0, in
     return 0;
 }
 
+static int by_value(const void *a, const void *b) {
+    float x = *(const float *)a, y = *(const float *)b;
+    return (x > y) - (x < y);
+}
+
+// Fractions of the finite values of v[0..n) in equal bins over [lo, hi] (the tails in
+// the end bins).
+static void count_bins(const float *v, size_t n, double lo, double hi, float *bins_out) {
+    const int bins = TERRAIN_HISTOGRAM_BINS;
+    size_t counted = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (!isfinite(v[i])) continue;
+        double at = fmin(fmax((v[i] - lo) / (hi - lo) * bins, 0), bins - 1);
+        bins_out[(int)at] += 1;
+        counted++;
+    }
+    for (int b = 0; b < bins && counted; b++)
+        bins_out[b] /= (float)counted;
+}
+
+// Curvatures of the grid's inner samples and flow over all of it, binned into out; the
+// flow areas left in *flow (NULL: freed).
+static int curvature_and_flow(const float *h, int64_t nx, int64_t nz, double step,
+                              terrain_histogram *out, float **flow, og_error *err) {
+    size_t inner = (size_t)((nx - 2) * (nz - 2)), n = (size_t)(nx * nz);
+    float *k = malloc(inner * sizeof *k), *sorted = malloc(n * sizeof *sorted);
+    float *area = malloc(n * sizeof *area);
+    if (!k || !sorted || !area || layer_mask_flow_area(h, (int)nx, (int)nz, 0, step, area) != 0) {
+        free(k), free(sorted), free(area);
+        return og_error_set(err, "histogram: out of memory");
+    }
+    layer_mask_curvature(h, (int)nx - 2, (int)nz - 2, 1, step, k);
+    size_t finite = 0;
+    for (size_t i = 0; i < inner; i++)
+        if (isfinite(k[i])) sorted[finite++] = k[i];
+    qsort(sorted, finite, sizeof *sorted, by_value);
+    out->curvature_min = finite ? sorted[finite / 100] : 0;
+    out->curvature_max = finite ? sorted[finite - 1 - finite / 100] : 0;
+    if (!(out->curvature_max > out->curvature_min)) // flat ground: a range around it
+        out->curvature_min -= 1, out->curvature_max += 1;
+    count_bins(k, inner, out->curvature_min, out->curvature_max, out->curvature);
+    double most = step * step;
+    for (size_t i = 0; i < n; i++) {
+        if (isfinite(area[i])) most = fmax(most, area[i]);
+        sorted[i] = isfinite(area[i]) ? (float)log10(fmax(area[i], step * step)) : NAN;
+    }
+    out->flow_min = step * step, out->flow_max = most > step * step ? most : step * step * 10;
+    count_bins(sorted, n, log10(out->flow_min), log10(out->flow_max), out->flow);
+    free(k), free(sorted);
+    if (flow)
+        *flow = area;
+    else
+        free(area);
+    return 0;
+}
+
+void terrain_flow_field_free(terrain_flow_field *flow) {
+    free(flow->area);
+    memset(flow, 0, sizeof *flow);
+}
+
 int terrain_histogram_compute(world *w, int face, double cx, double cz, double half,
                               terrain_histogram *out, og_error *err) {
+    return terrain_histogram_compute_flow(w, face, cx, cz, half, out, NULL, err);
+}
+
+int terrain_histogram_compute_flow(world *w, int face, double cx, double cz, double half,
+                                   terrain_histogram *out, terrain_flow_field *flow,
+                                   og_error *err) {
+    if (flow) terrain_flow_field_free(flow);
     const world_params *p = world_get_params(w);
     double sp = world_grid_sample_metres(p);
     memset(out, 0, sizeof *out);
@@ -92,6 +161,10 @@ int terrain_histogram_compute(world *w, int face, double cx, double cz, double h
         out->slope[b] = ns ? out->slope[b] / (float)ns : 0;
     }
     out->samples = n;
+    float *area = NULL;
+    int rc = curvature_and_flow(h, nx, nz, step, out, flow ? &area : NULL, err);
     free(h);
+    if (rc != 0) return -1;
+    if (flow) *flow = (terrain_flow_field){area, (int)nx, (int)nz, out->x0, out->z0, step};
     return 0;
 }

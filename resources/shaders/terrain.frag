@@ -49,9 +49,13 @@ uniform vec3 u_brush_ring;              // the colour of its edge and centre
 uniform vec3 u_level_tint[MAX_LEVELS];
 uniform float u_contour;               // metres between contour lines; 0: none
 // The mask editor's overlay (render_settings.h mask_*): x on, y invert, z the terms drawn
-// (1 height, 2 slope, 4 curvature); each term's corners as rule_term reads them.
+// (1 height, 2 slope, 4 curvature, 8 flow); each term's corners as rule_term reads them.
 uniform ivec3 u_mask;
 uniform vec4 u_mask_height, u_mask_slope, u_mask_curvature; // metres, degrees, -100 x Laplacian
+uniform vec4 u_mask_flow;              // m2 of upstream area
+uniform vec4 u_mask_flow_area;         // the flow field's first sample relative to the camera
+                                       // (xy), samples a metre (z), 1 when there is one (w)
+uniform sampler2D u_mask_flow_field;   // m2 a sample (renderer/mask_flow_texture.h)
 
 // Contour lines every u_contour metres of height, one pixel or so wide; faded out where
 // they would crowd (a steep slope seen from afar).
@@ -82,13 +86,28 @@ vec3 with_grids(vec3 c) {
     return c;
 }
 
+// The flow term from the field read around the view; -1 beyond it (not known there).
+float flow_term() {
+    if (u_mask_flow_area.w == 0.0) return -1.0;
+    vec2 size = vec2(textureSize(u_mask_flow_field, 0));
+    vec2 st = ((v_rel.xz - u_mask_flow_area.xy) * u_mask_flow_area.z + 0.5) / size;
+    if (any(lessThan(st, vec2(0.0))) || any(greaterThan(st, vec2(1.0)))) return -1.0;
+    return rule_term(u_mask_flow, texture(u_mask_flow_field, st).r);
+}
+
 // Where the edited mask lets its layer apply: tinted there, dimmed elsewhere (the
-// terms of editor/layers/layer_mask.h over the drawn surface; flow is not drawn).
+// terms of editor/layers/layer_mask.h over the drawn surface; flow from its field, and
+// where the field does not reach the ground is left as it is).
 vec3 with_mask(vec3 c, float h, float slope, float curvature) {
     float w = 1.0;
     if ((u_mask.z & 1) != 0) w *= rule_term(u_mask_height, h);
     if ((u_mask.z & 2) != 0) w *= rule_term(u_mask_slope, degrees(atan(slope)));
     if ((u_mask.z & 4) != 0) w *= rule_term(u_mask_curvature, curvature);
+    if ((u_mask.z & 8) != 0) {
+        float f = flow_term();
+        if (f < 0.0) return c; // beyond the flow read: neither tinted nor dimmed
+        w *= f;
+    }
     if (u_mask.y != 0) w = 1.0 - w;
     return mix(c * 0.4, mix(c, vec3(1.0, 0.2, 0.55), 0.45), w);
 }
