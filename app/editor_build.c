@@ -1,6 +1,7 @@
 // The editor's UI each frame (app/editor_ui.h): its actions run as commands; the
 // menus, dock, status bar and dialogs come from the parts in editor_ui_internal.h.
 #include "app/editor_ui_internal.h"
+#include "app/export_check.h"
 #include "app/shortcuts.h"
 #include "renderer/ui_renderer.h"
 
@@ -231,7 +232,8 @@ ui_rect editor_ui_build(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport
         files_dialog(e, ui, ctx, modal);
     } else if (e->interchange.open) {
         char cmd[4600];
-        if (interchange_dialog_draw(&e->interchange, ui, modal, cmd, sizeof cmd))
+        if (interchange_dialog_draw(&e->interchange, ui, modal, cmd, sizeof cmd) &&
+            export_check_accept(&e->interchange, ctx->world))
             editor_ui_run(e, ctx, cmd);
     } else if (e->new_planet.open) {
         if (new_planet_dialog_draw(&e->new_planet, ui, modal, e->planet_command,

@@ -27,6 +27,7 @@ void interchange_dialog_show(interchange_dialog *d, int exporting, const char *p
         snprintf(d->region[3], sizeof d->region[3], "%.0f", z + half);
     }
     d->max_height = max_height;
+    d->layer_name[0] = d->error[0] = 0;
     d->preview_ok = 0;
     d->preview_error[0] = 0;
     if (exporting) return;
@@ -206,11 +207,45 @@ static void planet_fields(interchange_dialog *d, ui_context *ui) {
                   "grid's own, up to 8192)");
 }
 
+// An edit layer's export: the file typed, its format (the extension, 16-bit TIFF) and
+// what of the stack it holds.
+static void layer_export_fields(interchange_dialog *d, ui_context *ui) {
+    ui_form_field(ui, "File", "path", d->path, sizeof d->path,
+                  "Where to write it (its .json sidecar goes beside it)");
+    static const char *const formats[] = {"EXR (float)", "TIFF (float)", "TIFF (16-bit)",
+                                          "PNG (16-bit)", "R16 (16-bit raw)"};
+    static const char *const extensions[] = {".exr", ".tif", ".tif", ".png", ".r16"};
+    char *dot = strrchr(d->path, '.');
+    if (dot && strchr(dot, '/')) dot = NULL;
+    int format = 0;
+    for (int i = 0; i < 5; i++)
+        if (dot && !strcmp(dot, extensions[i]) && (i != 1 || !d->bits16)) {
+            format = i;
+            break;
+        }
+    ui_row(ui, 1, NULL, 0);
+    if (ui_combo(ui, "Format", &format, formats, 5)) {
+        if (!dot) dot = d->path + strlen(d->path);
+        snprintf(dot, sizeof d->path - (size_t)(dot - d->path), "%s", extensions[format]);
+        d->bits16 = format == 2;
+    }
+    ui_tooltip(ui, "The file's format: float metres, or 16-bit values with their mapping in "
+                   "the sidecar");
+    char change[120], upto[120];
+    snprintf(change, sizeof change, "%s's change (signed)", d->layer_name);
+    snprintf(upto, sizeof upto, "The stack up to %s", d->layer_name);
+    const char *whats[] = {change, upto, "The composite"};
+    ui_combo(ui, "Layers", &d->layer_what, whats, 3);
+    ui_tooltip(ui, "What it holds: what the layer adds to the ones below (layers=NAME), the "
+                   "composite of the layers up to it (layers=upto=NAME), or everything");
+}
+
 static void export_fields(interchange_dialog *d, ui_context *ui) {
     if (d->planet) {
         planet_fields(d, ui);
         return;
     }
+    if (d->layer_name[0]) layer_export_fields(d, ui);
     ui_row(ui, 1, NULL, 0);
     ui_checkbox(ui, "The whole world##whole", &d->whole);
     ui_tooltip(ui, "Every sample of a bounded world (else the region below)");
@@ -230,7 +265,7 @@ static void export_fields(interchange_dialog *d, ui_context *ui) {
     ui_combo(ui, "Preset", &d->preset, presets, 6);
     ui_tooltip(ui, "Crop to an engine's sizes; its settings go to the console");
     const char *dot = strrchr(d->path, '.');
-    if (dot && (!strcmp(dot, ".tif") || !strcmp(dot, ".tiff"))) {
+    if (!d->layer_name[0] && dot && (!strcmp(dot, ".tif") || !strcmp(dot, ".tiff"))) {
         ui_checkbox(ui, "16-bit TIFF (not float)##bits16", &d->bits16);
         ui_tooltip(ui, "16-bit values and a mapping, not float metres");
     }
@@ -239,7 +274,9 @@ static void export_fields(interchange_dialog *d, ui_context *ui) {
 int interchange_dialog_rows(const interchange_dialog *d) {
     // The most it can show (ticking a box must not push the buttons out of view).
     if (d->exporting && d->planet) return 5; // title, subdivision, counts, images, buttons
-    if (d->exporting) return 9; // title, whole, 4 region edges, preset, 16-bit TIFF, buttons
+    // title, (layer: error, file, format, layers), whole, 4 region edges, preset, 16-bit
+    // TIFF, buttons
+    if (d->exporting) return d->layer_name[0] ? 13 : 9;
     // title x z centre layer map min max, file, histogram (about 1.5 rows), heights,
     // spacing, extent, its warning (the last three may wrap), blend resample falloff
     // buttons
@@ -259,6 +296,7 @@ int interchange_dialog_draw(interchange_dialog *d, ui_context *ui, ui_rect r, ch
     snprintf(title, sizeof title, "%s %.500s", d->exporting ? "Export to" : "Import",
              slash ? slash + 1 : d->path);
     ui_label(ui, title);
+    if (d->error[0]) ui_label_wrapped(ui, d->error, ui_get_theme(ui)->text_error);
     if (d->exporting)
         export_fields(d, ui);
     else
@@ -288,8 +326,14 @@ int interchange_dialog_draw(interchange_dialog *d, ui_context *ui, ui_rect r, ch
         if (!d->whole)
             snprintf(region, sizeof region, " region=%s,%s,%s,%s", d->region[0], d->region[1],
                      d->region[2], d->region[3]);
-        snprintf(cmd, cmd_len, "export %s%s%s%s%s", path, region, d->preset ? " preset=" : "",
-                 d->preset ? presets[d->preset] : "", d->bits16 ? " bits=16" : "");
+        const char *tif = strrchr(d->path, '.');
+        int bits16 = d->bits16 && tif && (!strcmp(tif, ".tif") || !strcmp(tif, ".tiff"));
+        char layers[120] = "";
+        if (d->layer_name[0] && d->layer_what < 2)
+            snprintf(layers, sizeof layers, " layers=%s%s", d->layer_what ? "upto=" : "",
+                     d->layer_name);
+        snprintf(cmd, cmd_len, "export %s%s%s%s%s%s", path, region, d->preset ? " preset=" : "",
+                 d->preset ? presets[d->preset] : "", bits16 ? " bits=16" : "", layers);
     } else {
         char mapping[100] = "";
         if (d->map_heights) snprintf(mapping, sizeof mapping, " min=%s max=%s", d->min, d->max);

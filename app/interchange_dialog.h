@@ -2,7 +2,10 @@
 // after the file browser chose the file, where and how to import it (placement, layer,
 // height mapping, blending), what to export (region, engine preset, 16-bit TIFF), or a
 // planet's mesh (seed 004's `export N FILE`: the cube's subdivision, the face images'
-// size). The dialog only builds the import / export command; the editor runs it.
+// size). The Layers panel's Export... opens it on one edit layer: the file and its
+// format typed here, and what of the stack to write (layers=NAME, upto=NAME or the
+// composite). The dialog only builds the import / export command; the editor checks it
+// (app/export_check.h: a refusal is shown in the dialog) and runs it.
 #ifndef OROGEN_APP_INTERCHANGE_DIALOG_H
 #define OROGEN_APP_INTERCHANGE_DIALOG_H
 
@@ -41,6 +44,10 @@ typedef struct interchange_dialog {
     int planet;
     char subdivision[16]; // N: 12 x 2^N triangles
     char image_size[16];  // face images' pixels per side ("": the face grid's own)
+    // export of one edit layer (set after interchange_dialog_show; "": none)
+    char layer_name[64];
+    int layer_what;   // 0 its change (layers=NAME), 1 the composite up to it, 2 the composite
+    char error[1024]; // why the last Export was refused ("": none)
 } interchange_dialog;
 
 // Opens the dialog for path with defaults: bounded (world size in metres, 0 when

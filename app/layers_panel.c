@@ -11,6 +11,32 @@
 
 #include "app/layers_panel_state.h"
 
+#include <unistd.h>
+
+// The export dialog on layer name: NAME.exr in the folder of the last export or import
+// (else the world's, else the working one), its change by default.
+static void export_layer(editor_ui *e, cmd_context *ctx, const char *name) {
+    char folder[4096] = "";
+    const char *from =
+        strchr(e->interchange.path, '/') ? e->interchange.path : world_path(ctx->world);
+    const char *slash = strrchr(from, '/');
+    if (slash)
+        snprintf(folder, sizeof folder, "%.*s", (int)(slash - from), from);
+    else if (!getcwd(folder, sizeof folder))
+        snprintf(folder, sizeof folder, ".");
+    char path[4200];
+    snprintf(path, sizeof path, "%s/%s.exr", folder, name);
+    const world_params *p = world_get_params(ctx->world);
+    double bounded =
+        p->kind != WORLD_PLANET && p->size > 0 ? (double)(p->size - 1) * p->spacing : 0;
+    interchange_dialog *d = &e->interchange;
+    interchange_dialog_show(d, 1, path, bounded, p->max_height, e->view_x, e->view_z);
+    d->planet = 0;
+    d->bits16 = 0;
+    snprintf(d->layer_name, sizeof d->layer_name, "%s", name);
+    d->layer_what = 0;
+}
+
 // As editor/edit/edit.c refuses a tool on the active layer: height tools on a paint
 // layer, any tool on a hidden or locked one (paint on a height layer goes to the ground's
 // own paint, refused never), mask painting without a painted mask.
@@ -98,13 +124,10 @@ static void layer_menu(editor_ui *e, ui_context *ui, cmd_context *ctx, const lay
     if (ui_menu_item(ui, "Merge down", NULL, i > 0)) runf(e, ctx, "layer merge %s", l->name);
     if (ui_menu_item(ui, "Clear", NULL, 1)) runf(e, ctx, "layer clear %s", l->name);
     if (ui_menu_item(ui, "Delete", NULL, t->count > 1)) runf(e, ctx, "layer delete %s", l->name);
-    if (ui_menu_item(ui, "Export...", NULL, l->kind == LAYER_KIND_HEIGHT)) {
-        // Its export command in the console, the file name and region to adjust there.
-        snprintf(e->console.input, sizeof e->console.input, "export %s.exr layers=%s", l->name,
-                 l->name);
-        e->console.open = 1;
-        e->console.focus_input = 1;
-    }
+    // A heightmap of the layer: flat worlds (planets export whole, as meshes).
+    int flat = world_get_params(ctx->world)->kind != WORLD_PLANET;
+    if (ui_menu_item(ui, "Export...", NULL, l->kind == LAYER_KIND_HEIGHT && flat))
+        export_layer(e, ctx, l->name);
     ui_context_menu_end(ui);
 }
 

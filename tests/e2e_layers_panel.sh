@@ -5,7 +5,8 @@
 # alone) and a stroke on it refused where the user acted, shown again, moved down by a
 # drag of its name, renamed by a double click, masked by slope in the mask editor (a
 # range dragged over the histogram, then typed), the context menu's Duplicate and
-# Delete, curvature and flow ranges over their histograms (flow's dragged), and the Materials panel's rule ranges typed in place. Every action is a layer
+# Delete, curvature and flow ranges over their histograms (flow's dragged), the layer
+# menu's Export dialog (a refusal shown in it, then the stack up to the layer written), and the Materials panel's rule ranges typed in place. Every action is a layer
 # or material_rule command read back through the console (`layers`, `history`, `hash`).
 # At 1024 x 640 and UI scale 1.5 every row of the panel lies inside the dock. The UI
 # runs strict (an id conflict stops the editor). Screenshots go to
@@ -196,6 +197,35 @@ lo0=$(echo "$f0" | sed -n 's/.*flow=\([^,]*\),.*/\1/p'); lo1=$(echo "$f1" | sed 
 awk -v a="$lo0" -v b="$lo1" 'BEGIN { exit !(b > 0 && b < a) }'
 check "dragging flow's low end left lowers it, the top stays open ($f0 -> $f1)" $?
 shot mask_flow
+
+# 6c. The layer menu's Export... opens the export dialog on Hill: a folder that is not
+# there is refused in the dialog, which stays open; then the stack up to Hill (the
+# Layers box) is written as an EXR with its sidecar, which oiiotool reads.
+reveal "Dock/Stack/Hill/Hill"
+read -r x y w h <<<"$(widget "Dock/Stack/Hill/Hill")"
+xdotool mousemove --window "$wid" $((x + w / 2)) $((y + h / 2)) click 3
+sleep 0.4
+click "Dock/Stack/Hill/Layer menu/Export..."
+widget "Export options/Export to Hill.exr" >/dev/null && widget "Export options/Format" >/dev/null
+check "Export... opens the export dialog on Hill.exr with its format and layers" $?
+read -r bx0 bz0 bx1 bz1 <<<"$(box)"
+if widget "Export options/x0" 2 >/dev/null; then # an unbounded world: the region asked
+    for f in "x0=$bx0" "z0=$bz0" "x1=$bx1" "z1=$bz1"; do fill "Export options/${f%%=*}" "${f#*=}"; done
+fi
+fill "Export options/path" "$work/nowhere/Hill.exr"
+click "Export options/Export"
+widget "Export options/File: the folder*" >/dev/null && widget "Export options/path" >/dev/null
+check "a folder that is not there is said in the dialog, which stays open" $?
+shot export_refused
+fill "Export options/path" "$work/Hill.exr"
+click "Export options/Layers" && click "Export options/Layers/The stack up to Hill"
+click "Export options/Export"
+for _ in $(seq 100); do [ -s "$work/Hill.exr.json" ] && break; sleep 0.2; done
+grep -q '"layers": "upto"' "$work/Hill.exr.json" && grep -q '"edit_layer": "Hill"' "$work/Hill.exr.json"
+check "Export writes the stack up to Hill with its sidecar" $?
+if command -v oiiotool >/dev/null; then
+    oiiotool --info "$work/Hill.exr" 2>&1 | grep -q "float"; check "oiiotool reads the EXR as float" $?
+fi
 
 # 7. At 1024 x 640 and UI scale 1.5 every widget of the stack and the mask editor lies
 # inside the dock (the Layers header's width).
