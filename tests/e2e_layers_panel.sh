@@ -6,9 +6,11 @@
 # drag of its name, renamed by a double click, masked by slope in the mask editor (a
 # range dragged over the histogram, then typed), the context menu's Duplicate and
 # Delete, curvature and flow ranges over their histograms (flow's dragged), the layer
-# menu's Export dialog (a refusal shown in it, then the stack up to the layer written), and the Materials panel's rule ranges typed in place. Every action is a layer
-# or material_rule command read back through the console (`layers`, `history`, `hash`).
-# At 1024 x 640 and UI scale 1.5 every row of the panel lies inside the dock. The UI
+# menu's Export dialog (a refusal shown in it, then the stack up to the layer written),
+# and the Materials panel's rule ranges typed in place. Every action is a layer or
+# material_rule command read back through the console (`layers`, `history`, `hash`).
+# At 1024 x 640 and UI scale 1.5 every row of the panel lies inside the dock (and the
+# opacity's tooltip beside it, not over the next row: a screenshot). The UI
 # runs strict (an id conflict stops the editor). Screenshots go to
 # ${OROGEN_TEST_ARTIFACTS:-build/test-artifacts}/layers_*.png.
 # Usage: e2e_layers_panel.sh OROGEN TESTS_DIR
@@ -240,6 +242,12 @@ bad=$(echo "$out" | awk -v l="$lx" -v r=$((lx + lw)) '{ n = NF; if ($(n-3) < l -
 [ -n "$out" ] && [ -n "$lx" ] && [ -z "$bad" ]
 check "at UI scale 1.5 the panel fits the dock ($(echo "$out" | wc -l) widgets; outside: ${bad:-none})" $?
 shot scale_1_5
+# The opacity's tooltip lies beside the dock, not over the next layer's name.
+reveal "Dock/Stack/Hill/Opacity"
+read -r x y w h <<<"$(widget "Dock/Stack/Hill/Opacity")"
+xdotool mousemove --window "$wid" $((x + w / 2)) $((y + h / 2))
+sleep 1.5
+shot opacity_tooltip
 alive; check "the editor is alive: no widget id conflict ($(tail -c 300 "$work/err"))" $?
 
 end_window_test

@@ -2081,6 +2081,36 @@ static void test_tooltip(void **state) {
     drv_free(&d);
 }
 
+// A widget in the window's right part (a dock) and a row under it: its tooltip lies left
+// of it, level with it, clear of the row below (the second layer's name at UI scale 1.5).
+static void build_dock_tooltip(drv *d) {
+    ui_panel_begin(d->ui, "Dock", (ui_rect){560, 0, 240, 300});
+    ui_row(d->ui, 1, NULL, 0);
+    ui_button(d->ui, "Opacity");
+    ui_tooltip(d->ui, "How much of the layer shows (0-100%)");
+    ui_button(d->ui, "Next row");
+    ui_panel_end(d->ui);
+}
+
+static void test_tooltip_beside_the_dock(void **state) {
+    (void)state;
+    drv d;
+    drv_init(&d, build_dock_tooltip, NULL);
+    ui_rect r = rect_of(&d, "Dock/Opacity"), below = rect_of(&d, "Dock/Next row");
+    frame(&d);
+    d.in.time = 10.0;
+    move_to(&d, r.x + 20, r.y + r.h / 2);
+    d.in.time = 10.6;
+    frame(&d);
+    const ui_draw_cmd *last = &d.dl->cmds[d.dl->cmd_count - 1];
+    assert_true(last->index_count >= 6 * 16);
+    for (uint32_t i = last->first_index; i < last->first_index + last->index_count; i++) {
+        const ui_vertex *v = &d.dl->vtx[d.dl->idx[i]];
+        assert_true(v->x <= r.x && v->y < below.y); // left of it, above the next row
+    }
+    drv_free(&d);
+}
+
 // ---- id identity: sections, conflicts -------------------------------------------------
 
 // A brush's Radius and a planet's Radius in one panel, under two sections (the Dock).
@@ -2489,6 +2519,7 @@ int main(void) {
         T(test_combo_in_a_modal_dialog),
         T(test_quick_click_on_a_list_over_a_button),
         T(test_tooltip),
+        T(test_tooltip_beside_the_dock),
     };
     return cmocka_run_group_tests(tests, load_font, free_font);
 }

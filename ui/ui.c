@@ -986,7 +986,10 @@ int ui_last_hovered(const ui_context *ui) {
     return ui->last_hovered;
 }
 
-static void tooltip_box(ui_context *ui, const char *text) {
+// Below the pointer; for a widget in the right part of the window (the dock), beside it
+// on its left, level with it, so it never covers the rows under it (at a large UI scale
+// the box below a layer's opacity hid the next layer's name).
+static void tooltip_box(ui_context *ui, const char *text, ui_rect anchor) {
     ui_draw_list *keep = ui->target;
     ui->target = &ui->overlay;
     float pad = ui_em(ui, 0.3f), w = text_width(ui, text, strlen(text)) + 2 * pad,
@@ -994,6 +997,10 @@ static void tooltip_box(ui_context *ui, const char *text) {
     float x = fminf(ui->in.mouse_x + ui_em(ui, 0.8f), ui->width - w);
     float y = ui->in.mouse_y + ui_em(ui, 1.0f);
     if (y + h > ui->height) y = ui->in.mouse_y - h - pad;
+    if (anchor.x > ui->width * 0.5f && anchor.x - w - pad >= 0) {
+        x = anchor.x - w - pad;
+        y = fminf(fmaxf(anchor.y + (anchor.h - h) * 0.5f, 0), ui->height - h);
+    }
     ui_rect r = {fmaxf(0, x), fmaxf(0, y), w, h};
     ui_draw_rect(ui->target, r, ui->theme.panel_alt);
     ui_draw_rect_outline(ui->target, r, ui->theme.border, 1);
@@ -1012,7 +1019,7 @@ void ui_tooltip(ui_context *ui, const char *text) {
         ui->tip_id = ui->last_id;
         ui->tip_since = ui->in.time;
     }
-    if (ui->in.time - ui->tip_since >= TOOLTIP_DELAY) tooltip_box(ui, text);
+    if (ui->in.time - ui->tip_since >= TOOLTIP_DELAY) tooltip_box(ui, text, ui->last_rect);
 }
 
 // ---- sliders ------------------------------------------------------------------------
