@@ -7,7 +7,8 @@
 #include <string.h>
 #include <time.h>
 
-static double now_seconds(void) {
+static double now_seconds(const sculpt_drag *d) {
+    if (d->clock) return d->clock();
     struct timespec t;
     clock_gettime(CLOCK_MONOTONIC, &t);
     return (double)t.tv_sec + t.tv_nsec * 1e-9;
@@ -75,24 +76,32 @@ static void point_at(sculpt_drag *d, work_queue *q, world *w, sculpt_view view, 
     double dx = pt.x - d->hold_anchor[0], dz = pt.z - d->hold_anchor[1];
     if (d->points == 0 || sqrt(dx * dx + dz * dz) >= d->brush.spacing * d->brush.radius) {
         d->hold_anchor[0] = pt.x, d->hold_anchor[1] = pt.z;
-        d->hold_from = now_seconds();
+        d->hold_from = now_seconds(d);
+        if (d->points == 0) d->seen_held_at = d->hold_from;
     }
     d->points++;
 }
 
-// Queues the time held since the last hold; at least a dab's worth unless final (the
-// release: what was held up to it counts, however slow the frames were).
+// Queues the time held since the last hold, up to the last time the window saw the
+// button still down; at least a dab's worth unless final (the release: what was seen
+// held up to it counts, however slow the frames were). Never the time to the release's
+// handling: a release that waited behind a slow frame or a job would count that wait
+// (a 0.1 s click laid as much as a 1.2 s hold on a loaded machine).
 static int hold(sculpt_drag *d, work_queue *q, int final) {
     const brush *b = &d->brush;
     if (!d->active || !b->hold || d->volume || b->tool == BRUSH_RAMP || d->points == 0 ||
         d->held_count || (!final && work_queue_busy(q)))
         return 0;
-    double now = now_seconds(), held = now - d->hold_from;
+    double held = d->seen_held_at - d->hold_from;
     if (held < (final ? 0.001 : 0.5 * b->spacing)) return 0; // 2 / spacing dabs a second
     char cmd[64];
     snprintf(cmd, sizeof cmd, "stroke_hold %.4f", fmin(held, 60.0));
-    d->hold_from = now;
+    d->hold_from = d->seen_held_at;
     return work_queue_add(q, cmd, "sculpt", WORK_STROKE) == 0;
+}
+
+void sculpt_drag_input_taken(sculpt_drag *d) {
+    if (d->active) d->seen_held_at = now_seconds(d);
 }
 
 int sculpt_drag_hold(sculpt_drag *d, work_queue *q) {

@@ -30,9 +30,11 @@ typedef struct sculpt_drag {
     int held_count;
     int end_held; // released during a job with positions held: stroke_end follows them
     // The brush held still keeps dabbing (stroke_hold): the time the hold counts from,
-    // restarted when the brush has moved a dab's spacing from where it was then.
-    double hold_from;
+    // restarted when the brush has moved a dab's spacing from where it was then, and
+    // the last time the window saw the button still down (sculpt_drag_input_taken).
+    double hold_from, seen_held_at;
     double hold_anchor[2];
+    double (*clock)(void); // seconds; NULL: CLOCK_MONOTONIC (tests give their own)
 } sculpt_drag;
 
 // Where the viewport is in the window (window coordinates) and what it shows.
@@ -47,10 +49,14 @@ void sculpt_drag_begin(sculpt_drag *d, work_queue *q, cmd_context *ctx, sculpt_v
                        double y, int smooth, int invert);
 // The mouse moved to (x, y) during the drag (any time, a job running or not).
 void sculpt_drag_to(sculpt_drag *d, work_queue *q, sculpt_view view, double x, double y);
-// Called every frame of a drag: once a dab's time has passed (spacing / 2 seconds) since
-// the hold began or was last queued, queues `stroke_hold SECONDS` so a brush held still
-// keeps applying (unless the tool's hold=0; not ramp or the volume tools). 1 when it
-// queued one.
+// The window has taken the input that came so far (none waits) and the drag is still
+// on: the button was held until now. Only this time counts as held, never the time a
+// release is handled at (it may have waited behind a slow frame or a job).
+void sculpt_drag_input_taken(sculpt_drag *d);
+// Called every frame of a drag: once a dab's time has been seen held (spacing / 2
+// seconds) since the hold began or was last queued, queues `stroke_hold SECONDS` so a
+// brush held still keeps applying (unless the tool's hold=0; not ramp or the volume
+// tools). 1 when it queued one.
 int sculpt_drag_hold(sculpt_drag *d, work_queue *q);
 // The button went up. Returns the drag's points (for the console's echo).
 int sculpt_drag_end(sculpt_drag *d, work_queue *q);

@@ -456,6 +456,8 @@ int window_run(cmd_context *ctx, og_error *err) {
                     viewport_drag_kind(&st) == DRAG_SCULPT || st.v->settings.sun_rotation != 0 ||
                     !work_queue_idle(&st.work) || panels_need_frame(&st);
         glfwWaitEventsTimeout(awake ? 0.01 : 0.1);
+        sculpt_drag *stroke = viewport_drag_stroke(&st);
+        if (stroke && st.input.deferred.count == 0) sculpt_drag_input_taken(stroke);
         int w, h;
         glfwGetFramebufferSize(win, &w, &h);
         int go = frame_input(&st, w, h, dl);
