@@ -402,6 +402,10 @@ void tool_options(editor_ui *e, ui_context *ui, cmd_context *ctx) {
     slider_key(e, ui, ctx, "Spacing", "spacing", b->spacing, 0.05, 2, "%.2f x radius",
                "Distance between dabs along a stroke, as a fraction of the radius");
     falloff_options(e, ui, ctx, t);
+    int own = ctx->tool_size_per_tool;
+    if (ui_checkbox(ui, "Size per tool", &own))
+        runf(e, ctx, "tool %s memory=%s", t, own ? "per_tool" : "shared");
+    ui_tooltip(ui, "Each tool keeps its own radius and strength (off: shared by all tools)");
     if (brush_tool_is_volume(b->tool)) {
         volume_options(e, ui, ctx, t);
         return;

@@ -90,6 +90,15 @@ awk -v o="$off" -v s="$short" 'BEGIN { exit !(o > 0 && o < s + 1) }'
 check "and then a press held 1.2 s lays one dab, as a click (+$off m vs +$short m)" $?
 click "Dock/Hold"
 ask_until tool '^hold=' '^hold=1$' >/dev/null; check "Dock/Hold turns it on again" $?
+# Per-tool brush memory from the dock: each tool then keeps its own radius.
+click "Dock/Size per tool"
+ask_until tool '^memory=' '^memory=per_tool$' >/dev/null; check "Dock/Size per tool gives each tool its own size" $?
+echo "tool raise radius=33" >&3
+echo "tool smooth radius=77" >&3
+echo "tool raise" >&3
+line=$(ask_until tool '^radius=' '^radius=33$'); check "raise keeps its radius while smooth has another ($line)" $?
+click "Dock/Size per tool"
+ask_until tool '^memory=' '^memory=shared$' >/dev/null; check "and off again, one size shared by all tools" $?
 line=$(ask ui_scale '^ui_scale')
 case "$line" in *1.5*) true ;; *) false ;; esac; check "the UI scale is 1.5 ($line)" $?
 inside "Menu/" 1024 640; check "the menu bar fits the window" $?
