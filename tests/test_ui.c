@@ -268,6 +268,12 @@ static void test_font_widths_and_fallback(void **state) {
     assert_ptr_not_equal(ui_font_glyph(font, UI_FACE_SANS, 0xE9), q);
     assert_ptr_not_equal(ui_font_glyph(font, UI_FACE_SANS, 0x2192), q);
     assert_ptr_not_equal(ui_font_glyph(font, UI_FACE_SANS, 0x2713), q);
+    // Every triangle the library draws (combo, section and tree arrows: a tree's showed
+    // as '?' in the Layers panel).
+    const uint32_t triangles[] = {0x25B2, 0x25B6, 0x25B8, 0x25BC, 0x25BE, 0x25C0};
+    for (size_t i = 0; i < sizeof triangles / sizeof triangles[0]; i++)
+        if (ui_font_glyph(font, UI_FACE_SANS, triangles[i]) == q)
+            fail_msg("U+%04X is not in the atlas", (unsigned)triangles[i]);
     // "é" is one glyph of two bytes.
     assert_true(ui_font_text_width(font, UI_FACE_SANS, "\xC3\xA9", 2) ==
                 ui_font_glyph(font, UI_FACE_SANS, 0xE9)->advance);
@@ -1670,6 +1676,51 @@ static void test_scroll(void **state) {
     drv_free(&d);
 }
 
+// A list panel inside a scrolling panel (the History steps in the dock): the wheel over
+// the inner list scrolls it alone; over the rest of the outer panel, the outer one.
+static void build_nested(drv *d) {
+    ui_panel_begin(d->ui, "Dock", list_panel);
+    ui_label(d->ui, "Top");
+    ui_row(d->ui, 1, NULL, 100);
+    ui_panel_begin(d->ui, "Steps", ui_next_cell(d->ui));
+    for (int i = 0; i < 40; i++) {
+        char name[32];
+        snprintf(name, sizeof name, "Step %d", i);
+        ui_label(d->ui, name);
+    }
+    ui_panel_end(d->ui);
+    ui_row(d->ui, 1, NULL, 0);
+    for (int i = 0; i < 40; i++) {
+        char name[32];
+        snprintf(name, sizeof name, "Row %d", i);
+        ui_label(d->ui, name);
+    }
+    ui_panel_end(d->ui);
+}
+
+static void test_scroll_nested(void **state) {
+    (void)state;
+    drv d;
+    drv_init(&d, build_nested, NULL);
+    float step = ui_em(d.ui, 3);
+    ui_rect top = rect_of(&d, "Dock/Top"), first = rect_of(&d, "Dock/Steps/Step 0");
+    move_to(&d, first.x + 5, first.y + first.h / 2);
+    frame(&d);
+    d.in.wheel = -1;
+    frame(&d);
+    frame(&d);
+    assert_true(rect_of(&d, "Dock/Steps/Step 0").y == first.y - step);
+    assert_true(rect_of(&d, "Dock/Top").y == top.y); // the dock stays
+    // Over the dock's own rows the dock scrolls (and the list with it).
+    move_to(&d, top.x + 5, top.y + top.h / 2);
+    frame(&d);
+    d.in.wheel = -1;
+    frame(&d);
+    frame(&d);
+    assert_true(rect_of(&d, "Dock/Top").y == top.y - step);
+    drv_free(&d);
+}
+
 // ---- menus and combos -------------------------------------------------------------------
 
 typedef struct menus {
@@ -2511,6 +2562,7 @@ int main(void) {
         T(test_clipping),
         T(test_outside_the_clip_draws_nothing),
         T(test_scroll),
+        T(test_scroll_nested),
         T(test_menu_items),
         T(test_menu_click_outside),
         T(test_menu_escape_after_text_focus_moved),

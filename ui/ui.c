@@ -139,6 +139,10 @@ struct ui_context {
     int modal_before; // a modal dialog was up last frame
     ui_rect panel_rects[2][64];
     int panel_count[2];
+    // The innermost panel under the pointer that can scroll, by frame: the wheel scrolls
+    // the one the last frame found, not every panel around it (the dock scrolled with
+    // the History list inside it). 0: none.
+    ui_id wheel_panel[2];
 
     slot slots[SLOTS_MAX];
     ui_clipboard clipboard;
@@ -404,6 +408,7 @@ void ui_begin(ui_context *ui, const ui_input *in, float width, float height) {
     ui->conflict_count[ui->cur] = 0;
     ui->message_count[ui->cur] = 0;
     ui->panel_count[ui->cur] = 0;
+    ui->wheel_panel[ui->cur] = 0;
     ui->focus_at_begin = ui->focus != 0;
     ui->keys_spent = 0;
     ui->scope_depth = 0;
@@ -665,7 +670,11 @@ void ui_panel_begin(ui_context *ui, const char *name, ui_rect r) {
     // Wheel over the panel scrolls it.
     float pad = ui_em(ui, 0.3f), bar = ui_em(ui, 0.45f);
     float max_scroll = fmaxf(0.0f, s->content - (r.h - 2 * pad));
-    if (ui->in.wheel != 0 && over(ui, r)) s->scroll -= ui->in.wheel * ui_em(ui, 3);
+    int hovered = over(ui, r);
+    if (hovered && max_scroll > 0) ui->wheel_panel[ui->cur] = id; // inner panels begin later
+    ui_id wheel_to = ui->wheel_panel[ui->cur ^ 1];
+    if (ui->in.wheel != 0 && hovered && (wheel_to == id || wheel_to == 0))
+        s->scroll -= ui->in.wheel * ui_em(ui, 3);
     s->scroll = fminf(fmaxf(s->scroll, 0.0f), max_scroll);
     ui_draw_push_clip(ui->target, r);
     if (ui->layout_depth < LAYOUT_MAX) {

@@ -19,7 +19,9 @@ static const struct {
     {0x2190, 4},  // arrows left, up, right, down
     {0x25B2, 1},  // up triangle
     {0x25B6, 1},  // right triangle
+    {0x25B8, 1},  // small right triangle (a closed tree node)
     {0x25BC, 1},  // down triangle
+    {0x25BE, 1},  // small down triangle (an open tree node)
     {0x25C0, 1},  // left triangle
     {0x2713, 1},  // check mark
 };
