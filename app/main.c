@@ -7,6 +7,7 @@
 #include "renderer/viewport.h"
 #include "editor/cmd/commands.h"
 #include "editor/cmd/edit_commands.h"
+#include "editor/edit/material_mips_fill.h"
 #include "editor/world/world.h"
 #include "io/file_kind.h"
 #include "io/parse.h"
@@ -270,6 +271,7 @@ int main(int argc, char **argv) {
     int load_errors = 0;
     if (world_file) {
         w = world_load(world_file, &settings, &load_errors, &err);
+        if (w) material_mips_fill_missing(w); // paint saved before it had far levels
     } else {
         w = open_default_world(resource_dir, &settings, &err);
     }

@@ -9,6 +9,7 @@
 #include "editor/edit/edit.h"
 #include "editor/edit/edit_commit.h"
 #include "editor/edit/edit_mips.h"
+#include "editor/edit/material_mips_fill.h"
 #include "editor/world/history.h"
 #include "editor/world/layer_grid.h"
 #include "editor/tools/stroke.h"
@@ -1954,6 +1955,97 @@ static void test_unsaved_changes(void **state) {
     test_rmtree(dir);
 }
 
+// Paint saved before the material layer had mip levels (issue 26): the world's store
+// holds level-0 material tiles only. Loaded, the missing levels are built, the same bytes
+// a stroke would have made, without an undo step or an unsaved change.
+typedef struct stored_tiles {
+    tile_key keys[512];
+    int count;
+} stored_tiles;
+
+static int material_mip_key(void *user, tile_key key) {
+    stored_tiles *t = user;
+    if (tile_key_kind(key) == TILE_LAYER_MATERIAL && key.level > 0 && t->count < 512)
+        t->keys[t->count++] = key;
+    return 0;
+}
+
+static void test_material_mips_filled_on_load(void **state) {
+    (void)state;
+    char dir[4096], path[4200];
+    snprintf(dir, sizeof dir, "%s", test_tmpdir("edit-material-mips"));
+    snprintf(path, sizeof path, "%s/old.world", dir);
+    world_params p = flat_params(700, 1.0);
+    world *w = open_world(&p);
+    brush b;
+    brush_defaults(&b, BRUSH_PAINT);
+    b.radius = 80;
+    b.material = 3;
+    const double path1[] = {150, 150, 600, 500};
+    stroke_world(w, &b, path1, 2);
+    og_error err = {{0}};
+    if (world_save(w, path, 0, &err) != 0) fail_msg("world_save: %s", err.msg);
+    // What a stroke made: every material mip tile, kept to compare.
+    stored_tiles t = {.count = 0};
+    if (tile_store_each(world_store(w), material_mip_key, &t, &err) != 0)
+        fail_msg("tile_store_each: %s", err.msg);
+    assert_true(t.count >= 3 && t.count < 512);
+    size_t bytes = tile_layer_bytes(TILE_LAYER_MATERIAL);
+    uint8_t *want = malloc((size_t)t.count * bytes), *got = malloc(bytes);
+    tile_store_write *drop = calloc((size_t)t.count, sizeof *drop);
+    assert_true(want && got && drop);
+    for (int i = 0; i < t.count; i++) {
+        if (tile_store_get(world_store(w), t.keys[i], want + i * bytes, bytes, &err) !=
+            TILE_STORE_OK)
+            fail_msg("tile_store_get: %s", err.msg);
+        drop[i].key = t.keys[i];
+    }
+    // The file as an older Orogen wrote it: no material mips, and the world file counts
+    // the tiles left (else the load takes the store for damaged and opens it read-only).
+    if (tile_store_put_batch(world_store(w), drop, (size_t)t.count, &err) != 0)
+        fail_msg("deleting the mips: %s", err.msg);
+    int64_t left = tile_store_count(world_store(w), -1);
+    world_close(w);
+    world_params saved;
+    world_params_default(&saved, WORLD_FLAT);
+    int errors = 0;
+    if (world_params_load(path, &saved, &errors, NULL, NULL, &err) != 0 || errors)
+        fail_msg("world_params_load: %s", err.msg);
+    assert_true(saved.tiles_saved == left + t.count);
+    saved.tiles_saved = left;
+    if (world_params_save(path, &saved, &err) != 0) fail_msg("world_params_save: %s", err.msg);
+
+    world_settings s = {.cache_budget_bytes = (size_t)64 << 20, .warn = silent};
+    w = world_load(path, &s, &errors, &err);
+    if (!w) fail_msg("world_load: %s", err.msg);
+    assert_int_equal(world_read_only(w)[0], 0);
+    assert_true(material_mips_fill_missing(w) > 0); // the painted tiles
+    assert_int_equal(world_is_modified(w), 0);
+    assert_int_equal(history_count(world_history(w)), 0);
+    for (int i = 0; i < t.count; i++) {
+        tile_view v;
+        if (tile_cache_acquire(world_cache(w), t.keys[i], &v, &err) != 0)
+            fail_msg("tile_cache_acquire: %s", err.msg);
+        memcpy(got, v.data, bytes);
+        tile_cache_release(world_cache(w), &v);
+        char name[96];
+        if (memcmp(got, want + i * bytes, bytes) != 0)
+            fail_msg("%s differs from the one the stroke made",
+                     tile_key_describe(t.keys[i], name, sizeof name));
+    }
+    // Saved, the file has them; loaded again, nothing is missing.
+    if (world_save(w, NULL, 0, &err) != 0) fail_msg("world_save: %s", err.msg);
+    world_close(w);
+    w = world_load(path, &s, &errors, &err);
+    if (!w) fail_msg("world_load: %s", err.msg);
+    assert_int_equal(material_mips_fill_missing(w), 0);
+    world_close(w);
+    free(want);
+    free(got);
+    free(drop);
+    test_rmtree(dir);
+}
+
 // Undo after a save must still reach the state before the undone edit.
 static void test_undo_after_save(void **state) {
     (void)state;
@@ -2268,6 +2360,7 @@ int main(void) {
         cmocka_unit_test(test_invariant_flatten_converges),
         cmocka_unit_test(test_invariant_thermal_talus),
         cmocka_unit_test(test_thermal_defaults_visible),
+        cmocka_unit_test(test_material_mips_filled_on_load),
         cmocka_unit_test(test_stroke_hold),
         cmocka_unit_test(test_ramp_counts_its_dab),
         cmocka_unit_test(test_invariant_hydraulic_mass),

@@ -2,6 +2,7 @@
 
 #include "editor/edit/edit.h"
 #include "editor/edit/layer_generate.h"
+#include "editor/edit/material_mips_fill.h"
 #include "editor/edit/recover.h"
 #include "editor/cmd/edit_commands.h"
 #include "editor/cmd/interchange_commands.h"
@@ -112,6 +113,7 @@ static int c_load(cmd_context *ctx, int argc, char **argv, og_error *err) {
     int errors = 0;
     world *w = world_load(argv[1], &ctx->settings, &errors, err);
     if (!w) return -1;
+    material_mips_fill_missing(w); // paint saved before it had far levels
     replace_world(ctx, w);
     ctx->reported_errors += errors;
     fprintf(ctx->out, "loaded %s%s\n", argv[1],
@@ -225,6 +227,7 @@ static int c_recover(cmd_context *ctx, int argc, char **argv, og_error *err) {
                 int errors = 0;
                 world *w = world_load(file, &ctx->settings, &errors, err);
                 if (!w) return -1;
+                material_mips_fill_missing(w);
                 if (edit_recover(w, journal, &r, err) != 0) {
                     world_close(w);
                     return -1;
