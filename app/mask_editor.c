@@ -1,8 +1,9 @@
 // The mask editor of the Layers panel: a layer's mask terms (height, slope, curvature,
-// flow), each on or off, with its low, high and soft-edge values typed and, on flat
-// worlds, a range dragged over a histogram of the composite around the view (flow's on a
-// log scale); invert and clear. While the editor is open the viewport tints where the mask (as
-// dragged so far) lets the layer apply. Each change runs one `layer mask` command.
+// flow), each on or off, with its low, high and soft-edge values typed and a range
+// dragged over a histogram of the composite around the view (flow's on a log scale;
+// on a planet, of the cube face under the camera); invert and clear. While the editor is open the
+// viewport tints where the mask (as dragged so far) lets the layer apply. Each change runs one
+// `layer mask` command.
 #include "app/editor_ui_internal.h"
 
 #include "app/layers_panel_state.h"
@@ -48,21 +49,31 @@ static void refresh_histogram(layers_panel_state *s, cmd_context *ctx, const vie
                               int force) {
     history *h = world_history(ctx->world);
     size_t step = history_position(h) * 1000003u + history_count(h);
-    double x = v->cam.pos[0], z = v->cam.pos[2];
+    const world_params *p = world_get_params(ctx->world);
+    double sp = world_grid_sample_metres(p), x = v->cam.pos[0], z = v->cam.pos[2], ground = 0;
+    int face = 0;
+    if (p->kind == WORLD_PLANET) { // the face under the camera, its face-local metres
+        double s_, t_, n = (double)world_grid_face_samples(p);
+        world_grid_direction_face(v->cam.pos, &face, &s_, &t_);
+        x = ((s_ + 1) * 0.5 * n - 0.5) * sp, z = ((t_ + 1) * 0.5 * n - 0.5) * sp;
+    }
     double half = s->hist_valid ? (s->hist.x1 - s->hist.x0) * 0.5 : 0;
     int moved = s->hist_valid &&
                 (fabs(x - s->hist_at[0]) > half * 0.5 || fabs(z - s->hist_at[1]) > half * 0.5);
     if (!force && s->hist_step == step && (s->hist_valid || s->hist_error[0]) && !moved) return;
-    const world_params *p = world_get_params(ctx->world);
-    double sp = world_grid_sample_metres(p), ground = 0;
     og_error err = {{0}};
-    world_sample(ctx->world, 0, x, z, &ground, &err);
+    world_sample(ctx->world, face, x, z, &ground, &err);
+    double above = v->cam.pos[1] - ground;
+    if (p->kind == WORLD_PLANET)
+        above = sqrt(v->cam.pos[0] * v->cam.pos[0] + v->cam.pos[1] * v->cam.pos[1] +
+                     v->cam.pos[2] * v->cam.pos[2]) -
+                p->radius - ground;
     // About what the view takes in from the camera's height, at least 256 samples.
-    half = fmin(fmax(fabs(v->cam.pos[1] - ground) * 3, sp * 128), sp * 65536);
+    half = fmin(fmax(fabs(above) * 3, sp * 128), sp * 65536);
     s->hist_step = step;
     s->hist_at[0] = x, s->hist_at[1] = z;
     s->hist_valid =
-        terrain_histogram_compute_flow(ctx->world, 0, x, z, half, &s->hist, &s->flow, &err) == 0;
+        terrain_histogram_compute_flow(ctx->world, face, x, z, half, &s->hist, &s->flow, &err) == 0;
     s->flow_serial++;
     snprintf(s->hist_error, sizeof s->hist_error, "%.200s", s->hist_valid ? "" : err.msg);
 }
@@ -159,9 +170,8 @@ static void histogram_range(editor_ui *e, ui_context *ui, cmd_context *ctx, cons
     if (rc == UI_RANGE_DONE) apply(e, ctx, l, &s->draft);
 }
 
-// One term: its checkbox, its range over the histogram (flat worlds), its fields.
-static void term_rows(editor_ui *e, ui_context *ui, cmd_context *ctx, const layer_info *l, int k,
-                      int flat) {
+// One term: its checkbox, its range over the histogram, its fields.
+static void term_rows(editor_ui *e, ui_context *ui, cmd_context *ctx, const layer_info *l, int k) {
     layers_panel_state *s = &e->layers;
     layer_mask_range *r = term(&s->draft, k);
     ui_push_scope(ui, term_keys[k]);
@@ -194,7 +204,7 @@ static void term_rows(editor_ui *e, ui_context *ui, cmd_context *ctx, const laye
         ui_pop_scope(ui);
         return;
     }
-    if (flat && s->hist_valid) histogram_range(e, ui, ctx, l, k, r);
+    if (s->hist_valid) histogram_range(e, ui, ctx, l, k, r);
     ui_row(ui, 3, NULL, 0);
     double lo = r->lo, hi = r->hi, edge = r->edge;
     int set = number_field(s, ui, "Low", s->fields[k][0], sizeof s->fields[k][0], r->lo, &lo,
@@ -214,7 +224,7 @@ static void term_rows(editor_ui *e, ui_context *ui, cmd_context *ctx, const laye
 }
 
 // The overlay the terrain renderer draws: the draft's terms, flow over the field read
-// with the histograms (flat worlds).
+// with the histograms (drawn on flat worlds).
 static void set_overlay(render_settings *rs, const layer_mask *m, const terrain_flow_field *f,
                         unsigned serial) {
     const layer_mask_range *r[4] = {&m->height, &m->slope, &m->curvature, &m->flow};
@@ -247,24 +257,17 @@ void mask_editor(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v, co
     char line[400];
     snprintf(line, sizeof line, "Mask of %s: where it applies", l->name);
     ui_label(ui, line);
-    if (flat) {
-        refresh_histogram(s, ctx, v, 0);
-        if (s->hist_valid)
-            snprintf(line, sizeof line,
-                     "Histograms of %.0f x %.0f m around the view, samples %g m "
-                     "apart",
-                     s->hist.x1 - s->hist.x0, s->hist.z1 - s->hist.z0, s->hist.spacing);
-        else
-            snprintf(line, sizeof line, "No histogram: %s", s->hist_error);
-        ui_label_wrapped(ui, line, th->text_dim);
-    } else {
-        ui_label_wrapped(ui,
-                         "On a planet the ranges are typed (no histogram); the view tints where "
-                         "the mask applies",
-                         th->text_dim);
-    }
+    refresh_histogram(s, ctx, v, 0);
+    if (s->hist_valid)
+        snprintf(line, sizeof line,
+                 "Histograms of %.0f x %.0f m around the view, samples %g m apart%s",
+                 s->hist.x1 - s->hist.x0, s->hist.z1 - s->hist.z0, s->hist.spacing,
+                 flat ? "" : " (on its cube face; the view does not draw the flow term)");
+    else
+        snprintf(line, sizeof line, "No histogram: %s", s->hist_error);
+    ui_label_wrapped(ui, line, th->text_dim);
     for (int k = 0; k < TERM_COUNT; k++)
-        term_rows(e, ui, ctx, l, k, flat);
+        term_rows(e, ui, ctx, l, k);
     if (s->field_error[0]) ui_label_wrapped(ui, s->field_error, th->text_error);
     float two[2] = {0, 0};
     ui_row(ui, 2, two, 0);

@@ -5,6 +5,7 @@
 #include "editor/world/terrain_histogram.h"
 
 #include "editor/layers/layer_mask.h"
+#include "editor/params/world_grid.h"
 
 #include <math.h>
 #include <setjmp.h>
@@ -123,6 +124,36 @@ static void test_curvature_and_flow(void **state) {
     world_close(w);
 }
 
+// On a planet: face-local metres of the face asked for, clamped to the face.
+static void test_planet_face(void **state) {
+    (void)state;
+    world_params p;
+    world_params_default(&p, WORLD_PLANET);
+    world_settings s = {.cache_budget_bytes = (size_t)128 << 20, .workers = 2, .warn = silent};
+    og_error err;
+    world *w = world_create(&p, &s, &err);
+    if (!w) fail_msg("world_create: %s", err.msg);
+    const double sp = world_grid_sample_metres(world_get_params(w));
+    const int64_t n = world_grid_face_samples(world_get_params(w));
+    terrain_histogram h;
+    const double c = (double)(n / 2) * sp;
+    assert_int_equal(terrain_histogram_compute(w, 3, c, c, 20 * sp, &h, &err), 0);
+    assert_true(h.spacing == sp && h.samples == 41 * 41);
+    double lo = INFINITY, hi = -INFINITY;
+    for (int z = 0; z <= 40; z++)
+        for (int x = 0; x <= 40; x++) {
+            double v;
+            assert_int_equal(world_sample(w, 3, h.x0 + x * sp, h.z0 + z * sp, &v, &err), 0);
+            lo = fmin(lo, (float)v), hi = fmax(hi, (float)v);
+        }
+    assert_true(h.height_min == lo && (h.height_max == hi || hi == lo));
+    // By the face's corner: clamped to its samples.
+    assert_int_equal(terrain_histogram_compute(w, 3, 0, (double)(n - 1) * sp, 20 * sp, &h, &err),
+                     0);
+    assert_true(h.x0 == 0 && h.z1 == (double)(n - 1) * sp && h.samples == 21 * 21);
+    world_close(w);
+}
+
 static void test_wide_areas_and_edges(void **state) {
     (void)state;
     world *w = open_world();
@@ -146,6 +177,7 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_level_zero_counts_every_sample),
         cmocka_unit_test(test_curvature_and_flow),
+        cmocka_unit_test(test_planet_face),
         cmocka_unit_test(test_wide_areas_and_edges),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

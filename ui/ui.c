@@ -995,8 +995,8 @@ int ui_last_hovered(const ui_context *ui) {
     return ui->last_hovered;
 }
 
-// Below the pointer; for a widget in the right part of the window (the dock), beside it
-// on its left, level with it, so it never covers the rows under it (at a large UI scale
+// Below the pointer; for a widget in the right part of the window (the dock), left of
+// its panel, level with it, so it covers none of the panel's rows (at a large UI scale
 // the box below a layer's opacity hid the next layer's name).
 static void tooltip_box(ui_context *ui, const char *text, ui_rect anchor) {
     ui_draw_list *keep = ui->target;
@@ -1006,8 +1006,9 @@ static void tooltip_box(ui_context *ui, const char *text, ui_rect anchor) {
     float x = fminf(ui->in.mouse_x + ui_em(ui, 0.8f), ui->width - w);
     float y = ui->in.mouse_y + ui_em(ui, 1.0f);
     if (y + h > ui->height) y = ui->in.mouse_y - h - pad;
-    if (anchor.x > ui->width * 0.5f && anchor.x - w - pad >= 0) {
-        x = anchor.x - w - pad;
+    float left = ui->layout_depth > 0 ? fminf(anchor.x, ui->layouts[0].body.x) : anchor.x;
+    if (anchor.x > ui->width * 0.5f && left - w - pad >= 0) { // left of the panel: clear of it
+        x = left - w - pad;
         y = fminf(fmaxf(anchor.y + (anchor.h - h) * 0.5f, 0), ui->height - h);
     }
     ui_rect r = {fmaxf(0, x), fmaxf(0, y), w, h};

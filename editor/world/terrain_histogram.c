@@ -109,7 +109,10 @@ int terrain_histogram_compute_flow(world *w, int face, double cx, double cz, dou
         level++;
     double step = sp * ldexp(1, level);
     double x0 = cx - half, z0 = cz - half, x1 = cx + half, z1 = cz + half;
-    if (p->kind != WORLD_PLANET && p->size > 0) { // a bounded world: within its samples
+    if (p->kind == WORLD_PLANET) { // within the face
+        double m = (double)(world_grid_face_samples(p) - 1) * sp;
+        x0 = fmax(x0, 0), z0 = fmax(z0, 0), x1 = fmin(x1, m), z1 = fmin(z1, m);
+    } else if (p->size > 0) { // a bounded world: within its samples
         double xm = (double)(p->size - 1) * sp, zm = (double)(world_params_size_z(p) - 1) * sp;
         x0 = fmax(x0, 0), z0 = fmax(z0, 0), x1 = fmin(x1, xm), z1 = fmin(z1, zm);
     }

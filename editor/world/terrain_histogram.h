@@ -36,7 +36,8 @@ typedef struct terrain_flow_field {
 } terrain_flow_field;
 
 // Reads the composite within half metres of (cx, cz) on face (clamped to a bounded
-// world's extent). -1 with err when the area is outside the world or a tile cannot be
+// world's extent, or to the face of a planet: face-local metres, sample i at i x
+// world_grid_sample_metres). -1 with err when the area is outside the world or a tile cannot be
 // read.
 int terrain_histogram_compute(world *w, int face, double cx, double cz, double half,
                               terrain_histogram *out, og_error *err);
