@@ -22,6 +22,7 @@
 #include "editor/params/world_grid.h"
 
 #include <math.h>
+#include <string.h>
 
 #define CRATER_CHANCE 0.85
 #define CRATER_LARGEST 0.25 // the largest scale's cell, as a share of the feature size
@@ -38,11 +39,45 @@ static double crater_profile(double d, double radius) {
     return rim * f * f;
 }
 
-// The craters at point p (metres; on a planet, on the sphere of its radius).
-static double craters_at(uint32_t seed, double largest, int scales, const double point[3]) {
+// One scale's 2 x 2 x 2 cells nearest a point, with their craters: neighbouring samples
+// mostly share them, and the hashes were most of the generator's time.
+typedef struct crater_cells {
+    int valid;
+    double base[3];
+    int step[3];
+    int n;
+    double centre[8][3], radius[8], reach2[8]; // reach2: (1.5 radius)^2
+} crater_cells;
+
+static void find_cells(uint32_t scale_seed, double cell, const double base[3], const int step[3],
+                       crater_cells *out) {
+    out->valid = 1, out->n = 0;
+    for (int a = 0; a < 3; a++)
+        out->base[a] = base[a], out->step[a] = step[a];
+    for (int c = 0; c < 8; c++) {
+        const double cx = base[0] + ((c & 1) ? step[0] : 0), cy = base[1] + ((c & 2) ? step[1] : 0),
+                     cz = base[2] + ((c & 4) ? step[2] : 0);
+        const uint32_t h = gen_hash_3((uint32_t)(int64_t)cx ^ scale_seed, (uint32_t)(int64_t)cy,
+                                      (uint32_t)(int64_t)cz);
+        if ((h & 0xffff) >= (uint32_t)(CRATER_CHANCE * 65536.0)) continue;
+        const uint32_t h1 = gen_hash32(h), h2 = gen_hash32(h1), h3 = gen_hash32(h2);
+        double *centre = out->centre[out->n];
+        centre[0] = (cx + 0.5 + 0.5 * gen_hash_unit(h1)) * cell;
+        centre[1] = (cy + 0.5 + 0.5 * gen_hash_unit(h2)) * cell;
+        centre[2] = (cz + 0.5 + 0.5 * gen_hash_unit(h3)) * cell;
+        const double radius = cell * (0.12 + 0.21 * (double)(gen_hash32(h3) >> 8) / 16777216.0);
+        out->radius[out->n] = radius;
+        out->reach2[out->n] = 2.25 * radius * radius * (1.0 + 1e-9);
+        out->n++;
+    }
+}
+
+// The craters at point p (metres; on a planet, on the sphere of its radius). cells: one
+// per scale, the last point's (kept when this point's cells are the same).
+static double craters_at(uint32_t seed, double largest, int scales, const double point[3],
+                         crater_cells *cells) {
     double sum = 0.0, cell = largest;
     for (int k = 0; k < scales; k++, cell *= 0.5) {
-        const uint32_t scale_seed = gen_hash32(seed + 0x51ed27u * (uint32_t)(k + 1));
         double base[3];
         int step[3];
         for (int a = 0; a < 3; a++) {
@@ -50,22 +85,17 @@ static double craters_at(uint32_t seed, double largest, int scales, const double
             base[a] = f;
             step[a] = u - f < 0.5 ? -1 : 1; // the nearer neighbour along this axis
         }
-        for (int c = 0; c < 8; c++) {
-            const double cx = base[0] + ((c & 1) ? step[0] : 0),
-                         cy = base[1] + ((c & 2) ? step[1] : 0),
-                         cz = base[2] + ((c & 4) ? step[2] : 0);
-            const uint32_t h = gen_hash_3((uint32_t)(int64_t)cx ^ scale_seed, (uint32_t)(int64_t)cy,
-                                          (uint32_t)(int64_t)cz);
-            if ((h & 0xffff) >= (uint32_t)(CRATER_CHANCE * 65536.0)) continue;
-            const uint32_t h1 = gen_hash32(h), h2 = gen_hash32(h1), h3 = gen_hash32(h2);
-            const double centre[3] = {(cx + 0.5 + 0.5 * gen_hash_unit(h1)) * cell,
-                                      (cy + 0.5 + 0.5 * gen_hash_unit(h2)) * cell,
-                                      (cz + 0.5 + 0.5 * gen_hash_unit(h3)) * cell};
-            const double radius = cell * (0.12 + 0.21 * (double)(gen_hash32(h3) >> 8) / 16777216.0);
-            const double dx = point[0] - centre[0], dy = point[1] - centre[1],
-                         dz = point[2] - centre[2];
-            const double d = sqrt(dx * dx + dy * dy + dz * dz);
-            if (d < 1.5 * radius) sum += crater_profile(d, radius);
+        crater_cells *cc = &cells[k];
+        if (!cc->valid || memcmp(cc->base, base, sizeof base) != 0 ||
+            memcmp(cc->step, step, sizeof step) != 0)
+            find_cells(gen_hash32(seed + 0x51ed27u * (uint32_t)(k + 1)), cell, base, step, cc);
+        for (int c = 0; c < cc->n; c++) {
+            const double dx = point[0] - cc->centre[c][0], dy = point[1] - cc->centre[c][1],
+                         dz = point[2] - cc->centre[c][2];
+            const double d2 = dx * dx + dy * dy + dz * dz;
+            if (d2 > cc->reach2[c]) continue; // (the square's rounding: the test below decides)
+            const double d = sqrt(d2);
+            if (d < 1.5 * cc->radius[c]) sum += crater_profile(d, cc->radius[c]);
         }
     }
     return sum;
@@ -80,6 +110,7 @@ void gen_craters_add(const world_params *p, tile_key key, float *out) {
         scales++;
     if (scales == 0) return;
     const uint32_t seed = gen_hash32((uint32_t)p->seed ^ 0xc7a7e500u);
+    crater_cells cells[24] = {{0}};
     for (int j = 0; j < TILE_SIZE; j++)
         for (int i = 0; i < TILE_SIZE; i++) {
             double point[3];
@@ -97,7 +128,7 @@ void gen_craters_add(const world_params *p, tile_key key, float *out) {
                 point[2] = (double)world_grid_index(key.ty, j, key.level) * p->spacing;
             }
             float *h = &out[(size_t)j * TILE_SIZE + i];
-            double v = *h + craters_at(seed, largest, scales, point);
+            double v = *h + craters_at(seed, largest, scales, point, cells);
             const double lo = p->base_height - p->max_height, hi = p->base_height + p->max_height;
             *h = (float)(v < lo ? lo : v > hi ? hi : v);
         }
