@@ -36,14 +36,22 @@ static gen_fractal shaping_fractal(const world_params *p) {
 // - below the shore band the ocean floor drops with a square root and flattens;
 // - land is raised to a varying exponent (1 to 2.5): lowlands flatten, highlands stay steep;
 // - values above 1 fold back (2 - h) into valleys instead of clipping into mesas.
-static float advanced_shape(float h, float e) {
+// On planets without a sea (rounded: airless presets), the fold's crease and the
+// shore's cliff drew dark lines along two contours wherever the light fell across them:
+// the fold is rounded over FOLD_ROUND either side of its top, and the shore is no cliff.
+#define FOLD_ROUND 0.1f
+static float advanced_shape(float h, float e, int rounded) {
     const float shore = 0.05f;
-    if (h < -shore) {
+    if (h < -shore && !rounded) {
         h = -shore - 0.5f * sqrtf(-h - shore);
     } else if (h > 0.0f) {
         float expo = 1.0f + 0.75f * (e + 1.0f);
         h = powf(h, expo);
-        if (h > 1.0f) h = 2.0f - h;
+        const float x = h - (1.0f - FOLD_ROUND); // a parabola from 1 - W to 1 + W, C1
+        if (rounded && x > 0.0f && x < 2.0f * FOLD_ROUND)
+            h = 1.0f - FOLD_ROUND + x - x * x / (2.0f * FOLD_ROUND);
+        else if (h > 1.0f)
+            h = 2.0f - h;
     }
     return h;
 }
@@ -61,6 +69,8 @@ void gen_fractal_tile(const world_params *p, tile_key key, float *out) {
     int advanced = p->generator == GEN_FBM_ADVANCED || p->generator == GEN_CRATERS;
     if (advanced) shape = malloc(sizeof(float) * TILE_SAMPLES);
     gen_fractal sf = shaping_fractal(p);
+    const int rounded =
+        p->kind == WORLD_PLANET && world_params_ocean_height(p) < p->base_height - p->max_height;
 
     if (p->kind == WORLD_FLAT) {
         double xs[TILE_SIZE], zs[TILE_SIZE];
@@ -95,7 +105,7 @@ void gen_fractal_tile(const world_params *p, tile_key key, float *out) {
         free(xyz);
     }
     for (size_t k = 0; k < TILE_SAMPLES; k++) {
-        float h = shape ? advanced_shape(out[k], shape[k]) : out[k];
+        float h = shape ? advanced_shape(out[k], shape[k], rounded) : out[k];
         out[k] = finish_height(p, h);
     }
     free(shape);
