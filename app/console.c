@@ -87,7 +87,10 @@ int console_run(console *c, cmd_context *ctx, const char *text, const char *labe
     if (rc != 0) {
         fprintf(stderr, "%s\n", err.msg);
         console_add(c, CONSOLE_ERROR, err.msg);
-        if (c->notices && strcmp(label, "console") != 0) notices_add(c->notices, err.msg);
+        if (c->notices && strcmp(label, "console") != 0)
+            notices_add_failure(c->notices, text, err.msg, notices_now());
+    } else if (c->notices && notices_user_action(label)) {
+        notices_clear_passing(c->notices);
     }
     return rc;
 }

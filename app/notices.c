@@ -3,17 +3,90 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+#include <time.h>
+
+static void add(notices *n, const char *text, double passes_at) {
+    if (n->count > 0 && strcmp(n->text[n->count - 1], text) == 0) {
+        double *last = &n->passes_at[n->count - 1];
+        if (*last != 0) *last = passes_at; // shown again: from now, or for good
+        return;
+    }
+    if (n->count == NOTICES_MAX) notices_dismiss(n, 0);
+    n->passes_at[n->count] = passes_at;
+    snprintf(n->text[n->count++], sizeof n->text[0], "%s", text);
+}
 
 void notices_add(notices *n, const char *text) {
-    if (n->count > 0 && strcmp(n->text[n->count - 1], text) == 0) return;
-    if (n->count == NOTICES_MAX) notices_dismiss(n, 0);
-    snprintf(n->text[n->count++], sizeof n->text[0], "%s", text);
+    add(n, text, 0);
+}
+
+// The commands that read or write files: their failures stay (a path to fix, a file
+// that was not written).
+static int file_command(const char *command) {
+    static const char *const names[] = {"load", "save",    "import",  "export",
+                                        "new",  "history", "recover", "stamp_add"};
+    size_t len = strcspn(command, " \t;");
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
+        if (strlen(names[i]) == len && strncmp(command, names[i], len) == 0) return 1;
+    return 0;
+}
+
+void notices_add_failure(notices *n, const char *command, const char *text, double now) {
+    while (*command == ' ')
+        command++;
+    add(n, text, file_command(command) ? 0 : now + NOTICES_PASS_SECONDS);
+}
+
+int notices_due(const notices *n, double now) {
+    for (int i = 0; i < n->count; i++)
+        if (n->passes_at[i] != 0 && n->passes_at[i] <= now) return 1;
+    return 0;
+}
+
+// Drops the notices `gone` says, keeping the others' order.
+static int drop_where(notices *n, double now, int all_passing) {
+    int kept = 0, dropped = 0;
+    for (int i = 0; i < n->count; i++) {
+        int gone = n->passes_at[i] != 0 && (all_passing || n->passes_at[i] <= now);
+        if (gone) {
+            dropped = 1;
+            continue;
+        }
+        if (kept != i) {
+            memcpy(n->text[kept], n->text[i], sizeof n->text[0]);
+            n->passes_at[kept] = n->passes_at[i];
+        }
+        kept++;
+    }
+    n->count = kept;
+    return dropped;
+}
+
+int notices_expire(notices *n, double now) {
+    return drop_where(n, now, 0);
+}
+
+void notices_clear_passing(notices *n) {
+    drop_where(n, 0, 1);
+}
+
+int notices_user_action(const char *label) {
+    return strcmp(label, "console") != 0 && strcmp(label, "radius") != 0 &&
+           strcmp(label, "planet") != 0;
 }
 
 void notices_dismiss(notices *n, int i) {
     if (i < 0 || i >= n->count) return;
     memmove(n->text[i], n->text[i + 1], (size_t)(n->count - i - 1) * sizeof n->text[0]);
+    memmove(n->passes_at + i, n->passes_at + i + 1,
+            (size_t)(n->count - i - 1) * sizeof n->passes_at[0]);
     n->count--;
+}
+
+double notices_now(void) {
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + t.tv_nsec * 1e-9;
 }
 
 // Rows a notice needs at width w (as ui_label_wrapped breaks it), to size the panel.

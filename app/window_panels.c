@@ -104,7 +104,7 @@ void panels_world_edited(window_state *st) {
 }
 
 int panels_need_frame(const window_state *st) {
-    return ui_needs_frame(st->panels.ui);
+    return ui_needs_frame(st->panels.ui) || notices_due(&st->panels.notices, notices_now());
 }
 
 int panels_took_keys(const window_state *st) {
@@ -185,6 +185,7 @@ const ui_draw_list *build_ui(window_state *st, int fw, int fh) {
     ui_begin(p->ui, input_frame(st, ui_wants_keyboard(p->ui), &waiting), (float)fw, (float)fh);
     ui_rect vr = editor_ui_build(p->ed, p->ui, st->ctx, st->v, &info, (float)fw, (float)fh);
     if (!p->edited) first_view_hint(p->ui, vr);
+    notices_expire(&p->notices, notices_now()); // refusals pass after a few seconds
     notices_draw(&p->notices, p->ui, vr);
     const ui_draw_list *dl = ui_end(p->ui);
     input_frame_done(st);

@@ -117,9 +117,13 @@ static void finished(work_queue *q, int rc, const og_error *err, int cancelled) 
     capture_end(q);
     q->ran = 1;
     if (rc != 0) report_error(q, err->msg);
+    const cmd_script *script = &q->running.work.script;
     if (rc != 0 && q->notices && strcmp(q->running.label, "console") != 0 &&
         !(cancelled && (q->running.flags & WORK_STROKE)))
-        notices_add(q->notices, err->msg);
+        notices_add_failure(q->notices, script->count ? script->calls[0].argv[0] : "", err->msg,
+                            notices_now());
+    if (rc == 0 && q->notices && notices_user_action(q->running.label))
+        notices_clear_passing(q->notices);
     if (rc != 0 && cancelled) {
         cmd_cancel_stroke(q->ctx); // (a failing stroke_to has already abandoned it)
         if (q->running.flags & WORK_STROKE) report_error(q, "cancelled: the stroke was undone");

@@ -1,4 +1,5 @@
-// Notices (app/notices.h): failures shown over the viewport until dismissed.
+// Notices (app/notices.h): failures shown over the viewport (file actions' until
+// dismissed, other refusals passing).
 #include "app/notices.h"
 
 #include <stdio.h>
@@ -33,6 +34,45 @@ static void test_add_and_dismiss(void **state) {
     }
     assert_int_equal(n.count, NOTICES_MAX); // the oldest went
     assert_string_equal(n.text[NOTICES_MAX - 1], "failure 8");
+}
+
+// A refusal passes (after NOTICES_PASS_SECONDS, or at the next action of the user's that
+// works); a file action's failure stays until dismissed.
+static void test_refusals_pass(void **state) {
+    (void)state;
+    static notices n;
+    memset(&n, 0, sizeof n);
+    notices_add_failure(&n, "load /etc/passwd", "open: /etc/passwd is not a parameter file", 100);
+    notices_add_failure(&n, "tool raise radius=abc", "radius: 'abc' is not a number", 100);
+    assert_int_equal(n.count, 2);
+    assert_int_equal(notices_due(&n, 100 + NOTICES_PASS_SECONDS - 0.1), 0);
+    assert_int_equal(notices_expire(&n, 100 + NOTICES_PASS_SECONDS - 0.1), 0);
+    assert_int_equal(n.count, 2);
+    assert_int_equal(notices_due(&n, 100 + NOTICES_PASS_SECONDS), 1);
+    assert_int_equal(notices_expire(&n, 100 + NOTICES_PASS_SECONDS), 1);
+    assert_int_equal(n.count, 1); // the file's failure stays
+    assert_string_equal(n.text[0], "open: /etc/passwd is not a parameter file");
+    assert_int_equal(notices_expire(&n, 1e9), 0);
+    // The same refusal again shows from then; an action that works ends it.
+    notices_add_failure(&n, "  set seed=x", "seed: 'x' is not a number", 200);
+    notices_add_failure(&n, "set seed=x", "seed: 'x' is not a number", 203);
+    assert_int_equal(n.count, 2);
+    assert_int_equal(notices_expire(&n, 200 + NOTICES_PASS_SECONDS + 1), 0);
+    notices_clear_passing(&n);
+    assert_int_equal(n.count, 1);
+    assert_string_equal(n.text[0], "open: /etc/passwd is not a parameter file");
+    // Each file command's failure stays; the window's own commands are not the user's.
+    const char *files[] = {
+        "save /x",           "import /x.png", "export /x.exr",   "new flat from=/x.tif",
+        "history script /x", "recover /x",    "stamp_add /x.png"};
+    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
+        notices_add_failure(&n, files[i], files[i], 0);
+        assert_true(n.passes_at[n.count - 1] == 0);
+    }
+    assert_int_equal(notices_user_action("ui"), 1);
+    assert_int_equal(notices_user_action("sculpt"), 1);
+    assert_int_equal(notices_user_action("console"), 0);
+    assert_int_equal(notices_user_action("radius"), 0);
 }
 
 // Drawn: the whole message is listed (as ui_messages shows it) and Dismiss closes it.
@@ -81,6 +121,7 @@ static void test_draw_and_dismiss(void **state) {
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_add_and_dismiss),
+        cmocka_unit_test(test_refusals_pass),
         cmocka_unit_test(test_draw_and_dismiss),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
