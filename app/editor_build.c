@@ -86,7 +86,7 @@ void do_action(editor_ui *e, cmd_context *ctx, editor_pending action) {
         char arg[1100], cmd[1200];
         cmd_quote_arg(arg, sizeof arg, e->open_path);
         snprintf(cmd, sizeof cmd, "load %s", arg);
-        if (run_now(e, ctx, cmd) == 0) remember_recent(e, e->open_path);
+        run_now(e, ctx, cmd); // the window puts the world in front of the recent ones
     }
     if (action == PENDING_NEW_FROM) {
         char arg[1100];

@@ -254,9 +254,8 @@ void files_dialog(editor_ui *e, ui_context *ui, cmd_context *ctx, ui_rect r) {
         return;
     }
     snprintf(cmd, sizeof cmd, "save %s", arg);
-    if (run_now(e, ctx, cmd) != 0) return;
-    remember_recent(e, world_path(ctx->world));
-    if (e->pending != PENDING_NONE) { // saved from the unsaved-changes prompt: go on
+    if (run_now(e, ctx, cmd) != 0) return; // the window puts the world in front of the recent ones
+    if (e->pending != PENDING_NONE) {      // saved from the unsaved-changes prompt: go on
         editor_pending a = e->pending;
         e->pending = PENDING_NONE;
         do_action(e, ctx, a);

@@ -191,7 +191,7 @@ int app_settings_save(const app_settings *s, const char *path, og_error *err) {
 
 // path as an absolute path (the file resolved when it exists, else joined to the
 // working directory), so a recent file opens from wherever the editor starts next.
-static void absolute_path(const char *path, char *out, size_t size) {
+void app_absolute_path(const char *path, char *out, size_t size) {
     char *real = realpath(path, NULL);
     if (real) {
         snprintf(out, size, "%s", real);
@@ -211,7 +211,7 @@ static void absolute_path(const char *path, char *out, size_t size) {
 void app_settings_add_recent(app_settings *s, const char *path) {
     if (!path || !path[0]) return;
     char keep[1024];
-    absolute_path(path, keep, sizeof keep);
+    app_absolute_path(path, keep, sizeof keep);
     int n = 0;
     char list[SETTINGS_RECENT][1024];
     snprintf(list[n++], sizeof list[0], "%s", keep);
@@ -226,7 +226,7 @@ void app_settings_put_camera(app_settings *s, const char *path, const double pos
     if (!path || !path[0]) return;
     app_world_camera list[SETTINGS_CAMERAS];
     int n = 1;
-    absolute_path(path, list[0].path, sizeof list[0].path);
+    app_absolute_path(path, list[0].path, sizeof list[0].path);
     memcpy(list[0].pose, pose, sizeof list[0].pose);
     for (int i = 0; i < s->camera_count && n < SETTINGS_CAMERAS; i++)
         if (strcmp(s->cameras[i].path, list[0].path) != 0) list[n++] = s->cameras[i];
@@ -237,7 +237,7 @@ void app_settings_put_camera(app_settings *s, const char *path, const double pos
 int app_settings_find_camera(const app_settings *s, const char *path, double pose[5]) {
     if (!path || !path[0]) return -1;
     char want[1024];
-    absolute_path(path, want, sizeof want);
+    app_absolute_path(path, want, sizeof want);
     for (int i = 0; i < s->camera_count; i++)
         if (strcmp(s->cameras[i].path, want) == 0) {
             memcpy(pose, s->cameras[i].pose, 5 * sizeof pose[0]);

@@ -59,6 +59,9 @@ void app_settings_load(app_settings *s, const char *path);
 int app_settings_save(const app_settings *s, const char *path, og_error *err);
 // Puts path first in the recent files (once), made absolute.
 void app_settings_add_recent(app_settings *s, const char *path);
+// path as an absolute path (the file resolved when it exists, else joined to the
+// working directory), so a recent file opens from wherever the editor starts next.
+void app_absolute_path(const char *path, char *out, size_t size);
 // Keeps pose as the camera of the world at path (made absolute), first.
 void app_settings_put_camera(app_settings *s, const char *path, const double pose[5]);
 // The camera kept for the world at path: 0 and pose, or -1 when none is.

@@ -184,6 +184,8 @@ void take_changes(window_state *st) {
         for (size_t i = 0; i < n; i++)
             if (e[i].kind == WORLD_EVENT_HISTORY) panels_world_edited(st);
         for (size_t i = 0; i < n; i++) {
+            if (e[i].kind == WORLD_EVENT_SAVED || e[i].kind == WORLD_EVENT_REPLACED)
+                panels_world_opened(st);
             if (e[i].kind == WORLD_EVENT_SAVED) { // Save as: the camera goes with the new file
                 keep_world_camera(st);
                 snprintf(st->run.cam_path, sizeof st->run.cam_path, "%s",

@@ -218,6 +218,9 @@ notices *panels_notices(window_state *st);
 ui_rect view_rect(const window_state *st);
 // An edit made an undo step: the first view's hint goes.
 void panels_world_edited(window_state *st);
+// The world now open (loaded, saved as, given on the command line) goes in front of
+// File's recent worlds, however it was opened: a menu, a dialog or the console.
+void panels_world_opened(window_state *st);
 // The UI animates or waits on input; it took this frame's keys; it is under (x, y).
 int panels_need_frame(const window_state *st);
 int panels_took_keys(const window_state *st);

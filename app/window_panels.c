@@ -50,6 +50,7 @@ int panels_open(window_state *st, og_error *err) {
     console_load_history(editor_ui_console(p->ed), p->history_path);
     for (int i = st->settings.recent_count - 1; i >= 0; i--) // the newest goes in last, in front
         editor_ui_add_recent(p->ed, st->settings.recent[i]);
+    panels_world_opened(st); // `orogen W.world`: W goes in front
     p->gl_renderer = (const char *)glGetString(GL_RENDERER);
     og_error ui_err = {{0}};
     if (!(p->font = load_font(st->win, st->settings.ui_scale, &ui_err)) ||
@@ -97,6 +98,14 @@ notices *panels_notices(window_state *st) {
 
 ui_rect view_rect(const window_state *st) {
     return st->panels.view_rect;
+}
+
+void panels_world_opened(window_state *st) {
+    const char *path = world_path(st->ctx->world);
+    if (!path[0]) return;
+    char full[1024];
+    app_absolute_path(path, full, sizeof full);
+    editor_ui_add_recent(st->panels.ed, full);
 }
 
 void panels_world_edited(window_state *st) {

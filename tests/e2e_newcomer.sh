@@ -237,5 +237,9 @@ wait_title "Orogen - unsaved world" >/dev/null
 echo "load $work/alps.world" >&3
 line=$(ask_until camera '^camera ' '^camera 100.000 200.000 300.000 45.000 -30.000')
 check "alps.world opened again comes back to where its camera was left ($line)" $?
+# Saved and opened from the console, it is in File's recent worlds all the same.
+click "Menu/File"
+widget "Menu/File/Open alps.world" >/dev/null; check "File lists alps.world, saved and opened from the console, among the recent worlds" $?
+key Escape
 
 end_window_test
