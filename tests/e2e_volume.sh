@@ -176,11 +176,14 @@ done
 # surface; so solid=1 with simplify= is refused).
 run -c "new flat; seed 3; generate; tool carve radius=8; tunnel 100 -20 100 300 -20 300 radius=10; export ts.glb region=0,0,256,256 simplify=1; export ts.obj region=0,0,256,256 simplify=0.3"
 check "export the tunnel simplified ($(head -c 300 "$work/err"))" $status
-for f in ts.glb ts.obj; do
-    python3 "$tests/mesh_check.py" $f >manifold.txt 2>&1
-    rc=$?
-    check "simplified, manifold: $(cat manifold.txt)" $rc
-done
+python3 "$tests/mesh_check.py" ts.glb >manifold.txt 2>&1
+rc=$?
+check "simplified, manifold: $(cat manifold.txt)" $rc
+# At 0.3 m a collapse leaves a sliver (three vertices in a line): split into its
+# neighbour, not dropped, so no hole opens there and this one is closed.
+python3 "$tests/mesh_check.py" ts.obj --closed-inside 0,0,256,256 >manifold.txt 2>&1
+rc=$?
+check "simplified, manifold and closed inside the region: $(cat manifold.txt)" $rc
 run -c "new flat; seed 3; generate; tool carve radius=8; tunnel 100 -20 100 300 -20 300 radius=10; export tss.ply region=0,0,256,256 simplify=1 solid=1"
 [ $status != 0 ] && grep -q "tss.ply: solid=1 and simplify= together are not supported" "$work/err" && [ ! -e tss.ply ]
 check "solid=1 with simplify= is refused, nothing written ($(head -c 200 "$work/err"))" $?

@@ -131,6 +131,84 @@ static int degenerate(const float *pos, const uint32_t *t) {
     return x == 0 && y == 0 && z == 0;
 }
 
+// Squared length of edge (a, b).
+static double length2(const float *pos, uint32_t a, uint32_t b) {
+    double l = 0;
+    for (int k = 0; k < 3; k++) {
+        double d = (double)pos[3 * (size_t)b + k] - pos[3 * (size_t)a + k];
+        l += d * d;
+    }
+    return l;
+}
+
+// A sliver (three distinct vertices in a line, as a simplifier's collapse can leave) is
+// removed by splitting the face across its long edge at its middle vertex: that face's
+// two halves take the sliver's place, so the surface stays closed where dropping the
+// sliver would open a hole of no area. Slivers whose neighbour is missing, or one too,
+// are left for the degenerate filter. Returns -1 when out of memory.
+static int split_slivers(volume_mesh *m) {
+    size_t triangles = m->index_count / 3, count = 0;
+    for (size_t f = 0; f < triangles; f++) {
+        const uint32_t *t = m->index + 3 * f;
+        count += t[0] != t[1] && t[1] != t[2] && t[2] != t[0] && degenerate(m->pos, t);
+    }
+    if (count == 0) return 0;
+    // Per sliver: its middle corner c, and the face running its long edge back (b -> a).
+    uint32_t *sliver = malloc(count * sizeof *sliver), *middle = malloc(count * sizeof *middle);
+    int64_t *other = malloc(count * sizeof *other);
+    uint32_t *index = realloc(m->index, (m->index_count + 3 * count) * sizeof *index);
+    if (index) m->index = index;
+    if (!sliver || !middle || !other || !index) {
+        free(sliver), free(middle), free(other);
+        return -1;
+    }
+    size_t n = 0;
+    for (size_t f = 0; f < triangles; f++) {
+        const uint32_t *t = m->index + 3 * f;
+        if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0] || !degenerate(m->pos, t)) continue;
+        int mid = 0;
+        double longest = -1;
+        for (int c = 0; c < 3; c++) { // the middle vertex faces the longest edge
+            double l = length2(m->pos, t[(c + 1) % 3], t[(c + 2) % 3]);
+            if (l > longest) longest = l, mid = c;
+        }
+        sliver[n] = (uint32_t)f, middle[n] = (uint32_t)mid, other[n++] = -1;
+    }
+    // One pass over the faces finds each sliver's neighbour (slivers are few).
+    for (size_t g = 0; g < triangles; g++) {
+        const uint32_t *t = m->index + 3 * g;
+        for (size_t s = 0; s < n; s++) {
+            const uint32_t *q = m->index + 3 * (size_t)sliver[s];
+            uint32_t a = q[(middle[s] + 1) % 3], b = q[(middle[s] + 2) % 3];
+            for (int c = 0; c < 3; c++)
+                if (t[c] == b && t[(c + 1) % 3] == a) other[s] = other[s] < 0 ? (int64_t)g : -2;
+        }
+    }
+    unsigned char *busy = calloc(triangles, 1); // a face split or removed once already
+    if (!busy) {
+        free(sliver), free(middle), free(other);
+        return -1;
+    }
+    for (size_t s = 0; s < n; s++)
+        busy[sliver[s]] = 1;
+    size_t end = m->index_count;
+    for (size_t s = 0; s < n; s++) {
+        if (other[s] < 0 || busy[other[s]]) continue;
+        uint32_t *q = m->index + 3 * (size_t)sliver[s], *g = m->index + 3 * (size_t)other[s];
+        uint32_t c = q[middle[s]], a = q[(middle[s] + 1) % 3], b = q[(middle[s] + 2) % 3];
+        int at = g[0] == b ? 0 : g[1] == b ? 1 : 2;
+        uint32_t d = g[(at + 2) % 3];
+        g[0] = b, g[1] = c, g[2] = d;                                    // (b, a, d) -> (b, c, d)
+        m->index[end] = c, m->index[end + 1] = a, m->index[end + 2] = d; // and (c, a, d)
+        end += 3;
+        q[0] = q[1] = q[2] = c; // the sliver goes with the degenerate faces
+        busy[other[s]] = 1;
+    }
+    m->index_count = end;
+    free(busy), free(sliver), free(middle), free(other);
+    return 0;
+}
+
 static void sorted3(const uint32_t *t, uint32_t out[3]) {
     uint32_t a = t[0], b = t[1], c = t[2], x;
     if (a > b) x = a, a = b, b = x;
@@ -251,6 +329,8 @@ static void join_pair(const volume_mesh *m, uint32_t *parent, uint32_t a, uint32
 int mesh_make_manifold(volume_mesh *m, mesh_manifold_report *rep, og_error *err) {
     memset(rep, 0, sizeof *rep);
     size_t kept = 0, triangles = m->index_count / 3, before = m->vertex_count;
+    if (split_slivers(m) != 0) return og_error_set(err, "out of memory making the mesh manifold");
+    triangles = m->index_count / 3;
     for (size_t f = 0; f < triangles; f++)
         if (!degenerate(m->pos, m->index + 3 * f))
             memmove(m->index + 3 * kept++, m->index + 3 * f, 3 * sizeof *m->index);
