@@ -19,6 +19,10 @@ typedef struct compose_job {
     edit_layer_mode mode;
     int top_visible; // index of the highest visible height layer (-1: none)
     const tile_part *parts;
+    // Taking with no masked height layer above the active one: stage 1's composite of
+    // the layers below it (the part grown by its mask border) and its weights, per part,
+    // which stage 2 lays the layers from the active one up over (NULL: compose all).
+    float **below, **below_weight;
 } compose_job;
 
 static tile_key slot_key(const tile_part *p, int32_t slot) {
@@ -78,6 +82,50 @@ static void store_row(float *comp, const float *next, int n, int z, grid_rect *c
     memcpy(comp + first, next + first, sizeof *comp * (size_t)(last + 1 - first));
     tile_part_touch(changed, first, z);
     tile_part_touch(changed, last, z);
+}
+
+// Stage 2 from stage 1's composite below the active layer (j->below): the part's
+// composite of the visible height layers from the active one up, laid as
+// height_window_compose lays them (none of them reads a mask border), so the result is
+// the same bit for bit. weight gets the active layer's weights.
+static int compose_from_active(compose_job *j, int task, const layer_grid *grid, grid_rect r,
+                               float *weight, float **out, og_error *err) {
+    const int active = j->table.active, rw = (int)(r.x1 - r.x0), rh = (int)(r.z1 - r.z0);
+    const layer_info *a = &j->table.layers[active];
+    const int b = height_window_mask_border(a, grid->spacing), bw = rw + 2 * b;
+    const size_t n = (size_t)rw * (size_t)rh;
+    float *acc = malloc(sizeof(float) * n), *val = malloc(sizeof(float) * n);
+    if (!acc || !val) {
+        free(acc), free(val);
+        return og_error_set(err, "out of memory composing layers");
+    }
+    for (int z = 0; z < rh; z++)
+        memcpy(acc + (size_t)z * rw, j->below[task] + (size_t)(z + b) * bw + b,
+               sizeof(float) * (size_t)rw);
+    memcpy(weight, j->below_weight[task], sizeof(float) * n);
+    layer_grid g = *grid;
+    int rc = 0;
+    for (int i = active; i < j->table.count && rc == 0; i++) {
+        const layer_info *l = &j->table.layers[i];
+        if (!l->visible || l->kind != LAYER_KIND_HEIGHT) continue;
+        g.layer = (tile_layer)tile_layer_in_slot(TILE_LAYER_COARSE, l->id);
+        if ((rc = layer_grid_read(edit_world(j->e), &g, r, val, err)) != 0) break;
+        if (i == active && layer_mask_active(&l->mask)) {
+            for (size_t k = 0; k < n; k++)
+                acc[k] = layer_blend_sample(l->blend, weight[k], acc[k], val[k]);
+            continue;
+        }
+        for (int z = 0; z < rh; z++)
+            layer_blend_row(l->blend, (float)l->opacity, acc + (size_t)z * rw, val + (size_t)z * rw,
+                            acc + (size_t)z * rw, rw);
+    }
+    free(val);
+    if (rc != 0) {
+        free(acc);
+        return -1;
+    }
+    *out = acc;
+    return 0;
 }
 
 static int compose_task(void *user, int task, og_error *err) {
@@ -144,8 +192,11 @@ static int compose_task(void *user, int task, og_error *err) {
             edit_tile_release(j->e, &lv);
         }
     } else {
-        rc = height_window_compose(edit_world(j->e), &j->table, &grid, r, j->table.count, 0, active,
-                                   weight, &acc, err);
+        if (j->below && j->below[task])
+            rc = compose_from_active(j, task, &grid, r, weight, &acc, err);
+        else
+            rc = height_window_compose(edit_world(j->e), &j->table, &grid, r, j->table.count, 0,
+                                       active, weight, &acc, err);
         // On top at full weight, the composite keeps the tool's own result bit for bit,
         // as on a single heightfield, where base + layer rounds differently (a float sum
         // cannot always hit it: an ulp of the layer's value). Taking, samples the tool
@@ -170,11 +221,26 @@ static int compose_task(void *user, int task, og_error *err) {
                 tile_part_touch(&changed, x, z);
             }
     }
+    if (j->stage == 1 && j->below && rc == 0) { // kept for stage 2 (run frees them)
+        j->below[task] = acc, j->below_weight[task] = weight;
+        acc = weight = NULL;
+    }
     free(acc);
     free(weight);
     edit_tile_release(j->e, &cv);
     if (rc == 0) tile_part_publish(j->e, TILE_LAYER_COARSE, p->face, r, changed);
     return rc;
+}
+
+// Whether stage 2 can start from stage 1's composite below the active layer: no visible
+// height layer above it reads a mask border (the active layer's own mask is stage 1's).
+static int reuse_below(const layer_table *t) {
+    if (t->active < 0 || t->layers[t->active].kind != LAYER_KIND_HEIGHT) return 0;
+    for (int i = t->active + 1; i < t->count; i++) {
+        const layer_info *l = &t->layers[i];
+        if (l->visible && l->kind == LAYER_KIND_HEIGHT && layer_mask_active(&l->mask)) return 0;
+    }
+    return 1;
 }
 
 // Runs over l's parts (frees them): the composite's heights, taking a tool's change
@@ -192,12 +258,22 @@ static int run(edit *e, tile_parts *l, int take, og_error *err) {
     // below it), then the composite (reading them all), so no part reads what another
     // is writing.
     int rc = 0;
+    if (take && n && reuse_below(&j.table)) { // without memory: every part composes it all
+        j.below = calloc(n, sizeof *j.below), j.below_weight = calloc(n, sizeof *j.below);
+        if (!j.below || !j.below_weight) {
+            free(j.below), free(j.below_weight);
+            j.below = j.below_weight = NULL;
+        }
+    }
     if (take) {
         j.stage = 1;
         rc = parallel_run((int)n, compose_task, &j, err);
         j.stage = 2;
     }
     if (rc == 0) rc = parallel_run((int)n, compose_task, &j, err);
+    for (size_t i = 0; j.below && i < n; i++)
+        free(j.below[i]), free(j.below_weight[i]);
+    free(j.below), free(j.below_weight);
     edit_set_layer_mode(e, mode);
     if (rc == 0) rc = paint_recompose_masked(e, l->parts, n, err);
     tile_parts_free(l);
