@@ -64,7 +64,7 @@ end_window_test() {
 # fd 3) and its output in $work/out and $work/err ($app is its pid); the editor and the X
 # server go at exit. $wid is its window; the test ends here if none shows.
 open_editor() {
-    mkfifo "$work/stdin"
+    [ -p "$work/stdin" ] || mkfifo "$work/stdin" # a restarted editor reuses it
     "$@" <"$work/stdin" >"$work/out" 2>"$work/err" &
     app=$!
     exec 3>"$work/stdin"
