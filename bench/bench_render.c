@@ -31,6 +31,7 @@
 #include "io/image_compare.h"
 #include "io/image_read.h"
 #include "renderer/camera.h"
+#include "renderer/clip_slopes.h"
 #include "renderer/gl_context.h"
 #include "renderer/gl_target.h"
 #include "renderer/terrain_renderer.h"
@@ -451,7 +452,9 @@ static void bench_uploads(bench *b, world *w1024, world *winf) {
     const double speeds[] = {50, 100, 200};
     const int frames = 120;
     const double full = (double)s.levels * 256 * 256;
-    double largest = 0; // the largest share of any frame at any speed
+    // The shading slopes' windows (renderer/clip_slopes.h), one per level but the finest.
+    const double full_slopes = (double)(s.levels - 1) * CLIP_SLOPES_TEXELS * CLIP_SLOPES_TEXELS;
+    double largest = 0, largest_slopes = 0; // the largest share of any frame at any speed
     printf("\n4. Texels uploaded per frame, straight flight 60 m above the highest ground, "
            "60 frames/s of simulated time, %d frames, update only\n",
            frames);
@@ -476,6 +479,7 @@ static void bench_uploads(bench *b, world *w1024, world *winf) {
                   "update");
             terrain_renderer_stats(b->r, &st);
             texels[i - 1] = (double)st.texels_uploaded;
+            largest_slopes = fmax(largest_slopes, (double)st.slope_texels_uploaded / full_slopes);
             finest[i] = st.finest_level;
             sum += texels[i - 1];
             if (texels[i - 1] > mx) mx = texels[i - 1], worst = i;
@@ -495,7 +499,12 @@ static void bench_uploads(bench *b, world *w1024, world *winf) {
            "material and detail windows add 256^2 + 2 x 512^2;\n   the detail windows are filled "
            "only within %.0f m of the ground)\n",
            s.levels, full, s.detail_distance);
+    printf("   shading slopes (%d windows of %d^2 = %.0f texels): at most %.2f%% of them in a "
+           "frame\n",
+           s.levels - 1, CLIP_SLOPES_TEXELS, full_slopes, 100 * largest_slopes);
     goal("4. texels uploaded in a frame (any speed) / full levels, %", 100 * largest, 10, 0, "%");
+    goal("4. shading-slope texels uploaded in a frame / their windows, %", 100 * largest_slopes, 10,
+         0, "%");
 }
 
 // ---- 5: parallax ----------------------------------------------------------------------

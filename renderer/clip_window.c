@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define MAX_TILES 16
+#define MAX_TILES 25 // a 1024-sample window (renderer/clip_slopes.h) meets 5 x 5 tiles
 
 typedef struct sample_rect {
     int64_t x0, z0, x1, z1; // [x0, x1) x [z0, z1), sample indices at the window's level

@@ -2,6 +2,7 @@
 
 #include "editor/world/world_events.h"
 #include "renderer/clip_cells.h"
+#include "renderer/clip_slopes.h"
 #include "renderer/clip_window.h"
 #include "renderer/clip_window_upload.h"
 #include "renderer/clipmap_mesh.h"
@@ -78,6 +79,7 @@ struct terrain_renderer {
     int mat_painted[RENDER_MAX_LEVELS];
     int paint_seen;
     clip_window detail, detail_pd;
+    clip_slopes slopes; // the levels' shading slopes from finer mip levels
     float hmin[RENDER_MAX_LEVELS], hmax[RENDER_MAX_LEVELS];
     // The same per cell of each window, for culling blocks (rebuilt once a changed
     // window is whole: cells_stale).
@@ -227,7 +229,8 @@ static int create_windows(terrain_renderer *r, og_error *err) {
         r->slope_max[l] = INFINITY, r->slope_stale[l] = 1;
     for (int l = 0; l < RENDER_MAX_LEVELS; l++)
         if (clip_window_init(&r->heights[l], TILE_LAYER_COARSE, 0, l, CLIP_TEXELS) != 0 ||
-            clip_window_init(&r->material[l], TILE_LAYER_MATERIAL, 0, l, CLIP_TEXELS) != 0)
+            clip_window_init(&r->material[l], TILE_LAYER_MATERIAL, 0, l, CLIP_TEXELS) != 0 ||
+            (l == 0 && clip_slopes_init(&r->slopes) != 0))
             return og_error_set(err, "out of memory for the clipmap levels");
     if (clip_window_init(&r->detail, TILE_LAYER_DETAIL, 0, 0, DETAIL_TEXELS) != 0 ||
         clip_window_init(&r->detail_pd, TILE_LAYER_DETAIL_PD, 0, 0, DETAIL_TEXELS) != 0)
@@ -345,6 +348,7 @@ void terrain_renderer_destroy(terrain_renderer *r) {
     }
     clip_window_free(&r->detail);
     clip_window_free(&r->detail_pd);
+    clip_slopes_free(&r->slopes);
     free(r);
 }
 
@@ -508,6 +512,7 @@ static void invalidate_all(terrain_renderer *r) {
     }
     clip_window_invalidate(&r->detail);
     clip_window_invalidate(&r->detail_pd);
+    clip_slopes_invalidate(&r->slopes);
     if (r->volume) volume_renderer_reset(r->volume);
 }
 
@@ -521,6 +526,7 @@ static void refresh_area(terrain_renderer *r, tile_cache *cache, const world_eve
         for (int l = 0; l < RENDER_MAX_LEVELS; l++)
             clip_window_refresh(&r->heights[l], cache, (g.x0 >> l) - 1, (g.z0 >> l) - 1,
                                 ((g.x1 - 1) >> l) + 2, ((g.z1 - 1) >> l) + 2);
+        clip_slopes_refresh(&r->slopes, cache, g.x0, g.z0, g.x1, g.z1);
         // Volume meshes include the ground inside their bricks (and its slope).
         int64_t k = r->params.volume_ratio > 0 ? r->params.volume_ratio : 1;
         volume_renderer_touched(
@@ -675,6 +681,16 @@ int terrain_renderer_update(terrain_renderer *r, world *w, const camera *cam,
             if (!r->detail_current) all = 0;
         }
     }
+    { // the shading slopes, within a budget of the same share of their textures
+        int64_t fine_budget = r->whole_uploads
+                                  ? INT64_MAX / 2
+                                  : (int64_t)r->levels * CLIP_SLOPES_TEXELS * CLIP_SLOPES_TEXELS *
+                                        UPLOAD_BUDGET_PERCENT / 100;
+        int ok = clip_slopes_update(&r->slopes, cache, (const int64_t(*)[2])r->origin, r->finest,
+                                    r->levels, &fine_budget);
+        if (ok < 0) return og_error_set(err, "the clipmap could not read its shading slopes");
+        if (!ok) all = 0;
+    }
     // Uploads, and which level each level draws from while its own is not current.
     for (int l = r->finest; l < r->levels; l++) {
         clip_window *hw = &r->heights[l];
@@ -693,6 +709,7 @@ int terrain_renderer_update(terrain_renderer *r, world *w, const camera *cam,
         upload_material(r, l);
     upload_window(r, &r->detail, r->tex_detail, -1, GL_RED, GL_FLOAT);
     upload_window(r, &r->detail_pd, r->tex_detail_pd, -1, GL_RG, GL_SHORT);
+    clip_slopes_upload(&r->slopes, r->finest, r->levels);
     int below = -1, paint_below = -1;
     for (int l = r->levels - 1; l >= 0; l--) {
         if (l >= r->finest && clip_window_current(&r->heights[l], r->origin[l])) below = l;
@@ -701,6 +718,7 @@ int terrain_renderer_update(terrain_renderer *r, world *w, const camera *cam,
         r->mat_src[l] = l >= r->finest ? paint_below : -1;
     }
     r->stats.texels_uploaded = r->frame_texels;
+    r->stats.slope_texels_uploaded = r->slopes.frame_texels;
     r->stats.levels_ready = 0;
     for (int l = r->finest; l < r->levels; l++)
         r->stats.levels_ready += r->src[l] == l;
@@ -792,6 +810,7 @@ static void set_terrain_uniforms(terrain_renderer *r, GLuint prog, const camera 
     const world_params *p = &r->params;
     float offset[RENDER_MAX_LEVELS][4] = {{0}}, view[RENDER_MAX_LEVELS][4] = {{0}};
     float src_a[RENDER_MAX_LEVELS][4] = {{0}}, src_b[RENDER_MAX_LEVELS][4] = {{0}};
+    float slopes_a[RENDER_MAX_LEVELS][4] = {{0}}, slopes_b[RENDER_MAX_LEVELS][4] = {{0}};
     float bounds[RENDER_MAX_LEVELS][4] = {{0}}, uv[RENDER_MAX_LEVELS][4] = {{0}};
     float mat[RENDER_MAX_LEVELS][4] = {{0}}, detail[RENDER_MAX_LEVELS][4] = {{0}};
     float grid[RENDER_MAX_LEVELS][4] = {{0}}, mat_b[RENDER_MAX_LEVELS][4] = {{0}};
@@ -810,6 +829,9 @@ static void set_terrain_uniforms(terrain_renderer *r, GLuint prog, const camera 
         view[l][2] = s->morph && coarser >= 0 ? 1.0f : 0.0f;
         source_uniform(r, l, r->src[l], src_a[l]);
         source_uniform(r, l, coarser >= 0 ? coarser : r->src[l], src_b[l]);
+        clip_slopes_uniform(&r->slopes, l, r->src[l], r->origin[l], slopes_a[l]);
+        clip_slopes_uniform(&r->slopes, l, coarser >= 0 ? coarser : r->src[l], r->origin[l],
+                            slopes_b[l]);
         if (p->size > 0) {
             double last = (double)(p->size - 1) / mult;
             double last_z = (double)(world_params_size_z(p) - 1) / mult;
@@ -852,6 +874,8 @@ static void set_terrain_uniforms(terrain_renderer *r, GLuint prog, const camera 
     uniform_vec4s(prog, "u_lvl_view", view, RENDER_MAX_LEVELS);
     uniform_vec4s(prog, "u_lvl_src_a", src_a, RENDER_MAX_LEVELS);
     uniform_vec4s(prog, "u_lvl_src_b", src_b, RENDER_MAX_LEVELS);
+    uniform_vec4s(prog, "u_lvl_slopes_a", slopes_a, RENDER_MAX_LEVELS);
+    uniform_vec4s(prog, "u_lvl_slopes_b", slopes_b, RENDER_MAX_LEVELS);
     uniform_vec4s(prog, "u_lvl_bounds", bounds, RENDER_MAX_LEVELS);
     uniform_vec4s(prog, "u_lvl_uv", uv, RENDER_MAX_LEVELS);
     uniform_vec4s(prog, "u_lvl_mat", mat, RENDER_MAX_LEVELS);
@@ -917,6 +941,8 @@ static void set_terrain_uniforms(terrain_renderer *r, GLuint prog, const camera 
     glProgramUniform1i(prog, glGetUniformLocation(prog, "u_albedo_far"), 7);
     glBindTextureUnit(7, r->tex_albedo_far);
     mask_flow_texture_bind(&r->mask_flow, prog, s, cam, 8);
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "u_slopes"), 9);
+    glBindTextureUnit(9, r->slopes.tex);
     glProgramUniform4fv(prog, glGetUniformLocation(prog, "u_albedo_mean"), MATERIAL_TEXTURE_COUNT,
                         &r->albedo_mean[0][0]);
 }

@@ -16,8 +16,9 @@ typedef struct render_stats {
     uint64_t triangles; // drawn this frame (terrain)
     int draw_calls;
     int levels_drawn, levels_ready, finest_level;
-    uint64_t texels_uploaded; // this frame
-    double cpu_ms;            // CPU time of update + draw submission
+    uint64_t texels_uploaded;       // this frame
+    uint64_t slope_texels_uploaded; // this frame, to the shading slopes (clip_slopes.h)
+    double cpu_ms;                  // CPU time of update + draw submission
 } render_stats;
 
 typedef struct terrain_renderer terrain_renderer;

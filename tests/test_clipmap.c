@@ -304,6 +304,21 @@ static void test_window_fills_within_a_budget(void **state) {
     assert_int_equal(tile_cache_destroy(c, &err), 0);
 }
 
+// A shading-slopes window (renderer/clip_slopes.h: 1024 samples, 5 x 5 tiles when not
+// aligned) fills at once, as headless renders fill.
+static void test_large_window_fills_at_once(void **state) {
+    (void)state;
+    slow_source g = {PTHREAD_MUTEX_INITIALIZER, 1};
+    og_error err;
+    tile_cache *c = named_cache(&g);
+    clip_window w;
+    assert_int_equal(clip_window_init(&w, TILE_LAYER_COARSE, 0, 1, 1024), 0);
+    assert_int_equal(settle(&w, c, -300, 77), 1);
+    check_window(&w);
+    clip_window_free(&w);
+    assert_int_equal(tile_cache_destroy(c, &err), 0);
+}
+
 // The cells' bounds of any range of samples are those of its samples (a window whose
 // mirror is rotated by its origin, ranges partly outside it clamped to it).
 static void test_cells_bound_every_range(void **state) {
@@ -373,6 +388,7 @@ int main(void) {
         cmocka_unit_test(test_bad_sizes_are_refused),
         cmocka_unit_test(test_window_moves_toroidally),
         cmocka_unit_test(test_cells_bound_every_range),
+        cmocka_unit_test(test_large_window_fills_at_once),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

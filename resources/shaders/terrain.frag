@@ -41,6 +41,12 @@ uniform vec4 u_lvl_detail[MAX_LEVELS]; // detail: sample of local (0,0), samples
 uniform vec2 u_tex_period;             // metres per repeat: near texture, far variation
 uniform sampler2DArray u_albedo_far;   // material m's green channel in component m % 4 of layer m / 4
 
+// Shading slopes: heights up to 2 mip levels finer than each level's own, over its
+// extent (renderer/clip_slopes.h): texel of local (0,0), texels per local unit, layer
+// (-1: none, the level's own heights), for the level and the coarser one it morphs into.
+uniform sampler2DArray u_slopes;
+uniform vec4 u_lvl_slopes_a[MAX_LEVELS];
+uniform vec4 u_lvl_slopes_b[MAX_LEVELS];
 uniform usampler2DArray u_material;    // 8 x uint8 weights per texel (RG32UI), a layer per level, toroidal
 uniform vec4 u_brush;                  // centre relative to the camera (xz), radius, visible
 uniform sampler2D u_falloff;           // the brush's falloff curve over 0..1 of the radius (64x1)
@@ -117,7 +123,16 @@ vec3 with_mask(vec3 c, float h, float slope, float curvature) {
 // full-resolution mesh's vertex normals; half a texel apart on the coarser levels, the
 // mean slope under one of their texels (a texel apart blurred it over two, which cost
 // RMSE against the full-resolution mesh).
-vec2 gradient_at(vec4 src, vec2 p, float spacing_here) {
+vec2 gradient_at(vec4 src, vec4 fine, vec2 p, float spacing_here) {
+    if (fine.w >= 0.0) { // central differences a finer sample apart, as level 0's
+        vec2 t = fine.xy + p * fine.z + 0.5;
+        float SLOPES_SIZE = float(textureSize(u_slopes, 0).x);
+        float l = texture(u_slopes, vec3((t - vec2(1.0, 0.0)) / SLOPES_SIZE, fine.w)).r;
+        float r = texture(u_slopes, vec3((t + vec2(1.0, 0.0)) / SLOPES_SIZE, fine.w)).r;
+        float d = texture(u_slopes, vec3((t - vec2(0.0, 1.0)) / SLOPES_SIZE, fine.w)).r;
+        float u = texture(u_slopes, vec3((t + vec2(0.0, 1.0)) / SLOPES_SIZE, fine.w)).r;
+        return vec2(r - l, u - d) * (fine.z / (2.0 * spacing_here));
+    }
     float texel = (src.w == 0.0 ? 1.0 : 0.5) / src.z; // in local units
     vec2 lo = max(p - texel, vec2(0.0)), hi = min(p + texel, vec2(CLIP_SIZE - 1.0));
     float l = sample_height(src, vec2(lo.x, p.y)), r = sample_height(src, vec2(hi.x, p.y));
@@ -171,8 +186,9 @@ void main() {
     vec4 off = u_lvl_offset[u_level];
     float spacing = off.z;
     float alpha = morph_factor(v_local);
-    vec2 g = gradient_at(u_lvl_src_a[u_level], v_local, spacing);
-    if (alpha > 0.0) g = mix(g, gradient_at(u_lvl_src_b[u_level], v_local, spacing), alpha);
+    vec2 g = gradient_at(u_lvl_src_a[u_level], u_lvl_slopes_a[u_level], v_local, spacing);
+    if (alpha > 0.0)
+        g = mix(g, gradient_at(u_lvl_src_b[u_level], u_lvl_slopes_b[u_level], v_local, spacing), alpha);
     float h = v_rel.y + u_cam_y;
     float dist = length(v_rel);
     vec3 view_dir = v_rel / -max(dist, 1e-6);
