@@ -275,6 +275,8 @@ int main(int argc, char **argv) {
     // 2. A descent: altitude x 0.97 a frame from 40,000 km to 2 m.
     camera c = geo(planet, lat, lon, 4e7, -60);
     double alt = 4e7;
+    tile_cache_stats before, after;
+    tile_cache_stats_get(world_cache(planet), &before);
     uint64_t total = 0, most = 0;
     int frames = 0;
     double cpu[2048];
@@ -289,6 +291,15 @@ int main(int argc, char **argv) {
     printf("descent 40,000 km -> 2 m in %d frames: %.0f chunk vertices uploaded a frame on "
            "average (72 bytes each), at most %llu; CPU median %.2f ms a frame\n",
            frames, (double)total / frames, (unsigned long long)most, bench_median(cpu, frames));
+    // The tiles it made the world generate (the meshes' own levels and the finer ones the
+    // shading normals read, planet_normals.c), and how many stayed resident.
+    tile_cache_stats_get(world_cache(planet), &after);
+    printf("  tiles generated during the descent: %llu (%.1f a frame), %llu evicted, %llu "
+           "resident after\n",
+           (unsigned long long)(after.generated - before.generated),
+           (double)(after.generated - before.generated) / frames,
+           (unsigned long long)(after.evicted - before.evicted),
+           (unsigned long long)after.resident_tiles);
 
     // 3. Against a flat unbounded world at the same heights above the ground.
     world_params fp;
