@@ -15,12 +15,9 @@
 #include "editor/world/terrain_histogram.h"
 #include "editor/world/world.h"
 #include "renderer/camera.h"
-#include "renderer/gl_context.h"
-#include "renderer/gl_target.h"
 #include "renderer/planet_camera.h"
 #include "renderer/terrain_renderer.h"
 
-#include <epoxy/gl.h>
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -29,85 +26,27 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 #include <cmocka.h>
+
+#include "support/planet_view.h"
 
 #include "support/test_world.h"
 
 #define W 240
 #define H 135
 
-static gl_headless *ctx;
-static gl_target target;
-static terrain_renderer *renderer;
-static world *earth;
+static planet_view view;
 static camera cam;
 
 static int setup(void **state) {
     (void)state;
-    og_error err = {{0}};
-    if (!(ctx = gl_headless_create(&err)) || gl_require_features(&err) != 0 ||
-        gl_target_create(&target, W, H, &err) != 0 ||
-        !(renderer = terrain_renderer_create(OROGEN_RESOURCE_DIR, &err))) {
-        fprintf(stderr, "test_mask_overlay: %s\n", err.msg);
-        return -1;
-    }
-    terrain_renderer_set_view_size(renderer, W, H);
-    world_params wp;
-    world_params_default(&wp, WORLD_PLANET);
-    if (planet_preset_apply(&wp, "earth", &err) != 0) return -1;
-    world_settings ws = {.cache_budget_bytes = (size_t)1 << 30, .workers = 2, .warn = test_silent};
-    return (earth = world_create(&wp, &ws, &err)) ? 0 : -1;
+    return planet_view_open(&view, W, H, "test_mask_overlay");
 }
 
 static int teardown(void **state) {
     (void)state;
-    world_close(earth);
-    terrain_renderer_destroy(renderer);
-    gl_target_destroy(&target);
-    gl_headless_destroy(ctx);
+    planet_view_close(&view);
     return 0;
-}
-
-static double now_s(void) {
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return t.tv_sec + t.tv_nsec * 1e-9;
-}
-
-// Draws w with s once every tile wanted is there; the colours, and (when pos is not
-// NULL) the position each pixel shows (x, y, z; NAN: sky).
-static void render(world *w, const render_settings *s, unsigned char *rgb, double (*pos)[3]) {
-    og_error err = {{0}};
-    const double t0 = now_s();
-    int rc;
-    while ((rc = terrain_renderer_update(renderer, w, &cam, s, &err)) == 0 && now_s() - t0 < 60) {
-        struct timespec nap = {0, 1000000};
-        nanosleep(&nap, NULL);
-    }
-    assert_true(rc >= 0);
-    glBindFramebuffer(GL_FRAMEBUFFER, target.fbo);
-    assert_int_equal(terrain_renderer_draw(renderer, w, &cam, s, NULL, W, H, &err), 0);
-    assert_int_equal(gl_target_read_rgb(&target, rgb, &err), 0); // top row first
-    if (!pos) return;
-    static float depth[W * H];
-    glReadPixels(0, 0, W, H, GL_DEPTH_COMPONENT, GL_FLOAT, depth); // bottom row first
-    double f[3], rt[3], up[3];
-    if (world_get_params(w)->kind == WORLD_PLANET)
-        planet_camera_basis(&cam, f, rt, up);
-    else
-        camera_forward(&cam, f), camera_right(&cam, rt), camera_up(&cam, up);
-    for (int y = 0; y < H; y++)
-        for (int x = 0; x < W; x++) {
-            const float d = depth[(H - 1 - y) * W + x]; // reversed z: 0 is infinitely far
-            double dir[3], *p = pos[y * W + x];
-            p[0] = p[1] = p[2] = NAN;
-            if (!(d > 0.0f)) continue;
-            camera_basis_ray(&cam, rt, up, f, (double)W / H, (x + 0.5) / W, (y + 0.5) / H, dir);
-            const double along = cam.near_m / d / (dir[0] * f[0] + dir[1] * f[1] + dir[2] * f[2]);
-            for (int a = 0; a < 3; a++)
-                p[a] = cam.pos[a] + dir[a] * along;
-        }
 }
 
 // Tinted: the overlay's pink raised red over green against the plain picture.
@@ -133,17 +72,17 @@ static void test_planet_overlay(void **state) {
     static unsigned char plain[W * H * 3], masked[W * H * 3];
     static double pos[W * H][3], height[W * H], land[W * H];
     // Over the big continent's ranges (seed 1337), looking north, 100 km up.
-    const double radius = world_get_params(earth)->radius;
+    const double radius = world_get_params(view.earth)->radius;
     camera_default(&cam);
     planet_position(21.0, 5.7, radius + 1e5, cam.pos);
     cam.yaw = 0, cam.pitch = -25;
     render_settings s;
     render_settings_default(&s);
-    render(earth, &s, plain, pos);
+    planet_view_draw(&view, view.earth, &cam, &s, plain, pos, NULL);
     for (int i = 0; i < W * H; i++)
         height[i] =
             sqrt(pos[i][0] * pos[i][0] + pos[i][1] * pos[i][1] + pos[i][2] * pos[i][2]) - radius;
-    const double sea = world_params_ocean_height(world_get_params(earth));
+    const double sea = world_params_ocean_height(world_get_params(view.earth));
     int n = 0;
     for (int i = 0; i < W * H; i++)
         if (height[i] > sea + 20) land[n++] = height[i];
@@ -155,7 +94,8 @@ static void test_planet_overlay(void **state) {
         render_settings m = s;
         m.mask_terms = 1, m.mask_invert = invert;
         set_term(m.mask_height, lo, 1e30, 0);
-        render(earth, &m, masked, NULL); // the same pose: only the overlay differs
+        planet_view_draw(&view, view.earth, &cam, &m, masked, NULL,
+                         NULL); // the same pose: only the overlay differs
         int agree = 0, counted = 0;
         for (int i = 0; i < W * H; i++) {
             if (!(height[i] > sea + 20) || fabs(height[i] - lo) < margin) continue;
@@ -176,7 +116,7 @@ static void test_planet_overlay(void **state) {
         render_settings m = s;
         m.mask_terms = 4;
         set_term(m.mask_curvature, k == 0 ? 0.002 : -1e30, k == 0 ? 1e30 : -0.002, 0);
-        render(earth, &m, masked, NULL);
+        planet_view_draw(&view, view.earth, &cam, &m, masked, NULL, NULL);
         for (int i = 0; i < W * H; i++)
             if (height[i] > sea + 20 && tinted(plain + 3 * i, masked + 3 * i))
                 mean[k] += height[i], count[k]++;
@@ -190,7 +130,7 @@ static void test_planet_overlay(void **state) {
     // No term: the overlay draws nothing.
     render_settings none = s;
     none.mask_terms = 0;
-    render(earth, &none, masked, NULL);
+    planet_view_draw(&view, view.earth, &cam, &none, masked, NULL, NULL);
     assert_memory_equal(plain, masked, sizeof plain);
 }
 
@@ -215,14 +155,14 @@ static void test_flat_flow(void **state) {
     static double pos[W * H][3];
     render_settings s;
     render_settings_default(&s);
-    render(w, &s, plain, pos);
+    planet_view_draw(&view, w, &cam, &s, plain, pos, NULL);
     render_settings m = s;
     m.mask_terms = 8;
     set_term(m.mask_flow, lo, 1e30, 0);
     m.mask_flow_area = field.area, m.mask_flow_w = field.w, m.mask_flow_h = field.h;
     m.mask_flow_x0 = field.x0, m.mask_flow_z0 = field.z0, m.mask_flow_spacing = field.spacing;
     m.mask_flow_serial = 1;
-    render(w, &m, masked, NULL);
+    planet_view_draw(&view, w, &cam, &m, masked, NULL, NULL);
     int agree[2] = {0, 0}, counted[2] = {0, 0}; // out of the range, in it
     int beyond = 0, beyond_same = 0;            // ground the field does not reach
     for (int i = 0; i < W * H; i++) {

@@ -23,12 +23,9 @@
 #include "editor/world/world.h"
 #include "io/image_read.h"
 #include "renderer/camera.h"
-#include "renderer/gl_context.h"
-#include "renderer/gl_target.h"
 #include "renderer/planet_camera.h"
 #include "renderer/terrain_renderer.h"
 
-#include <epoxy/gl.h>
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -38,8 +35,9 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <time.h>
 #include <cmocka.h>
+
+#include "support/planet_view.h"
 
 #define W 320
 #define H 180
@@ -53,80 +51,17 @@
 #define SAND_GREEN -0.03     // greenness (g - r over the sum) of sand and grassland from orbit
 #define GRASS_GREEN 0.08
 
-static gl_headless *ctx;
-static gl_target target;
-static terrain_renderer *renderer;
-static world *earth;
-
-static void quiet(void *u, const char *m) {
-    (void)u, (void)m;
-}
+static planet_view view;
 
 static int setup(void **state) {
     (void)state;
-    og_error err = {{0}};
-    if (!(ctx = gl_headless_create(&err)) || gl_require_features(&err) != 0 ||
-        gl_target_create(&target, W, H, &err) != 0 ||
-        !(renderer = terrain_renderer_create(OROGEN_RESOURCE_DIR, &err))) {
-        fprintf(stderr, "test_planet_look: %s\n", err.msg);
-        return -1;
-    }
-    terrain_renderer_set_view_size(renderer, W, H);
-    world_params wp;
-    world_params_default(&wp, WORLD_PLANET);
-    if (planet_preset_apply(&wp, "earth", &err) != 0) return -1;
-    world_settings ws = {.cache_budget_bytes = (size_t)1 << 30, .workers = 2, .warn = quiet};
-    return (earth = world_create(&wp, &ws, &err)) ? 0 : -1;
+    return planet_view_open(&view, W, H, "test_planet_look");
 }
 
 static int teardown(void **state) {
     (void)state;
-    world_close(earth);
-    terrain_renderer_destroy(renderer);
-    gl_target_destroy(&target);
-    gl_headless_destroy(ctx);
+    planet_view_close(&view);
     return 0;
-}
-
-static double now_s(void) {
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return t.tv_sec + t.tv_nsec * 1e-9;
-}
-
-// Draws the pose once every chunk wanted is there (or 60 s pass) and reads it back: its
-// colours, and the height above the datum of the ground each pixel shows (NAN: none).
-static void render(const camera *c, unsigned char *rgb, double *height) {
-    og_error err = {{0}};
-    render_settings s;
-    render_settings_default(&s);
-    const double t0 = now_s();
-    int rc;
-    while ((rc = terrain_renderer_update(renderer, earth, c, &s, &err)) == 0 && now_s() - t0 < 60) {
-        struct timespec nap = {0, 1000000};
-        nanosleep(&nap, NULL);
-    }
-    assert_true(rc >= 0);
-    glBindFramebuffer(GL_FRAMEBUFFER, target.fbo);
-    assert_int_equal(terrain_renderer_draw(renderer, earth, c, &s, NULL, W, H, &err), 0);
-    assert_int_equal(gl_target_read_rgb(&target, rgb, &err), 0); // top row first
-    static float depth[W * H];
-    glReadPixels(0, 0, W, H, GL_DEPTH_COMPONENT, GL_FLOAT, depth); // bottom row first
-    double f[3], rt[3], up[3];
-    planet_camera_basis(c, f, rt, up);
-    const double radius = world_get_params(earth)->radius;
-    for (int y = 0; y < H; y++)
-        for (int x = 0; x < W; x++) {
-            const float d = depth[(H - 1 - y) * W + x]; // reversed z: 0 is infinitely far
-            height[y * W + x] = NAN;
-            if (!(d > 0.0f)) continue;
-            double dir[3], pos[3];
-            camera_basis_ray(c, rt, up, f, (double)W / H, (x + 0.5) / W, (y + 0.5) / H, dir);
-            const double along = c->near_m / d / (dir[0] * f[0] + dir[1] * f[1] + dir[2] * f[2]);
-            for (int a = 0; a < 3; a++)
-                pos[a] = c->pos[a] + dir[a] * along;
-            height[y * W + x] = sqrt(pos[0] * pos[0] + pos[1] * pos[1] + pos[2] * pos[2]) - radius;
-        }
 }
 
 static double luminance(const unsigned char *p) {
@@ -279,15 +214,15 @@ static void test_relief_and_colour(void **state) {
     for (size_t k = 0; k < sizeof poses / sizeof poses[0]; k++) {
         camera c;
         camera_default(&c);
-        const world_params *p = world_get_params(earth);
+        const world_params *p = world_get_params(view.earth);
         double ground = 0;
         og_error err;
         planet_position(poses[k].lat, poses[k].lon, p->radius, c.pos);
-        assert_int_equal(planet_surface_height(earth, c.pos, &ground, &err), 0);
+        assert_int_equal(planet_surface_height(view.earth, c.pos, &ground, &err), 0);
         const double above = poses[k].altitude < 5e4 ? ground : 0.0;
         planet_position(poses[k].lat, poses[k].lon, p->radius + above + poses[k].altitude, c.pos);
         c.yaw = 0, c.pitch = poses[k].pitch;
-        render(&c, shaded, height);
+        planet_view_draw(&view, view.earth, &c, NULL, shaded, NULL, height);
         const look l = measure(shaded, height, world_params_ocean_height(p));
         const int ok = l.land > W * H / 10 && l.relief_step >= poses[k].relief &&
                        l.other_share >= OTHER_THAN_HEIGHT &&
