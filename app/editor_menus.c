@@ -2,8 +2,6 @@
 #include "app/editor_ui_internal.h"
 #include "app/shortcuts.h"
 
-#include <stdlib.h>
-
 // A name for an export, from the world's: beside its file with ext ("dir/alps.exr"), or
 // fallback + ext for a world never saved (never the last imported file's name).
 static const char *export_name(const cmd_context *ctx, const char *fallback, const char *ext,
@@ -25,17 +23,17 @@ static void file_menu(editor_ui *e, ui_context *ui, cmd_context *ctx) {
     if (ui_menu_item(ui, "New world from heightmap...", NULL, 1)) // as Gaea, World Machine
         file_browser_show(&e->files, FILE_BROWSER_NEW_FROM, e->interchange.path);
     if (ui_menu_item(ui, "Open...", shortcut_label(SHORTCUT_OPEN, NULL), 1)) editor_ui_open(e, ctx);
-    // The recent worlds are kept as absolute paths; the open world's, as it was given.
-    char *open_now = world_path(ctx->world)[0] ? realpath(world_path(ctx->world), NULL) : NULL;
+    // The window puts the open world in front of the recent ones whenever it is opened or
+    // saved (panels_world_opened): the first entry is the open world when it has a file.
+    const int first_is_open = world_path(ctx->world)[0] != 0;
     for (int i = 0; i < e->recent_count; i++) {
         char label[1100];
         snprintf(label, sizeof label, "Open %s##recent%d", file_name(e->recent[i]), i);
-        if (ui_menu_item(ui, label, NULL, !open_now || strcmp(e->recent[i], open_now) != 0)) {
+        if (ui_menu_item(ui, label, NULL, i > 0 || !first_is_open)) {
             snprintf(e->open_path, sizeof e->open_path, "%s", e->recent[i]);
             editor_ui_request(e, ctx, PENDING_OPEN);
         }
     }
-    free(open_now);
     if (e->recent_count) ui_menu_separator(ui);
     if (ui_menu_item(ui, "Save", shortcut_label(SHORTCUT_SAVE, NULL),
                      world_path(ctx->world)[0] != 0))
