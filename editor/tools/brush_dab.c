@@ -4,6 +4,7 @@
 #include "editor/edit/edit_rows.h"
 #include "editor/tools/box_blur.h"
 #include "editor/tools/hot_loop.h"
+#include "editor/tools/raise_row.h"
 #include "editor/gen/gen_noise.h"
 #include "io/progress.h"
 
@@ -170,6 +171,15 @@ static void height_row(const brush_dab *d, float *row, int64_t z, int64_t x0, in
                        float *w) {
     const brush *b = d->brush;
     float amount = (float)(b->invert ? -b->amount : b->amount);
+    if (b->tool == BRUSH_RAISE && b->falloff == FALLOFF_SMOOTH && !d->sphere && !is_ramp(d)) {
+        // The common dab in one pass (row_weights' and add_weighted's operations).
+        float dz = (float)((double)z - d->cz);
+        int64_t first = disc_first_column(d);
+        raise_row_smooth(row, (float)((double)first - d->cx), (int)(x0 - first), dz * dz,
+                         (float)(1.0 / d->radius), d->strength, amount, (float)BRUSH_HEIGHT_LIMIT,
+                         (int)(x1 - x0));
+        return;
+    }
     row_weights(d, z, x0, x1, w);
     int64_t n = x1 - x0;
     switch (b->tool) {
