@@ -459,24 +459,10 @@ int tile_cache_acquire_write(tile_cache *c, tile_key key, tile_view *view, og_er
     return acquire(c, key, view, 1, err);
 }
 
-int tile_cache_discard(tile_cache *c, tile_key key) {
-    pthread_mutex_lock(&c->lock);
-    entry *e = find(c, key, (uint32_t)tile_key_hash(key));
-    int rc = 0;
-    if (e) {
-        if (e->state == ENTRY_READY && e->pins == 0)
-            free_entry(c, e);
-        else
-            rc = -1;
-    }
-    pthread_mutex_unlock(&c->lock);
-    return rc;
-}
-
 int tile_cache_mark_generated(tile_cache *c, tile_key key) {
     pthread_mutex_lock(&c->lock);
     entry *e = find(c, key, (uint32_t)tile_key_hash(key));
-    int rc = -1;
+    int rc = e ? -1 : 0; // not resident: the next request loads or generates it
     if (e && e->state == ENTRY_READY && e->pins == 0 && e->data) {
         e->dirty = e->edited = 0;
         rc = 0;

@@ -78,14 +78,11 @@ int tile_cache_acquire(tile_cache *cache, tile_key key, tile_view *view, og_erro
 // Waits while the tile is being written to the store, which reads it unlocked.
 int tile_cache_acquire_write(tile_cache *cache, tile_key key, tile_view *view, og_error *err);
 void tile_cache_release(tile_cache *cache, tile_view *view);
-// Forgets a resident tile without writing it back, so the next request loads or
-// generates it afresh (undo back to never-edited terrain). Returns -1 if the tile is
-// pinned or still being produced (it then stays), 0 otherwise.
-int tile_cache_discard(tile_cache *cache, tile_key key);
-// The resident tile holds generated terrain again (undo back to never-edited terrain):
+// The resident tile holds generated terrain again (undo back to never-edited terrain,
+// or an edit that touched a never-edited tile without changing it):
 // it stays in memory, shown without a gap, but as if just generated (not dirty nor
 // edited), so it is never written back and a later generate replaces it. Returns -1 if
-// the tile is not resident, pinned or still being produced.
+// the tile is pinned or still being produced, 0 otherwise (also when not resident).
 int tile_cache_mark_generated(tile_cache *cache, tile_key key);
 
 // Keys of the resident tiles of a layer that hold edits (loaded from a store, or
