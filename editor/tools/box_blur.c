@@ -4,23 +4,25 @@
 
 #include <pthread.h>
 #include <stdlib.h>
+#include <string.h>
 
 // Along rows, a block of rows is one flat array: a window's sum is a few adds of
 // shifted copies, every loop vectorised, no transposes. Windows that wrap from one
 // row into the next give values no kept sample uses.
 
 // dst[i] = a[i] + a[i + shift]: the sums of 2p samples from those of p.
-HOT_LOOP static void add_shifted(float *dst, const float *a, int64_t shift, int64_t n) {
+HOT_LOOP_WIDE static void add_shifted(float *dst, const float *a, int64_t shift, int64_t n) {
     for (int64_t i = 0; i < n; i++)
         dst[i] = a[i] + a[i + shift];
 }
 
-HOT_LOOP static void add_arrays(float *dst, const float *a, const float *b, int64_t n) {
+HOT_LOOP_WIDE static void add_arrays(float *dst, const float *a, const float *b, int64_t n) {
     for (int64_t i = 0; i < n; i++)
         dst[i] = a[i] + b[i];
 }
 
-HOT_LOOP static void add_scaled(float *dst, const float *a, const float *b, float k, int64_t n) {
+HOT_LOOP_WIDE static void add_scaled(float *dst, const float *a, const float *b, float k,
+                                     int64_t n) {
     for (int64_t i = 0; i < n; i++)
         dst[i] = (a[i] + b[i]) * k;
 }
@@ -51,26 +53,60 @@ static void box_pass(const float *src, float *dst, int64_t n, int length, float 
     }
 }
 
-// Down columns: a running sum per column, updated row by row, so the inner loops run
-// across independent columns and vectorise. In double: sums of floats are exact there,
-// so the result does not depend on where the sum started. Rows [r0, r1), columns
-// [c0, c1) of dst.
-HOT_LOOP static void box_columns(const float *src, float *dst, int64_t w, int k, double *sum,
-                                 int64_t r0, int64_t r1, int64_t c0, int64_t c1) {
-    double inv = 1.0 / (2 * k + 1);
+// Down columns, both boxes in one sweep: a running sum per column for the first box
+// and one for the second over the first's rows (kept, rounded to float, in a ring of
+// 2k + 2 rows), updated row by row, so the inner loop runs across independent columns
+// and vectorises. In double: sums of floats are exact there, so the result does not
+// depend on where the sum started. The additions are those of two separate passes in
+// the same order (the second box's sum starts as its first 2k + 1 rows come).
+// Columns [c0, c1) of the rows of src (w wide, h rows), rows [2k, h - 2k) of the result.
+HOT_LOOP_WIDE static void first_rows(const float *src, int64_t w, int k, double *sum1, int64_t c0,
+                                     int64_t c1) {
     for (int64_t x = c0; x < c1; x++)
-        sum[x] = 0.0;
-    for (int64_t i = r0 - k; i <= r0 + k; i++)
+        sum1[x] = 0.0;
+    for (int64_t i = 0; i <= 2 * k; i++)
         for (int64_t x = c0; x < c1; x++)
-            sum[x] += src[i * w + x];
-    for (int64_t i = r0; i < r1; i++) {
-        float *o = dst + i * w;
-        for (int64_t x = c0; x < c1; x++)
-            o[x] = (float)(sum[x] * inv);
-        if (i + 1 == r1) break;
-        const float *a = src + (i + k + 1) * w, *r = src + (i - k) * w;
-        for (int64_t x = c0; x < c1; x++)
-            sum[x] += (double)a[x] - (double)r[x];
+            sum1[x] += src[i * w + x];
+}
+
+// One step down: the first box's row from sum1 (into ring row m), the second box's
+// sum takes it and drops row old, its row goes to row, and sum1 moves on (adds row a,
+// drops row r). Each column's operations run in the order of the two passes.
+HOT_LOOP_WIDE static void column_step(double *restrict sum1, double *restrict sum2,
+                                      float *restrict m, const float *restrict old,
+                                      const float *restrict a, const float *restrict r, double inv,
+                                      float *restrict row, int64_t c0, int64_t c1) {
+    for (int64_t x = c0; x < c1; x++) {
+        float mid = (float)(sum1[x] * inv);
+        m[x] = mid;
+        double s = sum2[x] + ((double)mid - (double)old[x]);
+        sum2[x] = s;
+        row[x] = (float)(s * inv);
+        sum1[x] += (double)a[x] - (double)r[x];
+    }
+}
+
+// zero: a row of zeros (w floats): while the second box's first 2k + 1 rows come,
+// it drops nothing (x - 0 is x exactly, signed zeros too). Row z of the result goes to
+// out's row z.
+static void box_columns_twice(const float *src, float *out, int64_t w, int64_t h, int k,
+                              double *sum1, double *sum2, float *ring, const float *zero,
+                              int64_t c0, int64_t c1) {
+    double inv = 1.0 / (2 * k + 1);
+    int64_t slots = 2 * k + 2;
+    first_rows(src, w, k, sum1, c0, c1);
+    for (int64_t x = c0; x < c1; x++)
+        sum2[x] = 0.0;
+    // Row i of the first box (i in [k, h - k)); the second's row i - k is done once
+    // i >= 3k (before, its row goes to a ring row not yet used).
+    for (int64_t i = k; i < h - k; i++) {
+        float *m = ring + (i % slots) * w;
+        const float *old = i - k > 2 * k ? ring + ((i - 2 * k - 1) % slots) * w : zero;
+        // The first box's sum of rows [i - k, i + k] moves to [i - k + 1, i + k + 1]
+        // (after the last row it is not read again: a - a leaves it).
+        const float *r = src + (i - k) * w, *a = i + 1 < h - k ? src + (i + k + 1) * w : r;
+        float *row = i >= 3 * k ? out + (i - k) * w : ring + ((i + 1) % slots) * w;
+        column_step(sum1, sum2, m, old, a, r, inv, row, c0, c1);
     }
 }
 
@@ -117,22 +153,34 @@ static float *thread_scratch(size_t floats) {
     return s->data;
 }
 
-const float *box_blur_twice(const float *in, int64_t w, int64_t h, int k) {
+// Floats rounded up to whole cache lines, so every buffer starts on one.
+static size_t lines(int64_t floats) {
+    return ((size_t)floats + 15) & ~(size_t)15;
+}
+
+int box_blur_twice(const float *in, float *out, int64_t w, int64_t h, int k) {
     int64_t n = w * h, length = 2 * k + 1;
-    float *scratch = k >= 1 ? thread_scratch((size_t)n * 5) : NULL;
-    if (!scratch) return NULL;
-    float *mid = scratch + 3 * n, *out = scratch + 4 * n;
-    if (w <= 4 * k || h <= 4 * k) return out; // no sample 2k inside every edge
-    // Each pass's results start k samples (k rows) further in and end as many earlier.
+    if (k < 1 || w <= 4 * k || h <= 4 * k) return 0; // no sample 2k inside every edge
     // Along rows in blocks of rows whose sums of runs fit the first-level cache.
-    int64_t block = 2048 / w > 1 ? 2048 / w : 1;
+    int64_t block = 2048 / w > 1 ? 2048 / w : 1, bmax = block * w;
+    // runs: 3 blocks; a block's first box; the rows' result; the ring of the first
+    // box down columns; a row of zeros; the two columns' sums (doubles)
+    size_t at_first = lines(3 * bmax), at_mid = at_first + lines(bmax);
+    size_t at_ring = at_mid + lines(n), at_zero = at_ring + lines((2 * k + 2) * w);
+    size_t at_sums = at_zero + lines(w);
+    size_t floats = at_sums + lines(4 * w);
+    float *scratch = thread_scratch(floats);
+    if (!scratch) return -1;
+    float *first = scratch + at_first, *mid = scratch + at_mid;
+    // Each pass's results start k samples (k rows) further in and end as many earlier.
     for (int64_t z0 = 0; z0 < h; z0 += block) {
         int64_t rows = h - z0 < block ? h - z0 : block, bn = rows * w;
-        box_pass(in + z0 * w, mid, bn, (int)length, scratch);
-        box_pass(mid + k, out + z0 * w + k, bn - 2 * k, (int)length, scratch);
+        box_pass(in + z0 * w, first, bn, (int)length, scratch);
+        box_pass(first + k, mid + z0 * w + k, bn - 2 * k, (int)length, scratch);
     }
-    double *sum = (double *)scratch; // the runs are done with
-    box_columns(out, mid, w, k, sum, k, h - k, 2 * k, w - 2 * k);
-    box_columns(mid, out, w, k, sum, 2 * k, h - 2 * k, 2 * k, w - 2 * k);
-    return out;
+    double *sums = (double *)(scratch + at_sums);
+    memset(scratch + at_zero, 0, (size_t)w * sizeof *scratch);
+    box_columns_twice(mid, out, w, h, k, sums, sums + w, scratch + at_ring, scratch + at_zero,
+                      2 * k, w - 2 * k);
+    return 0;
 }

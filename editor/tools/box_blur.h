@@ -4,13 +4,13 @@
 #include <stdint.h>
 
 // Two box blurs of radius k >= 1 along rows, then two along columns, of a w x h area
-// of floats (row-major), into an array of w x h floats that the calling thread owns
-// until its next call. Only its samples at least 2k from every edge of the area are
-// written (the others would need samples past it). Along rows each sum of 2k + 1
-// samples is added in a tree whose shape depends on k alone, down columns in double
-// (exact), so a sample's result is the same float wherever the area starts (the tiled
-// and the plain-array path agree).
-// NULL: out of memory.
-const float *box_blur_twice(const float *in, int64_t w, int64_t h, int k);
+// of floats (row-major), into out (w x h; it may be in). Only its samples at least 2k
+// from every edge of the area are written (the others would need samples past it).
+// Along rows each sum of 2k + 1 samples is added in a tree whose shape depends on k
+// alone, down columns in double (exact), so a sample's result is the same float
+// wherever the area starts (the tiled and the plain-array path agree). The buffers
+// are the calling thread's, kept between calls.
+// 0, or -1: out of memory.
+int box_blur_twice(const float *in, float *out, int64_t w, int64_t h, int k);
 
 #endif

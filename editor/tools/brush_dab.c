@@ -331,58 +331,15 @@ static int halo_of(const brush_dab *d) {
     }
 }
 
-// Moves each sample with weight > 0 toward its smoothed value by its weight (away when
-// inverting); the others keep their bits. Branch-free, so it vectorises.
-HOT_LOOP static void blend_smoothed(float *heights, const float *smoothed, const float *weight,
-                                    int invert, int64_t n) {
+// Moves each sample of a row with weight > 0 toward its smoothed value by its weight
+// (away when inverting); the others keep their bits. Branch-free, so it vectorises.
+HOT_LOOP_WIDE static void blend_smoothed(float *row, const float *smoothed, const float *weight,
+                                         int invert, int64_t n) {
     for (int64_t i = 0; i < n; i++) {
-        float old = heights[i], w = weight[i];
+        float old = row[i], w = weight[i];
         float v = keep_finite(old + (invert ? -w : w) * (smoothed[i] - old), old);
-        heights[i] = w > 0.0f ? v : old;
+        row[i] = w > 0.0f ? v : old;
     }
-}
-
-// Runs a neighbourhood tool on heights (w x h, covering `area`), changing only
-// samples whose weight > 0. weight gets the per-sample weights.
-static int neighbourhood(const brush_dab *d, float *heights, float *weight, grid_rect area,
-                         og_error *err) {
-    int64_t w = area.x1 - area.x0, h = area.z1 - area.z0;
-    int halo = halo_of(d);
-    grid_rect inner = {area.x0 + halo, area.z0 + halo, area.x1 - halo, area.z1 - halo};
-    // 0 in the halo; row_weights writes every inner sample.
-    memset(weight, 0, (size_t)(halo * w) * sizeof *weight);
-    memset(weight + (h - halo) * w, 0, (size_t)(halo * w) * sizeof *weight);
-    for (int64_t z = inner.z0; z < inner.z1; z++) {
-        float *row = weight + (z - area.z0) * w;
-        memset(row, 0, (size_t)halo * sizeof *row);
-        memset(row + w - halo, 0, (size_t)halo * sizeof *row);
-        row_weights(d, z, inner.x0, inner.x1, row + halo);
-    }
-    const brush *b = d->brush;
-    if (b->tool == BRUSH_SMOOTH) {
-        const float *c = box_blur_twice(heights, w, h, halo / 2);
-        if (!c) {
-            return og_error_set(err, "out of memory smoothing (%lld x %lld samples)", (long long)w,
-                                (long long)h);
-        }
-        for (int64_t z = halo; z < h - halo; z++) // weights are 0 outside the inner rect
-            blend_smoothed(heights + z * w + halo, c + z * w + halo, weight + z * w + halo,
-                           b->invert, w - 2 * halo);
-        return 0;
-    }
-    if (w > INT32_MAX / (h ? h : 1)) return og_error_set(err, "brush area too large");
-    erosion_grid g = {heights, weight, (int)w, (int)h, (float)d->spacing, og_progress_current()};
-    if (b->tool == BRUSH_THERMAL) {
-        thermal_brush_erode(&g, &b->thermal, thermal_brush_block(d->radius));
-    } else {
-        hydraulic_params p = b->hydraulic;
-        p.seed = d->seed;
-        erosion_hydraulic(&g, &p, NULL);
-    }
-    if (og_progress_cancelled(g.progress)) return og_error_set(err, "cancelled");
-    for (int64_t i = 0; i < w * h; i++)
-        heights[i] = keep_finite(heights[i], 0.0f);
-    return 0;
 }
 
 // ---- row functions shared by both paths ------------------------------------------------
@@ -400,9 +357,11 @@ typedef struct dab_rows {
     // falloff can reach (NULL: the whole rect)
     int64_t (*span)[2];
     int64_t span_z0, span_rows;
-    // neighbourhood tools: the computed area and its weights
+    // neighbourhood tools: the computed area and its weights; smooth: the heights are
+    // the smoothed ones, which dab_row lays over the rows by the weights
     const float *heights, *weight;
     grid_rect area;
+    int smoothed;
 } dab_rows;
 
 // Narrows [x0, x1) of row z to the samples a flat disc's falloff can reach (every
@@ -433,6 +392,47 @@ static void disc_span(const dab_rows *j, int64_t z, int64_t *x0, int64_t *x1) {
     if (b < *x1) *x1 = b > *x0 ? b : *x0;
 }
 
+// Runs a neighbourhood tool on heights (w x h, covering `area`), changing only
+// samples whose weight > 0. weight gets the per-sample weights.
+static int neighbourhood(const brush_dab *d, const dab_rows *spans, float *heights, float *weight,
+                         grid_rect area, og_error *err) {
+    int64_t w = area.x1 - area.x0, h = area.z1 - area.z0;
+    int halo = halo_of(d);
+    grid_rect inner = {area.x0 + halo, area.z0 + halo, area.x1 - halo, area.z1 - halo};
+    // 0 in the halo; row_weights writes every inner sample.
+    memset(weight, 0, (size_t)(halo * w) * sizeof *weight);
+    memset(weight + (h - halo) * w, 0, (size_t)(halo * w) * sizeof *weight);
+    for (int64_t z = inner.z0; z < inner.z1; z++) {
+        float *row = weight + (z - area.z0) * w;
+        int64_t x0 = inner.x0, x1 = inner.x1; // a flat disc: its span (0 past it)
+        disc_span(spans, z, &x0, &x1);
+        memset(row, 0, (size_t)(x0 - area.x0) * sizeof *row);
+        memset(row + (x1 - area.x0), 0, (size_t)(area.x1 - x1) * sizeof *row);
+        row_weights(d, z, x0, x1, row + (x0 - area.x0));
+    }
+    const brush *b = d->brush;
+    if (b->tool == BRUSH_SMOOTH) { // the blend comes as the rows are written (dab_row)
+        if (box_blur_twice(heights, heights, w, h, halo / 2) != 0) {
+            return og_error_set(err, "out of memory smoothing (%lld x %lld samples)", (long long)w,
+                                (long long)h);
+        }
+        return 0;
+    }
+    if (w > INT32_MAX / (h ? h : 1)) return og_error_set(err, "brush area too large");
+    erosion_grid g = {heights, weight, (int)w, (int)h, (float)d->spacing, og_progress_current()};
+    if (b->tool == BRUSH_THERMAL) {
+        thermal_brush_erode(&g, &b->thermal, thermal_brush_block(d->radius));
+    } else {
+        hydraulic_params p = b->hydraulic;
+        p.seed = d->seed;
+        erosion_hydraulic(&g, &p, NULL);
+    }
+    if (og_progress_cancelled(g.progress)) return og_error_set(err, "cancelled");
+    for (int64_t i = 0; i < w * h; i++)
+        heights[i] = keep_finite(heights[i], 0.0f);
+    return 0;
+}
+
 // A neighbourhood tool's result where its weight is > 0 (selects: vectorises).
 HOT_LOOP static void copy_weighted(float *dst, const float *src, const float *weight, int64_t n) {
     for (int64_t i = 0; i < n; i++)
@@ -457,7 +457,7 @@ static const uint8_t *stroke_start(const dab_rows *j, int64_t z, int64_t x) {
 
 static void dab_row(void *user, void *row, int64_t z, int64_t x0, int64_t x1) {
     dab_rows *j = user;
-    if (!j->heights) { // pointwise tools: only the disc's part of the row
+    { // only the disc's part of the row (every weight past it is 0)
         int64_t a = x0, b = x1;
         disc_span(j, z, &a, &b);
         size_t bytes = j->d->brush->tool == BRUSH_PAINT ? TILE_MATERIALS : sizeof(float);
@@ -476,7 +476,10 @@ static void dab_row(void *user, void *row, int64_t z, int64_t x0, int64_t x1) {
             int64_t aw = j->area.x1 - j->area.x0;
             const float *src = j->heights + (z - j->area.z0) * aw - j->area.x0;
             const float *wt = j->weight + (z - j->area.z0) * aw - j->area.x0;
-            copy_weighted((float *)row - x0 + s, src + s, wt + s, e - s);
+            if (j->smoothed)
+                blend_smoothed((float *)row - x0 + s, src + s, wt + s, j->d->brush->invert, e - s);
+            else
+                copy_weighted((float *)row - x0 + s, src + s, wt + s, e - s);
         }
     }
 }
@@ -500,10 +503,8 @@ typedef int (*area_reader)(void *src, grid_rect area, float *out, og_error *err)
 static int prepare(const brush_dab *d, tile_layer layer, grid_rect r, area_reader read, void *src,
                    dab_rows *rows, float **before, og_error *err) {
     *rows = (dab_rows){.d = d};
-    if (layer == TILE_LAYER_MATERIAL || is_pointwise(d->brush)) {
-        disc_spans(rows);
-        return 0;
-    }
+    disc_spans(rows);
+    if (layer == TILE_LAYER_MATERIAL || is_pointwise(d->brush)) return 0;
     int halo = halo_of(d);
     grid_rect area = {r.x0 - halo, r.z0 - halo, r.x1 + halo, r.z1 + halo};
     size_t n = (size_t)((area.x1 - area.x0) * (area.z1 - area.z0));
@@ -513,12 +514,14 @@ static int prepare(const brush_dab *d, tile_layer layer, grid_rect r, area_reade
     if (!ok) og_error_set(err, "out of memory for a brush of %zu samples", n);
     if (ok && (ok = read(src, area, heights, err) == 0) && copy)
         memcpy(copy, heights, n * sizeof *copy);
-    if (!ok || neighbourhood(d, heights, weight, area, err) != 0) {
+    if (!ok || neighbourhood(d, rows, heights, weight, area, err) != 0) {
         free(heights);
         free(weight);
         free(copy);
+        free(rows->span);
         return -1;
     }
+    rows->smoothed = d->brush->tool == BRUSH_SMOOTH;
     if (before) *before = copy;
     rows->heights = heights;
     rows->weight = weight;
@@ -663,7 +666,17 @@ int brush_dab_compute_area(edit *e, const layer_grid *g, const brush_dab *d, gri
     dab_rows rows;
     float *before = NULL;
     if (prepare(d, g->layer, r, read_world, &src, &rows, &before, err) != 0) return -1;
-    *out = (brush_dab_area){rows.area, before, (float *)rows.heights, (float *)rows.weight};
+    float *after = (float *)rows.heights;
+    size_t n = (size_t)((rows.area.x1 - rows.area.x0) * (rows.area.z1 - rows.area.z0));
+    if (rows.smoothed) { // the smoothed heights laid over those from before
+        for (size_t i = 0; i < n; i++) {
+            float s = after[i];
+            after[i] = before[i];
+            blend_smoothed(after + i, &s, rows.weight + i, d->brush->invert, 1);
+        }
+    }
+    free(rows.span);
+    *out = (brush_dab_area){rows.area, before, after, (float *)rows.weight};
     return 0;
 }
 
