@@ -8,6 +8,7 @@
 #include "editor/world/layer_grid.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -61,6 +62,30 @@ static float take_sample(const compose_job *j, const layer_info *l, float weight
         return layer_blend_solve(l->blend, TAKE_MIN_WEIGHT, below, v, target);
     }
     return layer_blend_solve(l->blend, weight, below, v, target);
+}
+
+// take_sample over a row span for the common layer: an add layer at full weight, the top
+// visible one (its target is the tool's own result). The inline case take_sample tries
+// first, for the whole span without branches (vectorised; it nearly always succeeds),
+// then take_sample itself for the samples it missed: the same values. Samples whose
+// composite the tool left as it was (bit for bit) keep their value, as kept() says.
+static void take_row_add_top(const compose_job *j, const layer_info *l, float weight, float *val,
+                             const float *below, const float *before, const float *now, int n) {
+    uint8_t miss[TILE_SIZE];
+    int any = 0;
+    for (int x = 0; x < n; x++) {
+        uint32_t a, c;
+        memcpy(&a, &now[x], sizeof a);
+        memcpy(&c, &before[x], sizeof c);
+        float v = val[x], b = below[x], t = now[x], solved = t - b;
+        int keep = (a == c) | ((v == v) & ((t != t) | (b + v == t)));
+        int hit = (v == v) & (b + solved == t);
+        val[x] = keep | !hit ? v : solved;
+        miss[x] = (uint8_t)(!keep & !hit);
+        any |= miss[x];
+    }
+    for (int x = 0; any && x < n; x++)
+        if (miss[x]) val[x] = take_sample(j, l, weight, below[x], val[x], before[x], now[x]);
 }
 
 // Whether the tool left the sample at (x, z) of a tile as it was: outside the part
@@ -181,7 +206,18 @@ static int compose_task(void *user, int task, og_error *err) {
             (rc = edit_tile_acquire_part(j->e, slot_key(p, l->id), local, &lv, err)) == 0) {
             float *val = lv.data;
             int bw = rw + 2 * b;
-            for (int z = 0; z < rh; z++)
+            int add_top = l->blend == LAYER_BLEND_ADD && !layer_mask_active(&l->mask) &&
+                          (float)l->opacity >= 1.0f && active == j->top_visible;
+            for (int z = 0; add_top && z < rh; z++) {
+                int tz = z + z0, xa = x0 > touched.x0 ? x0 : (int)touched.x0;
+                int xb = x0 + rw < touched.x1 ? x0 + rw : (int)touched.x1;
+                if (tz < touched.z0 || tz >= touched.z1 || xa >= xb) continue;
+                int k = tz * TILE_SIZE + xa;
+                take_row_add_top(j, l, (float)l->opacity, val + k,
+                                 acc + (size_t)(z + b) * bw + (xa - x0) + b, before + k, comp + k,
+                                 xb - xa);
+            }
+            for (int z = 0; !add_top && z < rh; z++)
                 for (int x = 0; x < rw; x++) {
                     int k = (z + z0) * TILE_SIZE + x + x0;
                     if (!kept(touched, x + x0, z + z0, comp + k, before + k))
@@ -243,6 +279,17 @@ static int reuse_below(const layer_table *t) {
     return 1;
 }
 
+// Whether taking a tool's change leaves the composite as the tool made it everywhere, so
+// stage 2 would change no sample: the active layer is the top visible one, unmasked,
+// at full opacity, and shows the tool's result exactly (compose_task's `exact` case
+// for every weight, which is the opacity).
+static int take_keeps_composite(const compose_job *j) {
+    if (j->table.active < 0 || j->table.active != j->top_visible) return 0;
+    const layer_info *l = &j->table.layers[j->table.active];
+    return !layer_mask_active(&l->mask) && (float)l->opacity >= 1.0f &&
+           (j->mode == EDIT_LAYER_RESULT || l->blend == LAYER_BLEND_ADD);
+}
+
 // Runs over l's parts (frees them): the composite's heights, taking a tool's change
 // first when take; then the materials where a paint layer's mask reads those heights.
 static int run(edit *e, tile_parts *l, int take, og_error *err) {
@@ -258,7 +305,9 @@ static int run(edit *e, tile_parts *l, int take, og_error *err) {
     // below it), then the composite (reading them all), so no part reads what another
     // is writing.
     int rc = 0;
-    if (take && n && reuse_below(&j.table)) { // without memory: every part composes it all
+    int compose = !take || !take_keeps_composite(&j);
+    if (take && compose && n &&
+        reuse_below(&j.table)) { // without memory: every part composes it all
         j.below = calloc(n, sizeof *j.below), j.below_weight = calloc(n, sizeof *j.below);
         if (!j.below || !j.below_weight) {
             free(j.below), free(j.below_weight);
@@ -270,7 +319,7 @@ static int run(edit *e, tile_parts *l, int take, og_error *err) {
         rc = parallel_run((int)n, compose_task, &j, err);
         j.stage = 2;
     }
-    if (rc == 0) rc = parallel_run((int)n, compose_task, &j, err);
+    if (rc == 0 && compose) rc = parallel_run((int)n, compose_task, &j, err);
     for (size_t i = 0; j.below && i < n; i++)
         free(j.below[i]), free(j.below_weight[i]);
     free(j.below), free(j.below_weight);

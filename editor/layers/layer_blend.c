@@ -1,6 +1,8 @@
 #include "editor/layers/layer_blend.h"
 
 #include <math.h>
+#include <string.h>
+#include <stdint.h>
 
 float layer_blend_sample(layer_blend blend, float weight, float below, float value) {
     if (isnan(value) || !(weight > 0.0f)) return below;
@@ -39,6 +41,23 @@ void layer_blend_row(layer_blend blend, float weight, const float *below, const 
         out[i] = layer_blend_sample(blend, weight, below[i], value[i]);
 }
 
+// nextafterf(v, up ? INFINITY : -INFINITY), inline: the next float by its bits (the
+// library call cost more than the rest of a solve, which takes a step in most calls
+// where the sum's rounding misses).
+static float step_toward(float v, int up) {
+    if (v != v || v == (up ? INFINITY : -INFINITY)) return v;
+    uint32_t u;
+    memcpy(&u, &v, sizeof u);
+    if ((u & 0x7fffffffu) == 0) // either zero: the smallest subnormal of the direction's sign
+        u = up ? 1u : 0x80000001u;
+    else if (!(u >> 31) == !!up) // away from zero: the magnitude grows
+        u++;
+    else
+        u--;
+    memcpy(&v, &u, sizeof v);
+    return v;
+}
+
 float layer_blend_solve(layer_blend blend, float weight, float below, float value, float target) {
     if (!(weight > 0.0f) || isnan(target)) return value;
     if (blend == LAYER_BLEND_MAX && target < below) return NAN; // the nearest: no effect
@@ -53,7 +72,7 @@ float layer_blend_solve(layer_blend blend, float weight, float below, float valu
     for (int i = 0; i < 8; i++) {
         float got = layer_blend_sample(blend, weight, below, v);
         if (got == target || isnan(got)) break;
-        float next = nextafterf(v, got < target ? INFINITY : -INFINITY);
+        float next = step_toward(v, got < target);
         float again = layer_blend_sample(blend, weight, below, next);
         if (fabsf(again - target) > fabsf(got - target)) break;
         v = next;

@@ -221,8 +221,11 @@ static ZSTD_CCtx *thread_cctx(void) {
 // Whether zstd should try a plane whose zero runs took `size` bytes (at runs): when
 // the bytes' entropy, estimated from every 4th, is well under their count. Noise
 // (a float's low bytes) is not worth zstd's time; a high plane's few values are.
+// Nor is a plane whose runs already fit in 2 KB (a dab's coarser mip levels): zstd's
+// setup per call cost about as much as encoding a dab's whole tile, to save a few
+// hundred bytes.
 static int plane_wants_zstd(const uint8_t *runs, size_t size) {
-    if (size < 256) return 0;
+    if (size < 2048) return 0;
     uint32_t count[256] = {0};
     size_t n = 0;
     for (size_t i = 0; i < size; i += 4, n++)
