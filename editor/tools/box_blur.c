@@ -1,5 +1,6 @@
 #include "editor/tools/box_blur.h"
 
+#include "editor/tools/box_rows.h"
 #include "editor/tools/hot_loop.h"
 
 #include <pthread.h>
@@ -32,6 +33,7 @@ HOT_LOOP_WIDE static void add_scaled(float *dst, const float *a, const float *b,
 // of power-of-two runs (one pass per doubling), the runs taken low bit first: the
 // additions, and so the rounding, are the same for every window. scratch: 3n floats.
 static void box_pass(const float *src, float *dst, int64_t n, int length, float *scratch) {
+    if (box_rows_wide(src, dst, n, length) == 0) return; // the same sums on registers
     int64_t windows = n - (length - 1), k = (length - 1) / 2;
     float inv = (float)(1.0 / length);
     float *runs[2] = {scratch, scratch + n}, *acc = scratch + 2 * n;

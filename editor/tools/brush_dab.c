@@ -23,8 +23,8 @@ static inline float keep_finite(float v, float old) {
 
 // dx of sample k of a row is fdx0 + k, k counted from the dab's own first column:
 // the same float whatever span (tile) the sample is computed in.
-HOT_LOOP static void smooth_weights(float fdx0, int k0, float dz2, float inv_r, float strength,
-                                    int n, float *w) {
+HOT_LOOP_WIDE static void smooth_weights(float fdx0, int k0, float dz2, float inv_r, float strength,
+                                         int n, float *w) {
     for (int i = 0; i < n; i++) { // int: int64 to float conversion does not vectorise
         float dx = fdx0 + (float)(k0 + i);
         float t = sqrtf(dx * dx + dz2) * inv_r;
