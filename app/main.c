@@ -5,6 +5,7 @@
 #include "app/window.h"
 #include "view/view_commands.h"
 #include "renderer/viewport.h"
+#include "editor/cmd/base_pending.h"
 #include "editor/cmd/commands.h"
 #include "editor/cmd/edit_commands.h"
 #include "editor/edit/material_mips_fill.h"
@@ -285,6 +286,9 @@ int main(int argc, char **argv) {
     cmd_context_init(&ctx, w, &settings, stdout, resource_dir);
     ctx.record = recording;
     ctx.reported_errors = load_errors;
+    // A script's world made from a raster imports its parts as they are needed (a shard
+    // of a tiled export only its own); the window shows the whole world at once.
+    ctx.defer_base = script_count > 0;
 
     int status = 0;
     if (script_count == 0) {
@@ -312,6 +316,7 @@ int main(int argc, char **argv) {
     fflush(stdout);
     if (status != 0) world_keep_journal(ctx.world);
     viewport_destroy(ctx.view_state);
+    cmd_base_drop(&ctx);
     world_close(ctx.world);
     world_events_release(settings.events);
     if (recording) fclose(recording);

@@ -5,7 +5,8 @@
 // `gdal_translate -ot Float32` to a raw float file. Medians of 3. Goal: <= 1.5x.
 // Also the same PNG -> EXR as whole processes (orogen start to exit against oiiotool;
 // goal <= 1.2x) and a tiled export split over 2 processes against 1 (goal >= 1.8x; at
-// once, and each alone under the load the 1-process run had).
+// once, and each alone under the load the 1-process run had), of a generated world and
+// of one made from a 16-bit PNG (`new flat from=`).
 // Usage: bench_interchange [--only exr|shards] [DEM.hgt] (default tests/data/dem/N44W072.hgt)
 #include "bench/bench_timing.h"
 #include "editor/interchange/export.h"
@@ -70,15 +71,17 @@ static world *bounded_world(int64_t size, double spacing) {
     return w;
 }
 
-// One orogen process writing shard i of count of a 4x4 tiled float EXR export of a
-// generated 4097^2 world (without export: only the world, to time a shard's fixed
-// part), pinned to core `core`, with one cache worker: a shard stands for one machine's
-// core, so runs compare the same work split, not thread counts. Processes, not fork()
-// alone: this one has thread pools a forked child would lack.
-static pid_t start_shard(const char *dir, int i, int count, int core, int export) {
+// One orogen process making `world` and writing shard i of count of a 4x4 tiled float EXR
+// export of it (without export: only the world, to time a shard's fixed part), pinned to
+// core `core`, with one cache worker: a shard stands for one machine's core, so runs
+// compare the same work split, not thread counts. Processes, not fork() alone: this one
+// has thread pools a forked child would lack.
+static pid_t start_shard(const char *world, const char *dir, int i, int count, int core,
+                         int export) {
     pid_t pid = fork();
     if (pid != 0) return pid;
-    char cmd[512] = "new flat; set size 4097; generate";
+    char cmd[1024];
+    snprintf(cmd, sizeof cmd, "%s", world);
     if (export)
         snprintf(cmd + strlen(cmd), sizeof cmd - strlen(cmd),
                  "; export %s/tiles.exr tiles=4x4 shard=%d/%d", dir, i, count);
@@ -111,10 +114,10 @@ static void wait_shards(double *critical) {
 
 // Wall time of `count` shard processes at once, each on a core of its own (as GNU
 // parallel would run them); *critical gets the CPU seconds of the busiest shard.
-static double sharded(const char *dir, int count, double *critical) {
+static double sharded(const char *world, const char *dir, int count, double *critical) {
     double t0 = bench_now();
     for (int i = 0; i < count; i++)
-        start_shard(dir, i, count, i % (int)sysconf(_SC_NPROCESSORS_ONLN), 1);
+        start_shard(world, dir, i, count, i % (int)sysconf(_SC_NPROCESSORS_ONLN), 1);
     wait_shards(critical);
     return bench_now() - t0;
 }
@@ -122,15 +125,60 @@ static double sharded(const char *dir, int count, double *critical) {
 // The longest wall time of `count` shards run one after another on core 0: the build's
 // wall time with a machine per shard (what sharding is for), measured under the same
 // load as the one-process run beside it, so it needs no idle second core.
-static double longest_shard_alone(const char *dir, int count) {
+static double longest_shard_alone(const char *world, const char *dir, int count) {
     double longest = 0, cpu;
     for (int i = 0; i < count; i++) {
         double t0 = bench_now();
-        start_shard(dir, i, count, 0, 1);
+        start_shard(world, dir, i, count, 0, 1);
         wait_shards(&cpu);
         longest = fmax(longest, bench_now() - t0);
     }
     return longest;
+}
+
+// The tiled export of `world` as 1 process against 2 shards (at once, and each alone),
+// interleaved, medians of 5: the machine is shared, and its load drifts over a run.
+static int bench_shards(const char *label, const char *world, const char *dir) {
+    enum { SHARD_REPS = 5 };
+    double t1[SHARD_REPS], t2[SHARD_REPS], ta[SHARD_REPS], c1[SHARD_REPS], c2[SHARD_REPS],
+        ts[SHARD_REPS], load0[3], load1[3];
+    if (getloadavg(load0, 3) != 3) load0[0] = -1;
+    for (int i = 0; i < SHARD_REPS; i++) {
+        t1[i] = sharded(world, dir, 1, &c1[i]);
+        t2[i] = sharded(world, dir, 2, &c2[i]);
+        ta[i] = longest_shard_alone(world, dir, 2);
+        // The fixed part of every shard: start-up, world making and exit.
+        double t0 = bench_now(), cpu;
+        start_shard(world, dir, 0, 1, 0, 0);
+        wait_shards(&cpu);
+        ts[i] = bench_now() - t0;
+    }
+    if (getloadavg(load1, 3) != 3) load1[0] = -1;
+    double one = bench_median(t1, SHARD_REPS), two = bench_median(t2, SHARD_REPS),
+           alone = bench_median(ta, SHARD_REPS), fixed = bench_median(ts, SHARD_REPS);
+    const long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    printf("tiled export (orogen processes, 1 worker and 1 core each; %s, 4x4 float EXR tiles; "
+           "machine load %.1f at the start, %.1f at the end, %ld cores):\n",
+           label, load0[0], load1[0], cores);
+    printf("  2 shards in parallel on this machine: 1 shard %.2f s, 2 shards %.2f s; speed-up "
+           "%.2fx (goal >= 1.8x) %s%s\n",
+           one, two, one / two, one / two >= 1.8 ? "PASS" : "MISS",
+           load0[0] > cores - 2 || load1[0] > cores - 2
+               ? " (the other load leaves no second core free: see the next lines)"
+               : "");
+    printf("  a machine per shard (each shard alone, under the same load as the 1-shard run): "
+           "longest shard %.2f s; speed-up %.2fx (goal >= 1.8x) %s\n",
+           alone, one / alone, one / alone >= 1.8 ? "PASS" : "MISS");
+    printf("  fixed cost of a shard (start-up, world, exit; no export): %.3f s, %.1f%% of one "
+           "shard of 2\n",
+           fixed, 100.0 * fixed / alone);
+    // Each process's own CPU seconds: the speed-up with a core per shard, which the wall
+    // times above only show on a machine nothing else is using.
+    one = bench_median(c1, SHARD_REPS), two = bench_median(c2, SHARD_REPS);
+    printf("  CPU seconds of the busiest process: 1 shard %.2f s, 2 shards %.2f s; "
+           "speed-up %.2fx with a core per shard (goal >= 1.8x) %s\n",
+           one, two, one / two, one / two >= 1.8 ? "PASS" : "MISS");
+    return 0;
 }
 
 // Imports an SRTM tile into a 3601^2 world at 30 m against gdal_translate writing it
@@ -286,47 +334,21 @@ int main(int argc, char **argv) {
         world_close(w);
     }
 shards:;
-    // Interleaved (one process, two at once, two one after another), medians of 5: the
-    // machine is shared, and its load drifts over a run.
-    enum { SHARD_REPS = 5 };
-    double t1[SHARD_REPS], t2[SHARD_REPS], ta[SHARD_REPS], c1[SHARD_REPS], c2[SHARD_REPS],
-        ts[SHARD_REPS], load0[3], load1[3];
-    if (getloadavg(load0, 3) != 3) load0[0] = -1;
-    for (int i = 0; i < SHARD_REPS; i++) {
-        t1[i] = sharded(dir, 1, &c1[i]);
-        t2[i] = sharded(dir, 2, &c2[i]);
-        ta[i] = longest_shard_alone(dir, 2);
-        // The fixed part of every shard: start-up, world making and exit.
-        double t0 = bench_now(), cpu;
-        start_shard(dir, 0, 1, 0, 0);
-        wait_shards(&cpu);
-        ts[i] = bench_now() - t0;
-    }
-    if (getloadavg(load1, 3) != 3) load1[0] = -1;
-    double one = bench_median(t1, SHARD_REPS), two = bench_median(t2, SHARD_REPS),
-           alone = bench_median(ta, SHARD_REPS), fixed = bench_median(ts, SHARD_REPS);
-    const long cores = sysconf(_SC_NPROCESSORS_ONLN);
-    printf("tiled export (orogen processes, 1 worker and 1 core each; 4097^2 generated world, 4x4 "
-           "float EXR tiles; machine load %.1f at the start, %.1f at the end, %ld cores):\n",
-           load0[0], load1[0], cores);
-    printf("  2 shards in parallel on this machine: 1 shard %.2f s, 2 shards %.2f s; speed-up "
-           "%.2fx (goal >= 1.8x) %s%s\n",
-           one, two, one / two, one / two >= 1.8 ? "PASS" : "MISS",
-           load0[0] > cores - 2 || load1[0] > cores - 2
-               ? " (the other load leaves no second core free: see the next lines)"
-               : "");
-    printf("  a machine per shard (each shard alone, under the same load as the 1-shard run): "
-           "longest shard %.2f s; speed-up %.2fx (goal >= 1.8x) %s\n",
-           alone, one / alone, one / alone >= 1.8 ? "PASS" : "MISS");
-    printf("  fixed cost of a shard (start-up, world, exit; no export): %.3f s, %.1f%% of one "
-           "shard of 2\n",
-           fixed, 100.0 * fixed / alone);
-    // Each process's own CPU seconds: the speed-up with a core per shard, which the wall
-    // times above only show on a machine nothing else is using.
-    one = bench_median(c1, SHARD_REPS), two = bench_median(c2, SHARD_REPS);
-    printf("  CPU seconds of the busiest process: 1 shard %.2f s, 2 shards %.2f s; "
-           "speed-up %.2fx with a core per shard (goal >= 1.8x) %s\n",
-           one, two, one / two, one / two >= 1.8 ? "PASS" : "MISS");
+    // Two worlds: generated (its tiles made as they are read) and made from a 16-bit PNG of
+    // the same terrain (`new flat from=`: the raster is decoded whole, then a shard imports
+    // only the tiles its part reads, editor/cmd/base_pending.h).
+    char world_png[256], from_png[600];
+    snprintf(world_png, sizeof world_png, "%s/world.png", dir);
+    snprintf(cmd, sizeof cmd, "'%s' -c 'new flat; set size 4097; generate; export %s' >/dev/null",
+             OROGEN_BINARY, world_png);
+    run_tool(cmd);
+    snprintf(from_png, sizeof from_png, "new flat from=%s", world_png);
+    const struct {
+        const char *label, *world;
+    } worlds[2] = {{"4097^2 generated world", "new flat; set size 4097; generate"},
+                   {"4097^2 world from a 16-bit PNG (new flat from=)", from_png}};
+    for (int k = 0; k < 2; k++)
+        if (bench_shards(worlds[k].label, worlds[k].world, dir) != 0) return 1;
 done:
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
     return system(cmd) == 0 ? 0 : 1;

@@ -27,7 +27,7 @@ pixel() { # FILE X Y: the value OpenImageIO reads at column X, row Y
         oiiotool --dumpdata "$work/pixel.tif" | sed -n 's/.*Pixel (0, 0): *\([-0-9.e+]*\).*/\1/p'
 }
 
-for tool in gdallocationinfo gdalinfo oiiotool iinfo python3; do
+for tool in gdallocationinfo gdalinfo oiiotool iinfo python3 sqlite3; do
     command -v $tool >/dev/null || { echo "FAIL: $tool is missing (scripts/install-deps.sh)"; exit 1; }
 done
 
@@ -262,6 +262,27 @@ done
 files=$(ls "$work/date1" | wc -l)
 [ "$files" = 27 ] && diff -r "$work/date1" "$work/date2" >/dev/null
 check "EXR and 16/32-bit TIFF tiles a second apart, one run and two shards: the same bytes ($files files)" $?
+# A world made from a raster imports, in a script, only the parts a shard reads: the
+# shards' files are still those of one run, and the world, once a later command needs
+# all of it, is the one a whole import makes (heights, mip levels, saved tiles).
+mkdir -p "$work/dem1" "$work/dem2"
+run -c "new flat from=$vermont; export $work/dem1/v.exr tiles=3x3; export $work/dem1/v16.tif tiles=3x3 bits=16; save $work/dem1.world"
+for shard in 0/2 1/2; do
+    "$orogen" -c "new flat from=$vermont; export $work/dem2/v.exr tiles=3x3 shard=$shard; export $work/dem2/v16.tif tiles=3x3 bits=16 shard=$shard; save $work/dem2_${shard%/*}.world" >/dev/null 2>&1
+done
+[ "$(ls "$work/dem1" | wc -l)" = 38 ] && diff -r "$work/dem1" "$work/dem2" >/dev/null
+check "a world from an SRTM tile: 2 shards write the tiles of one run, byte for byte (EXR, 16-bit TIFF)" $?
+# Their shared 16-bit mapping comes from the raster, not from reading the whole region:
+# the same as read from the world once it is all imported (sample needs all of it).
+mkdir -p "$work/dem3"
+run -c "new flat from=$vermont; sample 0 0; export $work/dem3/v16.tif tiles=3x3 bits=16"
+differ=0
+for f in "$work"/dem3/*; do cmp -s "$f" "$work/dem1/${f##*/}" || differ=1; done
+[ "$(ls "$work/dem3" | wc -l)" = 19 ] && [ $differ = 0 ]
+check "a world from an SRTM tile: the 16-bit tiles' shared range, from the raster, is the one read from the world" $?
+dump() { sqlite3 "$1" "select layer, face, level, tx, ty, hex(data) from tiles order by 1, 2, 3, 4, 5" | md5sum; }
+[ "$(dump "$work/dem1.tiles")" = "$(dump "$work/dem2_0.tiles")" ] && [ "$(dump "$work/dem1.tiles")" = "$(dump "$work/dem2_1.tiles")" ]
+check "a world from an SRTM tile imported in parts saves the tiles (and mip levels) of a whole import" $?
 run -c "$world; export $work/u.raw tiles=2x2 preset=unity"
 [ -s "$work/u_0_0.raw" ] && [ -s "$work/u_1_1.raw" ]; check "Unity tiles are named NAME_X_Z" $?
 # Presets size each tile as the engine imports one and print one tile's settings and

@@ -4,6 +4,7 @@
 #include "editor/edit/layer_generate.h"
 #include "editor/edit/material_mips_fill.h"
 #include "editor/edit/recover.h"
+#include "editor/cmd/base_pending.h"
 #include "editor/cmd/edit_commands.h"
 #include "editor/cmd/interchange_commands.h"
 #include "editor/cmd/layer_commands.h"
@@ -50,6 +51,7 @@ static void print_params(FILE *out, const world_params *p) {
 // ---- commands --------------------------------------------------------------------
 
 static int replace_world(cmd_context *ctx, world *w) {
+    cmd_base_drop(ctx);
     world_close(ctx->world);
     ctx->world = w;
     ctx->world_serial++;
@@ -91,8 +93,12 @@ static int c_new(cmd_context *ctx, int argc, char **argv, og_error *err) {
                                 "new: expected 'new flat|planet' or 'new flat from=FILE "
                                 "[import options]', got '%s'",
                                 argv[2]);
-        world *w = cmd_world_from_raster(ctx, argv[2] + 5, argc, argv, 3, err);
-        return w ? replace_world(ctx, w) : -1;
+        base_pending *pending;
+        world *w = cmd_world_from_raster(ctx, argv[2] + 5, argc, argv, 3, &pending, err);
+        if (!w) return -1;
+        replace_world(ctx, w);
+        ctx->base_pending = pending; // its parts not imported yet (NULL: all are)
+        return 0;
     }
     world_kind kind;
     if (strcmp(argv[1], "flat") == 0)
@@ -686,6 +692,11 @@ static int execute(cmd_context *ctx, int argc, char **argv, og_error *err) {
     // A stroke is one undo step: nothing else changes the world in its middle.
     if (ctx->stroke && (c->flags & CMD_ENDS_STROKE) && cmd_end_stroke(ctx, err) != 0) return -1;
     ctx->skip_record = 0;
+    // A world made from a raster and imported in parts so far: only a heightmap export
+    // takes its parts (cmd_export); everything else sees the whole.
+    if (ctx->base_pending && c->run != cmd_export && c->run != c_new &&
+        cmd_base_settle(ctx, err) != 0)
+        return -1;
     if (c->run(ctx, argc, argv, err) != 0) return -1;
     // `exit` is left out: a replay goes on to whatever follows it.
     if ((ctx->record || ctx->session) && c->run != c_exit && !(c->flags & CMD_NOT_RECORDED) &&

@@ -38,6 +38,11 @@ typedef struct cmd_context {
     int skip_record;         // set by a command that must not be recorded this time
     char resource_dir[4096]; // built-in resources (stamp library in resource_dir/stamps)
     char stamp_dir[4096];    // the user's stamp folder
+    // A batch script's world made from a raster imports its parts as they are needed
+    // (base_pending.h): defer_base allows it (batch mode; the window needs the whole
+    // world at once), base_pending is the part not imported yet (NULL: none).
+    int defer_base;
+    struct base_pending *base_pending;
     // State of commands registered from outside (view/view_commands.c keeps
     // its viewport here: made by the first view command, or set by the window).
     // The command language never looks inside; app/ frees it.

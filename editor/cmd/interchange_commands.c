@@ -1,5 +1,6 @@
 #include "editor/cmd/interchange_commands.h"
 
+#include "editor/cmd/base_pending.h"
 #include "editor/interchange/export.h"
 #include "editor/interchange/export_planet.h"
 #include "editor/interchange/export_vdb.h"
@@ -104,7 +105,8 @@ static char *base_source_text(const char *path, int argc, char **argv, int first
 }
 
 world *cmd_world_from_raster(cmd_context *ctx, const char *path, int argc, char **argv, int first,
-                             og_error *err) {
+                             struct base_pending **pending_out, og_error *err) {
+    *pending_out = NULL;
     import_options o;
     if (parse_import_options(argc, argv, first, &o, err) != 0) return NULL;
     if (o.layer != TILE_LAYER_COARSE || o.edit_layer[0]) {
@@ -147,13 +149,26 @@ world *cmd_world_from_raster(cmd_context *ctx, const char *path, int argc, char 
     world *w = world_params_validate(&p, err) == 0 ? world_create(&p, &ctx->settings, err) : NULL;
     char *source = w ? base_source_text(path, argc, argv, first, &src.raster) : NULL;
     import_report rep;
+    // In a batch script the world imports its parts as they are needed (base_pending.h):
+    // here only what the import reports, nothing written yet.
+    base_pending *pending = NULL;
+    o.has_limit = ctx->defer_base;
     if (w && place_base(w, path, &src, &o, source, &rep, err) != 0) {
         world_close(w);
         w = NULL;
     }
+    if (w && ctx->defer_base) {
+        o.has_limit = 0;
+        pending = base_pending_new(w, path, &src, &o, source != NULL);
+        if (!pending && place_base(w, path, &src, &o, source, &rep, err) != 0) {
+            world_close(w); // no memory to keep it pending: imported whole, as without a script
+            w = NULL;
+        }
+    }
     free(source);
     import_source_free(&src);
     if (!w) return NULL;
+    *pending_out = pending;
     fprintf(ctx->out, "new flat world of %lld x %lld samples, %.6g m apart, from %s",
             (long long)p.size, (long long)world_params_size_z(&p), spacing, path);
     if (sx != sz)
@@ -240,6 +255,14 @@ static int export_planet_command(cmd_context *ctx, int argc, char **argv, og_err
     return 0;
 }
 
+static int require_base(void *pending, grid_rect r, og_error *err) {
+    return base_pending_require(pending, r, err);
+}
+
+static int base_range(void *pending, grid_rect r, double *lo, double *hi) {
+    return base_pending_range(pending, r, lo, hi);
+}
+
 int cmd_export(cmd_context *ctx, int argc, char **argv, og_error *err) {
     if (argc >= 3 && export_planet_wanted(argv[1]))
         return export_planet_command(ctx, argc, argv, err);
@@ -287,6 +310,18 @@ int cmd_export(cmd_context *ctx, int argc, char **argv, og_error *err) {
                 argv[1], m.vertices, m.triangles, m.input_triangles, m.achieved_error, m.lo[0],
                 m.lo[1], m.lo[2], m.hi[0], m.hi[1], m.hi[2], seconds_since(&t0));
         return 0;
+    }
+    // A world imported in parts so far: a heightmap export of the coarse layer imports the
+    // parts it reads; anything else needs all of it.
+    if (ctx->base_pending) {
+        if (o.layer == TILE_LAYER_COARSE && !o.image_layer && !export_vdb_wanted(argv[1]) &&
+            !export_mesh_wanted(argv[1])) {
+            o.before_read = require_base;
+            o.height_range = base_range;
+            o.before_read_user = ctx->base_pending;
+        } else if (cmd_base_settle(ctx, err) != 0) {
+            return -1;
+        }
     }
     export_report r;
     char *hints = NULL;

@@ -12,9 +12,11 @@ int cmd_export(cmd_context *ctx, int argc, char **argv, og_error *err);
 // A bounded flat world sized and spaced by the raster at path (options as import's,
 // argv[first..argc)), with the raster imported at its corner. Returns the new world.
 // The raster is the world's base: its crash journal names the file (and checks it on
-// recovery) instead of copying its samples.
+// recovery) instead of copying its samples. With ctx->defer_base the raster is not
+// imported yet: *pending (base_pending.h) imports its parts; else *pending is NULL.
+struct base_pending;
 world *cmd_world_from_raster(cmd_context *ctx, const char *path, int argc, char **argv, int first,
-                             og_error *err);
+                             struct base_pending **pending, og_error *err);
 // Recovery's remake of such a world (edit_recover_unsaved's recover_base_fn): the raster
 // imported again into w, refused when the file changed since.
 int cmd_world_from_raster_again(world *w, const char *source, og_error *err);

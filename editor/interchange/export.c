@@ -346,6 +346,7 @@ static int mapping_16bit(const export_options *o, double lo, double hi, double *
 // current part and stopping when cancelled. The last step of the part is the write.
 static int read_reporting_progress(world *w, const layer_grid *g, const export_options *o,
                                    const char *path, grid_rect r, float *h, og_error *err) {
+    if (o->before_read && o->before_read(o->before_read_user, r, err) != 0) return -1;
     og_progress *progress = og_progress_current();
     const int64_t width = r.x1 - r.x0;
     const int64_t first = world_grid_floor_div(r.z0, TILE_SIZE);
@@ -368,6 +369,10 @@ static int read_reporting_progress(world *w, const layer_grid *g, const export_o
 // The lowest and highest heights of rectangle r, read a band of tile rows at a time.
 static int rect_height_range(world *w, const layer_grid *g, const export_options *o,
                              const char *path, grid_rect r, double *lo, double *hi, og_error *err) {
+    if (o->height_range && o->layers == EXPORT_LAYERS_COMPOSITE &&
+        o->height_range(o->before_read_user, r, lo, hi))
+        return 0;
+    if (o->before_read && o->before_read(o->before_read_user, r, err) != 0) return -1;
     const int64_t width = r.x1 - r.x0;
     float *band = malloc(sizeof(float) * (size_t)width * TILE_SIZE);
     if (!band)

@@ -63,6 +63,15 @@ typedef struct export_options {
     double voxel;
     int band, fog;
     double depth;
+    // Heightmaps: called with the level-0 samples of a rectangle before they are read
+    // (NULL: nothing to do); a world that imports its parts as needed imports them
+    // (editor/cmd/base_pending.h). Not a key.
+    int (*before_read)(void *user, grid_rect r, og_error *err);
+    void *before_read_user;
+    // The lowest and highest composite heights of level-0 samples r when known without
+    // reading them (1; 0: read them), for a tiled 16-bit export's shared mapping: a world
+    // made from a raster and not changed since knows them from the raster. Not a key.
+    int (*height_range)(void *user, grid_rect r, double *lo, double *hi);
 } export_options;
 
 void export_options_defaults(export_options *o);

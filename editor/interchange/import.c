@@ -464,12 +464,14 @@ int import_apply_source(world *w, const char *path, const import_source *s, cons
     world_params next = *p;
     if (o->edit_layer[0] && aim_at_layer(&next.layers, o, slash ? slash + 1 : path, err) != 0)
         return -1;
+    const grid_rect written = o->has_limit ? grid_rect_intersect(rect, o->limit) : rect;
     edit *e = edit_begin(w, label, err);
     if (!e) return -1;
     if (o->starting_state) edit_set_starting_state(e);
     rep.adopted_georef = adopt_georef(&next, &r->georef, &op);
     if (((o->edit_layer[0] || rep.adopted_georef) && edit_set_params(e, &next, err) != 0) ||
-        edit_rows_apply(e, &g, rect, import_row, NULL, &op, err) != 0) {
+        (!grid_rect_empty(written) &&
+         edit_rows_apply(e, &g, written, import_row, NULL, &op, err) != 0)) {
         edit_abort(e);
         return -1;
     }

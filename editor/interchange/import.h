@@ -41,6 +41,11 @@ typedef struct import_options {
     import_blend blend;
     double falloff;     // metres over which the patch's edge fades into the terrain
     int starting_state; // the world's base (new flat from=): no undo step (not a key)
+    // Writes only the layer samples inside limit (not a key; a world made from a raster
+    // imports its parts as they are needed: editor/cmd/base_pending.h). The report still
+    // describes the whole placement.
+    int has_limit;
+    grid_rect limit;
 } import_options;
 
 typedef struct import_report {
