@@ -199,13 +199,18 @@ run -c "new flat; export $work/x.bmp region=0,0,100,100"
 [ $status = 1 ] && grep -q "x.bmp: cannot tell the format" "$work/err"; check "unknown export extension" $?
 ! ls "$work" | grep tmp-; check "no temp files left behind" $?
 
-# 9. Presets crop to what the engine imports, and say so.
-run -c "new flat from=$vermont spacing=30; export $work/u.r16 preset=unreal; export $work/y.raw preset=unity; export $work/g.png preset=godot"
-grep -q "preset unreal: cropped .* to 1009 x 1009\|preset unreal: cropped .* to 2017 x 2017\|preset unreal: cropped .* to 8129 x 8129" "$work/out"
-check "unreal preset crops to a recommended size" $?
+# 9. Presets resample the region to the nearest size the engine imports (fit=crop crops
+# instead), and say so.
+run -c "new flat from=$vermont spacing=30; export $work/u.r16 preset=unreal; export $work/y.raw preset=unity; export $work/yc.raw preset=unity fit=crop; export $work/g.png preset=godot"
+grep -q "preset unreal: resampled the region's 1201 x 1201 samples to 1009 x 1009" "$work/out" &&
+    grep -q "Scale X = Y = 3571.42857" "$work/out"
+check "unreal preset resamples 1201^2 to 1009^2 and prints its scale (30 m x 1200 / 1008)" $?
 grep -q "Scale Z = " "$work/out"; check "unreal preset prints Scale Z" $?
-grep -q "preset unity: cropped .* to 1025 x 1025\|preset unity: cropped .* to 2049 x 2049\|preset unity: cropped .* to 4097 x 4097" "$work/out"
-check "unity preset crops to 2^n+1" $?
+grep -q "preset unity: resampled the region's 1201 x 1201 samples to 1025 x 1025" "$work/out" &&
+    grep -q "resolution 1025; Terrain Width 36000, Length 36000" "$work/out" &&
+    grep -q "preset unity: cropped 1201 x 1201 samples to 1025 x 1025" "$work/out" &&
+    [ "$(stat -c %s "$work/yc.raw")" = $((1025 * 1025 * 2)) ]
+check "unity preset resamples to 2^n+1 keeping the extent (36 km); fit=crop crops" $?
 [ $status = 1 ] && grep -q "g.png: preset godot takes float heights" "$work/err"; check "godot preset refuses 16-bit PNG" $?
 
 # 10. Tiled export: tiles share their edge samples, and 4 shards run by GNU parallel
@@ -290,10 +295,42 @@ run -c "$world; export $work/u.raw tiles=2x2 preset=unity"
 [ "$(stat -c %s "$work/u_0_0.raw")" = $((513 * 513 * 2)) ] && grep -q "each tile (513 x 513 samples)" "$work/out" &&
     grep -q "resolution 513; Terrain Width 2048" "$work/out" && grep -q "tile (x, y) starts at X = 0 + x \* 2048 m" "$work/out"
 check "Unity 2x2: 513 x 513 tiles, settings for one tile and the set's placement" $?
-run -c "$world; export $work/ue.png tiles=4x4 preset=unreal"
+run -c "$world; export $work/ue.png tiles=4x4 preset=unreal; export $work/uc.png tiles=4x4 preset=unreal fit=crop"
 size=$(iinfo "$work/ue_x3_y3.png" 2>/dev/null | sed -n 's/.*: *\([0-9]*\) x *\([0-9]*\),.*/\1x\2/p')
-[ $status = 0 ] && [ "$size" = 253x253 ] && grep -q "cropped 257 x 257 samples to 253 x 253" "$work/out"
-check "Unreal 4x4: each tile cropped to an Unreal size (253 x 253; got $size)" $?
+[ $status = 0 ] && [ "$size" = 253x253 ] && grep -q "resampled the region's 1025 x 1025 samples to 1009 x 1009 in all (253 x 253 per tile)" "$work/out" &&
+    grep -q "cropped 257 x 257 samples to 253 x 253" "$work/out"
+check "Unreal 4x4: each tile an Unreal size (253 x 253; got $size), resampled (or cropped with fit=crop)" $?
+# A 1201^2 DEM as 2 x 2 Unity tiles: 513^2 each, sharing their edges, covering the
+# region's corners, at the printed scale (Terrain Width = the region's extent / 2).
+mkdir -p "$work/unity"
+run -c "new flat from=$vermont; export $work/unity/v.raw tiles=2x2 preset=unity; export $work/unity/whole.exr"
+check "Unity 2x2 tiles of a 1201^2 DEM" $status
+cp "$work/out" "$work/unity.out"
+# The world's extent: its 1201 samples at the spacing its own float export states.
+e=$(/usr/bin/python3 -c "import json; print(repr(json.load(open('$work/unity/whole.exr.json'))['spacing'] * 1200 - 1e-6))")
+run -c "new flat from=$vermont; sample 0 0; sample $e 0; sample 0 $e; sample $e $e"
+tail -n 4 "$work/out" >>"$work/unity.out"
+/usr/bin/python3 - "$work/unity" "$work/unity.out" <<'EOF'
+import json, re, sys
+import numpy as np
+d, out = sys.argv[1], open(sys.argv[2]).read()
+t = {(x, y): np.fromfile(f"{d}/v_{x}_{y}.raw", dtype="<u2").reshape(513, 513) for x in (0, 1) for y in (0, 1)}
+assert (t[0, 0][:, 512] == t[1, 0][:, 0]).all() and (t[0, 1][:, 512] == t[1, 1][:, 0]).all(), "x seams"
+assert (t[0, 0][512, :] == t[0, 1][0, :]).all() and (t[1, 0][512, :] == t[1, 1][0, :]).all(), "z seams"
+sc = json.load(open(f"{d}/v_1_1.raw.json"))
+scale, offset = sc["height_scale"], sc["height_offset"]
+heights = [float(v) for v in out.split()[-4:]]
+corners = [t[0, 0][0, 0], t[1, 0][0, 512], t[0, 1][512, 0], t[1, 1][512, 512]]
+for want, stored in zip(heights, corners):
+    assert abs(stored * scale + offset - want) <= scale / 2 + 1e-6, (want, stored * scale + offset)
+extent = 1200 * json.load(open(f"{d}/whole.exr.json"))["spacing"]
+width = float(re.search(r"resolution 513; Terrain Width ([0-9.]+), Length ([0-9.]+)", out).group(1))
+assert abs(2 * width - extent) < 0.01, (width, extent)
+assert abs(sc["spacing"] * 1024 - extent) < 0.01 and abs(sc["origin_x"] - width) < 1e-4
+place = re.search(r"starts at X = 0 \+ x \* ([0-9.]+) m", out).group(1)
+assert abs(float(place) - width) < 1e-6, place
+EOF
+check "Unity 2x2 of a 1201^2 DEM: 513^2 tiles, equal seams, corners at the world's corner heights, printed width x 2 = the extent" $?
 run -c "$world; export $work/godot.tif preset=godot"
 [ $status = 1 ] && grep -q "preset godot takes float heights in metres: name it .exr" "$work/err" && [ ! -e "$work/godot.tif" ]
 check "preset godot refuses a float TIFF" $?

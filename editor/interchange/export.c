@@ -1,5 +1,6 @@
 #include "editor/interchange/export.h"
 
+#include "editor/interchange/export_fit.h"
 #include "editor/interchange/export_layer_read.h"
 #include "editor/interchange/export_layers.h"
 #include "editor/interchange/sidecar.h"
@@ -70,6 +71,10 @@ int export_options_set(export_options *o, const char *key, const char *value, og
             if (!strcmp(value, preset_names[i])) return o->preset = (export_preset)i, 0;
         return og_error_set(
             err, "preset: expected unreal|unity|godot|houdini|blender|none, got '%s'", value);
+    } else if (!strcmp(key, "fit")) {
+        if (strcmp(value, "crop") && strcmp(value, "resample"))
+            return og_error_set(err, "fit: expected crop or resample, got '%s'", value);
+        o->fit_crop = value[0] == 'c';
     } else if (!strcmp(key, "layer")) {
         if (!strcmp(value, "coarse"))
             o->layer = TILE_LAYER_COARSE;
@@ -145,9 +150,9 @@ int export_options_set(export_options *o, const char *key, const char *value, og
         }
     } else {
         return og_error_set(err,
-                            "export: unknown option '%s' (region preset layer bits min max scale "
-                            "offset tiles pattern shard simplify solid centred voxel band fog "
-                            "depth)",
+                            "export: unknown option '%s' (region preset fit layer bits min max "
+                            "scale offset tiles pattern shard simplify solid centred voxel band "
+                            "fog depth)",
                             key);
     }
     return 0;
@@ -180,22 +185,21 @@ static int is_16bit(file_format f) {
     return f == FMT_PNG16 || f == FMT_TIFF16 || f == FMT_R16;
 }
 
-// The largest of sizes[] not above n, or 0.
-static int largest_fitting(const int *sizes, int count, int n) {
-    int best = 0;
-    for (int i = 0; i < count; i++)
-        if (sizes[i] <= n && sizes[i] > best) best = sizes[i];
-    return best;
-}
-
-// What the preset requires of the format and size; crops w x h to what the engine
-// takes and says so in changed.
-static int apply_preset(const char *path, const export_options *o, file_format f, int64_t *w,
-                        int64_t *h, char *changed, size_t len, og_error *err) {
+// What the preset requires of the format, and the size of each of C x R tiles sharing
+// their edges (*tw x *th, coming in as they fall in the region of W x H samples) that its
+// engine imports: the nearest such size, the region resampled to it (*resample set; its
+// corners stay on the region's), or with fit=crop the largest that fits, the rest dropped.
+// changed says what it did.
+static int apply_preset(const char *path, const export_options *o, file_format f, int C, int R,
+                        int64_t W, int64_t H, int64_t *tw, int64_t *th, int *resample,
+                        char *changed, size_t len, og_error *err) {
     changed[0] = 0;
-    int64_t nw = *w, nh = *h;
+    *resample = 0;
+    int64_t nw = *tw, nh = *th;
     switch (o->preset) {
     case EXPORT_PRESET_NONE:
+        if (o->fit_crop)
+            return og_error_set(err, "%s: fit= applies to preset=unity|unreal (their sizes)", path);
         return 0;
     case EXPORT_PRESET_UNREAL: {
         if (f != FMT_PNG16 && f != FMT_R16)
@@ -205,27 +209,42 @@ static int apply_preset(const char *path, const export_options *o, file_format f
                                 path);
         // Unreal's recommended landscape sizes (vertices per side).
         static const int sizes[] = {127, 253, 505, 1009, 2017, 4033, 8129};
-        nw = largest_fitting(sizes, 7, (int)(*w < 8129 ? *w : 8129));
-        nh = largest_fitting(sizes, 7, (int)(*h < 8129 ? *h : 8129));
+        if (o->fit_crop) {
+            nw = export_fit_largest(sizes, 7, *tw < 8129 ? *tw : 8129);
+            nh = export_fit_largest(sizes, 7, *th < 8129 ? *th : 8129);
+        } else {
+            nw = export_fit_nearest(sizes, 7, W, C);
+            nh = export_fit_nearest(sizes, 7, H, R);
+        }
         if (!nw || !nh)
             return og_error_set(err,
                                 "%s: %lld x %lld samples is under Unreal's smallest landscape "
-                                "(127 x 127)",
-                                path, (long long)*w, (long long)*h);
+                                "(127 x 127; fit=resample scales it up)",
+                                path, (long long)*tw, (long long)*th);
         break;
     }
     case EXPORT_PRESET_UNITY: {
         if (f != FMT_R16)
             return og_error_set(err, "%s: Unity's terrain imports RAW 16-bit: name it .raw or .r16",
                                 path);
+        // Square heightmaps of 2^n + 1 (a terrain's width and length are set apart).
         static const int sizes[] = {33, 65, 129, 257, 513, 1025, 2049, 4097};
-        int64_t side = *w < *h ? *w : *h;
-        nw = nh = largest_fitting(sizes, 8, (int)(side < 4097 ? side : 4097));
+        if (o->fit_crop) {
+            int64_t side = *tw < *th ? *tw : *th;
+            nw = nh = export_fit_largest(sizes, 8, side < 4097 ? side : 4097);
+        } else {
+            int64_t best_miss = INT64_MAX;
+            for (int i = 0; i < 8; i++) {
+                int64_t miss = llabs((int64_t)C * (sizes[i] - 1) + 1 - W) +
+                               llabs((int64_t)R * (sizes[i] - 1) + 1 - H);
+                if (miss < best_miss) nw = nh = sizes[i], best_miss = miss;
+            }
+        }
         if (!nw)
             return og_error_set(err,
                                 "%s: %lld x %lld samples is under Unity's smallest terrain "
-                                "(33 x 33)",
-                                path, (long long)*w, (long long)*h);
+                                "(33 x 33; fit=resample scales it up)",
+                                path, (long long)*tw, (long long)*th);
         break;
     }
     case EXPORT_PRESET_GODOT:
@@ -233,7 +252,7 @@ static int apply_preset(const char *path, const export_options *o, file_format f
         if (f != FMT_EXR32)
             return og_error_set(err, "%s: preset godot takes float heights in metres: name it .exr",
                                 path);
-        return 0;
+        break;
     case EXPORT_PRESET_HOUDINI:
     case EXPORT_PRESET_BLENDER:
         if (f != FMT_EXR32 && f != FMT_TIFF32)
@@ -241,22 +260,38 @@ static int apply_preset(const char *path, const export_options *o, file_format f
                                 "%s: preset %s takes float heights in metres: name it .exr "
                                 "(or .tif)",
                                 path, export_preset_name(o->preset));
+        break;
+    }
+    if (o->preset != EXPORT_PRESET_UNITY && o->preset != EXPORT_PRESET_UNREAL) {
+        if (o->fit_crop)
+            return og_error_set(err, "%s: fit= applies to preset=unity|unreal (their sizes)", path);
         return 0;
     }
-    if (nw != *w || nh != *h)
+    const int64_t out_w = C * (nw - 1) + 1, out_h = R * (nh - 1) + 1;
+    if (!o->fit_crop && (out_w != W || out_h != H)) {
+        *resample = 1;
+        snprintf(changed, len,
+                 "preset %s: resampled the region's %lld x %lld samples to %lld x %lld%s (%lld x "
+                 "%lld per tile), the sizes it imports: the same extent, corners on its corners "
+                 "(fit=crop keeps the samples and drops the rest)",
+                 export_preset_name(o->preset), (long long)W, (long long)H, (long long)out_w,
+                 (long long)out_h, C * R > 1 ? " in all" : "", (long long)nw, (long long)nh);
+    } else if (nw != *tw || nh != *th) {
         snprintf(changed, len,
                  "preset %s: cropped %lld x %lld samples to %lld x %lld (the sizes it imports), "
                  "keeping the first corner",
-                 export_preset_name(o->preset), (long long)*w, (long long)*h, (long long)nw,
+                 export_preset_name(o->preset), (long long)*tw, (long long)*th, (long long)nw,
                  (long long)nh);
-    *w = nw;
-    *h = nh;
+    }
+    *tw = nw;
+    *th = nh;
     return 0;
 }
 
 static void print_hints(FILE *out, const export_options *o, file_format f, const export_report *r) {
     if (!out) return;
-    const double span_x = (r->width - 1) * r->spacing, span_z = (r->height - 1) * r->spacing;
+    const double spacing_z = r->spacing_z > 0 ? r->spacing_z : r->spacing;
+    const double span_x = (r->width - 1) * r->spacing, span_z = (r->height - 1) * spacing_z;
     if (!is_16bit(f)) {
         fprintf(out, "  heights are metres as stored (float); %g m between samples\n", r->spacing);
         if (o->preset == EXPORT_PRESET_GODOT)
@@ -277,13 +312,20 @@ static void print_hints(FILE *out, const export_options *o, file_format f, const
     // Unreal: height cm = (stored - 32768) / 128 x ScaleZ + LocationZ.
     const double scale_z = 12800.0 * r->scale;
     const double location_z = 100.0 * r->offset + 32768.0 * 100.0 * r->scale;
-    if (o->preset == EXPORT_PRESET_NONE || o->preset == EXPORT_PRESET_UNREAL)
-        fprintf(out, "  Unreal landscape: Scale X = Y = %g, Scale Z = %.6g, Location Z = %.6g cm\n",
+    if ((o->preset == EXPORT_PRESET_NONE || o->preset == EXPORT_PRESET_UNREAL) &&
+        spacing_z == r->spacing)
+        fprintf(out,
+                "  Unreal landscape: Scale X = Y = %.9g, Scale Z = %.6g, Location Z = %.6g cm\n",
                 100.0 * r->spacing, scale_z, location_z);
+    else if (o->preset == EXPORT_PRESET_NONE || o->preset == EXPORT_PRESET_UNREAL)
+        fprintf(out,
+                "  Unreal landscape: Scale X = %.9g, Scale Y = %.9g, Scale Z = %.6g, Location Z = "
+                "%.6g cm\n",
+                100.0 * r->spacing, 100.0 * spacing_z, scale_z, location_z);
     if (o->preset == EXPORT_PRESET_NONE || o->preset == EXPORT_PRESET_UNITY)
         fprintf(out,
                 "  Unity terrain: Import Raw, Depth 16 bit, Byte Order Windows, resolution "
-                "%d; Terrain Width %g, Length %g, Height %.6g m; position Y %.6g m\n",
+                "%d; Terrain Width %.9g, Length %.9g, Height %.6g m; position Y %.6g m\n",
                 r->width, span_x, span_z, 65535.0 * r->scale, r->offset);
 }
 
@@ -399,19 +441,40 @@ static int rect_height_range(world *w, const layer_grid *g, const export_options
     return rc;
 }
 
-// Reads rectangle r of the layer and writes it to path with its sidecar. The 16-bit
-// mapping is rep's when fixed_mapping (tiles share one), else chosen from o and the
-// rectangle's range.
+// Output samples r of a preset's resampling (export_fit.h) into h: the region samples
+// they read, then resampled.
+static int read_resampled(world *w, const layer_grid *g, const export_options *o, const char *path,
+                          const export_fit *fit, grid_rect r, float *h, og_error *err) {
+    grid_rect s;
+    export_fit_source(r.x0, r.x1, fit->out_w, fit->region_w, &s.x0, &s.x1);
+    export_fit_source(r.z0, r.z1, fit->out_h, fit->region_h, &s.z0, &s.z1);
+    const int64_t sw = s.x1 - s.x0, n = sw * (s.z1 - s.z0);
+    float *src = malloc(sizeof(float) * (size_t)n);
+    if (!src) return og_error_set(err, "%s: out of memory for %lld samples", path, (long long)n);
+    grid_rect in = {fit->region_x0 + s.x0, fit->region_z0 + s.z0, fit->region_x0 + s.x1,
+                    fit->region_z0 + s.z1};
+    int rc = read_reporting_progress(w, g, o, path, in, src, err);
+    if (rc == 0)
+        export_fit_resample(fit, src, sw, s.x0, s.z0, r.x0, r.z0, r.x1 - r.x0, r.z1 - r.z0, h);
+    free(src);
+    return rc;
+}
+
+// Reads rectangle r of the layer (with fit: output samples r of the region resampled)
+// and writes it to path with its sidecar. The 16-bit mapping is rep's when fixed_mapping
+// (tiles share one), else chosen from o and the rectangle's range.
 static int write_rect(world *w, const layer_grid *g, const char *path, const export_options *o,
-                      file_format f, grid_rect r, int fixed_mapping, export_report *rep,
-                      og_error *err) {
+                      file_format f, grid_rect r, const export_fit *fit, int fixed_mapping,
+                      export_report *rep, og_error *err) {
     const int64_t w64 = r.x1 - r.x0, h64 = r.z1 - r.z0, n = w64 * h64;
     const double bytes_estimate = (double)n * (is_16bit(f) ? 2.0 : 4.0);
     if (check_space(path, bytes_estimate, err) != 0) return -1;
     float *h = malloc(sizeof(float) * (size_t)n);
     if (!h) return og_error_set(err, "%s: out of memory for %lld samples", path, (long long)n);
     int rc = -1;
-    if (read_reporting_progress(w, g, o, path, r, h, err) != 0) goto done;
+    if ((fit ? read_resampled(w, g, o, path, fit, r, h, err)
+             : read_reporting_progress(w, g, o, path, r, h, err)) != 0)
+        goto done;
     rep->min = INFINITY, rep->max = -INFINITY;
     for (int64_t i = 0; i < n; i++) {
         rep->min = fmin(rep->min, h[i]);
@@ -419,9 +482,16 @@ static int write_rect(world *w, const layer_grid *g, const char *path, const exp
     }
     rep->width = (int)w64;
     rep->height = (int)h64;
-    rep->spacing = g->spacing;
-    rep->origin_x = (double)r.x0 * g->spacing;
-    rep->origin_z = (double)r.z0 * g->spacing;
+    rep->spacing = fit ? export_fit_spacing_x(fit, g->spacing) : g->spacing;
+    rep->spacing_z = fit ? export_fit_spacing_z(fit, g->spacing) : g->spacing;
+    rep->origin_x =
+        fit ? ((double)fit->region_x0 + export_fit_position(r.x0, fit->out_w, fit->region_w)) *
+                  g->spacing
+            : (double)r.x0 * g->spacing;
+    rep->origin_z =
+        fit ? ((double)fit->region_z0 + export_fit_position(r.z0, fit->out_h, fit->region_h)) *
+                  g->spacing
+            : (double)r.z0 * g->spacing;
     snprintf(rep->format, sizeof rep->format, "%s", format_names[f]);
     if (!fixed_mapping) rep->scale = 1.0, rep->offset = 0.0;
     if (is_16bit(f) && !fixed_mapping &&
@@ -446,7 +516,10 @@ static int write_rect(world *w, const layer_grid *g, const char *path, const exp
     const world_params *wp = world_get_params(w);
     const int ratio = o->layer == TILE_LAYER_DETAIL ? wp->detail_ratio : 1;
     double gt[6];
-    world_georef_region(wp, ratio, r.x0, r.z0, gt);
+    if (fit)
+        export_fit_georef(wp, ratio, fit, r.x0, r.z0, gt);
+    else
+        world_georef_region(wp, ratio, r.x0, r.z0, gt);
     switch (f) {
     case FMT_PNG16:
         rc = image_write_samples(path, h, rep->width, rep->height, IMAGE_WRITE_UINT16, NULL, err);
@@ -464,7 +537,8 @@ static int write_rect(world *w, const layer_grid *g, const char *path, const exp
         break;
     }
     if (rc != 0) goto done;
-    sidecar sc = {.spacing = g->spacing,
+    sidecar sc = {.spacing = rep->spacing,
+                  .spacing_z = rep->spacing_z,
                   .origin_x = rep->origin_x,
                   .origin_z = rep->origin_z,
                   .width = rep->width,
@@ -532,7 +606,9 @@ static int export_tiles(world *w, const layer_grid *g, const char *path, const e
     int64_t tw = (W - 1) / C + 1, th = (H - 1) / R + 1;
     // A preset sizes each tile as its engine imports one (the set follows).
     char preset_change[512];
-    if (apply_preset(path, o, f, &tw, &th, preset_change, sizeof preset_change, err) != 0)
+    int resample;
+    if (apply_preset(path, o, f, C, R, W, H, &tw, &th, &resample, preset_change,
+                     sizeof preset_change, err) != 0)
         return -1;
     if (tw < 2 || th < 2)
         return og_error_set(err,
@@ -546,8 +622,12 @@ static int export_tiles(world *w, const layer_grid *g, const char *path, const e
                             path, (long long)tw, (long long)th, EXPORT_MAX_SIDE);
     export_report rep;
     memset(&rep, 0, sizeof rep);
-    const int64_t used_w = C * (tw - 1) + 1, used_h = R * (th - 1) + 1;
-    if (used_w != W || used_h != H)
+    // The output: the tiles' samples, sharing edges; resampled, the whole region's.
+    const export_fit fit = {r.x0, r.z0, W, H, C * (tw - 1) + 1, R * (th - 1) + 1};
+    const int64_t used_w = resample ? W : fit.out_w, used_h = resample ? H : fit.out_h;
+    if (resample)
+        snprintf(rep.changed, sizeof rep.changed, "%s", preset_change);
+    else if (used_w != W || used_h != H)
         snprintf(rep.changed, sizeof rep.changed,
                  "%.200s%stiles: the region is %lld x %lld samples; %d x %d tiles of %lld x %lld "
                  "sharing their edges cover %lld x %lld of it (from the first corner)",
@@ -607,12 +687,14 @@ static int export_tiles(world *w, const layer_grid *g, const char *path, const e
                                   rep.tiles_written, C * R);
                 break;
             }
-            grid_rect t = {r.x0 + x * (tw - 1), r.z0 + y * (th - 1), 0, 0};
+            // Resampled: the tile's output samples; else the region's samples it holds.
+            grid_rect t = {x * (tw - 1), y * (th - 1), 0, 0};
+            if (!resample) t.x0 += r.x0, t.z0 += r.z0;
             t.x1 = t.x0 + tw;
             t.z1 = t.z0 + th;
             export_report one = rep;
             og_progress_part outer = og_progress_enter(og_progress_current(), k, (int64_t)C * R);
-            rc = write_rect(w, g, tp, o, f, t, 1, &one, err);
+            rc = write_rect(w, g, tp, o, f, t, resample ? &fit : NULL, 1, &one, err);
             og_progress_leave(og_progress_current(), outer);
             if (rc == 0) {
                 rep.bytes += one.bytes;
@@ -623,18 +705,20 @@ static int export_tiles(world *w, const layer_grid *g, const char *path, const e
         }
     fprintf(list, "]");
     fclose(list);
-    rep.width = (int)used_w;
-    rep.height = (int)used_h;
+    rep.width = (int)fit.out_w;
+    rep.height = (int)fit.out_h;
     rep.tile_width = (int)tw;
     rep.tile_height = (int)th;
     rep.tiles_total = C * R;
-    rep.spacing = g->spacing;
+    rep.spacing = resample ? export_fit_spacing_x(&fit, g->spacing) : g->spacing;
+    rep.spacing_z = resample ? export_fit_spacing_z(&fit, g->spacing) : g->spacing;
     rep.origin_x = (double)r.x0 * g->spacing;
     rep.origin_z = (double)r.z0 * g->spacing;
     snprintf(rep.format, sizeof rep.format, "%s", format_names[f]);
     if (rc == 0 && o->shard == 0) {
         // The set's sidecar depends on nothing another shard does: every shard agrees.
-        sidecar sc = {.spacing = g->spacing,
+        sidecar sc = {.spacing = rep.spacing,
+                      .spacing_z = rep.spacing_z,
                       .origin_x = rep.origin_x,
                       .origin_z = rep.origin_z,
                       .width = rep.width,
@@ -650,8 +734,11 @@ static int export_tiles(world *w, const layer_grid *g, const char *path, const e
         if (world_georef_present(wp)) {
             // The set's place: its first tile's corner, the tiles' sample size.
             double gt[6];
-            world_georef_region(wp, o->layer == TILE_LAYER_DETAIL ? wp->detail_ratio : 1, r.x0,
-                                r.z0, gt);
+            const int ratio = o->layer == TILE_LAYER_DETAIL ? wp->detail_ratio : 1;
+            if (resample)
+                export_fit_georef(wp, ratio, &fit, 0, 0, gt);
+            else
+                world_georef_region(wp, ratio, r.x0, r.z0, gt);
             char geo[8192];
             sidecar_georef(geo, sizeof geo, 1, wp->geo_crs, gt);
             char *joined = malloc(strlen(files) + strlen(geo) + 1);
@@ -676,10 +763,11 @@ static int export_tiles(world *w, const layer_grid *g, const char *path, const e
     print_hints(hints, o, f, &tile);
     if (hints)
         fprintf(hints,
-                "  the set: %d x %d tiles; tile (x, y) starts at X = %.9g + x * %.9g m, Z = %.9g "
-                "+ y * %.9g m%s\n",
-                C, R, rep.origin_x, (double)(tw - 1) * g->spacing, rep.origin_z,
-                (double)(th - 1) * g->spacing,
+                "  the set: %d x %d tiles covering %.9g x %.9g m; tile (x, y) starts at X = %.9g "
+                "+ x * %.9g m, Z = %.9g + y * %.9g m%s\n",
+                C, R, (double)(fit.out_w - 1) * rep.spacing,
+                (double)(fit.out_h - 1) * rep.spacing_z, rep.origin_x,
+                (double)(tw - 1) * rep.spacing, rep.origin_z, (double)(th - 1) * rep.spacing_z,
                 o->preset == EXPORT_PRESET_UNREAL
                     ? " (Unreal: Import from File with the _x{x}_y{y} tiles, section size to fit)"
                 : o->preset == EXPORT_PRESET_UNITY ? " (Unity: one terrain per tile, neighbours "
@@ -792,10 +880,16 @@ int export_heightmap(world *w, const char *path, const export_options *o, FILE *
                             (long long)EXPORT_MAX_SAMPLES);
     export_report rep;
     memset(&rep, 0, sizeof rep);
-    if (apply_preset(path, o, f, &w64, &h64, rep.changed, sizeof rep.changed, err) != 0) return -1;
-    r.x1 = r.x0 + w64;
-    r.z1 = r.z0 + h64;
-    if (write_rect(w, &g, path, o, f, r, 0, &rep, err) != 0) return -1;
+    int64_t ow = w64, oh = h64;
+    int resample;
+    if (apply_preset(path, o, f, 1, 1, w64, h64, &ow, &oh, &resample, rep.changed,
+                     sizeof rep.changed, err) != 0)
+        return -1;
+    const export_fit fit = {r.x0, r.z0, w64, h64, ow, oh};
+    if (resample) r = (grid_rect){0, 0, ow, oh}; // the output's samples
+    r.x1 = r.x0 + ow;
+    r.z1 = r.z0 + oh;
+    if (write_rect(w, &g, path, o, f, r, resample ? &fit : NULL, 0, &rep, err) != 0) return -1;
     print_hints(hints, o, f, &rep);
     if (report) *report = rep;
     return 0;

@@ -37,6 +37,7 @@ typedef struct export_options {
     int has_region;
     double x0, z0, x1, z1; // metres, corners (inclusive samples)
     export_preset preset;
+    int fit_crop; // fit=crop: presets unity/unreal crop to the engine's size (default resample)
     tile_layer layer;
     int bits; // .tif: 16 or 32 (default 32)
     int has_min_max, has_scale;
@@ -75,14 +76,15 @@ typedef struct export_options {
 } export_options;
 
 void export_options_defaults(export_options *o);
-// region=X0,Z0,X1,Z1 preset= layer= bits= min= max= scale= offset= tiles=CxR pattern=
-// shard=I/N simplify= solid= centred= voxel= band= fog= depth=
+// region=X0,Z0,X1,Z1 preset= fit=crop|resample layer= bits= min= max= scale= offset= tiles=CxR
+// pattern= shard=I/N simplify= solid= centred= voxel= band= fog= depth=
 int export_options_set(export_options *o, const char *key, const char *value, og_error *err);
 const char *export_preset_name(export_preset p);
 
 typedef struct export_report {
     int width, height;
     double spacing, origin_x, origin_z;
+    double spacing_z;     // metres between rows (a preset's resampling may differ from spacing)
     double min, max;      // metres
     double scale, offset; // the stored mapping (1, 0 for float files)
     long long bytes;      // written (file + sidecar)

@@ -287,7 +287,7 @@ int import_source_read(const char *path, const import_options *o, double default
     // Orogen's sidecar says how far apart the samples were in the world they came from
     // (a georeferenced export's own georeferencing may be in degrees).
     s->spacing_x = o->spacing > 0 ? o->spacing : has_sidecar ? sc.spacing : r->spacing_x;
-    s->spacing_z = o->spacing > 0 ? o->spacing : has_sidecar ? sc.spacing : r->spacing_z;
+    s->spacing_z = o->spacing > 0 ? o->spacing : has_sidecar ? sc.spacing_z : r->spacing_z;
     // A file Orogen exported from a georeferenced world keeps its place in its sidecar
     // (a PNG or EXR has no room for it).
     gdal_georef *geo = &r->georef;

@@ -15,15 +15,19 @@ int sidecar_write(const char *image_path, const sidecar *s, const char *extra, o
     size_t len = 0;
     FILE *f = open_memstream(&text, &len);
     if (!f) return og_error_set(err, "%s: out of memory", path);
+    // Rows apart by another distance than columns (a preset's resampling) say so.
+    char rows[64] = "";
+    if (s->spacing_z > 0 && s->spacing_z != s->spacing)
+        snprintf(rows, sizeof rows, "  \"spacing_z\": %.17g,\n", s->spacing_z);
     // %.17g: every double reads back bit-exactly.
     fprintf(f,
             "{\n  \"generator\": \"orogen\",\n  \"format\": \"%s\",\n  \"layer\": \"%s\",\n"
-            "  \"width\": %d,\n  \"height\": %d,\n  \"spacing\": %.17g,\n"
+            "  \"width\": %d,\n  \"height\": %d,\n  \"spacing\": %.17g,\n%s"
             "  \"origin_x\": %.17g,\n  \"origin_z\": %.17g,\n"
             "  \"axes\": \"columns run toward +X, rows toward +Z; origin is row 0, column 0\",\n"
             "  \"height_scale\": %.17g,\n  \"height_offset\": %.17g,\n"
             "  \"min_height\": %.17g,\n  \"max_height\": %.17g%s%s\n}\n",
-            s->format, s->layer, s->width, s->height, s->spacing, s->origin_x, s->origin_z,
+            s->format, s->layer, s->width, s->height, s->spacing, rows, s->origin_x, s->origin_z,
             s->scale, s->offset, s->min, s->max, extra && *extra ? ",\n" : "", extra ? extra : "");
     fclose(f);
     int rc = param_file_write_atomic(path, text, len, err);
@@ -133,6 +137,9 @@ static int parse_text(const char *path, const char *text, sidecar *s, og_error *
     s->width = (int)v[0];
     s->height = (int)v[1];
     s->spacing = v[2];
+    s->spacing_z = v[2];
+    if (number_field(text, "spacing_z", &s->spacing_z) == 0 && !(s->spacing_z > 0))
+        return og_error_set(err, "%s: \"spacing_z\" must be positive", path);
     s->origin_x = v[3];
     s->origin_z = v[4];
     s->scale = v[5];

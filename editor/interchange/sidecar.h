@@ -10,7 +10,8 @@
 #include <stdio.h>
 
 typedef struct sidecar {
-    double spacing;            // metres between samples (both axes)
+    double spacing;            // metres between samples (both axes, unless spacing_z)
+    double spacing_z;          // metres between rows when not spacing (0: spacing)
     double origin_x, origin_z; // world position of row 0, column 0 (metres)
     int width, height;         // samples
     double scale, offset;      // height = stored value x scale + offset
