@@ -4,9 +4,10 @@
 //     (bench/naive_mesh.c: every sample of a bounded 4096^2 world, one draw call) on
 //     the same fly-over; the naive mesh is timed on three frames of the path only;
 //  2. triangles and draw calls per frame, both;
-//  3. CPU milliseconds per frame (render_stats.cpu_ms: update + draw submission) and
-//     wall time with glFinish, on a bounded 1024^2 world against an unbounded one
-//     (same parameters, same path, levels settled first; goal: within 1.2x);
+//  3. CPU milliseconds per frame (render_stats.cpu_ms: the calling thread's CPU time in
+//     update + draw submission, which on llvmpipe includes its vertex work) and wall
+//     time with glFinish, on a bounded 1024^2 world against an unbounded one (same
+//     parameters, same path, levels settled first; goal: within 1.2x);
 //  4. texels uploaded per frame in straight flight at 50, 100 and 200 m/s (60 frames
 //     per second of simulated time), against the full level textures (levels x 256^2);
 //  5. parallax detail off and on (4, 8 and 16 steps) a few metres above sculpted
@@ -21,6 +22,8 @@
 // llvmpipe on two cores is slow (the naive mesh's 33M triangles take seconds a frame,
 // the clipmap most of one), so passes are short: figures are medians over frames of
 // interleaved passes (the machine is noisy); goals are reported (PASS/MISS), not asserted.
+// The load average is printed at the start and with the summary, and llvmpipe's threads
+// (LP_NUM_THREADS, else one per core); section 1 also gives the CPU time of all threads.
 #include "bench/bench_timing.h"
 #include "bench/naive_mesh.h"
 #include "renderer/antialias.h"
@@ -46,6 +49,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <time.h>
+#include <unistd.h>
 
 #ifndef OROGEN_BENCH_SHADER_DIR
 #error "bench/CMakeLists.txt defines OROGEN_BENCH_SHADER_DIR"
@@ -163,8 +167,9 @@ static void settle(bench *b, world *w, const camera *c, const render_settings *s
 }
 
 typedef struct frame_time {
-    double wall_ms;   // update + draw + glFinish
-    double update_ms; // terrain_renderer_update alone
+    double wall_ms;    // update + draw + glFinish
+    double update_ms;  // terrain_renderer_update alone
+    double process_ms; // CPU time of every thread over the frame (llvmpipe's too)
     render_stats st;
 } frame_time;
 
@@ -172,15 +177,33 @@ typedef struct frame_time {
 static frame_time clip_frame(bench *b, world *w, const camera *c, const render_settings *s) {
     og_error err;
     frame_time f;
-    double t0 = bench_now();
+    double t0 = bench_now(), c0 = bench_process_cpu();
     check(terrain_renderer_update(b->r, w, c, s, &err) < 0 ? -1 : 0, &err, "update");
     f.update_ms = (bench_now() - t0) * 1e3;
     glBindFramebuffer(GL_FRAMEBUFFER, b->target.fbo);
     check(terrain_renderer_draw(b->r, w, c, s, NULL, WIDTH, HEIGHT, &err), &err, "draw");
     glFinish();
     f.wall_ms = (bench_now() - t0) * 1e3;
+    f.process_ms = (bench_process_cpu() - c0) * 1e3;
     terrain_renderer_stats(b->r, &f.st);
     return f;
+}
+
+// All threads' CPU milliseconds for one shaded frame of `width` x `height` into t, and
+// its triangles.
+static double sized_frame(bench *b, world *w, const camera *c, const render_settings *s,
+                          const gl_target *t, uint64_t *triangles) {
+    og_error err;
+    check(terrain_renderer_update(b->r, w, c, s, &err) < 0 ? -1 : 0, &err, "update");
+    glFinish();
+    double c0 = bench_process_cpu();
+    glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
+    check(terrain_renderer_draw(b->r, w, c, s, NULL, t->width, t->height, &err), &err, "draw");
+    glFinish();
+    render_stats st;
+    terrain_renderer_stats(b->r, &st);
+    *triangles = st.triangles;
+    return (bench_process_cpu() - c0) * 1e3;
 }
 
 static double naive_frame(bench *b, naive_mesh *m, const camera *c, const render_settings *s) {
@@ -244,6 +267,8 @@ static void warm_path(bench *b, world *w, const path *p, const render_settings *
 // Frames of several passes pooled: FPS over all of them, medians per frame.
 typedef struct pool {
     double wall[4 * MAX_FRAMES], cpu[4 * MAX_FRAMES], update[4 * MAX_FRAMES];
+    double process[4 * MAX_FRAMES];
+    double level_tris[RENDER_MAX_LEVELS]; // summed over the frames
     double tris[4 * MAX_FRAMES], calls[4 * MAX_FRAMES];
     int n;
 } pool;
@@ -264,6 +289,9 @@ static void fly_into(bench *b, world *w, const path *p, const render_settings *s
         }
         int k = out->n++;
         out->wall[k] = f.wall_ms, out->cpu[k] = f.st.cpu_ms, out->update[k] = f.update_ms;
+        out->process[k] = f.process_ms;
+        for (int l = 0; l < RENDER_MAX_LEVELS; l++)
+            out->level_tris[l] += (double)f.st.level_triangles[l];
         out->tris[k] = (double)f.st.triangles, out->calls[k] = f.st.draw_calls;
         total += f.wall_ms;
     }
@@ -272,7 +300,7 @@ static void fly_into(bench *b, world *w, const path *p, const render_settings *s
 }
 
 typedef struct pooled {
-    double fps, frame_ms, cpu_ms, update_ms, tris, calls;
+    double fps, frame_ms, cpu_ms, update_ms, tris, calls, process_ms;
 } pooled;
 
 static pooled pool_result(pool *p) {
@@ -283,8 +311,40 @@ static pooled pool_result(pool *p) {
                     .frame_ms = bench_median(p->wall, p->n),
                     .cpu_ms = bench_median(p->cpu, p->n),
                     .update_ms = bench_median(p->update, p->n),
+                    .process_ms = bench_median(p->process, p->n),
                     .tris = bench_median(p->tris, p->n),
                     .calls = bench_median(p->calls, p->n)};
+}
+
+// The shaded frame's CPU time split into what grows with its pixels and the rest (the
+// triangles: vertex work, set-up, and the pixels each touches at least), from the same
+// frames at full and at quarter size, interleaved: cost = fixed + per-pixel x pixels.
+static void split_costs(bench *b, world *w, const path *p, const render_settings *shaded) {
+    og_error err;
+    gl_target quarter;
+    check(gl_target_create(&quarter, WIDTH / 2, HEIGHT / 2, &err), &err, "quarter target");
+    enum { N = 9 };
+    double full[N], small[N];
+    uint64_t tris = 0, t;
+    for (int i = 0; i < N; i++) {
+        const camera *c = &p->cam[(i % 3) * (p->frames - 1) / 2];
+        settle(b, w, c, shaded);
+        full[i] = sized_frame(b, w, c, shaded, &b->target, &tris);
+        small[i] = sized_frame(b, w, c, shaded, &quarter, &t);
+    }
+    gl_target_destroy(&quarter);
+    glBindFramebuffer(GL_FRAMEBUFFER, b->target.fbo);
+    const double f = bench_median(full, N), q = bench_median(small, N);
+    const double pixels = (double)WIDTH * HEIGHT, per_pixel = (f - q) / (0.75 * pixels);
+    const double fixed = f - per_pixel * pixels;
+    printf("   shaded frame, CPU of all threads (median of %d, first/middle/last camera): %.0f ms "
+           "at %dx%d, %.0f ms at %dx%d\n",
+           N, f, WIDTH, HEIGHT, q, WIDTH / 2, HEIGHT / 2);
+    printf(
+        "   of which per pixel %.0f ms (%.3f us a pixel), per triangle and fixed %.0f ms (%.1f ms "
+        "per 10k of the %.0fk triangles)\n",
+        per_pixel * pixels, per_pixel * 1e3, fixed, fixed / (double)tris * 1e4,
+        (double)tris * 1e-3);
 }
 
 static void bench_vs_naive(bench *b, world *w4096, naive_mesh *m) {
@@ -317,20 +377,24 @@ static void bench_vs_naive(bench *b, world *w4096, naive_mesh *m) {
     printf("\n1. Frames per second, %dx%d, fly-over of %d frames (%.1f m/frame, %.0f m above the "
            "highest ground) over a bounded 4096^2 world (spacing %.0f m)\n",
            WIDTH, HEIGHT, p.frames, p.metres_per_frame, above, world_get_params(w4096)->spacing);
-    printf("   %-44s %10s %16s %8s\n", "renderer", "FPS", "median frame ms", "frames");
-    printf("   %-44s %10.3f %16.0f %8d\n", "clipmap, height view (8 levels)", rh.fps, rh.frame_ms,
-           height.n);
-    printf("   %-44s %10.3f %16.0f %8d\n", "clipmap, shaded view (8 levels)", rs.fps, rs.frame_ms,
-           shaded.n);
+    printf("   %-44s %10s %16s %8s %16s\n", "renderer", "FPS", "median frame ms", "frames",
+           "CPU ms, threads");
+    printf("   %-44s %10.3f %16.0f %8d %16.0f\n", "clipmap, height view (8 levels)", rh.fps,
+           rh.frame_ms, height.n, rh.process_ms);
+    printf("   %-44s %10.3f %16.0f %8d %16.0f\n", "clipmap, shaded view (8 levels)", rs.fps,
+           rs.frame_ms, shaded.n, rs.process_ms);
     printf("   %-44s %10.3f %16.0f %8d   (first/middle/last frame of the path)\n",
            "naive full-resolution mesh, height view", naive_fps, naive_med, 3);
     printf("   clipmap / naive, same view and shading: %.2fx the frame rate\n", rh.fps / naive_fps);
+    s.view = VIEW_SHADED;
+    split_costs(b, w4096, &p, &s);
     goal("1. shaded fly-over, 960x540, frames per second", rs.fps, 15, 1, " FPS");
 
     printf("\n2. Geometry per frame (medians over the fly-over)\n");
     printf("   %-44s %14s %12s\n", "renderer", "triangles", "draw calls");
-    printf("   %-44s %14.0f %12.0f   (sky + one per level + water)\n", "clipmap, shaded view",
-           rs.tris, rs.calls);
+    printf("   %-44s %14.0f %12.0f   (per level part: triangles and a shading pass; sky, copy, "
+           "water)\n",
+           "clipmap, shaded view", rs.tris, rs.calls);
     printf("   %-44s %14.0f %12.0f   (sky + one per level)\n", "clipmap, height view", rh.tris,
            rh.calls);
     printf("   %-44s %14llu %12d   (sky + the mesh; %zu MB of vertex and index buffers)\n",
@@ -428,15 +492,21 @@ static void bench_cpu(bench *b, world *w1024, world *winf) {
     printf("\n3. CPU per frame, shaded view, %d-frame flight (%.1f m/frame) inside the 1024^2 "
            "world, 2 interleaved passes per world, levels settled first\n",
            p.frames, p.metres_per_frame);
-    printf("   %-24s %18s %11s %14s %16s %10s %8s\n", "world", "cpu ms (upd+draw)", "update ms",
-           "draw submit ms", "wall ms (glFinish)", "triangles", "FPS");
-    printf("   %-24s %18.2f %11.2f %14.2f %16.0f %10.0f %8.3f\n", "bounded 1024^2", rb.cpu_ms,
-           rb.update_ms, rb.cpu_ms - rb.update_ms, rb.frame_ms, rb.tris, rb.fps);
-    printf("   %-24s %18.2f %11.2f %14.2f %16.0f %10.0f %8.3f\n", "unbounded (reference)",
-           ru.cpu_ms, ru.update_ms, ru.cpu_ms - ru.update_ms, ru.frame_ms, ru.tris, ru.fps);
-    printf(
-        "   (medians per frame; draw submit = cpu ms - update ms, which on llvmpipe includes the "
-        "driver's vertex work; first frames: render_cpu_*.png)\n");
+    printf("   %-24s %18s %16s %18s %10s %8s\n", "world", "cpu ms (upd+draw)", "update wall ms",
+           "wall ms (glFinish)", "triangles", "FPS");
+    printf("   %-24s %18.2f %16.2f %18.0f %10.0f %8.3f\n", "bounded 1024^2", rb.cpu_ms,
+           rb.update_ms, rb.frame_ms, rb.tris, rb.fps);
+    printf("   %-24s %18.2f %16.2f %18.0f %10.0f %8.3f\n", "unbounded (reference)", ru.cpu_ms,
+           ru.update_ms, ru.frame_ms, ru.tris, ru.fps);
+    printf("   (medians per frame; cpu ms: the calling thread's CPU time in update and draw, which "
+           "on llvmpipe includes the driver's vertex work; first frames: render_cpu_*.png)\n");
+    for (int k = 0; k < 2; k++) { // where the extra triangles are
+        const pool *q = k ? &unbounded : &bounded;
+        printf("   %-24s", k ? "  unbounded, per level" : "  bounded, per level");
+        for (int l = 0; l < RENDER_MAX_LEVELS; l++)
+            if (q->level_tris[l] > 0) printf(" L%d %.0fk", l, q->level_tris[l] / q->n * 1e-3);
+        printf("   (mean triangles)\n");
+    }
     double ratio = rb.cpu_ms > ru.cpu_ms ? rb.cpu_ms / ru.cpu_ms : ru.cpu_ms / rb.cpu_ms;
     printf("   cpu ms ratio (larger / smaller): %.3f; wall ratio bounded / unbounded: %.3f\n",
            ratio, rb.frame_ms / ru.frame_ms);
@@ -684,6 +754,16 @@ static void bench_antialias(bench *b, world *w1024, world *winf) {
     antialias_destroy(aa);
 }
 
+// The load average and llvmpipe's rasteriser threads (its default: one per core).
+static void print_machine(const char *when) {
+    double load[3] = {-1, -1, -1};
+    getloadavg(load, 3);
+    const char *threads = getenv("LP_NUM_THREADS");
+    printf("   machine %s: load average %.2f %.2f %.2f on %ld cores; llvmpipe threads: %s\n", when,
+           load[0], load[1], load[2], sysconf(_SC_NPROCESSORS_ONLN),
+           threads && *threads ? threads : "one per core (LP_NUM_THREADS unset)");
+}
+
 static int wanted(const char *sections, char c) {
     return strchr(sections, c) != NULL;
 }
@@ -709,6 +789,7 @@ int main(int argc, char **argv) {
     if (!b.r) check(-1, &err, "terrain_renderer_create");
     printf("bench_render: %s, %dx%d offscreen, images in %s\n",
            (const char *)glGetString(GL_RENDERER), WIDTH, HEIGHT, b.out_dir);
+    print_machine("at the start");
 
     world *w4096 = make_world(4096), *w1024 = make_world(1024), *winf = make_world(0);
     double times[9] = {0};
@@ -743,6 +824,7 @@ int main(int argc, char **argv) {
     }
 
     printf("\nSummary\n");
+    print_machine("at the end");
     for (int i = 0; i < goal_count; i++)
         printf("   %s %s\n", goals[i].pass ? "PASS" : "MISS", goals[i].text);
     printf("time: 1+2 %.0f s, 3 %.0f s, 4 %.0f s, 5 %.0f s, 6 %.0f s, 7 %.0f s, 8 %.0f s; total "

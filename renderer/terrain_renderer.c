@@ -6,6 +6,7 @@
 #include "renderer/clip_window.h"
 #include "renderer/clip_window_upload.h"
 #include "renderer/clipmap_mesh.h"
+#include "renderer/deferred_target.h"
 #include "renderer/frustum.h"
 #include "renderer/ground_occlusion.h"
 #include "renderer/lighting.h"
@@ -45,8 +46,17 @@ enum {
     TV_CONTOURS = 32,
     TV_MINIFIED = 64,
     TV_NO_MORPH = 128, // the parts of a level inside its morph band's inner edge
-    TERRAIN_VARIANTS = 256
+    TV_GBUFFER = 256,  // deferred: where the ground is, nothing shaded
+    TV_RESOLVE = 512,  // deferred: the shading, one full-screen pass
+    // Set per level from what is known on the CPU (a software renderer runs both sides
+    // of an `if` on a uniform):
+    TV_CURVATURE = 1024, // some material rule reads curvature
+    TV_SLOPES_A = 2048,  // the level's shading slopes come from finer heights
+    TV_SLOPES_B = 4096,  // the same for the coarser level it morphs into
+    TV_VOLUME = 8192,    // volume meshes replace the ground somewhere
+    TERRAIN_VARIANTS = 16384
 };
+#define GBUFFER_UNIT 10 // the texture unit the resolve passes read the G-buffer from
 #define TERRAIN_PROGRAMS 48
 #define PIECES_MAX 512 // drawable parts of a level (clipmap_mesh.h pieces)
 
@@ -64,6 +74,7 @@ struct terrain_renderer {
     uint64_t frame;
     GLuint prog_sky, prog_water, prog_cursor;
     GLuint vao, vbo, ebo, empty_vao;
+    deferred_target deferred; // the shaded view's G-buffer (renderer/deferred_target.h)
     clipmap_mesh mesh;
     GLuint tex_heights, tex_material, tex_albedo, tex_detail, tex_detail_pd, tex_falloff;
     GLuint tex_albedo_far;       // the material textures' green channels, 4 to a layer
@@ -115,10 +126,13 @@ struct terrain_renderer {
     int whole_uploads; // terrain_renderer_spread_uploads off
 };
 
-static double now_ms(void) {
+// CPU time of the calling thread: a software renderer's vertex work runs in it, and
+// waiting for its rasteriser threads (the deferred pass reads what they drew) does not
+// count.
+static double thread_cpu_ms(void) {
     struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return t.tv_sec * 1e3 + t.tv_nsec / 1e6;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return (double)t.tv_sec * 1e3 + (double)t.tv_nsec * 1e-6;
 }
 
 static GLuint make_texture(GLenum target) {
@@ -254,17 +268,18 @@ static GLuint terrain_program(terrain_renderer *r, int variant, const char *call
         if (!p->prog ? !slot || slot->prog : !slot || (slot->prog && p->used < slot->used))
             slot = p; // an empty slot, else the least recently used
     }
-    static const char *const names[] = {"SHADED",   "DETAIL",   "PAINTED",  "BRUSH",
-                                        "OVERLAYS", "CONTOURS", "MINIFIED", "NO_MORPH"};
+    static const char *const names[] = {"SHADED",    "DETAIL",   "PAINTED",  "BRUSH",   "OVERLAYS",
+                                        "CONTOURS",  "MINIFIED", "NO_MORPH", "GBUFFER", "RESOLVE",
+                                        "CURVATURE", "SLOPES_A", "SLOPES_B", "VOLUME"};
     char defines[512 + sizeof slot->calls] = "";
     size_t n = 0;
-    for (int b = 0; b < 8; b++)
+    for (int b = 0; b < (int)(sizeof names / sizeof *names); b++)
         if (variant & (1 << b))
             n += (size_t)snprintf(defines + n, sizeof defines - n, "#define %s\n", names[b]);
     if (variant & TV_SHADED)
         snprintf(defines + n, sizeof defines - n, "#define RULE_CALLS %s\n", calls);
-    GLuint prog =
-        shader_program_load_variant(r->shader_dir, "terrain.vert", "terrain.frag", defines, err);
+    const char *vs = variant & TV_RESOLVE ? "fullscreen.vert" : "terrain.vert";
+    GLuint prog = shader_program_load_variant(r->shader_dir, vs, "terrain.frag", defines, err);
     if (!prog) return 0;
     if (slot->prog) glDeleteProgram(slot->prog);
     slot->variant = variant;
@@ -292,7 +307,8 @@ terrain_renderer *terrain_renderer_create(const char *resource_dir, og_error *er
         !(r->prog_sky = shader_program_load(dir, "fullscreen.vert", "sky.frag", err)) ||
         !(r->prog_water = shader_program_load(dir, "water.vert", "water.frag", err)) ||
         !(r->prog_cursor = shader_program_load(dir, "cursor.vert", "cursor.frag", err)) ||
-        !(r->volume = volume_renderer_create(dir, err)))
+        !(r->volume = volume_renderer_create(dir, err)) ||
+        deferred_target_init(&r->deferred, dir, err) != 0)
         goto fail;
     if (clipmap_mesh_build(&r->mesh, CLIP_N) != 0) {
         og_error_set(err, "out of memory for the clipmap mesh");
@@ -332,6 +348,7 @@ void terrain_renderer_destroy(terrain_renderer *r) {
         if (r->progs[i].prog) glDeleteProgram(r->progs[i].prog);
     mask_flow_texture_destroy(&r->mask_flow);
     glDeleteProgram(r->prog_sky);
+    deferred_target_free(&r->deferred);
     glDeleteProgram(r->prog_water);
     glDeleteProgram(r->prog_cursor);
     glDeleteVertexArrays(1, &r->vao);
@@ -609,7 +626,7 @@ static void copy_planet_stats(terrain_renderer *r) {
 
 int terrain_renderer_update(terrain_renderer *r, world *w, const camera *cam,
                             const render_settings *s, og_error *err) {
-    double t0 = now_ms();
+    double t0 = thread_cpu_ms();
     const world_params *p = world_get_params(w);
     if (p->kind == WORLD_PLANET) {
         if (!r->planet && !(r->planet = planet_renderer_create(r->resource_dir, r->tex_albedo,
@@ -723,7 +740,7 @@ int terrain_renderer_update(terrain_renderer *r, world *w, const camera *cam,
     for (int l = r->finest; l < r->levels; l++)
         r->stats.levels_ready += r->src[l] == l;
     r->stats.finest_level = r->finest;
-    r->stats.cpu_ms = now_ms() - t0;
+    r->stats.cpu_ms = thread_cpu_ms() - t0;
     return all && volume_ok;
 }
 
@@ -893,8 +910,6 @@ static void set_terrain_uniforms(terrain_renderer *r, GLuint prog, const camera 
     glProgramUniform1i(prog, glGetUniformLocation(prog, "u_view_mode"), s->view);
     glProgramUniform1f(prog, glGetUniformLocation(prog, "u_contour"), (float)s->contours);
     glProgramUniform1i(prog, glGetUniformLocation(prog, "u_auto_materials"), s->auto_materials);
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "u_rules_curvature"),
-                       r->rules.uses_curvature);
     glProgramUniform1f(prog, glGetUniformLocation(prog, "u_ocean_level"),
                        (float)world_params_ocean_height(p));
     glProgramUniform1f(prog, glGetUniformLocation(prog, "u_max_height"), (float)p->max_height);
@@ -1003,8 +1018,17 @@ static int level_variant(const terrain_renderer *r, const camera *cam, const ren
     int v = (s->tile_grid || s->level_grid || s->mask_terms ? TV_OVERLAYS : 0) |
             (s->contours > 0 ? TV_CONTOURS : 0);
     if (r->detail_current && l <= 3) v |= TV_DETAIL; // as set_terrain_uniforms places it
+    if (volume_renderer_active(r->volume)) v |= TV_VOLUME;
+    // Where the slopes come from, as set_terrain_uniforms says.
+    float fine[4];
+    int coarser = l + 1 < r->levels ? r->src[l + 1] : -1;
+    clip_slopes_uniform(&r->slopes, l, r->src[l], r->origin[l], fine);
+    if (fine[3] >= 0) v |= TV_SLOPES_A;
+    clip_slopes_uniform(&r->slopes, l, coarser >= 0 ? coarser : r->src[l], r->origin[l], fine);
+    if (fine[3] >= 0) v |= TV_SLOPES_B;
     if (s->view != VIEW_SHADED) return v;
     v |= TV_SHADED;
+    if (r->rules.uses_curvature) v |= TV_CURVATURE;
     if (r->mat_src[l] >= 0 && r->mat_painted[r->mat_src[l]]) v |= TV_PAINTED;
     if (cursor_drapes(cursor)) v |= TV_BRUSH;
     // So far that the material textures' near scale is smaller than a pixel all over
@@ -1086,8 +1110,94 @@ static void add_solid_under(terrain_renderer *r, int l, const float mn[3], const
     ground_occlusion_add_solid(&r->occlusion, (const double(*)[3])pts, 8);
 }
 
+// Widens the pixel rectangle rect (x0, y0, x1, y1) by a camera-relative box's
+// projection: its corners in front of the camera and, where an edge crosses the
+// camera's plane, the edge's point just in front of it (far off the screen, so the
+// rectangle reaches the screen's edge that way).
+static void widen_screen_rect(const float view_proj[16], const float mn[3], const float mx[3],
+                              int width, int height, int rect[4]) {
+    const double near_w = 1e-3;
+    double c[8][4];
+    for (int k = 0; k < 8; k++) {
+        const double p[3] = {(k & 1) ? mx[0] : mn[0], (k & 2) ? mx[1] : mn[1],
+                             (k & 4) ? mx[2] : mn[2]};
+        for (int i = 0; i < 4; i++)
+            c[k][i] = view_proj[i] * p[0] + view_proj[4 + i] * p[1] + view_proj[8 + i] * p[2] +
+                      view_proj[12 + i];
+    }
+    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+    for (int a = 0; a < 8; a++)
+        for (int e = -1; e < 3; e++) { // the corner itself, then its edges to higher corners
+            const int b = e < 0 ? a : a | (1 << e);
+            if (e >= 0 && b == a) continue;
+            double q[4];
+            if (e < 0) {
+                if (!(c[a][3] > near_w)) continue;
+                memcpy(q, c[a], sizeof q);
+            } else {
+                if ((c[a][3] > near_w) == (c[b][3] > near_w)) continue;
+                const double t = (near_w - c[a][3]) / (c[b][3] - c[a][3]);
+                for (int i = 0; i < 4; i++)
+                    q[i] = c[a][i] + t * (c[b][i] - c[a][i]);
+            }
+            for (int i = 0; i < 2; i++)
+                lo[i] = fmin(lo[i], q[i] / q[3]), hi[i] = fmax(hi[i], q[i] / q[3]);
+        }
+    if (!(lo[0] <= hi[0])) return; // wholly behind the camera
+    const int size[2] = {width, height};
+    for (int i = 0; i < 2; i++) {
+        const double a = fmax((lo[i] * 0.5 + 0.5) * size[i] - 1.0, 0.0);
+        const double b = fmin((hi[i] * 0.5 + 0.5) * size[i] + 1.0, (double)size[i]);
+        if (a < b)
+            rect[i] = (int)fmin(rect[i], floor(a)), rect[2 + i] = (int)fmax(rect[2 + i], ceil(b));
+    }
+}
+
+// A deferred shading pass: the pixels a level's pieces (still or morphing) won.
+typedef struct resolve_pass {
+    int level, still, variant, rect[4];
+    char calls[MATERIAL_RULES_MAX * 12];
+} resolve_pass;
+
+// The deferred shading: each pass drawn won, then the sky where no ground was drawn.
+static int resolve_terrain(terrain_renderer *r, const camera *cam, const render_settings *s,
+                           const brush_cursor *cursor, const float view_proj[16],
+                           const resolve_pass *passes, int count, og_error *err) {
+    float inverse[16];
+    if (deferred_target_inverse(view_proj, inverse) != 0)
+        return og_error_set(err, "terrain: the view has no inverse");
+    deferred_target_shade(&r->deferred, GBUFFER_UNIT);
+    glBindVertexArray(r->empty_vao);
+    glEnable(GL_SCISSOR_TEST);
+    for (int i = 0; i < count; i++) {
+        const resolve_pass *p = &passes[i];
+        if (p->rect[2] <= p->rect[0] || p->rect[3] <= p->rect[1]) continue;
+        int fresh = 0;
+        GLuint prog = terrain_program(r, p->variant, p->calls, &fresh, err);
+        if (!prog) return -1;
+        if (fresh) {
+            set_terrain_uniforms(r, prog, cam, s, cursor, view_proj);
+            material_rule_uniforms(prog, &r->rules);
+            glProgramUniform1i(prog, glGetUniformLocation(prog, "u_ground_depth"), GBUFFER_UNIT);
+            glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "u_inv_view_proj"), 1,
+                                      GL_FALSE, inverse);
+        }
+        glUseProgram(prog);
+        glProgramUniform1i(prog, glGetUniformLocation(prog, "u_level"), p->level);
+        glStencilFunc(GL_EQUAL, deferred_target_stencil(p->level, p->still), 0xFF);
+        glScissor(p->rect[0], p->rect[1], p->rect[2] - p->rect[0], p->rect[3] - p->rect[1]);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        r->stats.draw_calls++;
+    }
+    glDisable(GL_SCISSOR_TEST);
+    return 0;
+}
+
 static int draw_terrain(terrain_renderer *r, const camera *cam, const render_settings *s,
-                        const brush_cursor *cursor, const float view_proj[16], og_error *err) {
+                        const brush_cursor *cursor, const float view_proj[16], int deferred,
+                        og_error *err) {
+    static resolve_pass passes[2 * RENDER_MAX_LEVELS];
+    int pass_count = 0;
     frustum f;
     frustum_from_matrix(&f, view_proj);
     int m = r->mesh.m;
@@ -1152,6 +1262,7 @@ static int draw_terrain(terrain_renderer *r, const camera *cam, const render_set
         }
         qsort(order, (size_t)candidates, sizeof order[0], nearer_first);
         int n[2] = {0, 0}; // [0]: parts that may morph, [1]: parts that never do
+        int rect[2][4] = {{r->width, r->height, 0, 0}, {r->width, r->height, 0, 0}};
         for (int o = 0; o < candidates && n[0] + n[1] < PIECES_MAX; o++) {
             const clip_piece *pc = &r->mesh.pieces[order[o].piece];
             int still = !morphs || (pc->x0 >= view[0] - reach && pc->x1 <= view[0] + reach &&
@@ -1167,10 +1278,17 @@ static int draw_terrain(terrain_renderer *r, const camera *cam, const render_set
                     add_solid_under(r, l, mn, mx, lo, hi, cam);
                 }
             }
+            if (deferred && pc->kind != CLIP_PIECE_DEGENERATE) { // where its pixels can be
+                float mn[3], mx[3], h0, h1;
+                piece_heights(r, l, pc, !still, &h0, &h1);
+                piece_box(r, l, pc, cam, h0, h1, mn, mx);
+                widen_screen_rect(view_proj, mn, mx, r->width, r->height, rect[still]);
+            }
             int k = still ? PIECES_MAX - 1 - n[1]++ : n[0]++; // the still parts fill from the end
             counts[k] = (GLsizei)pc->count;
             offsets[k] = (const void *)(uintptr_t)(pc->first * sizeof(uint16_t));
             r->stats.triangles += pc->count / 3;
+            r->stats.level_triangles[l] += pc->count / 3;
         }
         if (n[0] + n[1] == 0) continue;
         int base = level_variant(r, cam, s, cursor, l);
@@ -1179,6 +1297,14 @@ static int draw_terrain(terrain_renderer *r, const camera *cam, const render_set
         for (int still = 0; still < 2; still++) {
             if (n[still] == 0) continue;
             int v = base | (still ? TV_NO_MORPH : 0), fresh = 0;
+            if (deferred) { // shaded later (resolve_terrain); now where the ground is
+                resolve_pass *p = &passes[pass_count++];
+                p->level = l, p->still = still, p->variant = v | TV_RESOLVE;
+                memcpy(p->rect, rect[still], sizeof p->rect);
+                snprintf(p->calls, sizeof p->calls, "%s", calls);
+                v = TV_GBUFFER | (v & (TV_NO_MORPH | TV_VOLUME));
+                glStencilFunc(GL_ALWAYS, deferred_target_stencil(l, still), 0xFF);
+            }
             GLuint prog = terrain_program(r, v, calls, &fresh, err);
             if (!prog) return -1;
             if (fresh) {
@@ -1194,6 +1320,7 @@ static int draw_terrain(terrain_renderer *r, const camera *cam, const render_set
         }
         r->stats.levels_drawn++;
     }
+    if (deferred) return resolve_terrain(r, cam, s, cursor, view_proj, passes, pass_count, err);
     return 0;
 }
 
@@ -1263,7 +1390,7 @@ static void draw_water(terrain_renderer *r, const camera *cam, const render_sett
 int terrain_renderer_draw(terrain_renderer *r, world *w, const camera *cam,
                           const render_settings *s, const brush_cursor *cursor, int width,
                           int height, og_error *err) {
-    double t0 = now_ms();
+    double t0 = thread_cpu_ms();
     if (r->world != w) return og_error_set(err, "terrain_renderer_draw: update first");
     r->width = width, r->height = height;
     if (r->params.kind == WORLD_PLANET && r->planet) {
@@ -1272,6 +1399,7 @@ int terrain_renderer_draw(terrain_renderer *r, world *w, const camera *cam,
         return rc;
     }
     r->stats.triangles = 0;
+    memset(r->stats.level_triangles, 0, sizeof r->stats.level_triangles);
     r->stats.draw_calls = 0;
     r->stats.levels_drawn = 0;
     double aspect = (double)width / (double)(height > 0 ? height : 1);
@@ -1287,19 +1415,31 @@ int terrain_renderer_draw(terrain_renderer *r, world *w, const camera *cam,
     int wire = s->view == VIEW_WIREFRAME;
     if (wire) glClearColor(0.06f, 0.07f, 0.09f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    if (!wire) {
+    int terrain = r->levels > 0 && r->src[r->levels - 1] >= 0;
+    // The shaded view shades each pixel once (renderer/deferred_target.h); its sky goes
+    // where no ground was drawn.
+    int deferred = terrain && s->view == VIEW_SHADED;
+    if (deferred && deferred_target_begin(&r->deferred, width, height, err) != 0) return -1;
+    if (!wire && !deferred) {
         render_sky(r->prog_sky, r->empty_vao, cam, s, aspect, fog_density(r, s));
         r->stats.draw_calls++;
     }
-    if (r->levels > 0 && r->src[r->levels - 1] >= 0) {
+    if (terrain) {
         if (wire) glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
         // The clipmap's triangles face up (counter-clockwise from above): slopes turned
         // away and the fix-up strips' backs are not rasterised (5-8% a frame from 7
         // levels up on llvmpipe). The wireframe shows every triangle.
         if (!wire) glEnable(GL_CULL_FACE), glCullFace(GL_BACK), glFrontFace(GL_CCW);
-        int drawn = draw_terrain(r, cam, s, cursor, view_proj, err);
+        int drawn = draw_terrain(r, cam, s, cursor, view_proj, deferred, err);
         glDisable(GL_CULL_FACE);
+        if (deferred && drawn == 0) {
+            glStencilFunc(GL_EQUAL, 0, 0xFF);
+            render_sky(r->prog_sky, r->empty_vao, cam, s, aspect, fog_density(r, s));
+            deferred_target_finish(&r->deferred, r->empty_vao);
+            r->stats.draw_calls += 2;
+        }
         if (drawn != 0) {
+            if (deferred) deferred_target_finish(&r->deferred, r->empty_vao);
             glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
             glBindVertexArray(0);
             glUseProgram(0);
@@ -1321,7 +1461,7 @@ int terrain_renderer_draw(terrain_renderer *r, world *w, const camera *cam,
     glBindVertexArray(0);
     glUseProgram(0);
     GLenum e = glGetError();
-    r->stats.cpu_ms += now_ms() - t0;
+    r->stats.cpu_ms += thread_cpu_ms() - t0;
     if (e != GL_NO_ERROR) return og_error_set(err, "terrain_renderer_draw: GL error 0x%x", e);
     return 0;
 }

@@ -13,12 +13,14 @@
 #include <stdint.h>
 
 typedef struct render_stats {
-    uint64_t triangles; // drawn this frame (terrain)
+    uint64_t triangles;                          // drawn this frame (terrain)
+    uint64_t level_triangles[RENDER_MAX_LEVELS]; // of those, each clipmap level's
     int draw_calls;
     int levels_drawn, levels_ready, finest_level;
     uint64_t texels_uploaded;       // this frame
     uint64_t slope_texels_uploaded; // this frame, to the shading slopes (clip_slopes.h)
-    double cpu_ms;                  // CPU time of update + draw submission
+    double cpu_ms; // CPU time of update + draw submission (the calling thread's, on flat
+                   // worlds; planets: wall time)
 } render_stats;
 
 typedef struct terrain_renderer terrain_renderer;

@@ -11,9 +11,17 @@ uniform vec4 u_albedo_mean[8];
 
 // A material's colour (and height, a) at uv, varied by v: the green channel of its
 // texture at a second, much larger scale, which breaks up the repetition.
+#ifdef RESOLVE
+// The near scale's uv derivatives across the screen, set by terrain.frag before the
+// lookups (a deferred pass's neighbouring pixels may hold another level or no ground).
+vec2 g_uv_dx, g_uv_dy;
+#endif
+
 vec4 albedo_varied(int layer, vec2 uv, float v) {
 #ifdef MINIFIED
     vec4 near_c = u_albedo_mean[layer];
+#elif defined(RESOLVE)
+    vec4 near_c = textureGrad(u_albedo, vec3(uv, float(layer)), g_uv_dx, g_uv_dy);
 #else
     vec4 near_c = texture(u_albedo, vec3(uv, float(layer)));
 #endif

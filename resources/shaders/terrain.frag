@@ -8,6 +8,10 @@
 // material window holds paint), BRUSH (the cursor shows), OVERLAYS (a View menu grid), CONTOURS. A software
 // renderer runs every branch of an `if` for every fragment, so what a level cannot show
 // is left out of its program rather than skipped at run time.
+// Deferred (renderer/deferred_target.h): GBUFFER draws the clipmap's triangles writing
+// only their depth; RESOLVE shades every pixel once, the ground's place found from
+// that depth, in a full-screen pass per level (llvmpipe shades at least 8 pixels a
+// triangle touches, and the far levels' triangles cover only a few each).
 #include "terrain_common.glsl"
 #include "lighting.glsl"
 #include "colour_ramp.glsl"
@@ -16,8 +20,24 @@
 #include "detail_parallax.glsl"
 #include "grid_lines.glsl"
 
+#ifdef RESOLVE
+vec2 v_local; // the ground seen in this pixel, from the depth drawn there
+vec3 v_rel;
+uniform sampler2D u_ground_depth; // the G-buffer: the depth drawn (0: no ground)
+uniform mat4 u_inv_view_proj;     // clip space to camera-relative metres
+
+// Where the ground seen in pixel p is (camera-relative metres); false where none is.
+bool ground_at_pixel(ivec2 p, out vec3 rel) {
+    ivec2 size = textureSize(u_ground_depth, 0);
+    float d = texelFetch(u_ground_depth, clamp(p, ivec2(0), size - 1), 0).r;
+    vec4 q = u_inv_view_proj * vec4((vec2(p) + 0.5) / vec2(size) * 2.0 - 1.0, d, 1.0);
+    rel = q.xyz / q.w;
+    return d > 0.0 && all(greaterThanEqual(p, ivec2(0))) && all(lessThan(p, size));
+}
+#else
 in vec2 v_local;
 in vec3 v_rel;
+#endif
 out vec4 o_colour;
 
 // Views (renderer/terrain_renderer.h view_mode).
@@ -36,7 +56,6 @@ uniform ivec4 u_lvl_mat_wrap[MAX_LEVELS]; // toroidal texel of those windows' or
 uniform vec4 u_lvl_grid[MAX_LEVELS];   // tile grid: local (0,0) modulo a tile (xy), a tile in units (z; 0: none)
 uniform int u_overlays;                // 1: the tile grid, 2: the clipmap level grids
 uniform int u_auto_materials;          // 0: unpainted ground in a neutral clay
-uniform int u_rules_curvature;         // some material rule reads curvature
 uniform vec4 u_lvl_detail[MAX_LEVELS]; // detail: sample of local (0,0), samples per unit, valid
 uniform vec2 u_tex_period;             // metres per repeat: near texture, far variation
 uniform sampler2DArray u_albedo_far;   // material m's green channel in component m % 4 of layer m / 4
@@ -123,8 +142,10 @@ vec3 with_mask(vec3 c, float h, float slope, float curvature) {
 // full-resolution mesh's vertex normals; half a texel apart on the coarser levels, the
 // mean slope under one of their texels (a texel apart blurred it over two, which cost
 // RMSE against the full-resolution mesh).
-vec2 gradient_at(vec4 src, vec4 fine, vec2 p, float spacing_here) {
-    if (fine.w >= 0.0) { // central differences a finer sample apart, as level 0's
+// fine: from the finer heights (SLOPES_A, SLOPES_B: the renderer knows which levels
+// have them).
+vec2 gradient_at(vec4 src, vec4 fine, vec2 p, float spacing_here, bool from_fine) {
+    if (from_fine) { // central differences a finer sample apart, as level 0's
         vec2 t = fine.xy + p * fine.z + 0.5;
         float SLOPES_SIZE = float(textureSize(u_slopes, 0).x);
         float l = texture(u_slopes, vec3((t - vec2(1.0, 0.0)) / SLOPES_SIZE, fine.w)).r;
@@ -151,6 +172,19 @@ float curvature_at(vec4 src, vec2 p, float spacing_here) {
     float step_m = texel * spacing_here;
     return -100.0 * (l + r + d + u - 4.0 * c) / (step_m * step_m);
 }
+
+#ifdef RESOLVE
+// The step in camera-relative metres (xz) to the next pixel along `axis`: the smaller of
+// the steps to either side that holds ground, as the triangle's own plane would give
+// (a step across a silhouette or into the sky is not the surface's).
+vec2 ground_step(ivec2 px, ivec2 axis) {
+    vec3 a, b;
+    bool use_a = ground_at_pixel(px + axis, a), use_b = ground_at_pixel(px - axis, b);
+    vec2 da = a.xz - v_rel.xz, db = v_rel.xz - b.xz;
+    if (use_a && use_b) return dot(da, da) <= dot(db, db) ? da : db;
+    return use_a ? da : use_b ? db : vec2(0.0);
+}
+#endif
 
 vec4 unpack4(uint v) {
     return vec4(float(v & 255u), float((v >> 8) & 255u), float((v >> 16) & 255u), float(v >> 24));
@@ -179,16 +213,37 @@ bool painted_weights(vec4 lm, ivec2 wrap, vec2 p, out vec4 w0, out vec4 w1) {
 }
 
 void main() {
+    vec4 off = u_lvl_offset[u_level];
+#ifdef RESOLVE
+    ground_at_pixel(ivec2(gl_FragCoord.xy), v_rel);
+    v_local = (v_rel.xz - off.xy) / off.z;
+#else
     vec4 bounds = u_lvl_bounds[u_level];
     if (v_local.x < bounds.x || v_local.y < bounds.y || v_local.x > bounds.z || v_local.y > bounds.w)
         discard; // outside a bounded world
+#ifdef VOLUME
     if (replaced_by_volume(v_rel)) discard; // the volume mesh draws the ground here
-    vec4 off = u_lvl_offset[u_level];
+#endif
+#endif
+#ifdef GBUFFER
+    o_colour = vec4(gl_FragCoord.z);
+    return;
+#endif
     float spacing = off.z;
     float alpha = morph_factor(v_local);
-    vec2 g = gradient_at(u_lvl_src_a[u_level], u_lvl_slopes_a[u_level], v_local, spacing);
+#ifdef SLOPES_A
+    const bool fine_a = true;
+#else
+    const bool fine_a = false;
+#endif
+#ifdef SLOPES_B
+    const bool fine_b = true;
+#else
+    const bool fine_b = false;
+#endif
+    vec2 g = gradient_at(u_lvl_src_a[u_level], u_lvl_slopes_a[u_level], v_local, spacing, fine_a);
     if (alpha > 0.0)
-        g = mix(g, gradient_at(u_lvl_src_b[u_level], u_lvl_slopes_b[u_level], v_local, spacing), alpha);
+        g = mix(g, gradient_at(u_lvl_src_b[u_level], u_lvl_slopes_b[u_level], v_local, spacing, fine_b), alpha);
     float h = v_rel.y + u_cam_y;
     float dist = length(v_rel);
     vec3 view_dir = v_rel / -max(dist, 1e-6);
@@ -247,14 +302,24 @@ void main() {
 
     // The far scale of all eight materials in two lookups (the same values as one
     // lookup of each texture's green channel: renderer/terrain_renderer.c packs them).
+#ifdef RESOLVE
+    ivec2 px = ivec2(gl_FragCoord.xy);
+    vec2 step_x = ground_step(px, ivec2(1, 0)), step_y = ground_step(px, ivec2(0, 1));
+    g_uv_dx = (step_x + dFdx(shift_m)) / u_tex_period.x;
+    g_uv_dy = (step_y + dFdy(shift_m)) / u_tex_period.x;
+    vec2 far_dx = step_x / u_tex_period.y, far_dy = step_y / u_tex_period.y;
+    vec4 far[2] = vec4[2](textureGrad(u_albedo_far, vec3(uv_far, 0.0), far_dx, far_dy),
+                          textureGrad(u_albedo_far, vec3(uv_far, 1.0), far_dx, far_dy));
+#else
     vec4 far[2] = vec4[2](texture(u_albedo_far, vec3(uv_far, 0.0)), texture(u_albedo_far, vec3(uv_far, 1.0)));
+#endif
     // Unpainted ground: the automatic rules, or a neutral clay when they are hidden.
     float curvature = 0.0;
-    if (u_rules_curvature != 0) {
-        curvature = curvature_at(u_lvl_src_a[u_level], v_local, spacing);
-        if (alpha > 0.0)
-            curvature = mix(curvature, curvature_at(u_lvl_src_b[u_level], v_local, spacing), alpha);
-    }
+#ifdef CURVATURE
+    curvature = curvature_at(u_lvl_src_a[u_level], v_local, spacing);
+    if (alpha > 0.0)
+        curvature = mix(curvature, curvature_at(u_lvl_src_b[u_level], v_local, spacing), alpha);
+#endif
     vec3 auto_c = u_auto_materials != 0 ? automatic_varied(h, slope, curvature, uv, far[0], far[1])
                                         : vec3(0.45, 0.42, 0.38);
     vec3 c = auto_c;
@@ -281,10 +346,12 @@ void main() {
 #ifdef OVERLAYS
     if (u_mask.x != 0) {
         float k = curvature;
-        if ((u_mask.z & 4) != 0 && u_rules_curvature == 0) {
+#ifndef CURVATURE
+        if ((u_mask.z & 4) != 0) {
             k = curvature_at(u_lvl_src_a[u_level], v_local, spacing);
             if (alpha > 0.0) k = mix(k, curvature_at(u_lvl_src_b[u_level], v_local, spacing), alpha);
         }
+#endif
         lit = with_mask(lit, h, slope, k);
     }
 #endif
