@@ -305,10 +305,11 @@ int cmd_export(cmd_context *ctx, int argc, char **argv, og_error *err) {
         export_mesh_report m;
         if (export_mesh_file(ctx->world, argv[1], &o, &m, err) != 0) return -1;
         fprintf(ctx->out,
-                "exported %s: %zu vertices, %zu triangles (from %zu; height error %.6g m); "
+                "exported %s: %zu vertices, %zu triangles (from %zu; %s error %.6g m); "
                 "bounds %.6g, %.6g, %.6g .. %.6g, %.6g, %.6g m (+Y up); %.2f s\n",
-                argv[1], m.vertices, m.triangles, m.input_triangles, m.achieved_error, m.lo[0],
-                m.lo[1], m.lo[2], m.hi[0], m.hi[1], m.hi[2], seconds_since(&t0));
+                argv[1], m.vertices, m.triangles, m.input_triangles,
+                m.volume ? "surface" : "height", m.achieved_error, m.lo[0], m.lo[1], m.lo[2],
+                m.hi[0], m.hi[1], m.hi[2], seconds_since(&t0));
         return 0;
     }
     // A world imported in parts so far: a heightmap export of the coarse layer imports the

@@ -3,7 +3,7 @@
 #include "editor/interchange/export_solid.h"
 #include "editor/interchange/heightfield_error.h"
 #include "editor/interchange/heightfield_simplify.h"
-#include "editor/interchange/mesh_manifold.h"
+#include "editor/interchange/volume_simplify.h"
 #include "editor/world/layer_grid.h"
 #include "io/image_read.h"
 #include "io/param_file.h"
@@ -151,24 +151,13 @@ static void bounds(mesh *m) {
         }
 }
 
-// Simplifies a volume surface (caves, overhangs) to within error_m metres by
-// meshoptimizer's own 3D estimate (*achieved_m), the region's sides kept so tiles still
-// meet, then makes it manifold again: collapsing edges can leave faces on one edge, a
-// sliver of no area or two faces on the same vertices (Blender drops those).
-static int simplify_solid(volume_mesh *sm, double error_m, double *achieved_m, og_error *err) {
-    if (sm->index_count == 0) return 0;
-    uint32_t *out = malloc(sizeof(uint32_t) * sm->index_count);
-    if (!out) return og_error_set(err, "out of memory simplifying");
-    const float scale = meshopt_simplifyScale(sm->pos, sm->vertex_count, 3 * sizeof(float));
-    float result = 0;
-    sm->index_count = meshopt_simplify(out, sm->index, sm->index_count, sm->pos, sm->vertex_count,
-                                       3 * sizeof(float), 0, (float)(error_m / scale),
-                                       meshopt_SimplifyLockBorder, &result);
-    *achieved_m = (double)result * scale;
-    free(sm->index);
-    sm->index = out;
-    mesh_manifold_report manifold;
-    return mesh_make_manifold(sm, &manifold, err);
+// The cells at the region's sides reach half a voxel past it: onto the side, before
+// simplifying, so the error is measured on the surface as written.
+static void clamp_to_region(volume_mesh *sm, double x0, double z0, double x1, double z1) {
+    for (size_t i = 0; i < sm->vertex_count; i++) {
+        float *p = sm->pos + 3 * i;
+        p[0] = (float)fmin(fmax(p[0], x0), x1), p[2] = (float)fmin(fmax(p[2], z0), z1);
+    }
 }
 
 // Simplifies a heightfield within error_m metres: right triangles of a regular
@@ -423,16 +412,22 @@ int export_mesh(world *w, const char *path, const export_mesh_options *o, export
     double ox = (double)r.x0 * g.spacing, oz = (double)r.z0 * g.spacing;
     if (o->centred) ox = -(double)(W - 1) * g.spacing / 2, oz = -(double)(D - 1) * g.spacing / 2;
     rep->achieved_error = 0;
+    rep->volume = 0;
     int volume = 0;
     if (export_solid_has_volume(w, r, &volume, err) != 0) goto done;
     if (volume) { // caves and overhangs: the solid's surface, the heightfield's included
         volume_mesh sm;
         if (export_solid_surface(w, r, o->solid, &sm, err) != 0) goto done;
         rep->input_triangles = sm.index_count / 3;
-        if (o->simplify > 0 && simplify_solid(&sm, o->simplify, &rep->achieved_error, err) != 0) {
+        rep->volume = 1;
+        clamp_to_region(&sm, (double)r.x0 * g.spacing, (double)r.z0 * g.spacing,
+                        (double)(r.x1 - 1) * g.spacing, (double)(r.z1 - 1) * g.spacing);
+        volume_simplify_report vs;
+        if (o->simplify > 0 && volume_simplify(&sm, o->simplify, &vs, err) != 0) {
             volume_mesh_free(&sm);
             goto done;
         }
+        if (o->simplify > 0) rep->achieved_error = vs.max_error;
         int built = from_solid(&sm, (double)r.x0 * g.spacing, (double)r.z0 * g.spacing,
                                (double)(W - 1) * g.spacing, (double)(D - 1) * g.spacing,
                                o->centred ? ox : (double)r.x0 * g.spacing,

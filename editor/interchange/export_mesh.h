@@ -26,7 +26,8 @@ typedef struct export_mesh_options {
 
 typedef struct export_mesh_report {
     size_t vertices, triangles, input_triangles;
-    double achieved_error; // metres (simplified meshes)
+    double achieved_error; // metres (simplified meshes): vertical, or both ways for volume
+    int volume;            // caves or overhangs: a volume surface, not a heightfield
     float lo[3], hi[3];    // bounding box, metres
 } export_mesh_report;
 
