@@ -246,6 +246,30 @@ static void test_shader_variants_compile(void **state) {
     static const char *const terrain[] = {"SHADED", "DETAIL",   "PAINTED",
                                           "BRUSH",  "OVERLAYS", "CONTOURS"};
     compile_all_variants("terrain.vert", "terrain.frag", terrain, 6);
+    // The deferred passes (renderer/deferred_target.h): the shading pass with each
+    // per-level define alone and all together, and the depth pass.
+    char shaders[4200];
+    snprintf(shaders, sizeof shaders, "%s/shaders", OROGEN_RESOURCE_DIR);
+    static const char *const resolve[] = {"RESOLVE",  "SHADED",    "DETAIL",   "PAINTED",
+                                          "BRUSH",    "OVERLAYS",  "CONTOURS", "MINIFIED",
+                                          "NO_MORPH", "CURVATURE", "SLOPES_A", "SLOPES_B"};
+    const int count = (int)(sizeof resolve / sizeof *resolve);
+    for (int b = 1; b <= count; b++) {
+        unsigned flags = b == count ? (1u << count) - 1 : 3u | (1u << b);
+        og_error err = {{0}};
+        GLuint program = shader_program_load_flags(shaders, "fullscreen.vert", "terrain.frag",
+                                                   resolve, count, flags, &err);
+        if (!program) fail_msg("terrain.frag resolve variant %#x: %s", flags, err.msg);
+        glDeleteProgram(program);
+    }
+    static const char *const depth[] = {"GBUFFER", "NO_MORPH", "VOLUME"};
+    for (unsigned flags = 1; flags < 8; flags += 2) {
+        og_error err = {{0}};
+        GLuint program = shader_program_load_flags(shaders, "terrain.vert", "terrain.frag", depth,
+                                                   3, flags, &err);
+        if (!program) fail_msg("terrain.frag depth variant %#x: %s", flags, err.msg);
+        glDeleteProgram(program);
+    }
 }
 
 static void test_missing_files(void **state) {

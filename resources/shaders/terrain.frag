@@ -25,6 +25,9 @@ vec2 v_local; // the ground seen in this pixel, from the depth drawn there
 vec3 v_rel;
 uniform sampler2D u_ground_depth; // the G-buffer: the depth drawn (0: no ground)
 uniform mat4 u_inv_view_proj;     // clip space to camera-relative metres
+// The ground's step (camera-relative metres) to the next pixel right and up, standing in
+// for screen derivatives: a neighbouring pixel may hold another level or no ground.
+vec3 g_step_x, g_step_y;
 
 // Where the ground seen in pixel p is (camera-relative metres); false where none is.
 bool ground_at_pixel(ivec2 p, out vec3 rel) {
@@ -90,7 +93,11 @@ vec3 with_contours(vec3 c, float h) {
 #endif
     if (u_contour <= 0.0) return c;
     float k = h / u_contour;
+#ifdef RESOLVE
+    float fw = max((abs(g_step_x.y) + abs(g_step_y.y)) / u_contour, 1e-5);
+#else
     float fw = max(fwidth(k), 1e-5);
+#endif
     float line = 1.0 - smoothstep(0.0, 1.2 * fw, abs(fract(k + 0.5) - 0.5));
     float crowd = 1.0 - smoothstep(0.15, 0.35, fw);
     return mix(c, vec3(0.06, 0.05, 0.04), 0.65 * line * crowd);
@@ -103,11 +110,16 @@ vec3 with_grids(vec3 c) {
 #ifndef OVERLAYS
     return c;
 #endif
+#ifdef RESOLVE
+    vec2 fw = (abs(g_step_x.xz) + abs(g_step_y.xz)) / u_lvl_offset[u_level].z;
+#else
+    vec2 fw = fwidth(v_local);
+#endif
     if ((u_overlays & 2) != 0) // every vertex close up, every eighth farther out
-        c = mix(c, u_level_tint[u_level], 0.7 * max(grid_lines(v_local), grid_lines(v_local / 8.0)));
+        c = mix(c, u_level_tint[u_level], 0.7 * max(grid_lines_across(v_local, fw), grid_lines_across(v_local / 8.0, fw / 8.0)));
     vec4 g = u_lvl_grid[u_level];
     if ((u_overlays & 1) != 0 && g.z > 0.0)
-        c = mix(c, vec3(1.0), 0.8 * grid_lines((v_local + g.xy) / g.z));
+        c = mix(c, vec3(1.0), 0.8 * grid_lines_across((v_local + g.xy) / g.z, fw / g.z));
     return c;
 }
 
@@ -177,12 +189,33 @@ float curvature_at(vec4 src, vec2 p, float spacing_here) {
 // The step in camera-relative metres (xz) to the next pixel along `axis`: the smaller of
 // the steps to either side that holds ground, as the triangle's own plane would give
 // (a step across a silhouette or into the sky is not the surface's).
-vec2 ground_step(ivec2 px, ivec2 axis) {
+// A neighbour's step is taken where it agrees with the step on the plane through this
+// pixel's ground along its normal n; where neither does (across a silhouette, a ridge a
+// pixel thin, or a slope seen edge-on, whose plane the smooth normal misses), the
+// shortest of the three.
+vec3 ground_step(ivec2 px, ivec2 axis, vec3 n) {
     vec3 a, b;
     bool use_a = ground_at_pixel(px + axis, a), use_b = ground_at_pixel(px - axis, b);
-    vec2 da = a.xz - v_rel.xz, db = v_rel.xz - b.xz;
+    vec3 da = a - v_rel, db = v_rel - b;
+    ivec2 size = textureSize(u_ground_depth, 0);
+    vec4 q = u_inv_view_proj * vec4((vec2(px + axis) + 0.5) / vec2(size) * 2.0 - 1.0, 1.0, 1.0);
+    vec3 ray = q.xyz / q.w;
+    float t = dot(v_rel, n) / dot(ray, n);
+    if (t > 0.0) { // the neighbour's ray meets the plane
+        vec3 plane = ray * t - v_rel;
+        float near2 = 0.5 * dot(plane, plane);
+        bool agree_a = use_a && dot(da - plane, da - plane) < near2;
+        bool agree_b = use_b && dot(db - plane, db - plane) < near2;
+        if (!agree_a && !agree_b) {
+            vec3 best = plane;
+            if (use_a && dot(da, da) < dot(best, best)) best = da;
+            if (use_b && dot(db, db) < dot(best, best)) best = db;
+            return best;
+        }
+        use_a = agree_a, use_b = agree_b;
+    }
     if (use_a && use_b) return dot(da, da) <= dot(db, db) ? da : db;
-    return use_a ? da : use_b ? db : vec2(0.0);
+    return use_a ? da : use_b ? db : vec3(0.0);
 }
 #endif
 
@@ -215,7 +248,8 @@ bool painted_weights(vec4 lm, ivec2 wrap, vec2 p, out vec4 w0, out vec4 w1) {
 void main() {
     vec4 off = u_lvl_offset[u_level];
 #ifdef RESOLVE
-    ground_at_pixel(ivec2(gl_FragCoord.xy), v_rel);
+    ivec2 px = ivec2(gl_FragCoord.xy);
+    ground_at_pixel(px, v_rel);
     v_local = (v_rel.xz - off.xy) / off.z;
 #else
     vec4 bounds = u_lvl_bounds[u_level];
@@ -244,6 +278,10 @@ void main() {
     vec2 g = gradient_at(u_lvl_src_a[u_level], u_lvl_slopes_a[u_level], v_local, spacing, fine_a);
     if (alpha > 0.0)
         g = mix(g, gradient_at(u_lvl_src_b[u_level], u_lvl_slopes_b[u_level], v_local, spacing, fine_b), alpha);
+#ifdef RESOLVE
+    vec3 n_plane = normalize(vec3(-g.x, 1.0, -g.y));
+    g_step_x = ground_step(px, ivec2(1, 0), n_plane), g_step_y = ground_step(px, ivec2(0, 1), n_plane);
+#endif
     float h = v_rel.y + u_cam_y;
     float dist = length(v_rel);
     vec3 view_dir = v_rel / -max(dist, 1e-6);
@@ -303,11 +341,9 @@ void main() {
     // The far scale of all eight materials in two lookups (the same values as one
     // lookup of each texture's green channel: renderer/terrain_renderer.c packs them).
 #ifdef RESOLVE
-    ivec2 px = ivec2(gl_FragCoord.xy);
-    vec2 step_x = ground_step(px, ivec2(1, 0)), step_y = ground_step(px, ivec2(0, 1));
-    g_uv_dx = (step_x + dFdx(shift_m)) / u_tex_period.x;
-    g_uv_dy = (step_y + dFdy(shift_m)) / u_tex_period.x;
-    vec2 far_dx = step_x / u_tex_period.y, far_dy = step_y / u_tex_period.y;
+    g_uv_dx = (g_step_x.xz + dFdx(shift_m)) / u_tex_period.x;
+    g_uv_dy = (g_step_y.xz + dFdy(shift_m)) / u_tex_period.x;
+    vec2 far_dx = g_step_x.xz / u_tex_period.y, far_dy = g_step_y.xz / u_tex_period.y;
     vec4 far[2] = vec4[2](textureGrad(u_albedo_far, vec3(uv_far, 0.0), far_dx, far_dy),
                           textureGrad(u_albedo_far, vec3(uv_far, 1.0), far_dx, far_dy));
 #else
@@ -359,7 +395,12 @@ void main() {
 #ifdef BRUSH
     {
         float d = length(v_rel.xz - u_brush.xy) / u_brush.z;
+#ifdef RESOLVE
+        vec2 toward = (v_rel.xz - u_brush.xy) / max(length(v_rel.xz - u_brush.xy), 1e-6);
+        float fw = max((abs(dot(toward, g_step_x.xz)) + abs(dot(toward, g_step_y.xz))) / u_brush.z, 1e-4);
+#else
         float fw = max(fwidth(d), 1e-4);
+#endif
         if (d < 1.0) {
             float f = texture(u_falloff, vec2(d, 0.5)).r;
             lit = mix(lit, u_brush_tint.rgb, u_brush_tint.a * f);
