@@ -23,6 +23,7 @@ case "${1:-}" in
   "$root/scripts/install-deps.sh"
   dir="$root/build-tsan"
   tsan_tests=(test_edit test_cache test_parallel test_world_events test_tokenize test_cmd_job test_sculpt_drag test_erosion
+    test_history_squeeze
     test_exr_write)
   cmake -S "$root" -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DOROGEN_TSAN=ON \
     -DOROGEN_WERROR=ON >/dev/null

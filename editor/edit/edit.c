@@ -328,8 +328,8 @@ static int encode_task(void *user, int task, og_error *err) {
     snapshot *s = &j->e->snaps[task];
     tile_view v;
     if (tile_cache_acquire(world_cache(j->e->world), s->key, &v, err) != 0) return -1;
-    int rc = history_delta_encode_part((tile_layer)s->key.layer, s->before, v.data, s->part,
-                                       &j->deltas[task], &j->sizes[task]);
+    int rc = history_delta_encode_part_quick((tile_layer)s->key.layer, s->before, v.data, s->part,
+                                             &j->deltas[task], &j->sizes[task]);
     tile_cache_release(world_cache(j->e->world), &v);
     return rc != 0 ? og_error_set(err, "out of memory recording the undo step") : 0;
 }

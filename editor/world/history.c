@@ -16,6 +16,10 @@ struct history {
     uint64_t dropped_total;
 };
 
+static void squeeze_queue(history *h, history_step *s);
+static void squeeze_collect(history *h);
+static void squeeze_cancel(const history_step *s);
+
 history *history_create(size_t budget_bytes) {
     history *h = calloc(1, sizeof *h);
     if (!h) return NULL;
@@ -44,6 +48,7 @@ history_step *history_step_new(const char *label) {
 
 void history_step_free(history_step *s) {
     if (!s) return;
+    squeeze_cancel(s);
     for (size_t i = 0; i < s->tile_count; i++)
         free(s->tiles[i].delta);
     free(s->tiles);
@@ -247,7 +252,7 @@ static size_t get_u32(const uint8_t *p) {
 
 // Writes one plane of n bytes at o (room for PLANE_HEADER + n): the smallest of its
 // encodings tried. Returns the bytes written.
-static size_t encode_plane(const uint8_t *plane, size_t n, uint8_t *o) {
+static size_t encode_plane(const uint8_t *plane, size_t n, uint8_t *o, int zstd) {
     uint8_t *body = o + PLANE_HEADER;
     size_t size = zero_runs_encode(plane, n, body, n);
     o[0] = PLANE_ZERO_RUNS;
@@ -255,7 +260,7 @@ static size_t encode_plane(const uint8_t *plane, size_t n, uint8_t *o) {
         memcpy(body, plane, size = n);
         o[0] = PLANE_RAW;
     }
-    ZSTD_CCtx *c = size > 0 && plane_wants_zstd(body, size) ? thread_cctx() : NULL;
+    ZSTD_CCtx *c = zstd && size > 0 && plane_wants_zstd(body, size) ? thread_cctx() : NULL;
     uint8_t *frame = c ? malloc(ZSTD_compressBound(n)) : NULL;
     if (frame) {
         size_t comp =
@@ -270,8 +275,8 @@ static size_t encode_plane(const uint8_t *plane, size_t n, uint8_t *o) {
     return PLANE_HEADER + size;
 }
 
-int history_delta_encode_part(tile_layer layer, const void *before, const void *after,
-                              grid_rect part, void **delta, size_t *bytes) {
+static int encode_part(tile_layer layer, const void *before, const void *after, grid_rect part,
+                       int zstd, void **delta, size_t *bytes) {
     *delta = NULL;
     *bytes = 0;
     part = grid_rect_intersect(part, (grid_rect){0, 0, TILE_SIZE, TILE_SIZE});
@@ -290,12 +295,78 @@ int history_delta_encode_part(tile_layer layer, const void *before, const void *
     split_planes(before, after, el, part, planes);
     size_t size = PART_HEADER;
     for (size_t k = 0; k < el; k++)
-        size += encode_plane(planes + k * n, n, out + size);
+        size += encode_plane(planes + k * n, n, out + size, zstd);
     free(planes);
     uint8_t *fit = realloc(out, size);
     *delta = fit ? fit : out;
     *bytes = size;
     return 0;
+}
+
+int history_delta_encode_part(tile_layer layer, const void *before, const void *after,
+                              grid_rect part, void **delta, size_t *bytes) {
+    return encode_part(layer, before, after, part, 1, delta, bytes);
+}
+
+int history_delta_encode_part_quick(tile_layer layer, const void *before, const void *after,
+                                    grid_rect part, void **delta, size_t *bytes) {
+    return encode_part(layer, before, after, part, 0, delta, bytes);
+}
+
+// A part delta with zstd tried on its planes as encode_plane tries it, or 0 when that
+// gains nothing (or the delta is not a part delta): *out is then untouched.
+static int squeeze_delta(tile_layer layer, const uint8_t *d, size_t bytes, void **out,
+                         size_t *out_bytes) {
+    size_t el = element_bytes(layer);
+    if (bytes < PART_HEADER || memcmp(d, PART_MAGIC, 4) != 0) return 0;
+    int64_t w = get_u16(d + 8) - get_u16(d + 4), h = get_u16(d + 10) - get_u16(d + 6);
+    if (w <= 0 || h <= 0) return 0;
+    size_t n = (size_t)(w * h);
+    ZSTD_CCtx *c = thread_cctx();
+    uint8_t *o = malloc(bytes), *plane = malloc(n), *frame = malloc(ZSTD_compressBound(n));
+    int gained = 0;
+    size_t at = PART_HEADER, size = PART_HEADER;
+    if (!c || !o || !plane || !frame) goto done;
+    memcpy(o, d, PART_HEADER);
+    for (size_t k = 0; k < el; k++) {
+        if (bytes - at < PLANE_HEADER) goto done;
+        size_t len = get_u32(d + at + 1);
+        const uint8_t *body = d + at + PLANE_HEADER;
+        if (len > bytes - at - PLANE_HEADER) goto done;
+        size_t keep = PLANE_HEADER + len; // as it is, unless zstd does better
+        int decoded = -1;
+        if (d[at] != PLANE_ZSTD && plane_wants_zstd(body, len)) {
+            if (d[at] == PLANE_RAW && len == n)
+                memcpy(plane, body, n), decoded = 0;
+            else if (d[at] == PLANE_ZERO_RUNS)
+                decoded = zero_runs_decode(body, len, plane, n);
+        }
+        if (decoded == 0) {
+            size_t comp =
+                ZSTD_compressCCtx(c, frame, ZSTD_compressBound(n), plane, n, PLANE_ZSTD_LEVEL);
+            if (!ZSTD_isError(comp) && comp < len) {
+                o[size] = PLANE_ZSTD;
+                put_u32(o + size + 1, comp);
+                memcpy(o + size + PLANE_HEADER, frame, comp);
+                size += PLANE_HEADER + comp, at += keep, gained = 1;
+                continue;
+            }
+        }
+        memcpy(o + size, d + at, keep);
+        size += keep, at += keep;
+    }
+    if (at != bytes) gained = 0;
+done:
+    free(plane);
+    free(frame);
+    if (!gained) {
+        free(o);
+        return 0;
+    }
+    uint8_t *fit = realloc(o, size);
+    *out = fit ? fit : o;
+    *out_bytes = size;
+    return 1;
 }
 
 int history_delta_encode(tile_layer layer, const void *before, const void *after, void **delta,
@@ -418,6 +489,7 @@ static size_t enforce_budget(history *h) {
 }
 
 size_t history_push(history *h, history_step *s) {
+    squeeze_collect(h);
     while (h->count > h->position) {
         history_step *r = h->steps[--h->count];
         h->bytes -= r->bytes;
@@ -440,16 +512,20 @@ size_t history_push(history *h, history_step *s) {
     h->steps[h->count++] = s;
     h->position = h->count;
     h->bytes += s->bytes;
-    return enforce_budget(h);
+    size_t dropped = enforce_budget(h);
+    squeeze_queue(h, s);
+    return dropped;
 }
 
 history_step *history_undo_peek(history *h) {
+    squeeze_collect(h);
     return h->position ? h->steps[h->position - 1] : NULL;
 }
 void history_undo_done(history *h) {
     if (h->position) h->position--;
 }
 history_step *history_redo_peek(history *h) {
+    squeeze_collect(h);
     return h->position < h->count ? h->steps[h->position] : NULL;
 }
 void history_redo_done(history *h) {
@@ -476,6 +552,7 @@ uint64_t history_dropped_total(const history *h) {
 }
 
 size_t history_set_budget(history *h, size_t budget_bytes) {
+    squeeze_collect(h);
     h->budget = budget_bytes ? budget_bytes : (size_t)512 << 20;
     return enforce_budget(h);
 }
@@ -492,4 +569,198 @@ long history_saved_position(const history *h) {
 
 int history_modified(const history *h) {
     return state_id(h) != h->saved_id;
+}
+
+// ---- squeezing in the background ------------------------------------------------------
+// An edit's commit encodes its deltas with zero runs only (history_delta_encode_part_quick):
+// zstd on a dab's planes was half the commit's time. history_push hands the new step's
+// deltas (copies) to one background thread, which tries zstd on them as encode_plane
+// does; a smaller delta replaces the step's at the next history_push, undo or redo peek
+// or budget change, on the thread that edits (the only one that touches steps), after
+// waiting for the ones still being squeezed, so budgets see the same sizes as before.
+// A step freed first (dropped, or a redo branch cut) cancels its work. The crash
+// journal keeps what the commit wrote.
+
+typedef struct squeeze_job {
+    struct squeeze_job *next;
+    history *h;
+    history_step *step;
+    size_t tile;
+    const void *delta; // the step's delta it squeezes: swapped only while the tile holds it
+    tile_layer layer;
+    uint8_t *in; // a copy of it
+    size_t in_bytes;
+    void *out; // the squeezed delta, or NULL when zstd gained nothing
+    size_t out_bytes;
+    int running, done, cancelled;
+} squeeze_job;
+
+// Work held at once (copies of deltas): past it, steps keep their zero-run deltas.
+#define SQUEEZE_MAX_BYTES ((size_t)64 << 20)
+
+static struct {
+    pthread_once_t once;
+    pthread_mutex_t lock;
+    pthread_cond_t work, finished;
+    int started;
+    squeeze_job *head; // in order of queueing
+    size_t bytes;
+} squeeze = {.once = PTHREAD_ONCE_INIT,
+             .lock = PTHREAD_MUTEX_INITIALIZER,
+             .work = PTHREAD_COND_INITIALIZER,
+             .finished = PTHREAD_COND_INITIALIZER};
+
+// Unlinks j (under the lock) and frees it with what it holds.
+static void squeeze_drop(squeeze_job *j) {
+    for (squeeze_job **p = &squeeze.head; *p; p = &(*p)->next)
+        if (*p == j) {
+            *p = j->next;
+            break;
+        }
+    squeeze.bytes -= j->in_bytes;
+    free(j->in);
+    free(j->out);
+    free(j);
+}
+
+// The first job not taken yet (of h, unless NULL), or NULL.
+static squeeze_job *squeeze_next(const history *h) {
+    for (squeeze_job *j = squeeze.head; j; j = j->next)
+        if (!j->running && !j->done && (!h || j->h == h)) return j;
+    return NULL;
+}
+
+// Squeezes j (called and returning under the lock, which it lets go meanwhile).
+static void squeeze_run(squeeze_job *j) {
+    j->running = 1;
+    pthread_mutex_unlock(&squeeze.lock);
+    void *out = NULL;
+    size_t out_bytes = 0;
+    squeeze_delta(j->layer, j->in, j->in_bytes, &out, &out_bytes);
+    pthread_mutex_lock(&squeeze.lock);
+    j->out = out, j->out_bytes = out_bytes;
+    j->running = 0, j->done = 1;
+    if (j->cancelled) squeeze_drop(j);
+    pthread_cond_broadcast(&squeeze.finished);
+}
+
+static void *squeeze_main(void *arg) {
+    (void)arg;
+    pthread_mutex_lock(&squeeze.lock);
+    for (;;) {
+        squeeze_job *j = squeeze_next(NULL);
+        if (j)
+            squeeze_run(j);
+        else
+            pthread_cond_wait(&squeeze.work, &squeeze.lock);
+    }
+    return NULL;
+}
+
+static void start_squeeze(void) {
+    pthread_t t;
+    pthread_attr_t attr;
+    pthread_attr_init(&attr);
+    pthread_attr_setdetachstate(&attr, PTHREAD_CREATE_DETACHED);
+    squeeze.started = pthread_create(&t, &attr, squeeze_main, NULL) == 0;
+    if (squeeze.started) pthread_setname_np(t, "orogen-squeeze"); // for top and perf
+    pthread_attr_destroy(&attr);
+}
+
+// Whether a delta has a plane zstd was not tried on that it may shrink.
+static int squeezable(const history_tile *t) {
+    const uint8_t *d = t->delta;
+    size_t el = element_bytes((tile_layer)t->key.layer), at = PART_HEADER;
+    if (t->bytes < PART_HEADER || memcmp(d, PART_MAGIC, 4) != 0) return 0;
+    for (size_t k = 0; k < el && t->bytes - at >= PLANE_HEADER; k++) {
+        size_t len = get_u32(d + at + 1);
+        if (d[at] != PLANE_ZSTD && len >= 2048) return 1;
+        if (len > t->bytes - at - PLANE_HEADER) return 0;
+        at += PLANE_HEADER + len;
+    }
+    return 0;
+}
+
+static void squeeze_queue(history *h, history_step *s) {
+    pthread_once(&squeeze.once, start_squeeze);
+    pthread_mutex_lock(&squeeze.lock);
+    int queued = 0;
+    for (size_t i = 0; squeeze.started && i < s->tile_count; i++) {
+        const history_tile *t = &s->tiles[i];
+        if (!squeezable(t) || squeeze.bytes + t->bytes > SQUEEZE_MAX_BYTES) continue;
+        squeeze_job *j = calloc(1, sizeof *j);
+        uint8_t *in = j ? malloc(t->bytes) : NULL;
+        if (!in) { // out of memory: this delta stays as it is
+            free(j);
+            continue;
+        }
+        memcpy(in, t->delta, t->bytes);
+        *j = (squeeze_job){.h = h,
+                           .step = s,
+                           .tile = i,
+                           .delta = t->delta,
+                           .layer = (tile_layer)t->key.layer,
+                           .in = in,
+                           .in_bytes = t->bytes};
+        squeeze_job **end = &squeeze.head;
+        while (*end)
+            end = &(*end)->next;
+        *end = j;
+        squeeze.bytes += t->bytes;
+        queued = 1;
+    }
+    if (queued) pthread_cond_signal(&squeeze.work);
+    pthread_mutex_unlock(&squeeze.lock);
+}
+
+// Finishes h's squeezing (taking a hand in what the thread has not started: a big
+// step's tiles go twice as fast) and puts the smaller deltas into their steps.
+static void squeeze_collect(history *h) {
+    pthread_mutex_lock(&squeeze.lock);
+    for (;;) {
+        squeeze_job *mine = squeeze_next(h);
+        if (mine) {
+            squeeze_run(mine);
+            continue;
+        }
+        int waiting = 0;
+        for (squeeze_job *j = squeeze.head; j; j = j->next)
+            waiting |= j->h == h && !j->done;
+        if (!waiting) break;
+        pthread_cond_wait(&squeeze.finished, &squeeze.lock);
+    }
+    squeeze_job *j = squeeze.head;
+    while (j) {
+        squeeze_job *next = j->next;
+        if (j->h == h) {
+            history_tile *t = &j->step->tiles[j->tile];
+            if (j->out && t->delta == j->delta) {
+                j->step->bytes -= t->bytes - j->out_bytes;
+                h->bytes -= t->bytes - j->out_bytes;
+                free(t->delta);
+                t->delta = j->out, t->bytes = j->out_bytes;
+                j->out = NULL;
+            }
+            squeeze_drop(j);
+        }
+        j = next;
+    }
+    pthread_mutex_unlock(&squeeze.lock);
+}
+
+// A step going away: its jobs are dropped (one being squeezed, when it is done).
+static void squeeze_cancel(const history_step *s) {
+    pthread_mutex_lock(&squeeze.lock);
+    squeeze_job *j = squeeze.head;
+    while (j) {
+        squeeze_job *next = j->next;
+        if (j->step == s) {
+            if (j->running)
+                j->cancelled = 1;
+            else
+                squeeze_drop(j);
+        }
+        j = next;
+    }
+    pthread_mutex_unlock(&squeeze.lock);
 }

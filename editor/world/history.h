@@ -53,6 +53,10 @@ int history_delta_encode(tile_layer layer, const void *before, const void *after
 // which part it covers; history_tile_apply takes either kind.
 int history_delta_encode_part(tile_layer layer, const void *before, const void *after,
                               grid_rect part, void **delta, size_t *bytes);
+// The same without zstd (zero runs only), at memory speed: for a commit, whose step
+// history_push then has zstd tried on in the background (see history.c).
+int history_delta_encode_part_quick(tile_layer layer, const void *before, const void *after,
+                                    grid_rect part, void **delta, size_t *bytes);
 // Adds an encoded delta to a step (takes ownership of delta).
 int history_step_add_delta(history_step *s, tile_key key, int was_pristine, void *delta,
                            size_t bytes);
@@ -62,6 +66,8 @@ int history_tile_apply(const history_tile *t, void *data);
 
 // Takes ownership of s: drops every redo step, appends s, then drops the oldest
 // steps while over budget (never s itself). Returns how many old steps were dropped.
+// s's deltas may be replaced by smaller ones (zstd, tried in the background) at the
+// next push, peek or budget change: call these from one thread, the one that edits.
 size_t history_push(history *h, history_step *s);
 // The step undo would revert / redo would reapply, or NULL; *_done moves past it.
 history_step *history_undo_peek(history *h);
