@@ -139,11 +139,12 @@ static void corner(const volume_mesh *m, uint32_t v, double p[3]) {
 }
 
 // Points on face t, as dense as the input's vertices (its corners, the input's own,
-// left out). Exact: the largest distance from them to the input. Else s->error when
-// every point lies within it, INFINITY at the first that does not; *nearest the input
-// face nearest the farthest point (UINT32_MAX if none).
-static double face_distance(const simplifier *s, const uint32_t *t, int exact, uint32_t *nearest) {
-    double a[3], b[3], c[3], longest = 0, worst = 0;
+// left out), against the input. Without raise: 1 when every point lies within *limit
+// of it, else 0 and *nearest the input face nearest the first that does not (UINT32_MAX
+// if none). With raise: *limit grows to the largest distance of any point; returns 1.
+static int face_within(const simplifier *s, const uint32_t *t, double *limit, int raise,
+                       uint32_t *nearest) {
+    double a[3], b[3], c[3], longest = 0;
     corner(s->in, t[0], a), corner(s->in, t[1], b), corner(s->in, t[2], c);
     const double *p[3] = {a, b, c};
     for (int e = 0; e < 3; e++) {
@@ -153,22 +154,16 @@ static double face_distance(const simplifier *s, const uint32_t *t, int exact, u
     }
     int n = (int)ceil(longest / s->step);
     n = n < 1 ? 1 : n > MAX_SAMPLES_PER_EDGE ? MAX_SAMPLES_PER_EDGE : n;
-    *nearest = UINT32_MAX;
     for (int i = 0; i < n; i++)
         for (int j = i == 0; j <= (i == 0 ? n - 1 : n - i); j++) {
             double q[3], u = (double)i / n, v = (double)j / n;
             for (int k = 0; k < 3; k++)
                 q[k] = a[k] + (b[k] - a[k]) * u + (c[k] - a[k]) * v;
-            uint32_t f;
-            if (!exact) {
-                if (mesh_distance_within(&s->surface, q, s->error, &f)) continue;
-                *nearest = f;
-                return INFINITY;
-            }
-            double d = mesh_distance_to(&s->surface, q, &f);
-            if (d > worst) worst = d, *nearest = f;
+            if (mesh_distance_within(&s->surface, q, *limit, nearest)) continue;
+            if (!raise) return 0;
+            *limit = mesh_distance_to(&s->surface, q, nearest); // only a farther point
         }
-    return exact ? worst : s->error;
+    return 1;
 }
 
 // Faces the last accepted result had passed the checks already.
@@ -258,7 +253,8 @@ static long long check(const simplifier *s, const uint32_t *res, size_t faces, s
         if (known(s, res + 3 * f)) continue;
         if (misshapen(s, res + 3 * f)) bad[f] = 1;
         uint32_t near;
-        if (face_distance(s, res + 3 * f, 0, &near) > s->error) {
+        double limit = s->error;
+        if (!face_within(s, res + 3 * f, &limit, 0, &near)) {
             bad[f] = 1;
             for (int c = 0; c < 3 && near != UINT32_MAX; c++)
                 hot[s->in->index[3 * (size_t)near + c]] = 1;
@@ -292,15 +288,16 @@ done:
 static double measure(const simplifier *s, const uint32_t *res, size_t faces) {
     mesh_distance result;
     if (mesh_distance_build(&result, s->in->pos, res, faces) != 0) return -1;
-    double worst = 0;
+    double worst = 0; // each point measured exactly only when it could raise it
     uint32_t near;
     for (size_t f = 0; f < faces; f++)
-        worst = fmax(worst, face_distance(s, res + 3 * f, 1, &near));
+        face_within(s, res + 3 * f, &worst, 1, &near);
     for (size_t v = 0; v < s->in->vertex_count; v++) {
         if (s->ring_start[v] == s->ring_start[v + 1]) continue;
         double p[3];
         corner(s->in, (uint32_t)v, p);
-        worst = fmax(worst, mesh_distance_to(&result, p, &near));
+        if (!mesh_distance_within(&result, p, worst, &near))
+            worst = mesh_distance_to(&result, p, &near);
     }
     mesh_distance_free(&result);
     return worst;
