@@ -209,7 +209,7 @@ static int split_slivers(volume_mesh *m) {
     return 0;
 }
 
-static void sorted3(const uint32_t *t, uint32_t out[3]) {
+void mesh_face_sorted(const uint32_t *t, uint32_t out[3]) {
     uint32_t a = t[0], b = t[1], c = t[2], x;
     if (a > b) x = a, a = b, b = x;
     if (b > c) x = b, b = c, c = x;
@@ -232,14 +232,14 @@ static int drop_twins(uint32_t *index, size_t triangles, size_t *left) {
     memset(slot, 0, size * sizeof *slot);
     for (size_t f = 0; f < triangles; f++) {
         uint32_t key[3], other[3];
-        sorted3(index + 3 * f, key);
+        mesh_face_sorted(index + 3 * f, key);
         uint64_t h = ((uint64_t)key[0] * 0x9e3779b97f4a7c15ULL) ^
                      ((uint64_t)key[1] * 0xc2b2ae3d27d4eb4fULL) ^
                      ((uint64_t)key[2] * 0x165667b19e3779f9ULL);
         size_t s = (size_t)(h ^ h >> 31) & (size - 1);
         for (; slot[s]; s = (s + 1) & (size - 1)) {
             uint32_t g = slot[s] - 1;
-            sorted3(index + 3 * (size_t)g, other);
+            mesh_face_sorted(index + 3 * (size_t)g, other);
             if (gone[g] || memcmp(key, other, sizeof key)) continue;
             // Same winding when f's first vertex is followed by the same vertex in g.
             const uint32_t *a = index + 3 * f, *b = index + 3 * (size_t)g;

@@ -18,5 +18,7 @@ typedef struct mesh_manifold_report {
 } mesh_manifold_report;
 
 int mesh_make_manifold(volume_mesh *m, mesh_manifold_report *rep, og_error *err);
+// A face's three vertices in ascending order: faces on the same vertices compare equal.
+void mesh_face_sorted(const uint32_t *t, uint32_t out[3]);
 
 #endif

@@ -28,14 +28,6 @@ typedef struct simplifier {
     double error;          // metres asked for
 } simplifier;
 
-static void sorted3(const uint32_t *t, uint32_t out[3]) {
-    uint32_t a = t[0], b = t[1], c = t[2], x;
-    if (a > b) x = a, a = b, b = x;
-    if (b > c) x = b, b = c, c = x;
-    if (a > b) x = a, a = b, b = x;
-    out[0] = a, out[1] = b, out[2] = c;
-}
-
 static int u64_cmp(const void *a, const void *b) {
     uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
     return x < y ? -1 : x > y;
@@ -169,14 +161,14 @@ static int face_within(const simplifier *s, const uint32_t *t, double *limit, in
 // Faces the last accepted result had passed the checks already.
 static void accept(simplifier *s, const uint32_t *index, size_t faces) {
     for (size_t f = 0; f < faces; f++)
-        sorted3(index + 3 * f, s->faces + 3 * f);
+        mesh_face_sorted(index + 3 * f, s->faces + 3 * f);
     qsort(s->faces, faces, 3 * sizeof *s->faces, triple_cmp);
     s->accepted = faces;
 }
 
 static int known(const simplifier *s, const uint32_t *t) {
     uint32_t key[3];
-    sorted3(t, key);
+    mesh_face_sorted(t, key);
     return bsearch(key, s->faces, s->accepted, 3 * sizeof *key, triple_cmp) != NULL;
 }
 
@@ -232,7 +224,7 @@ static long long check(const simplifier *s, const uint32_t *res, size_t faces, s
     if (!bad || !twins || !e || mesh_distance_build(&result, s->in->pos, res, faces) != 0)
         goto done;
     for (size_t f = 0; f < faces; f++) // faces on the same three vertices
-        sorted3(res + 3 * f, twins + 4 * f), twins[4 * f + 3] = (uint32_t)f;
+        mesh_face_sorted(res + 3 * f, twins + 4 * f), twins[4 * f + 3] = (uint32_t)f;
     qsort(twins, faces, 4 * sizeof *twins, triple_cmp);
     for (size_t i = 1; i < faces; i++)
         if (!triple_cmp(twins + 4 * i, twins + 4 * (i - 1)))
