@@ -3,7 +3,7 @@
 // terrain (hash) with its steps undoable; a torn or damaged journal restores the
 // longest valid prefix, never part of a step; a journal of an older save is not
 // replayed; a new session's first edit sets an unrecovered journal aside; discard
-// removes it; a quit removes this session's journal.
+// removes it; a quit removes this session's journal when its edits were all undone.
 #include "editor/cmd/commands.h"
 #include "editor/edit/recover.h"
 #include "editor/cmd/context.h"
@@ -83,11 +83,11 @@ static long file_size(const char *path) {
     return stat(path, &st) == 0 ? (long)st.st_size : -1;
 }
 
-// A saved world, loaded again; a session of five journal records, the hash after each
-// in h[1..5] (h[0]: the saved state); the journal as a kill at that moment leaves it,
-// in s->backup; then the session quits without saving.
-static void crashed_session(session *s, char h[6][17]) {
-    snprintf(s->dir, sizeof s->dir, "%s", test_tmpdir("recovery"));
+// A session's folder (a fresh temporary one named after tag), its world's file, the
+// world's journal and where a test keeps a copy of it; the context on a new default
+// flat world.
+static void session_begin(session *s, const char *tag) {
+    snprintf(s->dir, sizeof s->dir, "%s", test_tmpdir(tag));
     snprintf(s->world, sizeof s->world, "%s/w.world", s->dir);
     snprintf(s->journal, sizeof s->journal, "%s.recover", s->world);
     snprintf(s->backup, sizeof s->backup, "%s/crash.recover", s->dir);
@@ -95,8 +95,15 @@ static void crashed_session(session *s, char h[6][17]) {
     world_params_default(&p, WORLD_FLAT);
     og_error err = {{0}};
     world *w = world_create(&p, NULL, &err);
-    assert_non_null(w);
+    if (!w) fail_msg("world_create: %s", err.msg);
     cmd_context_init(&s->ctx, w, NULL, stdout, OROGEN_RESOURCE_DIR);
+}
+
+// A saved world, loaded again; a session of five journal records, the hash after each
+// in h[1..5] (h[0]: the saved state); the journal as a kill at that moment leaves it,
+// in s->backup; then the session quits without saving.
+static void crashed_session(session *s, char h[6][17]) {
+    session_begin(s, "recovery");
     char text[4400];
     snprintf(text, sizeof text, "tool raise radius=30 strength=1; dab 400 400; save %s", s->world);
     run(s, text);
@@ -182,16 +189,8 @@ static void test_recover_exact(void **state) {
 static void test_recover_volume(void **state) {
     (void)state;
     session s;
-    snprintf(s.dir, sizeof s.dir, "%s", test_tmpdir("recovery-volume"));
-    snprintf(s.world, sizeof s.world, "%s/w.world", s.dir);
-    snprintf(s.journal, sizeof s.journal, "%s.recover", s.world);
-    snprintf(s.backup, sizeof s.backup, "%s/crash.recover", s.dir);
-    world_params p;
-    world_params_default(&p, WORLD_FLAT);
+    session_begin(&s, "recovery-volume");
     og_error err = {{0}};
-    world *w = world_create(&p, NULL, &err);
-    assert_non_null(w);
-    cmd_context_init(&s.ctx, w, NULL, stdout, OROGEN_RESOURCE_DIR);
     char text[4400];
     snprintf(text, sizeof text, "set generator flat; generate; save %s", s.world);
     run(&s, text);
@@ -387,13 +386,7 @@ static void test_recover_untouched_edge_then_generate(void **state) {
     (void)state;
     session s;
     char live[17], now[17], text[4400];
-    snprintf(s.dir, sizeof s.dir, "%s", test_tmpdir("recovery-edge"));
-    snprintf(s.world, sizeof s.world, "%s/w.world", s.dir);
-    snprintf(s.journal, sizeof s.journal, "%s.recover", s.world);
-    world_params p;
-    world_params_default(&p, WORLD_FLAT);
-    og_error err = {{0}};
-    cmd_context_init(&s.ctx, world_create(&p, NULL, &err), NULL, stdout, OROGEN_RESOURCE_DIR);
+    session_begin(&s, "recovery-edge");
     snprintf(text, sizeof text, "tool raise radius=40 strength=1; dab 450 450; save %s", s.world);
     run(&s, text);
     reopen(&s);
@@ -406,6 +399,40 @@ static void test_recover_untouched_edge_then_generate(void **state) {
     finish(&s);
 }
 
+// A session whose edits were all undone has nothing unsaved: quitting it removes the
+// journal it began (a saved world's and a never-saved one's), so the next start offers
+// nothing to recover; one more edit left unundone keeps it.
+static void test_undone_session_leaves_no_journal(void **state) {
+    (void)state;
+    session s;
+    session_begin(&s, "recovery");
+    char rec[4200], text[8800], unsaved[4400];
+    snprintf(rec, sizeof rec, "%s/rec", s.dir);
+    setenv("OROGEN_RECOVER_DIR", rec, 1);
+    run(&s, "tool raise radius=30 strength=1; dab 100 100; undo");
+    snprintf(unsaved, sizeof unsaved, "%s", world_recovery_path(s.ctx.world));
+    assert_int_equal(access(unsaved, F_OK), 0); // the dab was journaled, then its undo
+    snprintf(text, sizeof text, "save %s", s.world);
+    run(&s, text);
+    assert_int_equal(access(unsaved, F_OK), -1);
+    reopen(&s);
+    run(&s, "dab 200 200; dab 300 300; undo; undo");
+    assert_int_equal(access(s.journal, F_OK), 0);
+    reopen(&s); // leaves without saving, nothing changed: the journal goes
+    assert_int_equal(access(s.journal, F_OK), -1);
+    run(&s, "dab 200 200; dab 300 300; undo");
+    reopen(&s); // one dab stays unsaved: so does its journal
+    assert_int_equal(access(s.journal, F_OK), 0);
+    run(&s, "recover discard");
+    run(&s, "new flat; dab 100 100; undo");
+    snprintf(unsaved, sizeof unsaved, "%s", world_recovery_path(s.ctx.world));
+    assert_int_equal(access(unsaved, F_OK), 0);
+    run(&s, "new flat"); // a never-saved world back to what it was made as
+    assert_int_equal(access(unsaved, F_OK), -1);
+    unsetenv("OROGEN_RECOVER_DIR");
+    finish(&s);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_recover_exact),
@@ -415,6 +442,7 @@ int main(void) {
         cmocka_unit_test(test_recover_never_saved),
         cmocka_unit_test(test_recover_set_aside_reachable),
         cmocka_unit_test(test_recover_untouched_edge_then_generate),
+        cmocka_unit_test(test_undone_session_leaves_no_journal),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -609,9 +609,13 @@ void world_close(world *w) {
     // The journal stays: only a save of its edits or 'recover discard' removes it, or
     // the successful end of a script that began it (world_settings.scripted): the script
     // is the record of those edits, and each run on a saved world would otherwise set
-    // the last one aside. A failed script (a save on a full disk) keeps it.
+    // the last one aside. A failed script (a save on a full disk) keeps it. A journal
+    // this session began whose edits were all undone holds nothing unsaved: it goes too
+    // (else the next start offers to recover nothing).
+    int nothing_unsaved = w->rj && !history_modified(w->history);
     recovery_journal_close(w->rj);
-    if (w->settings.scripted && w->journal_fresh && !w->keep_journal && w->recover_path[0])
+    if ((w->settings.scripted || nothing_unsaved) && w->journal_fresh && !w->keep_journal &&
+        w->recover_path[0])
         unlink(w->recover_path);
     close_stores(w);
     file_lock_release(&w->lock);
