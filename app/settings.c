@@ -134,8 +134,7 @@ void app_settings_load(app_settings *s, const char *path) {
     param_file_free(&pf);
 }
 
-// Creates every folder of path's parent.
-static int make_folders(const char *path) {
+int app_settings_make_folders(const char *path) {
     char dir[4096];
     snprintf(dir, sizeof dir, "%s", path);
     for (char *p = dir + 1; *p; p++) {
@@ -149,7 +148,7 @@ static int make_folders(const char *path) {
 
 int app_settings_save(const app_settings *s, const char *path, og_error *err) {
     if (!path[0]) return og_error_set(err, "no settings folder (HOME is not set)");
-    if (make_folders(path) != 0)
+    if (app_settings_make_folders(path) != 0)
         return og_error_set(err, "%s: cannot create its folder: %s", path, strerror(errno));
     static char text[65536]; // the UI thread's, once at close
     char num[64];

@@ -55,6 +55,8 @@ void app_settings_path(char *buf, size_t size, const char *file);
 // Reads path; a missing file keeps the defaults silently, bad lines are reported to
 // stderr as path:line warnings and keep their defaults.
 void app_settings_load(app_settings *s, const char *path);
+// Creates every folder of path's parent (the settings folder on a first run).
+int app_settings_make_folders(const char *path);
 // Writes path atomically, creating its folder.
 int app_settings_save(const app_settings *s, const char *path, og_error *err);
 // Puts path first in the recent files (once), made absolute.

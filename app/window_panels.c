@@ -3,6 +3,9 @@
 // terrain image. Only this file touches window_state's panels (window_panels_state.h).
 #include "app/window_internal.h"
 
+#include <errno.h>
+#include <string.h>
+
 // The panels' side of the window (editor_host): what they may ask of it.
 static void host_set_camera_mode(void *user, int mode) {
     set_camera_mode(user, mode);
@@ -84,7 +87,12 @@ void panels_keep(window_state *st) {
     while (recent-- > 0)
         app_settings_add_recent(&st->settings, editor_ui_recent(st->panels.ed, recent));
     og_error err = {{0}};
-    if (console_save_history(editor_ui_console(st->panels.ed), st->panels.history_path, &err) != 0)
+    const char *path = st->panels.history_path;
+    // The settings are written after this: on a first run their folder is not there yet.
+    if (path[0] && app_settings_make_folders(path) != 0)
+        fprintf(stderr, "orogen: console history not saved: %s: cannot create its folder: %s\n",
+                path, strerror(errno));
+    else if (console_save_history(editor_ui_console(st->panels.ed), path, &err) != 0)
         fprintf(stderr, "orogen: console history not saved: %s\n", err.msg);
 }
 
