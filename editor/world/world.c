@@ -277,7 +277,9 @@ static int open_checked_store(world *w, const char *tiles, og_error *err) {
     const char *ro = "opened read-only ('save force=1' writes over it, save to another file "
                      "keeps it)";
     if (!exists) {
-        if (p->tiles_saved > 0 || p->tiles_id[0])
+        // A store that held no tiles when saved loses nothing by being gone (a world file
+        // copied on its own); one of an unknown count (an older file) might have.
+        if (p->tiles_saved > 0 || (p->tiles_saved < 0 && p->tiles_id[0]))
             snprintf(w->read_only, sizeof w->read_only,
                      "its tile store %s is missing (it held %" PRId64
                      " tiles when saved); showing generated terrain there; %s",
