@@ -72,20 +72,44 @@ int viewport_default_camera(viewport *v, world *w, og_error *err) {
     return 0;
 }
 
+// The ground (or the sea, when higher) at (x, z), read at the nearest point inside a
+// bounded world: a camera may stand beyond its edge.
+static int ground_or_sea(world *w, const world_params *p, double x, double z, double *out,
+                         og_error *err) {
+    if (p->size > 0) {
+        x = fmin(fmax(x, 0.0), (double)(p->size - 1) * p->spacing);
+        z = fmin(fmax(z, 0.0), (double)(world_params_size_z(p) - 1) * p->spacing);
+    }
+    double g = 0;
+    if (world_sample(w, 0, x, z, &g, err) != 0) return -1;
+    *out = fmax(g, world_params_ocean_height(p));
+    return 0;
+}
+
 int viewport_camera_on_land(viewport *v, world *w, og_error *err) {
     if (viewport_default_camera(v, w, err) != 0) return -1;
     const world_params *p = world_get_params(w);
     if (p->kind == WORLD_PLANET) return 0;
     double sea = world_params_ocean_height(p), land = sea + 0.05 * p->max_height;
     double lo = 0, hi = p->size > 0 ? (double)(p->size - 1) * p->spacing : 0;
-    double centre = 0.5 * (lo + hi), best[3] = {0, 0, 0}, best_slope = 0.4; // 22 degrees
+    double hi_z = p->size > 0 ? (double)(world_params_size_z(p) - 1) * p->spacing : 0;
+    double centre = 0.5 * (lo + hi), centre_z = 0.5 * (lo + hi_z);
+    double best[3] = {0, 0, 0}, best_slope = 0.4; // 22 degrees
+    // The distance at which the whole of a bounded world fits the view (its diagonal
+    // across the narrower field of view, with a margin): a small world, say one made from
+    // a heightmap, is seen whole rather than as a speck below the view.
+    camera *c = &v->cam;
+    double narrow = v->aspect > 0 ? fmin(v->aspect, 1.0) : 1.0;
+    double half_fov = atan(narrow * tan(0.5 * c->fov_y * M_PI / 180.0));
+    double whole = p->size > 0 ? 0.6 * hypot(hi, hi_z) / tan(half_fov) : INFINITY;
     int found = 0;
     static const double rings[] = {0, 600, 1200, 2000, 3000};
     for (int r = 0; r < 5 && !found; r++)
         for (int a = 0; a < (r ? 12 : 1); a++) { // the gentlest land of the nearest ring
             double x = centre + rings[r] * cos(a * M_PI / 6),
-                   z = centre + rings[r] * sin(a * M_PI / 6);
-            if (p->size > 0 && (x + 20 < lo || x + 20 > hi || z + 20 < lo || z + 20 > hi)) continue;
+                   z = centre_z + rings[r] * sin(a * M_PI / 6);
+            if (p->size > 0 && (x + 20 < lo || x + 20 > hi || z + 20 < lo || z + 20 > hi_z))
+                continue;
             double g, gx, gz;
             if (world_sample(w, 0, x, z, &g, err) != 0 ||
                 world_sample(w, 0, x + 20, z, &gx, err) != 0 ||
@@ -97,14 +121,19 @@ int viewport_camera_on_land(viewport *v, world *w, og_error *err) {
                 found = 1;
             }
         }
-    if (!found) return 0; // all sea or cliffs: the default view
-    camera *c = &v->cam;
     c->pitch = -35; // from above: the brush lies round on the ground, a raise shows
-    double distance = fmax(900.0, 1.5 * (best[1] - sea));
+    double distance = fmax(fmin(900.0, whole), 1.5 * (best[1] - sea));
+    if (!found) {
+        if (!(whole < 900.0)) return 0; // a large world of sea or cliffs: the default view
+        // A small world all under the sea (or all cliffs): the whole of it.
+        best[0] = centre, best[2] = centre_z;
+        if (ground_or_sea(w, p, best[0], best[2], &best[1], err) != 0) return -1;
+        distance = whole;
+    }
     camera_focus(c, best, distance);
     double below = 0; // never under the ground or the sea where the camera stands
-    if (world_sample(w, 0, c->pos[0], c->pos[2], &below, err) != 0) return -1;
-    double floor_y = fmax(below, sea) + 40.0;
+    if (ground_or_sea(w, p, c->pos[0], c->pos[2], &below, err) != 0) return -1;
+    double floor_y = below + 40.0;
     if (c->pos[1] < floor_y) { // higher, still looking at the land
         c->pos[1] = floor_y;
         double dx = best[0] - c->pos[0], dz = best[2] - c->pos[2];

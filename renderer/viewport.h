@@ -41,7 +41,8 @@ void viewport_destroy(viewport *v);
 int viewport_default_camera(viewport *v, world *w, og_error *err);
 // The editor's first view of a flat world: the default camera turned to face the nearest
 // land well above the sea (searched in rings out to 3 km from the centre), from a
-// distance that shows it whole; the default camera when there is none. Planets: as
+// distance that shows it whole (a bounded world smaller than that view: all of it); the
+// whole of a small bounded world with no such land; else the default camera. Planets: as
 // viewport_default_camera.
 int viewport_camera_on_land(viewport *v, world *w, og_error *err);
 
