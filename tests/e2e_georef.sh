@@ -182,7 +182,7 @@ printf 'new flat from=%s\ntool raise radius=2000 strength=1\nstroke 5000 5000 20
 edited=$(tail -n 1 "$work/out")
 journal=$(ls "$OROGEN_RECOVER_DIR"/*.recover 2>/dev/null | head -n 1)
 [ -n "$journal" ] && [ "$(stat -c %s "$journal")" -lt 1000000 ]
-check "the journal names the raster instead of holding its $(stat -c %s "$work/base.tif" 2>/dev/null)-byte samples ($(stat -c %s "$journal" 2>/dev/null) bytes)" $?
+ok=$?; check "the journal names the raster instead of holding its $(stat -c %s "$work/base.tif" 2>/dev/null)-byte samples ($(stat -c %s "$journal" 2>/dev/null) bytes)" $ok
 cp "$journal" "$work/journal.copy"
 run -c "recover $journal; hash 0 0 90000 60000; undo; hash 0 0 90000 60000"
 vals=($(grep -E '^[0-9a-f]{16}$' "$work/out"))

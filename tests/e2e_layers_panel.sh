@@ -240,7 +240,7 @@ sleep 0.3
 out=$(tail -n +$((before + 1)) "$work/out" | grep -E '^Dock/(Stack|Mask editor|New layer)')
 bad=$(echo "$out" | awk -v l="$lx" -v r=$((lx + lw)) '{ n = NF; if ($(n-3) < l - 1 || $(n-3) + $(n-1) > r + 1) print }')
 [ -n "$out" ] && [ -n "$lx" ] && [ -z "$bad" ]
-check "at UI scale 1.5 the panel fits the dock ($(echo "$out" | wc -l) widgets; outside: ${bad:-none})" $?
+ok=$?; check "at UI scale 1.5 the panel fits the dock ($(echo "$out" | wc -l) widgets; outside: ${bad:-none})" $ok
 shot scale_1_5
 # The opacity's tooltip lies beside the dock, not over the next layer's name.
 reveal "Dock/Stack/Hill/Opacity"
@@ -248,6 +248,6 @@ read -r x y w h <<<"$(widget "Dock/Stack/Hill/Opacity")"
 xdotool mousemove --window "$wid" $((x + w / 2)) $((y + h / 2))
 sleep 1.5
 shot opacity_tooltip
-alive; check "the editor is alive: no widget id conflict ($(tail -c 300 "$work/err"))" $?
+alive; ok=$?; check "the editor is alive: no widget id conflict ($(tail -c 300 "$work/err"))" $ok
 
 end_window_test

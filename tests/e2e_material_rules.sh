@@ -37,7 +37,7 @@ snow500="material_rule set 5 height=500,inf,40"
 run -c "$hill; $cam; $no_snow; screenshot $work/a.png $W $H; $area; $snow500; screenshot $work/b.png $W $H;
         $area; undo; screenshot $work/c.png $W $H; $area; redo; screenshot $work/d.png $W $H;
         material_rules; history"
-[ $status = 0 ]; check "the rules change and render ($(cat "$work/err"))" $?
+[ $status = 0 ]; ok=$?; check "the rules change and render ($(cat "$work/err"))" $ok
 hashes=$(grep -E '^[0-9a-f]{16}$' "$work/out" | sort -u | wc -l)
 [ "$hashes" = 1 ]; check "the heights never change (one hash for all three, got $hashes)" $?
 grep -q '^rule 5: snow height=500,inf,40 slope=0,28.8108,9.849$' "$work/out"
@@ -53,7 +53,7 @@ for y in $(seq 96 12 262); do
     for x in $(seq 8 20 472); do picks="$picks pick $x $y $W $H;"; done
 done
 run -c "$hill; $cam; $picks"
-[ $status = 0 ]; check "picks under the grid ($(cat "$work/err"))" $?
+[ $status = 0 ]; ok=$?; check "picks under the grid ($(cat "$work/err"))" $ok
 oiiotool "$work/a.png" -o "$work/a.ppm" && oiiotool "$work/b.png" -o "$work/b.ppm"
 check "the screenshots convert for reading" $?
 verdict=$(python3 - "$work/a.ppm" "$work/b.ppm" "$work/out" <<'EOF'
@@ -92,7 +92,7 @@ check "above 560 m it whitens ($high_whiter of $high pixels)" $?
 run -c "material_rule add gravel slope=10,20,5 breakup=0.3 at=2; material_rule move 2 top;
         material_rule add moss curvature=0.5,inf,0.2; material_rule delete 1; material_rules;
         undo; undo; undo; undo; material_rules"
-[ $status = 0 ]; check "add, move, delete run ($(cat "$work/err"))" $?
+[ $status = 0 ]; ok=$?; check "add, move, delete run ($(cat "$work/err"))" $ok
 grep -q '^added rule 2: gravel slope=10,20,5 breakup=0.3$' "$work/out"; check "add echoes the rule" $?
 grep -q '^moved to rule 6: gravel' "$work/out"; check "move echoes where it went" $?
 grep -q '^rule 1: grass height=1%+6,inf,6 (height -378..inf m here)$' "$work/out"
@@ -108,7 +108,7 @@ for bad in "material_rule set 9 height=1,2|expected a rule number 1..5, got '9'"
            "material_rule spin 2|expected add, set, move, delete or reset, got 'spin'"; do
     run -c "${bad%%|*}"
     [ $status != 0 ] && grep -qF -- "${bad#*|}" "$work/err"
-    check "'${bad%%|*}' is refused: ${bad#*|} ($(cat "$work/err"))" $?
+    ok=$?; check "'${bad%%|*}' is refused: ${bad#*|} ($(cat "$work/err"))" $ok
 done
 
 # A planet's rules lay over its own look: none at first, then as on a flat world.
@@ -117,30 +117,30 @@ run -c "new planet preset=moon; material_rules; material_rule add snow height=10
 [ $status = 0 ] && grep -q "^material_rules: 0 rules, .*over the planet's own look" "$work/out" &&
     grep -q '^rule 1: snow height=1000,inf,50$' "$work/out" &&
     [ "$(grep -c '^material_rules: 0 rules' "$work/out")" = 2 ]
-check "a planet starts with no rules, takes them and resets to none ($(cat "$work/err"))" $?
+ok=$?; check "a planet starts with no rules, takes them and resets to none ($(cat "$work/err"))" $ok
 
 # 3. Save and load keep the stack; an old file gets the default stack; a bad line is
 # an error naming the file and line.
 run -c "$snow500; material_rule add dirt height=-inf,10%; save $work/w.world; $cam;
         screenshot $work/saved.png $W $H"
-[ $status = 0 ]; check "save ($(cat "$work/err"))" $?
+[ $status = 0 ]; ok=$?; check "save ($(cat "$work/err"))" $ok
 grep -q '^material_rule_5 = snow height=500,inf,40 slope=0,28.8108,9.849;$' "$work/w.world" &&
     grep -q '^material_rule_6 = dirt height=-inf,10%;$' "$work/w.world"
 check "the parameter file holds the rules" $?
 run "$work/w.world" -c "material_rules; $cam; screenshot $work/loaded.png $W $H"
-[ $status = 0 ]; check "load ($(cat "$work/err"))" $?
+[ $status = 0 ]; ok=$?; check "load ($(cat "$work/err"))" $ok
 grep -q '^rule 6: dirt height=-inf,10% (height -inf..-240 m here)$' "$work/out"; check "load keeps the rules" $?
 r=$(rmse "$work/saved.png" "$work/loaded.png"); less "$r" 0.5; check "and the picture (RMSE $r)" $?
 grep -v '^material_rule' "$work/w.world" | grep -v '^# Saved by\|^# end of file' >"$work/old.world"
 run "$work/old.world" -c "material_rules"
 [ $status = 0 ] && grep -q '^rule 5: snow height=62%+40,inf,80 slope=0,28.8108,9.849' "$work/out" &&
     [ "$(grep -c '^rule ' "$work/out")" = 5 ]
-check "a file without rules gets the default stack ($(cat "$work/err"))" $?
+ok=$?; check "a file without rules gets the default stack ($(cat "$work/err"))" $ok
 sed 's/^material_rule_2 = .*/material_rule_2 = grass height=9,1;/' "$work/w.world" >"$work/bad.world"
 run "$work/bad.world" --batch /dev/null
 line=$(grep -n '^material_rule_2' "$work/bad.world" | cut -d: -f1)
 grep -qF "bad.world:$line: error: material_rule_2: height=9,1: the low end is above the high end" "$work/err"
-check "a bad rule line is an error naming file and line ($(head -c 300 "$work/err"))" $?
+ok=$?; check "a bad rule line is an error naming file and line ($(head -c 300 "$work/err"))" $ok
 
 echo "e2e_material_rules: $passes passed, $failures failed"
 [ $failures = 0 ]

@@ -109,7 +109,7 @@ check "on a planet the panel says the rules lay over the planet's own look" $?
 s=$(stack_until ""); check "a planet starts with no rules ($s)" $?
 click "Dock/Add rule"
 s=$(stack_until "sand "); check "Add rule adds one on a planet ($s)" $?
-alive; check "the editor is alive: no widget id conflict ($(tail -c 300 "$work/err"))" $?
+alive; ok=$?; check "the editor is alive: no widget id conflict ($(tail -c 300 "$work/err"))" $ok
 shot planet
 
 end_window_test

@@ -133,7 +133,7 @@ fill "Save as/Path" "$work/first.world"
 click "Save as/Save"
 ask_until info '^path=' "first.world" >/dev/null && [ -s "$work/first.world" ]
 check "Save as writes first.world and the world is named after it" $?
-wait_title "first.world" >/dev/null; check "the title names it ($(title))" $?
+wait_title "first.world" >/dev/null; ok=$?; check "the title names it ($(title))" $ok
 shot 06_saved
 
 section "7"
@@ -142,7 +142,7 @@ section "7"
 # (issue 26: input is never dropped).
 s0=$(steps)
 echo "tool hydraulic droplets=1000000 radius=200; dab $cx $cz" >&3
-wait_title "working"; check "a long dab runs in the background ($(title))" $?
+wait_title "working"; ok=$?; check "a long dab runs in the background ($(title))" $ok
 read -r x y w h <<<"$(widget "Tools/Smooth")"
 xdotool mousemove --window "$wid" $((x + w / 2)) $((y + h / 2)) click 1
 line=$(ask ui_input_waiting '^ui_input_waiting ')
@@ -189,7 +189,7 @@ s0=$(steps)
 click "Menu/File" && click "Menu/File/Import heightmap..."
 fill "Import heightmap/Path" "$work/notes.png"
 click "Import heightmap/Next"
-wait_message "notes.png"; check "importing notes.png shows why it failed ($(messages | tr '\n' '|'))" $?
+wait_message "notes.png"; ok=$?; check "importing notes.png shows why it failed ($(messages | tr '\n' '|'))" $ok
 shot 09_import_failed
 [ "$(steps)" = "$s0" ]; check "and changes nothing" $?
 for name in "Notices/Dismiss" "Import heightmap/Cancel" "Import options/Cancel"; do
@@ -238,10 +238,13 @@ xdotool windowsize --sync "$wid" 1024 640
 click "Menu/View" && click "Menu/View/UI scale 150%"
 ask_until ui_scale '^ui_scale' '1.5' >/dev/null; check "View > UI scale 150% at 1024 x 640" $?
 read -r VX VY VW VH <<<"$(widget Viewport)"
+# (The dock scrolls: what lies below its foot is reached with the wheel, so only its
+# width must fit.)
 bad=$(ask "ui_widgets /" '^Viewport ' >/dev/null; tail -n 200 "$work/out" |
-    awk '/^[A-Z][a-z]+\/.* -?[0-9]+ -?[0-9]+ -?[0-9]+ -?[0-9]+$/ { n = NF
-        if ($(n-3) < 0 || $(n-2) < 0 || $(n-3) + $(n-1) > 1024.5 || $(n-2) + $n > 640.5) print }')
-[ -z "$bad" ]; check "every widget lies inside the window ($(printf '%s\n' "$bad" | sed -n 1,2p | tr '\n' '|'))" $?
+    awk '/^[A-Z][a-z]+\/.* -?[0-9]+ -?[0-9]+ -?[0-9]+ -?[0-9]+$/ { n = NF; dock = /^Dock\//
+        if ($(n-3) < 0 || $(n-3) + $(n-1) > 1024.5) print
+        else if (!dock && ($(n-2) < 0 || $(n-2) + $n > 640.5)) print }')
+[ -z "$bad" ]; ok=$?; check "every widget lies inside the window ($(printf '%s\n' "$bad" | sed -n 1,2p | tr '\n' '|'))" $ok
 shot 12_small_scaled
 
 section "13"
@@ -276,12 +279,12 @@ xdotool mousemove --window "$wid" $((x + w / 2)) $((y + h / 2)) keydown ctrl cli
 sleep 0.3
 xdotool type --delay 30 "x"
 key Return
-wait_message 'Dock/Strength: "x" is not a number'; check "a bad value in Strength says why ($(messages | tr '\n' '|'))" $?
+wait_message 'Dock/Strength: "x" is not a number'; ok=$?; check "a bad value in Strength says why ($(messages | tr '\n' '|'))" $ok
 shot 14_bad_value
 key Escape
 wait_message '^messages 0$' && [ "$(ask tool '^strength=')" = "$s0" ]
 check "Esc closes it, the strength unchanged ($s0)" $?
-alive; check "the editor ran the whole session ($(tail -c 300 "$work/err"))" $?
+alive; ok=$?; check "the editor ran the whole session ($(tail -c 300 "$work/err"))" $ok
 
 echo "$passes passed, $failures failed"
 # What the editor printed, kept with the screenshots when something failed.

@@ -184,7 +184,7 @@ rc=$?
 check "simplified, manifold and closed inside the region: $(cat manifold.txt)" $rc
 run -c "new flat; seed 3; generate; tool carve radius=8; tunnel 100 -20 100 300 -20 300 radius=10; export tss.ply region=0,0,256,256 simplify=1 solid=1"
 [ $status != 0 ] && grep -q "tss.ply: solid=1 and simplify= together are not supported" "$work/err" && [ ! -e tss.ply ]
-check "solid=1 with simplify= is refused, nothing written ($(head -c 200 "$work/err"))" $?
+ok=$?; check "solid=1 with simplify= is refused, nothing written ($(head -c 200 "$work/err"))" $ok
 
 # solid=1 with volume edits: sides on the region's edges and a floor, closed everywhere
 # (the tunnel's mouths open into the side walls).

@@ -3,7 +3,7 @@
 # holds nothing of the user's until it is edited (the file on disk has it all, as an
 # image opened in GIMP or a heightmap read into a new Gaea graph), so Ctrl+Q quits
 # without asking and leaves no recovery journal; once edited, Ctrl+Q asks, and Discard
-# quits and drops the journal.
+# quits and drops the journal. A small heightmap's world opens seen whole.
 # Usage: e2e_window_from_file.sh OROGEN TESTS_DIR
 set -u
 orogen=$1
@@ -33,23 +33,46 @@ session() {
 # 1. Unedited: no '*' in the title, Ctrl+Q quits at once, no journal is left.
 session unedited
 sleep 0.5
-title | grep -q '^Orogen - unsaved world - '; check "the title does not mark it modified ($(title))" $?
+title | grep -q '^Orogen - unsaved world - '; ok=$?; check "the title does not mark it modified ($(title))" $ok
 key ctrl+q
 status=$(exit_status)
 [ "$status" = 0 ]; check "Ctrl+Q quits without asking (status $status)" $?
-[ "$(journals)" = 0 ]; check "no recovery journal is left to offer at the next start ($(journals))" $?
+[ "$(journals)" = 0 ]; ok=$?; check "no recovery journal is left to offer at the next start ($(journals))" $ok
 exec 3>&-
 
 # 2. Edited: '*', Ctrl+Q asks; Discard quits and drops the journal.
 session edited
 echo "dab 50000 50000" >&3
-wait_title "unsaved world \* - "; check "a dab marks it modified ($(title))" $?
+wait_title "unsaved world \* - "; ok=$?; check "a dab marks it modified ($(title))" $ok
 key ctrl+q
 widget "Unsaved changes/Discard" >/dev/null; check "Ctrl+Q asks once it is edited" $?
 alive; check "and the window stays while it asks" $?
 click "Unsaved changes/Discard"
 status=$(exit_status)
 [ "$status" = 0 ]; check "Discard quits (status $status)" $?
-[ "$(journals)" = 0 ]; check "Discard drops the journal ($(journals))" $?
+[ "$(journals)" = 0 ]; ok=$?; check "Discard drops the journal ($(journals))" $ok
+exec 3>&-
+
+# 3. A small, oblong heightmap (600 x 200 m) opens seen whole: the ground under the view's
+# centre is the world's middle (the first view used to look for land 300 m along both
+# axes, outside this world, and stayed a few metres above its middle looking away).
+"$orogen" -c "new flat; export $work/strip.exr region=1000,1000,1600,1200" >/dev/null 2>&1
+rm -f "$work/stdin"
+open_editor "$orogen"
+xdotool windowsize --sync "$wid" 900 700
+line=$(ask "new flat from=$work/strip.exr" '^imported')
+check "new flat from a 600 x 200 m heightmap ($line)" $?
+read -r VX VY VW VH <<<"$(widget Viewport)"
+xdotool mousemove --window "$wid" $((VX + VW / 2)) $((VY + VH / 2))
+under=
+for _ in $(seq 40); do
+    under=$(names "Status/x " | head -n 1)
+    [[ $under =~ ^Status/x\ +([0-9.]+)\ +z\ +([0-9.]+) ]] && break
+    sleep 0.25
+done
+x=${BASH_REMATCH[1]:-0} z=${BASH_REMATCH[2]:-0}
+awk -v x="$x" -v z="$z" 'BEGIN { exit !(x > 200 && x < 400 && z > 50 && z < 150) }'
+ok=$?; check "the view's centre is on the world's middle ($under; $(ask camera '^camera'))" $ok
+grep -q "camera:" "$work/err"; [ $? = 1 ]; ok=$?; check "no camera error ($(grep camera: "$work/err"))" $ok
 
 end_window_test

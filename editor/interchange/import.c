@@ -433,8 +433,17 @@ int import_apply_source(world *w, const char *path, const import_source *s, cons
     }
     const double x1 = op.x0 + (r->width - 1) * sx, z1 = op.z0 + (r->height - 1) * sz;
     if (layer_grid_check_position(&g, op.x0, op.z0, err) != 0 ||
-        layer_grid_check_position(&g, x1, z1, err) != 0)
+        layer_grid_check_position(&g, x1, z1, err) != 0) {
+        // Said as the import's placement, not as a bare position the user never typed.
+        if (g.extent > 0 && isfinite(op.x0) && isfinite(x1) && isfinite(op.z0) && isfinite(z1))
+            og_error_set(err,
+                         "%s: placed at %.9g, %.9g .. %.9g, %.9g m (%.9g x %.9g m apart) it "
+                         "reaches beyond the world (0 .. %.9g, 0 .. %.9g m): give a smaller "
+                         "spacing= or another x=, z=",
+                         path, op.x0, op.z0, x1, z1, sx, sz, (double)(g.extent - 1) * g.spacing,
+                         (double)(g.extent_z - 1) * g.spacing);
         return -1;
+    }
     // The layer samples the raster covers (within rounding of its edges).
     grid_rect want = {
         (int64_t)ceil(op.x0 / g.spacing - 1e-6), (int64_t)ceil(op.z0 / g.spacing - 1e-6),

@@ -152,3 +152,11 @@ drag_onto() { # NAME TARGET
     sleep 0.3
     xdotool mouseup 1
 }
+# Prints the names of the widgets whose name contains FILTER.
+names() {
+    local before
+    before=$(wc -l <"$work/out")
+    ask "ui_widgets \"$1\"" '^Viewport ' >/dev/null || return 1
+    sleep 0.1
+    tail -n +$((before + 1)) "$work/out" | grep -v '^Viewport ' | sed -E 's/ -?[0-9]+ -?[0-9]+ -?[0-9]+ -?[0-9]+$//'
+}

@@ -37,7 +37,8 @@ keep_editor_state_in_work() {
 }
 [ -n "${work:-}" ] && keep_editor_state_in_work
 
-# check DESCRIPTION STATUS: counts a pass, or prints and counts a failure.
+# check DESCRIPTION STATUS: counts a pass, or prints and counts a failure. Keep the status
+# before a $(...) in DESCRIPTION, which sets $? itself: cond; ok=$?; check "... $(x)" $ok
 check() { if [ "$2" = 0 ]; then passes=$((passes + 1)); else echo "FAIL: $1"; failures=$((failures + 1)); fi; }
 
 # begin_window_test NAME: the test's folder $work (removed at exit), the screenshots'
