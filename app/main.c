@@ -290,17 +290,13 @@ int main(int argc, char **argv) {
     // of a tiled export only its own); the window shows the whole world at once.
     ctx.defer_base = script_count > 0;
 
-    int status = 0;
-    if (script_count == 0) {
-        if (window_run(&ctx, &err) != 0) {
-            fprintf(stderr,
-                    "orogen: %s\nBatch mode needs no window: orogen --batch SCRIPT or "
-                    "orogen -c 'CMD; CMD'\n",
-                    err.msg);
-            status = 1;
-        }
-    } else {
-        status = run_scripts(&ctx, scripts, script_count, &err);
+    int status = script_count > 0 ? run_scripts(&ctx, scripts, script_count, &err) : 0;
+    if (script_count == 0 && window_run(&ctx, &err) != 0) {
+        fprintf(stderr,
+                "orogen: %s\nBatch mode needs no window: orogen --batch SCRIPT or "
+                "orogen -c 'CMD; CMD'\n",
+                err.msg);
+        status = 1;
     }
     // A script that left a stroke open: it is one undo step like any other.
     if (cmd_end_stroke(&ctx, &err) != 0) {

@@ -72,7 +72,7 @@ exports() { # PREFIX: the export lines of the cases whose file starts with it
     fi
 } >script.txt
 "$orogen" --batch script.txt >out.txt 2>err.txt
-check "exports run ($(head -c 300 err.txt))" $?
+ok=$?; check "exports run ($(head -c 300 err.txt))" $ok
 
 blender_args=()
 for c in $cases; do
@@ -80,7 +80,7 @@ for c in $cases; do
     line=$(grep "^exported $f:" out.txt)
     reported=$(sed -n 's/.*surface error \([-0-9.e+]*\) m.*/\1/p' <<<"$line")
     python3 "$tests/mesh_check.py" "$f" --closed-inside "$region" >manifold.txt 2>&1
-    check "simplify=$e: $(cat manifold.txt)" $?
+    ok=$?; check "simplify=$e: $(cat manifold.txt)" $ok
     python3 -c "import sys; r, e = float(sys.argv[1]), float(sys.argv[2]); sys.exit(0 if 0 < r <= e else 1)" \
         "${reported:-nan}" "$e"
     check "$f: the surface error printed (${reported:-none} m) is within simplify=$e" $?
@@ -115,7 +115,7 @@ print('%s: Blender %s vertices, %s faces (Orogen %d, %d); crowded, unwound, open
       'degenerate %s%s' % (f, v['vertices'], v['faces'], verts, tris, counts, measured))
 sys.exit(0 if ok else 1)
 EOF
-    check "$(cat cmp.txt)" $?
+    ok=$?; check "$(cat cmp.txt)" $ok
 done
 
 validator_dir=$(cd "$tests/.." && pwd)/.cache/npm
@@ -123,7 +123,7 @@ for c in $cases; do
     f=${c%%:*}
     case $f in *.glb) ;; *) continue ;; esac
     node "$tests/support/validate_gltf.js" "$validator_dir" "$f" >validator.txt 2>&1
-    check "glTF validator: $f has no errors and no warnings ($(head -n 1 validator.txt))" $?
+    ok=$?; check "glTF validator: $f has no errors and no warnings ($(head -n 1 validator.txt))" $ok
 done
 
 echo "e2e_volume_simplify: $passes passed, $failures failed"
