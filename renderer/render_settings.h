@@ -37,6 +37,10 @@ typedef struct render_settings {
     int auto_materials;        // the automatic material rules (grass, rock, snow by height and
                                // slope) colour unpainted ground; off: a neutral clay (1)
     double lod_pixels;         // planets: pixels a sample may cover before its chunk splits (6)
+    double refine_pixels;      // flat worlds: pixels of geometric error (projected) at which a
+                               // part of a coarse clipmap level starts to be drawn at twice
+                               // its density, fully at 1.5x that (renderer/clip_refine.h);
+                               // 0: never (0)
     int antialias;             // edges smoothed in the finished image (renderer/antialias.h) (1)
     // A layer mask being edited, drawn over the terrain (the Layers panel's mask editor):
     // mask_terms bits 1 height, 2 slope, 4 curvature, 8 flow (0: none drawn), each term's corners

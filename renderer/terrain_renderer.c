@@ -2,6 +2,8 @@
 
 #include "editor/world/world_events.h"
 #include "renderer/clip_cells.h"
+#include "renderer/clip_refine.h"
+#include "renderer/clip_refine_mesh.h"
 #include "renderer/clip_slopes.h"
 #include "renderer/clip_window.h"
 #include "renderer/clip_window_upload.h"
@@ -54,9 +56,11 @@ enum {
     TV_SLOPES_A = 2048,  // the level's shading slopes come from finer heights
     TV_SLOPES_B = 4096,  // the same for the coarser level it morphs into
     TV_VOLUME = 8192,    // volume meshes replace the ground somewhere
-    TERRAIN_VARIANTS = 16384
+    TV_REFINED = 16384,  // parts drawn at twice the density (renderer/clip_refine.h)
+    TERRAIN_VARIANTS = 32768
 };
 #define GBUFFER_UNIT 10 // the texture unit the resolve passes read the G-buffer from
+#define REFINE_UNIT 11  // the refined parts' vertex weights (renderer/clip_refine.h)
 #define TERRAIN_PROGRAMS 48
 #define PIECES_MAX 512 // drawable parts of a level (clipmap_mesh.h pieces)
 
@@ -91,6 +95,14 @@ struct terrain_renderer {
     int paint_seen;
     clip_window detail, detail_pd;
     clip_slopes slopes; // the levels' shading slopes from finer mip levels
+    // Parts of levels drawn at twice the density where their error shows (the refined
+    // mesh's own buffers; the error and bounds per cell, rebuilt when the level's or its
+    // shading window changed: refine_stale; the weights the vertex shader reads).
+    clip_refine_mesh refine_mesh;
+    GLuint refine_vao, refine_vbo, refine_ebo;
+    clip_refine_cells refine_cells[RENDER_MAX_LEVELS];
+    int refine_stale[RENDER_MAX_LEVELS];
+    clip_refine_map refine_map;
     float hmin[RENDER_MAX_LEVELS], hmax[RENDER_MAX_LEVELS];
     // The same per cell of each window, for culling blocks (rebuilt once a changed
     // window is whole: cells_stale).
@@ -270,7 +282,7 @@ static GLuint terrain_program(terrain_renderer *r, int variant, const char *call
     }
     static const char *const names[] = {"SHADED",    "DETAIL",   "PAINTED",  "BRUSH",   "OVERLAYS",
                                         "CONTOURS",  "MINIFIED", "NO_MORPH", "GBUFFER", "RESOLVE",
-                                        "CURVATURE", "SLOPES_A", "SLOPES_B", "VOLUME"};
+                                        "CURVATURE", "SLOPES_A", "SLOPES_B", "VOLUME",  "REFINED"};
     char defines[512 + sizeof slot->calls] = "";
     size_t n = 0;
     for (int b = 0; b < (int)(sizeof names / sizeof *names); b++)
@@ -327,6 +339,24 @@ terrain_renderer *terrain_renderer_create(const char *resource_dir, og_error *er
     glEnableVertexArrayAttrib(r->vao, 0);
     glVertexArrayAttribIFormat(r->vao, 0, 2, GL_UNSIGNED_SHORT, 0);
     glVertexArrayAttribBinding(r->vao, 0, 0);
+    if (clip_refine_mesh_build(&r->refine_mesh, &r->mesh) != 0 ||
+        clip_refine_map_init(&r->refine_map) != 0) {
+        og_error_set(err, "out of memory for the clipmap's refined mesh");
+        goto fail;
+    }
+    glCreateVertexArrays(1, &r->refine_vao);
+    glCreateBuffers(1, &r->refine_vbo);
+    glCreateBuffers(1, &r->refine_ebo);
+    glNamedBufferStorage(r->refine_vbo,
+                         (GLsizeiptr)(r->refine_mesh.vertex_count * 2 * sizeof(uint16_t)),
+                         r->refine_mesh.vertices, 0);
+    glNamedBufferStorage(r->refine_ebo, (GLsizeiptr)(r->refine_mesh.index_count * sizeof(uint32_t)),
+                         r->refine_mesh.indices, 0);
+    glVertexArrayVertexBuffer(r->refine_vao, 0, r->refine_vbo, 0, 2 * sizeof(uint16_t));
+    glVertexArrayElementBuffer(r->refine_vao, r->refine_ebo);
+    glEnableVertexArrayAttrib(r->refine_vao, 0);
+    glVertexArrayAttribIFormat(r->refine_vao, 0, 2, GL_UNSIGNED_SHORT, 0);
+    glVertexArrayAttribBinding(r->refine_vao, 0, 0);
     if (create_textures(r, err) != 0 || create_windows(r, err) != 0) goto fail;
     GLenum e = glGetError();
     if (e != GL_NO_ERROR) {
@@ -355,6 +385,11 @@ void terrain_renderer_destroy(terrain_renderer *r) {
     glDeleteVertexArrays(1, &r->empty_vao);
     glDeleteBuffers(1, &r->vbo);
     glDeleteBuffers(1, &r->ebo);
+    glDeleteVertexArrays(1, &r->refine_vao);
+    glDeleteBuffers(1, &r->refine_vbo);
+    glDeleteBuffers(1, &r->refine_ebo);
+    clip_refine_mesh_free(&r->refine_mesh);
+    clip_refine_map_free(&r->refine_map);
     GLuint tex[] = {r->tex_heights,   r->tex_material, r->tex_albedo,    r->tex_detail,
                     r->tex_detail_pd, r->tex_falloff,  r->tex_albedo_far};
     glDeleteTextures(7, tex);
@@ -429,6 +464,7 @@ static void upload_window(terrain_renderer *r, clip_window *w, GLuint tex, int l
     // A whole upload or the first band of a fill from nothing starts the bounds afresh.
     if (layer >= 0 && w->layer == TILE_LAYER_COARSE && (w->upload_all || w->upload_count > 0)) {
         r->cells_stale[layer] = 1;
+        r->refine_stale[layer] = 1;
         scan_bounds(r, layer, w->uploads, w->upload_count, w->upload_all, w->refill_started);
         w->refill_started = 0;
     }
@@ -525,6 +561,7 @@ static void invalidate_all(terrain_renderer *r) {
         clip_window_invalidate(&r->heights[l]);
         r->slope_max[l] = INFINITY, r->slope_stale[l] = 1;
         r->cells[l].cells = 0, r->cells_stale[l] = 1;
+        r->refine_cells[l].cells = 0, r->refine_stale[l] = 1;
         clip_window_invalidate(&r->material[l]);
     }
     clip_window_invalidate(&r->detail);
@@ -726,7 +763,18 @@ int terrain_renderer_update(terrain_renderer *r, world *w, const camera *cam,
         upload_material(r, l);
     upload_window(r, &r->detail, r->tex_detail, -1, GL_RED, GL_FLOAT);
     upload_window(r, &r->detail_pd, r->tex_detail_pd, -1, GL_RG, GL_SHORT);
+    for (int l = r->finest > 1 ? r->finest : 1; l < r->levels; l++) {
+        const clip_window *fw = &r->slopes.windows[l];
+        if (fw->upload_all || fw->upload_count > 0) r->refine_stale[l] = 1;
+    }
     clip_slopes_upload(&r->slopes, r->finest, r->levels);
+    for (int l = r->finest > 1 ? r->finest : 1; l < r->levels; l++)
+        if (r->refine_stale[l] && clip_window_current(&r->heights[l], r->origin[l]) &&
+            clip_window_current(&r->slopes.windows[l], r->slopes.want[l])) {
+            clip_refine_cells_build(&r->refine_cells[l], &r->heights[l], &r->slopes.windows[l],
+                                    1 << (l - clip_slopes_mip(l)));
+            r->refine_stale[l] = 0;
+        }
     int below = -1, paint_below = -1;
     for (int l = r->levels - 1; l >= 0; l--) {
         if (l >= r->finest && clip_window_current(&r->heights[l], r->origin[l])) below = l;
@@ -958,6 +1006,8 @@ static void set_terrain_uniforms(terrain_renderer *r, GLuint prog, const camera 
     mask_flow_texture_bind(&r->mask_flow, prog, s, cam, 8);
     glProgramUniform1i(prog, glGetUniformLocation(prog, "u_slopes"), 9);
     glBindTextureUnit(9, r->slopes.tex);
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "u_refine"), REFINE_UNIT);
+    glBindTextureUnit(REFINE_UNIT, r->refine_map.tex);
     glProgramUniform4fv(prog, glGetUniformLocation(prog, "u_albedo_mean"), MATERIAL_TEXTURE_COUNT,
                         &r->albedo_mean[0][0]);
 }
@@ -1201,8 +1251,12 @@ static int draw_terrain(terrain_renderer *r, const camera *cam, const render_set
     frustum f;
     frustum_from_matrix(&f, view_proj);
     int m = r->mesh.m;
-    GLsizei counts[PIECES_MAX];
-    const void *offsets[PIECES_MAX];
+    // Per group of a level's parts (refined or not x may morph or never does).
+    GLsizei counts[4][PIECES_MAX];
+    const void *offsets[4][PIECES_MAX];
+    const double pixels_per_radian =
+        (r->height > 0 ? r->height : 720) /
+        (2.0 * tan((cam->fov_y >= 1 && cam->fov_y <= 170 ? cam->fov_y : 60) * M_PI / 360.0));
     const int occlude = s->culling && s->view != VIEW_WIREFRAME &&
                         !volume_renderer_active(r->volume) && camera_above_ground(r, cam);
     if (occlude) {
@@ -1261,16 +1315,47 @@ static int draw_terrain(terrain_renderer *r, const camera *cam, const render_set
             order[candidates++] = (piece_order){dx * dx + dz * dz, (int)i};
         }
         qsort(order, (size_t)candidates, sizeof order[0], nearer_first);
-        int n[2] = {0, 0}; // [0]: parts that may morph, [1]: parts that never do
+        // Its parts may be refined where its error shows: its own window and its shading
+        // window current, their cells built for this layout.
+        const int refinable = s->refine_pixels > 0 && l >= CLIP_REFINE_MIN_LEVEL &&
+                              r->src[l] == l && !r->refine_stale[l] &&
+                              r->refine_cells[l].cells > 0 &&
+                              r->refine_cells[l].have[0] == r->origin[l][0] &&
+                              r->refine_cells[l].have[1] == r->origin[l][1] &&
+                              clip_window_current(&r->slopes.windows[l], r->slopes.want[l]);
+        if (refinable) clip_refine_map_begin(&r->refine_map, l, m - 1, 3 * m - 1);
+        int n[4] = {0, 0, 0, 0}; // [refined * 2 + still]: still parts never morph
         int rect[2][4] = {{r->width, r->height, 0, 0}, {r->width, r->height, 0, 0}};
-        for (int o = 0; o < candidates && n[0] + n[1] < PIECES_MAX; o++) {
-            const clip_piece *pc = &r->mesh.pieces[order[o].piece];
+        for (int o = 0; o < candidates; o++) {
+            const int i = order[o].piece;
+            const clip_piece *pc = &r->mesh.pieces[i];
             int still = !morphs || (pc->x0 >= view[0] - reach && pc->x1 <= view[0] + reach &&
                                     pc->z0 >= view[1] - reach && pc->z1 <= view[1] + reach);
-            if (s->culling && (pc->kind == CLIP_PIECE_BLOCK || pc->kind == CLIP_PIECE_FIXUP ||
-                               pc->kind == CLIP_PIECE_INTERIOR)) {
-                float mn[3], mx[3], h0, h1;
+            const int culled_kind = pc->kind == CLIP_PIECE_BLOCK || pc->kind == CLIP_PIECE_FIXUP ||
+                                    pc->kind == CLIP_PIECE_INTERIOR;
+            float mn[3], mx[3], h0 = 0, h1 = 0, r0, r1, error = 0.0f;
+            const int boxed = deferred && pc->kind != CLIP_PIECE_DEGENERATE;
+            if (refinable || (s->culling && culled_kind) || boxed)
                 piece_heights(r, l, pc, !still, &h0, &h1);
+            int refined = 0;
+            if (refinable && clip_refine_piece_refinable(pc) &&
+                clip_refine_cells_range(&r->refine_cells[l], r->origin[l][0] + pc->x0,
+                                        r->origin[l][1] + pc->z0, r->origin[l][0] + pc->x1,
+                                        r->origin[l][1] + pc->z1, &r0, &r1, &error)) {
+                // Its error as seen from its nearest point.
+                piece_box(r, l, pc, cam, fminf(h0, r0), fmaxf(h1, r1), mn, mx);
+                double d[3];
+                for (int a = 0; a < 3; a++)
+                    d[a] = fmax(fmax((double)mn[a], -(double)mx[a]), 0.0);
+                float w = clip_refine_weight(error, hypot(d[0], d[2]),
+                                             sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]),
+                                             pixels_per_radian, s->refine_pixels);
+                if (w > 0.0f) refined = 1, h0 = fminf(h0, r0), h1 = fmaxf(h1, r1);
+                clip_refine_map_limit(&r->refine_map, l, pc->x0, pc->z0, pc->x1, pc->z1, w);
+            } else if (refinable && culled_kind) { // never refined: its vertices stay
+                clip_refine_map_limit(&r->refine_map, l, pc->x0, pc->z0, pc->x1, pc->z1, 0.0f);
+            }
+            if (s->culling && culled_kind) {
                 piece_box(r, l, pc, cam, h0, h1, mn, mx);
                 if (!frustum_test_aabb(&f, mn, mx)) continue;
                 if (occlude) {
@@ -1278,25 +1363,28 @@ static int draw_terrain(terrain_renderer *r, const camera *cam, const render_set
                     add_solid_under(r, l, mn, mx, lo, hi, cam);
                 }
             }
-            if (deferred && pc->kind != CLIP_PIECE_DEGENERATE) { // where its pixels can be
-                float mn[3], mx[3], h0, h1;
-                piece_heights(r, l, pc, !still, &h0, &h1);
+            if (boxed) { // where its pixels can be
                 piece_box(r, l, pc, cam, h0, h1, mn, mx);
                 widen_screen_rect(view_proj, mn, mx, r->width, r->height, rect[still]);
             }
-            int k = still ? PIECES_MAX - 1 - n[1]++ : n[0]++; // the still parts fill from the end
-            counts[k] = (GLsizei)pc->count;
-            offsets[k] = (const void *)(uintptr_t)(pc->first * sizeof(uint16_t));
-            r->stats.triangles += pc->count / 3;
-            r->stats.level_triangles[l] += pc->count / 3;
+            int g = refined * 2 + still;
+            if (n[g] == PIECES_MAX) continue;
+            uint32_t first = refined ? r->refine_mesh.first[i] : pc->first;
+            uint32_t count = refined ? r->refine_mesh.count[i] : pc->count;
+            counts[g][n[g]] = (GLsizei)count;
+            offsets[g][n[g]++] =
+                (const void *)(uintptr_t)(first * (refined ? sizeof(uint32_t) : sizeof(uint16_t)));
+            r->stats.triangles += count / 3;
+            r->stats.level_triangles[l] += count / 3;
         }
-        if (n[0] + n[1] == 0) continue;
+        if (n[0] + n[1] + n[2] + n[3] == 0) continue;
+        if (n[2] + n[3] > 0) clip_refine_map_upload(&r->refine_map, l);
         int base = level_variant(r, cam, s, cursor, l);
         char calls[sizeof r->progs[0].calls];
         material_rule_calls(&r->rules, level_rules_live(r, &r->rules, l), calls, sizeof calls);
         for (int still = 0; still < 2; still++) {
-            if (n[still] == 0) continue;
-            int v = base | (still ? TV_NO_MORPH : 0), fresh = 0;
+            if (n[still] + n[2 + still] == 0) continue;
+            int v = base | (still ? TV_NO_MORPH : 0);
             if (deferred) { // shaded later (resolve_terrain); now where the ground is
                 resolve_pass *p = &passes[pass_count++];
                 p->level = l, p->still = still, p->variant = v | TV_RESOLVE;
@@ -1305,18 +1393,25 @@ static int draw_terrain(terrain_renderer *r, const camera *cam, const render_set
                 v = TV_GBUFFER | (v & (TV_NO_MORPH | TV_VOLUME));
                 glStencilFunc(GL_ALWAYS, deferred_target_stencil(l, still), 0xFF);
             }
-            GLuint prog = terrain_program(r, v, calls, &fresh, err);
-            if (!prog) return -1;
-            if (fresh) {
-                set_terrain_uniforms(r, prog, cam, s, cursor, view_proj);
-                material_rule_uniforms(prog, &r->rules);
+            for (int refined = 0; refined < 2; refined++) {
+                const int g = refined * 2 + still;
+                if (n[g] == 0) continue;
+                int fresh = 0;
+                GLuint prog =
+                    terrain_program(r, v | (refined ? TV_REFINED : 0), calls, &fresh, err);
+                if (!prog) return -1;
+                if (fresh) {
+                    set_terrain_uniforms(r, prog, cam, s, cursor, view_proj);
+                    material_rule_uniforms(prog, &r->rules);
+                }
+                if (prog != current) glUseProgram(current = prog);
+                glProgramUniform1i(prog, glGetUniformLocation(prog, "u_level"), l);
+                glBindVertexArray(refined ? r->refine_vao : r->vao);
+                glMultiDrawElements(GL_TRIANGLES, counts[g],
+                                    refined ? GL_UNSIGNED_INT : GL_UNSIGNED_SHORT, offsets[g],
+                                    n[g]);
+                r->stats.draw_calls++;
             }
-            if (prog != current) glUseProgram(current = prog);
-            glProgramUniform1i(prog, glGetUniformLocation(prog, "u_level"), l);
-            int first = still ? PIECES_MAX - n[1] : 0;
-            glMultiDrawElements(GL_TRIANGLES, counts + first, GL_UNSIGNED_SHORT, offsets + first,
-                                n[still]);
-            r->stats.draw_calls++;
         }
         r->stats.levels_drawn++;
     }

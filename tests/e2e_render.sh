@@ -219,5 +219,18 @@ less "${tris_on:-x}" "${tris_off:-x}"; check "culling draws fewer triangles ($tr
 r=$(rmse "$work/occ_on.png" "$work/occ_off.png")
 less "$r" 0.001; check "and the same picture (RMSE $r)" $?
 
+# Far rough ground refined where its error shows (`render refine=1`): more triangles,
+# the same picture but for the far ridges (it moves only the coarse levels' new vertices).
+run "camera 4000 400 6500 0 -4; view height; screenshot $work/refine_off.png 480 270;
+     render refine=1; screenshot $work/refine_on.png 480 270; render"
+rc=$?; check "a far view with refined coarse levels ($(cat "$work/err"))" $rc
+grep -q "refine=1 " "$work/out"; check "render prints the refine setting" $?
+tris_off=$(sed -n 's/^screenshot .*refine_off\.png.* triangles=\([0-9]*\).*/\1/p' "$work/out")
+tris_on=$(sed -n 's/^screenshot .*refine_on\.png.* triangles=\([0-9]*\).*/\1/p' "$work/out")
+less "${tris_off:-x}" "${tris_on:-x}"; check "refining draws more triangles ($tris_on against $tris_off)" $?
+r=$(rmse "$work/refine_on.png" "$work/refine_off.png")
+less 0.1 "$r" && less "$r" 8; check "and changes the far ridges only (RMSE $r)" $?
+expect_error "a negative refine" "render refine=-1" "refine: expected a number in \[0, 64\], got '-1'"
+
 echo "e2e_render: $passes passed, $failures failed"
 [ $failures = 0 ]

@@ -2,8 +2,12 @@
 // the finer level for each of its four positions; the toroidal window holds exactly
 // the samples of its origin after any move, copies only what entered, never blocks,
 // and re-reads edited samples; its cells' height bounds hold every sample of a range.
+// Refined pieces cover their quads at half the spacing and close their borders' T-junctions
+// with zero-area triangles; the refinement cells bound every refined vertex and its move.
 #include "io/tile_cache.h"
 #include "renderer/clip_cells.h"
+#include "renderer/clip_refine.h"
+#include "renderer/clip_refine_mesh.h"
 #include "renderer/clip_window.h"
 #include "renderer/clipmap_mesh.h"
 
@@ -381,6 +385,136 @@ static void test_cells_bound_every_range(void **state) {
     clip_window_free(&w);
 }
 
+// Every refinable piece's refined range covers each of its quads with 2 x 2 fine quads
+// (two triangles each, no on-line copy among them) and has one zero-area triangle per
+// odd vertex of its border, through that vertex's on-line copy and its two neighbours
+// along the border; other kinds have none.
+static void test_refined_pieces_cover_their_quads(void **state) {
+    (void)state;
+    const int sizes[] = {15, 255};
+    for (int s = 0; s < 2; s++) {
+        clipmap_mesh m;
+        clip_refine_mesh r;
+        assert_int_equal(clipmap_mesh_build(&m, sizes[s]), 0);
+        assert_int_equal(clip_refine_mesh_build(&r, &m), 0);
+        const int side = r.side;
+        const size_t grid = (size_t)side * side;
+        assert_int_equal(side, 2 * m.n - 1);
+        assert_int_equal(r.vertex_count, 2 * grid);
+        int *cells = calloc(grid, sizeof *cells);
+        for (size_t i = 0; i < m.piece_count; i++) {
+            const clip_piece *pc = &m.pieces[i];
+            if (!clip_refine_piece_refinable(pc)) {
+                assert_int_equal(r.count[i], 0);
+                continue;
+            }
+            const int x0 = 2 * pc->x0, z0 = 2 * pc->z0, x1 = 2 * pc->x1, z1 = 2 * pc->z1;
+            memset(cells, 0, grid * sizeof *cells);
+            int degenerate = 0;
+            for (uint32_t t = r.first[i]; t < r.first[i] + r.count[i]; t += 3) {
+                int x[3], z[3], on_line[3], lines = 0;
+                for (int k = 0; k < 3; k++) {
+                    uint32_t v = r.indices[t + k];
+                    assert_true(v < r.vertex_count);
+                    on_line[k] = v >= grid;
+                    lines += on_line[k];
+                    x[k] = r.vertices[2 * v] & ~CLIP_REFINE_ON_LINE, z[k] = r.vertices[2 * v + 1];
+                    assert_int_equal(on_line[k], (r.vertices[2 * v] & CLIP_REFINE_ON_LINE) != 0);
+                    assert_true(x[k] >= x0 && x[k] <= x1 && z[k] >= z0 && z[k] <= z1);
+                }
+                int area2 = (x[1] - x[0]) * (z[2] - z[0]) - (x[2] - x[0]) * (z[1] - z[0]);
+                if (area2 == 0) {
+                    assert_int_equal(lines, 1);
+                    int k = on_line[0] ? 0 : on_line[1] ? 1 : 2, a = (k + 1) % 3, b = (k + 2) % 3;
+                    // Odd along the border, between its two neighbours.
+                    int along_x = z[k] == z0 || z[k] == z1;
+                    assert_true(along_x ? (x[k] & 1) == 1 : (z[k] & 1) == 1);
+                    assert_true(along_x || x[k] == x0 || x[k] == x1);
+                    assert_int_equal(x[a] + x[b], 2 * x[k]);
+                    assert_int_equal(z[a] + z[b], 2 * z[k]);
+                    assert_int_equal(abs(x[a] - x[b]) + abs(z[a] - z[b]), 2);
+                    degenerate++;
+                    continue;
+                }
+                assert_int_equal(lines, 0);
+                assert_int_equal(abs(area2), 1);
+                int cx = x[0] < x[1] ? x[0] : x[1], cz = z[0] < z[1] ? z[0] : z[1];
+                cx = x[2] < cx ? x[2] : cx, cz = z[2] < cz ? z[2] : cz;
+                cells[cz * side + cx]++;
+            }
+            for (int z = z0; z < z1; z++)
+                for (int x = x0; x < x1; x++)
+                    assert_int_equal(cells[z * side + x], 2);
+            assert_int_equal(degenerate, (x1 - x0) + (z1 - z0));
+        }
+        free(cells);
+        clip_refine_mesh_free(&r);
+        clipmap_mesh_free(&m);
+    }
+}
+
+static float fine_height(int64_t x, int64_t z) {
+    return (float)(20.0 * sin(0.37 * (double)x) * cos(0.23 * (double)z) + 0.5 * (double)(x % 7));
+}
+
+// The refinement cells of a level window and its finer window (4 samples per level
+// sample) bound, over any range, every refined vertex there and the level's samples, and
+// their error is at least every refined vertex's move from the level's surface (and is
+// reached); the weight is 0 up to the threshold, 1 from 1.5 times it, 0 when off.
+static void test_refine_cells_bound_every_refined_vertex(void **state) {
+    (void)state;
+    clip_window level, fine;
+    assert_int_equal(clip_window_init(&level, TILE_LAYER_COARSE, 0, 2, 16), 0);
+    assert_int_equal(clip_window_init(&fine, TILE_LAYER_COARSE, 0, 0, 64), 0);
+    const int k = 4, n = 16;
+    level.have[0] = 10, level.have[1] = 20, level.has_data = 1;
+    fine.have[0] = 10 * k - 2, fine.have[1] = 20 * k - 2, fine.has_data = 1;
+    float *h = (float *)level.mirror, *f = (float *)fine.mirror;
+    for (int64_t z = fine.have[1]; z < fine.have[1] + 64; z++)
+        for (int64_t x = fine.have[0]; x < fine.have[0] + 64; x++)
+            f[(z & 63) * 64 + (x & 63)] = fine_height(x, z);
+    for (int64_t j = level.have[1]; j < level.have[1] + n; j++)
+        for (int64_t i = level.have[0]; i < level.have[0] + n; i++) // its own mip: off a little
+            h[(j & 15) * 16 + (i & 15)] = fine_height(i * k, j * k) + (float)((i + j) % 3) - 1.0f;
+    clip_refine_cells c;
+    clip_refine_cells_build(&c, &level, &fine, k);
+    assert_int_equal(c.cells, 2);
+#define H(i, j) h[(((j) + 20) & 15) * 16 + (((i) + 10) & 15)]
+    float worst = 0.0f;
+    for (int j = 0; j + 1 < n; j++)
+        for (int i = 0; i + 1 < n; i++) {
+            // The quad's refined vertices (corner, low edges' midpoints, centre) in
+            // global fine samples, and the level's surface there.
+            const int64_t fx = (i + 10) * k, fz = (j + 20) * k;
+            const float a = H(i, j), b = H(i + 1, j), d = H(i, j + 1), e = H(i + 1, j + 1);
+            const float v[4] = {fine_height(fx, fz), fine_height(fx + 2, fz),
+                                fine_height(fx, fz + 2), fine_height(fx + 2, fz + 2)};
+            const float surface[4] = {a, 0.5f * (a + b), 0.5f * (a + d), 0.5f * (b + d)};
+            float lo, hi, error;
+            assert_true(clip_refine_cells_range(&c, 10 + i, 20 + j, 10 + i + 1, 20 + j + 1, &lo,
+                                                &hi, &error));
+            for (int q = 0; q < 4; q++) {
+                assert_true(v[q] >= lo && v[q] <= hi);
+                assert_true(fabsf(v[q] - surface[q]) <= error + 1e-4f);
+                worst = fmaxf(worst, fabsf(v[q] - surface[q]));
+            }
+            assert_true(a >= lo && a <= hi && e >= lo && e <= hi);
+        }
+#undef H
+    float lo, hi, error;
+    assert_true(clip_refine_cells_range(&c, 10, 20, 10 + n - 1, 20 + n - 1, &lo, &hi, &error));
+    assert_true(fabsf(error - worst) < 1e-4f);
+    assert_false(clip_refine_cells_range(&c, 100, 20, 110, 30, &lo, &hi, &error));
+    // 1 m seen straight across from 500 m at 500 px per radian: 1 pixel.
+    assert_true(clip_refine_weight(1.0, 500, 500, 500, 1.0) == 0.0f);
+    assert_true(fabsf(clip_refine_weight(1.25, 500, 500, 500, 1.0) - 0.5f) < 1e-5f);
+    assert_true(clip_refine_weight(1.5, 500, 500, 500, 1.0) == 1.0f);
+    assert_true(clip_refine_weight(50, 500, 500, 500, 0.0) == 0.0f);
+    assert_true(clip_refine_weight(50, 0, 500, 500, 1.0) == 0.0f); // straight down: no move seen
+    clip_window_free(&level);
+    clip_window_free(&fine);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_window_fills_within_a_budget),
@@ -389,6 +523,8 @@ int main(void) {
         cmocka_unit_test(test_window_moves_toroidally),
         cmocka_unit_test(test_cells_bound_every_range),
         cmocka_unit_test(test_large_window_fills_at_once),
+        cmocka_unit_test(test_refined_pieces_cover_their_quads),
+        cmocka_unit_test(test_refine_cells_bound_every_refined_vertex),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -270,6 +270,10 @@ static void test_shader_variants_compile(void **state) {
         if (!program) fail_msg("terrain.frag depth variant %#x: %s", flags, err.msg);
         glDeleteProgram(program);
     }
+    // Refined parts (renderer/clip_refine.h), with and without the morph band, drawn
+    // directly or into the depth pass.
+    static const char *const refined[] = {"REFINED", "NO_MORPH", "GBUFFER", "SHADED"};
+    compile_all_variants("terrain.vert", "terrain.frag", refined, 4);
 }
 
 static void test_missing_files(void **state) {

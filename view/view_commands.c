@@ -156,12 +156,12 @@ static void print_settings(cmd_context *ctx, const render_settings *s) {
     fprintf(ctx->out,
             "render levels=%d parallax=%s quality=%d detail_distance=%g culling=%s morph=%s "
             "sun=%g,%g sun_rotation=%g fog=%g contours=%g tile_grid=%s level_grid=%s "
-            "auto_materials=%s antialias=%s lod_pixels=%g view=%s\n",
+            "auto_materials=%s antialias=%s lod_pixels=%g refine=%g view=%s\n",
             s->levels, s->parallax ? "on" : "off", s->parallax_steps, s->detail_distance,
             s->culling ? "on" : "off", s->morph ? "on" : "off", s->sun_yaw, s->sun_pitch,
             s->sun_rotation, s->fog_density, s->contours, s->tile_grid ? "on" : "off",
             s->level_grid ? "on" : "off", s->auto_materials ? "on" : "off",
-            s->antialias ? "on" : "off", s->lod_pixels, view_mode_name(s->view));
+            s->antialias ? "on" : "off", s->lod_pixels, s->refine_pixels, view_mode_name(s->view));
 }
 
 static int cmd_render(cmd_context *ctx, int argc, char **argv, og_error *err) {
@@ -196,6 +196,8 @@ static int cmd_render(cmd_context *ctx, int argc, char **argv, og_error *err) {
             rc = parse_switch(value, key, &s.antialias, err);
         else if (strcmp(key, "lod_pixels") == 0)
             rc = parse_number_in(value, key, 1, 64, &s.lod_pixels, err);
+        else if (strcmp(key, "refine") == 0)
+            rc = parse_number_in(value, key, 0, 64, &s.refine_pixels, err);
         else if (strcmp(key, "sun_rotation") == 0)
             rc = parse_number_in(value, key, -360, 360, &s.sun_rotation, err);
         else if (strcmp(key, "fog") == 0)
@@ -214,7 +216,7 @@ static int cmd_render(cmd_context *ctx, int argc, char **argv, og_error *err) {
                 err,
                 "render: unknown setting '%s' (levels parallax quality "
                 "detail_distance culling morph fog sun sun_rotation contours tile_grid "
-                "level_grid auto_materials antialias lod_pixels)",
+                "level_grid auto_materials antialias lod_pixels refine)",
                 key);
         if (rc != 0) return -1;
     }

@@ -63,12 +63,6 @@ uniform vec4 u_lvl_detail[MAX_LEVELS]; // detail: sample of local (0,0), samples
 uniform vec2 u_tex_period;             // metres per repeat: near texture, far variation
 uniform sampler2DArray u_albedo_far;   // material m's green channel in component m % 4 of layer m / 4
 
-// Shading slopes: heights up to 2 mip levels finer than each level's own, over its
-// extent (renderer/clip_slopes.h): texel of local (0,0), texels per local unit, layer
-// (-1: none, the level's own heights), for the level and the coarser one it morphs into.
-uniform sampler2DArray u_slopes;
-uniform vec4 u_lvl_slopes_a[MAX_LEVELS];
-uniform vec4 u_lvl_slopes_b[MAX_LEVELS];
 uniform usampler2DArray u_material;    // 8 x uint8 weights per texel (RG32UI), a layer per level, toroidal
 uniform vec4 u_brush;                  // centre relative to the camera (xz), radius, visible
 uniform sampler2D u_falloff;           // the brush's falloff curve over 0..1 of the radius (64x1)

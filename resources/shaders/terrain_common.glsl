@@ -13,6 +13,13 @@ uniform vec4 u_lvl_view[MAX_LEVELS];   // camera in local units (xy); z = 1 if t
 uniform vec4 u_lvl_src_a[MAX_LEVELS];  // heights: texel of local (0,0), texels per local unit, layer
 uniform vec4 u_lvl_src_b[MAX_LEVELS];  // the same for the next coarser level (morph target)
 uniform sampler2DArray u_heights;
+// Shading slopes: heights up to 2 mip levels finer than each level's own, over its
+// extent (renderer/clip_slopes.h): texel of local (0,0), texels per local unit, layer
+// (-1: none, the level's own heights), for the level and the coarser one it morphs into;
+// the refined parts' vertices take their heights from them too (terrain.vert).
+uniform sampler2DArray u_slopes;
+uniform vec4 u_lvl_slopes_a[MAX_LEVELS];
+uniform vec4 u_lvl_slopes_b[MAX_LEVELS];
 
 float sample_height(vec4 src, vec2 p) {
     vec2 t = (src.xy + p * src.z + 0.5) / CLIP_SIZE;
