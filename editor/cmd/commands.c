@@ -693,8 +693,10 @@ static int execute(cmd_context *ctx, int argc, char **argv, og_error *err) {
     if (ctx->stroke && (c->flags & CMD_ENDS_STROKE) && cmd_end_stroke(ctx, err) != 0) return -1;
     ctx->skip_record = 0;
     // A world made from a raster and imported in parts so far: only a heightmap export
-    // takes its parts (cmd_export); everything else sees the whole.
-    if (ctx->base_pending && c->run != cmd_export && c->run != c_new &&
+    // takes its parts (cmd_export); everything else that may read the world sees the whole.
+    const int reads_no_world = c->run == c_new || c->run == c_exit || c->run == c_help ||
+                               c->run == c_cmdlist || (c->flags & CMD_WHILE_BUSY);
+    if (ctx->base_pending && c->run != cmd_export && !reads_no_world &&
         cmd_base_settle(ctx, err) != 0)
         return -1;
     if (c->run(ctx, argc, argv, err) != 0) return -1;
