@@ -111,6 +111,13 @@ env -u DISPLAY -u WAYLAND_DISPLAY "$orogen" >"$work/out" 2>"$work/err" </dev/nul
 run -c 'size 1024; generate; sample 100 100; sample 5000 10'
 [ $status = 1 ] && grep -q "outside the world" "$work/err"; check "sample outside a bounded world" $?
 [ "$(head -n 1 "$work/out" | grep -c '^-\?[0-9]*\.[0-9]*$')" = 1 ]; check "sample prints a number" $?
+# An edge as the import prints it (rounded to 6 digits) is the edge; a step beyond is not.
+# (N44W072's world is 94007.86538 m wide: 'placed at 0, 0 .. 94007.9, 94007.9 m'.)
+run -c "new flat from=$tests/data/dem/N44W072.hgt; sample 94007.9 0; sample 0 -0.00001"
+[ $status = 0 ] && [ "$(grep -c '^[-0-9.]*$' "$work/out")" = 2 ]
+ok=$?; check "an edge read as printed ($(cat "$work/err"))" $ok
+run -c "new flat from=$tests/data/dem/N44W072.hgt; sample 94008 0"
+[ $status = 1 ] && grep -q "outside the world (0 to 94007.86538 m" "$work/err"; check "a metre past it is outside" $?
 run -c 'new planet; sample 1000 2000 3; hash 0 0 5000 5000 5'
 check "planet sample and hash on faces" $status
 run -c 'new planet; info'

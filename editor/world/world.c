@@ -951,14 +951,18 @@ int world_sample(world *w, int face, double x, double z, double *height, og_erro
     const double sp = world_grid_sample_metres(&w->params); // true metres on a planet
     double fx = x / sp, fz = z / sp;
     int64_t nz, n = world_extent(w, &nz);
-    // The last sample's position printed and read back may land an ulp past it.
-    if (n > 0 && fx > (double)(n - 1) && fx < (double)(n - 1) * (1 + 1e-12)) fx = (double)(n - 1);
-    if (n > 0 && fz > (double)(nz - 1) && fz < (double)(nz - 1) * (1 + 1e-12))
-        fz = (double)(nz - 1);
+    // An edge's position as printed (rounded, and read back) may land a little past it:
+    // up to a thousandth of a sample counts as the edge.
+    const double slack = 1e-3;
+    if (n > 0 && fx > (double)(n - 1) && fx < (double)(n - 1) + slack) fx = (double)(n - 1);
+    if (n > 0 && fz > (double)(nz - 1) && fz < (double)(nz - 1) + slack) fz = (double)(nz - 1);
+    if (n > 0 && fx < 0 && fx > -slack) fx = 0;
+    if (n > 0 && fz < 0 && fz > -slack) fz = 0;
     if (n > 0 && (fx < 0 || fz < 0 || fx > (double)(n - 1) || fz > (double)(nz - 1)))
         return og_error_set(err,
-                            "position (%g, %g) m lies outside the world (0 to %g m, 0 to %g m)", x,
-                            z, (double)(n - 1) * sp, (double)(nz - 1) * sp);
+                            "position (%.10g, %.10g) m lies outside the world (0 to %.10g m, 0 to "
+                            "%.10g m)",
+                            x, z, (double)(n - 1) * sp, (double)(nz - 1) * sp);
     if (!in_tile_range(fx) || !in_tile_range(fz))
         return og_error_set(err, "position (%g, %g) m lies beyond the int32 tile range", x, z);
     int64_t i0 = (int64_t)floor(fx), j0 = (int64_t)floor(fz);
