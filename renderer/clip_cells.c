@@ -39,8 +39,7 @@ void clip_cells_build(clip_cells *c, const clip_window *w) {
     c->cells = cells;
 }
 
-// Cells holding samples [a, b] of the window (relative to its origin), clamped.
-static int cell_span(int64_t a, int64_t b, int cells, int *c0, int *c1) {
+int clip_cell_span(int64_t a, int64_t b, int cells, int *c0, int *c1) {
     const int64_t n = (int64_t)cells * CLIP_CELL;
     if (b < 0 || a > n - 1 || a > b) return 0;
     a = a < 0 ? 0 : a, b = b > n - 1 ? n - 1 : b;
@@ -53,8 +52,8 @@ static int cell_span(int64_t a, int64_t b, int cells, int *c0, int *c1) {
 int clip_cells_range(const clip_cells *c, int64_t i0, int64_t j0, int64_t i1, int64_t j1, float *lo,
                      float *hi) {
     int a0, a1, b0, b1;
-    if (c->cells == 0 || !cell_span(i0 - c->have[0], i1 - c->have[0], c->cells, &a0, &a1) ||
-        !cell_span(j0 - c->have[1], j1 - c->have[1], c->cells, &b0, &b1))
+    if (c->cells == 0 || !clip_cell_span(i0 - c->have[0], i1 - c->have[0], c->cells, &a0, &a1) ||
+        !clip_cell_span(j0 - c->have[1], j1 - c->have[1], c->cells, &b0, &b1))
         return 0;
     *lo = INFINITY, *hi = -INFINITY;
     for (int j = b0; j <= b1; j++)

@@ -20,6 +20,9 @@ typedef struct clip_cells {
     float lo[CLIP_CELLS_MAX * CLIP_CELLS_MAX], hi[CLIP_CELLS_MAX * CLIP_CELLS_MAX];
 } clip_cells;
 
+// The cells [*c0, *c1] of a window of `cells` cells holding its samples [a, b] (relative
+// to its origin), clamped; 0 when they miss the window. Shared with clip_refine.c.
+int clip_cell_span(int64_t a, int64_t b, int cells, int *c0, int *c1);
 // From a window holding all of its samples (has_data).
 void clip_cells_build(clip_cells *c, const clip_window *w);
 

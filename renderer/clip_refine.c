@@ -62,22 +62,11 @@ void clip_refine_cells_build(clip_refine_cells *c, const clip_window *level,
     c->have[0] = level->have[0], c->have[1] = level->have[1];
 }
 
-// Cells holding samples [a, b] of the window (relative to its origin), clamped.
-static int cell_span(int64_t a, int64_t b, int cells, int *c0, int *c1) {
-    const int64_t n = (int64_t)cells * CLIP_CELL;
-    if (b < 0 || a > n - 1 || a > b) return 0;
-    a = a < 0 ? 0 : a, b = b > n - 1 ? n - 1 : b;
-    *c0 = (int)(a / CLIP_CELL);
-    *c1 = (int)(b > a ? (b - 1) / CLIP_CELL : a / CLIP_CELL);
-    if (*c1 >= cells) *c1 = cells - 1;
-    return 1;
-}
-
 int clip_refine_cells_range(const clip_refine_cells *c, int64_t i0, int64_t j0, int64_t i1,
                             int64_t j1, float *lo, float *hi, float *error) {
     int a0, a1, b0, b1;
-    if (c->cells == 0 || !cell_span(i0 - c->have[0], i1 - c->have[0], c->cells, &a0, &a1) ||
-        !cell_span(j0 - c->have[1], j1 - c->have[1], c->cells, &b0, &b1))
+    if (c->cells == 0 || !clip_cell_span(i0 - c->have[0], i1 - c->have[0], c->cells, &a0, &a1) ||
+        !clip_cell_span(j0 - c->have[1], j1 - c->have[1], c->cells, &b0, &b1))
         return 0;
     *lo = INFINITY, *hi = -INFINITY, *error = 0.0f;
     for (int j = b0; j <= b1; j++)
