@@ -5,6 +5,7 @@
 #include "editor/tools/box_blur.h"
 #include "editor/tools/hot_loop.h"
 #include "editor/tools/raise_row.h"
+#include "editor/tools/smooth_row.h"
 #include "editor/gen/gen_noise.h"
 #include "io/progress.h"
 
@@ -362,6 +363,9 @@ typedef struct dab_rows {
     const float *heights, *weight;
     grid_rect area;
     int smoothed;
+    // smooth with the smooth falloff on a flat disc: no weight array, each row's
+    // weights computed as it is blended (smooth_row.c)
+    int row_weighted;
 } dab_rows;
 
 // Narrows [x0, x1) of row z to the samples a flat disc's falloff can reach (every
@@ -393,22 +397,24 @@ static void disc_span(const dab_rows *j, int64_t z, int64_t *x0, int64_t *x1) {
 }
 
 // Runs a neighbourhood tool on heights (w x h, covering `area`), changing only
-// samples whose weight > 0. weight gets the per-sample weights.
+// samples whose weight > 0. weight gets the per-sample weights (smooth: NULL when
+// dab_row computes them itself).
 static int neighbourhood(const brush_dab *d, const dab_rows *spans, float *heights, float *weight,
                          grid_rect area, og_error *err) {
     int64_t w = area.x1 - area.x0, h = area.z1 - area.z0;
     int halo = halo_of(d);
     grid_rect inner = {area.x0 + halo, area.z0 + halo, area.x1 - halo, area.z1 - halo};
-    // 0 in the halo; row_weights writes every inner sample.
-    memset(weight, 0, (size_t)(halo * w) * sizeof *weight);
-    memset(weight + (h - halo) * w, 0, (size_t)(halo * w) * sizeof *weight);
-    for (int64_t z = inner.z0; z < inner.z1; z++) {
-        float *row = weight + (z - area.z0) * w;
-        int64_t x0 = inner.x0, x1 = inner.x1; // a flat disc: its span (0 past it)
-        disc_span(spans, z, &x0, &x1);
-        memset(row, 0, (size_t)(x0 - area.x0) * sizeof *row);
-        memset(row + (x1 - area.x0), 0, (size_t)(area.x1 - x1) * sizeof *row);
-        row_weights(d, z, x0, x1, row + (x0 - area.x0));
+    if (weight) { // 0 in the halo; row_weights writes every inner sample.
+        memset(weight, 0, (size_t)(halo * w) * sizeof *weight);
+        memset(weight + (h - halo) * w, 0, (size_t)(halo * w) * sizeof *weight);
+        for (int64_t z = inner.z0; z < inner.z1; z++) {
+            float *row = weight + (z - area.z0) * w;
+            int64_t x0 = inner.x0, x1 = inner.x1; // a flat disc: its span (0 past it)
+            disc_span(spans, z, &x0, &x1);
+            memset(row, 0, (size_t)(x0 - area.x0) * sizeof *row);
+            memset(row + (x1 - area.x0), 0, (size_t)(area.x1 - x1) * sizeof *row);
+            row_weights(d, z, x0, x1, row + (x0 - area.x0));
+        }
     }
     const brush *b = d->brush;
     if (b->tool == BRUSH_SMOOTH) { // the blend comes as the rows are written (dab_row)
@@ -455,6 +461,17 @@ static const uint8_t *stroke_start(const dab_rows *j, int64_t z, int64_t x) {
              : NULL;
 }
 
+// The smooth falloff's weights of samples [x0, x0 + n) of row z (row_weights' floats)
+// and the blend (blend_smoothed's) in one pass.
+static void blend_row_weighted(const brush_dab *d, float *row, const float *smoothed, int64_t z,
+                               int64_t x0, int64_t n) {
+    float dz = (float)((double)z - d->cz);
+    int64_t first = disc_first_column(d);
+    smooth_row_blend(row, smoothed, (float)((double)first - d->cx), (int)(x0 - first), dz * dz,
+                     (float)(1.0 / d->radius), d->strength, d->brush->invert,
+                     (float)BRUSH_HEIGHT_LIMIT, (int)n);
+}
+
 static void dab_row(void *user, void *row, int64_t z, int64_t x0, int64_t x1) {
     dab_rows *j = user;
     { // only the disc's part of the row (every weight past it is 0)
@@ -473,13 +490,14 @@ static void dab_row(void *user, void *row, int64_t z, int64_t x0, int64_t x1) {
         } else if (!j->heights) {
             height_row(j->d, (float *)row + (s - x0), z, s, e, w);
         } else {
-            int64_t aw = j->area.x1 - j->area.x0;
-            const float *src = j->heights + (z - j->area.z0) * aw - j->area.x0;
-            const float *wt = j->weight + (z - j->area.z0) * aw - j->area.x0;
-            if (j->smoothed)
-                blend_smoothed((float *)row - x0 + s, src + s, wt + s, j->d->brush->invert, e - s);
+            int64_t aw = j->area.x1 - j->area.x0, at = (z - j->area.z0) * aw + (s - j->area.x0);
+            float *out = (float *)row + (s - x0);
+            if (j->row_weighted)
+                blend_row_weighted(j->d, out, j->heights + at, z, s, e - s);
+            else if (j->smoothed)
+                blend_smoothed(out, j->heights + at, j->weight + at, j->d->brush->invert, e - s);
             else
-                copy_weighted((float *)row - x0 + s, src + s, wt + s, e - s);
+                copy_weighted(out, j->heights + at, j->weight + at, e - s);
         }
     }
 }
@@ -489,6 +507,20 @@ static void dab_row(void *user, void *row, int64_t z, int64_t x0, int64_t x1) {
 static int dab_wanted(void *user, grid_rect part) {
     dab_rows *j = user;
     if (!j->heights) return 1;
+    if (j->row_weighted) { // the weights row by row, as dab_row computes them
+        float w[TILE_SIZE];
+        for (int64_t z = part.z0; z < part.z1; z++) {
+            int64_t x0 = part.x0, x1 = part.x1;
+            disc_span(j, z, &x0, &x1);
+            for (int64_t s = x0; s < x1; s += TILE_SIZE) {
+                int64_t e = s + TILE_SIZE < x1 ? s + TILE_SIZE : x1;
+                row_weights(j->d, z, s, e, w);
+                for (int64_t i = 0; i < e - s; i++)
+                    if (w[i] > 0.0f) return 1;
+            }
+        }
+        return 0;
+    }
     int64_t aw = j->area.x1 - j->area.x0;
     for (int64_t z = part.z0; z < part.z1; z++)
         for (int64_t x = part.x0; x < part.x1; x++)
@@ -508,9 +540,13 @@ static int prepare(const brush_dab *d, tile_layer layer, grid_rect r, area_reade
     int halo = halo_of(d);
     grid_rect area = {r.x0 - halo, r.z0 - halo, r.x1 + halo, r.z1 + halo};
     size_t n = (size_t)((area.x1 - area.x0) * (area.z1 - area.z0));
-    float *heights = malloc(n * sizeof *heights), *weight = malloc(n * sizeof *weight);
+    // A flat disc's smooth falloff: dab_row computes the weights (an area wants them all).
+    rows->row_weighted = d->brush->tool == BRUSH_SMOOTH && d->brush->falloff == FALLOFF_SMOOTH &&
+                         !d->sphere && !before;
+    float *heights = malloc(n * sizeof *heights);
+    float *weight = rows->row_weighted ? NULL : malloc(n * sizeof *weight);
     float *copy = before ? malloc(n * sizeof *copy) : NULL;
-    int ok = heights && weight && (!before || copy);
+    int ok = heights && (weight || rows->row_weighted) && (!before || copy);
     if (!ok) og_error_set(err, "out of memory for a brush of %zu samples", n);
     if (ok && (ok = read(src, area, heights, err) == 0) && copy)
         memcpy(copy, heights, n * sizeof *copy);
