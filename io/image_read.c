@@ -6,11 +6,13 @@
 
 #include "io/file_kind.h"
 #include "io/module_load.h"
+#include "io/png_gray.h"
 
 #include <dlfcn.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 typedef int (*read_fn)(const char *, float **, int *, int *, og_error *);
 typedef int (*write_fn)(const char *, const float *, int, int, og_error *);
@@ -106,6 +108,14 @@ int image_read_channel(const char *path, const char *channel, int max_size, floa
                        og_error *err) {
     *samples = NULL;
     *width = *height = 0;
+    // A greyscale PNG (its one channel OIIO names Y) needs no OpenImageIO.
+    if (path && file_kind_check_read(path, err) != 0) return -1;
+    if (path && (!channel || !*channel || !strcmp(channel, "Y")) &&
+        png_gray_read(path, max_size, samples, width, height, bits)) {
+        *kind = IMAGE_SAMPLES_UNSIGNED;
+        snprintf(desc, desc_len, "png uint%d, channel Y of 1", *bits);
+        return 0;
+    }
     if (ready(path, err) != 0) return -1;
     return module.read_channel(path, channel, max_size, samples, width, height, kind, bits, desc,
                                desc_len, err);

@@ -272,7 +272,10 @@ int raster_read(const char *path, const raster_read_options *options, raster *ou
         rc = read_image(path, o, out, err);
     }
     if (rc != 0) return -1;
-    int64_t filled = raster_fill_voids(out->samples, out->width, out->height);
+    // An image's integers are never NaN (GDAL marks nodata so even in integer rasters):
+    // nothing to look for.
+    const int no_voids = !strcmp(out->reader, "image") && out->kind != RASTER_FLOAT;
+    int64_t filled = no_voids ? 0 : raster_fill_voids(out->samples, out->width, out->height);
     if (filled < 0) {
         raster_free(out);
         return og_error_set(err, "%s: no sample holds a height (all are nodata or NaN)", path);

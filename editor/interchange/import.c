@@ -7,6 +7,7 @@
 #include "editor/world/layer_grid.h"
 #include "io/parse.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -253,6 +254,41 @@ void import_source_free(import_source *s) {
     raster_free(&s->raster);
 }
 
+// h = h x scale + offset (when mapped), and the lowest and highest of h, and whether
+// any is not finite: one pass, eight lanes at a time, which the compiler vectorises
+// (16.8 M samples of a 4097^2 PNG took 45 ms one at a time, a fixed cost of every
+// shard of a world made from it). Inlined with mapped a constant: no test per sample.
+static inline __attribute__((always_inline)) void map_heights(float *h, size_t n, int mapped,
+                                                              double scale, double offset,
+                                                              float *lo, float *hi,
+                                                              int *not_finite) {
+    float lo8[8], hi8[8];
+    int bad8[8] = {0};
+    for (int j = 0; j < 8; j++)
+        lo8[j] = INFINITY, hi8[j] = -INFINITY;
+    size_t i = 0;
+    for (; i + 8 <= n; i += 8)
+        for (int j = 0; j < 8; j++) {
+            const float v = mapped ? (float)((double)h[i + j] * scale + offset) : h[i + j];
+            h[i + j] = v;
+            bad8[j] |= !(fabsf(v) <= FLT_MAX);
+            lo8[j] = v < lo8[j] ? v : lo8[j];
+            hi8[j] = v > hi8[j] ? v : hi8[j];
+        }
+    for (int j = 0; i < n; i++, j++) {
+        const float v = mapped ? (float)((double)h[i] * scale + offset) : h[i];
+        h[i] = v;
+        bad8[j] |= !(fabsf(v) <= FLT_MAX);
+        lo8[j] = v < lo8[j] ? v : lo8[j];
+        hi8[j] = v > hi8[j] ? v : hi8[j];
+    }
+    for (int j = 0; j < 8; j++) {
+        *not_finite |= bad8[j];
+        *lo = lo8[j] < *lo ? lo8[j] : *lo;
+        *hi = hi8[j] > *hi ? hi8[j] : *hi;
+    }
+}
+
 int import_source_read(const char *path, const import_options *o, double default_max,
                        import_source *s, og_error *err) {
     memset(s, 0, sizeof *s);
@@ -268,20 +304,19 @@ int import_source_read(const char *path, const import_options *o, double default
         return -1;
     }
     const size_t n = (size_t)r->width * (size_t)r->height;
-    float lo = INFINITY, hi = -INFINITY;
-    const int identity = scale == 1.0 && offset == 0.0;
-    for (size_t i = 0; i < n; i++) {
-        float v = identity ? r->samples[i] : (float)((double)r->samples[i] * scale + offset);
-        if (!isfinite(v)) {
+    float *h = r->samples, lo = INFINITY, hi = -INFINITY;
+    int not_finite = 0;
+    if (scale != 1.0 || offset != 0.0)
+        map_heights(h, n, 1, scale, offset, &lo, &hi, &not_finite);
+    else
+        map_heights(h, n, 0, 1.0, 0.0, &lo, &hi, &not_finite);
+    for (size_t i = 0; not_finite && i < n; i++)
+        if (!isfinite(h[i])) {
             og_error_set(err, "%s: sample (%zu, %zu) maps to %g m, not a height", path,
-                         i % (size_t)r->width, i / (size_t)r->width, (double)v);
+                         i % (size_t)r->width, i / (size_t)r->width, (double)h[i]);
             import_source_free(s);
             return -1;
         }
-        r->samples[i] = v;
-        lo = v < lo ? v : lo;
-        hi = v > hi ? v : hi;
-    }
     s->min = lo;
     s->max = hi;
     // Orogen's sidecar says how far apart the samples were in the world they came from
