@@ -6,6 +6,7 @@
 #include "editor/edit/edit_commit.h"
 #include "editor/edit/edit_rows.h"
 #include "editor/world/layer_grid.h"
+#include "editor/tools/stamp_image.h"
 #include "editor/tools/stamp_library.h"
 #include "editor/tools/stamp_shapes.h"
 #include "io/image_read.h"
@@ -200,6 +201,9 @@ typedef struct stamp_op {
     int sphere;
     brush_dab geo;       // the face, its samples and the centre direction
     double ex[3], ez[3]; // the stamp's x and z directions at its centre
+    // Flat worlds and image stamps: the image read a row span at a time (stamp_image.h).
+    int by_rows;
+    stamp_image_map image;
 } stamp_op;
 
 // Metres from the stamp's centre to sample (x, z), along the stamp's x and z.
@@ -244,35 +248,67 @@ static float stamp_value(const stamp_op *o, int64_t x, int64_t z, double *edge) 
     return (float)(top * (1 - ay) + bot * ay);
 }
 
+// A sample's new height from its old one, a = the stamp's value times the intensity,
+// and its edge (< 1: inside the footprint).
+static inline float stamp_mix(const stamp_op *o, float old, float a, double edge) {
+    float v = old;
+    switch (o->p->mode) {
+    case STAMP_ADD:
+        v = old + a;
+        break;
+    case STAMP_SUBTRACT:
+        v = old - a;
+        break;
+    case STAMP_MAX:
+        v = fmaxf(old, o->base + a);
+        break;
+    case STAMP_MIN:
+        v = fminf(old, o->base - a);
+        break;
+    default: {
+        double t = edge < 0.7 ? 0.0 : (edge - 0.7) / 0.3;
+        float m = (float)(1.0 - t * t * (3.0 - 2.0 * t));
+        v = old + m * (o->base + a - old);
+    }
+    }
+    if (v != v) v = old;
+    return fminf(fmaxf(v, (float)-BRUSH_HEIGHT_LIMIT), (float)BRUSH_HEIGHT_LIMIT);
+}
+
+// An image stamp on a flat world: the row's span under the footprint, in chunks whose
+// values are read together; add and subtract (old -+ a, a = value * k) mix them in one pass.
+#define STAMP_CHUNK 256
+static void stamp_row_image(const stamp_op *o, float *h, int64_t z, int64_t x0, int64_t x1) {
+    int64_t a, b;
+    stamp_image_span(&o->image, z, x0, x1, &a, &b);
+    float value[STAMP_CHUNK], k = (float)o->p->intensity;
+    double edge[STAMP_CHUNK];
+    for (int64_t s = a; s < b; s += STAMP_CHUNK) {
+        int n = b - s < STAMP_CHUNK ? (int)(b - s) : STAMP_CHUNK;
+        float *row = h + (s - x0);
+        stamp_image_values(&o->image, z, s, n, value, edge);
+        if (o->p->mode == STAMP_ADD || o->p->mode == STAMP_SUBTRACT) {
+            stamp_image_add(row, value, edge, o->p->mode == STAMP_ADD ? k : -k,
+                            (float)BRUSH_HEIGHT_LIMIT, n);
+            continue;
+        }
+        for (int i = 0; i < n; i++)
+            if (edge[i] < 1.0) row[i] = stamp_mix(o, row[i], value[i] * k, edge[i]);
+    }
+}
+
 static void stamp_row(void *user, void *row, int64_t z, int64_t x0, int64_t x1) {
     const stamp_op *o = user;
     float *h = row;
+    if (o->by_rows && !o->sphere) {
+        stamp_row_image(o, h, z, x0, x1);
+        return;
+    }
     float k = (float)o->p->intensity;
     for (int64_t x = x0; x < x1; x++) {
         double edge;
-        float a = stamp_value(o, x, z, &edge) * k, old = h[x - x0], v = old;
-        if (!(edge < 1.0)) continue;
-        switch (o->p->mode) {
-        case STAMP_ADD:
-            v = old + a;
-            break;
-        case STAMP_SUBTRACT:
-            v = old - a;
-            break;
-        case STAMP_MAX:
-            v = fmaxf(old, o->base + a);
-            break;
-        case STAMP_MIN:
-            v = fminf(old, o->base - a);
-            break;
-        default: {
-            double t = edge < 0.7 ? 0.0 : (edge - 0.7) / 0.3;
-            float m = (float)(1.0 - t * t * (3.0 - 2.0 * t));
-            v = old + m * (o->base + a - old);
-        }
-        }
-        if (v != v) v = old;
-        h[x - x0] = fminf(fmaxf(v, (float)-BRUSH_HEIGHT_LIMIT), (float)BRUSH_HEIGHT_LIMIT);
+        float a = stamp_value(o, x, z, &edge) * k;
+        if (edge < 1.0) h[x - x0] = stamp_mix(o, h[x - x0], a, edge);
     }
 }
 
@@ -300,6 +336,19 @@ static int make_op(const world_params *params, const stamp_source *s, const stam
                             2 * BRUSH_MAX_RADIUS_SAMPLES);
     double ex = fabs(o->cos_r) * o->half_w + fabs(o->sin_r) * o->half_h;
     double ez = fabs(o->sin_r) * o->half_w + fabs(o->cos_r) * o->half_h;
+    o->by_rows = s->shape < 0 && (double)s->width * s->height < 2147483647.0;
+    o->image = (stamp_image_map){.pixels = s->pixels,
+                                 .width = s->width,
+                                 .height = s->height,
+                                 .spacing = g->spacing,
+                                 .x = p->x,
+                                 .z = p->z,
+                                 .cos_r = o->cos_r,
+                                 .sin_r = o->sin_r,
+                                 .half_w = o->half_w,
+                                 .half_h = o->half_h,
+                                 .mirror_x = p->mirror_x,
+                                 .mirror_z = p->mirror_z};
     *rect = layer_grid_clip(g, (grid_rect){(int64_t)floor((p->x - ex) / g->spacing),
                                            (int64_t)floor((p->z - ez) / g->spacing),
                                            (int64_t)ceil((p->x + ex) / g->spacing) + 1,
