@@ -1,5 +1,6 @@
 #include "editor/tools/box_blur.h"
 
+#include "editor/tools/box_columns.h"
 #include "editor/tools/box_rows.h"
 #include "editor/tools/hot_loop.h"
 
@@ -71,29 +72,13 @@ HOT_LOOP_WIDE static void first_rows(const float *src, int64_t w, int k, double 
             sum1[x] += src[i * w + x];
 }
 
-// One step down: the first box's row from sum1 (into ring row m), the second box's
-// sum takes it and drops row old, its row goes to row, and sum1 moves on (adds row a,
-// drops row r). Each column's operations run in the order of the two passes.
-HOT_LOOP_WIDE static void column_step(double *restrict sum1, double *restrict sum2,
-                                      float *restrict m, const float *restrict old,
-                                      const float *restrict a, const float *restrict r, double inv,
-                                      float *restrict row, int64_t c0, int64_t c1) {
-    for (int64_t x = c0; x < c1; x++) {
-        float mid = (float)(sum1[x] * inv);
-        m[x] = mid;
-        double s = sum2[x] + ((double)mid - (double)old[x]);
-        sum2[x] = s;
-        row[x] = (float)(s * inv);
-        sum1[x] += (double)a[x] - (double)r[x];
-    }
-}
-
-// zero: a row of zeros (w floats): while the second box's first 2k + 1 rows come,
+// zero: a row of zeros (w doubles): while the second box's first 2k + 1 rows come,
 // it drops nothing (x - 0 is x exactly, signed zeros too). Row z of the result goes to
-// out's row z.
+// out's row z; the second box's rows before its first whole sum go to spare (w floats).
+// The ring holds the first box's rows as doubles (each a float widened).
 static void box_columns_twice(const float *src, float *out, int64_t w, int64_t h, int k,
-                              double *sum1, double *sum2, float *ring, const float *zero,
-                              int64_t c0, int64_t c1) {
+                              double *sum1, double *sum2, double *ring, const double *zero,
+                              float *spare, int64_t c0, int64_t c1) {
     double inv = 1.0 / (2 * k + 1);
     int64_t slots = 2 * k + 2;
     first_rows(src, w, k, sum1, c0, c1);
@@ -102,13 +87,13 @@ static void box_columns_twice(const float *src, float *out, int64_t w, int64_t h
     // Row i of the first box (i in [k, h - k)); the second's row i - k is done once
     // i >= 3k (before, its row goes to a ring row not yet used).
     for (int64_t i = k; i < h - k; i++) {
-        float *m = ring + (i % slots) * w;
-        const float *old = i - k > 2 * k ? ring + ((i - 2 * k - 1) % slots) * w : zero;
+        double *m = ring + (i % slots) * w;
+        const double *old = i - k > 2 * k ? ring + ((i - 2 * k - 1) % slots) * w : zero;
         // The first box's sum of rows [i - k, i + k] moves to [i - k + 1, i + k + 1]
         // (after the last row it is not read again: a - a leaves it).
         const float *r = src + (i - k) * w, *a = i + 1 < h - k ? src + (i + k + 1) * w : r;
-        float *row = i >= 3 * k ? out + (i - k) * w : ring + ((i + 1) % slots) * w;
-        column_step(sum1, sum2, m, old, a, r, inv, row, c0, c1);
+        float *row = i >= 3 * k ? out + (i - k) * w : spare;
+        box_column_step(sum1, sum2, m, old, a, r, inv, row, c0, c1);
     }
 }
 
@@ -166,10 +151,11 @@ int box_blur_twice(const float *in, float *out, int64_t w, int64_t h, int k) {
     // Along rows in blocks of rows whose sums of runs fit the first-level cache.
     int64_t block = 2048 / w > 1 ? 2048 / w : 1, bmax = block * w;
     // runs: 3 blocks; a block's first box; the rows' result; the ring of the first
-    // box down columns; a row of zeros; the two columns' sums (doubles)
+    // box down columns (doubles); a row of zeros (doubles); a spare row; the two
+    // columns' sums (doubles)
     size_t at_first = lines(3 * bmax), at_mid = at_first + lines(bmax);
-    size_t at_ring = at_mid + lines(n), at_zero = at_ring + lines((2 * k + 2) * w);
-    size_t at_sums = at_zero + lines(w);
+    size_t at_ring = at_mid + lines(n), at_zero = at_ring + lines(2 * (2 * k + 2) * w);
+    size_t at_spare = at_zero + lines(2 * w), at_sums = at_spare + lines(w);
     size_t floats = at_sums + lines(4 * w);
     float *scratch = thread_scratch(floats);
     if (!scratch) return -1;
@@ -181,8 +167,9 @@ int box_blur_twice(const float *in, float *out, int64_t w, int64_t h, int k) {
         box_pass(first + k, mid + z0 * w + k, bn - 2 * k, (int)length, scratch);
     }
     double *sums = (double *)(scratch + at_sums);
-    memset(scratch + at_zero, 0, (size_t)w * sizeof *scratch);
-    box_columns_twice(mid, out, w, h, k, sums, sums + w, scratch + at_ring, scratch + at_zero,
-                      2 * k, w - 2 * k);
+    double *zero = (double *)(scratch + at_zero);
+    memset(zero, 0, (size_t)w * sizeof *zero);
+    box_columns_twice(mid, out, w, h, k, sums, sums + w, (double *)(scratch + at_ring), zero,
+                      scratch + at_spare, 2 * k, w - 2 * k);
     return 0;
 }
