@@ -265,16 +265,17 @@ static void redo(world *w) {
 
 static const brush_tool all_tools[] = {BRUSH_RAISE,   BRUSH_RAISE,     BRUSH_SMOOTH, BRUSH_FLATTEN,
                                        BRUSH_SET,     BRUSH_RAMP,      BRUSH_NOISE,  BRUSH_TERRACE,
-                                       BRUSH_THERMAL, BRUSH_HYDRAULIC, BRUSH_PAINT};
+                                       BRUSH_THERMAL, BRUSH_HYDRAULIC, BRUSH_PAINT,  BRUSH_SMOOTH};
 #define TOOL_CASES (sizeof all_tools / sizeof all_tools[0])
 
 // A brush for case i of all_tools (case 1 is lower: raise inverted), with a falloff
-// that varies from case to case so every falloff's weights cross the seams.
+// that varies from case to case so every falloff's weights cross the seams; the last
+// case is smooth with the smooth falloff (its weights computed row by row as it blends).
 static void seam_brush(brush *b, size_t i) {
     brush_defaults(b, all_tools[i]);
     b->invert = i == 1;
     b->strength = 0.8;
-    b->falloff = (brush_falloff)(i % FALLOFF_CURVE);
+    b->falloff = i == TOOL_CASES - 1 ? FALLOFF_SMOOTH : (brush_falloff)(i % FALLOFF_CURVE);
     if (all_tools[i] == BRUSH_TERRACE) {
         og_error err;
         assert_int_equal(brush_set(b, "curve", "0:1,0.4:0.8,0.7:0.3,1:0", &err), 0);

@@ -145,25 +145,38 @@ static size_t lines(int64_t floats) {
     return ((size_t)floats + 15) & ~(size_t)15;
 }
 
+// Copies row y of a plain array (w floats a row).
+static void array_row(void *user, int64_t y, int64_t w, float *dst) {
+    memcpy(dst, (const float *)user + y * w, (size_t)w * sizeof *dst);
+}
+
 int box_blur_twice(const float *in, float *out, int64_t w, int64_t h, int k) {
+    return box_blur_twice_rows(array_row, (void *)in, out, w, h, k);
+}
+
+int box_blur_twice_rows(box_row_reader read, void *user, float *out, int64_t w, int64_t h, int k) {
     int64_t n = w * h, length = 2 * k + 1;
     if (k < 1 || w <= 4 * k || h <= 4 * k) return 0; // no sample 2k inside every edge
-    // Along rows in blocks of rows whose sums of runs fit the first-level cache.
+    // Along rows in blocks of rows whose sums of runs fit the first-level cache, each
+    // block's rows read into `input` as it comes.
     int64_t block = 2048 / w > 1 ? 2048 / w : 1, bmax = block * w;
-    // runs: 3 blocks; a block's first box; the rows' result; the ring of the first
-    // box down columns (doubles); a row of zeros (doubles); a spare row; the two
-    // columns' sums (doubles)
-    size_t at_first = lines(3 * bmax), at_mid = at_first + lines(bmax);
+    // runs: 3 blocks; a block's rows; a block's first box; the rows' result; the ring
+    // of the first box down columns (doubles); a row of zeros (doubles); a spare row;
+    // the two columns' sums (doubles)
+    size_t at_input = lines(3 * bmax), at_first = at_input + lines(bmax);
+    size_t at_mid = at_first + lines(bmax);
     size_t at_ring = at_mid + lines(n), at_zero = at_ring + lines(2 * (2 * k + 2) * w);
     size_t at_spare = at_zero + lines(2 * w), at_sums = at_spare + lines(w);
     size_t floats = at_sums + lines(4 * w);
     float *scratch = thread_scratch(floats);
     if (!scratch) return -1;
-    float *first = scratch + at_first, *mid = scratch + at_mid;
+    float *input = scratch + at_input, *first = scratch + at_first, *mid = scratch + at_mid;
     // Each pass's results start k samples (k rows) further in and end as many earlier.
     for (int64_t z0 = 0; z0 < h; z0 += block) {
         int64_t rows = h - z0 < block ? h - z0 : block, bn = rows * w;
-        box_pass(in + z0 * w, first, bn, (int)length, scratch);
+        for (int64_t z = 0; z < rows; z++)
+            read(user, z0 + z, w, input + z * w);
+        box_pass(input, first, bn, (int)length, scratch);
         box_pass(first + k, mid + z0 * w + k, bn - 2 * k, (int)length, scratch);
     }
     double *sums = (double *)(scratch + at_sums);

@@ -13,4 +13,10 @@
 // 0, or -1: out of memory.
 int box_blur_twice(const float *in, float *out, int64_t w, int64_t h, int k);
 
+// The same with the area's rows read as the blur needs them (each once, in order):
+// read(user, y, w, dst) copies row y's w floats to dst. From tiles this saves a copy
+// of the whole area through the second-level cache.
+typedef void (*box_row_reader)(void *user, int64_t y, int64_t w, float *dst);
+int box_blur_twice_rows(box_row_reader read, void *user, float *out, int64_t w, int64_t h, int k);
+
 #endif

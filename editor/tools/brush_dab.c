@@ -7,6 +7,7 @@
 #include "editor/tools/raise_row.h"
 #include "editor/tools/smooth_row.h"
 #include "editor/gen/gen_noise.h"
+#include "editor/world/layer_rows.h"
 #include "io/progress.h"
 
 #include <math.h>
@@ -398,9 +399,9 @@ static void disc_span(const dab_rows *j, int64_t z, int64_t *x0, int64_t *x1) {
 
 // Runs a neighbourhood tool on heights (w x h, covering `area`), changing only
 // samples whose weight > 0. weight gets the per-sample weights (smooth: NULL when
-// dab_row computes them itself).
+// dab_row computes them itself). blurred: smooth's blur is done already.
 static int neighbourhood(const brush_dab *d, const dab_rows *spans, float *heights, float *weight,
-                         grid_rect area, og_error *err) {
+                         grid_rect area, int blurred, og_error *err) {
     int64_t w = area.x1 - area.x0, h = area.z1 - area.z0;
     int halo = halo_of(d);
     grid_rect inner = {area.x0 + halo, area.z0 + halo, area.x1 - halo, area.z1 - halo};
@@ -418,7 +419,7 @@ static int neighbourhood(const brush_dab *d, const dab_rows *spans, float *heigh
     }
     const brush *b = d->brush;
     if (b->tool == BRUSH_SMOOTH) { // the blend comes as the rows are written (dab_row)
-        if (box_blur_twice(heights, heights, w, h, halo / 2) != 0) {
+        if (!blurred && box_blur_twice(heights, heights, w, h, halo / 2) != 0) {
             return og_error_set(err, "out of memory smoothing (%lld x %lld samples)", (long long)w,
                                 (long long)h);
         }
@@ -530,10 +531,13 @@ static int dab_wanted(void *user, grid_rect part) {
 
 // Gathers the area around r (r + halo) and runs the neighbourhood tool on it.
 typedef int (*area_reader)(void *src, grid_rect area, float *out, og_error *err);
+// Smooth's blur (radius k) of the area read straight from the source's rows into out:
+// 0, 1 when the source cannot (then it is read whole and blurred), -1 on error.
+typedef int (*area_blur)(void *src, grid_rect area, float *out, int k, og_error *err);
 
 // before (may be NULL): also a copy of the heights as read, before the tool ran.
-static int prepare(const brush_dab *d, tile_layer layer, grid_rect r, area_reader read, void *src,
-                   dab_rows *rows, float **before, og_error *err) {
+static int prepare(const brush_dab *d, tile_layer layer, grid_rect r, area_reader read,
+                   area_blur blur, void *src, dab_rows *rows, float **before, og_error *err) {
     *rows = (dab_rows){.d = d};
     disc_spans(rows);
     if (layer == TILE_LAYER_MATERIAL || is_pointwise(d->brush)) return 0;
@@ -548,9 +552,14 @@ static int prepare(const brush_dab *d, tile_layer layer, grid_rect r, area_reade
     float *copy = before ? malloc(n * sizeof *copy) : NULL;
     int ok = heights && (weight || rows->row_weighted) && (!before || copy);
     if (!ok) og_error_set(err, "out of memory for a brush of %zu samples", n);
-    if (ok && (ok = read(src, area, heights, err) == 0) && copy)
+    int blurred = 0; // smooth on tiles: its rows read as the blur takes them
+    if (ok && d->brush->tool == BRUSH_SMOOTH && blur && !before) {
+        int rc = blur(src, area, heights, halo / 2, err);
+        ok = rc >= 0, blurred = rc == 0;
+    }
+    if (ok && !blurred && (ok = read(src, area, heights, err) == 0) && copy)
         memcpy(copy, heights, n * sizeof *copy);
-    if (!ok || neighbourhood(d, rows, heights, weight, area, err) != 0) {
+    if (!ok || neighbourhood(d, rows, heights, weight, area, blurred, err) != 0) {
         free(heights);
         free(weight);
         free(copy);
@@ -603,7 +612,7 @@ int brush_dab_apply_array_since(const brush_dab *d, tile_layer layer, void *data
     if (grid_rect_empty(r)) return 0;
     array_source src = {data, area};
     dab_rows rows;
-    if (prepare(d, layer, r, read_array, &src, &rows, NULL, err) != 0) return -1;
+    if (prepare(d, layer, r, read_array, NULL, &src, &rows, NULL, err) != 0) return -1;
     if (layer == TILE_LAYER_MATERIAL) rows.before = stroke_start, rows.before_area = area;
     edit_rows_apply_array(layer, data, area, r, dab_row, &rows);
     release(&rows);
@@ -655,6 +664,26 @@ static int read_world(void *src, grid_rect r, float *out, og_error *err) {
     return 0;
 }
 
+static void world_row(void *user, int64_t y, int64_t w, float *dst) {
+    (void)w;
+    const layer_rows *rows = user;
+    layer_rows_read(rows, rows->r.z0 + y, dst);
+}
+
+static int blur_world(void *src, grid_rect area, float *out, int k, og_error *err) {
+    world_source *s = src;
+    layer_rows rows;
+    int rc = layer_rows_open(s->w, s->g, area, &rows, err);
+    if (rc != 0) return rc; // 1: past the grid's edge (or huge): read whole
+    int64_t w = area.x1 - area.x0, h = area.z1 - area.z0;
+    rc = box_blur_twice_rows(world_row, &rows, out, w, h, k);
+    layer_rows_close(&rows);
+    if (rc != 0)
+        return og_error_set(err, "out of memory smoothing (%lld x %lld samples)", (long long)w,
+                            (long long)h);
+    return 0;
+}
+
 struct brush_dab_job {
     edit *e;
     layer_grid g;
@@ -672,7 +701,7 @@ int brush_dab_begin(edit *e, const layer_grid *g, const brush_dab *d, brush_dab_
     if (!j) return og_error_set(err, "out of memory");
     *j = (brush_dab_job){.e = e, .g = *g, .d = *d, .r = r};
     world_source src = {edit_world(e), &j->g, &j->d};
-    if (prepare(&j->d, g->layer, r, read_world, &src, &j->rows, NULL, err) != 0) {
+    if (prepare(&j->d, g->layer, r, read_world, blur_world, &src, &j->rows, NULL, err) != 0) {
         free(j);
         return -1;
     }
@@ -701,7 +730,7 @@ int brush_dab_compute_area(edit *e, const layer_grid *g, const brush_dab *d, gri
     world_source src = {edit_world(e), g, d};
     dab_rows rows;
     float *before = NULL;
-    if (prepare(d, g->layer, r, read_world, &src, &rows, &before, err) != 0) return -1;
+    if (prepare(d, g->layer, r, read_world, blur_world, &src, &rows, &before, err) != 0) return -1;
     float *after = (float *)rows.heights;
     size_t n = (size_t)((rows.area.x1 - rows.area.x0) * (rows.area.z1 - rows.area.z0));
     if (rows.smoothed) { // the smoothed heights laid over those from before
