@@ -72,6 +72,24 @@ HOT_LOOP_WIDE static void first_rows(const float *src, int64_t w, int k, double 
             sum1[x] += src[i * w + x];
 }
 
+// One step down: the first box's row from sum1 (into ring row m, as a double), the
+// second box's sum takes it and drops row old, its row goes to row, and sum1 moves on
+// (adds row a, drops row r). Each column's operations run in the order of the two
+// passes.
+HOT_LOOP_WIDE static void column_step(double *restrict sum1, double *restrict sum2,
+                                      double *restrict m, const double *restrict old,
+                                      const float *restrict a, const float *restrict r, double inv,
+                                      float *restrict row, int64_t c0, int64_t c1) {
+    for (int64_t x = c0; x < c1; x++) {
+        double mid = (double)(float)(sum1[x] * inv);
+        m[x] = mid;
+        double s = sum2[x] + (mid - old[x]);
+        sum2[x] = s;
+        row[x] = (float)(s * inv);
+        sum1[x] += (double)a[x] - (double)r[x];
+    }
+}
+
 // zero: a row of zeros (w doubles): while the second box's first 2k + 1 rows come,
 // it drops nothing (x - 0 is x exactly, signed zeros too). Row z of the result goes to
 // out's row z; the second box's rows before its first whole sum go to spare (w floats).
@@ -93,7 +111,7 @@ static void box_columns_twice(const float *src, float *out, int64_t w, int64_t h
         // (after the last row it is not read again: a - a leaves it).
         const float *r = src + (i - k) * w, *a = i + 1 < h - k ? src + (i + k + 1) * w : r;
         float *row = i >= 3 * k ? out + (i - k) * w : spare;
-        box_column_step(sum1, sum2, m, old, a, r, inv, row, c0, c1);
+        column_step(sum1, sum2, m, old, a, r, inv, row, c0, c1);
     }
 }
 
@@ -165,7 +183,9 @@ int box_blur_twice_rows(box_row_reader read, void *user, float *out, int64_t w, 
     // the two columns' sums (doubles)
     size_t at_input = lines(3 * bmax), at_first = at_input + lines(bmax);
     size_t at_mid = at_first + lines(bmax);
-    size_t at_ring = at_mid + lines(n), at_zero = at_ring + lines(2 * (2 * k + 2) * w);
+    size_t at_ring = at_mid + lines(n);
+    // (2k + 2) rows of doubles, w wide (or 16 for box_columns_wide's strips)
+    size_t at_zero = at_ring + lines(2 * (2 * k + 2) * (w > 16 ? w : 16));
     size_t at_spare = at_zero + lines(2 * w), at_sums = at_spare + lines(w);
     size_t floats = at_sums + lines(4 * w);
     float *scratch = thread_scratch(floats);
@@ -179,10 +199,12 @@ int box_blur_twice_rows(box_row_reader read, void *user, float *out, int64_t w, 
         box_pass(input, first, bn, (int)length, scratch);
         box_pass(first + k, mid + z0 * w + k, bn - 2 * k, (int)length, scratch);
     }
+    double *ring = (double *)(scratch + at_ring);
+    if (box_columns_wide(mid, out, w, h, k, ring, 2 * k, w - 2 * k) == 0) return 0;
     double *sums = (double *)(scratch + at_sums);
     double *zero = (double *)(scratch + at_zero);
     memset(zero, 0, (size_t)w * sizeof *zero);
-    box_columns_twice(mid, out, w, h, k, sums, sums + w, (double *)(scratch + at_ring), zero,
-                      scratch + at_spare, 2 * k, w - 2 * k);
+    box_columns_twice(mid, out, w, h, k, sums, sums + w, ring, zero, scratch + at_spare, 2 * k,
+                      w - 2 * k);
     return 0;
 }
