@@ -17,6 +17,7 @@ typedef struct rows_job {
     int64_t tx0, tz0, tw;
     edit_row_fn fn;
     edit_rows_wanted_fn wanted;
+    edit_rows_narrow_fn narrow;
     void *user;
     og_progress *progress; // the calling thread's (tasks run on the pool's threads)
     atomic_long tiles_done;
@@ -31,6 +32,7 @@ static int rows_task(void *user, int task, og_error *err) {
         grid_rect_intersect(j->r, (grid_rect){tx * TILE_SIZE, tz * TILE_SIZE, (tx + 1) * TILE_SIZE,
                                               (tz + 1) * TILE_SIZE});
     if (grid_rect_empty(t) || (j->wanted && !j->wanted(j->user, t))) return 0;
+    if (j->narrow && (!j->narrow(j->user, &t) || grid_rect_empty(t))) return 0;
     tile_key key = {j->g->layer, j->g->face, 0, (int32_t)tx, (int32_t)tz};
     tile_view v;
     grid_rect local = {t.x0 - tx * TILE_SIZE, t.z0 - tz * TILE_SIZE, t.x1 - tx * TILE_SIZE,
@@ -48,10 +50,12 @@ static int rows_task(void *user, int task, og_error *err) {
     return 0;
 }
 
-int edit_rows_apply(edit *e, const layer_grid *g, grid_rect r, edit_row_fn fn,
-                    edit_rows_wanted_fn wanted, void *user, og_error *err) {
+static int apply(edit *e, const layer_grid *g, grid_rect r, edit_row_fn fn,
+                 edit_rows_wanted_fn wanted, edit_rows_narrow_fn narrow, void *user,
+                 og_error *err) {
     if (grid_rect_empty(r)) return 0;
-    rows_job job = {.e = e, .g = g, .r = r, .fn = fn, .wanted = wanted, .user = user};
+    rows_job job = {
+        .e = e, .g = g, .r = r, .fn = fn, .wanted = wanted, .narrow = narrow, .user = user};
     job.tx0 = world_grid_floor_div(r.x0, TILE_SIZE);
     job.tz0 = world_grid_floor_div(r.z0, TILE_SIZE);
     job.tw = world_grid_floor_div(r.x1 - 1, TILE_SIZE) - job.tx0 + 1;
@@ -62,6 +66,16 @@ int edit_rows_apply(edit *e, const layer_grid *g, grid_rect r, edit_row_fn fn,
     if (parallel_run((int)(job.tw * th), rows_task, &job, err) != 0) return -1;
     edit_dirty(e, g->layer, g->face, r);
     return 0;
+}
+
+int edit_rows_apply(edit *e, const layer_grid *g, grid_rect r, edit_row_fn fn,
+                    edit_rows_wanted_fn wanted, void *user, og_error *err) {
+    return apply(e, g, r, fn, wanted, NULL, user, err);
+}
+
+int edit_rows_apply_narrowed(edit *e, const layer_grid *g, grid_rect r, edit_row_fn fn,
+                             edit_rows_narrow_fn narrow, void *user, og_error *err) {
+    return apply(e, g, r, fn, NULL, narrow, user, err);
 }
 
 void edit_rows_apply_array(tile_layer layer, void *data, grid_rect area, grid_rect r,

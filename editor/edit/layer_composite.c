@@ -168,6 +168,11 @@ static int compose_task(void *user, int task, og_error *err) {
     // Only the world's own samples (a bounded world's edge tiles reach past it).
     grid_rect r =
         layer_grid_clip(&grid, (grid_rect){gx + p->x0, gz + p->z0, gx + p->x1, gz + p->z1});
+    // Taking, the rest of the part keeps its samples (kept()): a rotated stamp's tile
+    // part is often much larger than what its footprint touched there.
+    if (j->take)
+        r = grid_rect_intersect(
+            r, (grid_rect){gx + touched.x0, gz + touched.z0, gx + touched.x1, gz + touched.z1});
     if (grid_rect_empty(r)) return 0;
     int x0 = (int)(r.x0 - gx), z0 = (int)(r.z0 - gz);
     int rw = (int)(r.x1 - r.x0), rh = (int)(r.z1 - r.z0);

@@ -380,6 +380,23 @@ static int stamp_wanted(void *user, grid_rect part) {
     return !(umin > 1.0 || umax < -1.0 || vmin > 1.0 || vmax < -1.0);
 }
 
+// stamp_wanted, then the part narrowed to the rows and columns whose spans (a sample or
+// two wider than the footprint: stamp_image_span) it crosses.
+static int stamp_narrow(void *user, grid_rect *part) {
+    const stamp_op *o = user;
+    if (!stamp_wanted(user, *part)) return 0;
+    grid_rect box = {part->x1, part->z1, part->x0, part->z0};
+    for (int64_t z = part->z0; z < part->z1; z++) {
+        int64_t a, b;
+        stamp_image_span(&o->image, z, part->x0, part->x1, &a, &b);
+        if (a >= b) continue;
+        box.x0 = a < box.x0 ? a : box.x0, box.x1 = b > box.x1 ? b : box.x1;
+        box.z0 = z < box.z0 ? z : box.z0, box.z1 = z + 1;
+    }
+    *part = box;
+    return !grid_rect_empty(box);
+}
+
 // The base height the max, min and blend modes work from, over the footprint's heights
 // (gathered over every face a planet's footprint covers, then settled).
 typedef struct base_scan {
@@ -517,7 +534,7 @@ int stamp_apply(world *w, const stamp_source *s, const stamp_placement *p, og_er
     edit *e = edit_begin(w, label, err);
     if (!e) return -1;
     if (p->mode == STAMP_ADD || p->mode == STAMP_SUBTRACT) edit_set_layer_mode(e, EDIT_LAYER_DELTA);
-    if (edit_rows_apply(e, &g, r, stamp_row, stamp_wanted, &o, err) != 0) {
+    if (edit_rows_apply_narrowed(e, &g, r, stamp_row, stamp_narrow, &o, err) != 0) {
         edit_abort(e);
         return -1;
     }
