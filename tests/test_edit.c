@@ -1846,15 +1846,23 @@ static void test_mips_follow_level0(void **state) {
 }
 
 // A raise of a whole bounded world by 100 m raises every mip sample by 100 m,
-// including the first row and column (the tent's child -1 lies outside the world).
+// including the first row and column (the tent's child -1 lies outside the world), and
+// so does every level the viewport's clipmap reads, past the one where a tile covers
+// the world (a small world seen from afar was drawn flat from the generator's mips).
 static void test_mips_bounded_edge(void **state) {
     (void)state;
     world_params p = flat_params(700, 1.0);
     world *w = open_world(&p);
-    assert_int_equal(edit_mips_top_level(&p), 2);
-    grid_rect l1 = {0, 0, 350, 350}, l2 = {0, 0, 175, 175};
+    assert_int_equal(edit_mips_top_level(&p), EDIT_MIP_LEVELS_UNBOUNDED);
+    grid_rect l1 = {0, 0, 350, 350}, l2 = {0, 0, 175, 175}, far = {0, 0, 1, 1};
     float *b1 = read_area(w, TILE_LAYER_COARSE, 0, 1, l1);
     float *b2 = read_area(w, TILE_LAYER_COARSE, 0, 2, l2);
+    float before[EDIT_MIP_LEVELS_UNBOUNDED + 1];
+    for (int level = 3; level <= EDIT_MIP_LEVELS_UNBOUNDED; level++) {
+        float *v = read_area(w, TILE_LAYER_COARSE, 0, level, far);
+        before[level] = v[0];
+        free(v);
+    }
     brush b;
     brush_defaults(&b, BRUSH_RAISE);
     b.radius = 2000;
@@ -1872,6 +1880,13 @@ static void test_mips_bounded_edge(void **state) {
         if (fabs(d1 - 100.0) > 0.01 || fabs(d2 - 100.0) > 0.01)
             fail_msg("mip samples (%lld, %lld) rose by %g (level 1) and %g (level 2), not 100 m",
                      (long long)i, (long long)j, d1, d2);
+    }
+    for (int level = 3; level <= EDIT_MIP_LEVELS_UNBOUNDED; level++) {
+        float *v = read_area(w, TILE_LAYER_COARSE, 0, level, far);
+        double d = (double)v[0] - before[level];
+        free(v);
+        if (fabs(d - 100.0) > 0.01)
+            fail_msg("level %d's first sample rose by %g, not 100 m", level, d);
     }
     free(b1), free(b2), free(a1), free(a2);
     world_close(w);
@@ -2220,7 +2235,7 @@ static void test_planet_face_edit(void **state) {
     world *w = open_world(&p);
     int64_t n = world_grid_face_samples(&p);
     assert_int_equal(n, 512);
-    assert_int_equal(edit_mips_top_level(&p), 1);
+    assert_int_equal(edit_mips_top_level(&p), 9); // down to one sample a face
     grid_rect face = {0, 0, n, n};
     uint64_t f2 = coarse_hash(w, 2, face), f3 = coarse_hash(w, 3, face);
     grid_rect r1 = {0, 0, 256, 256};
@@ -2233,7 +2248,13 @@ static void test_planet_face_edit(void **state) {
     b.radius = 3000; // 49 cells of 61.4 m (face-local metres are the datum's arc)
     b.amount = 50;
     const double sp = world_grid_sample_metres(&p);
+    grid_rect root = {0, 0, 16, 16}; // level 5: the planet viewport's root chunk of the face
+    float *l5_before = read_area(w, TILE_LAYER_COARSE, 2, 5, root);
     dab_at(w, &b, 256 * sp, 250 * sp); // the face centre, across all four tiles
+    float *l5_after = read_area(w, TILE_LAYER_COARSE, 2, 5, root);
+    // The face seen whole shows the dab too (level-5 sample (8, 7) covers (256, 250)).
+    assert_true(at(l5_after, root, 8, 7) - at(l5_before, root, 8, 7) > 1.0f);
+    free(l5_before), free(l5_after);
     uint64_t f2_after = coarse_hash(w, 2, face);
     assert_true(f2_after != f2);
     assert_true(coarse_hash(w, 3, face) == f3);

@@ -1,5 +1,7 @@
 #include "editor/cmd/base_pending.h"
 
+#include "editor/edit/edit_commit.h"
+#include "editor/edit/edit_mips.h"
 #include "editor/world/layer_grid.h"
 
 #include <math.h>
@@ -17,6 +19,7 @@ struct base_pending {
     int64_t tiles_x, tiles_z; // world tiles (TILE_SIZE samples) over the grid
     unsigned char *done;      // per world tile: imported
     int64_t left;             // tiles not imported yet
+    int imports;              // imports made so far
 };
 
 base_pending *base_pending_new(world *w, const char *path, import_source *src,
@@ -45,6 +48,25 @@ base_pending *base_pending_new(world *w, const char *path, import_source *src,
     return b;
 }
 
+// The mip levels past the one where a tile covers the world, summed part by part, differ
+// from a whole import's in float rounding (up to that level the filtered sums are exact);
+// once the last part is in they are made again as one import of the whole makes them.
+static int refilter_deep_levels(base_pending *b, og_error *err) {
+    edit *e = edit_begin(b->world, "import (far levels)", err);
+    if (!e) return -1;
+    edit_set_starting_state(e);
+    world_journal_pause(b->world, b->journal_paused);
+    int first = edit_mips_tile_cover_level(world_get_params(b->world)) + 1;
+    if (edit_mips_refilter_bounded(e, first, err) != 0) {
+        edit_abort(e);
+        world_journal_pause(b->world, 0);
+        return -1;
+    }
+    int rc = edit_commit(e, err);
+    world_journal_pause(b->world, 0);
+    return rc;
+}
+
 // Imports world tiles [tx0, tx1) x [tz0, tz1), none of them imported yet.
 static int import_tiles(base_pending *b, int64_t tx0, int64_t tz0, int64_t tx1, int64_t tz1,
                         og_error *err) {
@@ -58,7 +80,8 @@ static int import_tiles(base_pending *b, int64_t tx0, int64_t tz0, int64_t tx1, 
     for (int64_t tz = tz0; tz < tz1; tz++)
         memset(b->done + tz * b->tiles_x + tx0, 1, (size_t)(tx1 - tx0));
     b->left -= (tx1 - tx0) * (tz1 - tz0);
-    return 0;
+    b->imports++;
+    return b->left == 0 && b->imports > 1 ? refilter_deep_levels(b, err) : 0;
 }
 
 int base_pending_require(base_pending *b, grid_rect r, og_error *err) {

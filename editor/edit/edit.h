@@ -88,8 +88,9 @@ int edit_generate_check(world *w, const world_params *params, og_error *err);
 // A change of the material rules as an undoable step labelled label (no tile changes).
 int edit_material_rules(world *w, const material_rules *rules, const char *label, og_error *err);
 
-// Mip levels kept in step with level-0 edits on unbounded worlds (bounded worlds and
-// planet faces: up to the level where one tile covers everything).
+// Mip levels kept in step with level-0 edits on flat worlds, bounded or not (the
+// viewport's clipmap reads that deep); larger worlds and planet faces: down to the level
+// where one sample covers everything (edit_mips_top_level).
 #define EDIT_MIP_LEVELS_UNBOUNDED 12
 
 #endif

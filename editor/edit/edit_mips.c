@@ -2,6 +2,7 @@
 
 #include "editor/edit/material_mips.h"
 #include "editor/edit/parallel.h"
+#include "editor/gen/gen.h"
 #include "editor/params/world_grid.h"
 
 #include <stdlib.h>
@@ -11,12 +12,42 @@ static int64_t floor_div(int64_t a, int64_t b) {
     return world_grid_floor_div(a, b);
 }
 
-int edit_mips_top_level(const world_params *p) {
+// The generator's tile for key (NULL when out of memory or outside the world); free it.
+static float *generated_tile(world *w, tile_key key) {
+    float *t = malloc(TILE_SAMPLES * sizeof *t);
+    if (t && gen_tile(world_get_params(w), key, t) != 0) {
+        free(t);
+        return NULL;
+    }
+    return t;
+}
+
+// Samples along a bounded world's longer side or a planet face's; 0 when unbounded.
+static int64_t largest_extent(const world_params *p) {
     int64_t extent = p->kind == WORLD_PLANET ? world_grid_face_samples(p) : p->size;
-    if (extent <= 0) return EDIT_MIP_LEVELS_UNBOUNDED;
-    if (p->kind != WORLD_PLANET && world_params_size_z(p) > extent) extent = world_params_size_z(p);
-    int top = 1;
-    while (top < TILE_MAX_LEVEL && ((extent - 1) >> top) >= TILE_SIZE)
+    if (extent > 0 && p->kind != WORLD_PLANET && world_params_size_z(p) > extent)
+        extent = world_params_size_z(p);
+    return extent > 0 ? extent : 0;
+}
+
+int edit_mips_tile_cover_level(const world_params *p) {
+    int64_t extent = largest_extent(p);
+    if (!extent) return EDIT_MIP_LEVELS_UNBOUNDED;
+    int level = 1;
+    while (level < TILE_MAX_LEVEL && ((extent - 1) >> level) >= TILE_SIZE)
+        level++;
+    return level;
+}
+
+// Every level a reader may ask for, not only down to the one where a tile covers the
+// world: the flat viewport's clipmap reads levels up to EDIT_MIP_LEVELS_UNBOUNDED - 1
+// whatever the world's size, and the planet viewport's root chunks a face in a few
+// samples. Levels past a small world's last one are a sample or two each, so cheap.
+int edit_mips_top_level(const world_params *p) {
+    int64_t extent = largest_extent(p);
+    if (!extent) return EDIT_MIP_LEVELS_UNBOUNDED;
+    int top = p->kind == WORLD_PLANET ? 1 : EDIT_MIP_LEVELS_UNBOUNDED;
+    while (top < TILE_MAX_LEVEL && ((extent - 1) >> top) >= 1) // down to one sample
         top++;
     return top;
 }
@@ -26,6 +57,7 @@ typedef struct level_job {
     int64_t child_extent;    // children along X at the child level (bounded); 0 = unbounded
     int64_t child_extent_z;  // and along Z
     int face, level, planet; // level: the parent level being written
+    int from_generator;      // before = the generated tiles, not the edit's snapshots
     grid_rect parents;       // parent samples to update
     int64_t ptx0, ptz0, ptw; // parent tiles covering them
 } level_job;
@@ -40,12 +72,22 @@ static int child_changes(level_job *j, int64_t cx0, int64_t cz0, int64_t w, int6
         for (int64_t tx = floor_div(cx0, TILE_SIZE); tx <= floor_div(cx0 + w - 1, TILE_SIZE);
              tx++) {
             tile_key key = {TILE_LAYER_COARSE, j->face, j->level - 1, (int32_t)tx, (int32_t)ty};
-            grid_rect part; // only there can the child differ from before
-            const float *before = edit_snapshot(j->e, key, &part);
+            grid_rect part = {0, 0, TILE_SIZE, TILE_SIZE}; // only there can the child differ
+            float *generated = NULL;
+            const float *before;
+            if (j->from_generator) {
+                generated = generated_tile(edit_world(j->e), key);
+                before = generated;
+            } else {
+                before = edit_snapshot(j->e, key, &part);
+            }
             if (!before || grid_rect_empty(part)) continue;
             tile_view v;
             og_error err;
-            if (tile_cache_acquire(cache, key, &v, &err) != 0) continue; // outside the world
+            if (tile_cache_acquire(cache, key, &v, &err) != 0) { // outside the world
+                free(generated);
+                continue;
+            }
             const float *after = v.data;
             int64_t px0 = tx * TILE_SIZE + part.x0, px1 = tx * TILE_SIZE + part.x1;
             int64_t pz0 = ty * TILE_SIZE + part.z0, pz1 = ty * TILE_SIZE + part.z1;
@@ -60,6 +102,7 @@ static int child_changes(level_job *j, int64_t cx0, int64_t cz0, int64_t w, int6
                 }
             }
             tile_cache_release(cache, &v);
+            free(generated);
         }
     // Beyond a bounded world's edge the terrain reads as its edge sample (as brushes
     // see it), so the change there is the edge's change.
@@ -104,7 +147,8 @@ static int parent_tile_task(void *user, int task, og_error *err) {
             // The parent as it was before the edit plus the whole change so far, so the
             // update can run again while a stroke goes on (the viewport shows it live).
             float *t = v.data;
-            const float *was = edit_snapshot(j->e, key, NULL);
+            float *generated = j->from_generator ? generated_tile(edit_world(j->e), key) : NULL;
+            const float *was = j->from_generator ? generated : edit_snapshot(j->e, key, NULL);
             for (int64_t z = 0; z < ph; z++) {
                 size_t row =
                     (size_t)((sub.z0 + z - tz * TILE_SIZE) * TILE_SIZE + (sub.x0 - tx * TILE_SIZE));
@@ -125,6 +169,7 @@ static int parent_tile_task(void *user, int task, og_error *err) {
                     dst[x] = before[x] + d;
                 }
             }
+            free(generated);
             edit_tile_release(j->e, &v);
         }
     }
@@ -145,12 +190,50 @@ int edit_mips_update(edit *e, og_error *err) {
     return 0;
 }
 
-int edit_mips_update_from(edit *e, size_t first, og_error *err) {
+// Brings levels first..top of face up to date over r (samples of level first - 1 that
+// changed); from_generator: against the generated tiles rather than the edit's snapshots.
+static int update_levels(edit *e, int face, grid_rect r, int first, int from_generator,
+                         og_error *err) {
     const world_params *p = world_get_params(edit_world(e));
-    int planet = p->kind == WORLD_PLANET, faces = planet ? 6 : 1;
+    int planet = p->kind == WORLD_PLANET;
     int64_t extent = planet ? world_grid_face_samples(p) : p->size;
     int64_t extent_z = planet ? extent : world_params_size_z(p);
     int top = edit_mips_top_level(p);
+    for (int level = first; level <= top; level++) {
+        grid_rect pr = planet ? (grid_rect){floor_div(r.x0, 2), floor_div(r.z0, 2),
+                                            floor_div(r.x1 - 1, 2) + 1, floor_div(r.z1 - 1, 2) + 1}
+                              : (grid_rect){-floor_div(-(r.x0 - 1), 2), -floor_div(-(r.z0 - 1), 2),
+                                            floor_div(r.x1, 2) + 1, floor_div(r.z1, 2) + 1};
+        if (extent > 0) {
+            int64_t ext = planet ? extent >> level : ((extent - 1) >> level) + 1;
+            int64_t ext_z = planet ? ext : ((extent_z - 1) >> level) + 1;
+            if (ext < 1) break;
+            pr = grid_rect_intersect(pr, (grid_rect){0, 0, ext, ext_z});
+        }
+        if (grid_rect_empty(pr)) break;
+        level_job job = {.e = e,
+                         .face = face,
+                         .level = level,
+                         .planet = planet,
+                         .from_generator = from_generator,
+                         .parents = pr};
+        if (extent > 0) {
+            job.child_extent = planet ? extent >> (level - 1) : ((extent - 1) >> (level - 1)) + 1;
+            job.child_extent_z = planet ? job.child_extent : ((extent_z - 1) >> (level - 1)) + 1;
+        }
+        job.ptx0 = floor_div(pr.x0, TILE_SIZE);
+        job.ptz0 = floor_div(pr.z0, TILE_SIZE);
+        job.ptw = floor_div(pr.x1 - 1, TILE_SIZE) - job.ptx0 + 1;
+        int64_t pth = floor_div(pr.z1 - 1, TILE_SIZE) - job.ptz0 + 1;
+        if (parallel_run((int)(job.ptw * pth), parent_tile_task, &job, err) != 0) return -1;
+        r = pr;
+    }
+    return 0;
+}
+
+int edit_mips_update_from(edit *e, size_t first, og_error *err) {
+    const world_params *p = world_get_params(edit_world(e));
+    int faces = p->kind == WORLD_PLANET ? 6 : 1;
     const dirty_rect *d;
     size_t n = edit_dirty_rects(e, &d);
     if (first > n) first = n;
@@ -163,34 +246,15 @@ int edit_mips_update_from(edit *e, size_t first, og_error *err) {
             r = have ? grid_rect_union(r, d[i].rect) : d[i].rect;
             have = 1;
         }
-        if (!have) continue;
-        for (int level = 1; level <= top; level++) {
-            grid_rect pr = planet
-                               ? (grid_rect){floor_div(r.x0, 2), floor_div(r.z0, 2),
-                                             floor_div(r.x1 - 1, 2) + 1, floor_div(r.z1 - 1, 2) + 1}
-                               : (grid_rect){-floor_div(-(r.x0 - 1), 2), -floor_div(-(r.z0 - 1), 2),
-                                             floor_div(r.x1, 2) + 1, floor_div(r.z1, 2) + 1};
-            if (extent > 0) {
-                int64_t ext = planet ? extent >> level : ((extent - 1) >> level) + 1;
-                int64_t ext_z = planet ? ext : ((extent_z - 1) >> level) + 1;
-                if (ext < 1) break;
-                pr = grid_rect_intersect(pr, (grid_rect){0, 0, ext, ext_z});
-            }
-            if (grid_rect_empty(pr)) break;
-            level_job job = {.e = e, .face = face, .level = level, .planet = planet, .parents = pr};
-            if (extent > 0) {
-                job.child_extent =
-                    planet ? extent >> (level - 1) : ((extent - 1) >> (level - 1)) + 1;
-                job.child_extent_z =
-                    planet ? job.child_extent : ((extent_z - 1) >> (level - 1)) + 1;
-            }
-            job.ptx0 = floor_div(pr.x0, TILE_SIZE);
-            job.ptz0 = floor_div(pr.z0, TILE_SIZE);
-            job.ptw = floor_div(pr.x1 - 1, TILE_SIZE) - job.ptx0 + 1;
-            int64_t pth = floor_div(pr.z1 - 1, TILE_SIZE) - job.ptz0 + 1;
-            if (parallel_run((int)(job.ptw * pth), parent_tile_task, &job, err) != 0) return -1;
-            r = pr;
-        }
+        if (have && update_levels(e, face, r, 1, 0, err) != 0) return -1;
     }
     return 0;
+}
+
+int edit_mips_refilter_bounded(edit *e, int first, og_error *err) {
+    const world_params *p = world_get_params(edit_world(e));
+    if (p->kind == WORLD_PLANET || p->size <= 0 || first < 1) return 0;
+    grid_rect whole = {0, 0, ((p->size - 1) >> (first - 1)) + 1,
+                       ((world_params_size_z(p) - 1) >> (first - 1)) + 1};
+    return update_levels(e, 0, whole, first, 1, err);
 }

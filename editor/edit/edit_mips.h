@@ -20,5 +20,14 @@ int edit_mips_update_from(edit *e, size_t first, og_error *err);
 
 // The deepest mip level edits reach on a world.
 int edit_mips_top_level(const world_params *p);
+// The level where one tile covers a bounded world or a planet face.
+int edit_mips_tile_cover_level(const world_params *p);
+
+// Recomputes levels first..top of a bounded flat world whole, each as the generator's
+// tile plus the filtered difference of the level below from its generated tile: what
+// one edit of a fresh world writes there, whatever edits led to the level below. A
+// world imported in parts (base_pending.h) calls it once the last part is in: its deep
+// levels, summed part by part, differed from a whole import's in float rounding.
+int edit_mips_refilter_bounded(edit *e, int first, og_error *err);
 
 #endif
