@@ -89,11 +89,14 @@ static void *xmalloc(size_t n) {
 static struct {
     char text[200];
     int pass;
-} goals[8];
+} goals[16];
 static int goal_count;
 
 static void goal(const char *what, double value, double limit, int at_least, const char *unit) {
-    if (goal_count == (int)(sizeof goals / sizeof *goals)) return;
+    if (goal_count == (int)(sizeof goals / sizeof *goals)) { // never silently: a goal missing
+        fprintf(stderr, "bench_render: no room for goal '%s' in the summary\n", what);
+        exit(1);
+    }
     int pass = at_least ? value >= limit : value <= limit;
     snprintf(goals[goal_count].text, sizeof goals[0].text, "%-52s %9.2f%s  (goal %s %g%s)", what,
              value, unit, at_least ? ">=" : "<=", limit, unit);
