@@ -3,7 +3,8 @@
 // all columns (written out below as it ran before: the first box's rows kept as
 // floats in a ring), for radii 1..20, areas from just over 4k to 4k + 70 wide and high,
 // column ranges that start and end anywhere (partial strips), and heights from
-// millimetres to kilometres; nothing outside the result's rows and columns is written.
+// millimetres to kilometres, over all rows or a band of them; nothing outside the
+// result's rows and columns is written.
 // Skipped where the processor lacks AVX-512 (box_columns_wide says so and writes
 // nothing).
 #include "editor/tools/box_columns.h"
@@ -68,17 +69,20 @@ static void test_strips_match_the_row_sweep(void **state) {
         float *src = malloc(n * sizeof *src), *want = malloc(n * sizeof *want);
         float *got = malloc(n * sizeof *got);
         double *ring = malloc((size_t)(2 * k + 2) * 16 * sizeof *ring);
-        assert_true(src && want && got && ring);
+        const float **rows = malloc((size_t)h * sizeof *rows);
+        assert_true(src && want && got && ring && rows);
+        for (int64_t y = 0; y < h; y++)
+            rows[y] = src + y * w;
         for (size_t i = 0; i < n; i++) {
             src[i] = (float)((uniform() - 0.3) * pow(10.0, uniform() * 6.0 - 3.0));
             want[i] = got[i] = -12345.0f; // never a result: shows stray writes
         }
         reference(src, want, w, h, k, c0, c1);
-        if (box_columns_wide(src, got, w, h, k, ring, c0, c1) != 0) {
+        if (box_columns_wide(rows, got, w, k, ring, c0, c1, 0, h) != 0) {
             for (size_t i = 0; i < n; i++)
                 assert_true(got[i] == -12345.0f);
             print_message("no AVX-512 here: box_blur.c's sweep runs instead\n");
-            free(src), free(want), free(got), free(ring);
+            free(src), free(want), free(got), free(ring), free(rows);
             skip();
         }
         if (memcmp(want, got, n * sizeof *got) != 0) {
@@ -92,7 +96,16 @@ static void test_strips_match_the_row_sweep(void **state) {
                      (double)want[i]);
         }
         compared += (long)((c1 - c0) * (h - 4 * k));
-        free(src), free(want), free(got), free(ring);
+        // Rows [y0, y1) alone: the sweep of that part of the area, at its rows.
+        int64_t y0 = (int64_t)(uniform() * (double)(h - 4 * k)), y1 = y0 + 4 * k + 1;
+        y1 += (int64_t)(uniform() * (double)(h - y1 + 1));
+        for (size_t i = 0; i < n; i++)
+            want[i] = got[i] = -12345.0f;
+        reference(src + y0 * w, want + y0 * w, w, y1 - y0, k, c0, c1);
+        assert_int_equal(box_columns_wide(rows, got, w, k, ring, c0, c1, y0, y1), 0);
+        assert_memory_equal(want, got, n * sizeof *got);
+        compared += (long)((c1 - c0) * (y1 - y0 - 4 * k));
+        free(src), free(want), free(got), free(ring), free(rows);
     }
     print_message("%ld results compared bit for bit\n", compared);
     assert_true(compared > 100000);

@@ -1,8 +1,8 @@
-// A rectangle read row by row straight from the tiles (editor/world/layer_rows.c) gives
-// the samples layer_grid_read copies, for rectangles at random places and sizes that
-// straddle tile edges and corners (coarse and detail layers, an unbounded and a bounded
-// world, after an edit changed some tiles); those past a bounded world's edge or over
-// more than 4 x 4 tiles are refused (1) with nothing pinned.
+// A rectangle read row by row straight from the tiles (editor/world/layer_rows.c), whole
+// rows and parts of them, gives the samples layer_grid_read copies, for rectangles at random places
+// and sizes that straddle tile edges and corners (coarse and detail layers, an unbounded and a
+// bounded world, after an edit changed some tiles); those past a bounded world's edge or over more
+// than 4 x 4 tiles are refused (1) with nothing pinned.
 #include "editor/edit/edit.h"
 #include "editor/edit/edit_commit.h"
 #include "editor/tools/brush_dab.h"
@@ -65,11 +65,17 @@ static void compare(world *w, tile_layer layer, int64_t size, uint64_t *rng, lon
         assert_non_null(want);
         assert_non_null(got);
         assert_int_equal(layer_grid_read(w, &g, r, want, &err), 0);
-        for (int64_t z = r.z0; z < r.z1; z++) {
-            layer_rows_read(&rows, z, got);
-            if (memcmp(got, want + (z - r.z0) * wd, (size_t)wd * sizeof *got) != 0)
-                fail_msg("rect %lld,%lld .. %lld,%lld: row %lld differs", (long long)r.x0,
-                         (long long)r.z0, (long long)r.x1, (long long)r.z1, (long long)z);
+        for (int64_t z = r.z0; z < r.z1; z++) { // a part of the row, or all of it
+            int64_t a = r.x0 + (int64_t)(test_rng_unit(rng) * (double)wd), b = r.x1;
+            if (z % 2)
+                a = r.x0;
+            else
+                b = a + (int64_t)(test_rng_unit(rng) * (double)(r.x1 - a + 1));
+            layer_rows_read(&rows, z, a, b, got);
+            if (memcmp(got, want + (z - r.z0) * wd + (a - r.x0), (size_t)(b - a) * sizeof *got))
+                fail_msg("rect %lld,%lld .. %lld,%lld: row %lld, %lld..%lld differs",
+                         (long long)r.x0, (long long)r.z0, (long long)r.x1, (long long)r.z1,
+                         (long long)z, (long long)a, (long long)b);
         }
         layer_rows_close(&rows);
         free(want);

@@ -5,6 +5,7 @@
 #include "editor/tools/hot_loop.h"
 
 #include <pthread.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -163,44 +164,106 @@ static size_t lines(int64_t floats) {
     return ((size_t)floats + 15) & ~(size_t)15;
 }
 
-// Copies row y of a plain array (w floats a row).
-static void array_row(void *user, int64_t y, int64_t w, float *dst) {
-    memcpy(dst, (const float *)user + y * w, (size_t)w * sizeof *dst);
+// Copies n samples of row y of a plain array (w floats a row) from column x0.
+static void array_row(void *user, int64_t y, int64_t x0, int64_t n, float *dst) {
+    const float *in = ((const float *const *)user)[0];
+    int64_t w = (int64_t)(intptr_t)((const float *const *)user)[1];
+    memcpy(dst, in + y * w + x0, (size_t)n * sizeof *dst);
 }
 
 int box_blur_twice(const float *in, float *out, int64_t w, int64_t h, int k) {
-    return box_blur_twice_rows(array_row, (void *)in, out, w, h, k);
+    const float *array[2] = {in, (const float *)(intptr_t)w};
+    return box_blur_twice_rows(array_row, (void *)array, NULL, out, w, h, k);
 }
 
-int box_blur_twice_rows(box_row_reader read, void *user, float *out, int64_t w, int64_t h, int k) {
+// Strips of 16 columns from 2k (the last one narrower) that box_columns_wide sweeps.
+static int64_t strip_count(int64_t w, int k) {
+    return (w - 4 * k + 15) / 16;
+}
+
+// Whether a wanted result of row z lies in columns [c0, c1).
+static int wants(const int64_t (*need)[2], int64_t z, int64_t c0, int64_t c1) {
+    return need[z][0] < c1 && need[z][1] > c0 && need[z][0] < need[z][1];
+}
+
+// Where only some results are wanted (need): the rows [from[j], to[j]) strip j's column
+// boxes take (those within 2k of a wanted result in it; from >= to: none), the first
+// and last wanted rows found from each end.
+static void strip_rows(const int64_t (*need)[2], int64_t w, int64_t h, int k, int64_t *from,
+                       int64_t *to) {
+    for (int64_t j = 0; j < strip_count(w, k); j++) {
+        int64_t c0 = 2 * k + 16 * j, c1 = c0 + 16 < w - 2 * k ? c0 + 16 : w - 2 * k;
+        int64_t first = 2 * k, last = h - 2 * k - 1;
+        while (first <= last && !wants(need, first, c0, c1))
+            first++;
+        while (last > first && !wants(need, last, c0, c1))
+            last--;
+        from[j] = first - 2 * k, to[j] = first <= last ? last + 2 * k + 1 : 0;
+    }
+}
+
+int box_blur_twice_rows(box_row_reader read, void *user, const int64_t (*need)[2], float *out,
+                        int64_t w, int64_t h, int k) {
     int64_t n = w * h, length = 2 * k + 1;
     if (k < 1 || w <= 4 * k || h <= 4 * k) return 0; // no sample 2k inside every edge
     // Along rows in blocks of rows whose sums of runs fit the first-level cache, each
     // block's rows read into `input` as it comes.
     int64_t block = 2048 / w > 1 ? 2048 / w : 1, bmax = block * w;
+    int64_t strips = strip_count(w, k);
     // runs: 3 blocks; a block's rows; a block's first box; the rows' result; the ring
     // of the first box down columns (doubles); a row of zeros (doubles); a spare row;
-    // the two columns' sums (doubles)
+    // the two columns' sums (doubles); each row's start in the rows' result
+    // (pointers); the strips' rows (int64)
     size_t at_input = lines(3 * bmax), at_first = at_input + lines(bmax);
     size_t at_mid = at_first + lines(bmax);
     size_t at_ring = at_mid + lines(n);
     // (2k + 2) rows of doubles, w wide (or 16 for box_columns_wide's strips)
     size_t at_zero = at_ring + lines(2 * (2 * k + 2) * (w > 16 ? w : 16));
     size_t at_spare = at_zero + lines(2 * w), at_sums = at_spare + lines(w);
-    size_t floats = at_sums + lines(4 * w);
+    size_t at_rows = at_sums + lines(4 * w), at_strips = at_rows + lines(2 * h);
+    size_t floats = at_strips + lines(4 * strips);
     float *scratch = thread_scratch(floats);
     if (!scratch) return -1;
     float *input = scratch + at_input, *first = scratch + at_first, *mid = scratch + at_mid;
-    // Each pass's results start k samples (k rows) further in and end as many earlier.
-    for (int64_t z0 = 0; z0 < h; z0 += block) {
-        int64_t rows = h - z0 < block ? h - z0 : block, bn = rows * w;
-        for (int64_t z = 0; z < rows; z++)
-            read(user, z0 + z, w, input + z * w);
-        box_pass(input, first, bn, (int)length, scratch);
-        box_pass(first + k, mid + z0 * w + k, bn - 2 * k, (int)length, scratch);
-    }
     double *ring = (double *)(scratch + at_ring);
-    if (box_columns_wide(mid, out, w, h, k, ring, 2 * k, w - 2 * k) == 0) return 0;
+    const float **rows = (const float **)(void *)(scratch + at_rows);
+    int64_t *from = (int64_t *)(void *)(scratch + at_strips), *to = from + strips;
+    // Only some results wanted (a disc's): each block of rows is blurred over the
+    // columns of the strips its rows feed, one after the other in mid (rows[y] + x: row
+    // y at column x), and each strip's column boxes run over its own rows only.
+    int banded = need && box_columns_have_wide();
+    if (banded) strip_rows(need, w, h, k, from, to);
+    // Each pass's results start k samples (k rows) further in and end as many earlier.
+    float *band = mid;
+    for (int64_t z0 = 0; z0 < h; z0 += block) {
+        int64_t count = h - z0 < block ? h - z0 : block, x0 = 0, bw = w;
+        if (banded) { // the strips that take some of the block's rows
+            int64_t jl = strips, jh = -1;
+            for (int64_t j = 0; j < strips; j++)
+                if (from[j] < z0 + count && to[j] > z0) {
+                    jl = j < jl ? j : jl;
+                    jh = j;
+                }
+            if (jl > jh) continue; // none
+            int64_t end = 2 * k + 16 * (jh + 1) < w - 2 * k ? 2 * k + 16 * (jh + 1) : w - 2 * k;
+            x0 = 16 * jl, bw = end + 2 * k - x0; // columns [2k + 16 jl - 2k, end + 2k)
+        }
+        for (int64_t z = 0; z < count; z++) {
+            read(user, z0 + z, x0, bw, input + z * bw);
+            rows[z0 + z] = band + z * bw - x0;
+        }
+        box_pass(input, first, count * bw, (int)length, scratch);
+        box_pass(first + k, band + k, count * bw - 2 * k, (int)length, scratch);
+        band += count * bw;
+    }
+    if (banded) {
+        for (int64_t j = 0; j < strips; j++) {
+            int64_t c0 = 2 * k + 16 * j, c1 = c0 + 16 < w - 2 * k ? c0 + 16 : w - 2 * k;
+            box_columns_wide(rows, out, w, k, ring, c0, c1, from[j], to[j]);
+        }
+        return 0;
+    }
+    if (box_columns_wide(rows, out, w, k, ring, 2 * k, w - 2 * k, 0, h) == 0) return 0;
     double *sums = (double *)(scratch + at_sums);
     double *zero = (double *)(scratch + at_zero);
     memset(zero, 0, (size_t)w * sizeof *zero);

@@ -14,9 +14,13 @@
 int box_blur_twice(const float *in, float *out, int64_t w, int64_t h, int k);
 
 // The same with the area's rows read as the blur needs them (each once, in order):
-// read(user, y, w, dst) copies row y's w floats to dst. From tiles this saves a copy
-// of the whole area through the second-level cache.
-typedef void (*box_row_reader)(void *user, int64_t y, int64_t w, float *dst);
-int box_blur_twice_rows(box_row_reader read, void *user, float *out, int64_t w, int64_t h, int k);
+// read(user, y, x0, n, dst) copies n samples of row y from column x0 to dst. From
+// tiles this saves a copy of the whole area through the second-level cache. need
+// (NULL: every result): per row z, the columns [need[z][0], need[z][1]) whose results
+// are wanted (rows 2k .. h - 2k - 1 are read); where AVX-512 runs, only what those
+// take is computed, and other results may be left unwritten.
+typedef void (*box_row_reader)(void *user, int64_t y, int64_t x0, int64_t n, float *dst);
+int box_blur_twice_rows(box_row_reader read, void *user, const int64_t (*need)[2], float *out,
+                        int64_t w, int64_t h, int k);
 
 #endif

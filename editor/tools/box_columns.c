@@ -22,15 +22,19 @@ WIDE static inline __m512d to_float(__m512d v) {
     return _mm512_cvtps_pd(_mm512_cvtpd_ps(v));
 }
 
-WIDE static void strip(const float *src, float *out, int64_t w, int64_t h, int k, double *ring,
-                       int64_t x, __mmask16 m) {
+// Rows [y0, y1) of the source (rows[y] + x: row y at column x) as rows 0.. below.
+WIDE static void strip(const float *const *rows, float *out, int64_t w, int k, double *ring,
+                       int64_t x, __mmask16 m, int64_t y0, int64_t y1) {
+    const float *const *src = rows + y0;
+    const int64_t h = y1 - y0;
+    out += y0 * w;
     const __m512d inv = _mm512_set1_pd(1.0 / (2 * k + 1)), zero = _mm512_setzero_pd();
     const int64_t slots = 2 * k + 2;
     // The first box's sum of rows [0, 2k] (0.0 plus each row in turn), the second's 0.
     __m512d s1lo = zero, s1hi = zero, s2lo = zero, s2hi = zero;
     for (int64_t i = 0; i <= 2 * k; i++) {
         __m512d lo, hi;
-        load16(src + i * w + x, m, &lo, &hi);
+        load16(src[i] + x, m, &lo, &hi);
         s1lo = _mm512_add_pd(s1lo, lo), s1hi = _mm512_add_pd(s1hi, hi);
     }
     // The ring slot of the first box's row i (i mod slots), counted on.
@@ -54,7 +58,7 @@ WIDE static void strip(const float *src, float *out, int64_t w, int64_t h, int k
             _mm512_mask_storeu_ps(out + (i - k) * w + x, m, row);
         }
         // The sum of rows [i - k, i + k] moves on a row (after the last: a - a).
-        const float *r = src + (i - k) * w + x, *a = i + 1 < h - k ? src + (i + k + 1) * w + x : r;
+        const float *r = src[i - k] + x, *a = i + 1 < h - k ? src[i + k + 1] + x : r;
         __m512d alo, ahi, rlo, rhi;
         load16(a, m, &alo, &ahi);
         load16(r, m, &rlo, &rhi);
@@ -63,20 +67,29 @@ WIDE static void strip(const float *src, float *out, int64_t w, int64_t h, int k
     }
 }
 
-int box_columns_wide(const float *src, float *out, int64_t w, int64_t h, int k, double *ring,
-                     int64_t c0, int64_t c1) {
-    if (!__builtin_cpu_supports("avx512f")) return -1;
+int box_columns_have_wide(void) {
+    return __builtin_cpu_supports("avx512f");
+}
+
+int box_columns_wide(const float *const *rows, float *out, int64_t w, int k, double *ring,
+                     int64_t c0, int64_t c1, int64_t y0, int64_t y1) {
+    if (!box_columns_have_wide()) return -1;
+    if (y1 - y0 <= 4 * k) return 0; // no result row
     for (int64_t x = c0; x < c1; x += 16) {
         int64_t left = c1 - x;
-        strip(src, out, w, h, k, ring, x,
-              left >= 16 ? (__mmask16)0xffff : (__mmask16)((1u << left) - 1u));
+        strip(rows, out, w, k, ring, x,
+              left >= 16 ? (__mmask16)0xffff : (__mmask16)((1u << left) - 1u), y0, y1);
     }
     return 0;
 }
 #else
-int box_columns_wide(const float *src, float *out, int64_t w, int64_t h, int k, double *ring,
-                     int64_t c0, int64_t c1) {
-    (void)src, (void)out, (void)w, (void)h, (void)k, (void)ring, (void)c0, (void)c1;
+int box_columns_have_wide(void) {
+    return 0;
+}
+
+int box_columns_wide(const float *const *rows, float *out, int64_t w, int k, double *ring,
+                     int64_t c0, int64_t c1, int64_t y0, int64_t y1) {
+    (void)rows, (void)out, (void)w, (void)k, (void)ring, (void)c0, (void)c1, (void)y0, (void)y1;
     return -1;
 }
 #endif

@@ -531,9 +531,27 @@ static int dab_wanted(void *user, grid_rect part) {
 
 // Gathers the area around r (r + halo) and runs the neighbourhood tool on it.
 typedef int (*area_reader)(void *src, grid_rect area, float *out, og_error *err);
-// Smooth's blur (radius k) of the area read straight from the source's rows into out:
-// 0, 1 when the source cannot (then it is read whole and blurred), -1 on error.
-typedef int (*area_blur)(void *src, grid_rect area, float *out, int k, og_error *err);
+// Smooth's blur (radius k) of the area read straight from the source's rows into out,
+// with need as box_blur_twice_rows takes it: 0, 1 when the source cannot (then it is
+// read whole and blurred), -1 on error.
+typedef int (*area_blur)(void *src, grid_rect area, const int64_t (*need)[2], float *out, int k,
+                         og_error *err);
+
+// The columns of each row of area whose smoothed heights dab_row reads (those of the
+// disc's span within r; none outside r), in area columns; NULL: every column (not a
+// flat disc, or out of memory).
+static int64_t (*wanted_columns(const dab_rows *rows, grid_rect area, grid_rect r))[2] {
+    if (!rows->span) return NULL;
+    int64_t h = area.z1 - area.z0, (*need)[2] = malloc((size_t)h * sizeof *need);
+    if (!need) return NULL;
+    for (int64_t z = area.z0; z < area.z1; z++) {
+        int64_t x0 = r.x0, x1 = r.x1;
+        if (z < r.z0 || z >= r.z1) x1 = x0;
+        disc_span(rows, z, &x0, &x1);
+        need[z - area.z0][0] = x0 - area.x0, need[z - area.z0][1] = x1 - area.x0;
+    }
+    return need;
+}
 
 // before (may be NULL): also a copy of the heights as read, before the tool ran.
 static int prepare(const brush_dab *d, tile_layer layer, grid_rect r, area_reader read,
@@ -554,7 +572,9 @@ static int prepare(const brush_dab *d, tile_layer layer, grid_rect r, area_reade
     if (!ok) og_error_set(err, "out of memory for a brush of %zu samples", n);
     int blurred = 0; // smooth on tiles: its rows read as the blur takes them
     if (ok && d->brush->tool == BRUSH_SMOOTH && blur && !before) {
-        int rc = blur(src, area, heights, halo / 2, err);
+        int64_t(*need)[2] = wanted_columns(rows, area, r);
+        int rc = blur(src, area, (const int64_t(*)[2])need, heights, halo / 2, err);
+        free(need);
         ok = rc >= 0, blurred = rc == 0;
     }
     if (ok && !blurred && (ok = read(src, area, heights, err) == 0) && copy)
@@ -664,19 +684,19 @@ static int read_world(void *src, grid_rect r, float *out, og_error *err) {
     return 0;
 }
 
-static void world_row(void *user, int64_t y, int64_t w, float *dst) {
-    (void)w;
+static void world_row(void *user, int64_t y, int64_t x0, int64_t n, float *dst) {
     const layer_rows *rows = user;
-    layer_rows_read(rows, rows->r.z0 + y, dst);
+    layer_rows_read(rows, rows->r.z0 + y, rows->r.x0 + x0, rows->r.x0 + x0 + n, dst);
 }
 
-static int blur_world(void *src, grid_rect area, float *out, int k, og_error *err) {
+static int blur_world(void *src, grid_rect area, const int64_t (*need)[2], float *out, int k,
+                      og_error *err) {
     world_source *s = src;
     layer_rows rows;
     int rc = layer_rows_open(s->w, s->g, area, &rows, err);
     if (rc != 0) return rc; // 1: past the grid's edge (or huge): read whole
     int64_t w = area.x1 - area.x0, h = area.z1 - area.z0;
-    rc = box_blur_twice_rows(world_row, &rows, out, w, h, k);
+    rc = box_blur_twice_rows(world_row, &rows, need, out, w, h, k);
     layer_rows_close(&rows);
     if (rc != 0)
         return og_error_set(err, "out of memory smoothing (%lld x %lld samples)", (long long)w,

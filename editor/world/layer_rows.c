@@ -25,14 +25,14 @@ int layer_rows_open(world *w, const layer_grid *g, grid_rect r, layer_rows *rows
     return 0;
 }
 
-void layer_rows_read(const layer_rows *rows, int64_t z, float *dst) {
+void layer_rows_read(const layer_rows *rows, int64_t z, int64_t x0, int64_t x1, float *dst) {
     int64_t tz = world_grid_floor_div(z, TILE_SIZE), local_z = z - tz * TILE_SIZE;
     const tile_view *v = rows->views + (tz - rows->tz0) * rows->tw;
-    for (int64_t x = rows->r.x0; x < rows->r.x1;) {
+    for (int64_t x = x0; x < x1;) {
         int64_t tx = world_grid_floor_div(x, TILE_SIZE), end = (tx + 1) * TILE_SIZE;
-        if (end > rows->r.x1) end = rows->r.x1;
+        if (end > x1) end = x1;
         const float *t = v[tx - rows->tx0].data;
-        memcpy(dst + (x - rows->r.x0), t + local_z * TILE_SIZE + (x - tx * TILE_SIZE),
+        memcpy(dst + (x - x0), t + local_z * TILE_SIZE + (x - tx * TILE_SIZE),
                (size_t)(end - x) * sizeof *dst);
         x = end;
     }

@@ -19,8 +19,8 @@ typedef struct layer_rows {
 // grid or spans more than LAYER_ROWS_TILES tiles (nothing pinned: read it with
 // layer_grid_read instead); -1 on error (err set).
 int layer_rows_open(world *w, const layer_grid *g, grid_rect r, layer_rows *rows, og_error *err);
-// Copies the r.x1 - r.x0 samples of row z (r.z0 <= z < r.z1) to dst.
-void layer_rows_read(const layer_rows *rows, int64_t z, float *dst);
+// Copies the samples [x0, x1) of row z to dst (r.z0 <= z < r.z1, r.x0 <= x0 <= x1 <= r.x1).
+void layer_rows_read(const layer_rows *rows, int64_t z, int64_t x0, int64_t x1, float *dst);
 void layer_rows_close(layer_rows *rows);
 
 #endif
