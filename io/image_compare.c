@@ -44,3 +44,21 @@ void image_diff_rgb8(const unsigned char *a, const unsigned char *b, size_t pixe
         out[i] = (unsigned char)(d > 255 ? 255 : d);
     }
 }
+
+void image_box_down_rgb8(const unsigned char *big, int width, int height, int k,
+                         unsigned char *out) {
+    const size_t row = (size_t)width * k * 3;
+    const int n = k * k;
+    for (int y = 0; y < height; y++)
+        for (int x = 0; x < width; x++)
+            for (int c = 0; c < 3; c++) {
+                int sum = 0;
+                for (int j = 0; j < k; j++) {
+                    const unsigned char *p =
+                        big + ((size_t)y * k + j) * row + (size_t)x * k * 3 + c;
+                    for (int i = 0; i < k; i++)
+                        sum += p[i * 3];
+                }
+                out[((size_t)y * width + x) * 3 + c] = (unsigned char)((sum + n / 2) / n);
+            }
+}

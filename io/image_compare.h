@@ -24,4 +24,12 @@ int image_rmse_files(const char *path_a, const char *path_b, double *rmse, og_er
 void image_diff_rgb8(const unsigned char *a, const unsigned char *b, size_t pixels, int gain,
                      unsigned char *out);
 
+// Box-filters a (width * k) x (height * k) 8-bit RGB image (rows top first) to width x
+// height into out: each pixel the rounded mean of its k x k samples. Both images of a
+// comparison rendered k times larger and reduced so are compared at k x k samples a
+// pixel, where an edge or a ridge narrower than a pixel covers part of it instead of
+// all or nothing (a full-resolution mesh seen from afar aliases).
+void image_box_down_rgb8(const unsigned char *big, int width, int height, int k,
+                         unsigned char *out);
+
 #endif

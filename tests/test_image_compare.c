@@ -55,6 +55,21 @@ static void test_rmse_worked_example(void **state) {
     assert_float_equal(image_rmse_rgb8(c, e, 2), sqrt(25.0 / 6.0), 1e-12);
 }
 
+// A 4 x 2 image reduced by 2 to 2 x 1: each pixel the rounded mean of its 2 x 2 block
+// (rows top first), channels apart; k = 1 copies.
+static void test_box_down(void **state) {
+    (void)state;
+    const unsigned char big[24] = {0, 10, 255, 1, 10, 255, 100, 0, 0, 100, 0, 0,
+                                   0, 10, 255, 2, 10, 254, 100, 0, 0, 101, 0, 3};
+    unsigned char out[6] = {0};
+    image_box_down_rgb8(big, 2, 1, 2, out);
+    const unsigned char want[6] = {1, 10, 255, 100, 0, 1}; // 3/4 -> 1, 1019/4 -> 255, 3/4 -> 1
+    assert_memory_equal(out, want, 6);
+    unsigned char copy[24];
+    image_box_down_rgb8(big, 4, 2, 1, copy);
+    assert_memory_equal(copy, big, 24);
+}
+
 static void test_rmse_files(void **state) {
     (void)state;
     const unsigned char a[12] = {10, 20, 30, 10, 20, 30, 10, 20, 30, 10, 20, 30};
@@ -153,6 +168,7 @@ int main(void) {
         cmocka_unit_test(test_rmse_identical_is_zero),
         cmocka_unit_test(test_rmse_uniform_difference),
         cmocka_unit_test(test_rmse_worked_example),
+        cmocka_unit_test(test_box_down),
         cmocka_unit_test(test_rmse_files),
         cmocka_unit_test(test_diff_amplified_and_clamped),
         cmocka_unit_test(test_tool),
