@@ -1,6 +1,7 @@
 // Image stamps on flat worlds, read a row span at a time (stamp_image.c, vectorised):
 // bit for bit the values and edges of the sample-by-sample reading written out here
-// (stamp.c's formula before the rows were vectorised), for random images, rotations,
+// (stamp.c's formula before the rows were vectorised), on every path the processor has
+// (plain C, AVX2, AVX-512), for random images, rotations,
 // scales, mirrors and row spans (tails of every length); the span of a row holds every
 // sample inside the footprint; add and subtract on an array match the formula's sums.
 #include "editor/params/world_params.h"
@@ -86,16 +87,19 @@ static void test_values_match_reference(void **state) {
             int64_t z = cz + (int64_t)((uniform() * 2 - 1) * reach);
             int64_t x0 = cx - (int64_t)(uniform() * reach);
             int n = 1 + (int)(uniform() * 299);
-            stamp_image_values(&m, z, x0, n, value, edge);
-            for (int i = 0; i < n; i++) {
-                double e;
-                float want = reference(&m, x0 + i, z, &e);
-                assert_memory_equal(&edge[i], &e, sizeof e);
-                if (e < 1.0) {
-                    assert_memory_equal(&value[i], &want, sizeof want);
-                    inside++;
+            for (int path = 0; path < stamp_image_paths(); path++) {
+                memset(edge, 0, sizeof edge);
+                stamp_image_values_path(path, &m, z, x0, n, value, edge);
+                for (int i = 0; i < n; i++) {
+                    double e;
+                    float want = reference(&m, x0 + i, z, &e);
+                    assert_memory_equal(&edge[i], &e, sizeof e);
+                    if (e < 1.0) {
+                        assert_memory_equal(&value[i], &want, sizeof want);
+                        inside++;
+                    }
+                    compared++;
                 }
-                compared++;
             }
         }
         free(px);

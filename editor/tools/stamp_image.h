@@ -26,6 +26,12 @@ void stamp_image_span(const stamp_image_map *m, int64_t z, int64_t x0, int64_t x
 void stamp_image_values(const stamp_image_map *m, int64_t z, int64_t x0, int n, float *value,
                         double *edge);
 
+// The same through one path: 0 plain C, 1 AVX2, 2 AVX-512 (the same values; tests
+// compare them); stamp_image_paths() of them run on this processor.
+void stamp_image_values_path(int path, const stamp_image_map *m, int64_t z, int64_t x0, int n,
+                             float *value, double *edge);
+int stamp_image_paths(void);
+
 // Adds value[i] * k to row[i] where edge[i] < 1, as stamp.c's add mode does sample by
 // sample (a NaN sum keeps the old height; the sum is clamped to [-limit, limit]).
 void stamp_image_add(float *row, const float *value, const double *edge, float k, float limit,
