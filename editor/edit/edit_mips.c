@@ -1,6 +1,7 @@
 #include "editor/edit/edit_mips.h"
 
 #include "editor/edit/material_mips.h"
+#include "editor/edit/mip_rows.h"
 #include "editor/edit/parallel.h"
 #include "editor/gen/gen.h"
 #include "editor/params/world_grid.h"
@@ -149,24 +150,25 @@ static int parent_tile_task(void *user, int task, og_error *err) {
             float *t = v.data;
             float *generated = j->from_generator ? generated_tile(edit_world(j->e), key) : NULL;
             const float *was = j->from_generator ? generated : edit_snapshot(j->e, key, NULL);
+            // Flat: each child row filtered across once (mip_rows.h), rows rotating.
+            float across[3][TILE_SIZE], *h0 = across[0], *h1 = across[1], *h2 = across[2];
+            if (!j->planet) mip_rows_across(win, (int)pw, h0);
             for (int64_t z = 0; z < ph; z++) {
                 size_t row =
                     (size_t)((sub.z0 + z - tz * TILE_SIZE) * TILE_SIZE + (sub.x0 - tx * TILE_SIZE));
                 float *dst = t + row;
                 const float *before = was ? was + row : dst;
+                if (!j->planet) {
+                    mip_rows_across(win + (2 * z + 1) * cw, (int)pw, h1);
+                    mip_rows_across(win + (2 * z + 2) * cw, (int)pw, h2);
+                    mip_rows_down(h0, h1, h2, before, dst, (int)pw);
+                    float *next = h2;
+                    h2 = h0, h0 = next;
+                    continue;
+                }
                 for (int64_t x = 0; x < pw; x++) {
                     const float *c = win + (2 * z) * cw + 2 * x;
-                    float d;
-                    if (j->planet) {
-                        d = 0.25f * (c[0] + c[1] + c[cw] + c[cw + 1]);
-                    } else {
-                        const float *r0 = c, *r1 = c + cw, *r2 = c + 2 * cw;
-                        float a = 0.25f * r0[0] + 0.5f * r0[1] + 0.25f * r0[2];
-                        float b = 0.25f * r1[0] + 0.5f * r1[1] + 0.25f * r1[2];
-                        float g = 0.25f * r2[0] + 0.5f * r2[1] + 0.25f * r2[2];
-                        d = 0.25f * a + 0.5f * b + 0.25f * g;
-                    }
-                    dst[x] = before[x] + d;
+                    dst[x] = before[x] + 0.25f * (c[0] + c[1] + c[cw] + c[cw + 1]);
                 }
             }
             free(generated);
