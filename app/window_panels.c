@@ -201,7 +201,7 @@ const ui_draw_list *build_ui(window_state *st, int fw, int fh) {
     size_t waiting;
     ui_begin(p->ui, input_frame(st, ui_wants_keyboard(p->ui), &waiting), (float)fw, (float)fh);
     ui_rect vr = editor_ui_build(p->ed, p->ui, st->ctx, st->v, &info, (float)fw, (float)fh);
-    if (!p->edited) first_view_hint(p->ui, vr);
+    if (!p->edited && !ui_modal_open(p->ui)) first_view_hint(p->ui, vr); // not over a dialog
     notices_expire(&p->notices, notices_now()); // refusals pass after a few seconds
     notices_draw(&p->notices, p->ui, vr);
     const ui_draw_list *dl = ui_end(p->ui);

@@ -535,6 +535,10 @@ void ui_modal(ui_context *ui, ui_rect r) {
     if (!ui->modal_before) ui->open_popup = 0; // a menu open when the dialog came up
 }
 
+int ui_modal_open(const ui_context *ui) {
+    return ui->modal.w > 0;
+}
+
 void ui_dim(ui_context *ui) {
     ui_draw_rect(ui->target, (ui_rect){0, 0, ui->width, ui->height}, UI_RGBA(0, 0, 0, 110));
 }

@@ -311,6 +311,8 @@ void ui_log(ui_context *ui, const char *name, size_t count,
 // A modal dialog over r for the rest of this frame: widgets outside r ignore the
 // pointer. Call before building anything (the dialog's rectangle is known up front).
 void ui_modal(ui_context *ui, ui_rect r);
+// Whether a modal dialog is up in this frame (what is drawn after it would cover it).
+int ui_modal_open(const ui_context *ui);
 // Darkens everything drawn so far (behind a modal dialog).
 void ui_dim(ui_context *ui);
 
