@@ -235,12 +235,13 @@ void files_dialog(editor_ui *e, ui_context *ui, cmd_context *ctx, ui_rect r) {
         return;
     }
     if (e->files.mode == FILE_BROWSER_IMPORT || e->files.mode == FILE_BROWSER_EXPORT ||
-        e->files.mode == FILE_BROWSER_EXPORT_PLANET) {
+        e->files.mode == FILE_BROWSER_EXPORT_PLANET || e->files.mode == FILE_BROWSER_EXPORT_MESH) {
         const world_params *p = world_get_params(ctx->world);
         double bounded = p->size > 0 ? (double)(p->size - 1) * p->spacing : 0.0;
         interchange_dialog_show(&e->interchange, e->files.mode != FILE_BROWSER_IMPORT,
                                 e->files.path, bounded, p->max_height, e->view_x, e->view_z);
         e->interchange.planet = e->files.mode == FILE_BROWSER_EXPORT_PLANET;
+        e->interchange.mesh = e->files.mode == FILE_BROWSER_EXPORT_MESH;
         e->interchange.world_spacing = p->spacing;
         if (!e->interchange.subdivision[0])
             snprintf(e->interchange.subdivision, sizeof e->interchange.subdivision, "8");

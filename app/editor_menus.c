@@ -52,6 +52,9 @@ static void file_menu(editor_ui *e, ui_context *ui, cmd_context *ctx) {
     if (flat && ui_menu_item(ui, "Export heightmap...", NULL, 1))
         file_browser_show(&e->files, FILE_BROWSER_EXPORT,
                           export_name(ctx, "heightmap", ".exr", proposed, sizeof proposed));
+    if (flat && ui_menu_item(ui, "Export mesh...", NULL, 1))
+        file_browser_show(&e->files, FILE_BROWSER_EXPORT_MESH,
+                          export_name(ctx, "terrain", ".glb", proposed, sizeof proposed));
     if (!flat && ui_menu_item(ui, "Export planet...", NULL, 1)) // seed 004's export N FILE
         file_browser_show(&e->files, FILE_BROWSER_EXPORT_PLANET,
                           export_name(ctx, "planet", ".obj", proposed, sizeof proposed));

@@ -1,5 +1,7 @@
 #include "app/export_check.h"
 
+#include "app/mesh_export_fields.h"
+
 #include "editor/interchange/export.h"
 #include "editor/interchange/export_layer_read.h"
 
@@ -39,9 +41,28 @@ int export_check(world *w, const interchange_dialog *d, og_error *err) {
                             "%s: a layer's change or the stack up to it is written as a "
                             "heightmap (.exr .tif .png .r16)",
                             d->path);
+    export_options o;
+    export_options_defaults(&o);
+    // The fields the dialog passes as typed, checked as the command will check them.
+    if (d->mesh) {
+        const char *dot = strrchr(d->path, '.');
+        static const char *const ext[] = {".glb", ".obj", ".ply", ".vdb"};
+        int known = 0;
+        for (int i = 0; dot && i < 4; i++)
+            known |= !strcmp(dot, ext[i]);
+        if (!known)
+            return og_error_set(err, "%s: a mesh is .glb, .obj or .ply, a volume .vdb", d->path);
+        if (mesh_export_is_volume(d) && d->voxel[0] &&
+            export_options_set(&o, "voxel", d->voxel, err) != 0)
+            return -1;
+        if (!mesh_export_is_volume(d) && !d->solid && d->simplify[0] &&
+            export_options_set(&o, "simplify", d->simplify, err) != 0)
+            return -1;
+    } else if (d->tiles[0] && !d->layer_name[0] &&
+               export_options_set(&o, "tiles", d->tiles, err) != 0) {
+        return -1;
+    }
     if (!d->whole) {
-        export_options o;
-        export_options_defaults(&o);
         char region[160];
         snprintf(region, sizeof region, "%s,%s,%s,%s", d->region[0], d->region[1], d->region[2],
                  d->region[3]);

@@ -15,6 +15,9 @@ static int listed_file(file_browser_mode mode, const char *name) {
     if (!dot) return 0;
     if (mode == FILE_BROWSER_SCRIPT) return strcmp(dot, ".og") == 0 || strcmp(dot, ".txt") == 0;
     if (mode == FILE_BROWSER_EXPORT_PLANET) return strcasecmp(dot, ".obj") == 0;
+    if (mode == FILE_BROWSER_EXPORT_MESH)
+        return !strcasecmp(dot, ".glb") || !strcasecmp(dot, ".obj") || !strcasecmp(dot, ".ply") ||
+               !strcasecmp(dot, ".vdb");
     if (mode == FILE_BROWSER_NEW_FROM) mode = FILE_BROWSER_IMPORT; // the same files
     if (mode == FILE_BROWSER_IMPORT || mode == FILE_BROWSER_EXPORT) {
         static const char *const rasters[] = {".png", ".tif", ".tiff", ".exr", ".r16", ".raw",
@@ -35,7 +38,8 @@ static const char *const titles[] = {"Open",
                                      "Import heightmap",
                                      "Export heightmap",
                                      "Export planet",
-                                     "New world from heightmap"};
+                                     "New world from heightmap",
+                                     "Export mesh"};
 static const char *const intros[] = {
     "Open a world (.world or .planet)",
     "Save the world as (a .world or .planet file; its tiles go beside it as NAME.tiles)",
@@ -43,7 +47,8 @@ static const char *const intros[] = {
     "Import a heightmap: PNG, TIFF, EXR, RAW/R16, SRTM .hgt, GeoTIFF, ASCII grid",
     "Export a heightmap: .png (16-bit), .tif (float GeoTIFF), .exr (float), .r16",
     "Export the planet: an .obj and its face height and normal maps",
-    "A new flat world of a heightmap's extent and spacing (PNG, TIFF, EXR, RAW, .hgt, ...)"};
+    "A new flat world of a heightmap's extent and spacing (PNG, TIFF, EXR, RAW, .hgt, ...)",
+    "Export a mesh (.glb, .obj, .ply) or a volume (.vdb)"};
 
 static int sort_mode; // qsort has no user pointer
 
@@ -180,8 +185,8 @@ int file_browser_draw(file_browser *b, ui_context *ui, ui_rect r) {
     ui_tooltip(ui, "The file: type a path, or pick one above");
     float bottom[2] = {-0.5f, 0};
     ui_row(ui, 2, bottom, line);
-    static const char *const go_labels[] = {"Open##go", "Save##go", "Save##go",  "Next##go",
-                                            "Next##go", "Next##go", "Create##go"};
+    static const char *const go_labels[] = {"Open##go", "Save##go", "Save##go",   "Next##go",
+                                            "Next##go", "Next##go", "Create##go", "Next##go"};
     static const char *const go_tips[] = {"Open the chosen world",
                                           "Save the world there",
                                           "Write the script there",
@@ -189,7 +194,8 @@ int file_browser_draw(file_browser *b, ui_context *ui, ui_rect r) {
                                           "Choose what to export there (next: the export options)",
                                           "Export the planet there (next: its subdivision)",
                                           "Make a new world of it (asks first about unsaved "
-                                          "changes)"};
+                                          "changes)",
+                                          "Choose what to export there (next: the mesh options)"};
     int go = ui_button(ui, b->confirm_overwrite ? "Overwrite##go" : go_labels[b->mode]) ||
              (rc & UI_TEXT_SUBMIT);
     ui_tooltip(ui, go_tips[b->mode]);

@@ -20,6 +20,7 @@ typedef enum file_browser_mode {
     FILE_BROWSER_EXPORT,        // where to export a heightmap
     FILE_BROWSER_EXPORT_PLANET, // where to export a planet's mesh and face images (.obj)
     FILE_BROWSER_NEW_FROM,      // a heightmap to make a new world of (its extent and spacing)
+    FILE_BROWSER_EXPORT_MESH,   // where to export a mesh (.glb .obj .ply) or a volume (.vdb)
 } file_browser_mode;
 
 typedef struct file_browser_entry {

@@ -1,5 +1,7 @@
 #include "app/interchange_dialog.h"
 
+#include "app/mesh_export_fields.h"
+
 #include "editor/cmd/tokenize.h"
 
 #include <math.h>
@@ -28,6 +30,7 @@ void interchange_dialog_show(interchange_dialog *d, int exporting, const char *p
     }
     d->max_height = max_height;
     d->layer_name[0] = d->error[0] = 0;
+    d->planet = d->mesh = 0; // the caller says which export this is
     d->preview_ok = 0;
     d->preview_error[0] = 0;
     if (exporting) return;
@@ -259,11 +262,20 @@ static void export_fields(interchange_dialog *d, ui_context *ui) {
         for (int i = 0; i < 4; i++)
             ui_form_field(ui, labels[i], names[i], d->region[i], sizeof d->region[i], tips[i]);
     }
+    if (d->mesh) {
+        mesh_export_fields(d, ui);
+        return;
+    }
+    if (!d->layer_name[0])
+        ui_form_field(ui, "Tiles", "tiles", d->tiles, sizeof d->tiles,
+                      "C x R files sharing their edge samples, as tiled landscape imports "
+                      "expect, e.g. 2x2 (blank: one file)");
     ui_row(ui, 1, NULL, 0);
     static const char *const presets[] = {"None",    "Unreal", "Unity", "Godot Terrain3D",
                                           "Houdini", "Blender"};
     ui_combo(ui, "Preset", &d->preset, presets, 6);
-    ui_tooltip(ui, "Crop to an engine's sizes; its settings go to the console");
+    ui_tooltip(ui, "Check the format and resample each file to a size the engine imports; "
+                   "its settings go to the console");
     const char *dot = strrchr(d->path, '.');
     if (!d->layer_name[0] && dot && (!strcmp(dot, ".tif") || !strcmp(dot, ".tiff"))) {
         ui_checkbox(ui, "16-bit TIFF (not float)##bits16", &d->bits16);
@@ -274,9 +286,12 @@ static void export_fields(interchange_dialog *d, ui_context *ui) {
 int interchange_dialog_rows(const interchange_dialog *d) {
     // The most it can show (ticking a box must not push the buttons out of view).
     if (d->exporting && d->planet) return 5; // title, subdivision, counts, images, buttons
-    // title, (layer: error, file, format, layers), whole, 4 region edges, preset, 16-bit
-    // TIFF, buttons
-    if (d->exporting) return d->layer_name[0] ? 13 : 9;
+    // title, error, whole, 4 region edges, format, solid (or voxel), simplify or its note
+    // (or fog), centred, buttons
+    if (d->exporting && d->mesh) return 12;
+    // title, (layer: error, file, format, layers), whole, 4 region edges, tiles, preset,
+    // 16-bit TIFF, buttons
+    if (d->exporting) return d->layer_name[0] ? 13 : 10;
     // title x z centre layer map min max, file, histogram (about 1.5 rows), heights,
     // spacing, extent, its warning (the last three may wrap), blend resample falloff
     // buttons
@@ -332,8 +347,15 @@ int interchange_dialog_draw(interchange_dialog *d, ui_context *ui, ui_rect r, ch
         if (d->layer_name[0] && d->layer_what < 2)
             snprintf(layers, sizeof layers, " layers=%s%s", d->layer_what ? "upto=" : "",
                      d->layer_name);
-        snprintf(cmd, cmd_len, "export %s%s%s%s%s%s", path, region, d->preset ? " preset=" : "",
-                 d->preset ? presets[d->preset] : "", bits16 ? " bits=16" : "", layers);
+        char tiles[40] = "", mesh[120] = "";
+        if (d->mesh)
+            mesh_export_options(d, mesh, sizeof mesh);
+        else if (d->tiles[0] && !d->layer_name[0])
+            snprintf(tiles, sizeof tiles, " tiles=%s", d->tiles);
+        const int preset = d->mesh ? 0 : d->preset;
+        snprintf(cmd, cmd_len, "export %s%s%s%s%s%s%s%s", path, region, tiles,
+                 preset ? " preset=" : "", preset ? presets[preset] : "",
+                 bits16 && !d->mesh ? " bits=16" : "", layers, mesh);
     } else {
         char mapping[100] = "";
         if (d->map_heights) snprintf(mapping, sizeof mapping, " min=%s max=%s", d->min, d->max);

@@ -1,11 +1,11 @@
-// The options dialogs of File > Import heightmap, Export heightmap and Export planet:
-// after the file browser chose the file, where and how to import it (placement, layer,
-// height mapping, blending), what to export (region, engine preset, 16-bit TIFF), or a
-// planet's mesh (seed 004's `export N FILE`: the cube's subdivision, the face images'
-// size). The Layers panel's Export... opens it on one edit layer: the file and its
-// format typed here, and what of the stack to write (layers=NAME, upto=NAME or the
-// composite). The dialog only builds the import / export command; the editor checks it
-// (app/export_check.h: a refusal is shown in the dialog) and runs it.
+// The options dialogs of File > Import heightmap, Export heightmap, Export mesh and
+// Export planet: after the file browser chose the file, where and how to import it
+// (placement, layer, height mapping, blending), what to export (region, tiles, engine
+// preset, 16-bit TIFF; a mesh's format and simplification), or a planet's mesh (seed 004's `export
+// N FILE`: the cube's subdivision, the face images' size). The Layers panel's Export... opens it on
+// one edit layer: the file and its format typed here, and what of the stack to write (layers=NAME,
+// upto=NAME or the composite). The dialog only builds the import / export command; the editor
+// checks it (app/export_check.h: a refusal is shown in the dialog) and runs it.
 #ifndef OROGEN_APP_INTERCHANGE_DIALOG_H
 #define OROGEN_APP_INTERCHANGE_DIALOG_H
 
@@ -40,6 +40,13 @@ typedef struct interchange_dialog {
     char region[4][32]; // X0 Z0 X1 Z1 metres
     int preset;         // none unreal unity godot houdini blender
     int bits16;         // .tif as 16-bit
+    char tiles[16];     // heightmaps: "CxR" files sharing their edges ("": one file)
+    // export of a mesh or volume (File > Export mesh...: app/mesh_export_fields.h)
+    int mesh;
+    char simplify[32]; // metres ("": every sample)
+    int solid, centred;
+    char voxel[32]; // .vdb: metres ("": the world's spacing)
+    int fog;        // .vdb: a fog volume, not a level set
     // export of a planet (set after interchange_dialog_show)
     int planet;
     char subdivision[16]; // N: 12 x 2^N triangles
