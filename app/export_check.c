@@ -1,7 +1,5 @@
 #include "app/export_check.h"
 
-#include "app/mesh_export_fields.h"
-
 #include "editor/interchange/export.h"
 #include "editor/interchange/export_layer_read.h"
 
@@ -45,18 +43,13 @@ int export_check(world *w, const interchange_dialog *d, og_error *err) {
     export_options_defaults(&o);
     // The fields the dialog passes as typed, checked as the command will check them.
     if (d->mesh) {
-        const char *dot = strrchr(d->path, '.');
-        static const char *const ext[] = {".glb", ".obj", ".ply", ".vdb"};
-        int known = 0;
-        for (int i = 0; dot && i < 4; i++)
-            known |= !strcmp(dot, ext[i]);
-        if (!known)
+        const mesh_export_choices *m = &d->mesh_choices;
+        if (!mesh_export_known(d->path))
             return og_error_set(err, "%s: a mesh is .glb, .obj or .ply, a volume .vdb", d->path);
-        if (mesh_export_is_volume(d) && d->voxel[0] &&
-            export_options_set(&o, "voxel", d->voxel, err) != 0)
-            return -1;
-        if (!mesh_export_is_volume(d) && !d->solid && d->simplify[0] &&
-            export_options_set(&o, "simplify", d->simplify, err) != 0)
+        const int volume = mesh_export_is_volume(d->path);
+        if (volume && m->voxel[0] && export_options_set(&o, "voxel", m->voxel, err) != 0) return -1;
+        if (!volume && !m->solid && m->simplify[0] &&
+            export_options_set(&o, "simplify", m->simplify, err) != 0)
             return -1;
     } else if (d->tiles[0] && !d->layer_name[0] &&
                export_options_set(&o, "tiles", d->tiles, err) != 0) {

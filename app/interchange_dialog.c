@@ -1,7 +1,5 @@
 #include "app/interchange_dialog.h"
 
-#include "app/mesh_export_fields.h"
-
 #include "editor/cmd/tokenize.h"
 
 #include <math.h>
@@ -263,7 +261,7 @@ static void export_fields(interchange_dialog *d, ui_context *ui) {
             ui_form_field(ui, labels[i], names[i], d->region[i], sizeof d->region[i], tips[i]);
     }
     if (d->mesh) {
-        mesh_export_fields(d, ui);
+        mesh_export_fields(&d->mesh_choices, d->path, sizeof d->path, ui);
         return;
     }
     if (!d->layer_name[0])
@@ -349,7 +347,7 @@ int interchange_dialog_draw(interchange_dialog *d, ui_context *ui, ui_rect r, ch
                      d->layer_name);
         char tiles[40] = "", mesh[120] = "";
         if (d->mesh)
-            mesh_export_options(d, mesh, sizeof mesh);
+            mesh_export_options(&d->mesh_choices, d->path, mesh, sizeof mesh);
         else if (d->tiles[0] && !d->layer_name[0])
             snprintf(tiles, sizeof tiles, " tiles=%s", d->tiles);
         const int preset = d->mesh ? 0 : d->preset;

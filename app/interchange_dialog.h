@@ -9,6 +9,7 @@
 #ifndef OROGEN_APP_INTERCHANGE_DIALOG_H
 #define OROGEN_APP_INTERCHANGE_DIALOG_H
 
+#include "app/mesh_export_fields.h"
 #include "editor/interchange/import.h"
 #include "ui/ui.h"
 
@@ -41,12 +42,9 @@ typedef struct interchange_dialog {
     int preset;         // none unreal unity godot houdini blender
     int bits16;         // .tif as 16-bit
     char tiles[16];     // heightmaps: "CxR" files sharing their edges ("": one file)
-    // export of a mesh or volume (File > Export mesh...: app/mesh_export_fields.h)
+    // export of a mesh or volume (File > Export mesh...)
     int mesh;
-    char simplify[32]; // metres ("": every sample)
-    int solid, centred;
-    char voxel[32]; // .vdb: metres ("": the world's spacing)
-    int fog;        // .vdb: a fog volume, not a level set
+    mesh_export_choices mesh_choices;
     // export of a planet (set after interchange_dialog_show)
     int planet;
     char subdivision[16]; // N: 12 x 2^N triangles

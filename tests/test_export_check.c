@@ -67,7 +67,50 @@ static void test_checks(void **state) {
     world_close(w);
 }
 
+// File > Export mesh... and the heightmap's Tiles: the typed numbers are checked as the
+// command checks them, and the command carries each choice.
+static void test_mesh_and_tiles(void **state) {
+    (void)state;
+    world_params p = test_flat_fbm_params(0);
+    world *w = test_world_open(&p);
+    interchange_dialog d = {0};
+    d.exporting = 1;
+    d.whole = 1;
+    og_error err = {{0}};
+    snprintf(d.path, sizeof d.path, "/tmp/relief.ply");
+    snprintf(d.tiles, sizeof d.tiles, "2x");
+    expect_refused(w, &d, "tiles");
+    snprintf(d.tiles, sizeof d.tiles, "2x2");
+    assert_int_equal(export_check(w, &d, &err), 0);
+
+    d.mesh = 1; // tiles belong to heightmaps: not asked, not passed
+    snprintf(d.mesh_choices.simplify, sizeof d.mesh_choices.simplify, "-1");
+    expect_refused(w, &d, "simplify");
+    d.mesh_choices.solid = 1; // a closed solid is not simplified: the field is not used
+    assert_int_equal(export_check(w, &d, &err), 0);
+    d.mesh_choices.solid = 0;
+    snprintf(d.mesh_choices.simplify, sizeof d.mesh_choices.simplify, "0.5");
+    d.mesh_choices.centred = 1;
+    assert_int_equal(export_check(w, &d, &err), 0);
+    snprintf(d.path, sizeof d.path, "/tmp/relief.stl");
+    expect_refused(w, &d, "a mesh is .glb, .obj or .ply");
+    snprintf(d.path, sizeof d.path, "/tmp/relief.vdb");
+    snprintf(d.mesh_choices.voxel, sizeof d.mesh_choices.voxel, "0");
+    expect_refused(w, &d, "voxel");
+    snprintf(d.mesh_choices.voxel, sizeof d.mesh_choices.voxel, "2");
+    d.mesh_choices.fog = 1;
+    assert_int_equal(export_check(w, &d, &err), 0);
+    char opts[200];
+    mesh_export_options(&d.mesh_choices, d.path, opts, sizeof opts);
+    assert_string_equal(opts, " voxel=2 fog=1");
+    snprintf(d.path, sizeof d.path, "/tmp/relief.glb");
+    mesh_export_options(&d.mesh_choices, d.path, opts, sizeof opts);
+    assert_string_equal(opts, " simplify=0.5 centred=1");
+    world_close(w);
+}
+
 int main(void) {
-    const struct CMUnitTest tests[] = {cmocka_unit_test(test_checks)};
+    const struct CMUnitTest tests[] = {cmocka_unit_test(test_checks),
+                                       cmocka_unit_test(test_mesh_and_tiles)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
