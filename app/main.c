@@ -8,6 +8,7 @@
 #include "editor/cmd/base_pending.h"
 #include "editor/cmd/commands.h"
 #include "editor/cmd/edit_commands.h"
+#include "editor/edit/coarse_mips_fill.h"
 #include "editor/edit/material_mips_fill.h"
 #include "editor/world/world.h"
 #include "io/file_kind.h"
@@ -273,6 +274,7 @@ int main(int argc, char **argv) {
     if (world_file) {
         w = world_load(world_file, &settings, &load_errors, &err);
         if (w) material_mips_fill_missing(w); // paint saved before it had far levels
+        if (w) coarse_mips_fill_missing(w);   // heights too
     } else {
         w = open_default_world(resource_dir, &settings, &err);
     }

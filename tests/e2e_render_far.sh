@@ -6,7 +6,8 @@
 # plate and the pick at the view's centre found no ground. For worlds made from a
 # heightmap (wide and tall) and a small `new flat` world sculpted by a dab, from
 # 300 m to 3 km, the pick at the view's centre must meet the ground within the world and
-# at the height `sample` gives there (within the drawn level's sampling error).
+# at the height `sample` gives there (within the drawn level's sampling error). A world
+# saved before the far levels followed edits gets them on load.
 # Usage: e2e_render_far.sh OROGEN TESTS_DIR
 set -u
 orogen=$1
@@ -81,6 +82,20 @@ sweep "200 x 600 m heightmap" "new flat from=$work/tall.exr" 200 600
 sculpt="set generator flat; generate; tool raise radius=140 strength=1 amount=150 falloff=smooth"
 sweep "300 x 200 m new flat, sculpted" "new flat; set size 151; set size_z 101; $sculpt; dab 150 40" 300 200
 sweep "200 x 300 m new flat, sculpted" "new flat; set size 101; set size_z 151; $sculpt; dab 100 90" 200 300
+
+# A world saved before its far levels followed edits (its store ends at the level where
+# one tile covers it, level 1 here: the tiles past it deleted and the count mended) has
+# them rebuilt on load (the mended file warns that it was changed after saving).
+"$orogen" -c "new flat; set size 151; set size_z 101; $sculpt; dab 150 40; save $work/old.world" \
+    >/dev/null 2>"$work/err"
+ok=$?
+check "a sculpted world saved ($(cat "$work/err"))" $ok
+sqlite3 "$work/old.tiles" "delete from tiles where layer = 0 and level > 1" &&
+    sed -i "s/^tiles_saved = .*/tiles_saved = $(sqlite3 "$work/old.tiles" "select count(*) from tiles");/" \
+        "$work/old.world"
+ok=$?
+check "its store made as an older build saved it" $ok
+sweep "300 x 200 m sculpted, saved without far levels" "load $work/old.world" 300 200
 
 echo "e2e_render_far: $passes passed, $failures failed"
 [ $failures = 0 ]

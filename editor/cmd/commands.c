@@ -2,6 +2,7 @@
 
 #include "editor/edit/edit.h"
 #include "editor/edit/layer_generate.h"
+#include "editor/edit/coarse_mips_fill.h"
 #include "editor/edit/material_mips_fill.h"
 #include "editor/edit/recover.h"
 #include "editor/cmd/base_pending.h"
@@ -120,6 +121,7 @@ static int c_load(cmd_context *ctx, int argc, char **argv, og_error *err) {
     world *w = world_load(argv[1], &ctx->settings, &errors, err);
     if (!w) return -1;
     material_mips_fill_missing(w); // paint saved before it had far levels
+    coarse_mips_fill_missing(w);   // heights too
     replace_world(ctx, w);
     ctx->reported_errors += errors;
     fprintf(ctx->out, "loaded %s%s\n", argv[1],
@@ -234,6 +236,7 @@ static int c_recover(cmd_context *ctx, int argc, char **argv, og_error *err) {
                 world *w = world_load(file, &ctx->settings, &errors, err);
                 if (!w) return -1;
                 material_mips_fill_missing(w);
+                coarse_mips_fill_missing(w);
                 if (edit_recover(w, journal, &r, err) != 0) {
                     world_close(w);
                     return -1;
