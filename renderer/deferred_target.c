@@ -71,7 +71,7 @@ int deferred_target_begin(deferred_target *t, int width, int height, og_error *e
 }
 
 int deferred_target_stencil(int level, int still) {
-    return 1 + 2 * level + (still ? 1 : 0);
+    return 2 + 2 * level + (still ? 1 : 0); // a level's two differ in the lowest bit only
 }
 
 void deferred_target_shade(deferred_target *t, int unit) {

@@ -31,7 +31,8 @@ void deferred_target_free(deferred_target *t);
 // binds the target with only the ground's depth drawn, clears it (depth 0: the
 // reversed-Z far plane, stencil 0) and leaves the stencil test on.
 int deferred_target_begin(deferred_target *t, int width, int height, og_error *err);
-// The stencil value a level's pieces write (still: drawn without morphing), 1 .. 255.
+// The stencil value a level's pieces write (still: drawn without morphing), 2 .. 255;
+// a level's still and morphing parts differ only in the lowest bit.
 int deferred_target_stencil(int level, int still);
 // From the G-buffer to shading: the shaded colour drawn, the ground's depth on texture
 // unit `unit`, no depth test.

@@ -1208,6 +1208,7 @@ static void widen_screen_rect(const float view_proj[16], const float mn[3], cons
 // A deferred shading pass: the pixels a level's pieces (still or morphing) won.
 typedef struct resolve_pass {
     int level, still, variant, rect[4];
+    int stencil_mask; // 0xFE: the level's still and morphing parts in one pass
     char calls[MATERIAL_RULES_MAX * 12];
 } resolve_pass;
 
@@ -1236,7 +1237,8 @@ static int resolve_terrain(terrain_renderer *r, const camera *cam, const render_
         }
         glUseProgram(prog);
         glProgramUniform1i(prog, glGetUniformLocation(prog, "u_level"), p->level);
-        glStencilFunc(GL_EQUAL, deferred_target_stencil(p->level, p->still), 0xFF);
+        glStencilFunc(GL_EQUAL, deferred_target_stencil(p->level, p->still) & p->stencil_mask,
+                      (GLuint)p->stencil_mask);
         glScissor(p->rect[0], p->rect[1], p->rect[2] - p->rect[0], p->rect[3] - p->rect[1]);
         glDrawArrays(GL_TRIANGLES, 0, 3);
         r->stats.draw_calls++;
@@ -1388,10 +1390,24 @@ static int draw_terrain(terrain_renderer *r, const camera *cam, const render_set
             if (n[still] + n[2 + still] == 0) continue;
             int v = base | (still ? TV_NO_MORPH : 0);
             if (deferred) { // shaded later (resolve_terrain); now where the ground is
-                resolve_pass *p = &passes[pass_count++];
-                p->level = l, p->still = still, p->variant = v | TV_RESOLVE;
-                memcpy(p->rect, rect[still], sizeof p->rect);
-                snprintf(p->calls, sizeof p->calls, "%s", calls);
+                resolve_pass *p = &passes[pass_count];
+                if (still && pass_count > 0 && p[-1].level == l) {
+                    // One pass with the morphing part: alpha is 0 on the still part, so
+                    // its pixels shade as the still variant would, and the pixels on the
+                    // parts' border are shaded once, not by two passes.
+                    p = &p[-1];
+                    p->stencil_mask = 0xFE;
+                    for (int i = 0; i < 2; i++)
+                        p->rect[i] = p->rect[i] < rect[1][i] ? p->rect[i] : rect[1][i],
+                        p->rect[2 + i] =
+                            p->rect[2 + i] > rect[1][2 + i] ? p->rect[2 + i] : rect[1][2 + i];
+                } else {
+                    pass_count++;
+                    p->level = l, p->still = still, p->variant = v | TV_RESOLVE;
+                    p->stencil_mask = 0xFF;
+                    memcpy(p->rect, rect[still], sizeof p->rect);
+                    snprintf(p->calls, sizeof p->calls, "%s", calls);
+                }
                 v = TV_GBUFFER | (v & (TV_NO_MORPH | TV_VOLUME));
                 glStencilFunc(GL_ALWAYS, deferred_target_stencil(l, still), 0xFF);
             }
