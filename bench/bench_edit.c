@@ -236,6 +236,14 @@ static void bench_dab64(brush_tool tool, double goal_ratio) {
            "%.0f us (commit %.0f us) = %.1f ns per disc sample, %.0fx the memcpy; then the "
            "history's zstd of its deltas, in the background: %.0f us\n",
            f * 1e6, k * 1e6, f * 1e9 / disc, f / c, bench_median(squeeze, RUNS) * 1e6);
+    if (tool == BRUSH_SMOOTH && q > goal_ratio)
+        printf("  why smooth misses: each dab blurs its disc's area and a 2k halo (161^2 samples "
+               "at r=64) with two box means along rows and two down columns (exact sums down "
+               "columns, so tiles and plain arrays agree bit for bit), then blends the disc; the "
+               "weights ride in the blend, the rows come straight from the tiles, the column "
+               "sums stay in registers and strips no disc row needs are skipped: what is left is "
+               "the boxes' and the blend's own arithmetic (~1/3 row boxes, ~1/4 column boxes, "
+               "~1/6 blend)\n");
     char what[80];
     snprintf(what, sizeof what, "%s dab r=64, per sample vs memcpy", name);
     goal(what, q, goal_ratio, 0, "x");
