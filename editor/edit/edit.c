@@ -4,6 +4,7 @@
 
 #include "editor/edit/detail_pd.h"
 #include "editor/edit/parallel.h"
+#include "editor/edit/snapshot_pool.h"
 
 #include <pthread.h>
 #include <stdio.h>
@@ -198,9 +199,10 @@ int edit_tile_acquire_part(edit *e, tile_key key, grid_rect part, tile_view *vie
     int rc = 0;
     snapshot *s = find_snap(e, key);
     if (!s) {
-        void *copy = malloc(tile_layer_bytes((tile_layer)key.layer));
+        size_t bytes = tile_layer_bytes((tile_layer)key.layer);
+        void *copy = snapshot_pool_take(bytes);
         if (!copy || !(s = add_snap(e, key, !view->edited, copy))) {
-            free(copy);
+            snapshot_pool_give(copy, bytes);
             rc = og_error_set(err, "out of memory keeping the undo copy of a tile");
         }
     }
@@ -273,7 +275,7 @@ size_t edit_dirty_rects(edit *e, const dirty_rect **rects) {
 
 static void free_edit(edit *e) {
     for (size_t i = 0; i < e->count; i++)
-        free(e->snaps[i].before);
+        snapshot_pool_give(e->snaps[i].before, tile_layer_bytes((tile_layer)e->snaps[i].key.layer));
     free(e->snaps);
     free(e->index);
     free(e->dirty);
