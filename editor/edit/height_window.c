@@ -54,9 +54,19 @@ int height_window_compose(world *w, const layer_table *t, const layer_grid *grid
     grid_rect outer = height_window_grow(r, margin);
     int ow = (int)(outer.x1 - outer.x0);
     size_t n = rect_samples(outer);
-    float *acc = malloc(sizeof(float) * n), *val = malloc(sizeof(float) * n);
-    float *below = malloc(sizeof(float) * n), *mask = malloc(sizeof(float) * n);
-    int rc = acc && val && below && mask ? 0 : og_error_set(err, "out of memory composing layers");
+    // Windows only for what the layers below upto need (none: the base alone).
+    int layers = 0, masks = 0;
+    for (int i = 0; i < upto; i++) {
+        const layer_info *l = &t->layers[i];
+        layers |= l->visible && l->kind == LAYER_KIND_HEIGHT;
+        masks |= l->visible && l->kind == LAYER_KIND_HEIGHT && layer_mask_active(&l->mask);
+    }
+    float *acc = malloc(sizeof(float) * n), *val = layers ? malloc(sizeof(float) * n) : NULL;
+    float *below = masks ? malloc(sizeof(float) * n) : NULL;
+    float *mask = masks ? malloc(sizeof(float) * n) : NULL;
+    int rc = acc && (val || !layers) && ((below && mask) || !masks)
+                 ? 0
+                 : og_error_set(err, "out of memory composing layers");
     layer_grid g = *grid;
     g.layer = (tile_layer)tile_layer_in_slot(TILE_LAYER_COARSE, TILE_SLOT_BASE);
     if (rc == 0) rc = layer_grid_read(w, &g, outer, acc, err);
@@ -107,7 +117,7 @@ int height_window_compose(world *w, const layer_table *t, const layer_grid *grid
     // Down to r grown by extra (margin == extra now).
     grid_rect want = height_window_grow(r, extra);
     int ww = (int)(want.x1 - want.x0);
-    for (int z = 0; z < (int)(want.z1 - want.z0); z++)
+    for (int z = 0; z < (int)(want.z1 - want.z0) && ww != ow; z++) // ww == ow: want is outer
         memmove(acc + (size_t)z * ww,
                 acc + (size_t)(z + want.z0 - outer.z0) * ow + (want.x0 - outer.x0),
                 sizeof(float) * (size_t)ww);

@@ -67,10 +67,11 @@ static float take_sample(const compose_job *j, const layer_info *l, float weight
 // take_sample over a row span for the common layer: an add layer at full weight, the top
 // visible one (its target is the tool's own result). The inline case take_sample tries
 // first, for the whole span without branches (vectorised; it nearly always succeeds),
-// then take_sample itself for the samples it missed: the same values. Samples whose
-// composite the tool left as it was (bit for bit) keep their value, as kept() says.
-static void take_row_add_top(const compose_job *j, const layer_info *l, float weight, float *val,
-                             const float *below, const float *before, const float *now, int n) {
+// then for the samples it missed what take_sample does for them there (its ulp search,
+// layer_blend_solve), all at once: the same values. Samples whose composite the tool
+// left as it was (bit for bit) keep their value, as kept() says.
+static void take_row_add_top(float *val, const float *below, const float *before, const float *now,
+                             int n) {
     uint8_t miss[TILE_SIZE];
     int any = 0;
     for (int x = 0; x < n; x++) {
@@ -84,8 +85,14 @@ static void take_row_add_top(const compose_job *j, const layer_info *l, float we
         miss[x] = (uint8_t)(!keep & !hit);
         any |= miss[x];
     }
-    for (int x = 0; any && x < n; x++)
-        if (miss[x]) val[x] = take_sample(j, l, weight, below[x], val[x], before[x], now[x]);
+    if (!any) return;
+    float mb[TILE_SIZE], mv[TILE_SIZE], mt[TILE_SIZE];
+    int at[TILE_SIZE], m = 0;
+    for (int x = 0; x < n; x++)
+        if (miss[x]) mb[m] = below[x], mv[m] = val[x], mt[m] = now[x], at[m++] = x;
+    layer_blend_solve_add_row(mb, mv, mt, mv, m);
+    for (int i = 0; i < m; i++)
+        val[at[i]] = mv[i];
 }
 
 // Whether the tool left the sample at (x, z) of a tile as it was: outside the part
@@ -191,6 +198,8 @@ static int compose_task(void *user, int task, og_error *err) {
     if (j->stage == 1) { // the active layer takes the tool's change, over the layers below it
         const layer_info *l = &j->table.layers[active];
         int b = height_window_mask_border(l, grid.spacing);
+        int add_top = l->blend == LAYER_BLEND_ADD && !layer_mask_active(&l->mask) &&
+                      (float)l->opacity >= 1.0f && active == j->top_visible;
         tile_view lv;
         rc = height_window_compose(edit_world(j->e), &j->table, &grid, r, active, b, -1, NULL, &acc,
                                    err);
@@ -203,7 +212,7 @@ static int compose_task(void *user, int task, og_error *err) {
                     weight[k] = (float)l->opacity * mask[k];
             }
             free(mask);
-        } else {
+        } else if (!add_top || j->below) { // add_top reads no weights; stage 2 may
             for (int k = 0; k < rw * rh; k++)
                 weight[k] = (float)l->opacity;
         }
@@ -211,16 +220,13 @@ static int compose_task(void *user, int task, og_error *err) {
             (rc = edit_tile_acquire_part(j->e, slot_key(p, l->id), local, &lv, err)) == 0) {
             float *val = lv.data;
             int bw = rw + 2 * b;
-            int add_top = l->blend == LAYER_BLEND_ADD && !layer_mask_active(&l->mask) &&
-                          (float)l->opacity >= 1.0f && active == j->top_visible;
             for (int z = 0; add_top && z < rh; z++) {
                 int tz = z + z0, xa = x0 > touched.x0 ? x0 : (int)touched.x0;
                 int xb = x0 + rw < touched.x1 ? x0 + rw : (int)touched.x1;
                 if (tz < touched.z0 || tz >= touched.z1 || xa >= xb) continue;
                 int k = tz * TILE_SIZE + xa;
-                take_row_add_top(j, l, (float)l->opacity, val + k,
-                                 acc + (size_t)(z + b) * bw + (xa - x0) + b, before + k, comp + k,
-                                 xb - xa);
+                take_row_add_top(val + k, acc + (size_t)(z + b) * bw + (xa - x0) + b, before + k,
+                                 comp + k, xb - xa);
             }
             for (int z = 0; !add_top && z < rh; z++)
                 for (int x = 0; x < rw; x++) {

@@ -79,3 +79,55 @@ float layer_blend_solve(layer_blend blend, float weight, float below, float valu
     }
     return v;
 }
+
+static uint32_t bits_of(float f) {
+    uint32_t u;
+    memcpy(&u, &f, sizeof u);
+    return u;
+}
+
+static float float_of(uint32_t u) {
+    float f;
+    memcpy(&f, &u, sizeof f);
+    return f;
+}
+
+// layer_blend_solve's add case at full weight without branches: each of the 8 steps is
+// taken on every sample of a chunk and kept only where the search would still be going.
+__attribute__((target_clones("avx2", "default"))) void
+layer_blend_solve_add_row(const float *below, const float *value, const float *target, float *out,
+                          int n) {
+    enum { CHUNK = 256 };
+    float s[CHUNK];
+    int32_t stop[CHUNK];
+    for (int c = 0; c < n; c += CHUNK) {
+        const int m = n - c < CHUNK ? n - c : CHUNK;
+        const float *b = below + c, *t = target + c;
+        for (int i = 0; i < m; i++) {
+            s[i] = t[i] - b[i];
+            stop[i] = 0;
+        }
+        for (int k = 0; k < 8; k++)
+            for (int i = 0; i < m; i++) {
+                float got = b[i] + s[i];
+                int32_t up = got < t[i];
+                int32_t done = stop[i] | (got == t[i]) | (got != got);
+                // step_toward(s, up) by the bits
+                uint32_t u = bits_of(s[i]);
+                uint32_t zero = up ? 1u : 0x80000001u;
+                uint32_t moved = (u & 0x7fffffffu) == 0   ? zero
+                                 : ((u >> 31) == 0) == up ? u + 1
+                                                          : u - 1;
+                int32_t stuck = (s[i] != s[i]) | (s[i] == (up ? INFINITY : -INFINITY));
+                float next = stuck ? s[i] : float_of(moved);
+                float again = b[i] + next;
+                done |= fabsf(again - t[i]) > fabsf(got - t[i]);
+                s[i] = done ? s[i] : next;
+                stop[i] = done;
+            }
+        for (int i = 0; i < m; i++) {
+            float v = value[c + i], shown = v == v ? b[i] + v : b[i];
+            out[c + i] = (t[i] != t[i]) | (shown == t[i]) ? v : s[i];
+        }
+    }
+}

@@ -29,4 +29,10 @@ void layer_blend_row(layer_blend blend, float weight, const float *below, const 
 // raise it), so the caller leaves the sample as it was.
 float layer_blend_solve(layer_blend blend, float weight, float below, float value, float target);
 
+// out[i] = layer_blend_solve(LAYER_BLEND_ADD, w, below[i], value[i], target[i]) for any
+// w >= 1, n samples, bit for bit: its ulp search taken on every sample at once (vectorised;
+// a tall stroke's take solves a sixth of its samples, one by one that was 50 ns each).
+void layer_blend_solve_add_row(const float *below, const float *value, const float *target,
+                               float *out, int n);
+
 #endif
