@@ -214,10 +214,13 @@ static void *flusher_main(void *arg) {
             pthread_cond_wait(&j->wake, &j->lock);
             continue;
         }
+        // Gathers a second's records: appends meanwhile do not wake it (each one did,
+        // and had its own fdatasync at once, beside the commit that wrote it).
         struct timespec until;
         clock_gettime(CLOCK_REALTIME, &until);
         until.tv_sec += 1;
-        pthread_cond_timedwait(&j->wake, &j->lock, &until); // gathers a second's records
+        while (!j->stop && pthread_cond_timedwait(&j->wake, &j->lock, &until) != ETIMEDOUT)
+            ;
         j->dirty = 0;
         pthread_mutex_unlock(&j->lock);
         fdatasync(j->fd);
@@ -369,8 +372,8 @@ int recovery_journal_append(recovery_journal *j, recovery_kind kind, const histo
     free(r.pieces);
     if (rc == 0) {
         pthread_mutex_lock(&j->lock);
+        if (!j->dirty) pthread_cond_signal(&j->wake); // else the flusher is gathering
         j->dirty = 1;
-        pthread_cond_signal(&j->wake);
         pthread_mutex_unlock(&j->lock);
     }
     return rc;
