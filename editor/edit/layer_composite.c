@@ -70,8 +70,8 @@ static float take_sample(const compose_job *j, const layer_info *l, float weight
 // then for the samples it missed what take_sample does for them there (its ulp search,
 // layer_blend_solve), all at once: the same values. Samples whose composite the tool
 // left as it was (bit for bit) keep their value, as kept() says.
-static void take_row_add_top(float *val, const float *below, const float *before, const float *now,
-                             int n) {
+__attribute__((target_clones("avx2", "default"))) static void
+take_row_add_top(float *val, const float *below, const float *before, const float *now, int n) {
     uint8_t miss[TILE_SIZE];
     int any = 0;
     for (int x = 0; x < n; x++) {
@@ -93,6 +93,14 @@ static void take_row_add_top(float *val, const float *below, const float *before
     layer_blend_solve_add_row(mb, mv, mt, mv, m);
     for (int i = 0; i < m; i++)
         val[at[i]] = mv[i];
+}
+
+// Whether no visible height layer lies below the active one (the composite below it
+// is the base).
+static int base_alone(const layer_table *t, int active) {
+    for (int i = 0; i < active; i++)
+        if (t->layers[i].visible && t->layers[i].kind == LAYER_KIND_HEIGHT) return 0;
+    return 1;
 }
 
 // Whether the tool left the sample at (x, z) of a tile as it was: outside the part
@@ -200,9 +208,25 @@ static int compose_task(void *user, int task, og_error *err) {
         int b = height_window_mask_border(l, grid.spacing);
         int add_top = l->blend == LAYER_BLEND_ADD && !layer_mask_active(&l->mask) &&
                       (float)l->opacity >= 1.0f && active == j->top_visible;
-        tile_view lv;
-        rc = height_window_compose(edit_world(j->e), &j->table, &grid, r, active, b, -1, NULL, &acc,
-                                   err);
+        tile_view lv, base = {0};
+        // The common layer over the base alone: the composite below it is the base
+        // tile's own rows (a window copied from them cost as much as the take's rows).
+        const float *below = NULL;
+        int below_stride = 0;
+        if (add_top && !j->below && base_alone(&j->table, active)) {
+            tile_key bk = {.layer = tile_layer_in_slot(TILE_LAYER_COARSE, TILE_SLOT_BASE),
+                           .face = p->face,
+                           .tx = p->tx,
+                           .ty = p->ty};
+            rc = tile_cache_acquire(world_cache(w), bk, &base, err);
+            below = rc == 0 ? (const float *)base.data + (size_t)z0 * TILE_SIZE + x0 : NULL;
+            below_stride = TILE_SIZE;
+        } else {
+            rc = height_window_compose(edit_world(j->e), &j->table, &grid, r, active, b, -1, NULL,
+                                       &acc, err);
+            below = rc == 0 ? acc + (size_t)b * (rw + 2 * b) + b : NULL;
+            below_stride = rw + 2 * b;
+        }
         if (rc == 0 && layer_mask_active(&l->mask)) {
             float *mask = malloc(sizeof(float) * (size_t)rw * (size_t)rh);
             if (!mask)
@@ -219,25 +243,25 @@ static int compose_task(void *user, int task, og_error *err) {
         if (rc == 0 &&
             (rc = edit_tile_acquire_part(j->e, slot_key(p, l->id), local, &lv, err)) == 0) {
             float *val = lv.data;
-            int bw = rw + 2 * b;
             for (int z = 0; add_top && z < rh; z++) {
                 int tz = z + z0, xa = x0 > touched.x0 ? x0 : (int)touched.x0;
                 int xb = x0 + rw < touched.x1 ? x0 + rw : (int)touched.x1;
                 if (tz < touched.z0 || tz >= touched.z1 || xa >= xb) continue;
                 int k = tz * TILE_SIZE + xa;
-                take_row_add_top(val + k, acc + (size_t)(z + b) * bw + (xa - x0) + b, before + k,
+                take_row_add_top(val + k, below + (size_t)z * below_stride + (xa - x0), before + k,
                                  comp + k, xb - xa);
             }
             for (int z = 0; !add_top && z < rh; z++)
                 for (int x = 0; x < rw; x++) {
                     int k = (z + z0) * TILE_SIZE + x + x0;
                     if (!kept(touched, x + x0, z + z0, comp + k, before + k))
-                        val[k] =
-                            take_sample(j, l, weight[z * rw + x], acc[(size_t)(z + b) * bw + x + b],
-                                        val[k], before[k], comp[k]);
+                        val[k] = take_sample(j, l, weight[z * rw + x],
+                                             below[(size_t)z * below_stride + x], val[k], before[k],
+                                             comp[k]);
                 }
             edit_tile_release(j->e, &lv);
         }
+        if (base.data) tile_cache_release(world_cache(w), &base);
     } else {
         if (j->below && j->below[task])
             rc = compose_from_active(j, task, &grid, r, weight, &acc, err);
