@@ -5,6 +5,7 @@
 #include "editor/edit/parallel.h"
 #include "editor/gen/gen.h"
 #include "editor/params/world_grid.h"
+#include "editor/world/thread_scratch.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -134,7 +135,7 @@ static int parent_tile_task(void *user, int task, og_error *err) {
     int64_t lo = j->planet ? 0 : -1;
     int64_t cw = 2 * pw + (j->planet ? 0 : 1), ch = 2 * ph + (j->planet ? 0 : 1);
     int64_t cx0 = 2 * sub.x0 + lo, cz0 = 2 * sub.z0 + lo;
-    float *win = malloc((size_t)(cw * ch) * sizeof *win);
+    float *win = thread_scratch(SCRATCH_MIP_WINDOW, (size_t)(cw * ch) * sizeof *win);
     if (!win) return og_error_set(err, "out of memory updating mip levels");
     int rc = 0;
     if (child_changes(j, cx0, cz0, cw, ch, win)) {
@@ -175,7 +176,6 @@ static int parent_tile_task(void *user, int task, og_error *err) {
             edit_tile_release(j->e, &v);
         }
     }
-    free(win);
     return rc;
 }
 

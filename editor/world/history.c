@@ -1,5 +1,7 @@
 #include "editor/world/history.h"
 
+#include "editor/world/thread_scratch.h"
+
 #include <math.h>
 #include <pthread.h>
 #include <stdlib.h>
@@ -307,37 +309,6 @@ static size_t encode_plane(const uint8_t *plane, size_t n, uint8_t *o, int zstd)
     return PLANE_HEADER + size;
 }
 
-// Working memory per thread, kept for its life and grown as needed: an encoding's
-// planes and its delta before it is cut to size. Fresh from malloc per tile, they came
-// from the top of a heap that every step's kept deltas grow, page-faulted in anew.
-static pthread_key_t scratch_key;
-static pthread_once_t scratch_once = PTHREAD_ONCE_INIT;
-
-typedef struct scratch {
-    size_t cap;
-    uint8_t bytes[];
-} scratch;
-
-static void make_scratch_key(void) {
-    pthread_key_create(&scratch_key, free);
-}
-
-// At least n bytes, or NULL when out of memory.
-static uint8_t *thread_scratch(size_t n) {
-    pthread_once(&scratch_once, make_scratch_key);
-    scratch *s = pthread_getspecific(scratch_key);
-    if (s && s->cap >= n) return s->bytes;
-    scratch *grown = malloc(sizeof *grown + n);
-    if (!grown) return NULL;
-    if (pthread_setspecific(scratch_key, grown) != 0) {
-        free(grown);
-        return NULL;
-    }
-    free(s);
-    grown->cap = n;
-    return grown->bytes;
-}
-
 static int encode_part(tile_layer layer, const void *before, const void *after, grid_rect part,
                        int zstd, void **delta, size_t *bytes) {
     *delta = NULL;
@@ -346,7 +317,8 @@ static int encode_part(tile_layer layer, const void *before, const void *after, 
     size_t el = element_bytes(layer);
     if (grid_rect_empty(part) || !part_differs(before, after, el, part)) return 0;
     size_t n = (size_t)((part.x1 - part.x0) * (part.z1 - part.z0)), raw = n * el;
-    uint8_t *planes = thread_scratch(2 * raw + PART_HEADER + el * PLANE_HEADER);
+    uint8_t *planes =
+        thread_scratch(SCRATCH_UNDO_ENCODE, 2 * raw + PART_HEADER + el * PLANE_HEADER);
     if (!planes) return -1;
     uint8_t *out = planes + raw;
     memcpy(out, PART_MAGIC, 4);
@@ -633,12 +605,14 @@ int history_modified(const history *h) {
 // ---- squeezing in the background ------------------------------------------------------
 // An edit's commit encodes its deltas with zero runs only (history_delta_encode_part_quick):
 // zstd on a dab's planes was half the commit's time. history_push hands the new step's
-// deltas (copies) to one background thread, which tries zstd on them as encode_plane
+// deltas to one background thread, which tries zstd on them as encode_plane
 // does; a smaller delta replaces the step's at the next history_push, undo or redo peek
 // or budget change, on the thread that edits (the only one that touches steps), after
 // waiting for the ones still being squeezed, so budgets see the same sizes as before.
-// A step freed first (dropped, or a redo branch cut) cancels its work. The crash
-// journal keeps what the commit wrote.
+// A job reads the step's delta itself (the editing thread only reads it meanwhile, and
+// replaces it only at collection): a step freed first (dropped, or a redo branch cut)
+// cancels its work, waiting for a job that is running. The crash journal keeps what
+// the commit wrote.
 
 typedef struct squeeze_job {
     struct squeeze_job *next;
@@ -647,17 +621,16 @@ typedef struct squeeze_job {
     size_t tile;
     const void *delta; // the step's delta it squeezes: swapped only while the tile holds it
     tile_layer layer;
-    uint8_t *in; // a copy of it
     size_t in_bytes;
     void *out; // the squeezed delta, or NULL when zstd gained nothing
     size_t out_bytes;
-    int running, done, cancelled;
+    int running, done;
 } squeeze_job;
 
 // The squeeze thread's nice value (the editing threads keep the process's own).
 #define SQUEEZE_NICE 10
 
-// Work held at once (copies of deltas): past it, steps keep their zero-run deltas.
+// Work queued at once (bytes of deltas): past it, steps keep their zero-run deltas.
 #define SQUEEZE_MAX_BYTES ((size_t)64 << 20)
 
 static struct {
@@ -680,7 +653,6 @@ static void squeeze_drop(squeeze_job *j) {
             break;
         }
     squeeze.bytes -= j->in_bytes;
-    free(j->in);
     free(j->out);
     free(j);
 }
@@ -698,11 +670,10 @@ static void squeeze_run(squeeze_job *j) {
     pthread_mutex_unlock(&squeeze.lock);
     void *out = NULL;
     size_t out_bytes = 0;
-    squeeze_delta(j->layer, j->in, j->in_bytes, &out, &out_bytes);
+    squeeze_delta(j->layer, j->delta, j->in_bytes, &out, &out_bytes);
     pthread_mutex_lock(&squeeze.lock);
     j->out = out, j->out_bytes = out_bytes;
     j->running = 0, j->done = 1;
-    if (j->cancelled) squeeze_drop(j);
     pthread_cond_broadcast(&squeeze.finished);
 }
 
@@ -755,18 +726,12 @@ static void squeeze_queue(history *h, history_step *s) {
         const history_tile *t = &s->tiles[i];
         if (!squeezable(t) || squeeze.bytes + t->bytes > SQUEEZE_MAX_BYTES) continue;
         squeeze_job *j = calloc(1, sizeof *j);
-        uint8_t *in = j ? malloc(t->bytes) : NULL;
-        if (!in) { // out of memory: this delta stays as it is
-            free(j);
-            continue;
-        }
-        memcpy(in, t->delta, t->bytes);
+        if (!j) continue; // out of memory: this delta stays as it is
         *j = (squeeze_job){.h = h,
                            .step = s,
                            .tile = i,
                            .delta = t->delta,
                            .layer = (tile_layer)t->key.layer,
-                           .in = in,
                            .in_bytes = t->bytes};
         squeeze_job **end = &squeeze.head;
         while (*end)
@@ -817,16 +782,19 @@ static void squeeze_collect(history *h) {
 // A step going away: its jobs are dropped (one being squeezed, when it is done).
 static void squeeze_cancel(const history_step *s) {
     pthread_mutex_lock(&squeeze.lock);
-    squeeze_job *j = squeeze.head;
-    while (j) {
-        squeeze_job *next = j->next;
-        if (j->step == s) {
-            if (j->running)
-                j->cancelled = 1;
-            else
+    for (;;) {
+        int running = 0;
+        squeeze_job *j = squeeze.head;
+        while (j) {
+            squeeze_job *next = j->next;
+            if (j->step == s && j->running)
+                running = 1;
+            else if (j->step == s)
                 squeeze_drop(j);
+            j = next;
         }
-        j = next;
+        if (!running) break;
+        pthread_cond_wait(&squeeze.finished, &squeeze.lock); // it reads the step's delta
     }
     pthread_mutex_unlock(&squeeze.lock);
 }
