@@ -681,7 +681,10 @@ static void *squeeze_main(void *arg) {
     (void)arg;
     // Below the thread that edits: woken by a commit on a busy machine (no core free),
     // the squeeze at the same priority took the committing thread's core away for the
-    // length of its zstd (150 us of a one-dab commit's 400). Linux: a thread's own nice.
+    // length of its zstd (150 us of a one-dab commit's 400), at its wake-up or later in
+    // the step (SCHED_BATCH, which only stops the former, did not help). Its jobs are
+    // one tile each: the editing thread waits for at most one it has begun. Linux: a
+    // thread's own nice.
     setpriority(PRIO_PROCESS, (id_t)syscall(SYS_gettid), SQUEEZE_NICE);
     pthread_mutex_lock(&squeeze.lock);
     for (;;) {
@@ -740,8 +743,8 @@ static void squeeze_queue(history *h, history_step *s) {
         squeeze.bytes += t->bytes;
         queued = 1;
     }
-    if (queued) pthread_cond_signal(&squeeze.work);
     pthread_mutex_unlock(&squeeze.lock);
+    if (queued) pthread_cond_signal(&squeeze.work); // unlocked: it need not wait for the lock
 }
 
 // Finishes h's squeezing (taking a hand in what the thread has not started: a big
