@@ -4,6 +4,7 @@
 #include "editor/edit/paint_composite.h"
 #include "editor/edit/parallel.h"
 #include "editor/edit/tile_parts.h"
+#include "io/avx2_clone.h"
 #include "editor/layers/layer_blend.h"
 #include "editor/world/layer_grid.h"
 
@@ -70,8 +71,8 @@ static float take_sample(const compose_job *j, const layer_info *l, float weight
 // then for the samples it missed what take_sample does for them there (its ulp search,
 // layer_blend_solve), all at once: the same values. Samples whose composite the tool
 // left as it was (bit for bit) keep their value, as kept() says.
-__attribute__((target_clones("avx2", "default"))) static void
-take_row_add_top(float *val, const float *below, const float *before, const float *now, int n) {
+AVX2_CLONE static void take_row_add_top(float *val, const float *below, const float *before,
+                                        const float *now, int n) {
     uint8_t miss[TILE_SIZE];
     int any = 0;
     for (int x = 0; x < n; x++) {

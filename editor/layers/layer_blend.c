@@ -1,5 +1,7 @@
 #include "editor/layers/layer_blend.h"
 
+#include "io/avx2_clone.h"
+
 #include <math.h>
 #include <string.h>
 #include <stdint.h>
@@ -94,9 +96,8 @@ static float float_of(uint32_t u) {
 
 // layer_blend_solve's add case at full weight without branches: each of the 8 steps is
 // taken on every sample of a chunk and kept only where the search would still be going.
-__attribute__((target_clones("avx2", "default"))) void
-layer_blend_solve_add_row(const float *below, const float *value, const float *target, float *out,
-                          int n) {
+AVX2_CLONE void layer_blend_solve_add_row(const float *below, const float *value,
+                                          const float *target, float *out, int n) {
     enum { CHUNK = 256 };
     float s[CHUNK];
     int32_t stop[CHUNK];
