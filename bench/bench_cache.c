@@ -9,6 +9,7 @@
 #include "editor/world/world.h"
 #include "io/tile_cache.h"
 
+#include "bench/bench_journals.h"
 #include "bench/bench_timing.h"
 
 #include <stdio.h>
@@ -197,6 +198,7 @@ static void bench_cold_load(void) {
 }
 
 int main(void) {
+    bench_journals_private(); // no crash journals left in the user's folder
     bench_warm_lookup();
     bench_generation_scaling();
     bench_cold_load();

@@ -32,6 +32,7 @@
 #include <dirent.h>
 #include <math.h>
 #include <sched.h>
+#include "bench/bench_journals.h"
 #include "bench/bench_timing.h"
 
 #include <stdio.h>
@@ -655,6 +656,7 @@ static int wanted(int argc, char **argv, const char *section) {
 }
 
 int main(int argc, char **argv) {
+    bench_journals_private(); // no crash journals left in the user's folder
     double t0 = bench_now();
     printf("bench_edit: medians of %d runs (erosion: 5), %d threads in the editing pool\n", RUNS,
            parallel_threads());

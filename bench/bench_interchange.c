@@ -8,6 +8,7 @@
 // once, and each alone under the load the 1-process run had), of a generated world and
 // of one made from a 16-bit PNG (`new flat from=`).
 // Usage: bench_interchange [--only exr|shards] [DEM.hgt] (default tests/data/dem/N44W072.hgt)
+#include "bench/bench_journals.h"
 #include "bench/bench_timing.h"
 #include "editor/interchange/export.h"
 #include "editor/interchange/import.h"
@@ -221,6 +222,7 @@ static int bench_dem(const char *dem, const char *raw) {
 }
 
 int main(int argc, char **argv) {
+    bench_journals_private(); // no crash journals left in the user's folder
     // --only exr | shards: just that part (the machine is shared; benches run sparingly).
     const char *only = argc > 2 && !strcmp(argv[1], "--only") ? argv[2] : NULL;
     if (only) argc -= 2, argv += 2;

@@ -14,6 +14,7 @@
 #include "editor/edit/edit.h"
 #include "editor/edit/layer_composite.h"
 #include "editor/world/world.h"
+#include "bench/bench_journals.h"
 #include "bench/bench_timing.h"
 
 #include <pthread.h>
@@ -114,6 +115,7 @@ static const char *verdict(int ok) {
 }
 
 int main(void) {
+    bench_journals_private(); // no crash journals left in the user's folder
     // 1 and 2: a one-layer world and one of 8 layers, each layer edited under the dab.
     session one, eight;
     open_session(&one, 2048);

@@ -5,6 +5,7 @@
 // does (each file durable before the set is renamed into place).
 // The first export also generates the images' tiles (reported apart); the figures are
 // medians of the warm runs, where the tiles are in the cache.
+#include "bench/bench_journals.h"
 #include "bench/bench_timing.h"
 #include "editor/interchange/export_planet.h"
 #include "editor/world/world.h"
@@ -79,6 +80,7 @@ static double copy_floor(const char *dir, long long *bytes) {
 }
 
 int main(void) {
+    bench_journals_private(); // no crash journals left in the user's folder
     world_params p;
     world_params_default(&p, WORLD_PLANET);
     world_settings s = {.cache_budget_bytes = (size_t)2 << 30, .workers = 2, .warn = quiet};

@@ -15,6 +15,7 @@
 //     same altitudes above its ground (10 km and 2 m).
 // Goals are reported (PASS/MISS), not asserted. `bench_planet_render views` runs part 1
 // alone.
+#include "bench/bench_journals.h"
 #include "bench/bench_timing.h"
 
 #include "editor/cmd/commands.h"
@@ -186,6 +187,7 @@ static void hills(bench *b, const world_settings *ws, const render_settings *s) 
 }
 
 int main(int argc, char **argv) {
+    bench_journals_private(); // no crash journals left in the user's folder
     const int views_only = argc > 1 && strcmp(argv[1], "views") == 0; // part 1 alone
     og_error err;
     bench b = {0};

@@ -27,6 +27,7 @@
 // interleaved passes (the machine is noisy); goals are reported (PASS/MISS), not asserted.
 // The load average is printed at the start and with the summary, and llvmpipe's threads
 // (LP_NUM_THREADS, else one per core); section 1 also gives the CPU time of all threads.
+#include "bench/bench_journals.h"
 #include "bench/bench_timing.h"
 #include "bench/naive_mesh.h"
 #include "renderer/antialias.h"
@@ -891,6 +892,7 @@ static int wanted(const char *sections, char c) {
 }
 
 int main(int argc, char **argv) {
+    bench_journals_private(); // no crash journals left in the user's folder
     bench b = {0};
     const char *tmp = getenv("TMPDIR");
     b.out_dir = argc > 1 ? argv[1] : tmp && *tmp ? tmp : "/tmp";

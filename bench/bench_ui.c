@@ -14,6 +14,7 @@
 // The pointer sweeps over the panels while the UI is built, as a user's would.
 #include "app/dynamic_resolution.h"
 #include "app/editor_ui.h"
+#include "bench_journals.h"
 #include "bench_timing.h"
 #include "editor/cmd/commands.h"
 #include "renderer/gl_target.h"
@@ -43,6 +44,7 @@ static double percentile(double *v, int n, double p) {
 }
 
 int main(void) {
+    bench_journals_private(); // no crash journals left in the user's folder
     og_error err = {{0}};
     world_params p;
     world_params_default(&p, WORLD_FLAT);

@@ -9,6 +9,7 @@
 //     building the same narrow-band level set from the heightfield's triangle mesh
 //     (goal: at least as fast).
 // Medians of several runs; goals are reported (PASS/MISS), not asserted.
+#include "bench/bench_journals.h"
 #include "bench/bench_timing.h"
 #include "editor/interchange/export_vdb.h"
 #include "editor/tools/stroke.h"
@@ -47,6 +48,7 @@ static double ground(world *w, double x, double z) {
 }
 
 int main(void) {
+    bench_journals_private(); // no crash journals left in the user's folder
     world_params p;
     world_params_default(&p, WORLD_FLAT);
     p.spacing = 1;
