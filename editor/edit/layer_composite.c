@@ -7,6 +7,7 @@
 #include "io/avx2_clone.h"
 #include "editor/layers/layer_blend.h"
 #include "editor/world/layer_grid.h"
+#include "editor/world/thread_scratch.h"
 
 #include <math.h>
 #include <stdint.h>
@@ -65,14 +66,32 @@ static float take_sample(const compose_job *j, const layer_info *l, float weight
     return layer_blend_solve(l->blend, weight, below, v, target);
 }
 
+// The samples take_row_add_top's inline case missed, gathered over rows for one
+// layer_blend_solve_add_row call: a row's few misses (a tenth to a fifth of a tall
+// stroke's samples) left the solve's vector loop mostly in its scalar tail.
+enum { TAKE_MISSES = 2048 };
+typedef struct take_misses {
+    float below[TAKE_MISSES], value[TAKE_MISSES], target[TAKE_MISSES];
+    float *at[TAKE_MISSES];
+    int count;
+} take_misses;
+
+static void take_misses_solve(take_misses *t) {
+    layer_blend_solve_add_row(t->below, t->value, t->target, t->value, t->count);
+    for (int i = 0; i < t->count; i++)
+        *t->at[i] = t->value[i];
+    t->count = 0;
+}
+
 // take_sample over a row span for the common layer: an add layer at full weight, the top
 // visible one (its target is the tool's own result). The inline case take_sample tries
 // first, for the whole span without branches (vectorised; it nearly always succeeds),
 // then for the samples it missed what take_sample does for them there (its ulp search,
-// layer_blend_solve), all at once: the same values. Samples whose composite the tool
-// left as it was (bit for bit) keep their value, as kept() says.
+// layer_blend_solve), gathered into misses for take_misses_solve: the same values.
+// Samples whose composite the tool left as it was (bit for bit) keep their value, as
+// kept() says.
 AVX2_CLONE static void take_row_add_top(float *val, const float *below, const float *before,
-                                        const float *now, int n) {
+                                        const float *now, int n, take_misses *misses) {
     uint8_t miss[TILE_SIZE];
     int any = 0;
     for (int x = 0; x < n; x++) {
@@ -87,13 +106,16 @@ AVX2_CLONE static void take_row_add_top(float *val, const float *below, const fl
         any |= miss[x];
     }
     if (!any) return;
-    float mb[TILE_SIZE], mv[TILE_SIZE], mt[TILE_SIZE];
-    int at[TILE_SIZE], m = 0;
-    for (int x = 0; x < n; x++)
-        if (miss[x]) mb[m] = below[x], mv[m] = val[x], mt[m] = now[x], at[m++] = x;
-    layer_blend_solve_add_row(mb, mv, mt, mv, m);
-    for (int i = 0; i < m; i++)
-        val[at[i]] = mv[i];
+    take_misses *t = misses;
+    if (t->count > TAKE_MISSES - n) take_misses_solve(t);
+    // Gathered without branches (misses come in no order a branch predicts): every
+    // sample is written, only a miss moves the count on.
+    int m = t->count;
+    for (int x = 0; x < n; x++) {
+        t->below[m] = below[x], t->value[m] = val[x], t->target[m] = now[x], t->at[m] = &val[x];
+        m += miss[x];
+    }
+    t->count = m;
 }
 
 // Whether no visible height layer lies below the active one (the composite below it
@@ -193,8 +215,16 @@ static int compose_task(void *user, int task, og_error *err) {
     int x0 = (int)(r.x0 - gx), z0 = (int)(r.z0 - gz);
     int rw = (int)(r.x1 - r.x0), rh = (int)(r.z1 - r.z0);
     int active = j->take ? j->table.active : -1;
-    float *acc = NULL, *weight = malloc(sizeof(float) * (size_t)rw * (size_t)rh);
-    if (!weight) return og_error_set(err, "out of memory composing layers");
+    // The take's common case (add_top) over the base alone reads no weights: none are
+    // allocated (a fresh 66 KB per dab tile came from the heap's top and went back to
+    // the system at its free, a page fault per 4 KB every time).
+    const layer_info *taking = j->stage == 1 ? &j->table.layers[active] : NULL;
+    int add_top = taking && taking->blend == LAYER_BLEND_ADD && !layer_mask_active(&taking->mask) &&
+                  (float)taking->opacity >= 1.0f && active == j->top_visible;
+    int no_weights = add_top && !j->below;
+    float *acc = NULL,
+          *weight = no_weights ? NULL : malloc(sizeof(float) * (size_t)rw * (size_t)rh);
+    if (!weight && !no_weights) return og_error_set(err, "out of memory composing layers");
     grid_rect local = {x0, z0, x0 + rw, z0 + rh};
     tile_view cv;
     if (edit_tile_acquire_part(j->e, ck, local, &cv, err) != 0) {
@@ -205,16 +235,14 @@ static int compose_task(void *user, int task, og_error *err) {
     int rc = 0;
     grid_rect changed = {1, 1, 0, 0}; // part-local; empty
     if (j->stage == 1) { // the active layer takes the tool's change, over the layers below it
-        const layer_info *l = &j->table.layers[active];
+        const layer_info *l = taking;
         int b = height_window_mask_border(l, grid.spacing);
-        int add_top = l->blend == LAYER_BLEND_ADD && !layer_mask_active(&l->mask) &&
-                      (float)l->opacity >= 1.0f && active == j->top_visible;
         tile_view lv, base = {0};
         // The common layer over the base alone: the composite below it is the base
         // tile's own rows (a window copied from them cost as much as the take's rows).
         const float *below = NULL;
         int below_stride = 0;
-        if (add_top && !j->below && base_alone(&j->table, active)) {
+        if (no_weights && base_alone(&j->table, active)) {
             tile_key bk = {.layer = tile_layer_in_slot(TILE_LAYER_COARSE, TILE_SLOT_BASE),
                            .face = p->face,
                            .tx = p->tx,
@@ -244,14 +272,19 @@ static int compose_task(void *user, int task, og_error *err) {
         if (rc == 0 &&
             (rc = edit_tile_acquire_part(j->e, slot_key(p, l->id), local, &lv, err)) == 0) {
             float *val = lv.data;
-            for (int z = 0; add_top && z < rh; z++) {
+            take_misses *misses =
+                add_top ? thread_scratch(SCRATCH_TAKE_MISSES, sizeof *misses) : NULL;
+            if (add_top && !misses) rc = og_error_set(err, "out of memory composing layers");
+            if (misses) misses->count = 0;
+            for (int z = 0; misses && z < rh; z++) {
                 int tz = z + z0, xa = x0 > touched.x0 ? x0 : (int)touched.x0;
                 int xb = x0 + rw < touched.x1 ? x0 + rw : (int)touched.x1;
                 if (tz < touched.z0 || tz >= touched.z1 || xa >= xb) continue;
                 int k = tz * TILE_SIZE + xa;
                 take_row_add_top(val + k, below + (size_t)z * below_stride + (xa - x0), before + k,
-                                 comp + k, xb - xa);
+                                 comp + k, xb - xa, misses);
             }
+            if (misses) take_misses_solve(misses);
             for (int z = 0; !add_top && z < rh; z++)
                 for (int x = 0; x < rw; x++) {
                     int k = (z + z0) * TILE_SIZE + x + x0;

@@ -108,7 +108,10 @@ AVX2_CLONE void layer_blend_solve_add_row(const float *below, const float *value
             s[i] = t[i] - b[i];
             stop[i] = 0;
         }
-        for (int k = 0; k < 8; k++)
+        // Nearly every sample is done after a step or two: the chunk stops when all are
+        // (a done sample never changes again, so the values are the same).
+        for (int k = 0, going = 1; k < 8 && going; k++) {
+            going = 0;
             for (int i = 0; i < m; i++) {
                 float got = b[i] + s[i];
                 int32_t up = got < t[i];
@@ -125,7 +128,9 @@ AVX2_CLONE void layer_blend_solve_add_row(const float *below, const float *value
                 done |= fabsf(again - t[i]) > fabsf(got - t[i]);
                 s[i] = done ? s[i] : next;
                 stop[i] = done;
+                going |= !done;
             }
+        }
         for (int i = 0; i < m; i++) {
             float v = value[c + i], shown = v == v ? b[i] + v : b[i];
             out[c + i] = (t[i] != t[i]) | (shown == t[i]) ? v : s[i];

@@ -11,6 +11,7 @@
 typedef enum thread_scratch_use {
     SCRATCH_UNDO_ENCODE, // history.c: a delta's planes and the delta before it is cut
     SCRATCH_MIP_WINDOW,  // edit_mips.c: the changes under a parent tile's samples
+    SCRATCH_TAKE_MISSES, // layer_composite.c: a layer take's samples left to solve
     SCRATCH_USES
 } thread_scratch_use;
 
