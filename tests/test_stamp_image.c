@@ -3,7 +3,8 @@
 // (stamp.c's formula before the rows were vectorised), on every path the processor has
 // (plain C, AVX2, AVX-512), for random images, rotations,
 // scales, mirrors and row spans (tails of every length); the span of a row holds every
-// sample inside the footprint; add and subtract on an array match the formula's sums.
+// sample inside the footprint (within the image's support: every sample reading non-zero);
+// add and subtract on an array match the formula's sums, the same with the support known.
 #include "editor/params/world_params.h"
 #include "editor/tools/brush.h"
 #include "editor/tools/stamp.h"
@@ -131,6 +132,53 @@ static void test_span_holds_the_footprint(void **state) {
     }
 }
 
+// A random image that is 0 outside a disc (of random centre and radius) but for a few
+// scattered pixels, or all 0, or nowhere 0.
+static float *sparse_image(int w, int h, int trial) {
+    float *px = random_image(w, h);
+    double cx = uniform() * w, cy = uniform() * h, r = uniform() * 0.6 * (w > h ? w : h);
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            int keep = trial % 7 == 1 ||
+                       (trial % 7 != 0 && (hypot(x - cx, y - cy) < r || uniform() < 0.002));
+            if (!keep) px[(size_t)y * w + x] = 0.0f;
+        }
+    return px;
+}
+
+static void test_support_holds_every_nonzero_reading(void **state) {
+    (void)state;
+    long nonzero = 0, narrowed = 0;
+    for (int trial = 0; trial < 300; trial++) {
+        int w = 1 + (int)(uniform() * 40), h = 1 + (int)(uniform() * 40);
+        float *px = sparse_image(w, h, trial);
+        stamp_image_map m = random_map(px, w, h);
+        // As stamp.c scales it into metres.
+        m.support = stamp_image_support(px, w, h) * fmax(2.0 * m.half_w / w, 2.0 * m.half_h / h);
+        stamp_image_map whole = m;
+        whole.support = 0.0;
+        int64_t reach = (int64_t)((m.half_w + m.half_h) / m.spacing) + 3;
+        int64_t cx = (int64_t)floor(m.x / m.spacing), cz = (int64_t)floor(m.z / m.spacing);
+        for (int64_t z = cz - reach; z <= cz + reach; z++) {
+            int64_t x0 = cx - reach, x1 = cx + reach, a, b, wa, wb;
+            stamp_image_span(&m, z, x0, x1, &a, &b);
+            stamp_image_span(&whole, z, x0, x1, &wa, &wb);
+            assert_true(x0 <= a && b <= x1 && (a >= b || (wa <= a && b <= wb)));
+            narrowed += (wb > wa ? wb - wa : 0) - (b > a ? b - a : 0);
+            for (int64_t x = x0; x < x1; x++) {
+                double e;
+                float v = reference(&m, x, z, &e);
+                if (e < 1.0 && v != 0.0f) {
+                    assert_true(x >= a && x < b);
+                    nonzero++;
+                }
+            }
+        }
+        free(px);
+    }
+    assert_true(nonzero > 1000 && narrowed > 1000); // both sides were met
+}
+
 // stamp_apply_array in add and subtract mode against the formula's sums, clamped.
 static void test_array_add_subtract(void **state) {
     (void)state;
@@ -144,7 +192,12 @@ static void test_array_add_subtract(void **state) {
         int w = 8 + (int)(uniform() * 40), h = 8 + (int)(uniform() * 40);
         stamp_source src = {.shape = -1, .width = w, .height = h};
         strcpy(src.name, "random");
-        src.pixels = random_image(w, h);
+        // Half the trials know the image's support (as stamp_find does): mostly 0
+        // around, those keep to it, and the heights there (inside the height limit, not
+        // -0) stay as the formula leaves them.
+        int support = trial % 4 >= 2;
+        src.pixels = support ? sparse_image(w, h, trial / 4) : random_image(w, h);
+        if (support) src.support = stamp_image_support(src.pixels, w, h);
         stamp_placement p;
         stamp_placement_defaults(&p);
         p.x = 40.0 + uniform() * 40.0, p.z = 40.0 + uniform() * 40.0;
@@ -182,7 +235,7 @@ static void test_array_add_subtract(void **state) {
         og_error err;
         assert_int_equal(stamp_apply_array(&params, &src, &p, data, 0, 0, SIDE, SIDE, &err), 0);
         assert_memory_equal(data, want, SIDE * SIDE * sizeof *data);
-        assert_true(changed > 0);
+        assert_true(changed > 0 || (support && trial / 4 % 7 == 0)); // all 0: none
         free(src.pixels);
     }
     free(data);
@@ -193,6 +246,7 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_values_match_reference),
         cmocka_unit_test(test_span_holds_the_footprint),
+        cmocka_unit_test(test_support_holds_every_nonzero_reading),
         cmocka_unit_test(test_array_add_subtract),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

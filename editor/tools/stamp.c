@@ -94,7 +94,9 @@ static int load_image(const char *path, const char *name, stamp_source *out, og_
     memset(out, 0, sizeof *out);
     out->shape = -1;
     snprintf(out->name, sizeof out->name, "%s", name);
-    return image_read_luminance(path, &out->pixels, &out->width, &out->height, err);
+    if (image_read_luminance(path, &out->pixels, &out->width, &out->height, err) != 0) return -1;
+    out->support = stamp_image_support(out->pixels, out->width, out->height);
+    return 0;
 }
 
 static int find_in(const char *dir, const char *name, char *path, size_t size) {
@@ -349,6 +351,14 @@ static int make_op(const world_params *params, const stamp_source *s, const stam
                                  .half_h = o->half_h,
                                  .mirror_x = p->mirror_x,
                                  .mirror_z = p->mirror_z};
+    // Adding or subtracting 0 changes nothing: rows, snapshots, the take and the undo
+    // step keep to the image's support (a library stamp's inscribed circle holds 4/5 of
+    // its square, and the tiles' parts hug it).
+    if (s->shape < 0 && s->support > 0.0 && (p->mode == STAMP_ADD || p->mode == STAMP_SUBTRACT)) {
+        o->image.support = s->support * fmax(2.0 * o->half_w / w, 2.0 * o->half_h / h);
+        ex = fmin(ex, o->image.support + 2.0 * g->spacing);
+        ez = fmin(ez, o->image.support + 2.0 * g->spacing);
+    }
     *rect = layer_grid_clip(g, (grid_rect){(int64_t)floor((p->x - ex) / g->spacing),
                                            (int64_t)floor((p->z - ez) / g->spacing),
                                            (int64_t)ceil((p->x + ex) / g->spacing) + 1,

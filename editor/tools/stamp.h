@@ -29,6 +29,7 @@ typedef struct stamp_source {
     int shape;     // a stamp_shape, or -1 for an image
     float *pixels; // image: width x height values (8/16-bit images in [0, 1])
     int width, height;
+    double support; // stamp_image_support of an image read by stamp_find; 0: not known
 } stamp_source;
 
 typedef struct stamp_placement {

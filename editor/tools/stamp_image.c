@@ -24,6 +24,12 @@ void stamp_image_span(const stamp_image_map *m, int64_t z, int64_t x0, int64_t x
     band(m->cos_r / m->half_w, m->sin_r * dz / m->half_w, pad, &ulo, &uhi);
     band(-m->sin_r / m->half_h, m->cos_r * dz / m->half_h, pad, &vlo, &vhi);
     double lo = fmax(ulo, vlo) + m->x, hi = fmin(uhi, vhi) + m->x; // metres
+    if (m->support > 0.0) { // the support's chord on this row, padded alike
+        double c = m->support * m->support - dz * dz;
+        c = c > 0.0 ? sqrt(c) : 0.0;
+        lo = fmax(lo, m->x - c - pad), hi = fmin(hi, m->x + c + pad);
+        if (fabs(dz) > m->support + pad) hi = lo - 1.0;
+    }
     *a = x0, *b = x1;
     if (!(lo <= hi)) {
         *b = *a;
@@ -222,6 +228,25 @@ void stamp_image_values_path(int path, const stamp_image_map *m, int64_t z, int6
 void stamp_image_values(const stamp_image_map *m, int64_t z, int64_t x0, int n, float *value,
                         double *edge) {
     stamp_image_values_path(stamp_image_paths() - 1, m, z, x0, n, value, edge);
+}
+
+double stamp_image_support(const float *pixels, int width, int height) {
+    double cx = 0.5 * (width - 1), cy = 0.5 * (height - 1), far = 0.0;
+    for (int y = 0; y < height; y++) {
+        const float *row = pixels + (size_t)y * (size_t)width;
+        int a = 0, b = width - 1;
+        while (a < width && row[a] == 0.0f)
+            a++;
+        if (a == width) continue; // all 0
+        while (row[b] == 0.0f)
+            b--;
+        // The row's farthest non-zero pixels are its outermost ones.
+        double dy = y - cy, dx = fmax(fabs(a - cx), fabs(b - cx));
+        far = fmax(far, sqrt(dx * dx + dy * dy));
+    }
+    // A sample reads the 4 pixels around its point (within sqrt(2)), after clamping the
+    // point into the image (at most half a pixel each way): 2.5 holds both.
+    return far + 2.5;
 }
 
 // fmaxf/fminf as selects: the same for the sum, which is not NaN by then.

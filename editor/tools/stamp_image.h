@@ -14,10 +14,15 @@ typedef struct stamp_image_map {
     double cos_r, sin_r; // its rotation
     double half_w, half_h;
     int mirror_x, mirror_z;
+    // Metres from the centre past which every sample reads exactly 0 (the image's
+    // support, stamp_image_support, scaled); 0: not known, the whole footprint counts.
+    // Only add and subtract may narrow to it: there a 0 changes nothing.
+    double support;
 } stamp_image_map;
 
 // Samples [x0, x1) of row z narrowed to a span [*a, *b) that holds every sample of the
-// footprint (|u|, |v| < 1) on that row, and a sample or two more (*a >= *b: none).
+// footprint (|u|, |v| < 1) on that row within the support (when known), and a sample
+// or two more (*a >= *b: none).
 void stamp_image_span(const stamp_image_map *m, int64_t z, int64_t x0, int64_t x1, int64_t *a,
                       int64_t *b);
 
@@ -31,6 +36,10 @@ void stamp_image_values(const stamp_image_map *m, int64_t z, int64_t x0, int n, 
 void stamp_image_values_path(int path, const stamp_image_map *m, int64_t z, int64_t x0, int n,
                              float *value, double *edge);
 int stamp_image_paths(void);
+// The radius, in pixels from the image's centre, past which its bilinear reading is
+// exactly 0 everywhere (the farthest non-zero pixel, NaN included, plus the reading's
+// reach): most library stamps fade to 0 at their inscribed circle.
+double stamp_image_support(const float *pixels, int width, int height);
 
 // Adds value[i] * k to row[i] where edge[i] < 1, as stamp.c's add mode does sample by
 // sample (a NaN sum keeps the old height; the sum is clamped to [-limit, limit]).
