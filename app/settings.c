@@ -207,6 +207,19 @@ void app_absolute_path(const char *path, char *out, size_t size) {
     snprintf(out + used, size - used, "%s", path);
 }
 
+void app_settings_fit_to_screen(app_settings *s, int ax, int ay, int aw, int ah) {
+    if (aw <= 0 || ah <= 0) return;
+    if (s->width > aw || s->height > ah) {
+        s->width = s->width > aw ? aw : s->width;
+        s->height = s->height > ah ? ah : s->height;
+        s->maximized = 1;
+        s->x = ax, s->y = ay, s->has_position = 1;
+    }
+    if (s->has_position &&
+        (s->x < ax || s->y < ay || s->x + s->width > ax + aw || s->y + s->height > ay + ah))
+        s->has_position = 0;
+}
+
 void app_settings_add_recent(app_settings *s, const char *path) {
     if (!path || !path[0]) return;
     char keep[1024];

@@ -59,6 +59,13 @@ void app_settings_load(app_settings *s, const char *path);
 int app_settings_make_folders(const char *path);
 // Writes path atomically, creating its folder.
 int app_settings_save(const app_settings *s, const char *path, og_error *err);
+// Fits the window to the screen's work area (x, y, width, height): the default 1280 x 800
+// window, or one kept from a larger screen, would reach past a small screen's edges,
+// hiding the panels and the status line; such a window is made to fit, placed at the
+// area's corner and maximised (so a window manager adds its frame inside the area). A
+// kept position that would put part of the window off the area is forgotten. An empty
+// area changes nothing.
+void app_settings_fit_to_screen(app_settings *s, int ax, int ay, int aw, int ah);
 // Puts path first in the recent files (once), made absolute.
 void app_settings_add_recent(app_settings *s, const char *path);
 // path as an absolute path (the file resolved when it exists, else joined to the

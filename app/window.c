@@ -249,8 +249,9 @@ static void save_settings(window_state *st) {
         fprintf(stderr, "orogen: settings not saved: %s\n", err.msg);
 }
 
-// GLFW and a window with an EGL OpenGL 4.5 core context, placed as the settings say.
-static GLFWwindow *open_window(const app_settings *settings, og_error *err) {
+// GLFW and a window with an EGL OpenGL 4.5 core context, placed as the settings say,
+// fitted to the primary monitor's work area (which the settings then keep).
+static GLFWwindow *open_window(app_settings *settings, og_error *err) {
     glfwSetErrorCallback(on_glfw_error);
     if (!glfwInit()) {
         og_error_set(err, "cannot start the window system: %s", glfw_message);
@@ -263,6 +264,11 @@ static GLFWwindow *open_window(const app_settings *settings, og_error *err) {
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
     GLFWmonitor *monitor = settings->fullscreen ? glfwGetPrimaryMonitor() : NULL;
     const GLFWvidmode *mode = monitor ? glfwGetVideoMode(monitor) : NULL;
+    if (!monitor && glfwGetPrimaryMonitor()) {
+        int ax = 0, ay = 0, aw = 0, ah = 0;
+        glfwGetMonitorWorkarea(glfwGetPrimaryMonitor(), &ax, &ay, &aw, &ah);
+        app_settings_fit_to_screen(settings, ax, ay, aw, ah);
+    }
     if (settings->maximized) glfwWindowHint(GLFW_MAXIMIZED, GLFW_TRUE);
     GLFWwindow *win =
         glfwCreateWindow(mode ? mode->width : settings->width,

@@ -86,10 +86,38 @@ static void test_world_cameras_round_trip(void **state) {
     assert_int_equal(back.camera_count, 0);
 }
 
+// A window bigger than the screen's work area (the 1280 x 800 default on a 1024 x 640
+// laptop, or a size kept from a larger monitor) is made to fit and maximised; one that
+// fits keeps its size, and its position unless that puts part of it off the area.
+static void test_window_fits_the_screen(void **state) {
+    (void)state;
+    static app_settings s;
+    app_settings_default(&s);
+    app_settings_fit_to_screen(&s, 0, 0, 1024, 640);
+    assert_int_equal(s.width, 1024);
+    assert_int_equal(s.height, 640);
+    assert_true(s.maximized && s.has_position && s.x == 0 && s.y == 0);
+
+    app_settings_default(&s); // a panel along the top: the area starts below it
+    app_settings_fit_to_screen(&s, 0, 27, 1920, 1053);
+    assert_true(s.width == 1280 && s.height == 800 && !s.maximized && !s.has_position);
+    s.x = 500, s.y = 200, s.has_position = 1; // fits
+    app_settings_fit_to_screen(&s, 0, 27, 1920, 1053);
+    assert_true(s.has_position && s.x == 500 && s.y == 200);
+    s.x = 2500; // kept from a second monitor that is gone
+    app_settings_fit_to_screen(&s, 0, 27, 1920, 1053);
+    assert_false(s.has_position);
+
+    app_settings_default(&s); // no work area known: as it was
+    app_settings_fit_to_screen(&s, 0, 0, 0, 0);
+    assert_true(s.width == 1280 && s.height == 800 && !s.maximized);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_recent_paths_are_absolute),
         cmocka_unit_test(test_world_cameras_round_trip),
+        cmocka_unit_test(test_window_fits_the_screen),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
