@@ -89,7 +89,10 @@ static void take_misses_solve(take_misses *t) {
 // then for the samples it missed what take_sample does for them there (its ulp search,
 // layer_blend_solve), gathered into misses for take_misses_solve: the same values.
 // Samples whose composite the tool left as it was (bit for bit) keep their value, as
-// kept() says.
+// kept() says. An empty sample (NaN: the layer's first edit there) shows below: it stays
+// empty where the target is below, else it takes target - below when that hits it, as
+// layer_blend_solve does (a first stamp on a new layer sent all its samples to the
+// search, 190k of them for a 512^2 stamp: 30 ms).
 AVX2_CLONE static void take_row_add_top(float *val, const float *below, const float *before,
                                         const float *now, int n, take_misses *misses) {
     uint8_t miss[TILE_SIZE];
@@ -99,8 +102,8 @@ AVX2_CLONE static void take_row_add_top(float *val, const float *below, const fl
         memcpy(&a, &now[x], sizeof a);
         memcpy(&c, &before[x], sizeof c);
         float v = val[x], b = below[x], t = now[x], solved = t - b;
-        int keep = (a == c) | ((v == v) & ((t != t) | (b + v == t)));
-        int hit = (v == v) & (b + solved == t);
+        int keep = (a == c) | ((v == v) & ((t != t) | (b + v == t))) | ((v != v) & (t == b));
+        int hit = b + solved == t;
         val[x] = keep | !hit ? v : solved;
         miss[x] = (uint8_t)(!keep & !hit);
         any |= miss[x];
