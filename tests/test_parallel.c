@@ -2,7 +2,8 @@
 // one task, many more tasks than threads (every task exactly once), real concurrency,
 // errors from several tasks (one message, intact, every task still run), every task
 // failing, err == NULL, no stale error or stale err pointer after a failing run, and
-// thousands of small jobs in a row.
+// thousands of small jobs in a row; a started job (parallel_start ... parallel_finish)
+// with parallel_run jobs inside it, its failures, and many in a row.
 #include "editor/edit/parallel.h"
 
 #include <pthread.h>
@@ -344,6 +345,48 @@ static void test_uneven_tasks(void **state) {
     free(slots);
 }
 
+// A started job runs each task once while the caller runs parallel_run jobs of its own
+// (on the caller alone: the pool is the started job's), and its failure comes back
+// from parallel_finish, intact, or not at all.
+static void test_started_job(void **state) {
+    (void)state;
+    for (int round = 0; round < 300; round++) {
+        int n = 1 + round % 9;
+        job *started = job_new(n, 3000);
+        int fail_at[] = {round % 4 == 0 ? round % n : -1, -1};
+        started->failing = fail_at;
+        parallel_start(n, task, started);
+        for (int k = 0; k < round % 3; k++) { // the caller's own jobs meanwhile
+            job *inner = job_new(5 + k * 20, 300);
+            og_error err;
+            set_sentinel(&err);
+            assert_int_equal(parallel_run(inner->tasks, task, inner, &err), 0);
+            assert_each_once(inner);
+            assert_int_equal(atomic_load(&inner->peak), 1);
+            assert_string_equal(err.msg, SENTINEL);
+            job_free(inner);
+        }
+        og_error err;
+        set_sentinel(&err);
+        int rc = parallel_finish(round % 7 == 0 ? NULL : &err);
+        assert_int_equal(rc, fail_at[0] >= 0 ? -1 : 0);
+        assert_each_once(started);
+        if (round % 7 != 0) {
+            if (fail_at[0] >= 0)
+                assert_int_equal(message_owner(err.msg), fail_at[0]);
+            else
+                assert_string_equal(err.msg, SENTINEL);
+        }
+        assert_int_equal(parallel_finish(&err), 0); // nothing open
+        job_free(started);
+    }
+    // After them, parallel_run uses the pool again.
+    job *j = job_new(1000, 2000);
+    assert_int_equal(parallel_run(1000, task, j, NULL), 0);
+    assert_each_once(j);
+    job_free(j);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_threads),
@@ -357,6 +400,7 @@ int main(void) {
         cmocka_unit_test(test_failure_then_clean_run),
         cmocka_unit_test(test_many_small_jobs),
         cmocka_unit_test(test_uneven_tasks),
+        cmocka_unit_test(test_started_job),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

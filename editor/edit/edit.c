@@ -16,7 +16,19 @@ typedef struct snapshot {
     int pristine;   // the tile had never been edited (it was generated)
     void *before;   // a whole tile's bytes, of which only `part`'s are copied
     grid_rect part; // tile-local samples acquired for writing (a bounding box)
+    int early;      // its delta is edit_record_start's job's
 } snapshot;
+
+// Undo deltas to encode: copies of some of an edit's snapshots (adding a snapshot can
+// move the edit's array) and where each one's delta goes in the step.
+typedef struct encode_job {
+    world *world;
+    snapshot *snaps;
+    size_t *at; // each one's index in the edit's snapshots
+    void **deltas;
+    size_t *sizes;
+    size_t count;
+} encode_job;
 
 struct edit {
     world *world;
@@ -37,6 +49,9 @@ struct edit {
     // once, part of the step, undone by abort.
     int has_params;
     world_params params_before, params_after;
+    // edit_record_start's job, running in the pool while the commit goes on.
+    encode_job early;
+    int early_open;
 };
 
 // Two areas of one grid that overlap or touch (a stroke's dabs): kept as their union.
@@ -77,7 +92,7 @@ static snapshot *add_snap(edit *e, tile_key key, int pristine, void *before) {
         e->snaps = s;
         e->cap = cap;
     }
-    e->snaps[e->count++] = (snapshot){key, pristine, before, {0, 0, 0, 0}};
+    e->snaps[e->count++] = (snapshot){key, pristine, before, {0, 0, 0, 0}, 0};
     if (e->count * 2 > e->index_size) { // grow: reindex places the new one too
         if (reindex(e, e->index_size ? e->index_size * 2 : 256) != 0) {
             e->count--;
@@ -313,27 +328,91 @@ static void restore(edit *e) {
     publish_areas(e->world, e->dirty, e->dirty_count);
 }
 
+static int early_finish(edit *e, og_error *err);
+static void encode_job_free(encode_job *j);
+
 void edit_abort(edit *e) {
     if (!e) return;
+    early_finish(e, NULL); // its tasks read the tiles restore writes
+    encode_job_free(&e->early);
     restore(e);
     free_edit(e);
 }
 
-typedef struct encode_job {
-    edit *e;
-    void **deltas;
-    size_t *sizes;
-} encode_job;
+static void encode_job_free(encode_job *j) {
+    for (size_t k = 0; j->deltas && k < j->count; k++)
+        free(j->deltas[k]);
+    free(j->snaps), free(j->at), free(j->deltas), free(j->sizes);
+    *j = (encode_job){0};
+}
+
+// The job of e's snapshots whose early flag is `early`; -1 when out of memory.
+static int encode_job_init(encode_job *j, const edit *e, int early) {
+    *j = (encode_job){.world = e->world};
+    size_t n = 0;
+    for (size_t i = 0; i < e->count; i++)
+        n += e->snaps[i].early == early;
+    j->snaps = malloc((n ? n : 1) * sizeof *j->snaps);
+    j->at = malloc((n ? n : 1) * sizeof *j->at);
+    j->deltas = calloc(n ? n : 1, sizeof *j->deltas);
+    j->sizes = calloc(n ? n : 1, sizeof *j->sizes);
+    if (!j->snaps || !j->at || !j->deltas || !j->sizes) {
+        encode_job_free(j);
+        return -1;
+    }
+    for (size_t i = 0; i < e->count; i++)
+        if (e->snaps[i].early == early) j->snaps[j->count] = e->snaps[i], j->at[j->count++] = i;
+    return 0;
+}
+
+// Moves the job's deltas to their places in the step's.
+static void encode_job_take(encode_job *j, void **deltas, size_t *sizes) {
+    for (size_t k = 0; k < j->count; k++) {
+        deltas[j->at[k]] = j->deltas[k], sizes[j->at[k]] = j->sizes[k];
+        j->deltas[k] = NULL;
+    }
+}
 
 static int encode_task(void *user, int task, og_error *err) {
     encode_job *j = user;
-    snapshot *s = &j->e->snaps[task];
+    const snapshot *s = &j->snaps[task];
     tile_view v;
-    if (tile_cache_acquire(world_cache(j->e->world), s->key, &v, err) != 0) return -1;
+    if (tile_cache_acquire(world_cache(j->world), s->key, &v, err) != 0) return -1;
     int rc = history_delta_encode_part_quick((tile_layer)s->key.layer, s->before, v.data, s->part,
                                              &j->deltas[task], &j->sizes[task]);
-    tile_cache_release(world_cache(j->e->world), &v);
+    tile_cache_release(world_cache(j->world), &v);
     return rc != 0 ? og_error_set(err, "out of memory recording the undo step") : 0;
+}
+
+// The early job finished (its deltas dropped unless taken).
+static int early_finish(edit *e, og_error *err) {
+    if (!e->early_open) return 0;
+    int rc = parallel_finish(err);
+    e->early_open = 0;
+    return rc;
+}
+
+// Level-0 height tiles: once the layer take is done, nothing later in a commit writes
+// them (the mip levels are above them), a dab's two largest deltas (the composite's and
+// the active layer's). Up to a few tiles: a stamp's many keep the pool for its mips.
+enum { EARLY_MAX_TILES = 8 };
+
+void edit_record_start(edit *e) {
+    if (e->starting_state || e->early_open) return;
+    size_t n = 0;
+    for (size_t i = 0; i < e->count; i++)
+        n += tile_key_kind(e->snaps[i].key) == TILE_LAYER_COARSE && e->snaps[i].key.level == 0;
+    if (!n || n > EARLY_MAX_TILES) return;
+    for (size_t i = 0; i < e->count; i++)
+        e->snaps[i].early =
+            tile_key_kind(e->snaps[i].key) == TILE_LAYER_COARSE && e->snaps[i].key.level == 0;
+    if (encode_job_init(&e->early, e, 1) != 0) {
+        for (size_t i = 0; i < e->count; i++)
+            e->snaps[i].early = 0;
+        return;
+    }
+    e->early_open = 1;
+    parallel_start((int)e->early.count, encode_task, &e->early);
 }
 
 static void report_dropped(world *w, size_t dropped) {
@@ -356,10 +435,19 @@ int edit_record(edit *e, og_error *err) {
     history_step *step = history_step_new(e->label);
     void **deltas = calloc(e->count ? e->count : 1, sizeof *deltas);
     size_t *sizes = calloc(e->count ? e->count : 1, sizeof *sizes);
-    encode_job job = {e, deltas, sizes};
-    int failed = !step || !deltas || !sizes;
+    encode_job job = {0};
+    int failed = !step || !deltas || !sizes || encode_job_init(&job, e, 0) != 0;
     if (failed) og_error_set(err, "out of memory recording the undo step");
-    if (!failed) failed = parallel_run((int)e->count, encode_task, &job, err) != 0;
+    // The rest while the early job's level-0 tiles finish beside it.
+    if (!failed) failed = parallel_run((int)job.count, encode_task, &job, err) != 0;
+    og_error early_err;
+    if (early_finish(e, &early_err) != 0 && !failed) failed = 1, *err = early_err;
+    if (!failed) {
+        encode_job_take(&job, deltas, sizes);
+        encode_job_take(&e->early, deltas, sizes);
+    }
+    encode_job_free(&job);
+    encode_job_free(&e->early);
     for (size_t i = 0; i < e->count && !failed; i++)
         if (deltas[i] && history_step_add_delta(step, e->snaps[i].key, e->snaps[i].pristine,
                                                 deltas[i], sizes[i]) != 0)

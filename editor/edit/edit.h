@@ -69,6 +69,10 @@ void edit_publish_from(edit *e, size_t first);
 // (edit_commit in edit_commit.h first brings mips and PD maps up to date: use that).
 // On failure the world is restored to its state before the edit. Frees e either way.
 int edit_record(edit *e, og_error *err);
+// Starts encoding the deltas of the level-0 height tiles (a few at most) in the
+// editing pool, for edit_record to collect: edit_commit calls it after the layer take,
+// when nothing later writes them, and updates the mip levels meanwhile.
+void edit_record_start(edit *e);
 // Restores every touched tile and frees e.
 void edit_abort(edit *e);
 

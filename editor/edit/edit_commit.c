@@ -5,7 +5,12 @@
 #include "editor/edit/layer_composite.h"
 
 int edit_commit(edit *e, og_error *err) {
-    if (layer_take_edit(e, err) != 0 || edit_mips_update(e, err) != 0) {
+    if (layer_take_edit(e, err) != 0) {
+        edit_abort(e);
+        return -1;
+    }
+    edit_record_start(e); // the level-0 deltas, on the other core while the mips follow
+    if (edit_mips_update(e, err) != 0) {
         edit_abort(e);
         return -1;
     }

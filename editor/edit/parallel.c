@@ -86,17 +86,23 @@ int parallel_threads(void) {
     return pool.threads;
 }
 
-int parallel_run(int tasks, parallel_task_fn fn, void *user, og_error *err) {
-    if (tasks <= 0) return 0;
-    pthread_once(&pool.once, start_pool);
-    if (tasks == 1 || pool.threads == 1) {
-        int failed = 0;
-        for (int t = 0; t < tasks; t++) {
-            og_error e = {{0}};
-            if (fn(user, t, &e) != 0 && !failed++ && err) *err = e;
-        }
-        return failed ? -1 : 0;
+// A job parallel_start opened: the caller's own state (parallel_run and parallel_start
+// are called from one thread). Its failure goes to async_err, copied out at the finish.
+static struct {
+    int open;
+    og_error err;
+} async;
+
+static int run_here(int tasks, parallel_task_fn fn, void *user, og_error *err) {
+    int failed = 0;
+    for (int t = 0; t < tasks; t++) {
+        og_error e = {{0}};
+        if (fn(user, t, &e) != 0 && !failed++ && err) *err = e;
     }
+    return failed ? -1 : 0;
+}
+
+static void open_job(int tasks, parallel_task_fn fn, void *user, og_error *err) {
     pthread_mutex_lock(&pool.lock);
     pool.fn = fn;
     pool.user = user;
@@ -109,6 +115,10 @@ int parallel_run(int tasks, parallel_task_fn fn, void *user, og_error *err) {
     pool.generation++;
     pthread_cond_broadcast(&pool.start);
     pthread_mutex_unlock(&pool.lock);
+}
+
+// The caller takes the tasks left, then waits for the workers inside the job.
+static int close_job(void) {
     drain();
     // Every task is taken: wait only for the workers running one, not for those the
     // scheduler has yet to wake (on a busy machine that can take milliseconds).
@@ -120,4 +130,29 @@ int parallel_run(int tasks, parallel_task_fn fn, void *user, og_error *err) {
     pool.first = NULL;
     pthread_mutex_unlock(&pool.lock);
     return failed ? -1 : 0;
+}
+
+int parallel_run(int tasks, parallel_task_fn fn, void *user, og_error *err) {
+    if (tasks <= 0) return 0;
+    pthread_once(&pool.once, start_pool);
+    // With a started job open, the pool is its: this one runs on the caller alone.
+    if (tasks == 1 || pool.threads == 1 || async.open) return run_here(tasks, fn, user, err);
+    open_job(tasks, fn, user, err);
+    return close_job();
+}
+
+void parallel_start(int tasks, parallel_task_fn fn, void *user) {
+    pthread_once(&pool.once, start_pool);
+    async.err = (og_error){{0}};
+    if (tasks <= 0) return;
+    async.open = 1;
+    open_job(tasks, fn, user, &async.err);
+}
+
+int parallel_finish(og_error *err) {
+    if (!async.open) return 0;
+    int rc = close_job();
+    async.open = 0;
+    if (rc != 0 && err) *err = async.err;
+    return rc;
 }

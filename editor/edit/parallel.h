@@ -17,6 +17,14 @@ typedef int (*parallel_task_fn)(void *user, int task, og_error *err);
 // thread at a time (the editor's).
 int parallel_run(int tasks, parallel_task_fn fn, void *user, og_error *err);
 
+// parallel_run in two halves, so that the caller works on while the pool's workers take
+// the job's tasks: parallel_start opens the job and returns at once; parallel_finish
+// runs on the caller the tasks no worker took yet, waits for those running, and
+// returns as parallel_run does. Meanwhile parallel_run runs its tasks on the caller
+// alone, and nothing the tasks read may change. One started job at a time.
+void parallel_start(int tasks, parallel_task_fn fn, void *user);
+int parallel_finish(og_error *err);
+
 // Threads that parallel_run uses, caller included (the number of online CPUs).
 int parallel_threads(void);
 
