@@ -1073,7 +1073,10 @@ static int level_variant(const terrain_renderer *r, const camera *cam, const ren
                          const brush_cursor *cursor, int l) {
     int v = (s->tile_grid || s->level_grid || s->mask_terms ? TV_OVERLAYS : 0) |
             (s->contours > 0 ? TV_CONTOURS : 0);
-    if (r->detail_current && l <= 3) v |= TV_DETAIL; // as set_terrain_uniforms places it
+    // Detail where set_terrain_uniforms places it and the level comes within the distance
+    // it fades out by (beyond, the shader's fade is 0: the same colour without it).
+    if (r->detail_current && l <= 3 && level_nearest(r, cam, l) < s->detail_distance * 1.01 + 1.0)
+        v |= TV_DETAIL;
     if (volume_renderer_active(r->volume)) v |= TV_VOLUME;
     // Where the slopes come from, as set_terrain_uniforms says.
     float fine[4];
