@@ -65,17 +65,27 @@ float rule_term(vec4 r, float v) {
     return up * down;
 }
 
-// Rule i laid over c. terms says which of its terms are set (1 height, 2 slope, 4
-// curvature, 8 breakup): a constant in RULE_CALLS, so what a rule lacks is not computed.
-vec4 rule_over(vec4 c, inout bool bare, int i, int terms, float h, float slope, float curvature,
-               vec2 uv, vec4 far0, vec4 far1) {
-    int m = u_rule_material[i];
-    float v = m < 4 ? far0[m] : far1[m - 4];
+// Rule i's weight, and the material m it lays (v: m's far-scale variation). terms says
+// which of its terms are set (1 height, 2 slope, 4 curvature, 8 breakup): a constant in
+// RULE_CALLS, so what a rule lacks is not computed.
+float rule_weight(int i, int terms, float h, float slope, float curvature, vec4 far0, vec4 far1,
+                  out int m, out float v) {
+    m = u_rule_material[i];
+    v = m < 4 ? far0[m] : far1[m - 4];
     float w = 1.0;
     if ((terms & 1) != 0) w *= rule_term(u_rule_height[i], h);
     if ((terms & 2) != 0) w *= rule_term(u_rule_slope[i], slope);
     if ((terms & 4) != 0) w *= rule_term(u_rule_curvature[i], curvature);
     if ((terms & 8) != 0) w = clamp(w + u_rule_breakup[i] * (2.0 * v - 1.0), 0.0, 1.0);
+    return w;
+}
+
+// Rule i laid over c.
+vec4 rule_over(vec4 c, inout bool bare, int i, int terms, float h, float slope, float curvature,
+               vec2 uv, vec4 far0, vec4 far1) {
+    int m;
+    float v;
+    float w = rule_weight(i, terms, h, slope, curvature, far0, far1, m, v);
     vec4 a = albedo_varied(m, uv, v);
     // A first rule covering everything is the ground itself, with its texture's heights.
     vec4 over = bare && w >= 1.0 ? a : vec4(blend2(c, a, w), 0.5);

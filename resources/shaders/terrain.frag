@@ -16,6 +16,7 @@
 #include "lighting.glsl"
 #include "colour_ramp.glsl"
 #include "materials.glsl"
+#include "rules_sparse.glsl"
 #include "volume_mask.glsl"
 #include "detail_parallax.glsl"
 #include "grid_lines.glsl"
@@ -350,8 +351,13 @@ void main() {
     if (alpha > 0.0)
         curvature = mix(curvature, curvature_at(u_lvl_src_b[u_level], v_local, spacing), alpha);
 #endif
+#if defined(RESOLVE) && defined(RULE_CALLS)
+    vec3 auto_c = u_auto_materials != 0 ? automatic_sparse(h, slope, curvature, uv, far[0], far[1])
+                                        : vec3(0.45, 0.42, 0.38);
+#else
     vec3 auto_c = u_auto_materials != 0 ? automatic_varied(h, slope, curvature, uv, far[0], far[1])
                                         : vec3(0.45, 0.42, 0.38);
+#endif
     vec3 c = auto_c;
 #ifdef PAINTED
     {
