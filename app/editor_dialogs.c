@@ -216,8 +216,10 @@ void replace_dialog(editor_ui *e, ui_context *ui, cmd_context *ctx, ui_rect r) {
 
 void editor_ui_save_as(editor_ui *e, cmd_context *ctx) {
     const char *path = world_path(ctx->world);
-    // A planet never saved: seed 004's extension, so Open lists it with the planets.
-    if (!path[0] && world_get_params(ctx->world)->kind == WORLD_PLANET) path = "planet.planet";
+    // A world never saved: a name to start from (an empty field left a newcomer guessing
+    // the extension); a planet gets seed 004's, so Open lists it with the planets.
+    if (!path[0])
+        path = world_get_params(ctx->world)->kind == WORLD_PLANET ? "planet.planet" : "world.world";
     file_browser_show(&e->files, FILE_BROWSER_SAVE, path);
 }
 

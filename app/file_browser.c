@@ -119,8 +119,7 @@ int file_browser_draw(file_browser *b, ui_context *ui, ui_rect r) {
     int chosen = 0;
     ui_panel_begin(ui, titles[b->mode], r);
     float line = ui_em(ui, 1.4f);
-    ui_row(ui, 1, NULL, line);
-    ui_label(ui, intros[b->mode]);
+    ui_label_wrapped(ui, intros[b->mode], t->text); // never cut at a narrow dialog's edge
     float top[4] = {-0.2f, -0.2f, -0.3f, 0};
     ui_row(ui, 4, top, line);
     if (ui_button(ui, "Parent")) {
@@ -149,7 +148,7 @@ int file_browser_draw(file_browser *b, ui_context *ui, ui_rect r) {
     // The list: folders open on a click, files fill the path field.
     ui_row(ui, 1, NULL, line);
     ui_rect list = ui_next_cell(ui);
-    float list_h = r.h - 6.8f * line;
+    float list_h = r.y + r.h - list.y - 3.0f * line; // the rest, less the path and buttons
     list.h = list_h > line ? list_h : line;
     ui_panel_begin(ui, "Files", list);
     ui_row(ui, 1, NULL, ui_em(ui, 1.2f));

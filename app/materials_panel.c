@@ -173,7 +173,8 @@ void materials_panel(editor_ui *e, ui_context *ui, cmd_context *ctx) {
     ui_pop_scope(ui);
     if (*sel >= 0 && *sel < rules->count) {
         int n = *sel + 1;
-        ui_row(ui, 4, NULL, 0);
+        float by_label[4] = {-0.2f, -0.26f, -0.22f, 0}; // Delete whole at UI scale 1.5
+        ui_row(ui, 4, by_label, 0);
         if (ui_button(ui, "Up") && n < rules->count) {
             runf(e, ctx, "material_rule move %d up", n);
             *sel = n;

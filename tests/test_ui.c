@@ -2163,6 +2163,49 @@ static void test_tooltip_beside_the_dock(void **state) {
     drv_free(&d);
 }
 
+// A tooltip longer than the window (the materials panel's rule at UI scale 1.5 in a
+// 1024 x 640 window ran off its right edge): broken into rows, every glyph inside the
+// window, beside the dock or below the pointer alike.
+static const char long_tip[] =
+    "A rule: its material covers the ground where its terms hold (click to pick it and edit "
+    "it below; drag it up or down to change which rule wins where several hold, the last one "
+    "listed on top of the others, as layers in a painting program stack)";
+
+static void build_long_tooltips(drv *d) {
+    ui_row(d->ui, 1, (const float[]){200}, 0);
+    ui_button(d->ui, "Left");
+    ui_tooltip(d->ui, long_tip);
+    ui_panel_begin(d->ui, "Dock", (ui_rect){560, 0, 240, 300});
+    ui_row(d->ui, 1, NULL, 0);
+    ui_button(d->ui, "Rule");
+    ui_tooltip(d->ui, long_tip);
+    ui_panel_end(d->ui);
+}
+
+static void test_long_tooltip_wraps_inside_the_window(void **state) {
+    (void)state;
+    const char *names[] = {"Left", "Dock/Rule"};
+    for (int k = 0; k < 2; k++) {
+        drv d;
+        drv_init(&d, build_long_tooltips, NULL);
+        ui_rect r = rect_of(&d, names[k]);
+        d.in.time = 10.0;
+        move_to(&d, r.x + 20, r.y + r.h / 2);
+        d.in.time = 10.6;
+        frame(&d);
+        const ui_draw_cmd *last = &d.dl->cmds[d.dl->cmd_count - 1];
+        assert_true(last->index_count >= 6 * 100); // the whole text is drawn
+        float top = 1e9f, bottom = -1e9f;
+        for (uint32_t i = last->first_index; i < last->first_index + last->index_count; i++) {
+            const ui_vertex *v = &d.dl->vtx[d.dl->idx[i]];
+            assert_true(v->x >= 0 && v->x <= WIN_W && v->y >= 0 && v->y <= WIN_H);
+            top = fminf(top, v->y), bottom = fmaxf(bottom, v->y);
+        }
+        assert_true(bottom - top > 2.5f * ui_em(d.ui, 1.0f)); // several rows
+        drv_free(&d);
+    }
+}
+
 // ---- id identity: sections, conflicts -------------------------------------------------
 
 // A brush's Radius and a planet's Radius in one panel, under two sections (the Dock).
@@ -2573,6 +2616,7 @@ int main(void) {
         T(test_quick_click_on_a_list_over_a_button),
         T(test_tooltip),
         T(test_tooltip_beside_the_dock),
+        T(test_long_tooltip_wraps_inside_the_window),
     };
     return cmocka_run_group_tests(tests, load_font, free_font);
 }

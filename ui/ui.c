@@ -759,6 +759,30 @@ void ui_label_colored(ui_context *ui, const char *text, ui_color c) {
 
 static size_t next_char(const char *s, size_t n, size_t i);
 
+// The bytes of text's next row at most w wide: the longest run of whole words that fits,
+// at least one word; a word longer than a row (a path) is cut between characters.
+static size_t fitting_words(const ui_context *ui, const char *at, float w) {
+    size_t n = strlen(at), fit = 0, i = 0;
+    while (i < n) {
+        size_t next = i;
+        while (next < n && at[next] == ' ')
+            next++;
+        while (next < n && at[next] != ' ')
+            next++;
+        if (fit > 0 && text_width(ui, at, next) > w) break;
+        fit = i = next;
+    }
+    if (text_width(ui, at, fit) > w) {
+        size_t cut = ui_font_offset_at(ui->font, UI_FACE_SANS, at, fit, w);
+        while (cut > 0 && text_width(ui, at, cut) > w)
+            cut--;
+        while (cut > 0 && ((unsigned char)at[cut] & 0xC0) == 0x80)
+            cut--;
+        fit = cut > 0 ? cut : next_char(at, fit, 0);
+    }
+    return fit;
+}
+
 void ui_label_wrapped(ui_context *ui, const char *text, ui_color c) {
     if (c == ui->theme.text_error) record_message(ui, "", text, strlen(text));
     ui_rect all = {0, 0, 0, 0}; // its rows, for a tooltip on it (not on what came before)
@@ -767,24 +791,7 @@ void ui_label_wrapped(ui_context *ui, const char *text, ui_color c) {
     float w = l->body.w - ui_em(ui, 0.6f) - 1;    // text_in's padding
     const char *at = text;
     do {
-        size_t n = strlen(at), fit = 0, i = 0;
-        while (i < n) { // the longest run of whole words that fits (at least one word)
-            size_t next = i;
-            while (next < n && at[next] == ' ')
-                next++;
-            while (next < n && at[next] != ' ')
-                next++;
-            if (fit > 0 && text_width(ui, at, next) > w) break;
-            fit = i = next;
-        }
-        if (text_width(ui, at, fit) > w) { // one word longer than a row (a path): cut it
-            size_t cut = ui_font_offset_at(ui->font, UI_FACE_SANS, at, fit, w);
-            while (cut > 0 && text_width(ui, at, cut) > w)
-                cut--;
-            while (cut > 0 && ((unsigned char)at[cut] & 0xC0) == 0x80)
-                cut--;
-            fit = cut > 0 ? cut : next_char(at, fit, 0);
-        }
+        size_t fit = fitting_words(ui, at, w);
         ui_row(ui, 1, NULL, 0);
         ui_rect r = ui_next_cell(ui);
         text_in(ui, r, at, fit, c, 0);
@@ -1001,25 +1008,43 @@ int ui_last_hovered(const ui_context *ui) {
 
 // Below the pointer; for a widget in the right part of the window (the dock), left of
 // its panel, level with it, so it covers none of the panel's rows (at a large UI scale
-// the box below a layer's opacity hid the next layer's name).
+// the box below a layer's opacity hid the next layer's name). A long text is broken
+// between words into rows at most 32 em wide and never wider than the window (or than
+// the room left of the panel), so no tooltip runs past the window's edge.
 static void tooltip_box(ui_context *ui, const char *text, ui_rect anchor) {
     ui_draw_list *keep = ui->target;
     ui->target = &ui->overlay;
-    float pad = ui_em(ui, 0.3f), w = text_width(ui, text, strlen(text)) + 2 * pad,
-          h = ui_font_line_height(ui->font) + 2 * pad;
+    enum { MAX_ROWS = 12 };
+    float pad = ui_em(ui, 0.3f), line = ui_font_line_height(ui->font);
+    float left = ui->layout_depth > 0 ? fminf(anchor.x, ui->layouts[0].body.x) : anchor.x;
+    int beside = anchor.x > ui->width * 0.5f && left - pad > ui_em(ui, 12.0f);
+    float room = beside ? left - 3 * pad : ui->width - 2 * pad;
+    float wrap = fmaxf(fminf(ui_em(ui, 32.0f), room), ui_em(ui, 4.0f));
+    size_t start[MAX_ROWS], len[MAX_ROWS];
+    int rows = 0;
+    float widest = 0;
+    for (const char *at = text; *at && rows < MAX_ROWS; rows++) {
+        size_t fit = fitting_words(ui, at, wrap);
+        start[rows] = (size_t)(at - text), len[rows] = fit;
+        widest = fmaxf(widest, text_width(ui, at, fit));
+        at += fit;
+        while (*at == ' ')
+            at++;
+    }
+    float w = widest + 2 * pad, h = rows * line + 2 * pad;
     float x = fminf(ui->in.mouse_x + ui_em(ui, 0.8f), ui->width - w);
     float y = ui->in.mouse_y + ui_em(ui, 1.0f);
     if (y + h > ui->height) y = ui->in.mouse_y - h - pad;
-    float left = ui->layout_depth > 0 ? fminf(anchor.x, ui->layouts[0].body.x) : anchor.x;
-    if (anchor.x > ui->width * 0.5f && left - w - pad >= 0) { // left of the panel: clear of it
+    if (beside && left - w - pad >= 0) { // left of the panel: clear of it
         x = left - w - pad;
         y = fminf(fmaxf(anchor.y + (anchor.h - h) * 0.5f, 0), ui->height - h);
     }
     ui_rect r = {fmaxf(0, x), fmaxf(0, y), w, h};
     ui_draw_rect(ui->target, r, ui->theme.panel_alt);
     ui_draw_rect_outline(ui->target, r, ui->theme.border, 1);
-    ui_draw_text(ui->target, UI_FACE_SANS, r.x + pad, r.y + pad, text, strlen(text),
-                 ui->theme.text);
+    for (int i = 0; i < rows; i++)
+        ui_draw_text(ui->target, UI_FACE_SANS, r.x + pad, r.y + pad + i * line, text + start[i],
+                     len[i], ui->theme.text);
     ui->target = keep;
 }
 
