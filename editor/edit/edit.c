@@ -463,11 +463,9 @@ int edit_record(edit *e, og_error *err) {
         else if (history_step_add_dirty(step, e->dirty[i]) != 0)
             failed = og_error_set(err, "out of memory recording the undo step");
     }
-    if (!failed && e->has_params) {
-        step->has_params = 1;
-        step->params_before = e->params_before;
-        step->params_after = e->params_after;
-    }
+    if (!failed && e->has_params &&
+        history_step_set_params(step, &e->params_before, &e->params_after) != 0)
+        failed = og_error_set(err, "out of memory recording the undo step");
     if (failed) {
         for (size_t i = 0; i < e->count; i++)
             free(deltas ? deltas[i] : NULL);
@@ -543,7 +541,7 @@ static int replay_task(void *user, int task, og_error *err) {
 
 // Whether a step with parameters changed what the terrain is (else only its look).
 static int step_regenerates(const history_step *s) {
-    world_params a = s->params_before, b = s->params_after;
+    world_params a = s->params->before, b = s->params->after;
     a.material_rules = b.material_rules;
     char *ta = world_params_format(&a), *tb = world_params_format(&b);
     int differ = !ta || !tb || strcmp(ta, tb) != 0;
@@ -552,7 +550,7 @@ static int step_regenerates(const history_step *s) {
 }
 
 int edit_apply_step(world *w, const history_step *s, int undo, og_error *err) {
-    const world_params *to = undo ? &s->params_before : &s->params_after;
+    const world_params *to = !s->has_params ? NULL : undo ? &s->params->before : &s->params->after;
     if (s->has_params && step_regenerates(s) && world_regenerate(w, to, err) != 0) return -1;
     if (s->has_params) world_set_material_rules(w, &to->material_rules);
     replay_job job = {w, s, undo};
@@ -586,11 +584,13 @@ int edit_redo(world *w, og_error *err) {
 
 int edit_material_rules(world *w, const material_rules *rules, const char *label, og_error *err) {
     history_step *s = history_step_new(label);
-    if (!s) return og_error_set(err, "out of memory recording the undo step");
-    s->has_params = 1;
-    s->params_before = *world_get_params(w);
+    world_params before = *world_get_params(w);
+    if (!s || history_step_set_params(s, &before, &before) != 0) {
+        history_step_free(s);
+        return og_error_set(err, "out of memory recording the undo step");
+    }
     world_set_material_rules(w, rules);
-    s->params_after = *world_get_params(w);
+    s->params->after = *world_get_params(w);
     report_dropped(w, history_push(world_history(w), s));
     world_journal_record(w, RECOVERY_STEP, s);
     world_publish(w, &(world_event){.kind = WORLD_EVENT_HISTORY});
@@ -626,10 +626,10 @@ int edit_generate(world *w, const world_params *wanted, og_error *err) {
     if (edit_generate_check(w, params, err) != 0) return -1;
     if (world_regenerate(w, params, err) != 0) return -1;
     history_step *s = history_step_new("generate");
-    if (!s) return og_error_set(err, "out of memory recording the undo step");
-    s->has_params = 1;
-    s->params_before = before;
-    s->params_after = *world_get_params(w);
+    if (!s || history_step_set_params(s, &before, world_get_params(w)) != 0) {
+        history_step_free(s);
+        return og_error_set(err, "out of memory recording the undo step");
+    }
     report_dropped(w, history_push(world_history(w), s));
     world_journal_record(w, RECOVERY_STEP, s);
     world_publish(w, &(world_event){.kind = WORLD_EVENT_HISTORY});

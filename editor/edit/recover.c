@@ -39,9 +39,9 @@ static void as_own_step(history_step *s, recovery_kind kind) {
     for (size_t i = 0; i < s->tile_count; i++)
         s->tiles[i].was_pristine = 0;
     if (kind == RECOVERY_UNDO && s->has_params) { // forwards, it goes to the old parameters
-        world_params p = s->params_before;
-        s->params_before = s->params_after;
-        s->params_after = p;
+        world_params p = s->params->before;
+        s->params->before = s->params->after;
+        s->params->after = p;
     }
 }
 

@@ -51,9 +51,22 @@ history_step *history_step_new(const char *label) {
     return s;
 }
 
+int history_step_set_params(history_step *s, const world_params *before,
+                            const world_params *after) {
+    if (!s->params) {
+        if (!(s->params = malloc(sizeof *s->params))) return -1;
+        s->bytes += sizeof *s->params;
+    }
+    s->params->before = *before;
+    s->params->after = *after;
+    s->has_params = 1;
+    return 0;
+}
+
 void history_step_free(history_step *s) {
     if (!s) return;
     squeeze_cancel(s);
+    free(s->params);
     for (size_t i = 0; i < s->tile_count; i++)
         free(s->tiles[i].delta);
     free(s->tiles);

@@ -22,13 +22,19 @@ typedef struct history_tile {
     void *delta;
 } history_tile;
 
+// Apart from the step (14 KB each): a fresh zeroed 28 KB per step, most of it never
+// used, cost a brush dab's commit a few page faults.
+typedef struct history_params {
+    world_params before, after;
+} history_params;
+
 typedef struct history_step {
     uint64_t id;
     char label[128];
     history_tile *tiles;
     size_t tile_count;
-    int has_params; // a `generate`: the world's parameters before and after
-    world_params params_before, params_after;
+    int has_params; // a `generate`: the world's parameters before and after, in params
+    history_params *params;
     dirty_rect *dirty;
     size_t dirty_count;
     size_t raw_bytes; // bytes of the tiles it covers, uncompressed (for reports)
@@ -43,6 +49,8 @@ void history_destroy(history *h);
 // A new empty step (owned by the caller until pushed).
 history_step *history_step_new(const char *label);
 void history_step_free(history_step *s);
+// Gives the step parameters (has_params); -1 when out of memory.
+int history_step_set_params(history_step *s, const world_params *before, const world_params *after);
 // The compressed XOR of before and after (tile_layer_bytes(layer) each): *delta is
 // malloc'd, or NULL when the tile did not change. Returns -1 when out of memory.
 // Thread-safe (pure).

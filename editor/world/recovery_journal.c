@@ -345,8 +345,8 @@ int recovery_journal_append(recovery_journal *j, recovery_kind kind, const histo
     }
     put_u8(m, (uint8_t)(s->has_params != 0));
     if (s->has_params) {
-        put_params(m, &s->params_before);
-        put_params(m, &s->params_after);
+        put_params(m, &s->params->before);
+        put_params(m, &s->params->after);
     }
     close_meta(&r);
     int rc = 0;
@@ -463,10 +463,12 @@ static history_step *decode_step(cursor *c, recovery_kind *kind, uint64_t *sessi
         d.rect.z1 = (int64_t)get_le(c, 8);
         if (!c->bad && history_step_add_dirty(s, d) != 0) c->bad = 1;
     }
-    s->has_params = (int)get_le(c, 1);
-    if (s->has_params && !c->bad &&
-        (get_params(c, &s->params_before) != 0 || get_params(c, &s->params_after) != 0))
-        c->bad = 1;
+    if (get_le(c, 1) && !c->bad) {
+        world_params before, after;
+        if (get_params(c, &before) != 0 || get_params(c, &after) != 0 ||
+            history_step_set_params(s, &before, &after) != 0)
+            c->bad = 1;
+    }
     if (c->bad || c->left) { // a record is exactly its fields
         history_step_free(s);
         return NULL;
