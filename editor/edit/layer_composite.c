@@ -111,13 +111,23 @@ AVX2_CLONE static void take_row_add_top(float *val, const float *below, const fl
     if (!any) return;
     take_misses *t = misses;
     if (t->count > TAKE_MISSES - n) take_misses_solve(t);
-    // Gathered without branches (misses come in no order a branch predicts): every
-    // sample is written, only a miss moves the count on.
-    int m = t->count;
-    for (int x = 0; x < n; x++) {
-        t->below[m] = below[x], t->value[m] = val[x], t->target[m] = now[x], t->at[m] = &val[x];
-        m += miss[x];
+    // Gathered from the miss flags 8 at a time, a flag's lowest set bit after another:
+    // a loop over every sample (branch-free) spent most of its time on loads of values
+    // the loop above had just stored, 32 bytes at a time.
+    int m = t->count, x = 0;
+    for (; x + 8 <= n; x += 8) {
+        uint64_t flags;
+        memcpy(&flags, miss + x, sizeof flags);
+        for (; flags; flags &= flags - 1) {
+            int k = x + __builtin_ctzll(flags) / 8;
+            t->below[m] = below[k], t->value[m] = val[k], t->target[m] = now[k];
+            t->at[m++] = &val[k];
+        }
     }
+    for (; x < n; x++)
+        if (miss[x])
+            t->below[m] = below[x], t->value[m] = val[x], t->target[m] = now[x],
+            t->at[m++] = &val[x];
     t->count = m;
 }
 
