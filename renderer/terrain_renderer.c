@@ -61,7 +61,9 @@ enum {
     TV_SLOPES_B = 4096,  // the same for the coarser level it morphs into
     TV_VOLUME = 8192,    // volume meshes replace the ground somewhere
     TV_REFINED = 16384,  // parts drawn at twice the density (renderer/clip_refine.h)
-    TERRAIN_VARIANTS = 32768
+    TV_INSIDE = 32768,   // every part drawn lies inside the world: no bounds test (which
+                         // keeps llvmpipe from testing depth before the fragment shader)
+    TERRAIN_VARIANTS = 65536
 };
 #define GBUFFER_UNIT 10 // the texture unit the resolve passes read the G-buffer from
 #define REFINE_UNIT 11  // the refined parts' vertex weights (renderer/clip_refine.h)
@@ -284,9 +286,10 @@ static GLuint terrain_program(terrain_renderer *r, int variant, const char *call
         if (!p->prog ? !slot || slot->prog : !slot || (slot->prog && p->used < slot->used))
             slot = p; // an empty slot, else the least recently used
     }
-    static const char *const names[] = {"SHADED",    "DETAIL",   "PAINTED",  "BRUSH",   "OVERLAYS",
-                                        "CONTOURS",  "MINIFIED", "NO_MORPH", "GBUFFER", "RESOLVE",
-                                        "CURVATURE", "SLOPES_A", "SLOPES_B", "VOLUME",  "REFINED"};
+    static const char *const names[] = {"SHADED",   "DETAIL",   "PAINTED",   "BRUSH",
+                                        "OVERLAYS", "CONTOURS", "MINIFIED",  "NO_MORPH",
+                                        "GBUFFER",  "RESOLVE",  "CURVATURE", "SLOPES_A",
+                                        "SLOPES_B", "VOLUME",   "REFINED",   "INSIDE"};
     char defines[512 + sizeof slot->calls] = "";
     size_t n = 0;
     for (int b = 0; b < (int)(sizeof names / sizeof *names); b++)
@@ -1336,6 +1339,7 @@ static int draw_terrain(terrain_renderer *r, const camera *cam, const render_set
                               clip_window_current(&r->slopes.windows[l], r->slopes.want[l]);
         if (refinable) clip_refine_map_begin(&r->refine_map, l, m - 1, 3 * m - 1);
         int n[4] = {0, 0, 0, 0}; // [refined * 2 + still]: still parts never morph
+        int inside = 1;          // no part drawn reaches the world's edge (a unit's margin)
         int rect[2][4] = {{r->width, r->height, 0, 0}, {r->width, r->height, 0, 0}};
         for (int o = 0; o < candidates; o++) {
             const int i = order[o].piece;
@@ -1380,6 +1384,9 @@ static int draw_terrain(terrain_renderer *r, const camera *cam, const render_set
             }
             int g = refined * 2 + still;
             if (n[g] == PIECES_MAX) continue;
+            if (!(pc->x0 > lo[0] + 1 && pc->x1 < hi[0] - 1 && pc->z0 > lo[1] + 1 &&
+                  pc->z1 < hi[1] - 1))
+                inside = 0;
             uint32_t first = refined ? r->refine_mesh.first[i] : pc->first;
             uint32_t count = refined ? r->refine_mesh.count[i] : pc->count;
             counts[g][n[g]] = (GLsizei)count;
@@ -1390,7 +1397,7 @@ static int draw_terrain(terrain_renderer *r, const camera *cam, const render_set
         }
         if (n[0] + n[1] + n[2] + n[3] == 0) continue;
         if (n[2] + n[3] > 0) clip_refine_map_upload(&r->refine_map, l);
-        int base = level_variant(r, cam, s, cursor, l);
+        int base = level_variant(r, cam, s, cursor, l) | (inside ? TV_INSIDE : 0);
         char calls[sizeof r->progs[0].calls];
         material_rule_calls(&r->rules, level_rules_live(r, &r->rules, l), calls, sizeof calls);
         for (int still = 0; still < 2; still++) {
@@ -1410,12 +1417,12 @@ static int draw_terrain(terrain_renderer *r, const camera *cam, const render_set
                             p->rect[2 + i] > rect[1][2 + i] ? p->rect[2 + i] : rect[1][2 + i];
                 } else {
                     pass_count++;
-                    p->level = l, p->still = still, p->variant = v | TV_RESOLVE;
+                    p->level = l, p->still = still, p->variant = (v & ~TV_INSIDE) | TV_RESOLVE;
                     p->stencil_mask = 0xFF;
                     memcpy(p->rect, rect[still], sizeof p->rect);
                     snprintf(p->calls, sizeof p->calls, "%s", calls);
                 }
-                v = TV_GBUFFER | (v & (TV_NO_MORPH | TV_VOLUME));
+                v = TV_GBUFFER | (v & (TV_NO_MORPH | TV_VOLUME | TV_INSIDE));
                 glStencilFunc(GL_ALWAYS, deferred_target_stencil(l, still), 0xFF);
             }
             for (int refined = 0; refined < 2; refined++) {

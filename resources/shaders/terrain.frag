@@ -247,9 +247,11 @@ void main() {
     ground_at_pixel(px, v_rel);
     v_local = (v_rel.xz - off.xy) / off.z;
 #else
+#ifndef INSIDE
     vec4 bounds = u_lvl_bounds[u_level];
     if (v_local.x < bounds.x || v_local.y < bounds.y || v_local.x > bounds.z || v_local.y > bounds.w)
         discard; // outside a bounded world
+#endif
 #ifdef VOLUME
     if (replaced_by_volume(v_rel)) discard; // the volume mesh draws the ground here
 #endif
