@@ -1,95 +1,223 @@
 #include "editor/tools/box_columns.h"
 
-// Row by row across all columns (box_blur.c's sweep), every step loads and stores each
-// column's two sums and its ring entry, with conversions through extracts and inserts.
-// A strip of 16 columns swept from top to bottom keeps both sums in registers and its
-// ring in a few kilobytes; each column's operations and their order are unchanged.
-// Not under ThreadSanitizer or other compilers (as HOT_LOOP): the caller's sweep runs.
+// A strip of up to 16 columns swept from top to bottom, both boxes' sums in registers
+// and the first box's results in a ring of a few kilobytes: per row and column an
+// add, a subtract and a multiply for each box (the double sums exact over any start
+// that this replaced took five times the instructions, conversions included).
+
+int64_t box_columns_anchor(int64_t y0, int k) {
+    int64_t m = 2 * k + 1;
+    return 2 * k + (y0 - 2 * k) / m * m;
+}
+
+// Lanes [0, n) of a strip at column x; the order of every column's operations is the
+// one the AVX-512 strip below keeps.
+static void strip_plain(const float *const *rows, float *const *out, int k, float *ring, int64_t x,
+                        int n, int64_t y0, int64_t y1) {
+    const int64_t m = 2 * k + 1, slots = 2 * k + 2;
+    const float inv = (float)(1.0 / m);
+    float a1[16], d1[16], a2[16], d2[16];
+    int64_t j0 = box_columns_anchor(y0, k), i0 = j0 - k;
+    for (int64_t i = i0; i < y1 + k; i++) {
+        float *b = ring + (i % slots) * 16;
+        if ((i - k) % m == 0) { // the first box's rows [i - k, i + k]
+            float p[4][16] = {{0}};
+            for (int64_t r = 0; r <= 2 * k; r++)
+                for (int l = 0; l < n; l++)
+                    p[r & 3][l] = p[r & 3][l] + rows[i - k + r][x + l];
+            for (int l = 0; l < n; l++)
+                a1[l] = (p[0][l] + p[1][l]) + (p[2][l] + p[3][l]), d1[l] = 0.0f;
+        } else {
+            for (int l = 0; l < n; l++)
+                d1[l] = d1[l] + (rows[i + k][x + l] - rows[i - k - 1][x + l]);
+        }
+        for (int l = 0; l < n; l++)
+            b[l] = (a1[l] + d1[l]) * inv;
+        int64_t j = i - k; // the second box's row whose last first-box row is i
+        if (j < j0) continue;
+        if ((j - 2 * k) % m == 0) { // the first box's rows [j - k, j + k]
+            float p[4][16] = {{0}};
+            for (int64_t r = 0; r <= 2 * k; r++)
+                for (int l = 0; l < n; l++)
+                    p[r & 3][l] = p[r & 3][l] + ring[((j - k + r) % slots) * 16 + l];
+            for (int l = 0; l < n; l++)
+                a2[l] = (p[0][l] + p[1][l]) + (p[2][l] + p[3][l]), d2[l] = 0.0f;
+        } else {
+            const float *old = ring + ((j - k - 1) % slots) * 16;
+            for (int l = 0; l < n; l++)
+                d2[l] = d2[l] + (b[l] - old[l]);
+        }
+        for (int l = 0; l < n; l++)
+            out[j][x + l] = (a2[l] + d2[l]) * inv;
+    }
+}
+
+void box_columns_plain(const float *const *rows, float *const *out, int k, float *ring, int64_t c0,
+                       int64_t c1, int64_t y0, int64_t y1) {
+    if (y0 >= y1) return;
+    for (int64_t x = c0; x < c1; x += 16)
+        strip_plain(rows, out, k, ring, x, c1 - x < 16 ? (int)(c1 - x) : 16, y0, y1);
+}
+
+// Not under ThreadSanitizer or other compilers (as HOT_LOOP): the plain loop runs.
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_THREAD__)
 #include <immintrin.h>
 
 #define WIDE __attribute__((target("avx512f")))
 
-// The 16 floats of row at x (lanes past the mask read as 0) as two vectors of doubles.
-WIDE static inline void load16(const float *row, __mmask16 m, __m512d *lo, __m512d *hi) {
-    __m512 v = _mm512_maskz_loadu_ps(m, row);
-    *lo = _mm512_cvtps_pd(_mm512_castps512_ps256(v));
-    *hi = _mm512_cvtps_pd(_mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(v), 1)));
-}
+#define INLINE __attribute__((target("avx512f"), always_inline)) static inline
 
-// (double)(float)v: the first box's row as box_blur.c keeps it.
-WIDE static inline __m512d to_float(__m512d v) {
-    return _mm512_cvtps_pd(_mm512_cvtpd_ps(v));
-}
-
-// Rows [y0, y1) of the source (rows[y] + x: row y at column x) as rows 0.. below.
-WIDE static void strip(const float *const *rows, float *out, int64_t w, int k, double *ring,
-                       int64_t x, __mmask16 m, int64_t y0, int64_t y1) {
-    const float *const *src = rows + y0;
-    const int64_t h = y1 - y0;
-    out += y0 * w;
-    const __m512d inv = _mm512_set1_pd(1.0 / (2 * k + 1)), zero = _mm512_setzero_pd();
-    const int64_t slots = 2 * k + 2;
-    // The first box's sum of rows [0, 2k] (0.0 plus each row in turn), the second's 0.
-    __m512d s1lo = zero, s1hi = zero, s2lo = zero, s2hi = zero;
-    for (int64_t i = 0; i <= 2 * k; i++) {
-        __m512d lo, hi;
-        load16(src[i] + x, m, &lo, &hi);
-        s1lo = _mm512_add_pd(s1lo, lo), s1hi = _mm512_add_pd(s1hi, hi);
+// The first box's step for one strip (mask m, columns from x) at row i: its sum is
+// a1 + d1; mean gets its result.
+INLINE void first_box(const float *const *rows, int64_t i, int k, int anchor, int64_t x,
+                      __mmask16 m, __m512 inv, __m512 *a1, __m512 *d1, __m512 *mean) {
+    if (anchor) { // rows [i - k, i + k] in four interleaved sums
+        const float *const *v = rows + i - k;
+        __m512 p0 = _mm512_setzero_ps(), p1 = p0, p2 = p0, p3 = p0;
+        int64_t r = 0;
+        for (; r + 3 <= 2 * k; r += 4) {
+            p0 = _mm512_add_ps(p0, _mm512_maskz_loadu_ps(m, v[r] + x));
+            p1 = _mm512_add_ps(p1, _mm512_maskz_loadu_ps(m, v[r + 1] + x));
+            p2 = _mm512_add_ps(p2, _mm512_maskz_loadu_ps(m, v[r + 2] + x));
+            p3 = _mm512_add_ps(p3, _mm512_maskz_loadu_ps(m, v[r + 3] + x));
+        }
+        p0 = _mm512_add_ps(p0, _mm512_maskz_loadu_ps(m, v[r] + x)); // 2k + 1 = 4q + 1 or 4q + 3
+        if (r + 2 <= 2 * k) {
+            p1 = _mm512_add_ps(p1, _mm512_maskz_loadu_ps(m, v[r + 1] + x));
+            p2 = _mm512_add_ps(p2, _mm512_maskz_loadu_ps(m, v[r + 2] + x));
+        }
+        *a1 = _mm512_add_ps(_mm512_add_ps(p0, p1), _mm512_add_ps(p2, p3));
+        *d1 = _mm512_setzero_ps();
+    } else {
+        __m512 in = _mm512_maskz_loadu_ps(m, rows[i + k] + x);
+        __m512 gone = _mm512_maskz_loadu_ps(m, rows[i - k - 1] + x);
+        *d1 = _mm512_add_ps(*d1, _mm512_sub_ps(in, gone));
     }
-    // The ring slot of the first box's row i (i mod slots), counted on.
-    for (int64_t i = k, at = k % slots; i < h - k; i++, at = at + 1 == slots ? 0 : at + 1) {
-        __m512d mlo = to_float(_mm512_mul_pd(s1lo, inv)), mhi = to_float(_mm512_mul_pd(s1hi, inv));
-        double *slot = ring + at * 16;
-        _mm512_storeu_pd(slot, mlo);
-        _mm512_storeu_pd(slot + 8, mhi);
-        __m512d olo = zero, ohi = zero; // nothing dropped while the first 2k + 1 rows come
-        if (i - k > 2 * k) {            // row i - 2k - 1: the slot after this one
-            const double *old = ring + (at + 1 == slots ? 0 : at + 1) * 16;
-            olo = _mm512_loadu_pd(old), ohi = _mm512_loadu_pd(old + 8);
+    *mean = _mm512_mul_ps(_mm512_add_ps(*a1, *d1), inv);
+}
+
+// The second box's step for one strip at row j (its last first-box row just made:
+// mean; ring + q: its slot of row j - k - 1, the slots after it rows j - k ..).
+INLINE __m512 second_box(const float *ring, int64_t q, int64_t slots, int k, int anchor,
+                         __m512 mean, __m512 inv, __m512 *a2, __m512 *d2) {
+    if (anchor) { // the first box's rows [j - k, j + k]: the slots after q
+        // the slots of rows j - k + r, r = 0 .. 2k: q + 1 + r, wrapping once
+        const float *v[4];
+        __m512 p0 = _mm512_setzero_ps(), p1 = p0, p2 = p0, p3 = p0;
+        int64_t r = 0;
+#define SLOT(r) (ring + (q + 1 + (r) < slots ? q + 1 + (r) : q + 1 + (r)-slots) * 32)
+        for (; r + 3 <= 2 * k; r += 4) {
+            v[0] = SLOT(r), v[1] = SLOT(r + 1), v[2] = SLOT(r + 2), v[3] = SLOT(r + 3);
+            p0 = _mm512_add_ps(p0, _mm512_loadu_ps(v[0]));
+            p1 = _mm512_add_ps(p1, _mm512_loadu_ps(v[1]));
+            p2 = _mm512_add_ps(p2, _mm512_loadu_ps(v[2]));
+            p3 = _mm512_add_ps(p3, _mm512_loadu_ps(v[3]));
         }
-        s2lo = _mm512_add_pd(s2lo, _mm512_sub_pd(mlo, olo));
-        s2hi = _mm512_add_pd(s2hi, _mm512_sub_pd(mhi, ohi));
-        if (i >= 3 * k) {
-            __m256 lo = _mm512_cvtpd_ps(_mm512_mul_pd(s2lo, inv));
-            __m256 hi = _mm512_cvtpd_ps(_mm512_mul_pd(s2hi, inv));
-            __m512 row = _mm512_castpd_ps(_mm512_insertf64x4(
-                _mm512_castpd256_pd512(_mm256_castps_pd(lo)), _mm256_castps_pd(hi), 1));
-            _mm512_mask_storeu_ps(out + (i - k) * w + x, m, row);
+        p0 = _mm512_add_ps(p0, _mm512_loadu_ps(SLOT(r)));
+        if (r + 2 <= 2 * k) {
+            p1 = _mm512_add_ps(p1, _mm512_loadu_ps(SLOT(r + 1)));
+            p2 = _mm512_add_ps(p2, _mm512_loadu_ps(SLOT(r + 2)));
         }
-        // The sum of rows [i - k, i + k] moves on a row (after the last: a - a).
-        const float *r = src[i - k] + x, *a = i + 1 < h - k ? src[i + k + 1] + x : r;
-        __m512d alo, ahi, rlo, rhi;
-        load16(a, m, &alo, &ahi);
-        load16(r, m, &rlo, &rhi);
-        s1lo = _mm512_add_pd(s1lo, _mm512_sub_pd(alo, rlo));
-        s1hi = _mm512_add_pd(s1hi, _mm512_sub_pd(ahi, rhi));
+#undef SLOT
+        *a2 = _mm512_add_ps(_mm512_add_ps(p0, p1), _mm512_add_ps(p2, p3));
+        *d2 = _mm512_setzero_ps();
+    } else {
+        *d2 = _mm512_add_ps(*d2, _mm512_sub_ps(mean, _mm512_loadu_ps(ring + q * 32)));
+    }
+    return _mm512_mul_ps(_mm512_add_ps(*a2, *d2), inv);
+}
+
+// The state of a sweep of two strips side by side.
+typedef struct sweep {
+    const float *const *rows;
+    float *const *out;
+    float *ring;
+    int64_t x, slots;
+    int k;
+    __mmask16 lo, hi;
+    __m512 inv, a1l, d1l, a2l, d2l, a1h, d1h, a2h, d2h;
+} sweep;
+
+// One step at row i (ring slot at): the first box's row i; with second, the second
+// box's row i - k. anchor1, anchor2: that box starts afresh here. Constants where
+// inlined, so the steady steps run without branches.
+INLINE void step(sweep *s, int64_t i, int64_t at, int anchor1, int second, int anchor2) {
+    float *b = s->ring + at * 32;
+    int64_t next = at + 1 == s->slots ? 0 : at + 1;
+    __m512 ml, mh;
+    first_box(s->rows, i, s->k, anchor1, s->x, s->lo, s->inv, &s->a1l, &s->d1l, &ml);
+    first_box(s->rows, i, s->k, anchor1, s->x + 16, s->hi, s->inv, &s->a1h, &s->d1h, &mh);
+    _mm512_storeu_ps(b, ml);
+    _mm512_storeu_ps(b + 16, mh);
+    if (!second) return;
+    __m512 ol = second_box(s->ring, next, s->slots, s->k, anchor2, ml, s->inv, &s->a2l, &s->d2l);
+    __m512 oh =
+        second_box(s->ring + 16, next, s->slots, s->k, anchor2, mh, s->inv, &s->a2h, &s->d2h);
+    float *o = s->out[i - s->k] + s->x;
+    _mm512_mask_storeu_ps(o, s->lo, ol);
+    _mm512_mask_storeu_ps(o + 16, s->hi, oh);
+}
+
+// Two strips side by side (columns [x, x + 16) by mask lo, [x + 16, x + 32) by mask hi;
+// an empty mask reads and writes nothing): their sums' additions, each 4 cycles long,
+// overlap. The anchors come in blocks of 2k + 1 steps of i: the first box's at the
+// first step, the second box's at the last (j - 2k = i - 3k, a multiple of 2k + 1);
+// the first block makes the first box's rows the second's first anchor takes.
+WIDE static void strips_wide(const float *const *rows, float *const *out, int k, float *ring,
+                             int64_t x, __mmask16 lo, __mmask16 hi, int64_t y0, int64_t y1) {
+    const int64_t m = 2 * k + 1, slots = 2 * k + 2;
+    const __m512 zero = _mm512_setzero_ps();
+    sweep s = {rows, out,  ring, x,    slots, k,    lo,   hi,  _mm512_set1_ps((float)(1.0 / m)),
+               zero, zero, zero, zero, zero,  zero, zero, zero};
+    int64_t i0 = box_columns_anchor(y0, k) - k, end = y1 + k, at = i0 % slots;
+    for (int64_t i = i0; i < end;) {
+        int64_t last = i + m - 1; // the block's last step
+        int second = i > i0;
+        if (second)
+            step(&s, i, at, 1, 1, 0);
+        else
+            step(&s, i, at, 1, 0, 0);
+        i++, at = at + 1 == slots ? 0 : at + 1;
+        if (second)
+            for (; i < last && i < end; i++, at = at + 1 == slots ? 0 : at + 1)
+                step(&s, i, at, 0, 1, 0);
+        else
+            for (; i < last && i < end; i++, at = at + 1 == slots ? 0 : at + 1)
+                step(&s, i, at, 0, 0, 0);
+        if (i < end) {
+            step(&s, i, at, 0, 1, 1);
+            i++, at = at + 1 == slots ? 0 : at + 1;
+        }
     }
 }
 
 int box_columns_have_wide(void) {
-    return __builtin_cpu_supports("avx512f");
+    return __builtin_cpu_supports("avx512f") != 0;
 }
 
-int box_columns_wide(const float *const *rows, float *out, int64_t w, int k, double *ring,
-                     int64_t c0, int64_t c1, int64_t y0, int64_t y1) {
-    if (!box_columns_have_wide()) return -1;
-    if (y1 - y0 <= 4 * k) return 0; // no result row
-    for (int64_t x = c0; x < c1; x += 16) {
-        int64_t left = c1 - x;
-        strip(rows, out, w, k, ring, x,
-              left >= 16 ? (__mmask16)0xffff : (__mmask16)((1u << left) - 1u), y0, y1);
+void box_columns(const float *const *rows, float *const *out, int k, float *ring, int64_t c0,
+                 int64_t c1, int64_t y0, int64_t y1) {
+    if (!box_columns_have_wide()) {
+        box_columns_plain(rows, out, k, ring, c0, c1, y0, y1);
+        return;
     }
-    return 0;
+    if (y0 >= y1) return;
+    for (int64_t x = c0; x < c1; x += 32) {
+        int64_t left = c1 - x, right = left - 16;
+        __mmask16 lo = left >= 16 ? (__mmask16)0xffff : (__mmask16)((1u << left) - 1u);
+        __mmask16 hi = right >= 16 ? (__mmask16)0xffff
+                       : right > 0 ? (__mmask16)((1u << right) - 1u)
+                                   : (__mmask16)0;
+        strips_wide(rows, out, k, ring, x, lo, hi, y0, y1);
+    }
 }
 #else
 int box_columns_have_wide(void) {
     return 0;
 }
 
-int box_columns_wide(const float *const *rows, float *out, int64_t w, int k, double *ring,
-                     int64_t c0, int64_t c1, int64_t y0, int64_t y1) {
-    (void)rows, (void)out, (void)w, (void)k, (void)ring, (void)c0, (void)c1, (void)y0, (void)y1;
-    return -1;
+void box_columns(const float *const *rows, float *const *out, int k, float *ring, int64_t c0,
+                 int64_t c1, int64_t y0, int64_t y1) {
+    box_columns_plain(rows, out, k, ring, c0, c1, y0, y1);
 }
 #endif

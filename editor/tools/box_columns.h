@@ -3,17 +3,29 @@
 
 #include <stdint.h>
 
-// box_blur.c's two box means down the columns (radius k >= 1) on AVX-512 registers, a
-// strip of 16 columns at a time from the top row to the bottom: the source's rows
-// [y0, y1) (rows[y] + x: row y at column x; only columns [c0, c1) are read), results
-// for columns [c0, c1) and rows [y0 + 2k, y1 - 2k) into out (w floats a row, row y
-// at out + y w); nothing else is written there. Each column's additions are those of
-// box_blur.c's sweep row by row, in the same order (in double: the same bits).
-// ring: (2k + 2) x 16 doubles. Returns 0, or -1 when this processor lacks AVX-512
-// (nothing written: the caller runs its own sweep).
-int box_columns_wide(const float *const *rows, float *out, int64_t w, int k, double *ring,
-                     int64_t c0, int64_t c1, int64_t y0, int64_t y1);
-// Whether box_columns_wide runs here.
+// Two box means of radius k >= 1 down the columns [c0, c1) of an area, in float with
+// running sums re-anchored every 2k + 1 rows: the first box's sum of rows [i - k, i + k]
+// is, at the anchors (i - k a multiple of 2k + 1), those rows added in order; between
+// them the anchor's sum plus the changes since (each the row entering minus the row
+// leaving, added up on their own: small where the ground is smooth, so the running
+// part rounds far less than a sum of whole heights). The second box the same over the
+// first's results (anchors where j - 2k is a multiple of 2k + 1). So a result depends
+// on the rows and k alone, not on which rows were asked for: the strips a disc needs
+// and the whole area give the same bits. Each mean is the sum times (float)(1 / (2k + 1)).
+//
+// rows[y] + x: the area's row y at column x (only columns [c0, c1) are read). Results
+// for rows [y0, y1) (2k <= y0 < y1 <= h - 2k) go to out[y] + x; rows from the anchor
+// at or above y0 may be written too, nothing else. Rows from that anchor's - 2k to
+// y1 + 2k are read. ring: (2k + 2) x 32 floats.
+// Every path (AVX-512 here, the plain C loop elsewhere) gives the same bits.
+void box_columns(const float *const *rows, float *const *out, int k, float *ring, int64_t c0,
+                 int64_t c1, int64_t y0, int64_t y1);
+// The plain C loop alone (for tests: the same bits as box_columns).
+void box_columns_plain(const float *const *rows, float *const *out, int k, float *ring, int64_t c0,
+                       int64_t c1, int64_t y0, int64_t y1);
+// The anchor at or above result row y0 (the first row box_columns may write).
+int64_t box_columns_anchor(int64_t y0, int k);
+// Whether box_columns runs on AVX-512 here.
 int box_columns_have_wide(void);
 
 #endif

@@ -684,9 +684,11 @@ static int read_world(void *src, grid_rect r, float *out, og_error *err) {
     return 0;
 }
 
-static void world_row(void *user, int64_t y, int64_t x0, int64_t n, float *dst) {
+static const float *world_row(void *user, int64_t y, int64_t x, int64_t *end) {
     const layer_rows *rows = user;
-    layer_rows_read(rows, rows->r.z0 + y, rows->r.x0 + x0, rows->r.x0 + x0 + n, dst);
+    const float *p = layer_rows_at(rows, rows->r.z0 + y, rows->r.x0 + x, end);
+    *end -= rows->r.x0;
+    return p;
 }
 
 static int blur_world(void *src, grid_rect area, const int64_t (*need)[2], float *out, int k,

@@ -1,7 +1,5 @@
 #include "editor/world/layer_rows.h"
 
-#include <string.h>
-
 int layer_rows_open(world *w, const layer_grid *g, grid_rect r, layer_rows *rows, og_error *err) {
     grid_rect in = layer_grid_clip(g, r);
     if (g->layer == TILE_LAYER_MATERIAL || grid_rect_empty(r) || in.x0 != r.x0 || in.x1 != r.x1 ||
@@ -25,17 +23,11 @@ int layer_rows_open(world *w, const layer_grid *g, grid_rect r, layer_rows *rows
     return 0;
 }
 
-void layer_rows_read(const layer_rows *rows, int64_t z, int64_t x0, int64_t x1, float *dst) {
-    int64_t tz = world_grid_floor_div(z, TILE_SIZE), local_z = z - tz * TILE_SIZE;
-    const tile_view *v = rows->views + (tz - rows->tz0) * rows->tw;
-    for (int64_t x = x0; x < x1;) {
-        int64_t tx = world_grid_floor_div(x, TILE_SIZE), end = (tx + 1) * TILE_SIZE;
-        if (end > x1) end = x1;
-        const float *t = v[tx - rows->tx0].data;
-        memcpy(dst + (x - x0), t + local_z * TILE_SIZE + (x - tx * TILE_SIZE),
-               (size_t)(end - x) * sizeof *dst);
-        x = end;
-    }
+const float *layer_rows_at(const layer_rows *rows, int64_t z, int64_t x, int64_t *end) {
+    int64_t tz = world_grid_floor_div(z, TILE_SIZE), tx = world_grid_floor_div(x, TILE_SIZE);
+    *end = (tx + 1) * TILE_SIZE < rows->r.x1 ? (tx + 1) * TILE_SIZE : rows->r.x1;
+    const float *t = rows->views[(tz - rows->tz0) * rows->tw + (tx - rows->tx0)].data;
+    return t + (z - tz * TILE_SIZE) * TILE_SIZE + (x - tx * TILE_SIZE);
 }
 
 void layer_rows_close(layer_rows *rows) {

@@ -1,6 +1,6 @@
 // A rectangle of a layer's float samples read row by row straight from its tiles (the
-// tiles pinned while it is open), for kernels that take their input a few rows at a
-// time: no copy of the whole rectangle first.
+// tiles pinned while it is open), for kernels that read their input where it lies:
+// no copy of the rectangle first.
 #ifndef OROGEN_EDITOR_LAYER_ROWS_H
 #define OROGEN_EDITOR_LAYER_ROWS_H
 
@@ -19,8 +19,9 @@ typedef struct layer_rows {
 // grid or spans more than LAYER_ROWS_TILES tiles (nothing pinned: read it with
 // layer_grid_read instead); -1 on error (err set).
 int layer_rows_open(world *w, const layer_grid *g, grid_rect r, layer_rows *rows, og_error *err);
-// Copies the samples [x0, x1) of row z to dst (r.z0 <= z < r.z1, r.x0 <= x0 <= x1 <= r.x1).
-void layer_rows_read(const layer_rows *rows, int64_t z, int64_t x0, int64_t x1, float *dst);
+// Points at sample x of row z (r.z0 <= z < r.z1, r.x0 <= x < r.x1), contiguous in its
+// tile up to column *end (the tile's right edge or r.x1, whichever comes first).
+const float *layer_rows_at(const layer_rows *rows, int64_t z, int64_t x, int64_t *end);
 void layer_rows_close(layer_rows *rows);
 
 #endif
