@@ -156,25 +156,27 @@ static double dab_seconds(edit *e, const layer_grid *g, const brush_dab *d, int 
 // previous step finished (history.c): that runs after the timed part, and
 // *squeeze_s gets its time (on this thread, waiting for or helping the background).
 static double dab_edit_seconds(world *w, const layer_grid *g, const brush_dab *d, int n,
-                               double *commit_s, double *squeeze_s) {
+                               double *commit_s, double *squeeze_s, double *cpu_s) {
     og_error err;
-    double total = 0, commit = 0, squeeze = 0;
+    double total = 0, commit = 0, squeeze = 0, cpu = 0;
     for (int i = 0; i < n; i++) {
         double s0 = bench_now();
         history_undo_peek(world_history(w)); // the squeeze of the step before, finished
         squeeze += bench_now() - s0;
-        double t0 = bench_now();
+        double c0 = bench_process_cpu(), t0 = bench_now();
         edit *e = edit_begin(w, "dab", &err);
         if (!e) check(-1, &err, "edit_begin");
         check(brush_dab_apply(e, g, d, &err), &err, "brush_dab_apply");
         double t1 = bench_now();
         check(edit_commit(e, &err), &err, "edit_commit");
         double t2 = bench_now();
+        cpu += bench_process_cpu() - c0;
         total += t2 - t0;
         commit += t2 - t1;
     }
     *commit_s = commit / n;
     *squeeze_s = squeeze / n;
+    *cpu_s = cpu / n;
     return total / n;
 }
 
@@ -235,7 +237,7 @@ static void bench_dab64(brush_tool tool, double goal_ratio) {
     // of the copying thread alone (any other thread's work counts against the dab).
     const int chunks = 10, steady_n = tool == BRUSH_RAISE ? 100 : 20, edit_n = 50;
     double steady[RUNS], full[RUNS], commit[RUNS], copy[RUNS], ratio[RUNS];
-    double steady_cpu[RUNS], copy_cpu[RUNS], squeeze[RUNS];
+    double steady_cpu[RUNS], copy_cpu[RUNS], squeeze[RUNS], full_cpu[RUNS];
     for (int r = 0; r < RUNS; r++) {
         steady[r] = copy[r] = steady_cpu[r] = copy_cpu[r] = 0;
         for (int k = 0; k < chunks; k++) {
@@ -252,7 +254,7 @@ static void bench_dab64(brush_tool tool, double goal_ratio) {
     }
     edit_abort(e);
     for (int r = 0; r < RUNS; r++)
-        full[r] = dab_edit_seconds(w, &g, &d, edit_n, &commit[r], &squeeze[r]);
+        full[r] = dab_edit_seconds(w, &g, &d, edit_n, &commit[r], &squeeze[r], &full_cpu[r]);
 
     double s = bench_median(steady, RUNS), c = bench_median(copy, RUNS),
            f = bench_median(full, RUNS);
@@ -268,9 +270,11 @@ static void bench_dab64(brush_tool tool, double goal_ratio) {
            bytes, c * 1e6, c * 1e9 / disc, q, goal_ratio, bench_median(steady_cpu, RUNS) * 1e6,
            bench_median(copy_cpu, RUNS) * 1e6);
     printf("  as its own edit (begin + snapshot + dab + commit with undo capture and mips): "
-           "%.0f us (commit %.0f us) = %.1f ns per disc sample, %.0fx the memcpy; then the "
-           "history's zstd of its deltas, in the background: %.0f us\n",
-           f * 1e6, k * 1e6, f * 1e9 / disc, f / c, bench_median(squeeze, RUNS) * 1e6);
+           "%.0f us (commit %.0f us; CPU of all threads %.0f us) = %.1f ns per disc sample, "
+           "%.0fx the memcpy; then the history's zstd of its deltas, in the background: %.0f "
+           "us\n",
+           f * 1e6, k * 1e6, bench_median(full_cpu, RUNS) * 1e6, f * 1e9 / disc, f / c,
+           bench_median(squeeze, RUNS) * 1e6);
     if (tool == BRUSH_SMOOTH && q > goal_ratio)
         printf("  why smooth misses: each dab blurs its disc's area and a 2k halo (161^2 samples "
                "at r=64) with two box means down columns (float running sums restarted every "
