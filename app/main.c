@@ -3,6 +3,7 @@
 // window on the default world (or the one named), with the console on stdin.
 #include "app/ui_messages.h"
 #include "app/window.h"
+#include "app/world_warnings.h"
 #include "view/view_commands.h"
 #include "renderer/viewport.h"
 #include "editor/cmd/base_pending.h"
@@ -269,6 +270,8 @@ int main(int argc, char **argv) {
     }
     char resource_dir[4096];
     find_resource_dir(resource_dir, sizeof resource_dir);
+    // The window shows what the worlds warn about (from the first file's load on).
+    if (script_count == 0) world_warnings_install(&settings);
     world *w;
     int load_errors = 0;
     if (world_file) {

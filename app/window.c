@@ -2,8 +2,10 @@
 
 #include "app/shortcuts.h"
 #include "app/window_internal.h"
+#include "app/world_warnings.h"
 
 #include <poll.h>
+#include <string.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -87,11 +89,27 @@ void run_commands(window_state *st, const char *text, const char *label) {
     st->dirty = 1;
 }
 
+// What the worlds warned about since the last frame: in the console, and as notices; an
+// error stays until dismissed (a damaged file opened read-only says why where the user
+// looks), a warning passes (a file edited by hand is read as it is).
+static void show_world_warnings(window_state *st) {
+    char msg[1024];
+    while (world_warnings_take(msg, sizeof msg)) {
+        console_add(editor_ui_console(panels_editor(st)), CONSOLE_ERROR, msg);
+        if (strstr(msg, "error:"))
+            notices_add(panels_notices(st), msg);
+        else
+            notices_add_failure(panels_notices(st), "", msg, notices_now());
+        st->ui_dirty = 1;
+    }
+}
+
 // Runs what is queued (waiting up to a frame for work to end); after it the window
 // shows whatever changed.
 static void pump_work(window_state *st) {
     camera before = st->v->cam;
     work_queue_pump(&st->work, 30);
+    show_world_warnings(st);
     if (work_queue_busy(&st->work)) return;
     if (work_queue_take_ran(&st->work)) {
         fflush(stdout);
