@@ -2,9 +2,10 @@
 // bit for bit the values and edges of the sample-by-sample reading written out here
 // (stamp.c's formula before the rows were vectorised), on every path the processor has
 // (plain C, AVX2, AVX-512), for random images, rotations,
-// scales, mirrors and row spans (tails of every length); the span of a row holds every
-// sample inside the footprint (within the image's support: every sample reading non-zero);
-// add and subtract on an array match the formula's sums, the same with the support known.
+// scales (powers of two among them), mirrors and row spans (tails of every length); the span of a
+// row holds every sample inside the footprint (within the image's support: every sample reading
+// non-zero); add and subtract on an array match the formula's sums, the same with the support
+// known.
 #include "editor/params/world_params.h"
 #include "editor/tools/brush.h"
 #include "editor/tools/stamp.h"
@@ -82,6 +83,10 @@ static void test_values_match_reference(void **state) {
         if (trial % 3 == 0) w = h = 64; // the library's square stamps
         float *px = random_image(w, h);
         stamp_image_map m = random_map(px, w, h);
+        if (trial % 3 == 1) { // half sizes powers of two: the vector paths multiply
+            m.half_w = ldexp(1.0, (int)(uniform() * 8) - 2);
+            m.half_h = trial % 2 ? m.half_w : ldexp(1.0, (int)(uniform() * 8) - 2);
+        }
         double reach = (m.half_w + m.half_h) / m.spacing + 2;
         int64_t cx = (int64_t)floor(m.x / m.spacing), cz = (int64_t)floor(m.z / m.spacing);
         for (int row = 0; row < 20; row++) {
