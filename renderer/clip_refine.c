@@ -4,66 +4,67 @@
 #include <stdlib.h>
 #include <string.h>
 
-// Folds a value into cell (ci, cj) and, for a point on a cell's low edge, the cell
-// before (cell k spans samples [k, k + 1] * CLIP_CELL, both ends).
-static void fold(clip_refine_cells *c, int ci, int cj, int edge_i, int edge_j, float lo, float hi,
-                 float error) {
-    for (int dj = 0; dj <= edge_j; dj++)
-        for (int di = 0; di <= edge_i; di++) {
-            int i = ci - di, j = cj - dj;
-            if (i < 0 || j < 0) continue;
-            size_t k = (size_t)j * c->cells + i;
-            c->lo[k] = fminf(c->lo[k], lo), c->hi[k] = fmaxf(c->hi[k], hi);
-            c->error[k] = fmaxf(c->error[k], error);
-        }
-}
-
 void clip_refine_cells_build(clip_refine_cells *c, const clip_window *level,
                              const clip_window *fine, int k) {
-    const int n = level->size, mask = n - 1, cells = n / CLIP_CELL;
-    const int fn = fine->size, fmask = fn - 1, half = k / 2;
+    const int n = level->size, cells = n / CLIP_CELL;
     c->cells = 0;
     if (!level->has_data || !fine->has_data || cells > CLIP_CELLS_MAX || n % CLIP_CELL != 0 ||
         k < 2)
         return;
-    const float *h = (const float *)level->mirror, *f = (const float *)fine->mirror;
-    for (int i = 0; i < cells * cells; i++)
-        c->lo[i] = INFINITY, c->hi[i] = -INFINITY, c->error[i] = 0.0f;
+    c->level = level, c->fine = fine, c->k = k;
+    memset(c->measured, 0, (size_t)cells * cells);
     c->cells = cells;
+    c->have[0] = level->have[0], c->have[1] = level->have[1];
+}
+
+// Measures cell (ci, cj): samples [ci, ci + 1] * CLIP_CELL (both ends) of the level.
+static void measure(clip_refine_cells *c, int ci, int cj) {
+    const clip_window *level = c->level, *fine = c->fine;
+    const int n = level->size, mask = n - 1, k = c->k;
+    const int fn = fine->size, fmask = fn - 1, half = k / 2;
+    const float *h = (const float *)level->mirror, *f = (const float *)fine->mirror;
+    float lo = INFINITY, hi = -INFINITY, error = 0.0f;
 #define H(i, j)                                                                                    \
     h[(size_t)((level->have[1] + (j)) & mask) * n + (size_t)((level->have[0] + (i)) & mask)]
 #define F(x, z)                                                                                    \
     f[(size_t)((fine->have[1] + (z)) & fmask) * fn + (size_t)((fine->have[0] + (x)) & fmask)]
     // Quad (i, j) of the level holds the refined vertices at its corner (i, j), its low
-    // edges' midpoints and its centre (on the diagonal the base mesh splits it along).
-    for (int j = 0; j + 1 < n; j++) {
+    // edges' midpoints and its centre (on the diagonal the base mesh splits it along);
+    // the cell's quads and those whose corner is on its high edges.
+    for (int j = cj * CLIP_CELL; j <= (cj + 1) * CLIP_CELL && j + 1 < n; j++) {
         const int64_t fz = (level->have[1] + j) * k - fine->have[1];
         if (fz < 0 || fz + half >= fn) continue;
-        for (int i = 0; i + 1 < n; i++) {
+        for (int i = ci * CLIP_CELL; i <= (ci + 1) * CLIP_CELL && i + 1 < n; i++) {
             const int64_t fx = (level->have[0] + i) * k - fine->have[0];
             if (fx < 0 || fx + half >= fn) continue;
             const float a = H(i, j), b = H(i + 1, j), d = H(i, j + 1), e = H(i + 1, j + 1);
             const float corner = F(fx, fz), mid_x = F(fx + half, fz), mid_z = F(fx, fz + half);
             const float centre = F(fx + half, fz + half);
-            float error = fabsf(corner - a);
+            error = fmaxf(error, fabsf(corner - a));
             error = fmaxf(error, fabsf(mid_x - 0.5f * (a + b)));
             error = fmaxf(error, fabsf(mid_z - 0.5f * (a + d)));
             error = fmaxf(error, fabsf(centre - 0.5f * (b + d)));
-            float lo = fminf(fminf(fminf(a, b), fminf(d, e)),
-                             fminf(fminf(corner, mid_x), fminf(mid_z, centre)));
-            float hi = fmaxf(fmaxf(fmaxf(a, b), fmaxf(d, e)),
-                             fmaxf(fmaxf(corner, mid_x), fmaxf(mid_z, centre)));
-            fold(c, i / CLIP_CELL, j / CLIP_CELL, i % CLIP_CELL == 0, j % CLIP_CELL == 0, lo, hi,
-                 error);
+            lo = fminf(lo, fminf(fminf(fminf(a, b), fminf(d, e)),
+                                 fminf(fminf(corner, mid_x), fminf(mid_z, centre))));
+            hi = fmaxf(hi, fmaxf(fmaxf(fmaxf(a, b), fmaxf(d, e)),
+                                 fmaxf(fmaxf(corner, mid_x), fmaxf(mid_z, centre))));
         }
     }
 #undef H
 #undef F
-    c->have[0] = level->have[0], c->have[1] = level->have[1];
+    const size_t at = (size_t)cj * c->cells + ci;
+    c->lo[at] = lo, c->hi[at] = hi, c->error[at] = error;
+    c->measured[at] = 1;
 }
 
-int clip_refine_cells_range(const clip_refine_cells *c, int64_t i0, int64_t j0, int64_t i1,
-                            int64_t j1, float *lo, float *hi, float *error) {
+size_t clip_refine_cell(clip_refine_cells *c, int i, int j) {
+    const size_t at = (size_t)j * c->cells + i;
+    if (!c->measured[at]) measure(c, i, j);
+    return at;
+}
+
+int clip_refine_cells_range(clip_refine_cells *c, int64_t i0, int64_t j0, int64_t i1, int64_t j1,
+                            float *lo, float *hi, float *error) {
     int a0, a1, b0, b1;
     if (c->cells == 0 || !clip_cell_span(i0 - c->have[0], i1 - c->have[0], c->cells, &a0, &a1) ||
         !clip_cell_span(j0 - c->have[1], j1 - c->have[1], c->cells, &b0, &b1))
@@ -71,7 +72,7 @@ int clip_refine_cells_range(const clip_refine_cells *c, int64_t i0, int64_t j0, 
     *lo = INFINITY, *hi = -INFINITY, *error = 0.0f;
     for (int j = b0; j <= b1; j++)
         for (int i = a0; i <= a1; i++) {
-            size_t k = (size_t)j * c->cells + i;
+            size_t k = clip_refine_cell(c, i, j);
             *lo = fminf(*lo, c->lo[k]), *hi = fmaxf(*hi, c->hi[k]);
             *error = fmaxf(*error, c->error[k]);
         }

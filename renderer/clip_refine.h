@@ -28,17 +28,26 @@ typedef struct clip_refine_cells {
     // surface, metres.
     float lo[CLIP_CELLS_MAX * CLIP_CELLS_MAX], hi[CLIP_CELLS_MAX * CLIP_CELLS_MAX];
     float error[CLIP_CELLS_MAX * CLIP_CELLS_MAX];
+    // Each cell is measured when first asked for (a frame in flight moves several
+    // windows, and measuring all their cells cost 5-8 ms of it): the windows it reads
+    // (they must not change until the next build), and which cells are measured.
+    const clip_window *level, *fine;
+    int k;
+    unsigned char measured[CLIP_CELLS_MAX * CLIP_CELLS_MAX];
 } clip_refine_cells;
 
 // From a level's window and its current shading window `fine`, which holds `k` samples
-// per level sample (k = 2 or 4). Not built (cells 0) when either window is not whole.
+// per level sample (k = 2 or 4); the cells are measured later, when asked for. Not built
+// (cells 0) when either window is not whole.
 void clip_refine_cells_build(clip_refine_cells *c, const clip_window *level,
                              const clip_window *fine, int k);
 
 // The bounds and largest error over level samples [i0, i1] x [j0, j1] (inclusive,
 // level sample indices); 0 when not built or the range misses the window.
-int clip_refine_cells_range(const clip_refine_cells *c, int64_t i0, int64_t j0, int64_t i1,
-                            int64_t j1, float *lo, float *hi, float *error);
+int clip_refine_cells_range(clip_refine_cells *c, int64_t i0, int64_t j0, int64_t i1, int64_t j1,
+                            float *lo, float *hi, float *error);
+// Cell (i, j)'s index in lo, hi and error, measured first if it was not.
+size_t clip_refine_cell(clip_refine_cells *c, int i, int j);
 
 // Levels from this one on may be refined: on levels 1 and 2 (within 2 mips of the full
 // resolution, seen steeply enough that their moves do not change what is in front)

@@ -31,10 +31,11 @@ static void push(refine_builder *b, int x, int z, int on_line) {
     m->indices[m->index_count++] = (uint32_t)((size_t)z * m->side + x + (on_line ? grid : 0));
 }
 
-// The piece's quads at half spacing (the base mesh's diagonal), then a zero-area
-// triangle through each side's odd vertices' on-line copies.
-static void add_piece(refine_builder *b, const clip_piece *p) {
-    const int x0 = 2 * p->x0, z0 = 2 * p->z0, x1 = 2 * p->x1, z1 = 2 * p->z1;
+// The quads of vertices [x0, x1] x [z0, z1] (base units) at half spacing (the base
+// mesh's diagonal), then a zero-area triangle through each side's odd vertices' on-line
+// copies.
+static void add_fine(refine_builder *b, int bx0, int bz0, int bx1, int bz1) {
+    const int x0 = 2 * bx0, z0 = 2 * bz0, x1 = 2 * bx1, z1 = 2 * bz1;
     for (int z = z0; z < z1; z++)
         for (int x = x0; x < x1; x++) {
             push(b, x, z, 0), push(b, x, z + 1, 0), push(b, x + 1, z, 0);
@@ -50,6 +51,40 @@ static void add_piece(refine_builder *b, const clip_piece *p) {
     }
 }
 
+// The same quads at the level's density, through the grid's even vertices.
+static void add_coarse(refine_builder *b, int bx0, int bz0, int bx1, int bz1) {
+    for (int z = 2 * bz0; z < 2 * bz1; z += 2)
+        for (int x = 2 * bx0; x < 2 * bx1; x += 2) {
+            push(b, x, z, 0), push(b, x, z + 2, 0), push(b, x + 2, z, 0);
+            push(b, x + 2, z, 0), push(b, x, z + 2, 0), push(b, x + 2, z + 2, 0);
+        }
+}
+
+// A piece's parts of at most CLIP_REFINE_PART quads a side, both forms.
+static void add_parts(refine_builder *b, const clip_piece *p, size_t piece) {
+    clip_refine_mesh *r = b->mesh;
+    r->part_first[piece] = (uint32_t)(piece * CLIP_REFINE_PARTS_MAX);
+    uint32_t n = 0;
+    for (int z = p->z0; z < p->z1; z += CLIP_REFINE_PART)
+        for (int x = p->x0; x < p->x1; x += CLIP_REFINE_PART) {
+            if (n == CLIP_REFINE_PARTS_MAX) {
+                b->failed = 1; // a piece larger than the base mesh makes
+                return;
+            }
+            clip_refine_part *q = &r->parts[piece * CLIP_REFINE_PARTS_MAX + n++];
+            q->x0 = (uint16_t)x, q->z0 = (uint16_t)z;
+            q->x1 = (uint16_t)(x + CLIP_REFINE_PART < p->x1 ? x + CLIP_REFINE_PART : p->x1);
+            q->z1 = (uint16_t)(z + CLIP_REFINE_PART < p->z1 ? z + CLIP_REFINE_PART : p->z1);
+            q->fine_first = (uint32_t)r->index_count;
+            add_fine(b, q->x0, q->z0, q->x1, q->z1);
+            q->fine_count = (uint32_t)(r->index_count - q->fine_first);
+            q->coarse_first = (uint32_t)r->index_count;
+            add_coarse(b, q->x0, q->z0, q->x1, q->z1);
+            q->coarse_count = (uint32_t)(r->index_count - q->coarse_first);
+        }
+    r->part_count[piece] = n;
+}
+
 int clip_refine_mesh_build(clip_refine_mesh *r, const clipmap_mesh *base) {
     memset(r, 0, sizeof *r);
     r->side = 2 * base->n - 1;
@@ -59,7 +94,13 @@ int clip_refine_mesh_build(clip_refine_mesh *r, const clipmap_mesh *base) {
     r->vertices = malloc(r->vertex_count * 2 * sizeof *r->vertices);
     r->first = calloc(base->piece_count ? base->piece_count : 1, sizeof *r->first);
     r->count = calloc(base->piece_count ? base->piece_count : 1, sizeof *r->count);
-    refine_builder b = {r, 0, !r->vertices || !r->first || !r->count};
+    r->part_first = calloc(base->piece_count ? base->piece_count : 1, sizeof *r->part_first);
+    r->part_count = calloc(base->piece_count ? base->piece_count : 1, sizeof *r->part_count);
+    r->parts = calloc((base->piece_count ? base->piece_count : 1) * CLIP_REFINE_PARTS_MAX,
+                      sizeof *r->parts);
+    refine_builder b = {r, 0,
+                        !r->vertices || !r->first || !r->count || !r->part_first ||
+                            !r->part_count || !r->parts};
     for (size_t v = 0; !b.failed && v < grid; v++) {
         uint16_t x = (uint16_t)(v % (size_t)r->side), z = (uint16_t)(v / (size_t)r->side);
         r->vertices[2 * v] = x, r->vertices[2 * v + 1] = z;
@@ -69,8 +110,10 @@ int clip_refine_mesh_build(clip_refine_mesh *r, const clipmap_mesh *base) {
     for (size_t i = 0; !b.failed && i < base->piece_count; i++) {
         if (!clip_refine_piece_refinable(&base->pieces[i])) continue;
         r->first[i] = (uint32_t)r->index_count;
-        add_piece(&b, &base->pieces[i]);
+        const clip_piece *p = &base->pieces[i];
+        add_fine(&b, p->x0, p->z0, p->x1, p->z1);
         r->count[i] = (uint32_t)(r->index_count - r->first[i]);
+        add_parts(&b, p, i);
     }
     if (b.failed) {
         clip_refine_mesh_free(r);
@@ -84,5 +127,8 @@ void clip_refine_mesh_free(clip_refine_mesh *r) {
     free(r->indices);
     free(r->first);
     free(r->count);
+    free(r->parts);
+    free(r->part_first);
+    free(r->part_count);
     memset(r, 0, sizeof *r);
 }

@@ -23,6 +23,17 @@
 
 #define CLIP_REFINE_ON_LINE 0x8000u // set in a vertex's x: the copy placed on the coarse edge
 
+#define CLIP_REFINE_PART 8       // quads a side of a piece's parts: a cell (clip_cells.h)
+#define CLIP_REFINE_PARTS_MAX 16 // parts of a piece at most (a fix-up is 2 x 63 quads)
+
+// A part of a refinable piece, in two forms through the refined grid: at twice the
+// density with zero-area triangles along its four sides (as a refined piece), and at
+// the level's density (its even vertices, the base mesh's triangles).
+typedef struct clip_refine_part {
+    uint16_t x0, z0, x1, z1; // vertex bounds (inclusive), the base mesh's units
+    uint32_t fine_first, fine_count, coarse_first, coarse_count;
+} clip_refine_part;
+
 typedef struct clip_refine_mesh {
     int side;           // vertices per side of the refined grid: 2n - 1
     uint16_t *vertices; // 2 * side^2 (x, z) pairs in half level units; the second half
@@ -34,6 +45,10 @@ typedef struct clip_refine_mesh {
     // kinds that are never refined (trims, the degenerate ring).
     uint32_t *first, *count;
     size_t piece_count;
+    // Per base piece its parts (part_first[i] .. + part_count[i] in parts), so that a
+    // piece can be refined in some parts only (render skyline=P).
+    clip_refine_part *parts;
+    uint32_t *part_first, *part_count;
 } clip_refine_mesh;
 
 // Whether a base piece's kind has a refined form (blocks and fix-ups).

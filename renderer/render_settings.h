@@ -41,6 +41,8 @@ typedef struct render_settings {
                                // part of a coarse clipmap level starts to be drawn at twice
                                // its density, fully at 1.5x that (renderer/clip_refine.h);
                                // 0: never (0)
+    double skyline_pixels;     // flat worlds, while refine_pixels is 0: the same, for the
+                               // parts near the skyline only (renderer/clip_skyline.h) (0)
     int antialias;             // edges smoothed in the finished image (renderer/antialias.h) (1)
     // A layer mask being edited, drawn over the terrain (the Layers panel's mask editor):
     // mask_terms bits 1 height, 2 slope, 4 curvature, 8 flow (0: none drawn), each term's corners

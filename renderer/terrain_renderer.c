@@ -4,6 +4,7 @@
 #include "renderer/clip_cells.h"
 #include "renderer/clip_refine.h"
 #include "renderer/clip_refine_mesh.h"
+#include "renderer/clip_skyline.h"
 #include "renderer/clip_slopes.h"
 #include "renderer/clip_window.h"
 #include "renderer/clip_window_upload.h"
@@ -115,6 +116,7 @@ struct terrain_renderer {
     clip_cells cells[RENDER_MAX_LEVELS];
     int cells_stale[RENDER_MAX_LEVELS];
     ground_occlusion occlusion; // this frame's ground hiding farther blocks
+    clip_skyline skyline;       // this frame's skyline, when only parts near it refine
     // The steepest slope (rise over run) between neighbouring samples of each level's
     // window, re-measured when it changed and is whole (slope_stale).
     double slope_max[RENDER_MAX_LEVELS];
@@ -777,7 +779,8 @@ int terrain_renderer_update(terrain_renderer *r, world *w, const camera *cam,
     clip_slopes_upload(&r->slopes, r->finest, r->levels);
     // Only a refined view reads the cells (draw_terrain): building them for every level
     // whose shading window moved cost 5-8 ms of the calling thread a frame in flight.
-    for (int l = r->finest > 1 ? r->finest : 1; l < r->levels && s->refine_pixels > 0; l++)
+    for (int l = r->finest > 1 ? r->finest : 1;
+         l < r->levels && (s->refine_pixels > 0 || s->skyline_pixels > 0); l++)
         if (r->refine_stale[l] && clip_window_current(&r->heights[l], r->origin[l]) &&
             clip_window_current(&r->slopes.windows[l], r->slopes.want[l])) {
             clip_refine_cells_build(&r->refine_cells[l], &r->heights[l], &r->slopes.windows[l],
@@ -1257,6 +1260,66 @@ static int resolve_terrain(terrain_renderer *r, const camera *cam, const render_
     return 0;
 }
 
+// The skyline of the levels drawn (renderer/clip_skyline.h): each level's cells over
+// what it draws (its square less the finer level's, cut to a bounded world), in the
+// units of the level it draws from.
+static void build_skyline(terrain_renderer *r, const camera *cam) {
+    double forward[3], right[3], up[3];
+    camera_forward(cam, forward), camera_right(cam, right), camera_up(cam, up);
+    const double ty = tan((cam->fov_y >= 1 && cam->fov_y <= 170 ? cam->fov_y : 60) * M_PI / 360.0);
+    clip_skyline_begin(&r->skyline, cam->pos, forward, right, up,
+                       ty * r->width / (r->height > 0 ? r->height : 1), ty);
+    for (int l = r->finest; l < r->levels; l++) {
+        const int src = r->src[l];
+        if (src < 0 || r->cells[src].cells == 0) continue;
+        const int d = src - l; // src is l or coarser
+        int64_t a[2], b[2], ha[2] = {1, 1}, hb[2] = {0, 0};
+        for (int k = 0; k < 2; k++) {
+            a[k] = r->origin[l][k], b[k] = a[k] + CLIP_N - 1;
+            if (l > r->finest) // the finer level's square, in this level's samples
+                ha[k] = r->origin[l - 1][k] / 2, hb[k] = (r->origin[l - 1][k] + CLIP_N - 1) / 2;
+            if (r->params.size > 0) {
+                const int64_t size = k == 0 ? r->params.size : world_params_size_z(&r->params);
+                const int64_t last = (size - 1) >> l;
+                a[k] = a[k] < 0 ? 0 : a[k], b[k] = b[k] > last ? last : b[k];
+            }
+            a[k] >>= d, b[k] = (b[k] + (1 << d) - 1) >> d; // floor and ceiling
+            ha[k] = (ha[k] + (1 << d) - 1) >> d, hb[k] >>= d;
+        }
+        if (a[0] > b[0] || a[1] > b[1]) continue;
+        clip_skyline_add_level(&r->skyline, &r->cells[src],
+                               r->params.spacing * (double)((int64_t)1 << src), a[0], a[1], b[0],
+                               b[1], ha[0], ha[1], hb[0], hb[1]);
+    }
+}
+
+static double level_spacing(const terrain_renderer *r, int l) {
+    return r->params.spacing * (double)((int64_t)1 << l);
+}
+
+// The band under the skyline whose parts refine at `pixels` of error, in screen units.
+static double skyline_band(const terrain_renderer *r, double pixels) {
+    return CLIP_SKYLINE_BAND * pixels * 2.0 / (r->height > 0 ? r->height : 720);
+}
+
+// A refinable piece's parts' weights near the skyline (renderer/clip_skyline.h), set in
+// the level's weight map; returns the most of them.
+static float skyline_parts(terrain_renderer *r, int l, size_t piece, double pixels_per_radian,
+                           double pixels, float part_w[CLIP_REFINE_PARTS_MAX]) {
+    const double band = skyline_band(r, pixels), spacing = level_spacing(r, l);
+    float most = 0.0f;
+    for (uint32_t k = 0; k < r->refine_mesh.part_count[piece]; k++) {
+        const clip_refine_part *q = &r->refine_mesh.parts[r->refine_mesh.part_first[piece] + k];
+        const int64_t x = r->origin[l][0], z = r->origin[l][1];
+        part_w[k] =
+            clip_skyline_weight(&r->skyline, &r->cells[l], &r->refine_cells[l], spacing, x + q->x0,
+                                z + q->z0, x + q->x1, z + q->z1, band, pixels_per_radian, pixels);
+        clip_refine_map_limit(&r->refine_map, l, q->x0, q->z0, q->x1, q->z1, part_w[k]);
+        most = most > part_w[k] ? most : part_w[k];
+    }
+    return most;
+}
+
 static int draw_terrain(terrain_renderer *r, const camera *cam, const render_settings *s,
                         const brush_cursor *cursor, const float view_proj[16], int deferred,
                         og_error *err) {
@@ -1281,6 +1344,11 @@ static int draw_terrain(terrain_renderer *r, const camera *cam, const render_set
         ground_occlusion_begin(&r->occlusion, eye, forward, right, up,
                                ty * r->width / (r->height > 0 ? r->height : 1), ty);
     }
+    // Coarse parts refined where their error shows (render refine=P), or only those
+    // near the skyline (render skyline=P).
+    const int skyline_only = !(s->refine_pixels > 0) && s->skyline_pixels > 0;
+    const double refine_pixels = skyline_only ? s->skyline_pixels : s->refine_pixels;
+    if (skyline_only) build_skyline(r, cam);
     glBindVertexArray(r->vao);
     r->frame++;
     if (cursor_drapes(cursor)) // the falloff curve, once a frame
@@ -1331,9 +1399,8 @@ static int draw_terrain(terrain_renderer *r, const camera *cam, const render_set
         qsort(order, (size_t)candidates, sizeof order[0], nearer_first);
         // Its parts may be refined where its error shows: its own window and its shading
         // window current, their cells built for this layout.
-        const int refinable = s->refine_pixels > 0 && l >= CLIP_REFINE_MIN_LEVEL &&
-                              r->src[l] == l && !r->refine_stale[l] &&
-                              r->refine_cells[l].cells > 0 &&
+        const int refinable = refine_pixels > 0 && l >= CLIP_REFINE_MIN_LEVEL && r->src[l] == l &&
+                              !r->refine_stale[l] && r->refine_cells[l].cells > 0 &&
                               r->refine_cells[l].have[0] == r->origin[l][0] &&
                               r->refine_cells[l].have[1] == r->origin[l][1] &&
                               clip_window_current(&r->slopes.windows[l], r->slopes.want[l]);
@@ -1352,8 +1419,14 @@ static int draw_terrain(terrain_renderer *r, const camera *cam, const render_set
             const int boxed = deferred && pc->kind != CLIP_PIECE_DEGENERATE;
             if (refinable || (s->culling && culled_kind) || boxed)
                 piece_heights(r, l, pc, !still, &h0, &h1);
-            int refined = 0;
+            int refined = 0, by_parts = 0; // by_parts: refined near the skyline only
+            float part_w[CLIP_REFINE_PARTS_MAX];
             if (refinable && clip_refine_piece_refinable(pc) &&
+                (!skyline_only ||
+                 clip_skyline_near(&r->skyline, &r->cells[l], level_spacing(r, l),
+                                   r->origin[l][0] + pc->x0, r->origin[l][1] + pc->z0,
+                                   r->origin[l][0] + pc->x1, r->origin[l][1] + pc->z1,
+                                   skyline_band(r, refine_pixels))) &&
                 clip_refine_cells_range(&r->refine_cells[l], r->origin[l][0] + pc->x0,
                                         r->origin[l][1] + pc->z0, r->origin[l][0] + pc->x1,
                                         r->origin[l][1] + pc->z1, &r0, &r1, &error)) {
@@ -1364,9 +1437,14 @@ static int draw_terrain(terrain_renderer *r, const camera *cam, const render_set
                     d[a] = fmax(fmax((double)mn[a], -(double)mx[a]), 0.0);
                 float w = clip_refine_weight(error, hypot(d[0], d[2]),
                                              sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]),
-                                             pixels_per_radian, s->refine_pixels);
+                                             pixels_per_radian, refine_pixels);
+                if (w > 0.0f && skyline_only) { // only its parts near the sky
+                    w = skyline_parts(r, l, i, pixels_per_radian, refine_pixels, part_w);
+                    by_parts = 1;
+                } else {
+                    clip_refine_map_limit(&r->refine_map, l, pc->x0, pc->z0, pc->x1, pc->z1, w);
+                }
                 if (w > 0.0f) refined = 1, h0 = fminf(h0, r0), h1 = fmaxf(h1, r1);
-                clip_refine_map_limit(&r->refine_map, l, pc->x0, pc->z0, pc->x1, pc->z1, w);
             } else if (refinable && culled_kind) { // never refined: its vertices stay
                 clip_refine_map_limit(&r->refine_map, l, pc->x0, pc->z0, pc->x1, pc->z1, 0.0f);
             }
@@ -1383,6 +1461,23 @@ static int draw_terrain(terrain_renderer *r, const camera *cam, const render_set
                 widen_screen_rect(view_proj, mn, mx, r->width, r->height, rect[still]);
             }
             int g = refined * 2 + still;
+            const uint32_t nparts = r->refine_mesh.part_count[i];
+            if (refined && by_parts && n[g] + (int)nparts <= PIECES_MAX) {
+                // Its parts near the sky refined, the others at the level's density
+                // (their vertices have weight 0), all through the refined grid.
+                for (uint32_t k = 0; k < nparts; k++) {
+                    const clip_refine_part *q =
+                        &r->refine_mesh.parts[r->refine_mesh.part_first[i] + k];
+                    const int fine = part_w[k] > 0.0f;
+                    const uint32_t first = fine ? q->fine_first : q->coarse_first;
+                    const uint32_t count = fine ? q->fine_count : q->coarse_count;
+                    counts[g][n[g]] = (GLsizei)count;
+                    offsets[g][n[g]++] = (const void *)(uintptr_t)(first * sizeof(uint32_t));
+                    r->stats.triangles += count / 3;
+                    r->stats.level_triangles[l] += count / 3;
+                }
+                continue;
+            }
             if (n[g] == PIECES_MAX) continue;
             if (!(pc->x0 > lo[0] + 1 && pc->x1 < hi[0] - 1 && pc->z0 > lo[1] + 1 &&
                   pc->z1 < hi[1] - 1))

@@ -231,6 +231,17 @@ less "${tris_off:-x}" "${tris_on:-x}"; check "refining draws more triangles ($tr
 r=$(rmse "$work/refine_on.png" "$work/refine_off.png")
 less 0.1 "$r" && less "$r" 8; check "and changes the far ridges only (RMSE $r)" $?
 expect_error "a negative refine" "render refine=-1" "refine: expected a number in \[0, 64\], got '-1'"
+# Only the far ground near the skyline refined (`render skyline=1`): more triangles than
+# none, fewer than refining everywhere, and the picture changed at the far ridges only.
+run "camera 4000 400 6500 0 -4; view height; render skyline=1; screenshot $work/sky_on.png 480 270;
+     render"
+rc=$?; check "a far view with the skyline refined ($(cat "$work/err"))" $rc
+grep -q "skyline=1 " "$work/out"; check "render prints the skyline setting" $?
+tris_sky=$(sed -n 's/^screenshot .*sky_on\.png.* triangles=\([0-9]*\).*/\1/p' "$work/out")
+less "${tris_off:-x}" "${tris_sky:-x}" && less "${tris_sky:-x}" "${tris_on:-x}"
+check "the skyline refined draws more triangles than none, fewer than all ($tris_off < $tris_sky < $tris_on)" $?
+r=$(rmse "$work/sky_on.png" "$work/refine_off.png")
+less 0.1 "$r" && less "$r" 8; check "and changes the far ridges only (RMSE $r)" $?
 
 echo "e2e_render: $passes passed, $failures failed"
 [ $failures = 0 ]

@@ -385,10 +385,85 @@ static void test_cells_bound_every_range(void **state) {
     clip_window_free(&w);
 }
 
-// Every refinable piece's refined range covers each of its quads with 2 x 2 fine quads
-// (two triangles each, no on-line copy among them) and has one zero-area triangle per
-// odd vertex of its border, through that vertex's on-line copy and its two neighbours
-// along the border; other kinds have none.
+// The refined range [first, first + count) over base vertices [bx0, bx1] x [bz0, bz1]
+// covers each quad with 2 x 2 fine quads (two triangles each, no on-line copy among
+// them) and has one zero-area triangle per odd vertex of its border, through that
+// vertex's on-line copy and its two neighbours along the border.
+static void check_fine_range(const clip_refine_mesh *r, uint32_t first, uint32_t count, int bx0,
+                             int bz0, int bx1, int bz1, int *cells) {
+    const int side = r->side;
+    const size_t grid = (size_t)side * side;
+    const int x0 = 2 * bx0, z0 = 2 * bz0, x1 = 2 * bx1, z1 = 2 * bz1;
+    memset(cells, 0, grid * sizeof *cells);
+    int degenerate = 0;
+    for (uint32_t t = first; t < first + count; t += 3) {
+        int x[3], z[3], on_line[3], lines = 0;
+        for (int k = 0; k < 3; k++) {
+            uint32_t v = r->indices[t + k];
+            assert_true(v < r->vertex_count);
+            on_line[k] = v >= grid;
+            lines += on_line[k];
+            x[k] = r->vertices[2 * v] & ~CLIP_REFINE_ON_LINE, z[k] = r->vertices[2 * v + 1];
+            assert_int_equal(on_line[k], (r->vertices[2 * v] & CLIP_REFINE_ON_LINE) != 0);
+            assert_true(x[k] >= x0 && x[k] <= x1 && z[k] >= z0 && z[k] <= z1);
+        }
+        int area2 = (x[1] - x[0]) * (z[2] - z[0]) - (x[2] - x[0]) * (z[1] - z[0]);
+        if (area2 == 0) {
+            assert_int_equal(lines, 1);
+            int k = on_line[0] ? 0 : on_line[1] ? 1 : 2, a = (k + 1) % 3, b = (k + 2) % 3;
+            // Odd along the border, between its two neighbours.
+            int along_x = z[k] == z0 || z[k] == z1;
+            assert_true(along_x ? (x[k] & 1) == 1 : (z[k] & 1) == 1);
+            assert_true(along_x || x[k] == x0 || x[k] == x1);
+            assert_int_equal(x[a] + x[b], 2 * x[k]);
+            assert_int_equal(z[a] + z[b], 2 * z[k]);
+            assert_int_equal(abs(x[a] - x[b]) + abs(z[a] - z[b]), 2);
+            degenerate++;
+            continue;
+        }
+        assert_int_equal(lines, 0);
+        assert_int_equal(abs(area2), 1);
+        int cx = x[0] < x[1] ? x[0] : x[1], cz = z[0] < z[1] ? z[0] : z[1];
+        cx = x[2] < cx ? x[2] : cx, cz = z[2] < cz ? z[2] : cz;
+        cells[cz * side + cx]++;
+    }
+    for (int z = z0; z < z1; z++)
+        for (int x = x0; x < x1; x++)
+            assert_int_equal(cells[z * side + x], 2);
+    assert_int_equal(degenerate, (x1 - x0) + (z1 - z0));
+}
+
+// The same part at the level's density: two triangles per base quad through even
+// vertices only, split along the base mesh's diagonal; counts each base quad in `quads`.
+static void check_coarse_range(const clip_refine_mesh *r, uint32_t first, uint32_t count, int bx0,
+                               int bz0, int bx1, int bz1, int n, int *quads) {
+    const size_t grid = (size_t)r->side * r->side;
+    for (uint32_t t = first; t < first + count; t += 3) {
+        int x[3], z[3];
+        for (int k = 0; k < 3; k++) {
+            uint32_t v = r->indices[t + k];
+            assert_true(v < grid); // no on-line copy
+            x[k] = r->vertices[2 * v], z[k] = r->vertices[2 * v + 1];
+            assert_true((x[k] & 1) == 0 && (z[k] & 1) == 0);
+            x[k] /= 2, z[k] /= 2;
+            assert_true(x[k] >= bx0 && x[k] <= bx1 && z[k] >= bz0 && z[k] <= bz1);
+        }
+        int area2 = (x[1] - x[0]) * (z[2] - z[0]) - (x[2] - x[0]) * (z[1] - z[0]);
+        assert_int_equal(abs(area2), 1);
+        int cx = x[0] < x[1] ? x[0] : x[1], cz = z[0] < z[1] ? z[0] : z[1];
+        cx = x[2] < cx ? x[2] : cx, cz = z[2] < cz ? z[2] : cz;
+        // The base mesh's diagonal, from (x + 1, z) to (x, z + 1): no triangle holds
+        // (x, z) and (x + 1, z + 1) both.
+        int low = 0, high = 0;
+        for (int k = 0; k < 3; k++)
+            low |= x[k] == cx && z[k] == cz, high |= x[k] == cx + 1 && z[k] == cz + 1;
+        assert_false(low && high);
+        quads[cz * n + cx]++;
+    }
+}
+
+// Every refinable piece's refined range (check_fine_range), and its parts: they tile it,
+// each at most CLIP_REFINE_PART quads a side, each in both forms; other kinds have none.
 static void test_refined_pieces_cover_their_quads(void **state) {
     (void)state;
     const int sizes[] = {15, 255};
@@ -397,57 +472,40 @@ static void test_refined_pieces_cover_their_quads(void **state) {
         clip_refine_mesh r;
         assert_int_equal(clipmap_mesh_build(&m, sizes[s]), 0);
         assert_int_equal(clip_refine_mesh_build(&r, &m), 0);
-        const int side = r.side;
+        const int side = r.side, n = m.n;
         const size_t grid = (size_t)side * side;
         assert_int_equal(side, 2 * m.n - 1);
         assert_int_equal(r.vertex_count, 2 * grid);
-        int *cells = calloc(grid, sizeof *cells);
+        int *cells = calloc(grid, sizeof *cells), *quads = calloc((size_t)n * n, sizeof *quads);
         for (size_t i = 0; i < m.piece_count; i++) {
             const clip_piece *pc = &m.pieces[i];
             if (!clip_refine_piece_refinable(pc)) {
                 assert_int_equal(r.count[i], 0);
+                assert_int_equal(r.part_count[i], 0);
                 continue;
             }
-            const int x0 = 2 * pc->x0, z0 = 2 * pc->z0, x1 = 2 * pc->x1, z1 = 2 * pc->z1;
-            memset(cells, 0, grid * sizeof *cells);
-            int degenerate = 0;
-            for (uint32_t t = r.first[i]; t < r.first[i] + r.count[i]; t += 3) {
-                int x[3], z[3], on_line[3], lines = 0;
-                for (int k = 0; k < 3; k++) {
-                    uint32_t v = r.indices[t + k];
-                    assert_true(v < r.vertex_count);
-                    on_line[k] = v >= grid;
-                    lines += on_line[k];
-                    x[k] = r.vertices[2 * v] & ~CLIP_REFINE_ON_LINE, z[k] = r.vertices[2 * v + 1];
-                    assert_int_equal(on_line[k], (r.vertices[2 * v] & CLIP_REFINE_ON_LINE) != 0);
-                    assert_true(x[k] >= x0 && x[k] <= x1 && z[k] >= z0 && z[k] <= z1);
-                }
-                int area2 = (x[1] - x[0]) * (z[2] - z[0]) - (x[2] - x[0]) * (z[1] - z[0]);
-                if (area2 == 0) {
-                    assert_int_equal(lines, 1);
-                    int k = on_line[0] ? 0 : on_line[1] ? 1 : 2, a = (k + 1) % 3, b = (k + 2) % 3;
-                    // Odd along the border, between its two neighbours.
-                    int along_x = z[k] == z0 || z[k] == z1;
-                    assert_true(along_x ? (x[k] & 1) == 1 : (z[k] & 1) == 1);
-                    assert_true(along_x || x[k] == x0 || x[k] == x1);
-                    assert_int_equal(x[a] + x[b], 2 * x[k]);
-                    assert_int_equal(z[a] + z[b], 2 * z[k]);
-                    assert_int_equal(abs(x[a] - x[b]) + abs(z[a] - z[b]), 2);
-                    degenerate++;
-                    continue;
-                }
-                assert_int_equal(lines, 0);
-                assert_int_equal(abs(area2), 1);
-                int cx = x[0] < x[1] ? x[0] : x[1], cz = z[0] < z[1] ? z[0] : z[1];
-                cx = x[2] < cx ? x[2] : cx, cz = z[2] < cz ? z[2] : cz;
-                cells[cz * side + cx]++;
+            check_fine_range(&r, r.first[i], r.count[i], pc->x0, pc->z0, pc->x1, pc->z1, cells);
+            memset(quads, 0, (size_t)n * n * sizeof *quads);
+            assert_true(r.part_count[i] >= 1 && r.part_count[i] <= CLIP_REFINE_PARTS_MAX);
+            for (uint32_t k = 0; k < r.part_count[i]; k++) {
+                const clip_refine_part *q = &r.parts[r.part_first[i] + k];
+                assert_true(q->x0 >= pc->x0 && q->x1 <= pc->x1 && q->z0 >= pc->z0 &&
+                            q->z1 <= pc->z1);
+                assert_true(q->x1 > q->x0 && q->x1 - q->x0 <= CLIP_REFINE_PART);
+                assert_true(q->z1 > q->z0 && q->z1 - q->z0 <= CLIP_REFINE_PART);
+                check_fine_range(&r, q->fine_first, q->fine_count, q->x0, q->z0, q->x1, q->z1,
+                                 cells);
+                check_coarse_range(&r, q->coarse_first, q->coarse_count, q->x0, q->z0, q->x1, q->z1,
+                                   n, quads);
             }
-            for (int z = z0; z < z1; z++)
-                for (int x = x0; x < x1; x++)
-                    assert_int_equal(cells[z * side + x], 2);
-            assert_int_equal(degenerate, (x1 - x0) + (z1 - z0));
+            for (int z = 0; z < n; z++) // every quad of the piece twice, none outside it
+                for (int x = 0; x < n; x++)
+                    assert_int_equal(quads[z * n + x],
+                                     x >= pc->x0 && x < pc->x1 && z >= pc->z0 && z < pc->z1 ? 2
+                                                                                            : 0);
         }
         free(cells);
+        free(quads);
         clip_refine_mesh_free(&r);
         clipmap_mesh_free(&m);
     }

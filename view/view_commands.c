@@ -156,12 +156,13 @@ static void print_settings(cmd_context *ctx, const render_settings *s) {
     fprintf(ctx->out,
             "render levels=%d parallax=%s quality=%d detail_distance=%g culling=%s morph=%s "
             "sun=%g,%g sun_rotation=%g fog=%g contours=%g tile_grid=%s level_grid=%s "
-            "auto_materials=%s antialias=%s lod_pixels=%g refine=%g view=%s\n",
+            "auto_materials=%s antialias=%s lod_pixels=%g refine=%g skyline=%g view=%s\n",
             s->levels, s->parallax ? "on" : "off", s->parallax_steps, s->detail_distance,
             s->culling ? "on" : "off", s->morph ? "on" : "off", s->sun_yaw, s->sun_pitch,
             s->sun_rotation, s->fog_density, s->contours, s->tile_grid ? "on" : "off",
             s->level_grid ? "on" : "off", s->auto_materials ? "on" : "off",
-            s->antialias ? "on" : "off", s->lod_pixels, s->refine_pixels, view_mode_name(s->view));
+            s->antialias ? "on" : "off", s->lod_pixels, s->refine_pixels, s->skyline_pixels,
+            view_mode_name(s->view));
 }
 
 static int cmd_render(cmd_context *ctx, int argc, char **argv, og_error *err) {
@@ -198,6 +199,8 @@ static int cmd_render(cmd_context *ctx, int argc, char **argv, og_error *err) {
             rc = parse_number_in(value, key, 1, 64, &s.lod_pixels, err);
         else if (strcmp(key, "refine") == 0)
             rc = parse_number_in(value, key, 0, 64, &s.refine_pixels, err);
+        else if (strcmp(key, "skyline") == 0)
+            rc = parse_number_in(value, key, 0, 64, &s.skyline_pixels, err);
         else if (strcmp(key, "sun_rotation") == 0)
             rc = parse_number_in(value, key, -360, 360, &s.sun_rotation, err);
         else if (strcmp(key, "fog") == 0)
@@ -216,7 +219,7 @@ static int cmd_render(cmd_context *ctx, int argc, char **argv, og_error *err) {
                 err,
                 "render: unknown setting '%s' (levels parallax quality "
                 "detail_distance culling morph fog sun sun_rotation contours tile_grid "
-                "level_grid auto_materials antialias lod_pixels refine)",
+                "level_grid auto_materials antialias lod_pixels refine skyline)",
                 key);
         if (rc != 0) return -1;
     }
@@ -291,8 +294,11 @@ static const cmd_def view_commands[] = {
      "contours (metres between contour lines, 0 = none), tile_grid=on|off (the tiles' edges), "
      "level_grid=on|off (each clipmap level's vertex grid), auto_materials=on|off (the "
      "automatic material rules on unpainted ground), lod_pixels (planets: pixels a sample may "
-     "cover before its chunk splits, 1-64, 6), antialias=on|off (edges smoothed in the finished "
-     "image). Without arguments, prints them.",
+     "cover before its chunk splits, 1-64, 6), refine (flat worlds: pixels of error at which far "
+     "rough ground is drawn at twice the density, 0-64, 0 = never), skyline (the same for the "
+     "ground near the skyline only, while refine is 0; 0-64, 0 = never, the default), "
+     "antialias=on|off (edges "
+     "smoothed in the finished image). Without arguments, prints them.",
      0, 16, cmd_render, 0},
     {"screenshot", "screenshot FILE [W H]",
      "Renders the viewport offscreen (no display needed) to an RGB PNG, W x H pixels (1280 x 720), "
