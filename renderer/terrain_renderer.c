@@ -1595,8 +1595,11 @@ static void draw_water(terrain_renderer *r, const camera *cam, const render_sett
     glProgramUniform4f(prog, glGetUniformLocation(prog, "u_water_rect"), (float)(x0 - cam->pos[0]),
                        (float)(z0 - cam->pos[2]), (float)(x1 - cam->pos[0]),
                        (float)(z1 - cam->pos[2]));
+    // Ground exactly at the level (a DEM's sea, stored as 0 m, under ocean_level 0) is
+    // under water: the plane is lifted a centimetre, or the ground's equal depth would win.
+    const double lift = 0.01;
     glProgramUniform1f(prog, glGetUniformLocation(prog, "u_water_y"),
-                       (float)(world_params_ocean_height(p) - cam->pos[1]));
+                       (float)(world_params_ocean_height(p) + lift - cam->pos[1]));
     set_lighting(prog, r, s);
     glUseProgram(prog);
     glBindVertexArray(r->empty_vao);
