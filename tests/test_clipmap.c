@@ -3,11 +3,13 @@
 // the samples of its origin after any move, copies only what entered, never blocks,
 // and re-reads edited samples; its cells' height bounds hold every sample of a range.
 // Refined pieces cover their quads at half the spacing and close their borders' T-junctions
-// with zero-area triangles; the refinement cells bound every refined vertex and its move.
+// with zero-area triangles; the refinement cells bound every refined vertex and its move;
+// the skyline is found at the far ridge, not on the nearer, lower ground.
 #include "io/tile_cache.h"
 #include "renderer/clip_cells.h"
 #include "renderer/clip_refine.h"
 #include "renderer/clip_refine_mesh.h"
+#include "renderer/clip_skyline.h"
 #include "renderer/clip_window.h"
 #include "renderer/clipmap_mesh.h"
 
@@ -511,6 +513,30 @@ static void test_refined_pieces_cover_their_quads(void **state) {
     }
 }
 
+// Four rows of cells seen from the front, 50 m up: the far row a ridge 100 m high, the
+// others flat at 0. The far row is near the skyline; the nearer rows, far under it, are
+// not; a level whose cells are not built is near nothing.
+static void test_skyline_at_the_far_ridge(void **state) {
+    (void)state;
+    static clip_cells c;
+    memset(&c, 0, sizeof c);
+    c.cells = 4;
+    for (int j = 0; j < 4; j++)
+        for (int i = 0; i < 4; i++)
+            c.lo[j * 4 + i] = 0.0f, c.hi[j * 4 + i] = j == 3 ? 100.0f : 0.0f;
+    const double spacing = 10.0, eye[3] = {160, 50, -100}, forward[3] = {0, 0, 1},
+                 right[3] = {-1, 0, 0}, up[3] = {0, 1, 0};
+    clip_skyline k;
+    clip_skyline_begin(&k, eye, forward, right, up, 1.0, 0.6);
+    clip_skyline_add_level(&k, &c, spacing, 0, 0, 31, 31, 1, 1, 0, 0);
+    const double band = 2.0 * 2.0 / 540.0;
+    assert_true(clip_skyline_near(&k, &c, spacing, 8, 24, 16, 31, band));
+    assert_false(clip_skyline_near(&k, &c, spacing, 8, 0, 16, 8, band));
+    assert_false(clip_skyline_near(&k, &c, spacing, 8, 8, 16, 16, band));
+    c.cells = 0;
+    assert_false(clip_skyline_near(&k, &c, spacing, 8, 24, 16, 31, band));
+}
+
 static float fine_height(int64_t x, int64_t z) {
     return (float)(20.0 * sin(0.37 * (double)x) * cos(0.23 * (double)z) + 0.5 * (double)(x % 7));
 }
@@ -583,6 +609,7 @@ int main(void) {
         cmocka_unit_test(test_large_window_fills_at_once),
         cmocka_unit_test(test_refined_pieces_cover_their_quads),
         cmocka_unit_test(test_refine_cells_bound_every_refined_vertex),
+        cmocka_unit_test(test_skyline_at_the_far_ridge),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
