@@ -609,20 +609,28 @@ static void bench_accuracy(bench *b, world *w4096, naive_mesh *m) {
 
 // ---- 3: CPU cost, bounded against unbounded -------------------------------------------
 
+// Section 3's flight at `pitch` over both worlds, warmed first, two interleaved passes
+// each; the first frames' images go to names[0] (bounded) and names[1].
+static void fly_both(bench *b, world *w1024, world *winf, path *p, double pitch,
+                     const render_settings *s, pool out[2], const char *const names[2]) {
+    make_path(p, winf, 500, 1500, 500 + 600, 1500 - 800, CPU_FRAMES, 120, pitch);
+    progress("3. warming the flight at pitch %.0f", pitch);
+    warm_path(b, w1024, p, s);
+    warm_path(b, winf, p, s);
+    for (int rep = 0; rep < 2; rep++) {
+        fly_into(b, w1024, p, s, &out[0], rep ? NULL : names[0]);
+        fly_into(b, winf, p, s, &out[1], rep ? NULL : names[1]);
+    }
+}
+
 static void bench_cpu(bench *b, world *w1024, world *winf) {
     render_settings s;
     render_settings_default(&s);
     static path p;
-    make_path(&p, winf, 500, 1500, 500 + 600, 1500 - 800, CPU_FRAMES, 120, -12);
-    progress("3. warming the flights");
-    warm_path(b, w1024, &p, &s);
-    warm_path(b, winf, &p, &s);
-    static pool bounded, unbounded;
-    for (int rep = 0; rep < 2; rep++) {
-        fly_into(b, w1024, &p, &s, &bounded, rep ? NULL : "render_cpu_bounded.png");
-        fly_into(b, winf, &p, &s, &unbounded, rep ? NULL : "render_cpu_unbounded.png");
-    }
-    pooled rb = pool_result(&bounded), ru = pool_result(&unbounded);
+    static pool flights[2];
+    const char *const images[2] = {"render_cpu_bounded.png", "render_cpu_unbounded.png"};
+    fly_both(b, w1024, winf, &p, -12, &s, flights, images);
+    pooled rb = pool_result(&flights[0]), ru = pool_result(&flights[1]);
     printf("\n3. CPU per frame, shaded view, %d-frame flight (%.1f m/frame) inside the 1024^2 "
            "world, 2 interleaved passes per world, levels settled first\n",
            p.frames, p.metres_per_frame);
@@ -635,7 +643,7 @@ static void bench_cpu(bench *b, world *w1024, world *winf) {
     printf("   (medians per frame; cpu ms: the calling thread's CPU time in update and draw, which "
            "on llvmpipe includes the driver's vertex work; first frames: render_cpu_*.png)\n");
     for (int k = 0; k < 2; k++) { // where the extra triangles are
-        const pool *q = k ? &unbounded : &bounded;
+        const pool *q = &flights[k];
         printf("   %-24s", k ? "  unbounded, per level" : "  bounded, per level");
         for (int l = 0; l < RENDER_MAX_LEVELS; l++)
             if (q->level_tris[l] > 0) printf(" L%d %.0fk", l, q->level_tris[l] / q->n * 1e-3);
@@ -667,17 +675,10 @@ static void bench_cpu(bench *b, world *w1024, world *winf) {
     // view, so both draw the same picture (the first frames' RMSE says how nearly): the
     // ratio is what the unbounded world costs by itself, not the farther ground it shows.
     static path down;
-    make_path(&down, winf, 500, 1500, 500 + 600, 1500 - 800, CPU_FRAMES, 120, -60);
-    progress("3. the flight looking down");
-    warm_path(b, w1024, &down, &s);
-    warm_path(b, winf, &down, &s);
-    static pool down_bounded, down_unbounded;
-    const char *names[2] = {"render_cpu_down_bounded.png", "render_cpu_down_unbounded.png"};
-    for (int rep = 0; rep < 2; rep++) {
-        fly_into(b, w1024, &down, &s, &down_bounded, rep ? NULL : names[0]);
-        fly_into(b, winf, &down, &s, &down_unbounded, rep ? NULL : names[1]);
-    }
-    pooled db = pool_result(&down_bounded), du = pool_result(&down_unbounded);
+    static pool down_flights[2];
+    const char *const names[2] = {"render_cpu_down_bounded.png", "render_cpu_down_unbounded.png"};
+    fly_both(b, w1024, winf, &down, -60, &s, down_flights, names);
+    pooled db = pool_result(&down_flights[0]), du = pool_result(&down_flights[1]);
     char paths[2][4200];
     for (int k = 0; k < 2; k++)
         snprintf(paths[k], sizeof paths[k], "%s/%s", b->out_dir, names[k]);
