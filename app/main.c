@@ -249,7 +249,6 @@ int main(int argc, char **argv) {
             return 2;
         }
     }
-
     if (script_count == 0 && no_display()) return 2;
 
     og_error err = {{0}};

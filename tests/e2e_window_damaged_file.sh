@@ -38,13 +38,15 @@ dismiss_all() {
 
 # 1. Opened at start: the line's error and why it is read-only are shown.
 shown "^Notices: .*nan.planet:[0-9]*: error: radius: .*got 'nan'"
-check "opened at start, the bad line is shown in the window ($(messages | tr '\n' '|'))" $?
+ok=$?
+check "opened at start, the bad line is shown in the window ($(messages | tr '\n' '|'))" $ok
 shown "^Notices: .*read-only"; check "and that it opened read-only" $?
 widget "Notices/Dismiss" >/dev/null; check "with a Dismiss button" $?
 
 # 2. Dismissed, then opened again through File > Open: shown again.
 dismiss_all
-messages | grep -q '^Notices: '; [ $? = 1 ]; check "Dismiss takes them away ($(messages | tr '\n' '|'))" $?
+messages | grep -q '^Notices: '; [ $? = 1 ]; ok=$?
+check "Dismiss takes them away ($(messages | tr '\n' '|'))" $ok
 click "Menu/File" && click "Menu/File/Open..." && fill "Open/Path" "$work/nan.planet" &&
     click "Open/Open"
 shown "^Notices: .*nan.planet:[0-9]*: error: radius: "
@@ -55,8 +57,10 @@ dismiss_all
 click "Menu/File" && click "Menu/File/Open..." && fill "Open/Path" "$work/edited.planet" &&
     click "Open/Open"
 shown "^Notices: .*edited.planet: warning: it was changed after Orogen saved it"
-check "a hand-edited file's warning is shown ($(messages | tr '\n' '|'))" $?
-title | grep -q "read-only"; [ $? = 1 ]; check "and it is not read-only ($(title))" $?
+ok=$?
+check "a hand-edited file's warning is shown ($(messages | tr '\n' '|'))" $ok
+title | grep -q "read-only"; [ $? = 1 ]; ok=$?
+check "and it is not read-only ($(title))" $ok
 gone=1
 for _ in $(seq 60); do messages | grep -q '^Notices: '; [ $? = 1 ] && { gone=0; break; }; sleep 0.5; done
 check "the warning passes without a click ($(messages | tr '\n' '|'))" $gone
