@@ -24,13 +24,6 @@ inside() { # FILTER W H
             if (x < 0 || y < 0 || x + w > W + 0.5 || y + h > H + 0.5) print }')
     [ -z "$bad" ] || { echo "$bad" | head -n 3 >&2; return 1; }
 }
-messages() { # prints the lines ui_messages lists now
-    local before
-    before=$(wc -l <"$work/out")
-    ask ui_messages '^messages ' >/dev/null || return 1
-    sleep 0.1
-    tail -n +$((before + 1)) "$work/out" | sed -n '/^messages /,$p'
-}
 
 
 # 1. The window at 1024 x 640, UI scale 1.5: the 1280 x 800 default is fitted to the

@@ -39,13 +39,6 @@ drag() { # DX0 DX1
     settle
     xdotool mouseup 1
 }
-messages() { # the lines ui_messages lists now
-    local before
-    before=$(wc -l <"$work/out")
-    ask ui_messages '^messages ' >/dev/null || return 1
-    sleep 0.1
-    tail -n +$((before + 1)) "$work/out" | sed -n '/^messages /,$p'
-}
 wait_message() { # PATTERN: up to ~6 s for ui_messages to list it
     for _ in $(seq 20); do messages | grep -q -- "$1" && return 0; sleep 0.3; done
     return 1

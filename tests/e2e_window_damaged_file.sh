@@ -19,13 +19,6 @@ check "the damaged and the hand-edited files are made" $?
 start_xvfb 1200x800
 open_editor "$orogen" "$work/nan.planet"
 . "$2/support/gui_helpers.sh"
-messages() { # the lines ui_messages lists now
-    local before
-    before=$(wc -l <"$work/out")
-    ask ui_messages '^messages ' >/dev/null || return 1
-    sleep 0.1
-    tail -n +$((before + 1)) "$work/out" | sed -n '/^messages /,$p'
-}
 # Waits up to 10 s for ui_messages to list a line matching pattern.
 shown() {
     for _ in $(seq 40); do messages | grep -q -- "$1" && return 0; sleep 0.25; done

@@ -22,13 +22,13 @@ vec3 automatic_sparse(float h, float slope, float curvature, vec2 uv, vec4 far0,
     n++;
     RULE_CALLS
 #undef R
-    uint todo = 0u; // the slots whose material may show
+    uint pending = 0u; // the slots whose material may show
     for (int k = 0; k < n; k++)
-        if (k < 2 || w[k] > 0.0) todo |= 1u << uint(k);
+        if (k < 2 || w[k] > 0.0) pending |= 1u << uint(k);
     int base = 0; // the lowest slot that shows
     if (n > 0) do { // (a while loop would run its body once more, with no pixel in it)
-        int k = findMSB(todo);
-        todo &= ~(1u << uint(k));
+        int k = findMSB(pending);
+        pending &= ~(1u << uint(k));
         int m = 0;
         float v = 0.0, wk = 0.0;
         for (int j = 0; j < n; j++)
@@ -36,8 +36,8 @@ vec3 automatic_sparse(float h, float slope, float curvature, vec2 uv, vec4 far0,
         vec4 a = albedo_varied(m, uv, v);
         for (int j = 0; j < n; j++)
             if (j == k) got[j] = a;
-        if (k == 0 || (wk >= 1.0 && max(0.0, a.a) - 0.15 >= 0.0)) base = k, todo = 0u;
-    } while (todo != 0u);
+        if (k == 0 || (wk >= 1.0 && max(0.0, a.a) - 0.15 >= 0.0)) base = k, pending = 0u;
+    } while (pending != 0u);
     // Bottom up from there, as automatic_varied lays them (a slot of weight 0 above the
     // first blends with a material of no weight: its texture's value is not used).
     vec4 c = vec4(0.45, 0.42, 0.38, 0.5);

@@ -114,6 +114,14 @@ click() {
     settle
 }
 key() { xdotool key "$@" && settle; }
+# The lines ui_messages lists now: "messages N", then each "WHERE: TEXT".
+messages() { # the lines ui_messages lists now
+    local before
+    before=$(wc -l <"$work/out")
+    ask ui_messages '^messages ' >/dev/null || return 1
+    sleep 0.1
+    tail -n +$((before + 1)) "$work/out" | sed -n '/^messages /,$p'
+}
 is_png() { [ -s "$1" ] && [ "$(head -c 4 "$1" | od -An -c | tr -d ' ')" = "211PNG" ]; }
 # Types TEXT into the field NAME: a click focuses it and selects its text (the fields of
 # these dialogs replace their text when typed into).
