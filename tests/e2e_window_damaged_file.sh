@@ -33,7 +33,8 @@ dismiss_all() {
 shown "^Notices: .*nan.planet:[0-9]*: error: radius: .*got 'nan'"
 ok=$?
 check "opened at start, the bad line is shown in the window ($(messages | tr '\n' '|'))" $ok
-shown "^Notices: .*read-only"; check "and that it opened read-only" $?
+shown "^Notices: .*nan.planet: error: the file is damaged: .*read-only"
+check "and that it opened read-only, naming the file once" $?
 widget "Notices/Dismiss" >/dev/null; check "with a Dismiss button" $?
 
 # 2. Dismissed, then opened again through File > Open: shown again.

@@ -573,9 +573,9 @@ world *world_load(const char *path, const world_settings *settings, int *errors,
     if (!failed) failed = open_checked_store(w, tiles, err) != 0;
     if (!failed && cut_short[0]) // its missing keys became defaults: never adopted
         snprintf(w->read_only, sizeof w->read_only,
-                 "%s is %s; opened read-only (save to another file keeps your edits; 'save "
-                 "force=1' writes a whole file over it)",
-                 path, cut_short);
+                 "the file is %s; opened read-only (save to another file keeps your edits; "
+                 "'save force=1' writes a whole file over it)",
+                 cut_short);
     long owner = 0;
     int locked = failed ? -1 : lock_files(w, tiles, &owner, err);
     if (locked < 0 || start_cache(w, err) != 0 ||
