@@ -100,6 +100,9 @@ box_rows_length(const float *src, float *dst, int64_t n, const int length) {
     int64_t from[5];
     __m512i at[5];
     int64_t covered = 0;
+    // Unrolled so that all of these fold to constants: left as a loop, GCC kept use[] and
+    // from[] in the steps as tests and branches (a third of the pass's time).
+#pragma GCC unroll 5
     for (int l = 4; l >= 0; l--) {
         use[l] = (length & (1 << l)) != 0;
         from[l] = covered;
