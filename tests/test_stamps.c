@@ -5,6 +5,7 @@
 #include "editor/tools/stamp_library.h"
 #include "editor/tools/stamp_shapes.h"
 #include "editor/tools/stamp.h"
+#include "editor/tools/stamp_image_cache.h"
 #include "editor/tools/stamp_user.h"
 #include "io/image_read.h"
 
@@ -15,6 +16,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <stdarg.h>
 #include <setjmp.h>
@@ -323,6 +327,73 @@ static void test_user_stamp_add(void **state) {
     test_rmtree(dir);
 }
 
+// A stamp image read again is the kept decode, unless the file changed: rewritten in
+// place, replaced (a new inode) or removed. Ramps A and B differ in every pixel.
+static void ramp(float *px, int n, float offset) {
+    for (int i = 0; i < n * n; i++)
+        px[i] = offset + 0.5f * (float)i / (float)(n * n);
+}
+
+static int reads_as(const char *path, const float *want, int n) {
+    stamp_source s;
+    og_error err = {{0}};
+    if (stamp_find(path, NULL, NULL, &s, &err) != 0) return 0;
+    int same = s.width == n && s.height == n;
+    for (int i = 0; same && i < n * n; i++)
+        same = fabsf(s.pixels[i] - want[i]) < 1e-4f;
+    stamp_source_free(&s);
+    return same;
+}
+
+static void test_image_read_again(void **state) {
+    (void)state;
+    enum { N = 64 };
+    static float a[N * N], b[N * N];
+    ramp(a, N, 0.0f), ramp(b, N, 0.25f);
+    char dir[4096], path[4200], other[4200];
+    snprintf(dir, sizeof dir, "%s", test_tmpdir("stamp_again"));
+    snprintf(path, sizeof path, "%s/a.png", dir);
+    snprintf(other, sizeof other, "%s/b.png", dir);
+    og_error err = {{0}};
+    assert_int_equal(image_write_gray16(path, a, N, N, &err), 0);
+    assert_int_equal(image_write_gray16(other, b, N, N, &err), 0);
+    assert_true(reads_as(path, a, N));
+    assert_true(reads_as(path, a, N)); // the kept copy; the caller's copy was freed
+    // Rewritten in place (same inode): read again.
+    size_t len = 0;
+    char *bytes = test_read_file(other, &len);
+    assert_non_null(bytes);
+    test_write_file(path, bytes, len);
+    assert_true(reads_as(path, b, N));
+    // Replaced by a rename (a new inode), as image editors save: read again.
+    assert_int_equal(image_write_gray16(path, a, N, N, &err), 0);
+    assert_true(reads_as(path, a, N));
+    // The decode is really kept: bytes changed behind the file's back (same inode, size
+    // and time) still read as the kept image.
+    struct stat st;
+    assert_int_equal(stat(path, &st), 0);
+    char *a_bytes = test_read_file(path, &len);
+    assert_non_null(a_bytes);
+    FILE *f = fopen(path, "r+b");
+    assert_non_null(f);
+    assert_int_equal(fwrite("XXXX", 1, 4, f), 4); // the PNG signature, now unreadable
+    fclose(f);
+    struct timespec times[2] = {st.st_atim, st.st_mtim};
+    assert_int_equal(utimensat(AT_FDCWD, path, times, 0), 0);
+    assert_true(reads_as(path, a, N));
+    stamp_image_cache_clear();
+    assert_false(reads_as(path, a, N)); // forgotten: read, and it is no longer a PNG
+    test_write_file(path, a_bytes, len);
+    assert_true(reads_as(path, a, N));
+    // Removed: an error, not the kept image.
+    assert_int_equal(unlink(path), 0);
+    stamp_source s;
+    assert_int_equal(stamp_find(path, NULL, NULL, &s, &err), -1);
+    assert_non_null(strstr(err.msg, "does not exist"));
+    free(bytes), free(a_bytes);
+    test_rmtree(dir);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_shape_names),
@@ -335,6 +406,7 @@ int main(void) {
         cmocka_unit_test(test_library_render),
         cmocka_unit_test(test_committed_library_is_regenerated),
         cmocka_unit_test(test_user_stamp_add),
+        cmocka_unit_test(test_image_read_again),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -7,9 +7,9 @@
 #include "editor/edit/edit_rows.h"
 #include "editor/world/layer_grid.h"
 #include "editor/tools/stamp_image.h"
+#include "editor/tools/stamp_image_cache.h"
 #include "editor/tools/stamp_library.h"
 #include "editor/tools/stamp_shapes.h"
-#include "io/image_read.h"
 #include "io/parse.h"
 
 #include <dirent.h>
@@ -94,9 +94,8 @@ static int load_image(const char *path, const char *name, stamp_source *out, og_
     memset(out, 0, sizeof *out);
     out->shape = -1;
     snprintf(out->name, sizeof out->name, "%s", name);
-    if (image_read_luminance(path, &out->pixels, &out->width, &out->height, err) != 0) return -1;
-    out->support = stamp_image_support(out->pixels, out->width, out->height);
-    return 0;
+    return stamp_image_cache_read(path, &out->pixels, &out->width, &out->height, &out->support,
+                                  err);
 }
 
 static int find_in(const char *dir, const char *name, char *path, size_t size) {
