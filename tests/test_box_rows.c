@@ -25,9 +25,8 @@ static double uniform(void) {
 
 // box_blur.c's pass: runs of 2p from runs of p, the length's bits taken high first,
 // each run starting where those before it end.
-static void reference(const float *src, float *dst, int64_t n, int length) {
+static void reference(const float *src, float *dst, int64_t n, int length, float scale) {
     int64_t windows = n - (length - 1), k = (length - 1) / 2;
-    float inv = (float)(1.0 / length);
     float *run[9];
     int top = 0;
     run[0] = malloc((size_t)n * sizeof *run[0]);
@@ -47,7 +46,7 @@ static void reference(const float *src, float *dst, int64_t n, int length) {
         covered += 1 << l;
     }
     for (int64_t i = 0; i < windows; i++)
-        dst[k + i] = sum[i] * inv;
+        dst[k + i] = sum[i] * scale;
     for (int l = 0; l <= top; l++)
         free(run[l]);
     free(sum);
@@ -62,17 +61,19 @@ static void test_same_bits(void **state) {
     long compared = 0, wide = 0;
     for (int length = 3; length <= 129; length += length < 31 ? 2 : 14)
         for (int n = length; n <= MAX; n += n < 64 ? 1 : 7) {
-            int off = (int)(uniform() * 16);    // unaligned starts
+            int off = (int)(uniform() * 16); // unaligned starts
+            // Sums left whole (the blur's first pass), a mean, any scale (its second).
+            float scales[3] = {1.0f, (float)(1.0 / length), (float)(uniform() * 0x1p-10)};
+            float scale = scales[n % 3];
             for (int i = 0; i < MAX + PAD; i++) // heights from millimetres to kilometres
                 src[i] = (float)((uniform() - 0.3) * pow(10.0, uniform() * 6.0 - 3.0));
-            reference(src + off, want + off, n, length);
             for (int path = 0; path < 3; path++) { // plain, AVX-512, the two as box_rows picks
                 for (int i = 0; i < MAX + PAD; i++)
                     want[i] = got[i] = -12345.0f; // never a result: shows stray writes
-                reference(src + off, want + off, n, length);
-                if (path == 0) box_rows_plain(src + off, got + off, n, length, scratch);
-                if (path == 2) box_rows(src + off, got + off, n, length, scratch);
-                if (path == 1 && box_rows_wide(src + off, got + off, n, length) != 0) {
+                reference(src + off, want + off, n, length, scale);
+                if (path == 0) box_rows_plain(src + off, got + off, n, length, scale, scratch);
+                if (path == 2) box_rows(src + off, got + off, n, length, scale, scratch);
+                if (path == 1 && box_rows_wide(src + off, got + off, n, length, scale) != 0) {
                     for (int i = 0; i < MAX + PAD; i++)
                         assert_true(got[i] == -12345.0f);
                     continue; // no AVX-512 here, or a longer box: the plain pass runs
@@ -85,8 +86,8 @@ static void test_same_bits(void **state) {
             }
         }
     print_message("%ld windows compared bit for bit (%ld runs on AVX-512)\n", compared, wide);
-    assert_int_equal(box_rows_wide(src, got, 40, 33), -1); // longer boxes: the plain pass
-    assert_int_equal(box_rows_wide(src, got, 2, 3), -1);
+    assert_int_equal(box_rows_wide(src, got, 40, 33, 1.0f), -1); // longer boxes: the plain pass
+    assert_int_equal(box_rows_wide(src, got, 2, 3, 1.0f), -1);
     free(src), free(want), free(got), free(scratch);
 }
 

@@ -112,6 +112,8 @@ int box_blur_twice_rows(box_row_at at, void *user, const int64_t (*need)[2], flo
     if (k < 1 || w <= 4 * k || h <= 4 * k) return 0; // no sample 2k inside every edge
     if (length >= (1 << BOX_ROWS_LEVELS)) return -1; // past any brush's radius
     enum { BLOCK = 2048 };
+    // The four boxes' sums are scaled once, at the end, to their mean.
+    const float scale = (float)(1.0 / ((double)length * length * length * length));
     int64_t bmax = BLOCK + w;
     // packed rows; the pointers to the area's rows (a run's) and to the packed rows; the
     // packed rows' columns (lo, hi, int64); box_columns' ring; a block's first box and
@@ -166,8 +168,8 @@ int box_blur_twice_rows(box_row_at at, void *user, const int64_t (*need)[2], flo
             continue;
         }
         float *block = dst[z] + lo[z];
-        box_rows(block, first, n, (int)length, scratch + at_runs);
-        box_rows(first + k, res + k, n - 2 * k, (int)length, scratch + at_runs);
+        box_rows(block, first, n, (int)length, 1.0f, scratch + at_runs);
+        box_rows(first + k, res + k, n - 2 * k, (int)length, scale, scratch + at_runs);
         for (; z < z1; z++) {
             int64_t x0 = need ? need[z][0] : 2 * k, x1 = need ? need[z][1] : w - 2 * k;
             x0 = x0 > 2 * k ? x0 : 2 * k, x1 = x1 < w - 2 * k ? x1 : w - 2 * k;

@@ -1,9 +1,10 @@
 #include "editor/tools/box_columns.h"
 
 // A strip of up to 16 columns swept from top to bottom, both boxes' sums in registers
-// and the first box's results in a ring of a few kilobytes: per row and column an
-// add, a subtract and a multiply for each box (the double sums exact over any start
-// that this replaced took five times the instructions, conversions included).
+// and the first box's results in a ring of a few kilobytes: per row and column two
+// adds and a subtract for each box (the double sums exact over any start that this
+// replaced took five times the instructions, conversions included). The sums are not
+// scaled to means here: the row boxes' last pass scales them once.
 
 int64_t box_columns_anchor(int64_t y0, int k) {
     int64_t m = 2 * k + 1;
@@ -15,7 +16,6 @@ int64_t box_columns_anchor(int64_t y0, int k) {
 static void strip_plain(const float *const *rows, float *const *out, int k, float *ring, int64_t x,
                         int n, int64_t y0, int64_t y1) {
     const int64_t m = 2 * k + 1, slots = 2 * k + 2;
-    const float inv = (float)(1.0 / m);
     float a1[16], d1[16], a2[16], d2[16];
     int64_t j0 = box_columns_anchor(y0, k), i0 = j0 - k;
     for (int64_t i = i0; i < y1 + k; i++) {
@@ -32,7 +32,7 @@ static void strip_plain(const float *const *rows, float *const *out, int k, floa
                 d1[l] = d1[l] + (rows[i + k][x + l] - rows[i - k - 1][x + l]);
         }
         for (int l = 0; l < n; l++)
-            b[l] = (a1[l] + d1[l]) * inv;
+            b[l] = a1[l] + d1[l];
         int64_t j = i - k; // the second box's row whose last first-box row is i
         if (j < j0) continue;
         if ((j - 2 * k) % m == 0) { // the first box's rows [j - k, j + k]
@@ -48,7 +48,7 @@ static void strip_plain(const float *const *rows, float *const *out, int k, floa
                 d2[l] = d2[l] + (b[l] - old[l]);
         }
         for (int l = 0; l < n; l++)
-            out[j][x + l] = (a2[l] + d2[l]) * inv;
+            out[j][x + l] = a2[l] + d2[l];
     }
 }
 
@@ -67,39 +67,45 @@ void box_columns_plain(const float *const *rows, float *const *out, int k, float
 
 #define INLINE __attribute__((target("avx512f"), always_inline)) static inline
 
+// 16 floats at p, the lanes of m (full: all 16, as a plain load: a masked one takes an
+// arithmetic port's slot too).
+INLINE __m512 load(__mmask16 m, const float *p, int full) {
+    return full ? _mm512_loadu_ps(p) : _mm512_maskz_loadu_ps(m, p);
+}
+
 // The first box's step for one strip (mask m, columns from x) at row i: its sum is
-// a1 + d1; mean gets its result.
+// a1 + d1, which sum gets.
 INLINE void first_box(const float *const *rows, int64_t i, int k, int anchor, int64_t x,
-                      __mmask16 m, __m512 inv, __m512 *a1, __m512 *d1, __m512 *mean) {
+                      __mmask16 m, int full, __m512 *a1, __m512 *d1, __m512 *sum) {
     if (anchor) { // rows [i - k, i + k] in four interleaved sums
         const float *const *v = rows + i - k;
         __m512 p0 = _mm512_setzero_ps(), p1 = p0, p2 = p0, p3 = p0;
         int64_t r = 0;
         for (; r + 3 <= 2 * k; r += 4) {
-            p0 = _mm512_add_ps(p0, _mm512_maskz_loadu_ps(m, v[r] + x));
-            p1 = _mm512_add_ps(p1, _mm512_maskz_loadu_ps(m, v[r + 1] + x));
-            p2 = _mm512_add_ps(p2, _mm512_maskz_loadu_ps(m, v[r + 2] + x));
-            p3 = _mm512_add_ps(p3, _mm512_maskz_loadu_ps(m, v[r + 3] + x));
+            p0 = _mm512_add_ps(p0, load(m, v[r] + x, full));
+            p1 = _mm512_add_ps(p1, load(m, v[r + 1] + x, full));
+            p2 = _mm512_add_ps(p2, load(m, v[r + 2] + x, full));
+            p3 = _mm512_add_ps(p3, load(m, v[r + 3] + x, full));
         }
-        p0 = _mm512_add_ps(p0, _mm512_maskz_loadu_ps(m, v[r] + x)); // 2k + 1 = 4q + 1 or 4q + 3
+        p0 = _mm512_add_ps(p0, load(m, v[r] + x, full)); // 2k + 1 = 4q + 1 or 4q + 3
         if (r + 2 <= 2 * k) {
-            p1 = _mm512_add_ps(p1, _mm512_maskz_loadu_ps(m, v[r + 1] + x));
-            p2 = _mm512_add_ps(p2, _mm512_maskz_loadu_ps(m, v[r + 2] + x));
+            p1 = _mm512_add_ps(p1, load(m, v[r + 1] + x, full));
+            p2 = _mm512_add_ps(p2, load(m, v[r + 2] + x, full));
         }
         *a1 = _mm512_add_ps(_mm512_add_ps(p0, p1), _mm512_add_ps(p2, p3));
         *d1 = _mm512_setzero_ps();
     } else {
-        __m512 in = _mm512_maskz_loadu_ps(m, rows[i + k] + x);
-        __m512 gone = _mm512_maskz_loadu_ps(m, rows[i - k - 1] + x);
+        __m512 in = load(m, rows[i + k] + x, full);
+        __m512 gone = load(m, rows[i - k - 1] + x, full);
         *d1 = _mm512_add_ps(*d1, _mm512_sub_ps(in, gone));
     }
-    *mean = _mm512_mul_ps(_mm512_add_ps(*a1, *d1), inv);
+    *sum = _mm512_add_ps(*a1, *d1);
 }
 
 // The second box's step for one strip at row j (its last first-box row just made:
-// mean; ring + q: its slot of row j - k - 1, the slots after it rows j - k ..).
-INLINE __m512 second_box(const float *ring, int64_t q, int64_t slots, int k, int anchor,
-                         __m512 mean, __m512 inv, __m512 *a2, __m512 *d2) {
+// sum; ring + q: its slot of row j - k - 1, the slots after it rows j - k ..).
+INLINE __m512 second_box(const float *ring, int64_t q, int64_t slots, int k, int anchor, __m512 sum,
+                         __m512 *a2, __m512 *d2) {
     if (anchor) { // the first box's rows [j - k, j + k]: the slots after q
         // the slots of rows j - k + r, r = 0 .. 2k: q + 1 + r, wrapping once
         const float *v[4];
@@ -122,9 +128,9 @@ INLINE __m512 second_box(const float *ring, int64_t q, int64_t slots, int k, int
         *a2 = _mm512_add_ps(_mm512_add_ps(p0, p1), _mm512_add_ps(p2, p3));
         *d2 = _mm512_setzero_ps();
     } else {
-        *d2 = _mm512_add_ps(*d2, _mm512_sub_ps(mean, _mm512_loadu_ps(ring + q * 32)));
+        *d2 = _mm512_add_ps(*d2, _mm512_sub_ps(sum, _mm512_loadu_ps(ring + q * 32)));
     }
-    return _mm512_mul_ps(_mm512_add_ps(*a2, *d2), inv);
+    return _mm512_add_ps(*a2, *d2);
 }
 
 // The state of a sweep of two strips side by side.
@@ -135,27 +141,31 @@ typedef struct sweep {
     int64_t x, slots;
     int k;
     __mmask16 lo, hi;
-    __m512 inv, a1l, d1l, a2l, d2l, a1h, d1h, a2h, d2h;
+    __m512 a1l, d1l, a2l, d2l, a1h, d1h, a2h, d2h;
 } sweep;
 
 // One step at row i (ring slot at): the first box's row i; with second, the second
 // box's row i - k. anchor1, anchor2: that box starts afresh here. Constants where
 // inlined, so the steady steps run without branches.
-INLINE void step(sweep *s, int64_t i, int64_t at, int anchor1, int second, int anchor2) {
+INLINE void step(sweep *s, int64_t i, int64_t at, int anchor1, int second, int anchor2, int full) {
     float *b = s->ring + at * 32;
     int64_t next = at + 1 == s->slots ? 0 : at + 1;
     __m512 ml, mh;
-    first_box(s->rows, i, s->k, anchor1, s->x, s->lo, s->inv, &s->a1l, &s->d1l, &ml);
-    first_box(s->rows, i, s->k, anchor1, s->x + 16, s->hi, s->inv, &s->a1h, &s->d1h, &mh);
+    first_box(s->rows, i, s->k, anchor1, s->x, s->lo, full, &s->a1l, &s->d1l, &ml);
+    first_box(s->rows, i, s->k, anchor1, s->x + 16, s->hi, full, &s->a1h, &s->d1h, &mh);
     _mm512_storeu_ps(b, ml);
     _mm512_storeu_ps(b + 16, mh);
     if (!second) return;
-    __m512 ol = second_box(s->ring, next, s->slots, s->k, anchor2, ml, s->inv, &s->a2l, &s->d2l);
-    __m512 oh =
-        second_box(s->ring + 16, next, s->slots, s->k, anchor2, mh, s->inv, &s->a2h, &s->d2h);
+    __m512 ol = second_box(s->ring, next, s->slots, s->k, anchor2, ml, &s->a2l, &s->d2l);
+    __m512 oh = second_box(s->ring + 16, next, s->slots, s->k, anchor2, mh, &s->a2h, &s->d2h);
     float *o = s->out[i - s->k] + s->x;
-    _mm512_mask_storeu_ps(o, s->lo, ol);
-    _mm512_mask_storeu_ps(o + 16, s->hi, oh);
+    if (full) {
+        _mm512_storeu_ps(o, ol);
+        _mm512_storeu_ps(o + 16, oh);
+    } else {
+        _mm512_mask_storeu_ps(o, s->lo, ol);
+        _mm512_mask_storeu_ps(o + 16, s->hi, oh);
+    }
 }
 
 // Two strips side by side (columns [x, x + 16) by mask lo, [x + 16, x + 32) by mask hi;
@@ -163,32 +173,41 @@ INLINE void step(sweep *s, int64_t i, int64_t at, int anchor1, int second, int a
 // overlap. The anchors come in blocks of 2k + 1 steps of i: the first box's at the
 // first step, the second box's at the last (j - 2k = i - 3k, a multiple of 2k + 1);
 // the first block makes the first box's rows the second's first anchor takes.
-WIDE static void strips_wide(const float *const *rows, float *const *out, int k, float *ring,
-                             int64_t x, __mmask16 lo, __mmask16 hi, int64_t y0, int64_t y1) {
+INLINE void sweep_strips(const float *const *rows, float *const *out, int k, float *ring, int64_t x,
+                         __mmask16 lo, __mmask16 hi, int64_t y0, int64_t y1, const int full) {
     const int64_t m = 2 * k + 1, slots = 2 * k + 2;
     const __m512 zero = _mm512_setzero_ps();
-    sweep s = {rows, out,  ring, x,    slots, k,    lo,   hi,  _mm512_set1_ps((float)(1.0 / m)),
+    sweep s = {rows, out,  ring, x,    slots, k,    lo,   hi,
                zero, zero, zero, zero, zero,  zero, zero, zero};
     int64_t i0 = box_columns_anchor(y0, k) - k, end = y1 + k, at = i0 % slots;
     for (int64_t i = i0; i < end;) {
         int64_t last = i + m - 1; // the block's last step
         int second = i > i0;
         if (second)
-            step(&s, i, at, 1, 1, 0);
+            step(&s, i, at, 1, 1, 0, full);
         else
-            step(&s, i, at, 1, 0, 0);
+            step(&s, i, at, 1, 0, 0, full);
         i++, at = at + 1 == slots ? 0 : at + 1;
         if (second)
             for (; i < last && i < end; i++, at = at + 1 == slots ? 0 : at + 1)
-                step(&s, i, at, 0, 1, 0);
+                step(&s, i, at, 0, 1, 0, full);
         else
             for (; i < last && i < end; i++, at = at + 1 == slots ? 0 : at + 1)
-                step(&s, i, at, 0, 0, 0);
+                step(&s, i, at, 0, 0, 0, full);
         if (i < end) {
-            step(&s, i, at, 0, 1, 1);
+            step(&s, i, at, 0, 1, 1, full);
             i++, at = at + 1 == slots ? 0 : at + 1;
         }
     }
+}
+
+// Strips of 32 columns (all but a run's last) on their own code, without masks.
+WIDE static void strips_wide(const float *const *rows, float *const *out, int k, float *ring,
+                             int64_t x, __mmask16 lo, __mmask16 hi, int64_t y0, int64_t y1) {
+    if ((lo & hi) == 0xffff)
+        sweep_strips(rows, out, k, ring, x, lo, hi, y0, y1, 1);
+    else
+        sweep_strips(rows, out, k, ring, x, lo, hi, y0, y1, 0);
 }
 
 int box_columns_have_wide(void) {

@@ -3,15 +3,16 @@
 
 #include <stdint.h>
 
-// Two box means of radius k >= 1 down the columns [c0, c1) of an area, in float with
-// running sums re-anchored every 2k + 1 rows: the first box's sum of rows [i - k, i + k]
-// is, at the anchors (i - k a multiple of 2k + 1), those rows added in order; between
-// them the anchor's sum plus the changes since (each the row entering minus the row
+// Two box sums of radius k >= 1 down the columns [c0, c1) of an area (not divided:
+// the means times (2k + 1)^2; the row boxes' last pass scales), in float with running
+// sums re-anchored every 2k + 1 rows: the first box's sum of rows [i - k, i + k] is, at
+// the anchors (i - k a multiple of 2k + 1), those rows added in order; between them
+// the anchor's sum plus the changes since (each the row entering minus the row
 // leaving, added up on their own: small where the ground is smooth, so the running
 // part rounds far less than a sum of whole heights). The second box the same over the
 // first's results (anchors where j - 2k is a multiple of 2k + 1). So a result depends
 // on the rows and k alone, not on which rows were asked for: the strips a disc needs
-// and the whole area give the same bits. Each mean is the sum times (float)(1 / (2k + 1)).
+// and the whole area give the same bits.
 //
 // rows[y] + x: the area's row y at column x (only columns [c0, c1) are read). Results
 // for rows [y0, y1) (2k <= y0 < y1 <= h - 2k) go to out[y] + x; rows from the anchor

@@ -20,9 +20,9 @@ HOT_LOOP_WIDE static void add_scaled(float *dst, const float *a, const float *b,
 }
 
 // The plain pass: each doubling a loop over the array (vectorised by the compiler).
-void box_rows_plain(const float *src, float *dst, int64_t n, int length, float *scratch) {
+void box_rows_plain(const float *src, float *dst, int64_t n, int length, float scale,
+                    float *scratch) {
     int64_t windows = n - (length - 1), k = (length - 1) / 2;
-    float inv = (float)(1.0 / length);
     const float *run[BOX_ROWS_LEVELS] = {src}; // run[l]: sums of 2^l samples from each start
     int top = 0;
     while ((int64_t)2 << top <= length && top + 1 < BOX_ROWS_LEVELS) {
@@ -36,7 +36,10 @@ void box_rows_plain(const float *src, float *dst, int64_t n, int length, float *
     for (int l = top - 1; l >= 0; l--) {
         if (!(length & (1 << l))) continue;
         if (covered + ((int64_t)1 << l) == length) { // the last (l = 0: length is odd)
-            add_scaled(dst + k, sum, run[l] + covered, inv, windows);
+            if (scale == 1.0f)
+                add_arrays(dst + k, sum, run[l] + covered, windows);
+            else
+                add_scaled(dst + k, sum, run[l] + covered, scale, windows);
             return;
         }
         add_arrays(acc, sum, run[l] + covered, windows);
@@ -45,8 +48,9 @@ void box_rows_plain(const float *src, float *dst, int64_t n, int length, float *
     }
 }
 
-void box_rows(const float *src, float *dst, int64_t n, int length, float *scratch) {
-    if (box_rows_wide(src, dst, n, length) != 0) box_rows_plain(src, dst, n, length, scratch);
+void box_rows(const float *src, float *dst, int64_t n, int length, float scale, float *scratch) {
+    if (box_rows_wide(src, dst, n, length, scale) != 0)
+        box_rows_plain(src, dst, n, length, scale, scratch);
 }
 
 // The plain pass stores every doubling (runs of 2, 4, 8, 16) and reads
@@ -86,9 +90,10 @@ WIDE static inline __m512 block_at(const float *src, int64_t n, int64_t at) {
 
 // Inlined for each length (a constant there): the choice of runs and shuffles folds away.
 __attribute__((target("avx512f"), always_inline)) static inline void
-box_rows_length(const float *src, float *dst, int64_t n, const int length) {
+box_rows_length(const float *src, float *dst, int64_t n, const int length, float scale,
+                const int scaled) {
     const int64_t windows = n - (length - 1), k = (length - 1) / 2;
-    const __m512 inv = _mm512_set1_ps((float)(1.0 / length));
+    const __m512 times = _mm512_set1_ps(scale);
     const __m512i lane = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
     const __m512i by2 = _mm512_add_epi32(lane, _mm512_set1_epi32(2)),
                   by4 = _mm512_add_epi32(lane, _mm512_set1_epi32(4)),
@@ -142,7 +147,7 @@ box_rows_length(const float *src, float *dst, int64_t n, const int length) {
                                         : shifted(v1[l], v2[l], at[l]);                            \
             sum = _mm512_add_ps(sum, run);                                                         \
         }                                                                                          \
-        __m512 out = _mm512_mul_ps(sum, inv);                                                      \
+        __m512 out = scaled ? _mm512_mul_ps(sum, times) : sum;                                     \
         store;                                                                                     \
         a0 = a1, a1 = a2, a2 = a3, a3 = a4, a4 = next_a;                                           \
         r2_0 = r2_1, r2_1 = r2_2, r2_2 = r2_3, r2_3 = r2_4;                                        \
@@ -169,64 +174,44 @@ box_rows_length(const float *src, float *dst, int64_t n, const int length) {
 #undef STEP
 }
 
-WIDE static void box_rows_avx512(const float *src, float *dst, int64_t n, int length) {
+// Each length (and whether it scales) inlined on its own.
+#define LENGTH(length)                                                                             \
+    case length:                                                                                   \
+        if (scale == 1.0f)                                                                         \
+            box_rows_length(src, dst, n, length, scale, 0);                                        \
+        else                                                                                       \
+            box_rows_length(src, dst, n, length, scale, 1);                                        \
+        break;
+
+WIDE static void box_rows_avx512(const float *src, float *dst, int64_t n, int length, float scale) {
     switch (length) {
-    case 3:
-        box_rows_length(src, dst, n, 3);
-        break;
-    case 5:
-        box_rows_length(src, dst, n, 5);
-        break;
-    case 7:
-        box_rows_length(src, dst, n, 7);
-        break;
-    case 9:
-        box_rows_length(src, dst, n, 9);
-        break;
-    case 11:
-        box_rows_length(src, dst, n, 11);
-        break;
-    case 13:
-        box_rows_length(src, dst, n, 13);
-        break;
-    case 15:
-        box_rows_length(src, dst, n, 15);
-        break;
-    case 17:
-        box_rows_length(src, dst, n, 17);
-        break;
-    case 19:
-        box_rows_length(src, dst, n, 19);
-        break;
-    case 21:
-        box_rows_length(src, dst, n, 21);
-        break;
-    case 23:
-        box_rows_length(src, dst, n, 23);
-        break;
-    case 25:
-        box_rows_length(src, dst, n, 25);
-        break;
-    case 27:
-        box_rows_length(src, dst, n, 27);
-        break;
-    case 29:
-        box_rows_length(src, dst, n, 29);
-        break;
-    case 31:
-        box_rows_length(src, dst, n, 31);
-        break;
+        LENGTH(3)
+        LENGTH(5)
+        LENGTH(7)
+        LENGTH(9)
+        LENGTH(11)
+        LENGTH(13)
+        LENGTH(15)
+        LENGTH(17)
+        LENGTH(19)
+        LENGTH(21)
+        LENGTH(23)
+        LENGTH(25)
+        LENGTH(27)
+        LENGTH(29)
+        LENGTH(31)
     }
 }
+#undef LENGTH
 
-int box_rows_wide(const float *src, float *dst, int64_t n, int length) {
+int box_rows_wide(const float *src, float *dst, int64_t n, int length, float scale) {
     if (length < 3 || length > 31 || n < length || !__builtin_cpu_supports("avx512f")) return -1;
-    box_rows_avx512(src, dst, n, length);
+    box_rows_avx512(src, dst, n, length, scale);
     return 0;
 }
 #else
-int box_rows_wide(const float *src, float *dst, int64_t n, int length) {
-    (void)src, (void)dst, (void)n, (void)length;
+int box_rows_wide(const float *src, float *dst, int64_t n, int length, float scale) {
+    (void)src, (void)dst, (void)n, (void)length, (void)scale;
     return -1;
 }
 #endif
