@@ -4,7 +4,8 @@
 // 1..12, areas up to 4k + 120 wide and high, and wanted ranges shaped as discs, as
 // random ranges per row (not convex, some rows empty) and as nothing at all; rows
 // are read in runs of columns that end where tiles would (every 37 columns here), the
-// whole blur's from a plain array in one run.
+// whole blur's from a plain array in one run. The same with the results left packed
+// (box_blur_twice_packed), each wanted row's inside the area's floats.
 #include "editor/tools/box_blur.h"
 
 #include <math.h>
@@ -47,9 +48,9 @@ static void test_wanted_results_match_the_whole_blur(void **state) {
                 h = 4 * k + 1 + (int64_t)(uniform() * 120);
         size_t n = (size_t)(w * h);
         float *in = malloc(n * sizeof *in), *whole = malloc(n * sizeof *whole);
-        float *part = malloc(n * sizeof *part);
-        int64_t(*need)[2] = malloc((size_t)h * sizeof *need);
-        assert_true(in && whole && part && need);
+        float *part = malloc(n * sizeof *part), *packed = malloc(n * sizeof *packed);
+        int64_t(*need)[2] = malloc((size_t)h * sizeof *need), *at = malloc((size_t)h * sizeof *at);
+        assert_true(in && whole && part && packed && need && at);
         for (size_t i = 0; i < n; i++)
             in[i] = (float)((uniform() - 0.3) * pow(10.0, uniform() * 5.0 - 2.0));
         double cx = (double)w * uniform(), cz = (double)h * uniform(), r = (double)w * uniform();
@@ -68,6 +69,8 @@ static void test_wanted_results_match_the_whole_blur(void **state) {
         assert_int_equal(box_blur_twice(in, whole, w, h, k), 0);
         assert_int_equal(box_blur_twice_rows(row_at, &s, (const int64_t(*)[2])need, part, w, h, k),
                          0);
+        assert_int_equal(
+            box_blur_twice_packed(row_at, &s, (const int64_t(*)[2])need, packed, at, w, h, k), 0);
         for (int64_t z = 2 * k; z < h - 2 * k; z++) {
             int64_t a = need[z][0] > 2 * k ? need[z][0] : 2 * k;
             int64_t b = need[z][1] < w - 2 * k ? need[z][1] : w - 2 * k;
@@ -75,9 +78,14 @@ static void test_wanted_results_match_the_whole_blur(void **state) {
             if (memcmp(whole + z * w + a, part + z * w + a, (size_t)(b - a) * sizeof *part) != 0)
                 fail_msg("case %d (k %d, %lld x %lld): row %lld, columns %lld..%lld differ", c, k,
                          (long long)w, (long long)h, (long long)z, (long long)a, (long long)b);
-            compared += b - a;
+            assert_true(at[z] + a >= 0 && at[z] + b <= (int64_t)n);
+            if (memcmp(whole + z * w + a, packed + at[z] + a, (size_t)(b - a) * sizeof *part) != 0)
+                fail_msg("case %d (k %d, %lld x %lld): row %lld, columns %lld..%lld differ packed",
+                         c, k, (long long)w, (long long)h, (long long)z, (long long)a,
+                         (long long)b);
+            compared += 2 * (b - a);
         }
-        free(in), free(whole), free(part), free(need);
+        free(in), free(whole), free(part), free(packed), free(need), free(at);
     }
     print_message("%ld wanted results compared bit for bit\n", compared);
     assert_true(compared > 50000);

@@ -64,9 +64,12 @@ static const float *array_row(void *user, int64_t y, int64_t x, int64_t *end) {
     return in + y * w + x;
 }
 
+static int blur(box_row_at at, void *user, const int64_t (*need)[2], float *out, int64_t *row_at,
+                int64_t w, int64_t h, int k);
+
 int box_blur_twice(const float *in, float *out, int64_t w, int64_t h, int k) {
     const float *array[2] = {in, (const float *)(intptr_t)w};
-    return box_blur_twice_rows(array_row, (void *)array, NULL, out, w, h, k);
+    return blur(array_row, (void *)array, NULL, out, NULL, w, h, k);
 }
 
 // Whether row z wants a result in columns [c0, c1) or within 2k of them (the row boxes
@@ -106,8 +109,10 @@ static int64_t run_end(box_row_at at, void *user, int64_t x) {
 // those of every chunk that writes row z); then along the packed rows in blocks of a
 // few thousand samples (windows that run from one row into the next give values no
 // wanted result takes), each wanted result copied to out.
-int box_blur_twice_rows(box_row_at at, void *user, const int64_t (*need)[2], float *out, int64_t w,
-                        int64_t h, int k) {
+// row_at NULL: results copied to out as a w x h area; else left packed in out (row z's
+// column x at out[row_at[z] + x]).
+static int blur(box_row_at at, void *user, const int64_t (*need)[2], float *out, int64_t *row_at,
+                int64_t w, int64_t h, int k) {
     int64_t length = 2 * k + 1;
     if (k < 1 || w <= 4 * k || h <= 4 * k) return 0; // no sample 2k inside every edge
     if (length >= (1 << BOX_ROWS_LEVELS)) return -1; // past any brush's radius
@@ -168,8 +173,14 @@ int box_blur_twice_rows(box_row_at at, void *user, const int64_t (*need)[2], flo
             continue;
         }
         float *block = dst[z] + lo[z];
+        float *into = row_at ? out + (block - packed) : res; // where block[i]'s result goes
         box_rows(block, first, n, (int)length, 1.0f, scratch + at_runs);
-        box_rows(first + k, res + k, n - 2 * k, (int)length, scale, scratch + at_runs);
+        box_rows(first + k, into + k, n - 2 * k, (int)length, scale, scratch + at_runs);
+        if (row_at) {
+            for (; z < z1; z++)
+                row_at[z] = dst[z] - packed;
+            continue;
+        }
         for (; z < z1; z++) {
             int64_t x0 = need ? need[z][0] : 2 * k, x1 = need ? need[z][1] : w - 2 * k;
             x0 = x0 > 2 * k ? x0 : 2 * k, x1 = x1 < w - 2 * k ? x1 : w - 2 * k;
@@ -177,4 +188,14 @@ int box_blur_twice_rows(box_row_at at, void *user, const int64_t (*need)[2], flo
         }
     }
     return 0;
+}
+
+int box_blur_twice_rows(box_row_at at, void *user, const int64_t (*need)[2], float *out, int64_t w,
+                        int64_t h, int k) {
+    return blur(at, user, need, out, NULL, w, h, k);
+}
+
+int box_blur_twice_packed(box_row_at at, void *user, const int64_t (*need)[2], float *out,
+                          int64_t *row_at, int64_t w, int64_t h, int k) {
+    return blur(at, user, need, out, row_at, w, h, k);
 }

@@ -23,5 +23,10 @@ int box_blur_twice(const float *in, float *out, int64_t w, int64_t h, int k);
 typedef const float *(*box_row_at)(void *user, int64_t y, int64_t x, int64_t *end);
 int box_blur_twice_rows(box_row_at at, void *user, const int64_t (*need)[2], float *out, int64_t w,
                         int64_t h, int k);
+// The same with the results left where the last pass writes them (no copy): out (w x h
+// floats) holds them packed, row z's column x at out[row_at[z] + x] for the columns
+// need[z] asks for (need as above; row_at: h entries, set for rows that want any).
+int box_blur_twice_packed(box_row_at at, void *user, const int64_t (*need)[2], float *out,
+                          int64_t *row_at, int64_t w, int64_t h, int k);
 
 #endif

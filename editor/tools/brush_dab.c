@@ -367,6 +367,9 @@ typedef struct dab_rows {
     // smooth with the smooth falloff on a flat disc: no weight array, each row's
     // weights computed as it is blended (smooth_row.c)
     int row_weighted;
+    // NULL, or the smoothed heights left packed as the blur wrote them: area row z's
+    // column x (area columns) at heights[row_at[z] + x]
+    int64_t *row_at;
 } dab_rows;
 
 // Narrows [x0, x1) of row z to the samples a flat disc's falloff can reach (every
@@ -492,6 +495,7 @@ static void dab_row(void *user, void *row, int64_t z, int64_t x0, int64_t x1) {
             height_row(j->d, (float *)row + (s - x0), z, s, e, w);
         } else {
             int64_t aw = j->area.x1 - j->area.x0, at = (z - j->area.z0) * aw + (s - j->area.x0);
+            if (j->row_at) at = j->row_at[z - j->area.z0] + (s - j->area.x0);
             float *out = (float *)row + (s - x0);
             if (j->row_weighted)
                 blend_row_weighted(j->d, out, j->heights + at, z, s, e - s);
@@ -532,10 +536,11 @@ static int dab_wanted(void *user, grid_rect part) {
 // Gathers the area around r (r + halo) and runs the neighbourhood tool on it.
 typedef int (*area_reader)(void *src, grid_rect area, float *out, og_error *err);
 // Smooth's blur (radius k) of the area read straight from the source's rows into out,
-// with need as box_blur_twice_rows takes it: 0, 1 when the source cannot (then it is
-// read whole and blurred), -1 on error.
-typedef int (*area_blur)(void *src, grid_rect area, const int64_t (*need)[2], float *out, int k,
-                         og_error *err);
+// with need as box_blur_twice_rows takes it (row_at: NULL, or left packed as
+// box_blur_twice_packed leaves them): 0, 1 when the source cannot (then it is read
+// whole and blurred), -1 on error.
+typedef int (*area_blur)(void *src, grid_rect area, const int64_t (*need)[2], float *out,
+                         int64_t *row_at, int k, og_error *err);
 
 // The columns of each row of area whose smoothed heights dab_row reads (those of the
 // disc's span within r; none outside r), in area columns; NULL: every column (not a
@@ -573,9 +578,17 @@ static int prepare(const brush_dab *d, tile_layer layer, grid_rect r, area_reade
     int blurred = 0; // smooth on tiles: its rows read as the blur takes them
     if (ok && d->brush->tool == BRUSH_SMOOTH && blur && !before) {
         int64_t(*need)[2] = wanted_columns(rows, area, r);
-        int rc = blur(src, area, (const int64_t(*)[2])need, heights, halo / 2, err);
+        // Only dab_row's own weights read the heights; it reads them where they lie.
+        int64_t *row_at = need && rows->row_weighted
+                              ? malloc((size_t)(area.z1 - area.z0) * sizeof *row_at)
+                              : NULL;
+        int rc = blur(src, area, (const int64_t(*)[2])need, heights, row_at, halo / 2, err);
         free(need);
         ok = rc >= 0, blurred = rc == 0;
+        if (blurred)
+            rows->row_at = row_at;
+        else
+            free(row_at);
     }
     if (ok && !blurred && (ok = read(src, area, heights, err) == 0) && copy)
         memcpy(copy, heights, n * sizeof *copy);
@@ -584,6 +597,7 @@ static int prepare(const brush_dab *d, tile_layer layer, grid_rect r, area_reade
         free(weight);
         free(copy);
         free(rows->span);
+        free(rows->row_at);
         return -1;
     }
     rows->smoothed = d->brush->tool == BRUSH_SMOOTH;
@@ -596,6 +610,7 @@ static int prepare(const brush_dab *d, tile_layer layer, grid_rect r, area_reade
 
 static void release(dab_rows *rows) {
     free(rows->span);
+    free(rows->row_at);
     free((void *)rows->heights);
     free((void *)rows->weight);
 }
@@ -691,14 +706,15 @@ static const float *world_row(void *user, int64_t y, int64_t x, int64_t *end) {
     return p;
 }
 
-static int blur_world(void *src, grid_rect area, const int64_t (*need)[2], float *out, int k,
-                      og_error *err) {
+static int blur_world(void *src, grid_rect area, const int64_t (*need)[2], float *out,
+                      int64_t *row_at, int k, og_error *err) {
     world_source *s = src;
     layer_rows rows;
     int rc = layer_rows_open(s->w, s->g, area, &rows, err);
     if (rc != 0) return rc; // 1: past the grid's edge (or huge): read whole
     int64_t w = area.x1 - area.x0, h = area.z1 - area.z0;
-    rc = box_blur_twice_rows(world_row, &rows, need, out, w, h, k);
+    rc = row_at ? box_blur_twice_packed(world_row, &rows, need, out, row_at, w, h, k)
+                : box_blur_twice_rows(world_row, &rows, need, out, w, h, k);
     layer_rows_close(&rows);
     if (rc != 0)
         return og_error_set(err, "out of memory smoothing (%lld x %lld samples)", (long long)w,
