@@ -1,5 +1,6 @@
 // The smooth dab's row kernel (editor/tools/smooth_row.c): every path this processor
-// runs (plain C, AVX2, AVX-512) gives the bits of the two loops the dab ran before it
+// runs (plain C, AVX2, AVX-512), given the squares smooth_row_squares makes once per
+// dab, gives the bits of the two loops the dab ran before it
 // (the smooth falloff's weights of a row, then each height moved toward its smoothed
 // value by its weight where the weight is > 0, kept finite), inverted or not, for rows
 // of every length 0..300 (vector tails), at unaligned addresses, with random centres,
@@ -76,6 +77,10 @@ static void test_paths_match_the_two_loops(void **state) {
             // Mostly near the height (as a blur gives), sometimes far or not finite.
             smoothed[i] = uniform() < 0.9 ? in[i] + (float)((uniform() - 0.5) * 50.0) : height();
         }
+        // The dab's squares from its first column, as many as this row reaches.
+        float *dx2 = malloc(sizeof(float) * (size_t)(k0 + n + 1));
+        assert_non_null(dx2);
+        smooth_row_squares(dx2, fdx0, k0 + n);
         memcpy(want, in, sizeof in);
         reference(want + PAD + off, smoothed + PAD + off, fdx0, k0, dzf * dzf, inv_r, strength,
                   invert, n);
@@ -83,7 +88,7 @@ static void test_paths_match_the_two_loops(void **state) {
             moved += memcmp(&want[i], &in[i], sizeof *in) != 0;
         for (int p = 0; p < paths; p++) {
             memcpy(got, in, sizeof in);
-            smooth_row_blend_path(p, got + PAD + off, smoothed + PAD + off, fdx0, k0, dzf * dzf,
+            smooth_row_blend_path(p, got + PAD + off, smoothed + PAD + off, dx2 + k0, dzf * dzf,
                                   inv_r, strength, invert, (float)BRUSH_HEIGHT_LIMIT, n);
             if (memcmp(got, want, sizeof got) != 0) {
                 int i = 0;
@@ -95,18 +100,22 @@ static void test_paths_match_the_two_loops(void **state) {
             // A row and smoothed values that end their allocations (ASan sees a read or
             // write past them).
             size_t bytes = sizeof(float) * (size_t)(n ? n : 1);
-            float *exact = malloc(bytes), *exact_s = malloc(bytes);
+            float *exact = malloc(bytes), *exact_s = malloc(bytes), *exact_d = malloc(bytes);
             assert_non_null(exact);
             assert_non_null(exact_s);
+            assert_non_null(exact_d);
             memcpy(exact, in + PAD + off, sizeof(float) * (size_t)n);
             memcpy(exact_s, smoothed + PAD + off, sizeof(float) * (size_t)n);
-            smooth_row_blend_path(p, exact, exact_s, fdx0, k0, dzf * dzf, inv_r, strength, invert,
+            memcpy(exact_d, dx2 + k0, sizeof(float) * (size_t)n);
+            smooth_row_blend_path(p, exact, exact_s, exact_d, dzf * dzf, inv_r, strength, invert,
                                   (float)BRUSH_HEIGHT_LIMIT, n);
             assert_memory_equal(exact, want + PAD + off, sizeof(float) * (size_t)n);
             free(exact);
             free(exact_s);
+            free(exact_d);
             compared += n;
         }
+        free(dx2);
     }
     print_message("%ld samples compared bit for bit, %ld moved\n", compared, moved);
     assert_true(compared > 4000L * 100);

@@ -365,8 +365,11 @@ typedef struct dab_rows {
     grid_rect area;
     int smoothed;
     // smooth with the smooth falloff on a flat disc: no weight array, each row's
-    // weights computed as it is blended (smooth_row.c)
+    // weights computed as it is blended (smooth_row.c), from dx2: the squares of the
+    // columns' distances from the centre, from the rect's first column (the same for
+    // every row)
     int row_weighted;
+    float *dx2;
     // NULL, or the smoothed heights left packed as the blur wrote them: area row z's
     // column x (area columns) at heights[row_at[z] + x]
     int64_t *row_at;
@@ -467,11 +470,11 @@ static const uint8_t *stroke_start(const dab_rows *j, int64_t z, int64_t x) {
 
 // The smooth falloff's weights of samples [x0, x0 + n) of row z (row_weights' floats)
 // and the blend (blend_smoothed's) in one pass.
-static void blend_row_weighted(const brush_dab *d, float *row, const float *smoothed, int64_t z,
+static void blend_row_weighted(const dab_rows *j, float *row, const float *smoothed, int64_t z,
                                int64_t x0, int64_t n) {
+    const brush_dab *d = j->d;
     float dz = (float)((double)z - d->cz);
-    int64_t first = disc_first_column(d);
-    smooth_row_blend(row, smoothed, (float)((double)first - d->cx), (int)(x0 - first), dz * dz,
+    smooth_row_blend(row, smoothed, j->dx2 + (x0 - disc_first_column(d)), dz * dz,
                      (float)(1.0 / d->radius), d->strength, d->brush->invert,
                      (float)BRUSH_HEIGHT_LIMIT, (int)n);
 }
@@ -498,7 +501,7 @@ static void dab_row(void *user, void *row, int64_t z, int64_t x0, int64_t x1) {
             if (j->row_at) at = j->row_at[z - j->area.z0] + (s - j->area.x0);
             float *out = (float *)row + (s - x0);
             if (j->row_weighted)
-                blend_row_weighted(j->d, out, j->heights + at, z, s, e - s);
+                blend_row_weighted(j, out, j->heights + at, z, s, e - s);
             else if (j->smoothed)
                 blend_smoothed(out, j->heights + at, j->weight + at, j->d->brush->invert, e - s);
             else
@@ -573,7 +576,13 @@ static int prepare(const brush_dab *d, tile_layer layer, grid_rect r, area_reade
     float *heights = malloc(n * sizeof *heights);
     float *weight = rows->row_weighted ? NULL : malloc(n * sizeof *weight);
     float *copy = before ? malloc(n * sizeof *copy) : NULL;
-    int ok = heights && (weight || rows->row_weighted) && (!before || copy);
+    if (rows->row_weighted) {
+        int64_t first = disc_first_column(d), columns = brush_dab_rect(d).x1 - first;
+        if ((rows->dx2 = malloc((size_t)columns * sizeof *rows->dx2)))
+            smooth_row_squares(rows->dx2, (float)((double)first - d->cx), (int)columns);
+    }
+    int ok = heights && (weight || rows->row_weighted) && (!rows->row_weighted || rows->dx2) &&
+             (!before || copy);
     if (!ok) og_error_set(err, "out of memory for a brush of %zu samples", n);
     int blurred = 0; // smooth on tiles: its rows read as the blur takes them
     if (ok && d->brush->tool == BRUSH_SMOOTH && blur && !before) {
@@ -598,6 +607,7 @@ static int prepare(const brush_dab *d, tile_layer layer, grid_rect r, area_reade
         free(copy);
         free(rows->span);
         free(rows->row_at);
+        free(rows->dx2);
         return -1;
     }
     rows->smoothed = d->brush->tool == BRUSH_SMOOTH;
@@ -611,6 +621,7 @@ static int prepare(const brush_dab *d, tile_layer layer, grid_rect r, area_reade
 static void release(dab_rows *rows) {
     free(rows->span);
     free(rows->row_at);
+    free(rows->dx2);
     free((void *)rows->heights);
     free((void *)rows->weight);
 }
