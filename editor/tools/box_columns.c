@@ -145,27 +145,30 @@ typedef struct sweep {
 } sweep;
 
 // One step at row i (ring slot at): the first box's row i; with second, the second
-// box's row i - k. anchor1, anchor2: that box starts afresh here. Constants where
-// inlined, so the steady steps run without branches.
-INLINE void step(sweep *s, int64_t i, int64_t at, int anchor1, int second, int anchor2, int full) {
+// box's row i - k. anchor1, anchor2: that box starts afresh here. pair: the strip at
+// x + 16 too; full: every lane of the strips swept. Constants where inlined, so the
+// steady steps run without branches.
+INLINE void step(sweep *s, int64_t i, int64_t at, int anchor1, int second, int anchor2, int pair,
+                 int full) {
     float *b = s->ring + at * 32;
     int64_t next = at + 1 == s->slots ? 0 : at + 1;
-    __m512 ml, mh;
+    __m512 ml, mh = _mm512_setzero_ps(), ol, oh = mh;
     first_box(s->rows, i, s->k, anchor1, s->x, s->lo, full, &s->a1l, &s->d1l, &ml);
-    first_box(s->rows, i, s->k, anchor1, s->x + 16, s->hi, full, &s->a1h, &s->d1h, &mh);
+    if (pair) first_box(s->rows, i, s->k, anchor1, s->x + 16, s->hi, full, &s->a1h, &s->d1h, &mh);
     _mm512_storeu_ps(b, ml);
-    _mm512_storeu_ps(b + 16, mh);
+    if (pair) _mm512_storeu_ps(b + 16, mh);
     if (!second) return;
-    __m512 ol = second_box(s->ring, next, s->slots, s->k, anchor2, ml, &s->a2l, &s->d2l);
-    __m512 oh = second_box(s->ring + 16, next, s->slots, s->k, anchor2, mh, &s->a2h, &s->d2h);
+    ol = second_box(s->ring, next, s->slots, s->k, anchor2, ml, &s->a2l, &s->d2l);
+    if (pair) oh = second_box(s->ring + 16, next, s->slots, s->k, anchor2, mh, &s->a2h, &s->d2h);
     float *o = s->out[i - s->k] + s->x;
-    if (full) {
+    if (full)
         _mm512_storeu_ps(o, ol);
-        _mm512_storeu_ps(o + 16, oh);
-    } else {
+    else
         _mm512_mask_storeu_ps(o, s->lo, ol);
+    if (pair && full)
+        _mm512_storeu_ps(o + 16, oh);
+    else if (pair)
         _mm512_mask_storeu_ps(o + 16, s->hi, oh);
-    }
 }
 
 // Two strips side by side (columns [x, x + 16) by mask lo, [x + 16, x + 32) by mask hi;
@@ -174,7 +177,8 @@ INLINE void step(sweep *s, int64_t i, int64_t at, int anchor1, int second, int a
 // first step, the second box's at the last (j - 2k = i - 3k, a multiple of 2k + 1);
 // the first block makes the first box's rows the second's first anchor takes.
 INLINE void sweep_strips(const float *const *rows, float *const *out, int k, float *ring, int64_t x,
-                         __mmask16 lo, __mmask16 hi, int64_t y0, int64_t y1, const int full) {
+                         __mmask16 lo, __mmask16 hi, int64_t y0, int64_t y1, const int pair,
+                         const int full) {
     const int64_t m = 2 * k + 1, slots = 2 * k + 2;
     const __m512 zero = _mm512_setzero_ps();
     sweep s = {rows, out,  ring, x,    slots, k,    lo,   hi,
@@ -184,30 +188,35 @@ INLINE void sweep_strips(const float *const *rows, float *const *out, int k, flo
         int64_t last = i + m - 1; // the block's last step
         int second = i > i0;
         if (second)
-            step(&s, i, at, 1, 1, 0, full);
+            step(&s, i, at, 1, 1, 0, pair, full);
         else
-            step(&s, i, at, 1, 0, 0, full);
+            step(&s, i, at, 1, 0, 0, pair, full);
         i++, at = at + 1 == slots ? 0 : at + 1;
         if (second)
             for (; i < last && i < end; i++, at = at + 1 == slots ? 0 : at + 1)
-                step(&s, i, at, 0, 1, 0, full);
+                step(&s, i, at, 0, 1, 0, pair, full);
         else
             for (; i < last && i < end; i++, at = at + 1 == slots ? 0 : at + 1)
-                step(&s, i, at, 0, 0, 0, full);
+                step(&s, i, at, 0, 0, 0, pair, full);
         if (i < end) {
-            step(&s, i, at, 0, 1, 1, full);
+            step(&s, i, at, 0, 1, 1, pair, full);
             i++, at = at + 1 == slots ? 0 : at + 1;
         }
     }
 }
 
-// Strips of 32 columns (all but a run's last) on their own code, without masks.
+// Each shape of sweep on its own code: two strips or one (the second's mask empty),
+// without masks where every lane is swept.
 WIDE static void strips_wide(const float *const *rows, float *const *out, int k, float *ring,
                              int64_t x, __mmask16 lo, __mmask16 hi, int64_t y0, int64_t y1) {
-    if ((lo & hi) == 0xffff)
-        sweep_strips(rows, out, k, ring, x, lo, hi, y0, y1, 1);
+    if (hi && (lo & hi) == 0xffff)
+        sweep_strips(rows, out, k, ring, x, lo, hi, y0, y1, 1, 1);
+    else if (hi)
+        sweep_strips(rows, out, k, ring, x, lo, hi, y0, y1, 1, 0);
+    else if (lo == 0xffff)
+        sweep_strips(rows, out, k, ring, x, lo, hi, y0, y1, 0, 1);
     else
-        sweep_strips(rows, out, k, ring, x, lo, hi, y0, y1, 0);
+        sweep_strips(rows, out, k, ring, x, lo, hi, y0, y1, 0, 0);
 }
 
 int box_columns_have_wide(void) {
