@@ -96,6 +96,7 @@ static void take_misses_solve(take_misses *t) {
 AVX2_CLONE static void take_row_add_top(float *val, const float *below, const float *before,
                                         const float *now, int n, take_misses *misses) {
     uint8_t miss[TILE_SIZE];
+    int32_t missed[TILE_SIZE]; // as wide as the floats: the step below vectorises
     int any = 0;
     for (int x = 0; x < n; x++) {
         uint32_t a, c;
@@ -105,7 +106,42 @@ AVX2_CLONE static void take_row_add_top(float *val, const float *below, const fl
         int keep = (a == c) | ((v == v) & ((t != t) | (b + v == t))) | ((v != v) & (t == b));
         int hit = b + solved == t;
         val[x] = keep | !hit ? v : solved;
-        miss[x] = (uint8_t)(!keep & !hit);
+        missed[x] = !keep & !hit;
+        any |= missed[x];
+    }
+    if (!any) return;
+    // The search's first step, inline (step_toward's bits; a zero steps to the smallest
+    // subnormal), which decides it for nearly every miss (a target finer than the sums
+    // around it: below and the value larger than it, of opposite signs). The value an ulp
+    // toward the target makes the sum hit it: the search ends there. It makes a worse
+    // miss: the search ends at once with the value as solved. It lands as far on the
+    // other side: the search steps back and forth for its 8 steps and ends where it
+    // began, as solved (the values nonzero: a step back from a zero is not the way it
+    // came). The rest (a NaN target or sum, an infinite value, a step that leaves the
+    // sum as it was) go to the search.
+    any = 0;
+    for (int x = 0; x < n; x++) {
+        float b = below[x], t = now[x], solved = t - b, got = b + solved;
+        uint32_t u;
+        memcpy(&u, &solved, sizeof u);
+        int32_t up = got < t;
+        uint32_t zero = up ? 1u : 0x80000001u;
+        uint32_t moved = (u & 0x7fffffffu) == 0 ? zero : ((u >> 31) == 0) == up ? u + 1 : u - 1;
+        float next;
+        memcpy(&next, &moved, sizeof next);
+        // Finite and nonzero, this value and the next (an ulp from it): the value is
+        // neither zero, an infinity nor NaN, and neither the smallest nor largest.
+        float size = solved < 0.0f ? -solved : solved;
+        int32_t finite = (size > 0x1p-149f) & (size < 0x1.fffffep+127f);
+        float again = b + next;
+        int32_t known = missed[x] & (t == t) & (got == got) & finite;
+        int32_t stepped = known & (again == t);
+        float off = got - t, off_next = again - t; // compared as fabsf's (not a call here)
+        off = off < 0.0f ? -off : off;
+        off_next = off_next < 0.0f ? -off_next : off_next;
+        int32_t stays = known & ((off_next > off) | ((off_next == off) & (again != got)));
+        val[x] = stepped ? next : stays ? solved : val[x];
+        miss[x] = (uint8_t)(missed[x] & !stepped & !stays);
         any |= miss[x];
     }
     if (!any) return;
