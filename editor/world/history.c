@@ -1,6 +1,7 @@
 #include "editor/world/history.h"
 
 #include "editor/world/thread_scratch.h"
+#include "io/avx2_clone.h"
 
 #include <math.h>
 #include <pthread.h>
@@ -131,7 +132,7 @@ static int get_varint(const uint8_t **p, const uint8_t *end, size_t *v) {
 
 // Encodes in[0, n) into out (room for cap bytes); returns the size, or 0 when it
 // would not fit (the caller stores the bytes raw).
-static size_t zero_runs_encode(const uint8_t *in, size_t n, uint8_t *out, size_t cap) {
+AVX2_CLONE static size_t zero_runs_encode(const uint8_t *in, size_t n, uint8_t *out, size_t cap) {
     uint8_t *o = out, *end = out + cap;
     size_t i = 0;
     while (i < n) {
@@ -189,8 +190,8 @@ static int64_t get_u16(const uint8_t *p) {
 }
 
 // planes[k * n + i] = byte k of (a ^ b) at the part's i-th element (row by row).
-static void split_planes(const uint8_t *restrict a, const uint8_t *restrict b, size_t el,
-                         grid_rect part, uint8_t *restrict planes) {
+AVX2_CLONE static void split_planes(const uint8_t *restrict a, const uint8_t *restrict b, size_t el,
+                                    grid_rect part, uint8_t *restrict planes) {
     size_t w = (size_t)(part.x1 - part.x0), n = w * (size_t)(part.z1 - part.z0), i = 0;
     for (int64_t z = part.z0; z < part.z1; z++) {
         size_t at = ((size_t)z * TILE_SIZE + (size_t)part.x0) * el;
