@@ -2,6 +2,7 @@
 
 #include "editor/tools/box_columns.h"
 #include "editor/tools/box_rows.h"
+#include "editor/tools/hot_loop.h"
 
 #include <pthread.h>
 #include <stdint.h>
@@ -97,6 +98,16 @@ static void chunk_rows(const int64_t (*need)[2], int64_t h, int k, int64_t c0, i
         --*last;
 }
 
+// Rows [z0, z1)'s packed columns widened to [c0, c1) (vectorised: a loop per chunk over
+// its rows).
+HOT_LOOP_WIDE static void widen(int64_t *lo, int64_t *hi, int64_t z0, int64_t z1, int64_t c0,
+                                int64_t c1) {
+    for (int64_t z = z0; z < z1; z++) {
+        lo[z] = c0 < lo[z] ? c0 : lo[z];
+        hi[z] = c1 > hi[z] ? c1 : hi[z];
+    }
+}
+
 // Column runs: [0, w) split where the source's rows stop being contiguous (tile edges).
 static int64_t run_end(box_row_at at, void *user, int64_t x) {
     int64_t end;
@@ -126,38 +137,41 @@ static int blur(box_row_at at, void *user, const int64_t (*need)[2], float *out,
     size_t at_src = lines(w * h), at_dst = at_src + lines(2 * h), at_lo = at_dst + lines(2 * h);
     size_t at_ring = at_lo + lines(4 * h), at_first = at_ring + lines((2 * k + 2) * 32);
     size_t at_res = at_first + lines(bmax), at_runs = at_res + lines(bmax);
-    float *scratch = thread_scratch(at_runs + lines((BOX_ROWS_LEVELS + 1) * bmax));
+    // and each chunk's rows (f, l: int64; fewer chunks than w + 2)
+    size_t at_chunks = at_runs + lines((BOX_ROWS_LEVELS + 1) * bmax);
+    float *scratch = thread_scratch(at_chunks + lines(4 * (w + 2)));
     if (!scratch) return -1;
     float *packed = scratch, *ring = scratch + at_ring;
     float *first = scratch + at_first, *res = scratch + at_res;
     const float **src = (const float **)(void *)(scratch + at_src);
     float **dst = (float **)(void *)(scratch + at_dst);
     int64_t *lo = (int64_t *)(void *)(scratch + at_lo), *hi = lo + h;
+    int64_t(*rows)[2] = (int64_t(*)[2])(void *)(scratch + at_chunks); // chunk c's f, l
     for (int64_t z = 0; z < h; z++)
         lo[z] = w, hi[z] = 0;
-    for (int64_t r0 = 0, r1; r0 < w; r0 = r1) {
+    for (int64_t r0 = 0, r1, c = 0; r0 < w; r0 = r1) {
         r1 = run_end(at, user, r0);
-        for (int64_t j = 0; r0 + CHUNK * j < r1; j++) {
+        for (int64_t j = 0; r0 + CHUNK * j < r1; j++, c++) {
             int64_t c0, c1, f, l;
             chunk_columns(r0, r1, j, &c0, &c1);
             chunk_rows(need, h, k, c0, c1, &f, &l);
-            for (int64_t z = f <= l ? box_columns_anchor(f, k) : l + 1; z <= l; z++)
-                lo[z] = c0 < lo[z] ? c0 : lo[z], hi[z] = c1 > hi[z] ? c1 : hi[z];
+            rows[c][0] = f, rows[c][1] = l;
+            if (f <= l) widen(lo, hi, box_columns_anchor(f, k), l + 1, c0, c1);
         }
     }
     for (int64_t z = 0, p = 0; z < h; z++) {
         dst[z] = packed + p - lo[z];
         p += hi[z] > lo[z] ? hi[z] - lo[z] : 0;
     }
-    for (int64_t r0 = 0, r1; r0 < w; r0 = r1) {
+    for (int64_t r0 = 0, r1, c = 0; r0 < w; r0 = r1) {
         r1 = run_end(at, user, r0);
         for (int64_t y = 0; y < h; y++)
             src[y] = at(user, y, r0, &r1) - r0;
-        for (int64_t j = 0; r0 + CHUNK * j < r1; j++) {
-            int64_t c0, c1, f, l;
+        for (int64_t j = 0; r0 + CHUNK * j < r1; j++, c++) {
+            int64_t c0, c1;
             chunk_columns(r0, r1, j, &c0, &c1);
-            chunk_rows(need, h, k, c0, c1, &f, &l);
-            if (f <= l) box_columns(src, dst, k, ring, c0, c1, f, l + 1);
+            if (rows[c][0] <= rows[c][1])
+                box_columns(src, dst, k, ring, c0, c1, rows[c][0], rows[c][1] + 1);
         }
     }
     // Rows with wanted results, consecutive ones in a block.
