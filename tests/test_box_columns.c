@@ -1,11 +1,12 @@
-// The smooth dab's two box means down the columns (editor/tools/box_columns.c, float
+// The smooth dab's two box sums down the columns (editor/tools/box_columns.c, float
 // running sums re-anchored every 2k + 1 rows) give the same bits on every path and
 // for every choice of rows asked for: the AVX-512 strips (where the processor has
 // them) against the plain C loop, and rows [y0, y1) asked for alone against the whole
 // area's sweep at those rows, for radii 1..20, areas from just over 4k to 4k + 70,
 // column ranges that start and end anywhere (partial strips), heights from
 // millimetres to kilometres and cliffs between them. Nothing outside the columns
-// asked for, or above the anchor at or above y0, or from y1 on, is written.
+// asked for, or above the anchor at or above y0, or from y1 on, or outside the
+// columns each row keeps, is written.
 #include "editor/tools/box_columns.h"
 
 #include <math.h>
@@ -27,8 +28,11 @@ static double uniform(void) {
 
 enum { NEVER = -12345 }; // never a result: shows stray writes
 
-typedef void (*columns_fn)(const float *const *rows, float *const *out, int k, float *ring,
-                           int64_t c0, int64_t c1, int64_t y0, int64_t y1);
+typedef void (*columns_fn)(const float *const *rows, float *const *out, const int64_t (*keep)[2],
+                           int k, float *ring, int64_t c0, int64_t c1, int64_t y0, int64_t y1);
+
+// The columns each row keeps (NULL: all of them).
+static const int64_t (*keep)[2];
 
 // Runs fn into a fresh out (every sample NEVER first).
 static void run(columns_fn fn, const float *const *rows, float *out, int64_t w, int64_t h, int k,
@@ -40,7 +44,7 @@ static void run(columns_fn fn, const float *const *rows, float *out, int64_t w, 
         out[i] = (float)NEVER;
     for (int64_t y = 0; y < h; y++)
         to[y] = out + y * w;
-    fn(rows, to, k, ring, c0, c1, y0, y1);
+    fn(rows, to, keep, k, ring, c0, c1, y0, y1);
     free(ring), free(to);
 }
 
@@ -104,6 +108,30 @@ static void test_paths_and_row_ranges_agree(void **state) {
                         assert_true(got[y * w + x] == (float)NEVER);
             compared += (long)((c1 - c0) * (y1 - y0));
         }
+        // Rows keeping only some columns (some none, some all): the whole sweep's bits
+        // there, nothing else written.
+        int64_t(*kept)[2] = malloc((size_t)h * sizeof *kept);
+        assert_non_null(kept);
+        for (int64_t y = 0; y < h; y++) {
+            kept[y][0] = (int64_t)(uniform() * (double)(w + 10)) - 5;
+            kept[y][1] = kept[y][0] + (int64_t)(uniform() * (double)(w + 10)) - w / 4;
+            if (y % 7 == 3) kept[y][0] = -3, kept[y][1] = w + 3;
+        }
+        keep = (const int64_t(*)[2])kept;
+        for (int path = 0; path < 1 + wide; path++) {
+            run(path ? box_columns : box_columns_plain, rows, got, w, h, k, c0, c1, 2 * k,
+                h - 2 * k);
+            for (int64_t y = 0; y < h; y++)
+                for (int64_t x = 0; x < w; x++) {
+                    int in = x >= c0 && x < c1 && y >= 2 * k && y < h - 2 * k && x >= kept[y][0] &&
+                             x < kept[y][1];
+                    if (in) same_bits(plain, got, w, x, x + 1, y, y + 1, "kept columns", c);
+                    if (!in) assert_true(got[y * w + x] == (float)NEVER);
+                    compared += in;
+                }
+        }
+        keep = NULL;
+        free(kept);
         free(src), free(plain), free(got), free(rows);
     }
     print_message("%ld results compared bit for bit\n", compared);

@@ -2,7 +2,6 @@
 
 #include "editor/tools/box_columns.h"
 #include "editor/tools/box_rows.h"
-#include "editor/tools/hot_loop.h"
 
 #include <pthread.h>
 #include <stdint.h>
@@ -98,16 +97,6 @@ static void chunk_rows(const int64_t (*need)[2], int64_t h, int k, int64_t c0, i
         --*last;
 }
 
-// Rows [z0, z1)'s packed columns widened to [c0, c1) (vectorised: a loop per chunk over
-// its rows).
-HOT_LOOP_WIDE static void widen(int64_t *lo, int64_t *hi, int64_t z0, int64_t z1, int64_t c0,
-                                int64_t c1) {
-    for (int64_t z = z0; z < z1; z++) {
-        lo[z] = c0 < lo[z] ? c0 : lo[z];
-        hi[z] = c1 > hi[z] ? c1 : hi[z];
-    }
-}
-
 // Column runs: [0, w) split where the source's rows stop being contiguous (tile edges).
 static int64_t run_end(box_row_at at, void *user, int64_t x) {
     int64_t end;
@@ -116,8 +105,8 @@ static int64_t run_end(box_row_at at, void *user, int64_t x) {
 }
 
 // Down the columns first (in chunks of CHUNK columns, each over the rows whose row
-// boxes read it), the results packed row after row (row z's columns [lo[z], hi[z]):
-// those of every chunk that writes row z); then along the packed rows in blocks of a
+// boxes read it), the results packed row after row (row z's columns keep[z]: those
+// its wanted results' row boxes read); then along the packed rows in blocks of a
 // few thousand samples (windows that run from one row into the next give values no
 // wanted result takes), each wanted result copied to out.
 // row_at NULL: results copied to out as a w x h area; else left packed in out (row z's
@@ -132,10 +121,10 @@ static int blur(box_row_at at, void *user, const int64_t (*need)[2], float *out,
     const float scale = (float)(1.0 / ((double)length * length * length * length));
     int64_t bmax = BLOCK + w;
     // packed rows; the pointers to the area's rows (a run's) and to the packed rows; the
-    // packed rows' columns (lo, hi, int64); box_columns' ring; a block's first box and
+    // packed rows' columns (keep, int64); box_columns' ring; a block's first box and
     // result; box_rows' runs
-    size_t at_src = lines(w * h), at_dst = at_src + lines(2 * h), at_lo = at_dst + lines(2 * h);
-    size_t at_ring = at_lo + lines(4 * h), at_first = at_ring + lines((2 * k + 2) * 32);
+    size_t at_src = lines(w * h), at_dst = at_src + lines(2 * h), at_keep = at_dst + lines(2 * h);
+    size_t at_ring = at_keep + lines(4 * h), at_first = at_ring + lines((2 * k + 2) * 32);
     size_t at_res = at_first + lines(bmax), at_runs = at_res + lines(bmax);
     // and each chunk's rows (f, l: int64; fewer chunks than w + 2)
     size_t at_chunks = at_runs + lines((BOX_ROWS_LEVELS + 1) * bmax);
@@ -145,23 +134,27 @@ static int blur(box_row_at at, void *user, const int64_t (*need)[2], float *out,
     float *first = scratch + at_first, *res = scratch + at_res;
     const float **src = (const float **)(void *)(scratch + at_src);
     float **dst = (float **)(void *)(scratch + at_dst);
-    int64_t *lo = (int64_t *)(void *)(scratch + at_lo), *hi = lo + h;
+    // Row z's packed columns: [keep[z][0], keep[z][1]), those its wanted results' row
+    // boxes read (none for a row without any); the column boxes write only those.
+    int64_t(*keep)[2] = (int64_t(*)[2])(void *)(scratch + at_keep);
     int64_t(*rows)[2] = (int64_t(*)[2])(void *)(scratch + at_chunks); // chunk c's f, l
-    for (int64_t z = 0; z < h; z++)
-        lo[z] = w, hi[z] = 0;
+    for (int64_t z = 0; z < h; z++) {
+        int64_t x0 = need ? need[z][0] : 2 * k, x1 = need ? need[z][1] : w - 2 * k;
+        x0 = x0 > 2 * k ? x0 : 2 * k, x1 = x1 < w - 2 * k ? x1 : w - 2 * k;
+        int wanted = z >= 2 * k && z < h - 2 * k && x0 < x1;
+        keep[z][0] = wanted ? x0 - 2 * k : 0, keep[z][1] = wanted ? x1 + 2 * k : 0;
+    }
     for (int64_t r0 = 0, r1, c = 0; r0 < w; r0 = r1) {
         r1 = run_end(at, user, r0);
         for (int64_t j = 0; r0 + CHUNK * j < r1; j++, c++) {
-            int64_t c0, c1, f, l;
+            int64_t c0, c1;
             chunk_columns(r0, r1, j, &c0, &c1);
-            chunk_rows(need, h, k, c0, c1, &f, &l);
-            rows[c][0] = f, rows[c][1] = l;
-            if (f <= l) widen(lo, hi, box_columns_anchor(f, k), l + 1, c0, c1);
+            chunk_rows(need, h, k, c0, c1, &rows[c][0], &rows[c][1]);
         }
     }
     for (int64_t z = 0, p = 0; z < h; z++) {
-        dst[z] = packed + p - lo[z];
-        p += hi[z] > lo[z] ? hi[z] - lo[z] : 0;
+        dst[z] = packed + p - keep[z][0];
+        p += keep[z][1] - keep[z][0];
     }
     for (int64_t r0 = 0, r1, c = 0; r0 < w; r0 = r1) {
         r1 = run_end(at, user, r0);
@@ -171,7 +164,8 @@ static int blur(box_row_at at, void *user, const int64_t (*need)[2], float *out,
             int64_t c0, c1;
             chunk_columns(r0, r1, j, &c0, &c1);
             if (rows[c][0] <= rows[c][1])
-                box_columns(src, dst, k, ring, c0, c1, rows[c][0], rows[c][1] + 1);
+                box_columns(src, dst, (const int64_t(*)[2])keep, k, ring, c0, c1, rows[c][0],
+                            rows[c][1] + 1);
         }
     }
     // Rows with wanted results, consecutive ones in a block.
@@ -180,13 +174,13 @@ static int blur(box_row_at at, void *user, const int64_t (*need)[2], float *out,
         while (z1 < h - 2 * k && n < BLOCK) {
             int64_t x0 = need ? need[z1][0] : 2 * k, x1 = need ? need[z1][1] : w - 2 * k;
             if (x0 >= x1 || x1 <= 2 * k || x0 >= w - 2 * k) break;
-            n += hi[z1] - lo[z1], z1++;
+            n += keep[z1][1] - keep[z1][0], z1++;
         }
         if (z1 == z) {
             z++;
             continue;
         }
-        float *block = dst[z] + lo[z];
+        float *block = dst[z] + keep[z][0];
         float *into = row_at ? out + (block - packed) : res; // where block[i]'s result goes
         box_rows(block, first, n, (int)length, 1.0f, scratch + at_runs);
         box_rows(first + k, into + k, n - 2 * k, (int)length, scale, scratch + at_runs);

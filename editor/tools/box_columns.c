@@ -13,8 +13,8 @@ int64_t box_columns_anchor(int64_t y0, int k) {
 
 // Lanes [0, n) of a strip at column x; the order of every column's operations is the
 // one the AVX-512 strip below keeps.
-static void strip_plain(const float *const *rows, float *const *out, int k, float *ring, int64_t x,
-                        int n, int64_t y0, int64_t y1) {
+static void strip_plain(const float *const *rows, float *const *out, const int64_t (*keep)[2],
+                        int k, float *ring, int64_t x, int n, int64_t y0, int64_t y1) {
     const int64_t m = 2 * k + 1, slots = 2 * k + 2;
     float a1[16], d1[16], a2[16], d2[16];
     int64_t j0 = box_columns_anchor(y0, k), i0 = j0 - k;
@@ -48,15 +48,15 @@ static void strip_plain(const float *const *rows, float *const *out, int k, floa
                 d2[l] = d2[l] + (b[l] - old[l]);
         }
         for (int l = 0; l < n; l++)
-            out[j][x + l] = a2[l] + d2[l];
+            if (!keep || (x + l >= keep[j][0] && x + l < keep[j][1])) out[j][x + l] = a2[l] + d2[l];
     }
 }
 
-void box_columns_plain(const float *const *rows, float *const *out, int k, float *ring, int64_t c0,
-                       int64_t c1, int64_t y0, int64_t y1) {
+void box_columns_plain(const float *const *rows, float *const *out, const int64_t (*keep)[2], int k,
+                       float *ring, int64_t c0, int64_t c1, int64_t y0, int64_t y1) {
     if (y0 >= y1) return;
     for (int64_t x = c0; x < c1; x += 16)
-        strip_plain(rows, out, k, ring, x, c1 - x < 16 ? (int)(c1 - x) : 16, y0, y1);
+        strip_plain(rows, out, keep, k, ring, x, c1 - x < 16 ? (int)(c1 - x) : 16, y0, y1);
 }
 
 // Not under ThreadSanitizer or other compilers (as HOT_LOOP): the plain loop runs.
@@ -137,6 +137,7 @@ INLINE __m512 second_box(const float *ring, int64_t q, int64_t slots, int k, int
 typedef struct sweep {
     const float *const *rows;
     float *const *out;
+    const int64_t (*keep)[2];
     float *ring;
     int64_t x, slots;
     int k;
@@ -161,14 +162,20 @@ INLINE void step(sweep *s, int64_t i, int64_t at, int anchor1, int second, int a
     ol = second_box(s->ring, next, s->slots, s->k, anchor2, ml, &s->a2l, &s->d2l);
     if (pair) oh = second_box(s->ring + 16, next, s->slots, s->k, anchor2, mh, &s->a2h, &s->d2h);
     float *o = s->out[i - s->k] + s->x;
-    if (full)
+    __mmask16 lo = s->lo, hi = s->hi;
+    if (s->keep) { // only the row's kept columns
+        const int64_t *c = s->keep[i - s->k];
+        int64_t a = c[0] - s->x, b = c[1] - s->x;
+        a = a < 0 ? 0 : a > 32 ? 32 : a, b = b < 0 ? 0 : b > 32 ? 32 : b;
+        uint64_t m = ((1ull << b) - 1) & ~((1ull << a) - 1);
+        lo &= (__mmask16)m, hi &= (__mmask16)(m >> 16);
+    } else if (full) {
         _mm512_storeu_ps(o, ol);
-    else
-        _mm512_mask_storeu_ps(o, s->lo, ol);
-    if (pair && full)
-        _mm512_storeu_ps(o + 16, oh);
-    else if (pair)
-        _mm512_mask_storeu_ps(o + 16, s->hi, oh);
+        if (pair) _mm512_storeu_ps(o + 16, oh);
+        return;
+    }
+    _mm512_mask_storeu_ps(o, lo, ol);
+    if (pair) _mm512_mask_storeu_ps(o + 16, hi, oh);
 }
 
 // Two strips side by side (columns [x, x + 16) by mask lo, [x + 16, x + 32) by mask hi;
@@ -176,13 +183,13 @@ INLINE void step(sweep *s, int64_t i, int64_t at, int anchor1, int second, int a
 // overlap. The anchors come in blocks of 2k + 1 steps of i: the first box's at the
 // first step, the second box's at the last (j - 2k = i - 3k, a multiple of 2k + 1);
 // the first block makes the first box's rows the second's first anchor takes.
-INLINE void sweep_strips(const float *const *rows, float *const *out, int k, float *ring, int64_t x,
-                         __mmask16 lo, __mmask16 hi, int64_t y0, int64_t y1, const int pair,
-                         const int full) {
+INLINE void sweep_strips(const float *const *rows, float *const *out, const int64_t (*keep)[2],
+                         int k, float *ring, int64_t x, __mmask16 lo, __mmask16 hi, int64_t y0,
+                         int64_t y1, const int pair, const int full) {
     const int64_t m = 2 * k + 1, slots = 2 * k + 2;
     const __m512 zero = _mm512_setzero_ps();
-    sweep s = {rows, out,  ring, x,    slots, k,    lo,   hi,
-               zero, zero, zero, zero, zero,  zero, zero, zero};
+    sweep s = {rows, out,  keep, ring, x,    slots, k,    lo,  hi,
+               zero, zero, zero, zero, zero, zero,  zero, zero};
     int64_t i0 = box_columns_anchor(y0, k) - k, end = y1 + k, at = i0 % slots;
     for (int64_t i = i0; i < end;) {
         int64_t last = i + m - 1; // the block's last step
@@ -207,26 +214,27 @@ INLINE void sweep_strips(const float *const *rows, float *const *out, int k, flo
 
 // Each shape of sweep on its own code: two strips or one (the second's mask empty),
 // without masks where every lane is swept.
-WIDE static void strips_wide(const float *const *rows, float *const *out, int k, float *ring,
-                             int64_t x, __mmask16 lo, __mmask16 hi, int64_t y0, int64_t y1) {
+WIDE static void strips_wide(const float *const *rows, float *const *out, const int64_t (*keep)[2],
+                             int k, float *ring, int64_t x, __mmask16 lo, __mmask16 hi, int64_t y0,
+                             int64_t y1) {
     if (hi && (lo & hi) == 0xffff)
-        sweep_strips(rows, out, k, ring, x, lo, hi, y0, y1, 1, 1);
+        sweep_strips(rows, out, keep, k, ring, x, lo, hi, y0, y1, 1, 1);
     else if (hi)
-        sweep_strips(rows, out, k, ring, x, lo, hi, y0, y1, 1, 0);
+        sweep_strips(rows, out, keep, k, ring, x, lo, hi, y0, y1, 1, 0);
     else if (lo == 0xffff)
-        sweep_strips(rows, out, k, ring, x, lo, hi, y0, y1, 0, 1);
+        sweep_strips(rows, out, keep, k, ring, x, lo, hi, y0, y1, 0, 1);
     else
-        sweep_strips(rows, out, k, ring, x, lo, hi, y0, y1, 0, 0);
+        sweep_strips(rows, out, keep, k, ring, x, lo, hi, y0, y1, 0, 0);
 }
 
 int box_columns_have_wide(void) {
     return __builtin_cpu_supports("avx512f") != 0;
 }
 
-void box_columns(const float *const *rows, float *const *out, int k, float *ring, int64_t c0,
-                 int64_t c1, int64_t y0, int64_t y1) {
+void box_columns(const float *const *rows, float *const *out, const int64_t (*keep)[2], int k,
+                 float *ring, int64_t c0, int64_t c1, int64_t y0, int64_t y1) {
     if (!box_columns_have_wide()) {
-        box_columns_plain(rows, out, k, ring, c0, c1, y0, y1);
+        box_columns_plain(rows, out, keep, k, ring, c0, c1, y0, y1);
         return;
     }
     if (y0 >= y1) return;
@@ -236,7 +244,7 @@ void box_columns(const float *const *rows, float *const *out, int k, float *ring
         __mmask16 hi = right >= 16 ? (__mmask16)0xffff
                        : right > 0 ? (__mmask16)((1u << right) - 1u)
                                    : (__mmask16)0;
-        strips_wide(rows, out, k, ring, x, lo, hi, y0, y1);
+        strips_wide(rows, out, keep, k, ring, x, lo, hi, y0, y1);
     }
 }
 #else
@@ -244,8 +252,8 @@ int box_columns_have_wide(void) {
     return 0;
 }
 
-void box_columns(const float *const *rows, float *const *out, int k, float *ring, int64_t c0,
-                 int64_t c1, int64_t y0, int64_t y1) {
-    box_columns_plain(rows, out, k, ring, c0, c1, y0, y1);
+void box_columns(const float *const *rows, float *const *out, const int64_t (*keep)[2], int k,
+                 float *ring, int64_t c0, int64_t c1, int64_t y0, int64_t y1) {
+    box_columns_plain(rows, out, keep, k, ring, c0, c1, y0, y1);
 }
 #endif

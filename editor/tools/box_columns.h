@@ -16,14 +16,15 @@
 //
 // rows[y] + x: the area's row y at column x (only columns [c0, c1) are read). Results
 // for rows [y0, y1) (2k <= y0 < y1 <= h - 2k) go to out[y] + x; rows from the anchor
-// at or above y0 may be written too, nothing else. Rows from that anchor's - 2k to
+// at or above y0 may be written too, nothing else; keep (NULL: all of them): per row y,
+// only its columns [keep[y][0], keep[y][1]) are written. Rows from that anchor's - 2k to
 // y1 + 2k are read. ring: (2k + 2) x 32 floats.
 // Every path (AVX-512 here, the plain C loop elsewhere) gives the same bits.
-void box_columns(const float *const *rows, float *const *out, int k, float *ring, int64_t c0,
-                 int64_t c1, int64_t y0, int64_t y1);
+void box_columns(const float *const *rows, float *const *out, const int64_t (*keep)[2], int k,
+                 float *ring, int64_t c0, int64_t c1, int64_t y0, int64_t y1);
 // The plain C loop alone (for tests: the same bits as box_columns).
-void box_columns_plain(const float *const *rows, float *const *out, int k, float *ring, int64_t c0,
-                       int64_t c1, int64_t y0, int64_t y1);
+void box_columns_plain(const float *const *rows, float *const *out, const int64_t (*keep)[2], int k,
+                       float *ring, int64_t c0, int64_t c1, int64_t y0, int64_t y1);
 // The anchor at or above result row y0 (the first row box_columns may write).
 int64_t box_columns_anchor(int64_t y0, int k);
 // Whether box_columns runs on AVX-512 here.
