@@ -6,6 +6,7 @@
 #include "editor/gen/gen.h"
 #include "editor/params/world_grid.h"
 #include "editor/world/thread_scratch.h"
+#include "io/avx2_clone.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -64,6 +65,18 @@ typedef struct level_job {
     int64_t ptx0, ptz0, ptw; // parent tiles covering them
 } level_job;
 
+// row[x] = after[x] - before[x] for x in [x0, x1); whether any is not zero. Its own
+// function for AVX2 (a dab's level-1 window is 133^2 of them).
+AVX2_CLONE static int change_row(const float *restrict after, const float *restrict before,
+                                 float *restrict row, int64_t x0, int64_t x1) {
+    int any = 0;
+    for (int64_t x = x0; x < x1; x++) {
+        row[x] = after[x] - before[x];
+        any |= row[x] != 0.0f;
+    }
+    return any;
+}
+
 // Fills win (w x h, origin cx0, cz0 in child samples) with after - before of every
 // child tile the edit changed; zero elsewhere.
 static int child_changes(level_job *j, int64_t cx0, int64_t cz0, int64_t w, int64_t h, float *win) {
@@ -97,11 +110,7 @@ static int child_changes(level_job *j, int64_t cx0, int64_t cz0, int64_t w, int6
             int64_t z0 = pz0 > cz0 ? pz0 : cz0, z1 = pz1 < cz0 + h ? pz1 : cz0 + h;
             for (int64_t z = z0; z < z1; z++) {
                 size_t t = (size_t)((z - ty * TILE_SIZE) * TILE_SIZE - tx * TILE_SIZE);
-                float *row = win + (z - cz0) * w - cx0;
-                for (int64_t x = x0; x < x1; x++) {
-                    row[x] = after[t + x] - before[t + x];
-                    any |= row[x] != 0.0f;
-                }
+                any |= change_row(after + t, before + t, win + (z - cz0) * w - cx0, x0, x1);
             }
             tile_cache_release(cache, &v);
             free(generated);
