@@ -31,3 +31,14 @@ void material_rule_calls(const material_rules_resolved *rules, unsigned live, ch
         if (n > 0) at += (size_t)n;
     }
 }
+
+int material_far_slot(int material) {
+    static const int slot[8] = {0, 1, 2, 4, 5, 6, 7, 3}; // sand .. moss, cliff (material_name)
+    return material >= 0 && material < 8 ? slot[material] : 0;
+}
+
+int material_rules_read_far_b(const material_rules_resolved *rules, unsigned live) {
+    for (int i = 0; i < rules->count; i++)
+        if ((live & (1u << i)) && material_far_slot(rules->material[i]) >= 4) return 1;
+    return 0;
+}

@@ -64,7 +64,8 @@ enum {
     TV_REFINED = 16384,  // parts drawn at twice the density (renderer/clip_refine.h)
     TV_INSIDE = 32768,   // every part drawn lies inside the world: no bounds test (which
                          // keeps llvmpipe from testing depth before the fragment shader)
-    TERRAIN_VARIANTS = 65536
+    TV_FAR_B = 65536,    // a rule or the paint reads the far texture's second layer
+    TERRAIN_VARIANTS = 131072
 };
 #define GBUFFER_UNIT 10 // the texture unit the resolve passes read the G-buffer from
 #define REFINE_UNIT 11  // the refined parts' vertex weights (renderer/clip_refine.h)
@@ -192,8 +193,8 @@ static int pack_far_variation(terrain_renderer *r, int mips) {
                           src);
         for (int m = 0; m < n; m++)
             for (size_t i = 0; i < count; i++)
-                dst[((size_t)(m / 4) * count + i) * 4 + m % 4] =
-                    src[((size_t)m * count + i) * 4 + 1];
+                dst[((size_t)(material_far_slot(m) / 4) * count + i) * 4 +
+                    material_far_slot(m) % 4] = src[((size_t)m * count + i) * 4 + 1];
         if (lv == mips - 1) // as the sampler reads it
             glGetTextureImage(r->tex_albedo, lv, GL_RGBA, GL_FLOAT, sizeof r->albedo_mean,
                               r->albedo_mean);
@@ -288,10 +289,10 @@ static GLuint terrain_program(terrain_renderer *r, int variant, const char *call
         if (!p->prog ? !slot || slot->prog : !slot || (slot->prog && p->used < slot->used))
             slot = p; // an empty slot, else the least recently used
     }
-    static const char *const names[] = {"SHADED",   "DETAIL",   "PAINTED",   "BRUSH",
-                                        "OVERLAYS", "CONTOURS", "MINIFIED",  "NO_MORPH",
-                                        "GBUFFER",  "RESOLVE",  "CURVATURE", "SLOPES_A",
-                                        "SLOPES_B", "VOLUME",   "REFINED",   "INSIDE"};
+    static const char *const names[] = {"SHADED",    "DETAIL",   "PAINTED",  "BRUSH",   "OVERLAYS",
+                                        "CONTOURS",  "MINIFIED", "NO_MORPH", "GBUFFER", "RESOLVE",
+                                        "CURVATURE", "SLOPES_A", "SLOPES_B", "VOLUME",  "REFINED",
+                                        "INSIDE",    "FAR_B"};
     char defines[512 + sizeof slot->calls] = "";
     size_t n = 0;
     for (int b = 0; b < (int)(sizeof names / sizeof *names); b++)
@@ -1494,7 +1495,12 @@ static int draw_terrain(terrain_renderer *r, const camera *cam, const render_set
         if (n[2] + n[3] > 0) clip_refine_map_upload(&r->refine_map, l);
         int base = level_variant(r, cam, s, cursor, l) | (inside ? TV_INSIDE : 0);
         char calls[sizeof r->progs[0].calls];
-        material_rule_calls(&r->rules, level_rules_live(r, &r->rules, l), calls, sizeof calls);
+        const unsigned live = level_rules_live(r, &r->rules, l);
+        material_rule_calls(&r->rules, live, calls, sizeof calls);
+        // The far texture's second layer only where a rule or the paint may read it.
+        if ((base & TV_SHADED) &&
+            ((base & TV_PAINTED) || material_rules_read_far_b(&r->rules, live)))
+            base |= TV_FAR_B;
         for (int still = 0; still < 2; still++) {
             if (n[still] + n[2 + still] == 0) continue;
             int v = base | (still ? TV_NO_MORPH : 0);

@@ -59,6 +59,14 @@ uniform int u_rule_material[MAX_RULES];
 uniform vec4 u_rule_height[MAX_RULES], u_rule_slope[MAX_RULES], u_rule_curvature[MAX_RULES];
 uniform float u_rule_breakup[MAX_RULES];
 
+// Material m's far-scale variation from the eight in far0 (sand, grass, rock, cliff) and
+// far1 (snow, dirt, gravel, moss): the flat terrain's far texture holds them so
+// (renderer/material_rule_uniforms.h material_far_slot), and a level whose rules lay
+// none of far1's reads only far0.
+float far_of(int m, vec4 far0, vec4 far1) {
+    return m == 7 ? far0.w : m < 3 ? far0[m] : far1[m - 3];
+}
+
 float rule_term(vec4 r, float v) {
     float up = r.y > r.x ? smoothstep(r.x, r.y, v) : float(v >= r.y);
     float down = r.w > r.z ? 1.0 - smoothstep(r.z, r.w, v) : float(v <= r.z);
@@ -71,7 +79,7 @@ float rule_term(vec4 r, float v) {
 float rule_weight(int i, int terms, float h, float slope, float curvature, vec4 far0, vec4 far1,
                   out int m, out float v) {
     m = u_rule_material[i];
-    v = m < 4 ? far0[m] : far1[m - 4];
+    v = far_of(m, far0, far1);
     float w = 1.0;
     if ((terms & 1) != 0) w *= rule_term(u_rule_height[i], h);
     if ((terms & 2) != 0) w *= rule_term(u_rule_slope[i], slope);
@@ -114,8 +122,8 @@ vec3 automatic_varied(float h, float slope, float curvature, vec2 uv, vec4 far0,
 
 vec3 automatic(float h, float slope, float curvature, vec2 uv, vec2 uv_far) {
     vec4 far0 = vec4(far_variation(0, uv_far), far_variation(1, uv_far), far_variation(2, uv_far),
-                     far_variation(3, uv_far));
-    vec4 far1 = vec4(far_variation(4, uv_far), far_variation(5, uv_far), far_variation(6, uv_far),
                      far_variation(7, uv_far));
+    vec4 far1 = vec4(far_variation(3, uv_far), far_variation(4, uv_far), far_variation(5, uv_far),
+                     far_variation(6, uv_far));
     return automatic_varied(h, slope, curvature, uv, far0, far1);
 }

@@ -62,7 +62,7 @@ uniform int u_overlays;                // 1: the tile grid, 2: the clipmap level
 uniform int u_auto_materials;          // 0: unpainted ground in a neutral clay
 uniform vec4 u_lvl_detail[MAX_LEVELS]; // detail: sample of local (0,0), samples per unit, valid
 uniform vec2 u_tex_period;             // metres per repeat: near texture, far variation
-uniform sampler2DArray u_albedo_far;   // material m's green channel in component m % 4 of layer m / 4
+uniform sampler2DArray u_albedo_far;   // the materials' green channels, 4 a layer (materials.glsl far_of)
 
 uniform usampler2DArray u_material;    // 8 x uint8 weights per texel (RG32UI), a layer per level, toroidal
 uniform vec4 u_brush;                  // centre relative to the camera (xz), radius, visible
@@ -341,10 +341,15 @@ void main() {
     g_uv_dx = (g_step_x.xz + dFdx(shift_m)) / u_tex_period.x;
     g_uv_dy = (g_step_y.xz + dFdy(shift_m)) / u_tex_period.x;
     vec2 far_dx = g_step_x.xz / u_tex_period.y, far_dy = g_step_y.xz / u_tex_period.y;
-    vec4 far[2] = vec4[2](textureGrad(u_albedo_far, vec3(uv_far, 0.0), far_dx, far_dy),
-                          textureGrad(u_albedo_far, vec3(uv_far, 1.0), far_dx, far_dy));
+    vec4 far[2] = vec4[2](textureGrad(u_albedo_far, vec3(uv_far, 0.0), far_dx, far_dy), vec4(0.0));
+#ifdef FAR_B // (else no rule here lays a material of the second layer)
+    far[1] = textureGrad(u_albedo_far, vec3(uv_far, 1.0), far_dx, far_dy);
+#endif
 #else
-    vec4 far[2] = vec4[2](texture(u_albedo_far, vec3(uv_far, 0.0)), texture(u_albedo_far, vec3(uv_far, 1.0)));
+    vec4 far[2] = vec4[2](texture(u_albedo_far, vec3(uv_far, 0.0)), vec4(0.0));
+#ifdef FAR_B
+    far[1] = texture(u_albedo_far, vec3(uv_far, 1.0));
+#endif
 #endif
     // Unpainted ground: the automatic rules, or a neutral clay when they are hidden.
     float curvature = 0.0;
@@ -374,9 +379,9 @@ void main() {
             // Weight 0 is "automatic"; 1..7 paint sand, grass, rock, snow, dirt, gravel, moss.
             c = auto_c * w0.x;
             c += albedo_varied(0, uv, far[0].x).rgb * w0.y + albedo_varied(1, uv, far[0].y).rgb * w0.z
-               + albedo_varied(2, uv, far[0].z).rgb * w0.w + albedo_varied(3, uv, far[0].w).rgb * w1.x
-               + albedo_varied(4, uv, far[1].x).rgb * w1.y + albedo_varied(5, uv, far[1].y).rgb * w1.z
-               + albedo_varied(6, uv, far[1].z).rgb * w1.w;
+               + albedo_varied(2, uv, far[0].z).rgb * w0.w + albedo_varied(3, uv, far[1].x).rgb * w1.x
+               + albedo_varied(4, uv, far[1].y).rgb * w1.y + albedo_varied(5, uv, far[1].z).rgb * w1.z
+               + albedo_varied(6, uv, far[1].w).rgb * w1.w;
         }
     }
 #endif
