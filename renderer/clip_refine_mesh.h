@@ -2,14 +2,16 @@
 // whose sampling error shows on the screen (renderer/clip_refine.h decides which): a
 // level's samples are 4 to 8 pixels wide, so a rough far ridge drawn from them stands
 // lower than the full-resolution ridge and the sky shows where the ground should.
-// Each refinable piece of the base mesh (clipmap_mesh.h) gets a range of indices into a
-// grid of (2n - 1)^2 vertices at half the level's spacing; the vertex shader takes their
-// heights from the finer shading windows (renderer/clip_slopes.h).
+// Each refinable piece of the base mesh (clipmap_mesh.h) comes in parts of at most 8 x 8
+// quads, each with a range of indices into a grid of (2n - 1)^2 vertices at half the
+// level's spacing; the vertex shader takes their heights from the finer shading windows
+// (renderer/clip_slopes.h).
 //
-// Where a refined piece meets an unrefined one (or the finer level, or the trim) its
+// Where a refined part meets an unrefined one (or the finer level, or the trim) its
 // border vertices lie on the coarse edge (the shader gives them no refinement weight),
-// so every second one is a T-junction: each refined piece also draws zero-area
-// triangles along its four sides through a copy of the grid whose vertices the shader
+// so every second one is a T-junction: each refined part also draws zero-area
+// triangles along its four sides (its seams, a range of their own drawn by a program of
+// their own: terrain.vert's SEAM) through a copy of the grid whose vertices the shader
 // always puts on the coarse edge between their two neighbours (CLIP_REFINE_ON_LINE), which
 // close those T-junctions against rasterisation gaps and stay flat where both sides are
 // refined.
@@ -26,12 +28,15 @@
 #define CLIP_REFINE_PART 8       // quads a side of a piece's parts: a cell (clip_cells.h)
 #define CLIP_REFINE_PARTS_MAX 16 // parts of a piece at most (a fix-up is 2 x 63 quads)
 
-// A part of a refinable piece, in two forms through the refined grid: at twice the
-// density with zero-area triangles along its four sides (as a refined piece), and at
-// the level's density (its even vertices, the base mesh's triangles).
+// A part of a refinable piece in two forms: at twice the density through the refined
+// grid (its quads, and apart its seams: the zero-area triangles along its four sides),
+// and at the level's density through the base mesh's vertices (its triangles, drawn by
+// the base program: a refined vertex costs about twice a base one on llvmpipe).
 typedef struct clip_refine_part {
     uint16_t x0, z0, x1, z1; // vertex bounds (inclusive), the base mesh's units
-    uint32_t fine_first, fine_count, coarse_first, coarse_count;
+    uint32_t fine_first, fine_count, seam_first, seam_count; // in indices
+    // In the base mesh's index buffer, where its own indices are followed by `coarse`.
+    uint32_t coarse_first, coarse_count;
 } clip_refine_part;
 
 typedef struct clip_refine_mesh {
@@ -41,12 +46,14 @@ typedef struct clip_refine_mesh {
     size_t vertex_count;
     uint32_t *indices;
     size_t index_count;
-    // Per base piece (the base mesh's order): its refined index range; count 0 for the
-    // kinds that are never refined (trims, the degenerate ring).
-    uint32_t *first, *count;
+    // The parts' triangles at the level's density (base mesh vertex indices), to follow
+    // the base mesh's own indices in its index buffer.
+    uint16_t *coarse;
+    size_t coarse_count;
     size_t piece_count;
-    // Per base piece its parts (part_first[i] .. + part_count[i] in parts), so that a
-    // piece can be refined in some parts only (render skyline=P).
+    // Per base piece (the base mesh's order) its parts (part_first[i] .. + part_count[i]
+    // in parts), so that a piece can be refined in some parts only (render skyline=P);
+    // none for the kinds that are never refined (trims, the degenerate ring).
     clip_refine_part *parts;
     uint32_t *part_first, *part_count;
 } clip_refine_mesh;

@@ -65,12 +65,16 @@ enum {
     TV_INSIDE = 32768,   // every part drawn lies inside the world: no bounds test (which
                          // keeps llvmpipe from testing depth before the fragment shader)
     TV_FAR_B = 65536,    // a rule or the paint reads the far texture's second layer
-    TERRAIN_VARIANTS = 131072
+    TV_SEAM = 131072,    // the refined parts' zero-area seams (renderer/clip_refine_mesh.h)
+    TERRAIN_VARIANTS = 262144
 };
 #define GBUFFER_UNIT 10 // the texture unit the resolve passes read the G-buffer from
 #define REFINE_UNIT 11  // the refined parts' vertex weights (renderer/clip_refine.h)
 #define TERRAIN_PROGRAMS 48
 #define PIECES_MAX 512 // drawable parts of a level (clipmap_mesh.h pieces)
+// A level's draws per group: every refinable piece may come in its refined parts.
+#define DRAWS_MAX (PIECES_MAX * CLIP_REFINE_PARTS_MAX)
+enum { DRAW_BASE, DRAW_FINE, DRAW_SEAMS }; // base program, refined, refined seams
 
 struct terrain_renderer {
     char shader_dir[4200];
@@ -292,7 +296,7 @@ static GLuint terrain_program(terrain_renderer *r, int variant, const char *call
     static const char *const names[] = {"SHADED",    "DETAIL",   "PAINTED",  "BRUSH",   "OVERLAYS",
                                         "CONTOURS",  "MINIFIED", "NO_MORPH", "GBUFFER", "RESOLVE",
                                         "CURVATURE", "SLOPES_A", "SLOPES_B", "VOLUME",  "REFINED",
-                                        "INSIDE",    "FAR_B"};
+                                        "INSIDE",    "FAR_B",    "SEAM"};
     char defines[512 + sizeof slot->calls] = "";
     size_t n = 0;
     for (int b = 0; b < (int)(sizeof names / sizeof *names); b++)
@@ -342,8 +346,6 @@ terrain_renderer *terrain_renderer_create(const char *resource_dir, og_error *er
     glCreateBuffers(1, &r->ebo);
     glNamedBufferStorage(r->vbo, (GLsizeiptr)(r->mesh.vertex_count * 2 * sizeof(uint16_t)),
                          r->mesh.vertices, 0);
-    glNamedBufferStorage(r->ebo, (GLsizeiptr)(r->mesh.index_count * sizeof(uint16_t)),
-                         r->mesh.indices, 0);
     glVertexArrayVertexBuffer(r->vao, 0, r->vbo, 0, 2 * sizeof(uint16_t));
     glVertexArrayElementBuffer(r->vao, r->ebo);
     glEnableVertexArrayAttrib(r->vao, 0);
@@ -354,6 +356,14 @@ terrain_renderer *terrain_renderer_create(const char *resource_dir, og_error *er
         og_error_set(err, "out of memory for the clipmap's refined mesh");
         goto fail;
     }
+    // The base mesh's indices, then its refinable parts' at the level's density.
+    const size_t base_bytes = r->mesh.index_count * sizeof(uint16_t),
+                 parts_bytes = r->refine_mesh.coarse_count * sizeof(uint16_t);
+    glNamedBufferStorage(r->ebo, (GLsizeiptr)(base_bytes + parts_bytes), NULL,
+                         GL_DYNAMIC_STORAGE_BIT);
+    glNamedBufferSubData(r->ebo, 0, (GLsizeiptr)base_bytes, r->mesh.indices);
+    glNamedBufferSubData(r->ebo, (GLintptr)base_bytes, (GLsizeiptr)parts_bytes,
+                         r->refine_mesh.coarse);
     glCreateVertexArrays(1, &r->refine_vao);
     glCreateBuffers(1, &r->refine_vbo);
     glCreateBuffers(1, &r->refine_ebo);
@@ -1321,6 +1331,25 @@ static float skyline_parts(terrain_renderer *r, int l, size_t piece, double pixe
     return most;
 }
 
+// Adds index range [first, first + count) to group g of level l's draws (indices into
+// the base mesh's buffer for DRAW_BASE, the refined grid's for the others), joined to
+// the group's last draw where it follows it (each sub-draw costs llvmpipe's draw module
+// a pass of its own).
+static void add_draw(terrain_renderer *r, int l, int n[6], int g, uint32_t first, uint32_t count,
+                     GLsizei counts[][DRAWS_MAX], const void *offsets[][DRAWS_MAX]) {
+    const size_t size = g < 2 ? sizeof(uint16_t) : sizeof(uint32_t);
+    r->stats.triangles += count / 3;
+    r->stats.level_triangles[l] += count / 3;
+    if (n[g] > 0 &&
+        (uintptr_t)offsets[g][n[g] - 1] + (size_t)counts[g][n[g] - 1] * size == first * size) {
+        counts[g][n[g] - 1] += (GLsizei)count;
+        return;
+    }
+    if (n[g] == DRAWS_MAX) return;
+    counts[g][n[g]] = (GLsizei)count;
+    offsets[g][n[g]++] = (const void *)(uintptr_t)(first * size);
+}
+
 static int draw_terrain(terrain_renderer *r, const camera *cam, const render_settings *s,
                         const brush_cursor *cursor, const float view_proj[16], int deferred,
                         og_error *err) {
@@ -1329,9 +1358,10 @@ static int draw_terrain(terrain_renderer *r, const camera *cam, const render_set
     frustum f;
     frustum_from_matrix(&f, view_proj);
     int m = r->mesh.m;
-    // Per group of a level's parts (refined or not x may morph or never does).
-    GLsizei counts[4][PIECES_MAX];
-    const void *offsets[4][PIECES_MAX];
+    // Per group of a level's parts (DRAW_BASE, DRAW_FINE or DRAW_SEAMS x may morph or
+    // never does).
+    static GLsizei counts[6][DRAWS_MAX];
+    static const void *offsets[6][DRAWS_MAX];
     const double pixels_per_radian =
         (r->height > 0 ? r->height : 720) /
         (2.0 * tan((cam->fov_y >= 1 && cam->fov_y <= 170 ? cam->fov_y : 60) * M_PI / 360.0));
@@ -1406,8 +1436,8 @@ static int draw_terrain(terrain_renderer *r, const camera *cam, const render_set
                               r->refine_cells[l].have[1] == r->origin[l][1] &&
                               clip_window_current(&r->slopes.windows[l], r->slopes.want[l]);
         if (refinable) clip_refine_map_begin(&r->refine_map, l, m - 1, 3 * m - 1);
-        int n[4] = {0, 0, 0, 0}; // [refined * 2 + still]: still parts never morph
-        int inside = 1;          // no part drawn reaches the world's edge (a unit's margin)
+        int n[6] = {0, 0, 0, 0, 0, 0}; // [DRAW_* * 2 + still]: still parts never morph
+        int inside = 1;                // no part drawn reaches the world's edge (a unit's margin)
         int rect[2][4] = {{r->width, r->height, 0, 0}, {r->width, r->height, 0, 0}};
         for (int o = 0; o < candidates; o++) {
             const int i = order[o].piece;
@@ -1420,7 +1450,7 @@ static int draw_terrain(terrain_renderer *r, const camera *cam, const render_set
             const int boxed = deferred && pc->kind != CLIP_PIECE_DEGENERATE;
             if (refinable || (s->culling && culled_kind) || boxed)
                 piece_heights(r, l, pc, !still, &h0, &h1);
-            int refined = 0, by_parts = 0; // by_parts: refined near the skyline only
+            int refined = 0; // some of its parts drawn at twice the density
             float part_w[CLIP_REFINE_PARTS_MAX];
             if (refinable && clip_refine_piece_refinable(pc) &&
                 (!skyline_only ||
@@ -1441,9 +1471,10 @@ static int draw_terrain(terrain_renderer *r, const camera *cam, const render_set
                                              pixels_per_radian, refine_pixels);
                 if (w > 0.0f && skyline_only) { // only its parts near the sky
                     w = skyline_parts(r, l, i, pixels_per_radian, refine_pixels, part_w);
-                    by_parts = 1;
                 } else {
                     clip_refine_map_limit(&r->refine_map, l, pc->x0, pc->z0, pc->x1, pc->z1, w);
+                    for (uint32_t k = 0; k < r->refine_mesh.part_count[i]; k++)
+                        part_w[k] = w;
                 }
                 if (w > 0.0f) refined = 1, h0 = fminf(h0, r0), h1 = fmaxf(h1, r1);
             } else if (refinable && culled_kind) { // never refined: its vertices stay
@@ -1461,37 +1492,29 @@ static int draw_terrain(terrain_renderer *r, const camera *cam, const render_set
                 piece_box(r, l, pc, cam, h0, h1, mn, mx);
                 widen_screen_rect(view_proj, mn, mx, r->width, r->height, rect[still]);
             }
-            int g = refined * 2 + still;
-            const uint32_t nparts = r->refine_mesh.part_count[i];
-            if (refined && by_parts && n[g] + (int)nparts <= PIECES_MAX) {
-                // Its parts near the sky refined, the others at the level's density
-                // (their vertices have weight 0), all through the refined grid.
-                for (uint32_t k = 0; k < nparts; k++) {
-                    const clip_refine_part *q =
-                        &r->refine_mesh.parts[r->refine_mesh.part_first[i] + k];
-                    const int fine = part_w[k] > 0.0f;
-                    const uint32_t first = fine ? q->fine_first : q->coarse_first;
-                    const uint32_t count = fine ? q->fine_count : q->coarse_count;
-                    counts[g][n[g]] = (GLsizei)count;
-                    offsets[g][n[g]++] = (const void *)(uintptr_t)(first * sizeof(uint32_t));
-                    r->stats.triangles += count / 3;
-                    r->stats.level_triangles[l] += count / 3;
-                }
-                continue;
-            }
-            if (n[g] == PIECES_MAX) continue;
             if (!(pc->x0 > lo[0] + 1 && pc->x1 < hi[0] - 1 && pc->z0 > lo[1] + 1 &&
                   pc->z1 < hi[1] - 1))
                 inside = 0;
-            uint32_t first = refined ? r->refine_mesh.first[i] : pc->first;
-            uint32_t count = refined ? r->refine_mesh.count[i] : pc->count;
-            counts[g][n[g]] = (GLsizei)count;
-            offsets[g][n[g]++] =
-                (const void *)(uintptr_t)(first * (refined ? sizeof(uint32_t) : sizeof(uint16_t)));
-            r->stats.triangles += count / 3;
-            r->stats.level_triangles[l] += count / 3;
+            if (!refined) {
+                add_draw(r, l, n, DRAW_BASE * 2 + still, pc->first, pc->count, counts, offsets);
+                continue;
+            }
+            // Its refined parts at twice the density, with their seams; the others at
+            // the level's density (their vertices have weight 0) by the base program.
+            for (uint32_t k = 0; k < r->refine_mesh.part_count[i]; k++) {
+                const clip_refine_part *q = &r->refine_mesh.parts[r->refine_mesh.part_first[i] + k];
+                if (part_w[k] > 0.0f) {
+                    add_draw(r, l, n, DRAW_FINE * 2 + still, q->fine_first, q->fine_count, counts,
+                             offsets);
+                    add_draw(r, l, n, DRAW_SEAMS * 2 + still, q->seam_first, q->seam_count, counts,
+                             offsets);
+                } else {
+                    add_draw(r, l, n, DRAW_BASE * 2 + still, q->coarse_first, q->coarse_count,
+                             counts, offsets);
+                }
+            }
         }
-        if (n[0] + n[1] + n[2] + n[3] == 0) continue;
+        if (n[0] + n[1] + n[2] + n[3] + n[4] + n[5] == 0) continue;
         if (n[2] + n[3] > 0) clip_refine_map_upload(&r->refine_map, l);
         int base = level_variant(r, cam, s, cursor, l) | (inside ? TV_INSIDE : 0);
         char calls[sizeof r->progs[0].calls];
@@ -1526,12 +1549,13 @@ static int draw_terrain(terrain_renderer *r, const camera *cam, const render_set
                 v = TV_GBUFFER | (v & (TV_NO_MORPH | TV_VOLUME | TV_INSIDE));
                 glStencilFunc(GL_ALWAYS, deferred_target_stencil(l, still), 0xFF);
             }
-            for (int refined = 0; refined < 2; refined++) {
-                const int g = refined * 2 + still;
+            for (int kind = DRAW_BASE; kind <= DRAW_SEAMS; kind++) {
+                const int g = kind * 2 + still, refined = kind != DRAW_BASE;
                 if (n[g] == 0) continue;
                 int fresh = 0;
-                GLuint prog =
-                    terrain_program(r, v | (refined ? TV_REFINED : 0), calls, &fresh, err);
+                GLuint prog = terrain_program(
+                    r, v | (refined ? TV_REFINED : 0) | (kind == DRAW_SEAMS ? TV_SEAM : 0), calls,
+                    &fresh, err);
                 if (!prog) return -1;
                 if (fresh) {
                     set_terrain_uniforms(r, prog, cam, s, cursor, view_proj);

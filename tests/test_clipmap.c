@@ -387,18 +387,19 @@ static void test_cells_bound_every_range(void **state) {
     clip_window_free(&w);
 }
 
-// The refined range [first, first + count) over base vertices [bx0, bx1] x [bz0, bz1]
-// covers each quad with 2 x 2 fine quads (two triangles each, no on-line copy among
-// them) and has one zero-area triangle per odd vertex of its border, through that
-// vertex's on-line copy and its two neighbours along the border.
-static void check_fine_range(const clip_refine_mesh *r, uint32_t first, uint32_t count, int bx0,
-                             int bz0, int bx1, int bz1, int *cells) {
+// A part's refined ranges over base vertices [bx0, bx1] x [bz0, bz1]: its quads cover
+// each quad with 2 x 2 fine quads (two triangles each, no on-line copy among them), its
+// seams are one zero-area triangle per odd vertex of its border, through that vertex's
+// on-line copy and its two neighbours along the border.
+static void check_fine_range(const clip_refine_mesh *r, const clip_refine_part *q, int *cells) {
     const int side = r->side;
     const size_t grid = (size_t)side * side;
-    const int x0 = 2 * bx0, z0 = 2 * bz0, x1 = 2 * bx1, z1 = 2 * bz1;
+    const int x0 = 2 * q->x0, z0 = 2 * q->z0, x1 = 2 * q->x1, z1 = 2 * q->z1;
     memset(cells, 0, grid * sizeof *cells);
     int degenerate = 0;
-    for (uint32_t t = first; t < first + count; t += 3) {
+    for (uint32_t at = 0; at < q->fine_count + q->seam_count; at += 3) {
+        const int seam = at >= q->fine_count;
+        const uint32_t t = seam ? q->seam_first + at - q->fine_count : q->fine_first + at;
         int x[3], z[3], on_line[3], lines = 0;
         for (int k = 0; k < 3; k++) {
             uint32_t v = r->indices[t + k];
@@ -410,6 +411,7 @@ static void check_fine_range(const clip_refine_mesh *r, uint32_t first, uint32_t
             assert_true(x[k] >= x0 && x[k] <= x1 && z[k] >= z0 && z[k] <= z1);
         }
         int area2 = (x[1] - x[0]) * (z[2] - z[0]) - (x[2] - x[0]) * (z[1] - z[0]);
+        assert_int_equal(area2 == 0, seam);
         if (area2 == 0) {
             assert_int_equal(lines, 1);
             int k = on_line[0] ? 0 : on_line[1] ? 1 : 2, a = (k + 1) % 3, b = (k + 2) % 3;
@@ -435,19 +437,19 @@ static void check_fine_range(const clip_refine_mesh *r, uint32_t first, uint32_t
     assert_int_equal(degenerate, (x1 - x0) + (z1 - z0));
 }
 
-// The same part at the level's density: two triangles per base quad through even
-// vertices only, split along the base mesh's diagonal; counts each base quad in `quads`.
-static void check_coarse_range(const clip_refine_mesh *r, uint32_t first, uint32_t count, int bx0,
-                               int bz0, int bx1, int bz1, int n, int *quads) {
-    const size_t grid = (size_t)r->side * r->side;
+// The same part at the level's density, after the base mesh's indices: two triangles
+// per base quad through the base mesh's vertices, split along its diagonal; counts each
+// base quad in `quads`.
+static void check_coarse_range(const clip_refine_mesh *r, const clipmap_mesh *m, uint32_t first,
+                               uint32_t count, int bx0, int bz0, int bx1, int bz1, int *quads) {
+    const int n = m->n;
+    assert_true(first >= m->index_count && first + count <= m->index_count + r->coarse_count);
     for (uint32_t t = first; t < first + count; t += 3) {
         int x[3], z[3];
         for (int k = 0; k < 3; k++) {
-            uint32_t v = r->indices[t + k];
-            assert_true(v < grid); // no on-line copy
-            x[k] = r->vertices[2 * v], z[k] = r->vertices[2 * v + 1];
-            assert_true((x[k] & 1) == 0 && (z[k] & 1) == 0);
-            x[k] /= 2, z[k] /= 2;
+            uint32_t v = r->coarse[t - m->index_count + k];
+            assert_true(v < m->vertex_count);
+            x[k] = m->vertices[2 * v], z[k] = m->vertices[2 * v + 1];
             assert_true(x[k] >= bx0 && x[k] <= bx1 && z[k] >= bz0 && z[k] <= bz1);
         }
         int area2 = (x[1] - x[0]) * (z[2] - z[0]) - (x[2] - x[0]) * (z[1] - z[0]);
@@ -464,8 +466,8 @@ static void check_coarse_range(const clip_refine_mesh *r, uint32_t first, uint32
     }
 }
 
-// Every refinable piece's refined range (check_fine_range), and its parts: they tile it,
-// each at most CLIP_REFINE_PART quads a side, each in both forms; other kinds have none.
+// Every refinable piece's parts: they tile it, each at most CLIP_REFINE_PART quads a side,
+// each in both forms; other kinds have none.
 static void test_refined_pieces_cover_their_quads(void **state) {
     (void)state;
     const int sizes[] = {15, 255};
@@ -482,11 +484,9 @@ static void test_refined_pieces_cover_their_quads(void **state) {
         for (size_t i = 0; i < m.piece_count; i++) {
             const clip_piece *pc = &m.pieces[i];
             if (!clip_refine_piece_refinable(pc)) {
-                assert_int_equal(r.count[i], 0);
                 assert_int_equal(r.part_count[i], 0);
                 continue;
             }
-            check_fine_range(&r, r.first[i], r.count[i], pc->x0, pc->z0, pc->x1, pc->z1, cells);
             memset(quads, 0, (size_t)n * n * sizeof *quads);
             assert_true(r.part_count[i] >= 1 && r.part_count[i] <= CLIP_REFINE_PARTS_MAX);
             for (uint32_t k = 0; k < r.part_count[i]; k++) {
@@ -495,10 +495,9 @@ static void test_refined_pieces_cover_their_quads(void **state) {
                             q->z1 <= pc->z1);
                 assert_true(q->x1 > q->x0 && q->x1 - q->x0 <= CLIP_REFINE_PART);
                 assert_true(q->z1 > q->z0 && q->z1 - q->z0 <= CLIP_REFINE_PART);
-                check_fine_range(&r, q->fine_first, q->fine_count, q->x0, q->z0, q->x1, q->z1,
-                                 cells);
-                check_coarse_range(&r, q->coarse_first, q->coarse_count, q->x0, q->z0, q->x1, q->z1,
-                                   n, quads);
+                check_fine_range(&r, q, cells);
+                check_coarse_range(&r, &m, q->coarse_first, q->coarse_count, q->x0, q->z0, q->x1,
+                                   q->z1, quads);
             }
             for (int z = 0; z < n; z++) // every quad of the piece twice, none outside it
                 for (int x = 0; x < n; x++)

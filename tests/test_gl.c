@@ -274,6 +274,15 @@ static void test_shader_variants_compile(void **state) {
     // directly or into the depth pass.
     static const char *const refined[] = {"REFINED", "NO_MORPH", "GBUFFER", "SHADED"};
     compile_all_variants("terrain.vert", "terrain.frag", refined, 4);
+    // Their seams (renderer/clip_refine_mesh.h), in the same variants.
+    static const char *const seams[] = {"NO_MORPH", "GBUFFER", "SHADED", "REFINED", "SEAM"};
+    for (unsigned flags = 0; flags < 8; flags++) {
+        og_error err = {{0}};
+        GLuint program = shader_program_load_flags(shaders, "terrain.vert", "terrain.frag", seams,
+                                                   5, flags | 8u | 16u, &err);
+        if (!program) fail_msg("terrain.frag seam variant %#x: %s", flags, err.msg);
+        glDeleteProgram(program);
+    }
 }
 
 static void test_missing_files(void **state) {

@@ -12,30 +12,32 @@ out vec3 v_rel;    // position relative to the camera, metres
 // A part drawn at twice the density (renderer/clip_refine_mesh.h): its vertices go from
 // the level's surface toward the finer shading heights by their refinement weight
 // (renderer/clip_refine.h): 0 on the border of an unrefined part, of the trim or of the
-// finer level, so such a vertex stays on the level's surface.
+// finer level, so such a vertex stays on the level's surface. No branches: a software
+// renderer runs both sides of an `if` (4 texture reads a vertex; its seams' copies 8).
 uniform sampler2DArray u_refine; // R8 per vertex of each level's local grid, linear
 
 float refine_weight(vec2 p) {
     return texture(u_refine, vec3((p + 0.5) / 256.0, float(u_level))).r;
 }
 
-// The level's own surface at a half-unit point: a quad's centre lies on the diagonal the
-// level's mesh splits it along (clipmap_mesh.c), elsewhere on the grid lines.
+// The level's own surface (a refined level reads its own heights: a texel per unit) at
+// a half-unit point, from its quad's corners in one read: a quad's centre lies on the
+// diagonal the level's mesh splits it along (clipmap_mesh.c), an edge's midpoint halfway
+// along the edge, a corner on its sample.
 float level_surface(vec2 p) {
     vec4 src = u_lvl_src_a[u_level];
-    if (fract(p.x) != 0.0 && fract(p.y) != 0.0)
-        return 0.5 * (sample_height(src, p + vec2(0.5, -0.5)) + sample_height(src, p + vec2(-0.5, 0.5)));
-    return sample_height(src, p);
+    vec2 q = floor(p), f = 2.0 * (p - q);
+    // (q.x, q.y + 1), (q.x + 1, q.y + 1), (q.x + 1, q.y), (q.x, q.y)
+    vec4 c = textureGather(u_heights, vec3((src.xy + q + 1.0) / CLIP_SIZE, src.w));
+    return c.w * (1.0 - 0.5 * (f.x + f.y)) + 0.5 * (f.x * c.z + f.y * c.x);
 }
 
 float refined_height(vec2 p) {
     float h = level_surface(p);
     vec4 fine = u_lvl_slopes_a[u_level];
     float w = fine.w >= 0.0 ? refine_weight(p) : 0.0;
-    if (w > 0.0) {
-        vec2 t = (fine.xy + p * fine.z + 0.5) / float(textureSize(u_slopes, 0).x);
-        h = mix(h, texture(u_slopes, vec3(t, fine.w)).r, w);
-    }
+    vec2 t = (fine.xy + p * fine.z + 0.5) / float(textureSize(u_slopes, 0).x);
+    h = w > 0.0 ? mix(h, texture(u_slopes, vec3(t, fine.w)).r, w) : h;
     float alpha = morph_factor(p);
     return alpha > 0.0 ? mix(h, sample_height(u_lvl_src_b[u_level], p), alpha) : h;
 }
@@ -44,13 +46,14 @@ float refined_height(vec2 p) {
 void main() {
 #ifdef REFINED
     vec2 p = vec2(a_grid & uvec2(0x7fffu, 0xffffu)) * 0.5;
-    float h;
-    if ((a_grid.x & 0x8000u) != 0u) { // the on-line copy: between its two neighbours
-        vec2 e = fract(p.x) != 0.0 ? vec2(0.5, 0.0) : vec2(0.0, 0.5);
-        h = 0.5 * (refined_height(p - e) + refined_height(p + e));
-    } else {
-        h = refined_height(p);
-    }
+#ifdef SEAM
+    // The seams (their own draws): an on-line copy lies between its two neighbours, the
+    // other vertices at their own heights (the mean of one height with itself).
+    vec2 e = (a_grid.x & 0x8000u) == 0u ? vec2(0.0) : fract(p.x) != 0.0 ? vec2(0.5, 0.0) : vec2(0.0, 0.5);
+    float h = 0.5 * (refined_height(p - e) + refined_height(p + e));
+#else
+    float h = refined_height(p);
+#endif
 #else
     vec2 p = vec2(a_grid);
     float h = level_height(p, morph_factor(p));
