@@ -32,8 +32,8 @@ session() {
 
 # 1. Unedited: no '*' in the title, Ctrl+Q quits at once, no journal is left.
 session unedited
-sleep 0.5
-title | grep -q '^Orogen - unsaved world - '; ok=$?; check "the title does not mark it modified ($(title))" $ok
+# The title follows a frame after the import's reply (under load, more than 0.5 s).
+wait_title '^Orogen - unsaved world - '; ok=$?; check "the title does not mark it modified ($(title))" $ok
 key ctrl+q
 status=$(exit_status)
 [ "$status" = 0 ]; check "Ctrl+Q quits without asking (status $status)" $?
