@@ -10,6 +10,7 @@
 #include "renderer/clip_window_upload.h"
 #include "renderer/clipmap_mesh.h"
 #include "renderer/deferred_target.h"
+#include "renderer/driver_heap.h"
 #include "renderer/frustum.h"
 #include "renderer/ground_occlusion.h"
 #include "renderer/lighting.h"
@@ -327,6 +328,7 @@ terrain_renderer *terrain_renderer_create(const char *resource_dir, og_error *er
     snprintf(dir, sizeof r->shader_dir, "%s/shaders", resource_dir);
     snprintf(r->resource_dir, sizeof r->resource_dir, "%s", resource_dir);
     r->width = 1280, r->height = 720;
+    driver_heap_keep_freed(); // the driver's per-frame scene memory stays mapped
     // The plain shaded terrain now, so a broken shader shows at once; other variants
     // when a level first needs them.
     if (!terrain_program(r, TV_SHADED, "", NULL, err) ||
