@@ -593,9 +593,13 @@ static void bench_accuracy(bench *b, world *w4096, naive_mesh *m) {
         "   spend. skyline: only the parts (8 x 8 quads) whose cells' tops come within 2 px of\n"
         "   the skyline (renderer/clip_skyline.h) refined: PASSes here for ~1.2-1.6x the\n"
         "   triangles, but in sections 1 and 3's flights it added 19%% and 7%% / 15%% (bounded\n"
-        "   / unbounded) triangles at ~2x a base triangle's CPU each (refined vertices read\n"
-        "   three more textures), so goal 3's ratio went 1.88x -> 2.16x: off by default until\n"
-        "   the frame can pay for it.\n");
+        "   / unbounded) triangles at ~2x a base triangle's CPU each, so goal 3's ratio went\n"
+        "   1.88x -> 2.16x: off by default until the frame can pay for it. Tried: refined\n"
+        "   vertices with 4 texture reads instead of ~18 (kept; the cost did not change within\n"
+        "   the noise); the error weighted by what the fog leaves of it (section 3's extra\n"
+        "   triangles +6k / +31k -> +6k / +17k, but default / distant 3.15 / 3.02; with P x 0.7\n"
+        "   2.83 / 1.91 / 2.94 for +8k / +23k: no worse a ratio in triangles, but still ~11%%\n"
+        "   more of them in section 3 and a worse distant view: not kept).\n");
     goal("7. RMSE clipmap vs naive, default view", r1, 3, 0, "");
     goal("7. RMSE clipmap vs naive, low view", r2, 3, 0, "");
     goal("7. RMSE clipmap vs naive, distant view", r3, 3, 0, "");
