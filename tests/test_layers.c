@@ -471,6 +471,55 @@ static void test_tools_on_layer_match_single_heightfield(void **state) {
     }
 }
 
+// Samples of one slot of the coarse heights (the base, a layer) over r.
+static float *read_slot(world *w, int32_t slot, grid_rect r) {
+    layer_grid g;
+    og_error err;
+    if (layer_grid_init(&g, world_get_params(w), TILE_LAYER_COARSE, 0, &err) != 0)
+        fail_msg("%s", err.msg);
+    g.layer = (tile_layer)tile_layer_in_slot(TILE_LAYER_COARSE, slot);
+    float *out = malloc(sizeof(float) * (size_t)((r.x1 - r.x0) * (r.z1 - r.z0)));
+    if (layer_grid_read(w, &g, r, out, &err) != 0) fail_msg("%s", err.msg);
+    return out;
+}
+
+// A layer holding ground set near 0 m over the base's hundreds of metres: where a tool
+// then changes the composite, the layer's value is layer_blend_solve's (the take decides
+// most such samples inline, for the sums around a result this fine miss it), and the
+// layer's value is kept where the composite is.
+static void test_take_fine_results_over_deep_base(void **state) {
+    (void)state;
+    world_params p = test_flat_fbm_params(600);
+    session s;
+    open_session(&s, test_world_open(&p));
+    run(&s, "tool set height=0.37 radius=200 strength=1; dab 300 300");
+    grid_rect r = {180, 180, 420, 420};
+    size_t n = (size_t)((r.x1 - r.x0) * (r.z1 - r.z0));
+    const layer_table *t = &world_get_params(s.ctx.world)->layers;
+    int32_t slot = t->layers[t->active].id;
+    float *base = read_slot(s.ctx.world, TILE_SLOT_BASE, r);
+    float *was = read_slot(s.ctx.world, slot, r), *shown = read_rect(s.ctx.world, 0, r);
+    run(&s, "tool raise radius=100 strength=0.2; dab 300 300");
+    float *now = read_slot(s.ctx.world, slot, r), *comp = read_rect(s.ctx.world, 0, r);
+    size_t missed = 0, changed = 0;
+    for (size_t k = 0; k < n; k++) {
+        float b = base[k], v = was[k], target = comp[k];
+        int keep = !memcmp(&comp[k], &shown[k], sizeof target) ||
+                   (v == v && (target != target || b + v == target)) || (v != v && target == b);
+        float want = keep ? v : layer_blend_solve(LAYER_BLEND_ADD, 1.0f, b, v, target);
+        if (memcmp(&want, &now[k], sizeof want) != 0)
+            fail_msg("sample %zu: base %a layer %a composite %a: took %a, the solve %a", k,
+                     (double)b, (double)v, (double)target, (double)now[k], (double)want);
+        changed += !keep;
+        missed += !keep && b + (target - b) != target;
+    }
+    assert_true(changed > 10000);
+    assert_true(missed > 1000); // the sums around a result missed it: the inline search ran
+    free(base), free(was), free(shown), free(now), free(comp);
+    fclose(s.out);
+    world_close(s.ctx.world);
+}
+
 static world *load_world(const char *path, int expect_errors) {
     world_settings set = {
         .cache_budget_bytes = (size_t)256 << 20, .workers = 2, .warn = test_silent};
@@ -698,6 +747,7 @@ int main(void) {
         cmocka_unit_test(test_composite_matches_arrays),
         cmocka_unit_test(test_commands_undo_redo),
         cmocka_unit_test(test_tools_on_layer_match_single_heightfield),
+        cmocka_unit_test(test_take_fine_results_over_deep_base),
         cmocka_unit_test(test_faint_layer_takes_bounded_change),
         cmocka_unit_test(test_saved_stack),
         cmocka_unit_test(test_world_from_before_layers),
