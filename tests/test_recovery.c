@@ -46,6 +46,23 @@ static char *run_maybe(session *s, const char *text, int may_fail, og_error *err
     return printed;
 }
 
+// The recovery folder for a test's never-saved worlds, then back to the program's own
+// (ctest's, or test_support's private one: never the user's).
+static char previous_recover_dir[4200];
+
+static void recover_dir_set(const char *dir) {
+    snprintf(previous_recover_dir, sizeof previous_recover_dir, "%s",
+             getenv("OROGEN_RECOVER_DIR") ? getenv("OROGEN_RECOVER_DIR") : "");
+    setenv("OROGEN_RECOVER_DIR", dir, 1);
+}
+
+static void recover_dir_restore(void) {
+    if (previous_recover_dir[0])
+        setenv("OROGEN_RECOVER_DIR", previous_recover_dir, 1);
+    else
+        unsetenv("OROGEN_RECOVER_DIR");
+}
+
 static void run(session *s, const char *text) {
     og_error err = {{0}};
     free(run_maybe(s, text, 0, &err));
@@ -285,7 +302,7 @@ static void test_recover_never_saved(void **state) {
     snprintf(s.dir, sizeof s.dir, "%s", test_tmpdir("recovery"));
     char rec[4200], text[8800], h[3][17], now[17];
     snprintf(rec, sizeof rec, "%s/rec", s.dir);
-    setenv("OROGEN_RECOVER_DIR", rec, 1);
+    recover_dir_set(rec);
     world_params p;
     world_params_default(&p, WORLD_FLAT);
     p.seed = 4242;
@@ -325,7 +342,7 @@ static void test_recover_never_saved(void **state) {
     run(&s, "undo");
     hash(&s, now);
     assert_string_equal(now, h[0]);
-    unsetenv("OROGEN_RECOVER_DIR");
+    recover_dir_restore();
     finish(&s);
 }
 
@@ -408,7 +425,7 @@ static void test_undone_session_leaves_no_journal(void **state) {
     session_begin(&s, "recovery");
     char rec[4200], text[8800], unsaved[4400];
     snprintf(rec, sizeof rec, "%s/rec", s.dir);
-    setenv("OROGEN_RECOVER_DIR", rec, 1);
+    recover_dir_set(rec);
     run(&s, "tool raise radius=30 strength=1; dab 100 100; undo");
     snprintf(unsaved, sizeof unsaved, "%s", world_recovery_path(s.ctx.world));
     assert_int_equal(access(unsaved, F_OK), 0); // the dab was journaled, then its undo
@@ -429,7 +446,7 @@ static void test_undone_session_leaves_no_journal(void **state) {
     assert_int_equal(access(unsaved, F_OK), 0);
     run(&s, "new flat"); // a never-saved world back to what it was made as
     assert_int_equal(access(unsaved, F_OK), -1);
-    unsetenv("OROGEN_RECOVER_DIR");
+    recover_dir_restore();
     finish(&s);
 }
 

@@ -75,3 +75,23 @@ char *test_read_file(const char *path, size_t *len) {
     if (len) *len = got;
     return buf;
 }
+
+// Tests edit unsaved worlds, and an unsaved world's edits are journaled in the recovery
+// folder until saved. ctest gives each test a folder of its own; a test program run by
+// hand would leave its journals in the user's folder (gigabytes after a day of work),
+// each offered for recovery at the editor's next start. It gets a private one instead.
+static char private_recover_dir[4096];
+
+static void remove_private_recover_dir(void) {
+    test_rmtree(private_recover_dir);
+}
+
+__attribute__((constructor)) static void use_private_recover_dir(void) {
+    if (getenv("OROGEN_RECOVER_DIR")) return;
+    const char *base = getenv("TMPDIR");
+    snprintf(private_recover_dir, sizeof private_recover_dir, "%s/orogen-recover-XXXXXX",
+             base && *base ? base : "/tmp");
+    if (!mkdtemp(private_recover_dir)) return;
+    setenv("OROGEN_RECOVER_DIR", private_recover_dir, 1);
+    atexit(remove_private_recover_dir);
+}
