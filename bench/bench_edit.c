@@ -278,11 +278,11 @@ static void bench_dab64(brush_tool tool, double goal_ratio) {
            bench_median(squeeze, RUNS) * 1e6);
     if (tool == BRUSH_SMOOTH && q > goal_ratio)
         printf("  why smooth misses: each dab blurs its disc's area and a 2k halo (161^2 samples "
-               "at r=64) with two box means down columns (float running sums restarted every "
+               "at r=64) with two box sums down columns (float running sums restarted every "
                "2k + 1 rows, read straight from the tiles) and two along rows (power-of-two "
-               "runs, 2 shuffles a vector), then blends the disc (weights in the blend, a square "
-               "root per sample); only what the disc takes is computed. Left: ~2/7 row boxes, "
-               "~1/4 column boxes, ~1/5 blend; their arithmetic and loads, not memory\n");
+               "runs over each row's packed span), then blends the disc (a square root per "
+               "sample); only what the disc takes is computed. Left: ~1/3 column boxes, ~1/4 "
+               "row boxes, ~1/5 blend; their float arithmetic, not memory\n");
     char what[80];
     snprintf(what, sizeof what, "%s dab r=64, per sample vs memcpy", name);
     goal(what, q, goal_ratio, 0, "x");
