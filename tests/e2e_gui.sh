@@ -95,6 +95,9 @@ sculpt() { # a left drag across the viewport's centre
 }
 h0=$(hash_box "$px" "$pz")
 sculpt
+# The heights Redo must restore are the committed stroke's: under load the commit can
+# come later than the drag's last 0.5 s (read earlier, h1 was a stroke still growing).
+for _ in $(seq 40); do ask history '^steps=' | grep -q '^steps=1 ' && break; sleep 0.25; done
 h1=$(hash_box "$px" "$pz")
 [ -n "$px" ] && [ -n "$h1" ] && [ "$h1" != "$h0" ]; check "a left drag across the viewport sculpts (at $px $pz: $h0 -> $h1)" $?
 undo_name=$(click "Menu/Edit" && widget_name "Menu/Edit/Undo")
