@@ -471,18 +471,6 @@ static void test_tools_on_layer_match_single_heightfield(void **state) {
     }
 }
 
-// Samples of one slot of the coarse heights (the base, a layer) over r.
-static float *read_slot(world *w, int32_t slot, grid_rect r) {
-    layer_grid g;
-    og_error err;
-    if (layer_grid_init(&g, world_get_params(w), TILE_LAYER_COARSE, 0, &err) != 0)
-        fail_msg("%s", err.msg);
-    g.layer = (tile_layer)tile_layer_in_slot(TILE_LAYER_COARSE, slot);
-    float *out = malloc(sizeof(float) * (size_t)((r.x1 - r.x0) * (r.z1 - r.z0)));
-    if (layer_grid_read(w, &g, r, out, &err) != 0) fail_msg("%s", err.msg);
-    return out;
-}
-
 // A layer holding ground set near 0 m over the base's hundreds of metres: where a tool
 // then changes the composite, the layer's value is layer_blend_solve's (the take decides
 // most such samples inline, for the sums around a result this fine miss it), and the
@@ -497,10 +485,10 @@ static void test_take_fine_results_over_deep_base(void **state) {
     size_t n = (size_t)((r.x1 - r.x0) * (r.z1 - r.z0));
     const layer_table *t = &world_get_params(s.ctx.world)->layers;
     int32_t slot = t->layers[t->active].id;
-    float *base = read_slot(s.ctx.world, TILE_SLOT_BASE, r);
-    float *was = read_slot(s.ctx.world, slot, r), *shown = read_rect(s.ctx.world, 0, r);
+    float *base = test_read_slot(s.ctx.world, TILE_SLOT_BASE, r);
+    float *was = test_read_slot(s.ctx.world, slot, r), *shown = read_rect(s.ctx.world, 0, r);
     run(&s, "tool raise radius=100 strength=0.2; dab 300 300");
-    float *now = read_slot(s.ctx.world, slot, r), *comp = read_rect(s.ctx.world, 0, r);
+    float *now = test_read_slot(s.ctx.world, slot, r), *comp = read_rect(s.ctx.world, 0, r);
     size_t missed = 0, changed = 0;
     for (size_t k = 0; k < n; k++) {
         float b = base[k], v = was[k], target = comp[k];

@@ -498,17 +498,6 @@ static void test_saved_paint(void **state) {
     assert_int_equal(system(cmd), 0);
 }
 
-static float *read_slot(world *w, int32_t slot, grid_rect r) {
-    layer_grid g;
-    og_error err;
-    if (layer_grid_init(&g, world_get_params(w), TILE_LAYER_COARSE, 0, &err) != 0)
-        fail_msg("%s", err.msg);
-    g.layer = (tile_layer)tile_layer_in_slot(TILE_LAYER_COARSE, slot);
-    float *out = malloc(sizeof(float) * (size_t)((r.x1 - r.x0) * (r.z1 - r.z0)));
-    if (layer_grid_read(w, &g, r, out, &err) != 0) fail_msg("%s", err.msg);
-    return out;
-}
-
 // A painted mask: coverage painted with the brush (target=mask) across tile edges limits
 // a height layer exactly as the formula on plain arrays says (base + coverage x value);
 // erasing, inverting, clearing, duplicating, undo/redo and save/load keep it.
@@ -531,9 +520,9 @@ static void test_painted_mask(void **state) {
     const layer_table *t = &world_get_params(s.ctx.world)->layers;
     int32_t id = t->layers[layer_table_find(t, "Hills")].id;
     float *got = read_kind(s.ctx.world, TILE_LAYER_COARSE, ALL);
-    float *base = read_slot(s.ctx.world, TILE_SLOT_BASE, ALL);
-    float *v = read_slot(s.ctx.world, id, ALL);
-    float *cov = read_slot(s.ctx.world, layer_coverage_slot(id), ALL);
+    float *base = test_read_slot(s.ctx.world, TILE_SLOT_BASE, ALL);
+    float *v = test_read_slot(s.ctx.world, id, ALL);
+    float *cov = test_read_slot(s.ctx.world, layer_coverage_slot(id), ALL);
     size_t wrong = 0, partial = 0, covered = 0;
     for (size_t k = 0; k < ALL_N; k++) {
         assert_true(cov[k] >= 0.0f && cov[k] <= 1.0f); // kept within 0..1
@@ -759,7 +748,7 @@ static void paint_state_read(session *s, paint_state *out) {
         if (layer_grid_read_samples(s->ctx.world, &g, ALL, out->layer[i], &err) != 0)
             fail_msg("%s", err.msg);
     }
-    out->heights = read_slot(s->ctx.world, 0, ALL);
+    out->heights = test_read_slot(s->ctx.world, 0, ALL);
     rewind(s->out);
     run(s, "layers");
     size_t n = fread(out->listing, 1, sizeof out->listing - 1, s->out);

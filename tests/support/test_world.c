@@ -1,5 +1,9 @@
 #include "support/test_world.h"
 
+#include "editor/world/layer_grid.h"
+
+#include <stdlib.h>
+
 #include <stdarg.h>
 #include <setjmp.h>
 #include <stddef.h>
@@ -28,6 +32,17 @@ world *test_world_open(const world_params *p) {
     world *w = world_create(p, &s, &err);
     if (!w) fail_msg("world_create: %s", err.msg);
     return w;
+}
+
+float *test_read_slot(world *w, int32_t slot, grid_rect r) {
+    layer_grid g;
+    og_error err;
+    if (layer_grid_init(&g, world_get_params(w), TILE_LAYER_COARSE, 0, &err) != 0)
+        fail_msg("%s", err.msg);
+    g.layer = (tile_layer)tile_layer_in_slot(TILE_LAYER_COARSE, slot);
+    float *out = malloc(sizeof(float) * (size_t)((r.x1 - r.x0) * (r.z1 - r.z0)));
+    if (layer_grid_read(w, &g, r, out, &err) != 0) fail_msg("%s", err.msg);
+    return out;
 }
 
 uint64_t test_rng_next(uint64_t *state) {
