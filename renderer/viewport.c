@@ -2,6 +2,7 @@
 
 #include "renderer/antialias.h"
 #include "renderer/gl_target.h"
+#include "renderer/land_scan.h"
 #include "renderer/lighting.h"
 #include "renderer/planet_camera.h"
 #include "renderer/pick.h"
@@ -90,7 +91,18 @@ int viewport_camera_on_land(viewport *v, world *w, og_error *err) {
     if (viewport_default_camera(v, w, err) != 0) return -1;
     const world_params *p = world_get_params(w);
     if (p->kind == WORLD_PLANET) return 0;
-    double sea = world_params_ocean_height(p), land = sea + 0.05 * p->max_height;
+    double sea = world_params_ocean_height(p);
+    // The ground's floor: the sea, or in a bounded world with relief standing over a
+    // plain above the sea (an island's heightmap: its ocean floor at 0 m over the
+    // default -400 m sea), that plain. Land stands well above the floor.
+    land_scan scan = {0};
+    double floor_m = sea;
+    if (p->size > 0) {
+        if (land_scan_read(w, &scan, err) != 0) return -1;
+        if (scan.lowest > sea && scan.highest - scan.lowest > 0.05 * p->max_height)
+            floor_m = scan.lowest;
+    }
+    double land = floor_m + 0.05 * p->max_height;
     double lo = 0, hi = p->size > 0 ? (double)(p->size - 1) * p->spacing : 0;
     double hi_z = p->size > 0 ? (double)(world_params_size_z(p) - 1) * p->spacing : 0;
     double centre = 0.5 * (lo + hi), centre_z = 0.5 * (lo + hi_z);
@@ -108,21 +120,34 @@ int viewport_camera_on_land(viewport *v, world *w, og_error *err) {
         for (int a = 0; a < (r ? 12 : 1); a++) { // the gentlest land of the nearest ring
             double x = centre + rings[r] * cos(a * M_PI / 6),
                    z = centre_z + rings[r] * sin(a * M_PI / 6);
-            if (p->size > 0 && (x + 20 < lo || x + 20 > hi || z + 20 < lo || z + 20 > hi_z))
-                continue;
+            if (p->size > 0 && (x < lo || x + 20 > hi || z < lo || z + 20 > hi_z)) continue;
             double g, gx, gz;
             if (world_sample(w, 0, x, z, &g, err) != 0 ||
                 world_sample(w, 0, x + 20, z, &gx, err) != 0 ||
-                world_sample(w, 0, x, z + 20, &gz, err) != 0)
+                world_sample(w, 0, x, z + 20, &gz, err) != 0) {
+                land_scan_free(&scan);
                 return -1;
+            }
             double slope = hypot(gx - g, gz - g) / 20.0;
             if (g > land && slope < best_slope) {
                 best[0] = x, best[1] = g, best[2] = z, best_slope = slope;
                 found = 1;
             }
         }
+    // None near the centre: the nearest in the whole of a bounded world.
+    double far_x, far_z;
+    if (!found && scan.height &&
+        land_scan_nearest(&scan, centre, centre_z, land, best_slope, &far_x, &far_z)) {
+        best[0] = far_x, best[2] = far_z;
+        if (world_sample(w, 0, far_x, far_z, &best[1], err) != 0) {
+            land_scan_free(&scan);
+            return -1;
+        }
+        found = 1;
+    }
+    land_scan_free(&scan);
     c->pitch = -35; // from above: the brush lies round on the ground, a raise shows
-    double distance = fmax(fmin(900.0, whole), 1.5 * (best[1] - sea));
+    double distance = fmax(fmin(900.0, whole), 1.5 * (best[1] - floor_m));
     if (!found) {
         if (!(whole < 900.0)) return 0; // a large world of sea or cliffs: the default view
         // A small world all under the sea (or all cliffs): the whole of it.

@@ -40,10 +40,11 @@ void viewport_destroy(viewport *v);
 // shoulder (the visible hemisphere lit), inside the view whatever its aspect.
 int viewport_default_camera(viewport *v, world *w, og_error *err);
 // The editor's first view of a flat world: the default camera turned to face the nearest
-// land well above the sea (searched in rings out to 3 km from the centre), from a
-// distance that shows it whole (a bounded world smaller than that view: all of it); the
-// whole of a small bounded world with no such land; else the default camera. Planets: as
-// viewport_default_camera.
+// land well above the sea (searched in rings out to 3 km from the centre, then in a bounded
+// world over all of it; above the plain a heightmap's relief stands on, when that lies
+// above the sea: renderer/land_scan.h), from a distance that shows it whole (a bounded
+// world smaller than that view: all of it); the whole of a small bounded world with no
+// such land; else the default camera. Planets: as viewport_default_camera.
 int viewport_camera_on_land(viewport *v, world *w, og_error *err);
 
 // Makes sure a GL context is current and the renderer exists.
