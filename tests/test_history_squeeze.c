@@ -4,7 +4,9 @@
 // those the full encoder writes, byte for byte, and undo the same tiles; the step's and
 // the history's byte counts follow them; steps cut from the history (a redo branch, the
 // budget) while their squeeze runs are let go (many steps in a row, no crash or leak:
-// ASan/TSan builds run this too); a step never pushed is freed as before.
+// ASan/TSan builds run this too); a step never pushed is freed as before. A reader of
+// the deltas on another thread (the crash journal's writer) is waited for before any
+// delta it may be reading is replaced (squeezed) or freed (budget, redo branch, end).
 #include "editor/world/history.h"
 
 #include <stdint.h>
@@ -132,10 +134,83 @@ static void test_steps_cut_while_squeezed(void **state) {
     free(after);
 }
 
+// What the reader saw each time the history waited for it: the first step's delta as the
+// commit gave it, still there (nothing replaced or freed before the wait).
+typedef struct reader_log {
+    history *h;
+    const void *given; // the first step's delta as pushed
+    int waits, intact; // waits, and those that found it
+} reader_log;
+
+static void reader_wait(void *user) {
+    reader_log *r = user;
+    r->waits++;
+    const history_step *first = history_at(r->h, 0);
+    r->intact += first && first->tile_count && first->tiles[0].delta == r->given;
+}
+
+static void test_reader_waited_for_before_deltas_change(void **state) {
+    (void)state;
+    history *h = history_create(0);
+    float *before = malloc(sizeof(float) * TILE_SAMPLES),
+          *after = malloc(sizeof(float) * TILE_SAMPLES);
+    assert_true(h && before && after);
+    reader_log log = {.h = h};
+    history_set_reader(h, reader_wait, &log);
+    grid_rect part = {40, 30, 200, 190};
+    tiles(before, after, part, 0.5f);
+    void *quick;
+    size_t quick_bytes;
+    assert_int_equal(history_delta_encode_part_quick(TILE_LAYER_COARSE, before, after, part, &quick,
+                                                     &quick_bytes),
+                     0);
+    history_step *s = history_step_new("dab");
+    tile_key key = {.layer = TILE_LAYER_COARSE};
+    assert_int_equal(history_step_add_delta(s, key, 0, quick, quick_bytes), 0);
+    log.given = quick;
+    assert_int_equal(history_push(h, s), 0);
+    // The peek squeezes the delta (a smaller one replaces it): the reader first.
+    log.waits = log.intact = 0;
+    assert_ptr_equal(history_undo_peek(h), s);
+    assert_true(log.waits >= 1);
+    assert_int_equal(log.intact, log.waits);
+    assert_ptr_not_equal(s->tiles[0].delta, quick); // replaced, after the wait
+    // A budget that drops the oldest step, then a redo branch cut by a new step, and
+    // the history's end: each waits for the reader before it frees one.
+    for (int i = 0; i < 2; i++) {
+        history_step *n = history_step_new("dab");
+        void *d = malloc(64);
+        assert_true(n && d);
+        memset(d, i + 1, 64);
+        assert_int_equal(history_step_add_delta(n, key, 0, d, 64), 0);
+        history_push(h, n);
+    }
+    log.given = history_at(h, 0)->tiles[0].delta;
+    log.waits = log.intact = 0;
+    history_set_budget(h, 1); // only the newest stays
+    assert_int_equal(history_count(h), 1);
+    assert_true(log.waits >= 1 && log.intact == log.waits);
+    history_undo_peek(h);
+    history_undo_done(h); // the newest undone: a redo branch
+    log.given = history_at(h, 0)->tiles[0].delta;
+    log.waits = log.intact = 0;
+    history_step *n = history_step_new("dab");
+    assert_non_null(n);
+    history_push(h, n); // cuts the branch (frees its step)
+    assert_true(log.waits >= 1 && log.intact >= 1);
+    log.waits = 0;
+    log.given = NULL;
+    history_destroy(h);
+    assert_int_equal(log.waits, 1);
+    free(before);
+    free(after);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_squeezed_deltas_are_the_full_encoding),
         cmocka_unit_test(test_steps_cut_while_squeezed),
+        cmocka_unit_test(test_reader_waited_for_before_deltas_change),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -710,6 +710,7 @@ static int killed_session(const char *dir) {
         fprintf(stderr, "killed session: %s\n", err.msg);
         return 1;
     }
+    world_journal_wait(s.ctx.world); // the last step's write (on the journal's thread) done
     printf("ready\n");
     fflush(stdout);
     for (;;)

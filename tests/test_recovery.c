@@ -4,9 +4,12 @@
 // longest valid prefix, never part of a step; a journal of an older save is not
 // replayed; a new session's first edit sets an unrecovered journal aside; discard
 // removes it; a quit removes this session's journal when its edits were all undone.
+// The journal's records are written on its writer thread: an append returns with the
+// record before it in the file, and every record there once waited for, intact.
 #include "editor/cmd/commands.h"
 #include "editor/edit/recover.h"
 #include "editor/cmd/context.h"
+#include "editor/world/recovery_journal.h"
 #include "support/test_support.h"
 
 #include <stdio.h>
@@ -140,8 +143,11 @@ static void crashed_session(session *s, char h[6][17]) {
     assert_string_equal(h[3], h[1]);
     assert_string_not_equal(h[4], h[3]);
     assert_string_not_equal(h[5], h[4]);
-    copy_file(s->journal, s->backup, 0); // what a kill -9 leaves
-    run(s, "new flat");                  // quits the world without saving: the journal stays
+    // What a kill -9 leaves once the last record's write (on the journal's thread, tens
+    // of microseconds) is done.
+    world_journal_wait(s->ctx.world);
+    copy_file(s->journal, s->backup, 0);
+    run(s, "new flat"); // quits the world without saving: the journal stays
     assert_int_equal(file_size(s->journal), file_size(s->backup));
 }
 
@@ -185,6 +191,7 @@ static void test_recover_exact(void **state) {
     run(&s, "dab 250 250");
     char after[17];
     hash(&s, after);
+    world_journal_wait(s.ctx.world);
     copy_file(s.journal, s.backup, 0);
     run(&s, "new flat");
     copy_file(s.backup, s.journal, 0);
@@ -217,7 +224,8 @@ static void test_recover_volume(void **state) {
     run(&s, "tool carve radius=6 falloff=constant; dab 50 -4 50; arch 70 0 70 90 0 90 rise=12");
     char *after = run_maybe(&s, probe, 0, &err);
     assert_string_not_equal(before, after);
-    copy_file(s.journal, s.backup, 0); // what a kill -9 leaves
+    world_journal_wait(s.ctx.world); // its last record's write done, as for a kill after it
+    copy_file(s.journal, s.backup, 0);
     run(&s, "new flat");
     copy_file(s.backup, s.journal, 0);
     reopen(&s);
@@ -318,6 +326,7 @@ static void test_recover_never_saved(void **state) {
     assert_int_equal(edit_find_unsaved_journal(journal, sizeof journal, &scan), 0); // ours: live
     snprintf(s.backup, sizeof s.backup, "%s/crash.recover", s.dir);
     snprintf(text, sizeof text, "%s", world_recovery_path(s.ctx.world));
+    world_journal_wait(s.ctx.world);
     copy_file(text, s.backup, 0);
     run(&s, "new flat"); // quits that world: its journal stays
     assert_int_equal(file_size(text), file_size(s.backup));
@@ -450,6 +459,84 @@ static void test_undone_session_leaves_no_journal(void **state) {
     finish(&s);
 }
 
+// ---- the writer thread ----------------------------------------------------------------
+
+typedef struct read_back {
+    history_step *steps[8];
+    size_t count;
+} read_back;
+
+static int keep_step(void *user, recovery_kind kind, uint64_t session_id, history_step *step,
+                     og_error *err) {
+    (void)kind, (void)session_id, (void)err;
+    read_back *r = user;
+    if (r->count == 8) {
+        history_step_free(step);
+        return -1;
+    }
+    r->steps[r->count++] = step;
+    return 0;
+}
+
+static size_t records_in(const char *path, read_back *r) {
+    recovery_scan scan;
+    og_error err = {{0}};
+    if (r) memset(r, 0, sizeof *r);
+    if (recovery_journal_read(path, &scan, r ? keep_step : NULL, r, &err) != 0)
+        fail_msg("%s", err.msg);
+    // Read back once waited for: the whole file is valid (a read meanwhile may see the
+    // last record's write under way).
+    if (r) assert_int_equal(scan.dropped_bytes, 0);
+    return scan.records;
+}
+
+// Steps of deltas growing, then shrinking (the writer's buffer is reused for smaller
+// records and replaced for larger ones), each filled with bytes of its own: the journal
+// holds every record in order, each exactly as appended, and an append returns only once
+// the record before it is in the file (a kill loses at most the last step).
+static void test_journal_writer_thread(void **state) {
+    (void)state;
+    char dir[4096], path[4200];
+    snprintf(dir, sizeof dir, "%s", test_tmpdir("recovery-writer"));
+    snprintf(path, sizeof path, "%s/w.recover", dir);
+    og_error err = {{0}};
+    recovery_journal *j = recovery_journal_open(path, "", NULL, NULL, 0, &err);
+    if (!j) fail_msg("%s", err.msg);
+    static const size_t sizes[6] = {70000, 300000, 1000, 90000, 5, 400000};
+    history_step *made[6];
+    for (int i = 0; i < 6; i++) {
+        made[i] = history_step_new("step");
+        assert_non_null(made[i]);
+        for (int t = 0; t < 2; t++) {
+            size_t n = sizes[i] / (t + 1) + 1;
+            uint8_t *d = malloc(n);
+            assert_non_null(d);
+            for (size_t k = 0; k < n; k++)
+                d[k] = (uint8_t)(k * 31 + (size_t)i * 7 + (size_t)t);
+            tile_key key = {TILE_LAYER_COARSE, 0, t, i, -i};
+            assert_int_equal(history_step_add_delta(made[i], key, t, d, n), 0);
+        }
+        assert_int_equal(recovery_journal_append(j, RECOVERY_STEP, made[i], &err), 0);
+        assert_true(records_in(path, NULL) >= (size_t)i); // every one before it, written
+    }
+    assert_int_equal(recovery_journal_wait(j, &err), 0);
+    read_back r;
+    assert_int_equal(records_in(path, &r), 6);
+    for (int i = 0; i < 6; i++) {
+        assert_int_equal(r.steps[i]->tile_count, 2);
+        for (int t = 0; t < 2; t++) {
+            const history_tile *a = &made[i]->tiles[t], *b = &r.steps[i]->tiles[t];
+            assert_true(tile_key_equal(a->key, b->key));
+            assert_int_equal(a->bytes, b->bytes);
+            assert_memory_equal(a->delta, b->delta, a->bytes);
+        }
+        history_step_free(r.steps[i]);
+        history_step_free(made[i]);
+    }
+    recovery_journal_close(j);
+    test_rmtree(dir);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_recover_exact),
@@ -460,6 +547,7 @@ int main(void) {
         cmocka_unit_test(test_recover_set_aside_reachable),
         cmocka_unit_test(test_recover_untouched_edge_then_generate),
         cmocka_unit_test(test_undone_session_leaves_no_journal),
+        cmocka_unit_test(test_journal_writer_thread),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -213,6 +213,7 @@ static int c_recover(cmd_context *ctx, int argc, char **argv, og_error *err) {
     }
     recover_report r;
     recovery_scan scan;
+    world_journal_wait(ctx->world); // the journal named may be this session's own
     if (journal && recovery_journal_read(journal, &scan, NULL, NULL, err) != 0) return -1;
     if (journal && scan.has_base) {
         world *w =

@@ -119,6 +119,7 @@ int edit_recover(world *w, const char *journal, recover_report *report, og_error
                                 world_path(w)[0] ? " ('recover list' lists its journals)" : "");
         journal = own;
     }
+    world_journal_wait(w); // this session's journal may be the one named
     recovery_scan scan;
     if (recovery_journal_read(journal, &scan, NULL, NULL, err) != 0) return -1;
     if (scan.has_base)
@@ -267,6 +268,7 @@ static void list_other(void *user, const char *path) {
 size_t edit_recover_list(const world *w, void (*fn)(void *user, const recover_entry *e),
                          void *user) {
     lister l = {w, fn, user, 0};
+    world_journal_wait(w); // this session's journal is listed with all its records
     char own[4400];
     if (world_path(w)[0]) {
         snprintf(own, sizeof own, "%s.recover", world_path(w));

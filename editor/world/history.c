@@ -20,6 +20,8 @@ struct history {
     uint64_t floor_id; // the state reached by the dropped steps (0: the loaded state)
     uint64_t saved_id; // the state that was saved last
     uint64_t dropped_total;
+    void (*reader_wait)(void *user); // history_set_reader
+    void *reader;
 };
 
 static void squeeze_queue(history *h, history_step *s);
@@ -34,8 +36,19 @@ history *history_create(size_t budget_bytes) {
     return h;
 }
 
+void history_set_reader(history *h, void (*wait)(void *user), void *user) {
+    h->reader_wait = wait;
+    h->reader = user;
+}
+
+// Before a step's delta is freed or replaced: the reader done with them.
+static void reader_done(history *h) {
+    if (h->reader_wait) h->reader_wait(h->reader);
+}
+
 void history_destroy(history *h) {
     if (!h) return;
+    reader_done(h);
     for (size_t i = 0; i < h->count; i++)
         history_step_free(h->steps[i]);
     free(h->steps);
@@ -534,6 +547,7 @@ static size_t enforce_budget(history *h) {
 }
 
 size_t history_push(history *h, history_step *s) {
+    reader_done(h); // a redo branch cut, the oldest steps dropped, deltas squeezed
     squeeze_collect(h);
     while (h->count > h->position) {
         history_step *r = h->steps[--h->count];
@@ -563,6 +577,7 @@ size_t history_push(history *h, history_step *s) {
 }
 
 history_step *history_undo_peek(history *h) {
+    reader_done(h);
     squeeze_collect(h);
     return h->position ? h->steps[h->position - 1] : NULL;
 }
@@ -570,6 +585,7 @@ void history_undo_done(history *h) {
     if (h->position) h->position--;
 }
 history_step *history_redo_peek(history *h) {
+    reader_done(h);
     squeeze_collect(h);
     return h->position < h->count ? h->steps[h->position] : NULL;
 }
@@ -597,6 +613,7 @@ uint64_t history_dropped_total(const history *h) {
 }
 
 size_t history_set_budget(history *h, size_t budget_bytes) {
+    reader_done(h);
     squeeze_collect(h);
     h->budget = budget_bytes ? budget_bytes : (size_t)512 << 20;
     return enforce_budget(h);

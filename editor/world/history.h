@@ -45,6 +45,11 @@ typedef struct history history;
 
 history *history_create(size_t budget_bytes); // 0 = 512 MiB
 void history_destroy(history *h);
+// Something reads the steps' deltas on another thread after the calls that gave it them
+// (the crash journal's writer): wait(user) returns once it has finished, and the history
+// calls it before it frees or replaces a step's delta (a new step, an undo or redo, a
+// budget change, its end). NULL: nothing to wait for.
+void history_set_reader(history *h, void (*wait)(void *user), void *user);
 
 // A new empty step (owned by the caller until pushed).
 history_step *history_step_new(const char *label);

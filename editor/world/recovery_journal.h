@@ -1,9 +1,12 @@
 // The crash-recovery journal: every committed undo step, undo and redo since the last
 // save, appended to a file beside the world as it happens, so a kill, a crash or a
 // power cut loses nothing that was committed. Each record is checksummed (CRC32C) and
-// written with one write(); the file is fsync'd within a second of each record by a
-// flusher thread (a kill loses nothing even before that: the bytes are the kernel's).
-// A torn or damaged tail is cut off: reading gives the longest valid prefix.
+// written with one writev() by the journal's writer thread, the commit going on
+// meanwhile (its ~90 KB write was a third of a one-dab step); an append waits for the
+// record before it, so a kill loses at most the last step, and only during its write
+// (tens of microseconds). The file is fsync'd within a second of each record by a
+// flusher thread (a kill loses nothing written even before that: the bytes are the
+// kernel's). A torn or damaged tail is cut off: reading gives the longest valid prefix.
 //
 // The journal names the saved state it builds on (the tile store's state_id, set in
 // the same transaction as a save's tiles), so it is never replayed onto another one.
@@ -36,10 +39,17 @@ typedef struct recovery_journal recovery_journal;
 recovery_journal *recovery_journal_open(const char *path, const char *state_id,
                                         const world_params *base, const char *base_source,
                                         size_t keep_bytes, og_error *err);
-// Appends one record: the step's label, tile deltas, dirty areas and parameters.
+// Appends one record: the step's label, tile deltas, dirty areas and parameters, written
+// on the writer thread. The record points into s's deltas (an import's step holds
+// hundreds of megabytes; a copy of a dab's 90 KB cost more than its write): they must
+// stay as they are until recovery_journal_wait returns (history_set_reader). -1 with
+// err when out of memory or when the record before failed to write (a full disk).
 int recovery_journal_append(recovery_journal *j, recovery_kind kind, const history_step *s,
                             og_error *err);
-// Flushes to disk and closes.
+// Waits until every record appended is in the file (readers of the file: `recover list`,
+// tests); -1 with err when one failed to write. NULL: nothing to wait for.
+int recovery_journal_wait(recovery_journal *j, og_error *err);
+// Writes what is left, flushes to disk and closes.
 void recovery_journal_close(recovery_journal *j);
 
 typedef struct recovery_scan {

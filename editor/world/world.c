@@ -192,6 +192,12 @@ static int open_journal(world *w, og_error *err) {
     return 0;
 }
 
+// The crash journal's writer reads the steps' deltas (recovery_journal_append): the
+// history waits for it before it frees or replaces one.
+static void journal_written(void *user) {
+    world_journal_wait(user);
+}
+
 static world *world_alloc(const world_params *params, const world_settings *settings) {
     world *w = calloc(1, sizeof *w);
     if (!w) return NULL;
@@ -203,6 +209,7 @@ static world *world_alloc(const world_params *params, const world_settings *sett
     if (!w->settings.warn) w->settings.warn = default_warn;
     if (!w->settings.events) w->settings.events = w->own_events = world_events_create();
     w->history = history_create(w->settings.history_budget_bytes);
+    if (w->history) history_set_reader(w->history, journal_written, w);
     if (!w->history || !w->settings.events) {
         history_destroy(w->history);
         world_events_release(w->own_events);
@@ -616,6 +623,7 @@ void world_close(world *w) {
     // (else the next start offers to recover nothing).
     int nothing_unsaved = w->rj && !history_modified(w->history);
     recovery_journal_close(w->rj);
+    w->rj = NULL; // the history's end below waits for it no more
     if ((w->settings.scripted || nothing_unsaved) && w->journal_fresh && !w->keep_journal &&
         w->recover_path[0])
         unlink(w->recover_path);
@@ -1141,6 +1149,11 @@ void world_journal_record(world *w, recovery_kind kind, const history_step *s) {
         warn_path(w, w->path[0] ? w->path : "unsaved world",
                   "warning: %s; edits are not protected against a crash", err.msg);
     }
+}
+
+void world_journal_wait(const world *w) {
+    og_error ignored; // a failed write is reported by the next record's append
+    recovery_journal_wait(w->rj, &ignored);
 }
 
 void world_keep_journal(world *w) {

@@ -63,6 +63,9 @@ const char *world_read_only(const world *w);
 // in the journal beside the world's file, or for a never-saved world in the recovery
 // folder (edit.c calls it for every history change; a read-only world keeps none).
 void world_journal_record(world *w, recovery_kind kind, const history_step *s);
+// Waits until the journal's file holds every record made (its writer thread writes each
+// one after world_journal_record returns): for readers of this session's journal file.
+void world_journal_wait(const world *w);
 // Steps a session that did not save left in the journal, on the state the world was
 // loaded in (0: none), and when the last was made.
 size_t world_recoverable(const world *w, int64_t *when);
