@@ -20,6 +20,7 @@
 #include "renderer/shader.h"
 #include "renderer/planet_renderer.h"
 #include "renderer/volume_renderer.h"
+#include "renderer/water_ripples.h"
 
 #include <epoxy/gl.h>
 #include <math.h>
@@ -1632,6 +1633,7 @@ static void draw_water(terrain_renderer *r, const camera *cam, const render_sett
     const double lift = 0.01;
     glProgramUniform1f(prog, glGetUniformLocation(prog, "u_water_y"),
                        (float)(world_params_ocean_height(p) + lift - cam->pos[1]));
+    water_ripple_uniforms(prog, cam->pos);
     set_lighting(prog, r, s);
     glUseProgram(prog);
     glBindVertexArray(r->empty_vao);
