@@ -537,6 +537,28 @@ static void test_journal_writer_thread(void **state) {
     test_rmtree(dir);
 }
 
+// A command after a step prints only once the step's record is in the journal (the
+// writer thread writes it after the commit): the steps `history` shows are all there for
+// `recover` after a kill at that moment (e2e_faults kills at random such moments).
+static void test_printed_steps_are_journaled(void **state) {
+    (void)state;
+    session s;
+    session_begin(&s, "recovery-printed");
+    char text[4400];
+    snprintf(text, sizeof text, "tool raise radius=30 strength=1; dab 400 400; save %s", s.world);
+    run(&s, text);
+    reopen(&s);
+    run(&s, "tool raise radius=60 strength=1");
+    for (int i = 0; i < 20; i++) {
+        snprintf(text, sizeof text, "dab %d %d", 50 + 30 * i, 300 - 10 * i);
+        run(&s, text);
+        og_error err = {{0}};
+        free(run_maybe(&s, "history", 0, &err)); // printed: so journaled
+        assert_int_equal(records_in(s.journal, NULL), (size_t)i + 1);
+    }
+    finish(&s);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_recover_exact),
@@ -548,6 +570,7 @@ int main(void) {
         cmocka_unit_test(test_recover_untouched_edge_then_generate),
         cmocka_unit_test(test_undone_session_leaves_no_journal),
         cmocka_unit_test(test_journal_writer_thread),
+        cmocka_unit_test(test_printed_steps_are_journaled),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -703,6 +703,10 @@ static int execute(cmd_context *ctx, int argc, char **argv, og_error *err) {
     if (ctx->base_pending && c->run != cmd_export && !reads_no_world &&
         cmd_base_settle(ctx, err) != 0)
         return -1;
+    // The crash journal's writer thread writes a step's record after its commit: what a
+    // command prints (a hash, the history) follows the records of every step before it,
+    // so a kill after a printed line loses no step it showed (e2e_faults).
+    if (!reads_no_world && ctx->world) world_journal_wait(ctx->world);
     if (c->run(ctx, argc, argv, err) != 0) return -1;
     // `exit` is left out: a replay goes on to whatever follows it.
     if ((ctx->record || ctx->session) && c->run != c_exit && !(c->flags & CMD_NOT_RECORDED) &&
