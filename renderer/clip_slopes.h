@@ -1,5 +1,6 @@
 // The slopes each clipmap level is shaded with, from heights CLIP_SLOPES_SHIFT mip levels
-// finer than its own (its vertices' heights stay the level's): a level's sample is 4 to
+// finer than its own (its vertices' heights stay the level's, raised to these at their
+// own places: renderer/clip_window.h clip_window_init_ridges): a level's sample is 4 to
 // 8 pixels wide on the screen (a ring reaches 64 to 127 of them from the camera), so
 // slopes from its own samples blur the ridges and gullies a full-resolution mesh
 // shows. One toroidal window per level over the level's whole extent (level 0 has

@@ -5,7 +5,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define MAX_TILES 25 // a 1024-sample window (renderer/clip_slopes.h) meets 5 x 5 tiles
+// A 1024-sample window (renderer/clip_slopes.h) meets 5 x 5 tiles; a 256-sample ridge
+// window 2 x 2 of its own level's and 5 x 5 of the finer one's (shift 2).
+#define MAX_TILES 34
 
 typedef struct sample_rect {
     int64_t x0, z0, x1, z1; // [x0, x1) x [z0, z1), sample indices at the window's level
@@ -20,6 +22,12 @@ int clip_window_init(clip_window *w, tile_layer layer, int face, int level, int 
     w->texel_bytes = tile_layer_bytes(layer) / TILE_SAMPLES;
     w->mirror = calloc((size_t)size * size, w->texel_bytes);
     return w->mirror ? 0 : -1;
+}
+
+int clip_window_init_ridges(clip_window *w, int face, int level, int size, int shift) {
+    if (clip_window_init(w, TILE_LAYER_COARSE, face, level, size) != 0) return -1;
+    w->ridge_shift = shift;
+    return 0;
 }
 
 void clip_window_free(clip_window *w) {
@@ -67,14 +75,16 @@ typedef struct tile_pins {
 
 static int collect_keys(const clip_window *w, const sample_rect *rects, int n, tile_pins *pins) {
     pins->count = 0;
-    for (int k = 0; k < n; k++) {
-        sample_rect r = rects[k];
+    for (int k = 0; k < n * (w->ridge_shift > 0 ? 2 : 1); k++) {
+        sample_rect r = rects[k % n];
         if (r.x0 >= r.x1 || r.z0 >= r.z1) continue;
+        const int s = k < n ? 0 : w->ridge_shift; // the finer level's samples read
+        r = (sample_rect){r.x0 << s, r.z0 << s, ((r.x1 - 1) << s) + 1, ((r.z1 - 1) << s) + 1};
         for (int64_t ty = world_grid_floor_div(r.z0, TILE_SIZE);
              ty <= world_grid_floor_div(r.z1 - 1, TILE_SIZE); ty++)
             for (int64_t tx = world_grid_floor_div(r.x0, TILE_SIZE);
                  tx <= world_grid_floor_div(r.x1 - 1, TILE_SIZE); tx++) {
-                tile_key key = {w->layer, w->face, w->level, (int32_t)tx, (int32_t)ty};
+                tile_key key = {w->layer, w->face, w->level - s, (int32_t)tx, (int32_t)ty};
                 int seen = 0;
                 for (int i = 0; i < pins->count && !seen; i++)
                     seen = tile_key_equal(pins->keys[i], key);
@@ -117,6 +127,38 @@ static int pin_tiles(const clip_window *w, tile_cache *cache, const sample_rect 
     return 1;
 }
 
+static const unsigned char *pinned_tile(const tile_pins *pins, int level, int32_t tx, int32_t ty) {
+    for (int i = 0; i < pins->count; i++)
+        if (pins->keys[i].level == level && pins->keys[i].tx == tx && pins->keys[i].ty == ty)
+            return pins->views[i].data;
+    return NULL;
+}
+
+// A ridge window's samples in r (copied as the level's own first): each raised to the
+// finer level's sample at its place where that is higher.
+static void raise_to_finer(clip_window *w, const tile_pins *pins, sample_rect r) {
+    const int mask = w->size - 1, s = w->ridge_shift, fine = w->level - s;
+    float *mirror = (float *)w->mirror;
+    for (int64_t z = r.z0; z < r.z1; z++) {
+        const int64_t fz = z << s;
+        const int32_t ty = (int32_t)world_grid_floor_div(fz, TILE_SIZE);
+        const int row = (int)(fz - (int64_t)ty * TILE_SIZE);
+        float *dst_row = mirror + (size_t)(z & mask) * w->size;
+        const float *src = NULL;
+        int32_t src_tx = 0;
+        for (int64_t x = r.x0; x < r.x1; x++) {
+            const int64_t fx = x << s;
+            const int32_t tx = (int32_t)world_grid_floor_div(fx, TILE_SIZE);
+            if (x == r.x0 || tx != src_tx)
+                src = (const float *)pinned_tile(pins, fine, tx, ty), src_tx = tx;
+            if (!src) continue; // outside the world: the level's own zeros
+            const float h = src[(size_t)row * TILE_SIZE + (size_t)(fx - (int64_t)tx * TILE_SIZE)];
+            float *d = dst_row + (x & mask);
+            if (h > *d) *d = h;
+        }
+    }
+}
+
 static void copy_rect(clip_window *w, const tile_pins *pins, sample_rect r) {
     int mask = w->size - 1;
     size_t tb = w->texel_bytes;
@@ -131,12 +173,7 @@ static void copy_rect(clip_window *w, const tile_pins *pins, sample_rect r) {
             if (run > r.x1 - x) run = (int)(r.x1 - x);
             int dst = (int)(x & mask);
             if (run > w->size - dst) run = w->size - dst; // the wrap seam
-            const unsigned char *src = NULL;
-            for (int i = 0; i < pins->count; i++)
-                if (pins->keys[i].tx == tx && pins->keys[i].ty == ty) {
-                    src = pins->views[i].data;
-                    break;
-                }
+            const unsigned char *src = pinned_tile(pins, w->level, tx, ty);
             if (src)
                 memcpy(dst_row + (size_t)dst * tb, src + ((size_t)row * TILE_SIZE + col) * tb,
                        (size_t)run * tb);
@@ -145,6 +182,7 @@ static void copy_rect(clip_window *w, const tile_pins *pins, sample_rect r) {
             x += run;
         }
     }
+    if (w->ridge_shift > 0) raise_to_finer(w, pins, r);
     w->texels_copied += (uint64_t)(r.x1 - r.x0) * (uint64_t)(r.z1 - r.z0);
 }
 

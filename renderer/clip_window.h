@@ -25,6 +25,9 @@ typedef struct texel_rect {
 typedef struct clip_window {
     tile_layer layer;
     int face, level;
+    // Heights only (a float layer): 0, or each sample the higher of the level's own and
+    // the sample at the same place 2^ridge_shift finer (clip_window_init_ridges).
+    int ridge_shift;
     int size; // texels per side, a power of two
     size_t texel_bytes;
     unsigned char *mirror; // size * size * texel_bytes
@@ -44,6 +47,11 @@ typedef struct clip_window {
 } clip_window;
 
 int clip_window_init(clip_window *w, tile_layer layer, int face, int level, int size);
+// A window of heights (TILE_LAYER_COARSE) whose samples are each the higher of the
+// level's own (tent-filtered mips: lower than the ground on ridges and peaks) and the
+// point sample of mip level `level - shift` at the same place (shift > 0), so that the
+// coarse levels' ridges and skylines come nearer the full resolution's.
+int clip_window_init_ridges(clip_window *w, int face, int level, int size, int shift);
 void clip_window_free(clip_window *w);
 // Forgets the contents (new world, new parameters): the next update refills it all.
 void clip_window_invalidate(clip_window *w);

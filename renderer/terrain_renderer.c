@@ -269,7 +269,9 @@ static int create_windows(terrain_renderer *r, og_error *err) {
     for (int l = 0; l < RENDER_MAX_LEVELS; l++)
         r->slope_max[l] = INFINITY, r->slope_stale[l] = 1;
     for (int l = 0; l < RENDER_MAX_LEVELS; l++)
-        if (clip_window_init(&r->heights[l], TILE_LAYER_COARSE, 0, l, CLIP_TEXELS) != 0 ||
+        if ((l == 0 ? clip_window_init(&r->heights[l], TILE_LAYER_COARSE, 0, l, CLIP_TEXELS)
+                    : clip_window_init_ridges(&r->heights[l], 0, l, CLIP_TEXELS,
+                                              l - clip_slopes_mip(l))) != 0 ||
             clip_window_init(&r->material[l], TILE_LAYER_MATERIAL, 0, l, CLIP_TEXELS) != 0 ||
             (l == 0 && clip_slopes_init(&r->slopes) != 0))
             return og_error_set(err, "out of memory for the clipmap levels");

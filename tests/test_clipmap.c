@@ -325,6 +325,51 @@ static void test_large_window_fills_at_once(void **state) {
     assert_int_equal(tile_cache_destroy(c, &err), 0);
 }
 
+// A ridge window (level 3, shift 2: the clipmap's heights) holds at each sample the
+// higher of its level's sample and level 1's at the same place (x 4): here level 1's
+// where x * 1000 + z > 0, its own elsewhere, both in one window. Moves and an edit of a
+// level-1 sample (above the level's, then below it) keep it so.
+static void test_ridge_window_takes_the_higher(void **state) {
+    (void)state;
+    slow_source g = {PTHREAD_MUTEX_INITIALIZER, 1};
+    og_error err;
+    tile_cache *c = named_cache(&g);
+    clip_window w;
+    assert_int_equal(clip_window_init_ridges(&w, 0, 3, 256, 2), 0);
+    int own = 0, finer = 0;
+    const int64_t origins[][2] = {{-128, -100}, {-100, -90}, {-140, -60}};
+    for (int k = 0; k < 3; k++) {
+        assert_int_equal(settle(&w, c, origins[k][0], origins[k][1]), 1);
+        const float *m = (const float *)w.mirror;
+        for (int64_t z = w.have[1]; z < w.have[1] + 256; z++)
+            for (int64_t x = w.have[0]; x < w.have[0] + 256; x++) {
+                float a = expected(3, x, z), b = expected(1, 4 * x, 4 * z);
+                float got = m[(size_t)(z & 255) * 256 + (size_t)(x & 255)];
+                if (got != (a > b ? a : b))
+                    fail_msg("sample (%lld, %lld): %g, expected max(%g, %g)", (long long)x,
+                             (long long)z, got, a, b);
+                own += a > b, finer += b > a;
+            }
+    }
+    assert_true(own > 1000 && finer > 1000);
+    // An edit of level 1 under sample (ex, ez): refreshed, the sample follows it.
+    int64_t ex = w.have[0] + 10, ez = w.have[1] + 20, fx = 4 * ex, fz = 4 * ez;
+    tile_key k1 = {TILE_LAYER_COARSE, 0, 1, (int32_t)(fx >> 8), (int32_t)(fz >> 8)};
+    const float *m = (const float *)w.mirror;
+    const float values[] = {1e9f, -1e9f};
+    for (int pass = 0; pass < 2; pass++) {
+        tile_view v;
+        assert_int_equal(tile_cache_acquire_write(c, k1, &v, &err), 0);
+        ((float *)v.data)[(fz & 255) * 256 + (fx & 255)] = values[pass];
+        tile_cache_release(c, &v);
+        clip_window_refresh(&w, c, ex, ez, ex + 1, ez + 1);
+        float want = pass == 0 ? 1e9f : expected(3, ex, ez);
+        assert_true(m[(size_t)(ez & 255) * 256 + (size_t)(ex & 255)] == want);
+    }
+    clip_window_free(&w);
+    assert_int_equal(tile_cache_destroy(c, &err), 0);
+}
+
 // The cells' bounds of any range of samples are those of its samples (a window whose
 // mirror is rotated by its origin, ranges partly outside it clamped to it).
 static void test_cells_bound_every_range(void **state) {
@@ -606,6 +651,7 @@ int main(void) {
         cmocka_unit_test(test_window_moves_toroidally),
         cmocka_unit_test(test_cells_bound_every_range),
         cmocka_unit_test(test_large_window_fills_at_once),
+        cmocka_unit_test(test_ridge_window_takes_the_higher),
         cmocka_unit_test(test_refined_pieces_cover_their_quads),
         cmocka_unit_test(test_refine_cells_bound_every_refined_vertex),
         cmocka_unit_test(test_skyline_at_the_far_ridge),
