@@ -147,9 +147,12 @@ int viewport_camera_on_land(viewport *v, world *w, og_error *err) {
     }
     land_scan_free(&scan);
     c->pitch = -35; // from above: the brush lies round on the ground, a raise shows
-    double distance = fmax(fmin(900.0, whole), 1.5 * (best[1] - floor_m));
+    // 900 m, or 450 samples of a coarser world: a heightmap of 90 m samples seen from
+    // 900 m showed a dozen of them, a blur.
+    const double near_view = fmax(900.0, 450.0 * p->spacing);
+    double distance = fmax(fmin(near_view, whole), 1.5 * (best[1] - floor_m));
     if (!found) {
-        if (!(whole < 900.0)) return 0; // a large world of sea or cliffs: the default view
+        if (!(whole < near_view)) return 0; // a large world of sea or cliffs: the default view
         // A small world all under the sea (or all cliffs): the whole of it.
         best[0] = centre, best[2] = centre_z;
         if (ground_or_sea(w, p, best[0], best[2], &best[1], err) != 0) return -1;

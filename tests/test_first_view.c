@@ -6,6 +6,7 @@
 //    plain at the centre counted as land and the view showed nothing but it.
 //  - a flat world with no relief: the view still faces its centre, as before.
 //  - a small world whose search rings reach past its edge: a view, not an error.
+//  - a world of 89 m samples is seen from tens of kilometres, not 900 m.
 #include "editor/cmd/commands.h"
 #include "editor/params/world_params.h"
 #include "editor/world/world.h"
@@ -40,7 +41,7 @@ static void first_view_centre(cmd_context *ctx, double hit[3]) {
     camera_ray(&v->cam, 16.0 / 10.0, 0.5, 0.5, dir);
     const world_params *p = world_get_params(ctx->world);
     const double edge = (double)(p->size - 1) * p->spacing;
-    for (double t = 0; t < 40000; t += 1.0) {
+    for (double t = 0; t < 200000; t += fmax(1.0, t * 1e-3)) {
         for (int a = 0; a < 3; a++)
             hit[a] = v->cam.pos[a] + dir[a] * t;
         if (hit[0] < 0 || hit[2] < 0 || hit[0] > edge || hit[2] > edge) continue;
@@ -93,6 +94,22 @@ static void test_rings_past_a_small_worlds_edge(void **state) {
     assert_true(hit[1] > world_params_ocean_height(world_get_params(ctx->world)));
 }
 
+// A heightmap of coarse samples (SRTM's 90 m): the view stands back far enough to show
+// hundreds of them. Before, it stood 900 m from the land, a dozen samples: a green blur.
+static void test_coarse_samples_seen_from_afar(void **state) {
+    cmd_context *ctx = *state;
+    run_ok(ctx, "new flat; generator flat; size 1201; spacing 89; generate; stamp mountain 53000 "
+                "53000 scale=2 intensity=800");
+    viewport *v = view_commands_viewport(ctx);
+    double hit[3];
+    first_view_centre(ctx, hit);
+    double distance = sqrt(pow(hit[0] - v->cam.pos[0], 2) + pow(hit[1] - v->cam.pos[1], 2) +
+                           pow(hit[2] - v->cam.pos[2], 2));
+    printf("89 m samples: the first view looks at (%.0f, %.0f) from %.0f m (%.0f samples)\n",
+           hit[0], hit[2], distance, distance / 89);
+    assert_true(distance > 300 * 89.0);
+}
+
 static int setup(void **state) {
     static cmd_context ctx;
     og_error err = {{0}};
@@ -118,6 +135,7 @@ int main(void) {
         cmocka_unit_test(test_island_far_from_the_centre),
         cmocka_unit_test(test_flat_world_faces_its_centre),
         cmocka_unit_test(test_rings_past_a_small_worlds_edge),
+        cmocka_unit_test(test_coarse_samples_seen_from_afar),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
