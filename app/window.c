@@ -120,9 +120,34 @@ static void pump_work(window_state *st) {
     input_replay_deferred(st);
 }
 
-// Runs every complete line waiting on standard input, without blocking.
+// Runs every complete line waiting on standard input, without blocking. While the work
+// queue is nearly full it reads no more (the lines wait, in order, in the buffer and the
+// pipe, whose writer waits): a script piping hundreds of commands loses none.
+static void run_stdin_lines(window_state *st) {
+    char *nl;
+    while (!work_queue_filling(&st->work) &&
+           (nl = memchr(st->run.stdin_buf, '\n', st->run.stdin_len))) {
+        *nl = 0;
+        if (work_queue_busy(&st->work) &&
+            cmd_text_all_flagged(st->run.stdin_buf, strlen(st->run.stdin_buf), CMD_WHILE_BUSY)) {
+            // A question about the window itself, answered while work runs.
+            cmd_context side = {.out = stdout};
+            og_error err = {{0}};
+            if (cmd_run(&side, st->run.stdin_buf, strlen(st->run.stdin_buf), "console", &err) != 0)
+                fprintf(stderr, "%s\n", err.msg);
+            fflush(stdout);
+        } else {
+            run_commands(st, st->run.stdin_buf, "console");
+        }
+        size_t used = (size_t)(nl - st->run.stdin_buf) + 1;
+        memmove(st->run.stdin_buf, nl + 1, st->run.stdin_len - used);
+        st->run.stdin_len -= used;
+    }
+}
+
 static void poll_stdin(window_state *st) {
-    while (st->run.stdin_open) {
+    run_stdin_lines(st); // lines kept back while the queue was filling
+    while (st->run.stdin_open && !work_queue_filling(&st->work)) {
         struct pollfd pfd = {STDIN_FILENO, POLLIN, 0};
         if (poll(&pfd, 1, 0) <= 0 || !(pfd.revents & (POLLIN | POLLHUP))) return;
         size_t room = sizeof st->run.stdin_buf - 1 - st->run.stdin_len;
@@ -133,27 +158,9 @@ static void poll_stdin(window_state *st) {
         }
         st->run.stdin_len += (size_t)got;
         st->run.stdin_buf[st->run.stdin_len] = 0;
-        char *nl;
-        while ((nl = memchr(st->run.stdin_buf, '\n', st->run.stdin_len))) {
-            *nl = 0;
-            if (work_queue_busy(&st->work) &&
-                cmd_text_all_flagged(st->run.stdin_buf, strlen(st->run.stdin_buf),
-                                     CMD_WHILE_BUSY)) {
-                // A question about the window itself, answered while work runs.
-                cmd_context side = {.out = stdout};
-                og_error err = {{0}};
-                if (cmd_run(&side, st->run.stdin_buf, strlen(st->run.stdin_buf), "console", &err) !=
-                    0)
-                    fprintf(stderr, "%s\n", err.msg);
-                fflush(stdout);
-            } else {
-                run_commands(st, st->run.stdin_buf, "console");
-            }
-            size_t used = (size_t)(nl - st->run.stdin_buf) + 1;
-            memmove(st->run.stdin_buf, nl + 1, st->run.stdin_len - used);
-            st->run.stdin_len -= used;
-        }
-        if (st->run.stdin_len == sizeof st->run.stdin_buf - 1) {
+        run_stdin_lines(st);
+        if (st->run.stdin_len == sizeof st->run.stdin_buf - 1 &&
+            !memchr(st->run.stdin_buf, '\n', st->run.stdin_len)) {
             fprintf(stderr, "console: line longer than %zu bytes ignored\n",
                     sizeof st->run.stdin_buf);
             st->run.stdin_len = 0;
@@ -480,7 +487,8 @@ int window_run(cmd_context *ctx, og_error *err) {
         // Input first; wake often while tiles arrive, keys fly the camera or work runs.
         int awake = frame_unsettled(&st) || keys_held(&st) ||
                     viewport_drag_kind(&st) == DRAG_SCULPT || st.v->settings.sun_rotation != 0 ||
-                    !work_queue_idle(&st.work) || panels_need_frame(&st);
+                    !work_queue_idle(&st.work) || panels_need_frame(&st) ||
+                    memchr(st.run.stdin_buf, '\n', st.run.stdin_len); // console lines kept back
         glfwWaitEventsTimeout(awake ? 0.01 : 0.1);
         sculpt_drag *stroke = viewport_drag_stroke(&st);
         if (stroke && st.input.deferred.count == 0) sculpt_drag_input_taken(stroke);

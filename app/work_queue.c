@@ -179,6 +179,10 @@ void work_queue_pump(work_queue *q, double wait_ms) {
     }
 }
 
+int work_queue_filling(const work_queue *q) {
+    return q->count >= WORK_QUEUE_MAX - WORK_QUEUE_UI_ROOM;
+}
+
 int work_queue_busy(const work_queue *q) {
     return q->job != NULL;
 }

@@ -14,6 +14,7 @@
 #include "editor/cmd/cmd_job.h"
 
 #define WORK_QUEUE_MAX 256
+#define WORK_QUEUE_UI_ROOM 16
 
 typedef enum work_flags {
     WORK_ECHO = 1,         // echo the text in the console before it runs
@@ -60,6 +61,9 @@ int work_queue_add_point(work_queue *q, const cmd_stroke_point *p);
 // job is still running after wait_ms.
 void work_queue_pump(work_queue *q, double wait_ms);
 // A job is running: the command context and the world are its own.
+// Whether the queue is nearly full: the console stops reading its input (the writer waits)
+// and leaves the last WORK_QUEUE_UI_ROOM places to the window's own buttons and strokes.
+int work_queue_filling(const work_queue *q);
 int work_queue_busy(const work_queue *q);
 int work_queue_idle(const work_queue *q); // nothing running, nothing queued
 // Stops the running job at its next check (it fails with "cancelled", and a stroke it

@@ -242,6 +242,17 @@ mkfifo "$work/batch-in"
 app=$!
 exec 3>"$work/batch-in"
 ask "camera" '^camera ' >/dev/null
+# A script piping hundreds of commands at once loses none: the console reads no more
+# while the work queue is nearly full (it held 256: 738 lines gave 256 answers).
+before=$(wc -l <"$work/out")
+for _ in $(seq 700); do echo "sample 10 10"; done >&3
+for _ in $(seq 600); do
+    answers=$(tail -n +$((before + 1)) "$work/out" | grep -c '^-\?[0-9]')
+    [ "$answers" -ge 700 ] && break
+    sleep 0.1
+done
+[ "$answers" = 700 ] && ! grep -q "too much work waiting" "$work/batch.err"
+ok=$?; check "700 commands piped at once get 700 answers (got $answers; $(grep -m 1 dropped "$work/batch.err"))" $ok
 line=$(ask "$(printf 'new planet preset=moon\nwindow_screenshot %s\nui_widgets Viewport' "$work/batch.png")" '^Viewport ')
 echo "exit" >&3
 exec 3>&-
