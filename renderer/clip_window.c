@@ -79,7 +79,8 @@ static int collect_keys(const clip_window *w, const sample_rect *rects, int n, t
         sample_rect r = rects[k % n];
         if (r.x0 >= r.x1 || r.z0 >= r.z1) continue;
         const int s = k < n ? 0 : w->ridge_shift; // the finer level's samples read
-        r = (sample_rect){r.x0 << s, r.z0 << s, ((r.x1 - 1) << s) + 1, ((r.z1 - 1) << s) + 1};
+        const int64_t k = (int64_t)1 << s;        // a multiply: indices may be negative
+        r = (sample_rect){r.x0 * k, r.z0 * k, (r.x1 - 1) * k + 1, (r.z1 - 1) * k + 1};
         for (int64_t ty = world_grid_floor_div(r.z0, TILE_SIZE);
              ty <= world_grid_floor_div(r.z1 - 1, TILE_SIZE); ty++)
             for (int64_t tx = world_grid_floor_div(r.x0, TILE_SIZE);
@@ -138,16 +139,17 @@ static const unsigned char *pinned_tile(const tile_pins *pins, int level, int32_
 // finer level's sample at its place where that is higher.
 static void raise_to_finer(clip_window *w, const tile_pins *pins, sample_rect r) {
     const int mask = w->size - 1, s = w->ridge_shift, fine = w->level - s;
+    const int64_t k = (int64_t)1 << s; // a multiply: indices may be negative
     float *mirror = (float *)w->mirror;
     for (int64_t z = r.z0; z < r.z1; z++) {
-        const int64_t fz = z << s;
+        const int64_t fz = z * k;
         const int32_t ty = (int32_t)world_grid_floor_div(fz, TILE_SIZE);
         const int row = (int)(fz - (int64_t)ty * TILE_SIZE);
         float *dst_row = mirror + (size_t)(z & mask) * w->size;
         const float *src = NULL;
         int32_t src_tx = 0;
         for (int64_t x = r.x0; x < r.x1; x++) {
-            const int64_t fx = x << s;
+            const int64_t fx = x * k;
             const int32_t tx = (int32_t)world_grid_floor_div(fx, TILE_SIZE);
             if (x == r.x0 || tx != src_tx)
                 src = (const float *)pinned_tile(pins, fine, tx, ty), src_tx = tx;
