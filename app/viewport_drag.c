@@ -201,8 +201,10 @@ void viewport_drag_cursor(GLFWwindow *win, double x, double y) {
     double dx, dy;
     input_cursor(st, x, y, &dx, &dy);
     st->ui_dirty = 1;
-    // The brush cursor moves with the pointer over the viewport.
-    if (st->drag.kind != DRAG_NONE || st->drag.looking || in_view(st, x, y)) st->dirty = 1;
+    // The brush cursor moves with the pointer over the viewport, and goes when it leaves.
+    if (st->drag.kind != DRAG_NONE || st->drag.looking || in_view(st, x, y) ||
+        st->v->cursor.visible)
+        st->dirty = 1;
     if (work_queue_busy(&st->work)) { // the camera waits; a stroke's points queue up
         sculpt_to(st, x, y);
         return;

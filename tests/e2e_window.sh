@@ -78,6 +78,22 @@ xdotool mousemove --window "$wid" $((VX + 200)) $((VY + 200))
 line=$(status_item '^Status/x ')
 rc=$?; check "the pointer over the terrain shows where it is in the status bar ($line)" $rc
 hash_box() { ask "hash $(awk -v x="$1" -v z="$2" 'BEGIN { print x - 150, z - 150, x + 150, z + 150 }')" '^[0-9a-f]\{16\}$'; }
+# The brush ring leaves with the pointer: over the terrain it is drawn; moved on to the
+# status bar it is gone from the next frame (it stayed drawn there: the view was not
+# redrawn for a pointer outside it).
+read -r _ SX SY SW SH <<<"$(ask "ui_widgets Status/" '^Status/ ')"
+view_crop() { # NAME: the viewport's pixels now, as $work/NAME.png
+    sleep 0.8; settle
+    import -window root "$work/screen.png" && convert "$work/screen.png" -crop "${VW}x${VH}+$VX+$VY" +repage "$work/$1.png"
+}
+xdotool mousemove --window "$wid" $((SX + SW / 2)) $((SY + SH / 2)); view_crop ring_never
+xdotool mousemove --window "$wid" $((VX + 200)) $((VY + 150)); view_crop ring_over
+xdotool mousemove --window "$wid" $((SX + SW / 2)) $((SY + SH / 2)); view_crop ring_left
+rmse_tool="$(dirname "$orogen")/image_rmse"
+shown=$("$rmse_tool" "$work/ring_never.png" "$work/ring_over.png" | sed -n 's/^rmse=//p')
+left=$("$rmse_tool" "$work/ring_never.png" "$work/ring_left.png" | sed -n 's/^rmse=//p')
+awk -v s="$shown" -v l="$left" 'BEGIN { exit !(s > 0.3 && l < 0.05) }'
+check "the brush ring shows over the terrain and goes when the pointer moves on to the status bar (RMSE with the ring $shown, after $left)" $?
 
 # Fly: right button held, W held for about a second: forward along the view (yaw 30,
 # pitch -40: east, down and north).
