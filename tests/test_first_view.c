@@ -13,6 +13,7 @@
 #include "renderer/camera.h"
 #include "renderer/viewport.h"
 #include "support/test_support.h"
+#include "support/test_view.h"
 #include "view/view_commands.h"
 
 #include <math.h>
@@ -112,21 +113,13 @@ static void test_coarse_samples_seen_from_afar(void **state) {
 
 static int setup(void **state) {
     static cmd_context ctx;
-    og_error err = {{0}};
-    world_params p;
-    world_params_default(&p, WORLD_FLAT);
-    world *w = world_create(&p, NULL, &err);
-    if (!w) fail_msg("world_create: %s", err.msg);
-    if (view_commands_register(&err) != 0) fail_msg("view commands: %s", err.msg);
-    cmd_context_init(&ctx, w, NULL, stdout, OROGEN_RESOURCE_DIR);
+    test_view_context_open(&ctx);
     *state = &ctx;
     return 0;
 }
 
 static int teardown(void **state) {
-    cmd_context *ctx = *state;
-    viewport_destroy(ctx->view_state);
-    world_close(ctx->world);
+    test_view_context_close(*state);
     return 0;
 }
 

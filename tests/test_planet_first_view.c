@@ -15,6 +15,7 @@
 #include "io/image_read.h"
 #include "renderer/planet_camera.h"
 #include "support/test_support.h"
+#include "support/test_view.h"
 #include "view/view_commands.h"
 
 #include <math.h>
@@ -82,13 +83,8 @@ static first_view measure(const camera *c, const world_params *p, const unsigned
 static void test_new_planet_shows_the_lit_disc(void **state) {
     (void)state;
     og_error err = {{0}};
-    world_params p;
-    world_params_default(&p, WORLD_FLAT);
-    world *w = world_create(&p, NULL, &err);
-    if (!w) fail_msg("world_create: %s", err.msg);
-    if (view_commands_register(&err) != 0) fail_msg("view commands: %s", err.msg);
     cmd_context ctx;
-    cmd_context_init(&ctx, w, NULL, stdout, OROGEN_RESOURCE_DIR);
+    test_view_context_open(&ctx);
     const char *dir = test_tmpdir("planet_first_view");
     int failed = 0;
     // Every preset wide, then the first one tall.
@@ -122,8 +118,7 @@ static void test_new_planet_shows_the_lit_disc(void **state) {
         free(rgb);
     }
     if (!failed && !getenv("OROGEN_KEEP_IMAGES")) test_rmtree(dir);
-    viewport_destroy(ctx.view_state);
-    world_close(ctx.world);
+    test_view_context_close(&ctx);
     assert_int_equal(failed, 0);
 }
 

@@ -6,11 +6,10 @@
 // are; sky and water are blue above red). The same views with the sea 1 m lower show the
 // ground, so the count tells the two apart.
 #include "editor/cmd/commands.h"
-#include "editor/params/world_params.h"
 #include "editor/world/world.h"
 #include "io/image_read.h"
 #include "support/test_support.h"
-#include "view/view_commands.h"
+#include "support/test_view.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -60,14 +59,8 @@ static double ground_share(cmd_context *ctx, const char *dir, const view *v, con
 
 static void test_ground_at_the_sea_level_is_under_water(void **state) {
     (void)state;
-    og_error err = {{0}};
-    world_params p;
-    world_params_default(&p, WORLD_FLAT);
-    world *w = world_create(&p, NULL, &err);
-    if (!w) fail_msg("world_create: %s", err.msg);
-    if (view_commands_register(&err) != 0) fail_msg("view commands: %s", err.msg);
     cmd_context ctx;
-    cmd_context_init(&ctx, w, NULL, stdout, OROGEN_RESOURCE_DIR);
+    test_view_context_open(&ctx);
     const char *dir = test_tmpdir("sea_level_render");
     run_ok(&ctx, "generator flat; set base_height 0; ocean_level -1; generate; sample 300 200");
     double above[VIEWS];
@@ -89,8 +82,7 @@ static void test_ground_at_the_sea_level_is_under_water(void **state) {
                      views[i].name, 100 * under);
     }
     if (!getenv("OROGEN_KEEP_IMAGES")) test_rmtree(dir);
-    viewport_destroy(ctx.view_state);
-    world_close(w);
+    test_view_context_close(&ctx);
 }
 
 int main(void) {

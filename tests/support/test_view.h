@@ -1,0 +1,13 @@
+// Tests that drive the viewport through the command language (camera, screenshot), as
+// batch mode does: a command context on a new default flat world with the view commands.
+#ifndef OROGEN_TEST_VIEW_H
+#define OROGEN_TEST_VIEW_H
+
+#include "editor/cmd/context.h"
+
+// Opens the world and the context in *ctx (fails the test if it cannot).
+void test_view_context_open(cmd_context *ctx);
+// Closes its viewport (made by the first view command) and its world.
+void test_view_context_close(cmd_context *ctx);
+
+#endif
