@@ -1,4 +1,6 @@
 // The tool palette (icons, keys) and the current tool's options.
+#include "app/brush_size.h"
+#include "editor/params/world_grid.h"
 #include "app/editor_ui_internal.h"
 #include "app/shortcuts.h"
 
@@ -395,7 +397,8 @@ void tool_options(editor_ui *e, ui_context *ui, cmd_context *ctx) {
     if (!brush_tool_is_volume(b->tool)) e->shape_placing = 0; // its buttons are gone
     const char *t = current_tool(b);
     ui_row(ui, 1, NULL, 0);
-    slider_key(e, ui, ctx, "Radius", "radius", b->radius, 0.5, 500, "%.1f m",
+    double top = brush_radius_slider_max(world_grid_sample_metres(world_get_params(ctx->world)));
+    slider_key(e, ui, ctx, "Radius", "radius", b->radius, 0.5, top, "%.1f m",
                "Brush radius in metres ([ and ] change it)");
     slider_key(e, ui, ctx, "Strength", "strength", b->strength, 0, 1, "%.2f",
                "How much of the tool's effect one dab applies");

@@ -1,6 +1,8 @@
 // The viewport's mouse interaction: a small state machine of drags (none, sculpt,
 // orbit, resize) started by the buttons and moved by the cursor; mouse look; the camera
 // mode. Only this file touches window_state's drag (viewport_drag_state.h).
+#include "app/brush_size.h"
+#include "editor/params/world_grid.h"
 #include "app/window_internal.h"
 
 drag_kind viewport_drag_kind(const window_state *st) {
@@ -103,7 +105,8 @@ static void resize_begin(window_state *st) {
 
 static void resize_to(window_state *st, double x, double y) {
     double r = st->drag.resize_r0 * pow(1.01, x - st->drag.resize_x0); // 1% a pixel
-    st->drag.resize_radius = fmin(fmax(r, 0.5), 5000);
+    double top = brush_radius_key_max(world_grid_sample_metres(world_get_params(st->ctx->world)));
+    st->drag.resize_radius = fmin(fmax(r, 0.5), top);
     st->drag.resize_strength =
         fmin(fmax(st->drag.resize_s0 - 0.004 * (y - st->drag.resize_y0), 0), 1);
 }

@@ -1,5 +1,6 @@
 // The window's frame: the terrain image (dynamic resolution, smoothing when still),
 // the UI built over it and composed, the progress of long work, the title.
+#include "app/brush_size.h"
 #include "app/window_internal.h"
 
 #include "editor/params/world_grid.h"
@@ -76,9 +77,8 @@ static void follow_ground(window_state *st, const double hit[3]) {
     const double *c = st->v->cam.pos;
     double d = sqrt((hit[0] - c[0]) * (hit[0] - c[0]) + (hit[1] - c[1]) * (hit[1] - c[1]) +
                     (hit[2] - c[2]) * (hit[2] - c[2]));
-    double want = fmin(fmax(0.08 * d, 1.0), 500.0);
-    double unit = pow(10.0, floor(log10(want)) - 1.0); // two significant digits
-    want = round(want / unit) * unit;
+    double want =
+        brush_radius_auto(0.08 * d, world_grid_sample_metres(world_get_params(ctx->world)));
     if (fabs(want / ctx->brush.radius - 1.0) < 0.25) return; // near enough: no command
     char cmd[96];
     snprintf(cmd, sizeof cmd, "tool %s auto_radius=%g", tool_name(&ctx->brush), want);

@@ -1,5 +1,7 @@
 // GLFW's events turned into the UI's input (ui_input), the camera's movement keys and
 // the keyboard shortcuts; dropped files; the close button.
+#include "app/brush_size.h"
+#include "editor/params/world_grid.h"
 #include "app/shortcuts.h"
 #include "app/window_internal.h"
 
@@ -190,7 +192,9 @@ static void brush_step(window_state *st, shortcut_action action) {
     char cmd[128];
     if (action == SHORTCUT_RADIUS_DOWN || action == SHORTCUT_RADIUS_UP) {
         double r = b->radius * (action == SHORTCUT_RADIUS_UP ? 1.15 : 1 / 1.15);
-        snprintf(cmd, sizeof cmd, "tool %s radius=%.4g", name, fmin(fmax(r, 0.5), 5000));
+        double top =
+            brush_radius_key_max(world_grid_sample_metres(world_get_params(st->ctx->world)));
+        snprintf(cmd, sizeof cmd, "tool %s radius=%.4g", name, fmin(fmax(r, 0.5), top));
     } else {
         double k = b->strength + (action == SHORTCUT_STRENGTH_UP ? 0.05 : -0.05);
         snprintf(cmd, sizeof cmd, "tool %s strength=%.3g", name, fmin(fmax(k, 0), 1));

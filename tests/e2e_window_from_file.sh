@@ -53,6 +53,27 @@ status=$(exit_status)
 [ "$(journals)" = 0 ]; ok=$?; check "Discard drops the journal ($(journals))" $ok
 exec 3>&-
 
+# 2b. On this world's 89 m samples the brush is sized for them: the radius that follows
+# the view is not capped at 500 m (under six samples: a stroke was a faint streak), and
+# the Radius slider takes 3000 m (it stopped at 500).
+session coarse
+vp=""
+for _ in $(seq 40); do vp=$(widget Viewport) && break; sleep 0.25; done
+read -r VX VY VW VH <<<"$vp"
+xdotool mousemove --window "$wid" $((VX + VW / 2)) $((VY + VH / 2))
+r=$(ask_until tool '^radius=' '^radius=\([1-5][0-9][0-9][0-9]\)\(\.[0-9]*\)\?$')
+check "the brush's auto radius on 89 m samples is 1-6 km, not 500 m ($r)" $?
+read -r x y w h <<<"$(widget "Dock/Radius")"
+xdotool mousemove --window "$wid" $((x + 10)) $((y + h / 2)) keydown ctrl click 1 keyup ctrl
+sleep 0.5
+xdotool type --delay 30 "3000"
+key Return
+r=$(ask_until tool '^radius=' '^radius=3000$')
+[ "$r" = "radius=3000" ]; check "the Radius slider takes 3000 m on this world ($r)" $?
+kill $app 2>/dev/null
+wait $app 2>/dev/null
+exec 3>&-
+
 # 3. A small, oblong heightmap (600 x 200 m) opens seen whole: the view's centre is the
 # world's middle (the first view used to look for land 300 m along both
 # axes, outside this world, and stayed a few metres above its middle looking away).
