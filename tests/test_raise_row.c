@@ -1,11 +1,13 @@
 // The raise dab's row kernel (editor/tools/raise_row.c): every path this processor runs
 // (plain C, AVX2, AVX-512) gives the bits of the two-pass loop the dab ran before it
 // (the smooth falloff's weights of a row, then each height plus weight x amount kept
-// finite), for rows of every length 0..300 (vector tails), at unaligned addresses,
-// with random centres, radii, strengths and amounts, and heights that are NaN,
-// infinite or at the height limit; and it writes nothing past the row.
+// finite), taking its columns' squared distances from smooth_row_squares' table, for rows of every
+// length 0..300 (vector tails), at unaligned addresses, with random centres, radii, strengths and
+// amounts, and heights that are NaN, infinite or at the height limit; and it writes nothing past
+// the row.
 #include "editor/tools/brush.h"
 #include "editor/tools/raise_row.h"
+#include "editor/tools/smooth_row.h"
 
 #include <math.h>
 #include <stdint.h>
@@ -57,7 +59,7 @@ static void test_paths_match_the_two_pass_loop(void **state) {
     int paths = raise_row_paths();
     assert_true(paths >= 1 && paths <= 3);
     enum { CAP = 320, PAD = 8 };
-    float in[CAP + 2 * PAD], want[CAP + 2 * PAD], got[CAP + 2 * PAD];
+    float in[CAP + 2 * PAD], want[CAP + 2 * PAD], got[CAP + 2 * PAD], dx2[2 * CAP + 512];
     long compared = 0;
     for (int c = 0; c < 4000; c++) {
         int n = c < 301 ? c : (int)(uniform() * 301), off = (int)(uniform() * 7);
@@ -65,6 +67,9 @@ static void test_paths_match_the_two_pass_loop(void **state) {
         double first = ceil(cx - radius), dz = (uniform() * 2.2 - 1.1) * radius;
         float fdx0 = (float)(first - cx), dzf = (float)dz;
         int k0 = (int)(uniform() * 2.0 * radius);
+        // The dab's table from its first column: sample i's square at k0 + i.
+        assert_true(k0 + n <= (int)(sizeof dx2 / sizeof *dx2));
+        smooth_row_squares(dx2, fdx0, k0 + n);
         float inv_r = (float)(1.0 / radius), strength = (float)(uniform() * 1.5);
         float amount = (float)((uniform() - 0.4) * (c % 50 == 0 ? 4e6 : 60.0));
         for (int i = 0; i < CAP + 2 * PAD; i++)
@@ -73,7 +78,7 @@ static void test_paths_match_the_two_pass_loop(void **state) {
         reference(want + PAD + off, fdx0, k0, dzf * dzf, inv_r, strength, amount, n);
         for (int p = 0; p < paths; p++) {
             memcpy(got, in, sizeof in);
-            raise_row_smooth_path(p, got + PAD + off, fdx0, k0, dzf * dzf, inv_r, strength, amount,
+            raise_row_smooth_path(p, got + PAD + off, dx2 + k0, dzf * dzf, inv_r, strength, amount,
                                   (float)BRUSH_HEIGHT_LIMIT, n);
             if (memcmp(got, want, sizeof got) != 0) {
                 int i = 0;
@@ -86,7 +91,7 @@ static void test_paths_match_the_two_pass_loop(void **state) {
             float *exact = malloc(sizeof(float) * (size_t)(n ? n : 1));
             assert_non_null(exact);
             memcpy(exact, in + PAD + off, sizeof(float) * (size_t)n);
-            raise_row_smooth_path(p, exact, fdx0, k0, dzf * dzf, inv_r, strength, amount,
+            raise_row_smooth_path(p, exact, dx2 + k0, dzf * dzf, inv_r, strength, amount,
                                   (float)BRUSH_HEIGHT_LIMIT, n);
             assert_memory_equal(exact, want + PAD + off, sizeof(float) * (size_t)n);
             free(exact);

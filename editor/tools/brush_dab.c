@@ -173,15 +173,6 @@ static void height_row(const brush_dab *d, float *row, int64_t z, int64_t x0, in
                        float *w) {
     const brush *b = d->brush;
     float amount = (float)(b->invert ? -b->amount : b->amount);
-    if (b->tool == BRUSH_RAISE && b->falloff == FALLOFF_SMOOTH && !d->sphere && !is_ramp(d)) {
-        // The common dab in one pass (row_weights' and add_weighted's operations).
-        float dz = (float)((double)z - d->cz);
-        int64_t first = disc_first_column(d);
-        raise_row_smooth(row, (float)((double)first - d->cx), (int)(x0 - first), dz * dz,
-                         (float)(1.0 / d->radius), d->strength, amount, (float)BRUSH_HEIGHT_LIMIT,
-                         (int)(x1 - x0));
-        return;
-    }
     row_weights(d, z, x0, x1, w);
     int64_t n = x1 - x0;
     switch (b->tool) {
@@ -370,6 +361,10 @@ typedef struct dab_rows {
     // every row)
     int row_weighted;
     float *dx2;
+    // raise with the smooth falloff on a flat disc: dx2 as above, and the row kernel's
+    // path and amount (raise_row.c), chosen once per dab
+    int raise_rows, raise_path;
+    float raise_amount;
     // NULL, or the smoothed heights left packed as the blur wrote them: area row z's
     // column x (area columns) at heights[row_at[z] + x]
     int64_t *row_at;
@@ -505,6 +500,14 @@ static void dab_row(void *user, void *row, int64_t z, int64_t x0, int64_t x1) {
         row = (uint8_t *)row + (a - x0) * (int64_t)bytes;
         x0 = a, x1 = b;
     }
+    if (j->raise_rows) { // the common dab: one kernel call a row, whatever its length
+        const brush_dab *d = j->d;
+        float dz = (float)((double)z - d->cz);
+        raise_row_smooth_path(j->raise_path, row, j->dx2 + (x0 - disc_first_column(d)), dz * dz,
+                              (float)(1.0 / d->radius), d->strength, j->raise_amount,
+                              (float)BRUSH_HEIGHT_LIMIT, (int)(x1 - x0));
+        return;
+    }
     float w[TILE_SIZE];
     for (int64_t s = x0; s < x1; s += TILE_SIZE) { // array rows can be longer than a tile
         int64_t e = s + TILE_SIZE < x1 ? s + TILE_SIZE : x1;
@@ -578,11 +581,27 @@ static int64_t (*wanted_columns(const dab_rows *rows, grid_rect area, grid_rect 
     return need;
 }
 
+// The raise dab's table of squared column distances (smooth_row_squares: the floats
+// raise_row_smooth takes) and its kernel's path; without the table (out of memory)
+// height_row computes the same bits in two passes.
+static void raise_rows(dab_rows *rows) {
+    const brush_dab *d = rows->d;
+    int64_t first = disc_first_column(d), columns = brush_dab_rect(d).x1 - first;
+    if (!(rows->dx2 = malloc((size_t)columns * sizeof *rows->dx2))) return;
+    smooth_row_squares(rows->dx2, (float)((double)first - d->cx), (int)columns);
+    rows->raise_rows = 1;
+    rows->raise_path = raise_row_paths() - 1;
+    rows->raise_amount = (float)(d->brush->invert ? -d->brush->amount : d->brush->amount);
+}
+
 // before (may be NULL): also a copy of the heights as read, before the tool ran.
 static int prepare(const brush_dab *d, tile_layer layer, grid_rect r, area_reader read,
                    area_blur blur, void *src, dab_rows *rows, float **before, og_error *err) {
     *rows = (dab_rows){.d = d};
     disc_spans(rows);
+    if (layer != TILE_LAYER_MATERIAL && d->brush->tool == BRUSH_RAISE &&
+        d->brush->falloff == FALLOFF_SMOOTH && !d->sphere && !is_ramp(d))
+        raise_rows(rows);
     if (layer == TILE_LAYER_MATERIAL || is_pointwise(d->brush)) return 0;
     int halo = halo_of(d);
     grid_rect area = {r.x0 - halo, r.z0 - halo, r.x1 + halo, r.z1 + halo};
@@ -807,6 +826,7 @@ int brush_dab_compute_area(edit *e, const layer_grid *g, const brush_dab *d, gri
         }
     }
     free(rows.span);
+    free(rows.dx2);
     *out = (brush_dab_area){rows.area, before, after, (float *)rows.weight};
     return 0;
 }
