@@ -5,7 +5,7 @@
 # alone) and a stroke on it refused where the user acted, shown again, moved down by a
 # drag of its name, renamed by a double click, masked by slope in the mask editor (a
 # range dragged over the histogram, then typed), the context menu's Duplicate and
-# Delete, curvature and flow ranges over their histograms (flow's dragged), the layer
+# Delete, the blend dropdown's items (by name), curvature and flow ranges over their histograms (flow's dragged), the layer
 # menu's Export dialog (a refusal shown in it, then the stack up to the layer written),
 # and the Materials panel's rule ranges typed in place. Every action is a layer or
 # material_rule command read back through the console (`layers`, `history`, `hash`).
@@ -177,6 +177,16 @@ sleep 0.4
 click "Dock/Stack/Hill_copy/Layer menu/Delete"
 s=$(stack_until "*Hill:1  Sculpt:1  Layer_3:1 "); check "Delete from the right-click menu ($s)" $?
 hash_is "$hm1"; check "after duplicate and delete the composite is as before" $?
+
+# 6a. The blend dropdown's items are named (Dock/Stack/Hill/Blend/max): a click on one
+# runs layer set, one undo step.
+reveal "Dock/Stack/Hill/Blend"
+click "Dock/Stack/Hill/Blend"
+click "Dock/Stack/Hill/Blend/max"
+line=$(ask_until layers ' Hill ' ' Hill .*blend=max '); check "the Blend dropdown's item max sets Hill's blend ($line)" $?
+echo undo >&3
+line=$(ask_until layers ' Hill ' ' Hill .*blend=add '); check "undo puts it back to add ($line)" $?
+hash_is "$hm1"; check "and the composite with it" $?
 
 # 6b. Curvature and flow get their histograms too; the flow range's low end dragged
 # over its log scale (the viewport tints the channels the range holds). Slope and

@@ -217,6 +217,14 @@ static int over(const ui_context *ui, ui_rect r) {
 
 // The scope path and label in out ("Dock/Radius"); with sections, their headers too
 // ("Dock/World/Radius"). A long path is cut.
+// The part of a label that names it in widget paths: what it shows, or, for a label
+// that shows nothing ("##Opacity": a value without its name), its suffix.
+static const char *path_name(const char *label, size_t *len) {
+    *len = label_len(label);
+    if (*len == 0 && label[0] == '#' && label[1] == '#') label += 2, *len = strlen(label);
+    return label;
+}
+
 static void widget_path(const ui_context *ui, const char *label, int sections, char *out,
                         size_t size) {
     size_t n = 0;
@@ -224,10 +232,8 @@ static void widget_path(const ui_context *ui, const char *label, int sections, c
     for (int i = 0; i < ui->scope_depth && n < size; i++)
         if (sections || !ui->scope_section[i])
             n += (size_t)snprintf(out + n, size - n, "%s/", ui->scope_names[i]);
-    // A label that shows nothing ("##Opacity": a value without its name) is named by
-    // its suffix.
-    size_t shown = label_len(label);
-    if (shown == 0 && label[0] == '#' && label[1] == '#') label += 2, shown = strlen(label);
+    size_t shown;
+    label = path_name(label, &shown);
     if (n < size) snprintf(out + n, size - n, "%.*s", (int)shown, label);
 }
 
@@ -558,8 +564,10 @@ ui_id ui_get_id(ui_context *ui, const char *label) {
 static void push_scope(ui_context *ui, const char *name, int section) {
     if (ui->scope_depth == SCOPE_MAX) return;
     ui->scope_ids[ui->scope_depth] = hash_bytes(ui_get_id(ui, name), "", 1); // a NUL after it
-    snprintf(ui->scope_names[ui->scope_depth], sizeof ui->scope_names[0], "%.*s",
-             (int)label_len(name), name);
+    size_t shown; // a combo's "##Blend" names its items' scope "Blend", not ""
+    const char *named = path_name(name, &shown);
+    snprintf(ui->scope_names[ui->scope_depth], sizeof ui->scope_names[0], "%.*s", (int)shown,
+             named);
     ui->scope_section[ui->scope_depth] = section;
     ui->scope_depth++;
 }
