@@ -256,7 +256,7 @@ void mask_editor(editor_ui *e, ui_context *ui, cmd_context *ctx, viewport *v, co
     ui_separator(ui);
     char line[400];
     snprintf(line, sizeof line, "Mask of %s: where it applies", l->name);
-    ui_label(ui, line);
+    ui_label_wrapped(ui, line, th->text); // a long name in a narrow dock: two rows, not "..."
     refresh_histogram(s, ctx, v, 0);
     if (s->hist_valid)
         snprintf(line, sizeof line,
