@@ -1,6 +1,7 @@
 #include "view/view_commands.h"
 
 #include "io/parse.h"
+#include "editor/world/volume_grid.h"
 #include "renderer/planet_camera.h"
 
 #include <math.h>
@@ -90,6 +91,20 @@ static int cmd_camera_geo(cmd_context *ctx, int argc, char **argv, og_error *err
     return 0;
 }
 
+// A camera put inside the ground (a typed Y under the terrain) sees the surface from
+// below: torn slivers in the sky and the sea drawn over them. The position stands, as in
+// Blender or Unreal, but the console says so. Caves count as air (volume_sample).
+static void note_if_inside_ground(cmd_context *ctx, const double pos[3]) {
+    if (world_get_params(ctx->world)->kind == WORLD_PLANET) return; // camera_geo ... ground
+    double d = 0;
+    og_error ignored;
+    if (volume_sample(ctx->world, pos, &d, &ignored) != 0 || !(d < 0)) return;
+    fprintf(ctx->out,
+            "note: the camera is inside the ground, %.1f m from its surface (camera default puts "
+            "it back over the land)\n",
+            -d);
+}
+
 static int cmd_camera(cmd_context *ctx, int argc, char **argv, og_error *err) {
     viewport *v = get_viewport(ctx, err);
     if (!v) return -1;
@@ -125,6 +140,7 @@ static int cmd_camera(cmd_context *ctx, int argc, char **argv, og_error *err) {
     v->cam = c;
     v->cam_set = 1;
     v->cam_world_serial = ctx->world_serial;
+    note_if_inside_ground(ctx, c.pos);
     return 0;
 }
 
