@@ -15,9 +15,9 @@ void ground_occlusion_begin(ground_occlusion *o, const double eye[3], const doub
     for (int k = 0; k < 3; k++)
         o->eye[k] = eye[k], o->forward[k] = forward[k], o->right[k] = right[k], o->up[k] = up[k];
     o->tan_half_x = tan_half_x, o->tan_half_y = tan_half_y;
-    for (int b = 0; b < BANDS; b++)
-        for (int i = 0; i < COLUMNS; i++)
-            o->lo[b][i] = INFINITY, o->hi[b][i] = -INFINITY;
+    for (int i = 0; i < COLUMNS; i++)
+        for (int b = 0; b < BANDS; b++)
+            o->lo[i][b] = INFINITY, o->hi[i][b] = -INFINITY;
 }
 
 // Screen points: x in columns (0 at the left edge), y from -1 (bottom) to 1 (top); the
@@ -63,6 +63,15 @@ static int hull(double p[][2], int n, double out[][2]) {
     return k - 1;
 }
 
+// Minimum and maximum of numbers (never NaN here) without libm's calls.
+static double min_d(double a, double b) {
+    return a < b ? a : b;
+}
+
+static double max_d(double a, double b) {
+    return a > b ? a : b;
+}
+
 // The hull's vertical extent at x; 0 when the line misses it.
 static int span_at(const double h[][2], int n, double x, double *lo, double *hi) {
     *lo = INFINITY, *hi = -INFINITY;
@@ -70,8 +79,8 @@ static int span_at(const double h[][2], int n, double x, double *lo, double *hi)
         const double *a = h[k], *b = h[(k + 1) % n];
         if ((x < a[0] && x < b[0]) || (x > a[0] && x > b[0])) continue;
         double y = a[0] == b[0] ? a[1] : a[1] + (b[1] - a[1]) * (x - a[0]) / (b[0] - a[0]);
-        if (a[0] == b[0]) *lo = fmin(*lo, fmin(a[1], b[1])), *hi = fmax(*hi, fmax(a[1], b[1]));
-        *lo = fmin(*lo, y), *hi = fmax(*hi, y);
+        if (a[0] == b[0]) *lo = min_d(*lo, min_d(a[1], b[1])), *hi = max_d(*hi, max_d(a[1], b[1]));
+        *lo = min_d(*lo, y), *hi = max_d(*hi, y);
     }
     return *lo <= *hi;
 }
@@ -95,17 +104,24 @@ void ground_occlusion_add_solid(ground_occlusion *o, const double (*pts)[3], int
     // Column i spans [i, i + 1]: covered where the hull holds both of its edges (and so,
     // being convex, everything between).
     const int i0 = (int)fmax(ceil(minx), 0), i1 = (int)fmin(floor(maxx), COLUMNS) - 1;
+    double lo1, hi1; // the span at column i's right edge, the next one's left edge
+    int at1 = i0 <= i1 && span_at(h, m, i0, &lo1, &hi1);
     for (int i = i0; i <= i1; i++) {
-        double lo0, hi0, lo1, hi1;
-        if (!span_at(h, m, i, &lo0, &hi0) || !span_at(h, m, i + 1, &lo1, &hi1)) continue;
-        const float lo = (float)fmax(lo0, lo1), hi = (float)fmin(hi0, hi1);
+        const double lo0 = lo1, hi0 = hi1;
+        const int at0 = at1;
+        at1 = span_at(h, m, i + 1, &lo1, &hi1);
+        if (!at0 || !at1) continue;
+        const float lo = (float)max_d(lo0, lo1), hi = (float)min_d(hi0, hi1);
         if (!(lo < hi)) continue;
+        // Per band: above the covered run (or none yet: lo > -infinity), the horizon's side
+        // replaces it; below it, it stays; else they overlap and become one run. As two
+        // selects without branches, so that the compiler does several bands at once.
+        float *col_lo = o->lo[i], *col_hi = o->hi[i];
         for (int b = first; b < BANDS; b++) {
-            float *cl = &o->lo[b][i], *ch = &o->hi[b][i];
-            if (*cl <= *ch && lo <= *ch && hi >= *cl) // overlapping the run: one run
-                *cl = fminf(*cl, lo), *ch = fmaxf(*ch, hi);
-            else if (*cl > *ch || hi > *ch) // none yet, or apart and higher: the horizon's side
-                *cl = lo, *ch = hi;
+            const float cl = col_lo[b], ch = col_hi[b];
+            const int above = lo > ch, overlap = !(hi < cl);
+            col_lo[b] = above | (overlap & (lo < cl)) ? lo : cl;
+            col_hi[b] = above | (overlap & (hi > ch)) ? hi : ch;
         }
     }
 }
@@ -126,6 +142,6 @@ int ground_occlusion_hidden(const ground_occlusion *o, const double (*pts)[3], i
     const int i0 = (int)fmax(floor(minx), 0), i1 = (int)fmin(floor(maxx), COLUMNS - 1);
     const float lo = (float)fmax(miny, -1.0), hi = (float)fmin(maxy, 1.0); // what is on screen
     for (int i = i0; i <= i1; i++)
-        if (!(o->lo[b][i] <= lo && hi <= o->hi[b][i])) return 0;
+        if (!(o->lo[i][b] <= lo && hi <= o->hi[i][b])) return 0;
     return 1;
 }

@@ -26,9 +26,10 @@
 typedef struct ground_occlusion {
     double eye[3], forward[3], right[3], up[3]; // the camera, any frame (planet coordinates)
     double tan_half_x, tan_half_y;
-    // Covered heights on the screen (-1 bottom, 1 top) per band and column; lo > hi: none.
-    float lo[GROUND_OCCLUSION_BANDS][GROUND_OCCLUSION_COLUMNS];
-    float hi[GROUND_OCCLUSION_BANDS][GROUND_OCCLUSION_COLUMNS];
+    // Covered heights on the screen (-1 bottom, 1 top) per column and band; lo > hi: none.
+    // A column's bands side by side: a solid updates every band from its depth on.
+    float lo[GROUND_OCCLUSION_COLUMNS][GROUND_OCCLUSION_BANDS];
+    float hi[GROUND_OCCLUSION_COLUMNS][GROUND_OCCLUSION_BANDS];
 } ground_occlusion;
 
 // Starts a frame: nothing covered. forward, right, up: the camera's unit basis;

@@ -105,12 +105,53 @@ static void test_rising_solids_join(void **state) {
     assert_false(hidden(&o, -5, 5, -300, 5, 300, 400));
 }
 
+// A thin slab across the whole view at depth z (to z + 1) covering screen heights s0..s1
+// (-1 bottom, 1 top) as seen from the camera of begin().
+static void add_slab(ground_occlusion *o, double z, double s0, double s1) {
+    const double t = 0.57735; // begin()'s tangent of half the vertical field of view
+    double solid[8][3];
+    box(-1000, 1000, s0 * z * t, s1 * z * t, z, z + 1, solid);
+    ground_occlusion_add_solid(o, (const double(*)[3])solid, 8);
+}
+
+// Whether a small box from z0 to z1 straight ahead, at screen heights s0..s1 at z0, is
+// hidden.
+static int screen_box_hidden(const ground_occlusion *o, double z0, double z1, double s0,
+                             double s1) {
+    const double t = 0.57735;
+    return hidden(o, -5, 5, s0 * z0 * t, s1 * z0 * t, z0, z1);
+}
+
+// Each depth keeps one covered run per column: a solid below it leaves it as it is, one
+// overlapping it joins it, one apart and above it takes its place (the horizon's side),
+// each only for what lies behind that solid.
+static void test_runs_stay_join_and_give_way(void **state) {
+    (void)state;
+    ground_occlusion o;
+    begin(&o);
+    add_slab(&o, 100, -0.5, -0.2);
+    assert_true(screen_box_hidden(&o, 500, 510, -0.45, -0.25));
+    assert_false(screen_box_hidden(&o, 500, 510, -0.4, 0.05));
+    add_slab(&o, 200, -0.8, -0.6); // below the run: it stays
+    assert_true(screen_box_hidden(&o, 500, 510, -0.45, -0.25));
+    assert_false(screen_box_hidden(&o, 500, 510, -0.75, -0.65));
+    add_slab(&o, 300, -0.25, 0.1); // overlapping its top: one run
+    assert_true(screen_box_hidden(&o, 500, 510, -0.4, 0.05));
+    add_slab(&o, 400, 0.2, 0.3); // above and apart: behind it, it replaces the run
+    assert_true(screen_box_hidden(&o, 500, 510, 0.22, 0.28));
+    assert_false(screen_box_hidden(&o, 500, 510, -0.4, 0.05));
+    // Nearer than it (but behind the joined run), the run still hides.
+    assert_true(screen_box_hidden(&o, 350, 355, -0.4, 0.05));
+    assert_false(screen_box_hidden(&o, 350, 355, 0.22, 0.28));
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_hides_what_lies_behind_and_below_its_silhouette),
         cmocka_unit_test(test_never_hides_what_is_nearer_or_beside),
         cmocka_unit_test(test_ignores_solids_behind_the_camera),
         cmocka_unit_test(test_rising_solids_join),
+        cmocka_unit_test(test_runs_stay_join_and_give_way),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
