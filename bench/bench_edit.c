@@ -318,11 +318,11 @@ static void bench_dab64(brush_tool tool, double goal_ratio) {
                "sample); only what the disc takes is computed. On an AVX-512 Zen 5 (perf, 100k "
                "steady dabs): ~38%% column boxes, ~20%% row boxes, ~19%% blend, the rest spans, "
                "row reads and set-up. The column sweep takes ~4.7 ns (~20 cycles) per 32-column "
-               "row step, ~3.6 with every row in L1, its result stores ~40%% of that; tried and "
-               "dropped: a "
-               "row-major sweep (no faster), leaving NaN results out of the blend's store (wrong "
-               "at infinite heights, no faster); 8-lane strips ran 25%% faster than 16-lane ones "
-               "in a micro-benchmark, ~1 us of the dab's 12: not enough for 20x\n");
+               "row step, ~3.6 with every row in L1, its result stores ~40%% of that. Tried and "
+               "dropped: a row-major sweep (no faster), 8-lane strips (faster in a "
+               "micro-benchmark, not in the dab), NaN results left out of the blend's store "
+               "(wrong at infinite heights, no faster). 20x (~7.4 us) needs the three passes at "
+               "about half their time\n");
     char what[80];
     snprintf(what, sizeof what, "%s dab r=64, per sample vs memcpy", name);
     goal(what, q, goal_ratio, 0, "x");
