@@ -15,9 +15,8 @@ void ground_occlusion_begin(ground_occlusion *o, const double eye[3], const doub
     for (int k = 0; k < 3; k++)
         o->eye[k] = eye[k], o->forward[k] = forward[k], o->right[k] = right[k], o->up[k] = up[k];
     o->tan_half_x = tan_half_x, o->tan_half_y = tan_half_y;
-    for (int i = 0; i < COLUMNS; i++)
-        for (int b = 0; b < BANDS; b++)
-            o->lo[i][b] = INFINITY, o->hi[i][b] = -INFINITY;
+    for (int i = 0; i < COLUMNS; i++) // every band alike: none covered
+        o->top[i] = 0, o->lo[i][0] = INFINITY, o->hi[i][0] = -INFINITY;
 }
 
 // Screen points: x in columns (0 at the left edge), y from -1 (bottom) to 1 (top); the
@@ -117,7 +116,13 @@ void ground_occlusion_add_solid(ground_occlusion *o, const double (*pts)[3], int
         // replaces it; below it, it stays; else they overlap and become one run. As two
         // selects without branches, so that the compiler does several bands at once.
         float *col_lo = o->lo[i], *col_hi = o->hi[i];
-        for (int b = first; b < BANDS; b++) {
+        int top = o->top[i];
+        if (first > top) { // the bands before this solid's keep what all held
+            for (int b = top + 1; b <= first; b++)
+                col_lo[b] = col_lo[top], col_hi[b] = col_hi[top];
+            o->top[i] = (unsigned char)(top = first);
+        }
+        for (int b = first; b <= top; b++) {
             const float cl = col_lo[b], ch = col_hi[b];
             const int above = lo > ch, overlap = !(hi < cl);
             col_lo[b] = above | (overlap & (lo < cl)) ? lo : cl;
@@ -141,7 +146,9 @@ int ground_occlusion_hidden(const ground_occlusion *o, const double (*pts)[3], i
     const int b = band < BANDS ? band : BANDS - 1;
     const int i0 = (int)fmax(floor(minx), 0), i1 = (int)fmin(floor(maxx), COLUMNS - 1);
     const float lo = (float)fmax(miny, -1.0), hi = (float)fmin(maxy, 1.0); // what is on screen
-    for (int i = i0; i <= i1; i++)
-        if (!(o->lo[i][b] <= lo && hi <= o->hi[i][b])) return 0;
+    for (int i = i0; i <= i1; i++) {
+        const int at = b < o->top[i] ? b : o->top[i];
+        if (!(o->lo[i][at] <= lo && hi <= o->hi[i][at])) return 0;
+    }
     return 1;
 }

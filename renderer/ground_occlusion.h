@@ -27,9 +27,12 @@ typedef struct ground_occlusion {
     double eye[3], forward[3], right[3], up[3]; // the camera, any frame (planet coordinates)
     double tan_half_x, tan_half_y;
     // Covered heights on the screen (-1 bottom, 1 top) per column and band; lo > hi: none.
-    // A column's bands side by side: a solid updates every band from its depth on.
+    // A solid changes every band from its depth on, so the bands from a column's top[i]
+    // on (past the farthest solid's first band) are all alike: only band top[i] holds
+    // them, and a column's bands lie side by side.
     float lo[GROUND_OCCLUSION_COLUMNS][GROUND_OCCLUSION_BANDS];
     float hi[GROUND_OCCLUSION_COLUMNS][GROUND_OCCLUSION_BANDS];
+    unsigned char top[GROUND_OCCLUSION_COLUMNS];
 } ground_occlusion;
 
 // Starts a frame: nothing covered. forward, right, up: the camera's unit basis;
