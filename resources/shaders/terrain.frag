@@ -39,8 +39,10 @@ bool ground_at_pixel(ivec2 p, out vec3 rel) {
     return d > 0.0 && all(greaterThanEqual(p, ivec2(0))) && all(lessThan(p, size));
 }
 #else
-in vec2 v_local;
-in vec3 v_rel;
+in vec2 v_local_vs; // as the vertex shader placed them: on the level's surface
+in vec3 v_rel_vs;
+vec2 v_local;       // the ground shaded (toward_finer_ground moves it)
+vec3 v_rel;
 #endif
 out vec4 o_colour;
 
@@ -168,6 +170,25 @@ vec2 gradient_at(vec4 src, vec4 fine, vec2 p, float spacing_here, bool from_fine
     return vec2(r - l, u - d) / ((hi - lo) * spacing_here);
 }
 
+// A coarse level's surface stands off the full-resolution ground (its samples are 2^L
+// apart), so at a grazing view the place a pixel shows on it lies metres to tens of
+// metres along the view ray from the ground the full-resolution mesh shows there, and
+// the finer slopes and height read at that place belong to other ground (finer slopes
+// on the coarse surface moved the error more than they removed it). One Newton step of
+// the ray against the finer heights (parallax mapping over the level's own surface)
+// finds where it meets them: the distance to move along the ray, metres, at most 3/4 of
+// the level's spacing (the slopes window's margin: clip_slopes.h). 0 on ground turned
+// away or seen edge-on, where the step would not converge.
+float toward_finer_ground(vec4 src, vec4 fine, vec2 p, vec3 rel, float spacing_here) {
+    vec3 dir = normalize(rel);
+    vec2 t = (fine.xy + p * fine.z + 0.5) / float(textureSize(u_slopes, 0).x);
+    float above = rel.y + u_cam_y - texture(u_slopes, vec3(t, fine.w)).r;
+    vec2 g = gradient_at(src, fine, p, spacing_here, true);
+    float rate = dir.y - dot(g, dir.xz); // d(above) per metre along the ray
+    float along = rate < -0.05 ? -above / rate : 0.0;
+    return clamp(along, -0.75 * spacing_here, 0.75 * spacing_here);
+}
+
 // The rules' curvature: -100 x the Laplacian (1/m) over the level's samples, positive on
 // convex ground; coarser levels see broader shapes.
 float curvature_at(vec4 src, vec2 p, float spacing_here) {
@@ -247,6 +268,7 @@ void main() {
     ground_at_pixel(px, v_rel);
     v_local = (v_rel.xz - off.xy) / off.z;
 #else
+    v_local = v_local_vs, v_rel = v_rel_vs;
 #ifndef INSIDE
     vec4 bounds = u_lvl_bounds[u_level];
     if (v_local.x < bounds.x || v_local.y < bounds.y || v_local.x > bounds.z || v_local.y > bounds.w)
@@ -262,6 +284,21 @@ void main() {
 #endif
     float spacing = off.z;
     float alpha = morph_factor(v_local);
+    const vec3 rel_drawn = v_rel;
+    { // onto the finer ground, as far as the morph toward the coarser level's has gone
+        float along = 0.0;
+#ifdef SLOPES_A
+        along = toward_finer_ground(u_lvl_src_a[u_level], u_lvl_slopes_a[u_level], v_local, v_rel, spacing);
+#endif
+#ifdef SLOPES_B
+        if (alpha > 0.0)
+            along = mix(along, toward_finer_ground(u_lvl_src_b[u_level], u_lvl_slopes_b[u_level], v_local, v_rel, spacing), alpha);
+#else
+        along *= 1.0 - alpha;
+#endif
+        vec3 dir = normalize(v_rel);
+        v_rel += along * dir, v_local += along * dir.xz / spacing;
+    }
 #ifdef SLOPES_A
     const bool fine_a = true;
 #else
@@ -277,7 +314,10 @@ void main() {
         g = mix(g, gradient_at(u_lvl_src_b[u_level], u_lvl_slopes_b[u_level], v_local, spacing, fine_b), alpha);
 #ifdef RESOLVE
     vec3 n_plane = normalize(vec3(-g.x, 1.0, -g.y));
+    vec3 rel_shaded = v_rel;
+    v_rel = rel_drawn; // the steps to the neighbours' ground as drawn, as theirs are
     g_step_x = ground_step(px, ivec2(1, 0), n_plane), g_step_y = ground_step(px, ivec2(0, 1), n_plane);
+    v_rel = rel_shaded;
 #endif
     float h = v_rel.y + u_cam_y;
     float dist = length(v_rel);

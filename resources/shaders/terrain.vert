@@ -5,8 +5,8 @@
 
 layout(location = 0) in uvec2 a_grid; // local vertex, 0 .. n-1 (refined: half units)
 
-out vec2 v_local;  // local position, level units
-out vec3 v_rel;    // position relative to the camera, metres
+out vec2 v_local_vs; // local position, level units
+out vec3 v_rel_vs;   // position relative to the camera, metres
 
 #ifdef REFINED
 // A part drawn at twice the density (renderer/clip_refine_mesh.h): its vertices go from
@@ -59,7 +59,7 @@ void main() {
     float h = level_height(p, morph_factor(p));
 #endif
     vec4 off = u_lvl_offset[u_level];
-    v_local = p;
-    v_rel = vec3(off.x + p.x * off.z, h - u_cam_y, off.y + p.y * off.z);
-    gl_Position = u_view_proj * vec4(v_rel, 1.0);
+    v_local_vs = p;
+    v_rel_vs = vec3(off.x + p.x * off.z, h - u_cam_y, off.y + p.y * off.z);
+    gl_Position = u_view_proj * vec4(v_rel_vs, 1.0);
 }
