@@ -37,7 +37,7 @@ static const int64_t (*keep)[2];
 // Runs fn into a fresh out (every sample NEVER first).
 static void run(columns_fn fn, const float *const *rows, float *out, int64_t w, int64_t h, int k,
                 int64_t c0, int64_t c1, int64_t y0, int64_t y1) {
-    float *ring = malloc((size_t)(2 * k + 2) * 32 * sizeof *ring);
+    float *ring = malloc((size_t)(2 * k + 2) * BOX_COLUMNS_WIDTH * sizeof *ring);
     float **to = malloc((size_t)h * sizeof *to);
     assert_true(ring && to);
     for (int64_t i = 0; i < w * h; i++)

@@ -78,7 +78,7 @@ static int feeds(const int64_t (*need)[2], int64_t z, int k, int64_t c0, int64_t
     return need[z][0] < need[z][1] && need[z][0] - 2 * k < c1 && need[z][1] + 2 * k > c0;
 }
 
-enum { CHUNK = 32 }; // columns box_columns takes at a time on AVX-512 (two strips)
+enum { CHUNK = BOX_COLUMNS_WIDTH }; // columns box_columns takes at a time on AVX-512
 
 // The columns [c0, c1) of chunk j of a run from column r0.
 static void chunk_columns(int64_t r0, int64_t r1, int64_t j, int64_t *c0, int64_t *c1) {
@@ -124,7 +124,8 @@ static int blur(box_row_at at, void *user, const int64_t (*need)[2], float *out,
     // packed rows' columns (keep, int64); box_columns' ring; a block's first box and
     // result; box_rows' runs
     size_t at_src = lines(w * h), at_dst = at_src + lines(2 * h), at_keep = at_dst + lines(2 * h);
-    size_t at_ring = at_keep + lines(4 * h), at_first = at_ring + lines((2 * k + 2) * 32);
+    size_t at_ring = at_keep + lines(4 * h),
+           at_first = at_ring + lines((2 * k + 2) * BOX_COLUMNS_WIDTH);
     size_t at_res = at_first + lines(bmax), at_runs = at_res + lines(bmax);
     // and each chunk's rows (f, l: int64; fewer chunks than w + 2)
     size_t at_chunks = at_runs + lines((BOX_ROWS_LEVELS + 1) * bmax);

@@ -111,7 +111,7 @@ INLINE __m512 second_box(const float *ring, int64_t q, int64_t slots, int k, int
         const float *v[4];
         __m512 p0 = _mm512_setzero_ps(), p1 = p0, p2 = p0, p3 = p0;
         int64_t r = 0;
-#define SLOT(r) (ring + (q + 1 + (r) < slots ? q + 1 + (r) : q + 1 + (r)-slots) * 32)
+#define SLOT(r) (ring + (q + 1 + (r) < slots ? q + 1 + (r) : q + 1 + (r)-slots) * BOX_COLUMNS_WIDTH)
         for (; r + 3 <= 2 * k; r += 4) {
             v[0] = SLOT(r), v[1] = SLOT(r + 1), v[2] = SLOT(r + 2), v[3] = SLOT(r + 3);
             p0 = _mm512_add_ps(p0, _mm512_loadu_ps(v[0]));
@@ -128,12 +128,14 @@ INLINE __m512 second_box(const float *ring, int64_t q, int64_t slots, int k, int
         *a2 = _mm512_add_ps(_mm512_add_ps(p0, p1), _mm512_add_ps(p2, p3));
         *d2 = _mm512_setzero_ps();
     } else {
-        *d2 = _mm512_add_ps(*d2, _mm512_sub_ps(sum, _mm512_loadu_ps(ring + q * 32)));
+        *d2 = _mm512_add_ps(*d2, _mm512_sub_ps(sum, _mm512_loadu_ps(ring + q * BOX_COLUMNS_WIDTH)));
     }
     return _mm512_add_ps(*a2, *d2);
 }
 
-// The state of a sweep of two strips side by side.
+enum { STRIPS = BOX_COLUMNS_WIDTH / 16 };
+
+// What a sweep of up to STRIPS strips side by side shares.
 typedef struct sweep {
     const float *const *rows;
     float *const *out;
@@ -141,91 +143,134 @@ typedef struct sweep {
     float *ring;
     int64_t x, slots;
     int k;
-    __mmask16 lo, hi;
-    __m512 a1l, d1l, a2l, d2l, a1h, d1h, a2h, d2h;
 } sweep;
 
+// One strip's running sums and lanes. Each strip its own variable, named in each
+// step (EACH): GCC keeps them in registers so; as one array they stayed on the stack,
+// each running sum's step waiting on a store and a load.
+typedef struct strip {
+    __m512 a1, d1, a2, d2, sum, out;
+    __m512i column; // each lane's column (areas are far narrower than 2^31)
+    __mmask16 m;
+} strip;
+
+#define EACH(n, what)                                                                              \
+    do {                                                                                           \
+        what(0, t0);                                                                               \
+        if (n > 1) what(1, t1);                                                                    \
+        if (n > 2) what(2, t2);                                                                    \
+        if (n > 3) what(3, t3);                                                                    \
+    } while (0)
+
 // One step at row i (ring slot at): the first box's row i; with second, the second
-// box's row i - k. anchor1, anchor2: that box starts afresh here. pair: the strip at
-// x + 16 too; full: every lane of the strips swept. Constants where inlined, so the
+// box's row i - k. anchor1, anchor2: that box starts afresh here. n: the strips swept
+// (t0 .. at x, x + 16, ..); full: every lane of them. Constants where inlined, so the
 // steady steps run without branches.
-INLINE void step(sweep *s, int64_t i, int64_t at, int anchor1, int second, int anchor2, int pair,
-                 int full) {
-    float *b = s->ring + at * 32;
+INLINE void step(const sweep *s, int64_t i, int64_t at, int anchor1, int second, int anchor2,
+                 const int n, int full, strip *t0, strip *t1, strip *t2, strip *t3) {
+    float *b = s->ring + at * BOX_COLUMNS_WIDTH;
     int64_t next = at + 1 == s->slots ? 0 : at + 1;
-    __m512 ml, mh = _mm512_setzero_ps(), ol, oh = mh;
-    first_box(s->rows, i, s->k, anchor1, s->x, s->lo, full, &s->a1l, &s->d1l, &ml);
-    if (pair) first_box(s->rows, i, s->k, anchor1, s->x + 16, s->hi, full, &s->a1h, &s->d1h, &mh);
-    _mm512_storeu_ps(b, ml);
-    if (pair) _mm512_storeu_ps(b + 16, mh);
+#define FIRST(j, t)                                                                                \
+    first_box(s->rows, i, s->k, anchor1, s->x + 16 * j, t->m, full, &t->a1, &t->d1, &t->sum)
+    EACH(n, FIRST);
+#undef FIRST
+#define KEEP(j, t) _mm512_storeu_ps(b + 16 * j, t->sum)
+    EACH(n, KEEP);
+#undef KEEP
     if (!second) return;
-    ol = second_box(s->ring, next, s->slots, s->k, anchor2, ml, &s->a2l, &s->d2l);
-    if (pair) oh = second_box(s->ring + 16, next, s->slots, s->k, anchor2, mh, &s->a2h, &s->d2h);
-    float *o = s->out[i - s->k] + s->x;
-    __mmask16 lo = s->lo, hi = s->hi;
-    if (s->keep) { // only the row's kept columns
+#define SECOND(j, t)                                                                               \
+    t->out = second_box(s->ring + 16 * j, next, s->slots, s->k, anchor2, t->sum, &t->a2, &t->d2)
+    EACH(n, SECOND);
+#undef SECOND
+    float *to = s->out[i - s->k] + s->x;
+    if (s->keep) { // only the row's kept columns: lanes whose column is in them
         const int64_t *c = s->keep[i - s->k];
-        int64_t a = c[0] - s->x, b = c[1] - s->x;
-        a = a < 0 ? 0 : a > 32 ? 32 : a, b = b < 0 ? 0 : b > 32 ? 32 : b;
-        uint64_t m = ((1ull << b) - 1) & ~((1ull << a) - 1);
-        lo &= (__mmask16)m, hi &= (__mmask16)(m >> 16);
-    } else if (full) {
-        _mm512_storeu_ps(o, ol);
-        if (pair) _mm512_storeu_ps(o + 16, oh);
+        __m512i from = _mm512_set1_epi32((int)c[0]), to_end = _mm512_set1_epi32((int)c[1]);
+#define KEPT(j, t)                                                                                 \
+    _mm512_mask_storeu_ps(                                                                         \
+        to + 16 * j,                                                                               \
+        _mm512_mask_cmplt_epi32_mask(_mm512_mask_cmpge_epi32_mask(t->m, t->column, from),          \
+                                     t->column, to_end),                                           \
+        t->out)
+        EACH(n, KEPT);
+#undef KEPT
         return;
     }
-    _mm512_mask_storeu_ps(o, lo, ol);
-    if (pair) _mm512_mask_storeu_ps(o + 16, hi, oh);
+#define WHOLE(j, t) _mm512_storeu_ps(to + 16 * j, t->out)
+#define LANES(j, t) _mm512_mask_storeu_ps(to + 16 * j, t->m, t->out)
+    if (full)
+        EACH(n, WHOLE);
+    else
+        EACH(n, LANES);
+#undef LANES
+#undef WHOLE
 }
 
-// Two strips side by side (columns [x, x + 16) by mask lo, [x + 16, x + 32) by mask hi;
-// an empty mask reads and writes nothing): their sums' additions, each 4 cycles long,
-// overlap. The anchors come in blocks of 2k + 1 steps of i: the first box's at the
-// first step, the second box's at the last (j - 2k = i - 3k, a multiple of 2k + 1);
-// the first block makes the first box's rows the second's first anchor takes.
+// n strips side by side (strip j: columns [x + 16 j, x + 16 j + 16) by mask m[j]): their
+// sums' additions, each a few cycles long, overlap, and each row's pointers, kept
+// columns and loop steps serve all n. The anchors come in blocks of 2k + 1 steps of
+// i: the first box's at the first step, the second box's at the last (j - 2k = i - 3k,
+// a multiple of 2k + 1); the first block makes the first box's rows the second's first
+// anchor takes.
 INLINE void sweep_strips(const float *const *rows, float *const *out, const int64_t (*keep)[2],
-                         int k, float *ring, int64_t x, __mmask16 lo, __mmask16 hi, int64_t y0,
-                         int64_t y1, const int pair, const int full) {
-    const int64_t m = 2 * k + 1, slots = 2 * k + 2;
+                         int k, float *ring, int64_t x, const __mmask16 *m, int64_t y0, int64_t y1,
+                         const int n, const int full) {
+    const int64_t length = 2 * k + 1, slots = 2 * k + 2;
+    const sweep s = {rows, out, keep, ring, x, slots, k};
     const __m512 zero = _mm512_setzero_ps();
-    sweep s = {rows, out,  keep, ring, x,    slots, k,    lo,  hi,
-               zero, zero, zero, zero, zero, zero,  zero, zero};
+    const __m512i lane = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    strip t0 = {zero, zero, zero, zero, zero, zero, lane, m[0]}, t1 = t0, t2 = t0, t3 = t0;
+    t1.m = n > 1 ? m[1] : 0, t2.m = n > 2 ? m[2] : 0, t3.m = n > 3 ? m[3] : 0;
+    t0.column = _mm512_add_epi32(lane, _mm512_set1_epi32((int)x));
+    t1.column = _mm512_add_epi32(t0.column, _mm512_set1_epi32(16));
+    t2.column = _mm512_add_epi32(t0.column, _mm512_set1_epi32(32));
+    t3.column = _mm512_add_epi32(t0.column, _mm512_set1_epi32(48));
+#define STEP(a1, second, a2) step(&s, i, at, a1, second, a2, n, full, &t0, &t1, &t2, &t3)
     int64_t i0 = box_columns_anchor(y0, k) - k, end = y1 + k, at = i0 % slots;
     for (int64_t i = i0; i < end;) {
-        int64_t last = i + m - 1; // the block's last step
+        int64_t last = i + length - 1; // the block's last step
         int second = i > i0;
         if (second)
-            step(&s, i, at, 1, 1, 0, pair, full);
+            STEP(1, 1, 0);
         else
-            step(&s, i, at, 1, 0, 0, pair, full);
+            STEP(1, 0, 0);
         i++, at = at + 1 == slots ? 0 : at + 1;
         if (second)
             for (; i < last && i < end; i++, at = at + 1 == slots ? 0 : at + 1)
-                step(&s, i, at, 0, 1, 0, pair, full);
+                STEP(0, 1, 0);
         else
             for (; i < last && i < end; i++, at = at + 1 == slots ? 0 : at + 1)
-                step(&s, i, at, 0, 0, 0, pair, full);
+                STEP(0, 0, 0);
         if (i < end) {
-            step(&s, i, at, 0, 1, 1, pair, full);
+            STEP(0, 1, 1);
             i++, at = at + 1 == slots ? 0 : at + 1;
         }
     }
+#undef STEP
 }
+#undef EACH
 
-// Each shape of sweep on its own code: two strips or one (the second's mask empty),
-// without masks where every lane is swept.
+// Each shape of sweep on its own code: 1 to 4 strips, without masks where every lane
+// is swept.
+#define SHAPE(n)                                                                                   \
+    case n:                                                                                        \
+        if (full)                                                                                  \
+            sweep_strips(rows, out, keep, k, ring, x, m, y0, y1, n, 1);                            \
+        else                                                                                       \
+            sweep_strips(rows, out, keep, k, ring, x, m, y0, y1, n, 0);                            \
+        break;
+
 WIDE static void strips_wide(const float *const *rows, float *const *out, const int64_t (*keep)[2],
-                             int k, float *ring, int64_t x, __mmask16 lo, __mmask16 hi, int64_t y0,
-                             int64_t y1) {
-    if (hi && (lo & hi) == 0xffff)
-        sweep_strips(rows, out, keep, k, ring, x, lo, hi, y0, y1, 1, 1);
-    else if (hi)
-        sweep_strips(rows, out, keep, k, ring, x, lo, hi, y0, y1, 1, 0);
-    else if (lo == 0xffff)
-        sweep_strips(rows, out, keep, k, ring, x, lo, hi, y0, y1, 0, 1);
-    else
-        sweep_strips(rows, out, keep, k, ring, x, lo, hi, y0, y1, 0, 0);
+                             int k, float *ring, int64_t x, const __mmask16 *m, int n, int full,
+                             int64_t y0, int64_t y1) {
+    switch (n) {
+        SHAPE(1)
+        SHAPE(2)
+        SHAPE(3)
+        SHAPE(4)
+    }
 }
+#undef SHAPE
 
 int box_columns_have_wide(void) {
     return __builtin_cpu_supports("avx512f") != 0;
@@ -238,13 +283,15 @@ void box_columns(const float *const *rows, float *const *out, const int64_t (*ke
         return;
     }
     if (y0 >= y1) return;
-    for (int64_t x = c0; x < c1; x += 32) {
-        int64_t left = c1 - x, right = left - 16;
-        __mmask16 lo = left >= 16 ? (__mmask16)0xffff : (__mmask16)((1u << left) - 1u);
-        __mmask16 hi = right >= 16 ? (__mmask16)0xffff
-                       : right > 0 ? (__mmask16)((1u << right) - 1u)
-                                   : (__mmask16)0;
-        strips_wide(rows, out, keep, k, ring, x, lo, hi, y0, y1);
+    for (int64_t x = c0; x < c1; x += BOX_COLUMNS_WIDTH) {
+        int64_t left = c1 - x;
+        int n = left >= BOX_COLUMNS_WIDTH ? STRIPS : (int)((left + 15) / 16);
+        __mmask16 m[STRIPS];
+        for (int t = 0; t < n; t++) {
+            int64_t lanes = left - 16 * t;
+            m[t] = lanes >= 16 ? (__mmask16)0xffff : (__mmask16)((1u << lanes) - 1u);
+        }
+        strips_wide(rows, out, keep, k, ring, x, m, n, m[n - 1] == (__mmask16)0xffff, y0, y1);
     }
 }
 #else

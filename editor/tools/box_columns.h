@@ -2,6 +2,9 @@
 #define OROGEN_BOX_COLUMNS_H
 
 #include <stdint.h>
+// The most columns the AVX-512 sweep takes at once (4 strips of 16); its ring holds
+// this many floats a row.
+enum { BOX_COLUMNS_WIDTH = 64 };
 
 // Two box sums of radius k >= 1 down the columns [c0, c1) of an area (not divided:
 // the means times (2k + 1)^2; the row boxes' last pass scales), in float with running
@@ -18,7 +21,7 @@
 // for rows [y0, y1) (2k <= y0 < y1 <= h - 2k) go to out[y] + x; rows from the anchor
 // at or above y0 may be written too, nothing else; keep (NULL: all of them): per row y,
 // only its columns [keep[y][0], keep[y][1]) are written. Rows from that anchor's - 2k to
-// y1 + 2k are read. ring: (2k + 2) x 32 floats.
+// y1 + 2k are read. ring: (2k + 2) x BOX_COLUMNS_WIDTH floats.
 // Every path (AVX-512 here, the plain C loop elsewhere) gives the same bits.
 void box_columns(const float *const *rows, float *const *out, const int64_t (*keep)[2], int k,
                  float *ring, int64_t c0, int64_t c1, int64_t y0, int64_t y1);
