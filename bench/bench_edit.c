@@ -313,16 +313,21 @@ static void bench_dab64(brush_tool tool, double goal_ratio) {
     if (tool == BRUSH_SMOOTH && q > goal_ratio)
         printf("  why smooth misses: each dab blurs its disc's area and a 2k halo (161^2 samples "
                "at r=64) with two box sums down columns (float running sums restarted every "
-               "2k + 1 rows, read straight from the tiles) and two along rows (power-of-two "
-               "runs over each row's packed span), then blends the disc (a square root per "
-               "sample); only what the disc takes is computed. On an AVX-512 Zen 5 (perf, 100k "
-               "steady dabs): ~38%% column boxes, ~20%% row boxes, ~19%% blend, the rest spans, "
-               "row reads and set-up. The column sweep takes ~4.7 ns (~20 cycles) per 32-column "
-               "row step, ~3.6 with every row in L1, its result stores ~40%% of that. Tried and "
-               "dropped: a row-major sweep (no faster), 8-lane strips (faster in a "
-               "micro-benchmark, not in the dab), NaN results left out of the blend's store "
-               "(wrong at infinite heights, no faster). 20x (~7.4 us) needs the three passes at "
-               "about half their time\n");
+               "2k + 1 rows, read straight from the tiles, 64 columns a sweep) and two along rows "
+               "(power-of-two runs over each row's packed span), then blends the disc; only what "
+               "the disc takes is computed. On an AVX-512 Zen 5 (perf, 100k steady dabs): ~36%% "
+               "column boxes, ~22%% row boxes, ~18%% blend, the rest spans, row reads and "
+               "set-up. None is bound by one latency or unit: the running sums already add each "
+               "row's change off their chains; 64 columns a sweep (not 32) and the sums kept in "
+               "registers made the column boxes ~20%% faster alone, the dab ~6%%; the blend "
+               "without its square root is ~16%% faster alone, the dab within noise; the row boxes "
+               "take ~4.6 cycles per 16 samples a pass in L1 (valignd for vpermt2ps: no faster). "
+               "Also tried and dropped: packed rows aligned to cache lines (dab slower), the "
+               "non-chain adds on the FMA units, the blend's whole vectors stored unmasked, "
+               "prefetching the blend's next row (no change). 20x (~7.4 us) needs ~40%% off all "
+               "three passes; with their data in L1 the column and row boxes still take ~75%% and "
+               "~85%% of their time in the dab: fewer operations per sample, more than hotter "
+               "data\n");
     char what[80];
     snprintf(what, sizeof what, "%s dab r=64, per sample vs memcpy", name);
     goal(what, q, goal_ratio, 0, "x");
