@@ -7,7 +7,9 @@
 // picture and compared with where the pixel's ray meets the world's full-resolution
 // samples (renderer/pick.h on world_sample), and so is the sun's light (its brightness)
 // with the light on the full-resolution normal there, over the pixels whose ground lies
-// on the coarse levels (beyond 1.5 km, from 120 m above the ground looking nearly level).
+// on the coarse levels: beyond 1.5 km from 120 m above the ground looking nearly level
+// (the step), beyond 2.5 km from 1.5 km up looking 35 degrees down (seen from above, the
+// finer slopes' differences half a texel apart: terrain.frag gradient_at).
 #include "editor/cmd/commands.h"
 #include "editor/params/world_params.h"
 #include "editor/world/world.h"
@@ -74,26 +76,26 @@ static double ramp_t_of(const unsigned char *rgb, double *shade) {
     return best_t;
 }
 
-static void test_coarse_levels_shade_the_ground_their_rays_meet(void **state) {
-    (void)state;
-    cmd_context ctx;
-    test_view_context_open(&ctx);
-    const world_params *p = world_get_params(ctx.world);
+// The mean difference between the sun's light the height view shows and the light on
+// the full-resolution normal where each pixel's ray meets the full-resolution ground,
+// over the pixels whose ground lies beyond min_dist metres (every second pixel each way),
+// from `above` metres over the ground at (x, z) looking along yaw and pitch.
+static double far_light_error(cmd_context *ctx, const char *dir, double x, double z, double above,
+                              double yaw, double pitch, double min_dist) {
+    const world_params *p = world_get_params(ctx->world);
     const double max_height = p->max_height;
     camera c;
     camera_default(&c);
-    c.pos[0] = 2000, c.pos[2] = 0;
+    c.pos[0] = x, c.pos[2] = z;
     double ground;
     og_error err = {{0}};
-    if (world_sample(ctx.world, 0, c.pos[0], c.pos[2], &ground, &err) != 0)
-        fail_msg("sample: %s", err.msg);
-    c.pos[1] = ground + 120, c.yaw = 30, c.pitch = -4;
-    const char *dir = test_tmpdir("finer_ground_view");
+    if (world_sample(ctx->world, 0, x, z, &ground, &err) != 0) fail_msg("sample: %s", err.msg);
+    c.pos[1] = ground + above, c.yaw = yaw, c.pitch = pitch;
     char cmd[8400], path[4200];
-    snprintf(path, sizeof path, "%s/height.png", dir);
+    snprintf(path, sizeof path, "%s/height_%g.png", dir, above);
     snprintf(cmd, sizeof cmd, "view height; camera %.17g %.17g %.17g %g %g; screenshot %s %d %d",
              c.pos[0], c.pos[1], c.pos[2], c.yaw, c.pitch, path, W, H);
-    run_ok(&ctx, cmd);
+    run_ok(ctx, cmd);
     unsigned char *rgb = NULL;
     int w = 0, h = 0;
     if (image_read_rgb8(path, &rgb, &w, &h, &err) != 0) fail_msg("%s: %s", path, err.msg);
@@ -108,41 +110,54 @@ static void test_coarse_levels_shade_the_ground_their_rays_meet(void **state) {
         for (int px = 0; px < W; px += 2) {
             double ray[3], hit[3];
             camera_ray(&c, (double)W / H, (px + 0.5) / W, (py + 0.5) / H, ray);
-            if (pick_ray(full_resolution_height, ctx.world, c.pos, ray, 20000, p->spacing, hit) !=
+            if (pick_ray(full_resolution_height, ctx->world, c.pos, ray, 30000, p->spacing, hit) !=
                 0)
                 continue;
-            double dist = hypot(hit[0] - c.pos[0], hit[2] - c.pos[2]);
-            if (dist < 1500) continue;
+            if (hypot(hit[0] - c.pos[0], hit[2] - c.pos[2]) < min_dist) continue;
             double shade = 0, shown = ramp_t_of(&rgb[3 * ((size_t)py * W + px)], &shade);
             shown = shown * 2 * max_height - max_height;
             // The light on the full-resolution normal there (central differences a sample
             // apart, as the full-resolution mesh's vertex normals).
             double l, r, d, u, e = p->spacing;
-            if (full_resolution_height(ctx.world, hit[0] - e, hit[2], &l) != 0 ||
-                full_resolution_height(ctx.world, hit[0] + e, hit[2], &r) != 0 ||
-                full_resolution_height(ctx.world, hit[0], hit[2] - e, &d) != 0 ||
-                full_resolution_height(ctx.world, hit[0], hit[2] + e, &u) != 0)
+            if (full_resolution_height(ctx->world, hit[0] - e, hit[2], &l) != 0 ||
+                full_resolution_height(ctx->world, hit[0] + e, hit[2], &r) != 0 ||
+                full_resolution_height(ctx->world, hit[0], hit[2] - e, &d) != 0 ||
+                full_resolution_height(ctx->world, hit[0], hit[2] + e, &u) != 0)
                 continue;
             double nx = -(r - l) / (2 * e), nz = -(u - d) / (2 * e),
                    len = sqrt(nx * nx + 1 + nz * nz);
             double lit = (nx * sun[0] + sun[1] + nz * sun[2]) / len;
-            double want = 0.55 + 0.45 * fmax(lit, 0.0);
-            sum_shade += fabs(shade - want);
+            sum_shade += fabs(shade - (0.55 + 0.45 * fmax(lit, 0.0)));
             sum += fabs(shown - hit[1]);
             n++;
         }
     free(rgb);
-    double mean = sum / n;
-    printf("%d pixels on ground beyond 1.5 km: the height shown is off by %.2f m on average "
-           "(max_height %.0f m), the sun's light by %.4f\n",
-           n, mean, max_height, sum_shade / n);
+    printf("%.0f m up, pitch %g: %d pixels on ground beyond %.0f m: the height shown is off by "
+           "%.2f m on average (max_height %.0f m), the sun's light by %.4f\n",
+           above, pitch, n, min_dist, sum / n, max_height, sum_shade / n);
     if (n < W * H / 4 / 10) fail_msg("only %d pixels on far ground: the view misses its aim", n);
-    // Shaded on the coarse surface's place, 0.0204 (the height 2.75 m off); on the finer
-    // ground the ray meets, 0.0154 (2.69 m).
-    if (sum_shade / n > 0.018)
+    return sum_shade / n;
+}
+
+static void test_coarse_levels_shade_the_ground_their_rays_meet(void **state) {
+    (void)state;
+    cmd_context ctx;
+    test_view_context_open(&ctx);
+    const char *dir = test_tmpdir("finer_ground_view");
+    // Nearly level from 120 m: shaded on the coarse surface's place, 0.0203; on the finer
+    // ground the ray meets, 0.0150.
+    double grazing = far_light_error(&ctx, dir, 2000, 0, 120, 30, -4, 1500);
+    if (grazing > 0.018)
         fail_msg("the far ground's light is %.4f off on average: shaded where the ray meets "
                  "the coarse surface, not the finer ground",
-                 sum_shade / n);
+                 grazing);
+    // From 1.5 km up looking 35 degrees down: the finer slopes' differences a texel apart,
+    // 0.0282; half a texel (the mean slope under one), 0.0242.
+    double steep = far_light_error(&ctx, dir, 2000, 0, 1500, 30, -35, 2500);
+    if (steep > 0.026)
+        fail_msg("seen from above, the far ground's light is %.4f off on average: its finer "
+                 "slopes are not the mean slope under their texels",
+                 steep);
     if (!getenv("OROGEN_KEEP_IMAGES")) test_rmtree(dir);
     test_view_context_close(&ctx);
 }
