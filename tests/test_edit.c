@@ -2221,6 +2221,40 @@ static void test_stroke_publishes_once(void **state) {
     changes = NULL;
 }
 
+// Drawn move by move across the corner of four tiles at every level (the origin), the
+// stroke's live updates leave each level equal to the tent of its child level's change:
+// a level reads the tiles the level below it just wrote (kept pinned between them), and
+// tiles it did not write this move (the negative ones, earlier moves' areas) as before.
+static void test_stroke_moves_every_level(void **state) {
+    (void)state;
+    world_params p = flat_params(0, 1.0);
+    p.octaves = 3;
+    world *w = open_world(&p);
+    enum { LEVELS = 9 };
+    mip_snapshot m[LEVELS + 1];
+    for (int level = 1; level <= LEVELS; level++) {
+        int64_t r = (70 >> level) + 3;
+        m[level] = mip_snap(w, level, (grid_rect){-r, -r, r + 1, r + 1});
+    }
+    brush b;
+    brush_defaults(&b, BRUSH_RAISE);
+    b.radius = 16;
+    b.amount = 5;
+    og_error err;
+    stroke *s = stroke_begin(w, &b, &err);
+    assert_non_null(s);
+    for (int i = 0; i < 24; i++) { // a zigzag over the origin, back and forth
+        double x = -48 + 4 * i, z = i % 2 ? -30 : 30;
+        assert_int_equal(stroke_to(s, x, z, 1.0, &err), 0);
+    }
+    assert_int_equal(stroke_end(s, &err), 0);
+    for (int level = 1; level <= LEVELS; level++) {
+        assert_true(mip_check(w, level, &m[level]) > 0);
+        mip_free(&m[level]);
+    }
+    world_close(w);
+}
+
 // ---------------------------------------------------------------------------
 // 12. A planet
 // ---------------------------------------------------------------------------
@@ -2401,6 +2435,7 @@ int main(void) {
         cmocka_unit_test(test_undo_after_save),
         cmocka_unit_test(test_dirty_rects),
         cmocka_unit_test(test_stroke_publishes_once),
+        cmocka_unit_test(test_stroke_moves_every_level),
         cmocka_unit_test(test_planet_face_edit),
         cmocka_unit_test(test_history_part_deltas),
     };

@@ -132,6 +132,17 @@ const void *edit_snapshot(edit *e, tile_key key, grid_rect *part) {
     return before;
 }
 
+void edit_snapshots(edit *e, const tile_key *keys, size_t n, const void **before, grid_rect *part) {
+    if (!n) return;
+    pthread_mutex_lock(&e->lock);
+    for (size_t i = 0; i < n; i++) {
+        snapshot *s = find_snap(e, keys[i]);
+        before[i] = s ? s->before : NULL;
+        part[i] = s ? s->part : (grid_rect){0, 0, 0, 0};
+    }
+    pthread_mutex_unlock(&e->lock);
+}
+
 edit_layer_mode edit_get_layer_mode(const edit *e) {
     return e->layer_mode;
 }
@@ -209,6 +220,13 @@ static void capture(snapshot *s, const void *data, grid_rect part) {
 }
 
 int edit_tile_acquire_part(edit *e, tile_key key, grid_rect part, tile_view *view, og_error *err) {
+    const void *before;
+    grid_rect kept;
+    return edit_tile_acquire_snapshot(e, key, part, view, &before, &kept, err);
+}
+
+int edit_tile_acquire_snapshot(edit *e, tile_key key, grid_rect part, tile_view *view,
+                               const void **before, grid_rect *kept, og_error *err) {
     part = grid_rect_intersect(part, (grid_rect){0, 0, TILE_SIZE, TILE_SIZE});
     if (check_active_layer(e, key, err) != 0) return -1;
     if (tile_cache_acquire_write(world_cache(e->world), key, view, err) != 0) return -1;
@@ -224,6 +242,8 @@ int edit_tile_acquire_part(edit *e, tile_key key, grid_rect part, tile_view *vie
         }
     }
     if (s && !grid_rect_empty(part)) capture(s, view->data, part);
+    *before = s ? s->before : NULL;
+    *kept = s ? s->part : (grid_rect){0, 0, 0, 0};
     pthread_mutex_unlock(&e->lock);
     if (rc != 0) tile_cache_release(world_cache(e->world), view);
     return rc;

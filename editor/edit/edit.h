@@ -45,6 +45,10 @@ int edit_tile_acquire(edit *e, tile_key key, tile_view *view, og_error *err);
 // TILE_SIZE)): only they are copied for undo (the first time), and only they are
 // compared and encoded at the commit, so a small change costs little in a big tile.
 int edit_tile_acquire_part(edit *e, tile_key key, grid_rect part, tile_view *view, og_error *err);
+// The same, also giving what edit_snapshot would after it (the tile's bytes before the
+// edit and the part of them kept), found under the same lock (a mip update's per level).
+int edit_tile_acquire_snapshot(edit *e, tile_key key, grid_rect part, tile_view *view,
+                               const void **before, grid_rect *kept, og_error *err);
 void edit_tile_release(edit *e, tile_view *view);
 // Records a changed area (level-0 samples of that layer) and publishes it, except a
 // coarse or material area, published once its mip levels are current (edit_mips_update).
@@ -56,6 +60,8 @@ void edit_dirty(edit *e, tile_layer layer, int face, grid_rect r);
 // what the edit acquired so far, NULL to ignore) are kept: the tile's other samples
 // are unchanged, and the snapshot's bytes there are undefined.
 const void *edit_snapshot(edit *e, tile_key key, grid_rect *part);
+// The same for n tiles at once (one lock): before[i] and part[i] for keys[i].
+void edit_snapshots(edit *e, const tile_key *keys, size_t n, const void **before, grid_rect *part);
 size_t edit_dirty_rects(edit *e, const dirty_rect **rects);
 // How many of the dirty areas have reached the mip levels and been published
 // (edit_mips.c keeps it); later changes start new areas after them.

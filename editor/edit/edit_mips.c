@@ -55,25 +55,86 @@ int edit_mips_top_level(const world_params *p) {
     return top;
 }
 
+// A child tile of a level: its bytes before the edit and the part of them kept
+// (edit_snapshot), and when the level below wrote it in this update, its view, still
+// pinned (read without a second acquire).
+typedef struct child_tile {
+    tile_view view; // data NULL: not pinned (acquired by the task that reads it)
+    const float *before;
+    grid_rect part;
+} child_tile;
+
+// Up to this many tiles of a level are held or looked up at once (a dab's levels
+// write one to four; beyond, each task looks up its own).
+enum { LEVEL_TILES_MAX = 16 };
+
+// A level's tiles, tile (tx0 + i % tw, tz0 + i / tw) in tiles[i]: the parents it wrote
+// (pinned until the next level has read them), or the children it reads.
+typedef struct level_tiles {
+    child_tile tiles[LEVEL_TILES_MAX];
+    int64_t tx0, tz0, tw, th; // th 0: none
+} level_tiles;
+
 typedef struct level_job {
     edit *e;
-    int64_t child_extent;    // children along X at the child level (bounded); 0 = unbounded
-    int64_t child_extent_z;  // and along Z
-    int face, level, planet; // level: the parent level being written
-    int from_generator;      // before = the generated tiles, not the edit's snapshots
-    grid_rect parents;       // parent samples to update
-    int64_t ptx0, ptz0, ptw; // parent tiles covering them
+    const level_tiles *children; // found before the tasks run; NULL: each task's own lookup
+    level_tiles *wrote;          // the parents written, NULL: released at once
+    int64_t child_extent;        // children along X at the child level (bounded); 0 = unbounded
+    int64_t child_extent_z;      // and along Z
+    int face, level, planet;     // level: the parent level being written
+    int from_generator;          // before = the generated tiles, not the edit's snapshots
+    grid_rect parents;           // parent samples to update
+    int64_t ptx0, ptz0, ptw;     // parent tiles covering them
 } level_job;
 
-// row[x] = after[x] - before[x] for x in [x0, x1); whether any is not zero. Its own
-// function for AVX2 (a dab's level-1 window is 133^2 of them).
-AVX2_CLONE static int change_row(const float *restrict after, const float *restrict before,
-                                 float *restrict row, int64_t x0, int64_t x1) {
-    int any = 0;
-    for (int64_t x = x0; x < x1; x++) {
-        row[x] = after[x] - before[x];
-        any |= row[x] != 0.0f;
+static const child_tile *tile_at(const level_tiles *t, int64_t tx, int64_t tz) {
+    if (!t || !t->th || tx < t->tx0 || tz < t->tz0 || tx >= t->tx0 + t->tw || tz >= t->tz0 + t->th)
+        return NULL;
+    return &t->tiles[(tz - t->tz0) * t->tw + (tx - t->tx0)];
+}
+
+// The child tiles under j's parents into kids: those the level below wrote in this
+// update from `below` (pinned), the others' snapshots under one lock, not one lock per
+// tile. 0 when there are too many (each task looks its own up).
+static int find_children(level_job *j, const level_tiles *below, level_tiles *kids) {
+    int64_t lo = j->planet ? 0 : -1;
+    kids->tx0 = floor_div(2 * j->parents.x0 + lo, TILE_SIZE);
+    kids->tz0 = floor_div(2 * j->parents.z0 + lo, TILE_SIZE);
+    kids->tw = floor_div(2 * j->parents.x1 - 1, TILE_SIZE) - kids->tx0 + 1;
+    kids->th = floor_div(2 * j->parents.z1 - 1, TILE_SIZE) - kids->tz0 + 1;
+    if (kids->tw * kids->th > LEVEL_TILES_MAX) return 0;
+    tile_key keys[LEVEL_TILES_MAX];
+    const void *before[LEVEL_TILES_MAX];
+    grid_rect part[LEVEL_TILES_MAX];
+    int at[LEVEL_TILES_MAX], n = 0;
+    for (int i = 0; i < kids->tw * kids->th; i++) {
+        int64_t tx = kids->tx0 + i % kids->tw, tz = kids->tz0 + i / kids->tw;
+        const child_tile *held = tile_at(below, tx, tz);
+        if (held && held->view.data) {
+            kids->tiles[i] = *held;
+            continue;
+        }
+        kids->tiles[i] = (child_tile){0};
+        keys[n] = (tile_key){TILE_LAYER_COARSE, j->face, j->level - 1, (int32_t)tx, (int32_t)tz};
+        at[n++] = i;
     }
+    edit_snapshots(j->e, keys, (size_t)n, before, part);
+    for (int k = 0; k < n; k++)
+        kids->tiles[at[k]].before = before[k], kids->tiles[at[k]].part = part[k];
+    return 1;
+}
+
+// row[x] = after[x] - before[x] for x < n, for `rows` rows (tile rows TILE_SIZE apart,
+// the window's w apart); whether any is not zero. Its own function for AVX2 (a dab's
+// level-1 window is 133^2 of them), a block a call (a stroke's moves: many short rows).
+AVX2_CLONE static int change_rows(const float *restrict after, const float *restrict before,
+                                  float *restrict row, int64_t w, int64_t rows, int64_t n) {
+    int any = 0;
+    for (int64_t z = 0; z < rows; z++, after += TILE_SIZE, before += TILE_SIZE, row += w)
+        for (int64_t x = 0; x < n; x++) {
+            row[x] = after[x] - before[x];
+            any |= row[x] != 0.0f;
+        }
     return any;
 }
 
@@ -90,16 +151,21 @@ static int child_changes(level_job *j, int64_t cx0, int64_t cz0, int64_t w, int6
             grid_rect part = {0, 0, TILE_SIZE, TILE_SIZE}; // only there can the child differ
             float *generated = NULL;
             const float *before;
-            if (j->from_generator) {
+            const child_tile *kid = tile_at(j->children, tx, ty);
+            if (kid) {
+                before = kid->before;
+                part = kid->part;
+            } else if (j->from_generator) {
                 generated = generated_tile(edit_world(j->e), key);
                 before = generated;
             } else {
                 before = edit_snapshot(j->e, key, &part);
             }
             if (!before || grid_rect_empty(part)) continue;
-            tile_view v;
+            tile_view v = kid ? kid->view : (tile_view){0};
+            int pinned = v.data != NULL;
             og_error err;
-            if (tile_cache_acquire(cache, key, &v, &err) != 0) { // outside the world
+            if (!pinned && tile_cache_acquire(cache, key, &v, &err) != 0) { // outside the world
                 free(generated);
                 continue;
             }
@@ -108,11 +174,12 @@ static int child_changes(level_job *j, int64_t cx0, int64_t cz0, int64_t w, int6
             int64_t pz0 = ty * TILE_SIZE + part.z0, pz1 = ty * TILE_SIZE + part.z1;
             int64_t x0 = px0 > cx0 ? px0 : cx0, x1 = px1 < cx0 + w ? px1 : cx0 + w;
             int64_t z0 = pz0 > cz0 ? pz0 : cz0, z1 = pz1 < cz0 + h ? pz1 : cz0 + h;
-            for (int64_t z = z0; z < z1; z++) {
-                size_t t = (size_t)((z - ty * TILE_SIZE) * TILE_SIZE - tx * TILE_SIZE);
-                any |= change_row(after + t, before + t, win + (z - cz0) * w - cx0, x0, x1);
+            if (z0 < z1 && x0 < x1) {
+                size_t t = (size_t)((z0 - ty * TILE_SIZE) * TILE_SIZE + (x0 - tx * TILE_SIZE));
+                any |= change_rows(after + t, before + t, win + (z0 - cz0) * w + (x0 - cx0), w,
+                                   z1 - z0, x1 - x0);
             }
-            tile_cache_release(cache, &v);
+            if (!pinned) tile_cache_release(cache, &v);
             free(generated);
         }
     // Beyond a bounded world's edge the terrain reads as its edge sample (as brushes
@@ -152,40 +219,44 @@ static int parent_tile_task(void *user, int task, og_error *err) {
         tile_view v;
         grid_rect local = {sub.x0 - tx * TILE_SIZE, sub.z0 - tz * TILE_SIZE,
                            sub.x1 - tx * TILE_SIZE, sub.z1 - tz * TILE_SIZE};
-        if (edit_tile_acquire_part(j->e, key, local, &v, err) != 0) {
+        const void *snap;
+        grid_rect kept;
+        if (edit_tile_acquire_snapshot(j->e, key, local, &v, &snap, &kept, err) != 0) {
             rc = -1;
         } else {
             // The parent as it was before the edit plus the whole change so far, so the
             // update can run again while a stroke goes on (the viewport shows it live).
             float *t = v.data;
             float *generated = j->from_generator ? generated_tile(edit_world(j->e), key) : NULL;
-            const float *was = j->from_generator ? generated : edit_snapshot(j->e, key, NULL);
-            // Flat: each child row filtered across once (mip_rows.h), rows rotating.
-            float across[3][TILE_SIZE], *h0 = across[0], *h1 = across[1], *h2 = across[2];
-            if (!j->planet) mip_rows_across(win, (int)pw, h0);
-            for (int64_t z = 0; z < ph; z++) {
+            const float *was = j->from_generator ? generated : snap;
+            size_t at = (size_t)((sub.z0 - tz * TILE_SIZE) * TILE_SIZE + (sub.x0 - tx * TILE_SIZE));
+            if (!j->planet) // flat: the whole block in one call (mip_rows.h)
+                mip_rows_block(win, (int)cw, (int)pw, (int)ph, was ? was + at : NULL, t + at,
+                               TILE_SIZE);
+            for (int64_t z = 0; z < ph && j->planet; z++) {
                 size_t row =
                     (size_t)((sub.z0 + z - tz * TILE_SIZE) * TILE_SIZE + (sub.x0 - tx * TILE_SIZE));
                 float *dst = t + row;
                 const float *before = was ? was + row : dst;
-                if (!j->planet) {
-                    mip_rows_across(win + (2 * z + 1) * cw, (int)pw, h1);
-                    mip_rows_across(win + (2 * z + 2) * cw, (int)pw, h2);
-                    mip_rows_down(h0, h1, h2, before, dst, (int)pw);
-                    float *next = h2;
-                    h2 = h0, h0 = next;
-                    continue;
-                }
                 for (int64_t x = 0; x < pw; x++) {
                     const float *c = win + (2 * z) * cw + 2 * x;
                     dst[x] = before[x] + 0.25f * (c[0] + c[1] + c[cw] + c[cw + 1]);
                 }
             }
             free(generated);
-            edit_tile_release(j->e, &v);
+            if (j->wrote) // the next level reads it
+                j->wrote->tiles[task] = (child_tile){v, snap, kept};
+            else
+                edit_tile_release(j->e, &v);
         }
     }
     return rc;
+}
+
+static void release_held(edit *e, level_tiles *h) {
+    for (int64_t i = 0; i < h->tw * h->th; i++)
+        if (h->tiles[i].view.data) edit_tile_release(e, &h->tiles[i].view);
+    h->th = 0;
 }
 
 int edit_mips_update(edit *e, og_error *err) {
@@ -210,7 +281,12 @@ static int update_levels(edit *e, int face, grid_rect r, int first, int from_gen
     int64_t extent = planet ? world_grid_face_samples(p) : p->size;
     int64_t extent_z = planet ? extent : world_params_size_z(p);
     int top = edit_mips_top_level(p);
-    for (int level = first; level <= top; level++) {
+    // Each level's written tiles stay pinned while the next level reads them; the
+    // generator's path compares with generated tiles, not snapshots, so holds none.
+    level_tiles held[2], kids;
+    held[0].th = held[1].th = 0;
+    int rc = 0;
+    for (int level = first; level <= top && rc == 0; level++) {
         grid_rect pr = planet ? (grid_rect){floor_div(r.x0, 2), floor_div(r.z0, 2),
                                             floor_div(r.x1 - 1, 2) + 1, floor_div(r.z1 - 1, 2) + 1}
                               : (grid_rect){-floor_div(-(r.x0 - 1), 2), -floor_div(-(r.z0 - 1), 2),
@@ -236,10 +312,20 @@ static int update_levels(edit *e, int face, grid_rect r, int first, int from_gen
         job.ptz0 = floor_div(pr.z0, TILE_SIZE);
         job.ptw = floor_div(pr.x1 - 1, TILE_SIZE) - job.ptx0 + 1;
         int64_t pth = floor_div(pr.z1 - 1, TILE_SIZE) - job.ptz0 + 1;
-        if (parallel_run((int)(job.ptw * pth), parent_tile_task, &job, err) != 0) return -1;
+        level_tiles *prev = &held[level & 1], *cur = &held[(level + 1) & 1];
+        if (!from_generator && find_children(&job, prev, &kids)) job.children = &kids;
+        if (!from_generator && job.ptw * pth <= LEVEL_TILES_MAX) {
+            cur->tx0 = job.ptx0, cur->tz0 = job.ptz0, cur->tw = job.ptw, cur->th = pth;
+            memset(cur->tiles, 0, (size_t)(job.ptw * pth) * sizeof *cur->tiles);
+            job.wrote = cur;
+        }
+        rc = parallel_run((int)(job.ptw * pth), parent_tile_task, &job, err);
+        release_held(e, prev);
         r = pr;
     }
-    return 0;
+    release_held(e, &held[0]);
+    release_held(e, &held[1]);
+    return rc;
 }
 
 int edit_mips_update_from(edit *e, size_t first, og_error *err) {

@@ -5,11 +5,12 @@
 #ifndef OROGEN_EDITOR_MIP_ROWS_H
 #define OROGEN_EDITOR_MIP_ROWS_H
 
-// out[x] = 0.25 c[2x] + 0.5 c[2x+1] + 0.25 c[2x+2], x < n (c holds 2n + 1 values).
-void mip_rows_across(const float *c, int n, float *out);
-
-// dst[x] = before[x] + (0.25 a[x] + 0.5 b[x] + 0.25 g[x]); before may be dst.
-void mip_rows_down(const float *a, const float *b, const float *g, const float *before, float *dst,
-                   int n);
+// Parent rows 0 .. ph - 1 (pw samples each, rows `stride` apart in dst and before) from
+// the child window win (2 ph + 1 rows of cw >= 2 pw + 1 values, pw <= TILE_SIZE; parent x reads
+// children 2x .. 2x + 2): dst = before + (0.25 a + 0.5 b + 0.25 g) down the rows a, b, g filtered
+// across as 0.25 c[2x] + 0.5 c[2x + 1] + 0.25 c[2x + 2]. before NULL: dst's own values.
+// One call a block, not three a row: a stroke's moves update many short rows.
+void mip_rows_block(const float *win, int cw, int pw, int ph, const float *before, float *dst,
+                    int stride);
 
 #endif
