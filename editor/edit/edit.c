@@ -205,6 +205,9 @@ static void capture(snapshot *s, const void *data, grid_rect part) {
     size_t el = tile_layer_bytes((tile_layer)s->key.layer) / TILE_SAMPLES;
     uint8_t *dst = s->before;
     const uint8_t *src = data;
+    // Rows `had` spans gain only what grew at their sides: often nothing (a stroke's
+    // parts grow a strip at a time), so those rows are skipped, not copied 0 bytes twice.
+    int sides = had.x0 > now.x0 || now.x1 > had.x1;
     for (int64_t z = now.z0; z < now.z1; z++) {
         size_t row = (size_t)z * TILE_SIZE * el;
         if (grid_rect_empty(had) || z < had.z0 || z >= had.z1) {
@@ -212,9 +215,13 @@ static void capture(snapshot *s, const void *data, grid_rect part) {
             memcpy(dst + at, src + at, (size_t)(now.x1 - now.x0) * el);
             continue;
         }
+        if (!sides) {
+            z = had.z1 - 1;
+            continue;
+        }
         size_t left = row + (size_t)now.x0 * el, right = row + (size_t)had.x1 * el;
-        memcpy(dst + left, src + left, (size_t)(had.x0 - now.x0) * el);
-        memcpy(dst + right, src + right, (size_t)(now.x1 - had.x1) * el);
+        if (had.x0 > now.x0) memcpy(dst + left, src + left, (size_t)(had.x0 - now.x0) * el);
+        if (now.x1 > had.x1) memcpy(dst + right, src + right, (size_t)(now.x1 - had.x1) * el);
     }
     s->part = now;
 }

@@ -41,7 +41,8 @@ static void drain(void) {
     for (;;) {
         int t = atomic_fetch_add(&pool.next, 1);
         if (t >= pool.tasks) return;
-        og_error e = {{0}};
+        og_error e; // 1 KB: an empty message, not a zeroed buffer, per task
+        e.msg[0] = '\0';
         if (pool.fn(pool.user, t, &e) != 0) record_failure(&e);
     }
 }
@@ -104,7 +105,8 @@ static struct {
 static int run_here(int tasks, parallel_task_fn fn, void *user, og_error *err) {
     int failed = 0;
     for (int t = 0; t < tasks; t++) {
-        og_error e = {{0}};
+        og_error e;
+        e.msg[0] = '\0';
         if (fn(user, t, &e) != 0 && !failed++ && err) *err = e;
     }
     return failed ? -1 : 0;
