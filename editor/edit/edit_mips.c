@@ -138,15 +138,35 @@ AVX2_CLONE static int change_rows(const float *restrict after, const float *rest
     return any;
 }
 
+// Zeroes the samples of win (w x h) outside `keep` (window samples; may be empty).
+static void zero_outside(float *win, int64_t w, int64_t h, grid_rect keep) {
+    if (grid_rect_empty(keep)) {
+        memset(win, 0, (size_t)(w * h) * sizeof *win);
+        return;
+    }
+    memset(win, 0, (size_t)(keep.z0 * w) * sizeof *win);
+    memset(win + keep.z1 * w, 0, (size_t)((h - keep.z1) * w) * sizeof *win);
+    if (keep.x0 == 0 && keep.x1 == w) return;
+    for (int64_t z = keep.z0; z < keep.z1; z++) {
+        memset(win + z * w, 0, (size_t)keep.x0 * sizeof *win);
+        memset(win + z * w + keep.x1, 0, (size_t)(w - keep.x1) * sizeof *win);
+    }
+}
+
 // Fills win (w x h, origin cx0, cz0 in child samples) with after - before of every
 // child tile the edit changed; zero elsewhere.
 static int child_changes(level_job *j, int64_t cx0, int64_t cz0, int64_t w, int64_t h, float *win) {
-    memset(win, 0, (size_t)(w * h) * sizeof *win);
+    int64_t ty0 = floor_div(cz0, TILE_SIZE), ty1 = floor_div(cz0 + h - 1, TILE_SIZE);
+    int64_t tx0 = floor_div(cx0, TILE_SIZE), tx1 = floor_div(cx0 + w - 1, TILE_SIZE);
+    // Under one child tile (most levels of a move), only the samples its block of
+    // changes leaves are zeroed, after it: not the whole window first.
+    int one_tile = ty0 == ty1 && tx0 == tx1;
+    grid_rect filled = {0, 0, 0, 0}; // window samples its block wrote
+    if (!one_tile) memset(win, 0, (size_t)(w * h) * sizeof *win);
     tile_cache *cache = world_cache(edit_world(j->e));
     int any = 0;
-    for (int64_t ty = floor_div(cz0, TILE_SIZE); ty <= floor_div(cz0 + h - 1, TILE_SIZE); ty++)
-        for (int64_t tx = floor_div(cx0, TILE_SIZE); tx <= floor_div(cx0 + w - 1, TILE_SIZE);
-             tx++) {
+    for (int64_t ty = ty0; ty <= ty1; ty++)
+        for (int64_t tx = tx0; tx <= tx1; tx++) {
             tile_key key = {TILE_LAYER_COARSE, j->face, j->level - 1, (int32_t)tx, (int32_t)ty};
             grid_rect part = {0, 0, TILE_SIZE, TILE_SIZE}; // only there can the child differ
             float *generated = NULL;
@@ -178,10 +198,12 @@ static int child_changes(level_job *j, int64_t cx0, int64_t cz0, int64_t w, int6
                 size_t t = (size_t)((z0 - ty * TILE_SIZE) * TILE_SIZE + (x0 - tx * TILE_SIZE));
                 any |= change_rows(after + t, before + t, win + (z0 - cz0) * w + (x0 - cx0), w,
                                    z1 - z0, x1 - x0);
+                filled = (grid_rect){x0 - cx0, z0 - cz0, x1 - cx0, z1 - cz0};
             }
             if (!pinned) tile_cache_release(cache, &v);
             free(generated);
         }
+    if (one_tile) zero_outside(win, w, h, filled);
     // Beyond a bounded world's edge the terrain reads as its edge sample (as brushes
     // see it), so the change there is the edge's change.
     int64_t n = j->child_extent, nz = j->child_extent_z;
