@@ -1,5 +1,7 @@
 #include "ui/ui.h"
 
+#include "ui/log_rows.h"
+
 #include <locale.h>
 #include <math.h>
 #include <stdarg.h>
@@ -1747,8 +1749,14 @@ void ui_log(ui_context *ui, const char *name, size_t count,
     ui_rect r = {l->body.x, l->y, l->body.w, height};
     l->y += height + ui_em(ui, 0.2f);
     record_claim(ui, id, name, r);
-    float lh = ui_font_line_height(ui->font), pad = ui_em(ui, 0.3f);
-    float content = (float)count * lh, view = r.h - 2 * pad,
+    float lh = ui_font_line_height(ui->font), pad = ui_em(ui, 0.3f), bar = ui_em(ui, 0.3f);
+    // Long lines fold into rows as wide as the log (beside its scroll bar).
+    float advance = ui_font_text_width(ui->font, UI_FACE_MONO, "M", 1);
+    float fit = advance > 0 ? (r.w - 2 * pad - bar) / advance : 1;
+    size_t cols = fit >= 1 ? (size_t)fit : 1, rows = 0;
+    for (size_t i = 0; i < count; i++)
+        rows += log_rows(line(user, i).text, cols);
+    float content = (float)rows * lh, view = r.h - 2 * pad,
           max_scroll = fmaxf(0.0f, content - view);
     if (!s->initialised) s->initialised = 1, s->at_bottom = 1;
     if (ui->in.wheel != 0 && over(ui, r)) {
@@ -1760,15 +1768,20 @@ void ui_log(ui_context *ui, const char *name, size_t count,
     if (s->scroll >= max_scroll - 0.5f) s->at_bottom = 1;
     ui_draw_rect(ui->target, r, ui->theme.bg);
     ui_draw_push_clip(ui->target, r);
-    size_t first = (size_t)(s->scroll / lh);
-    for (size_t i = first; i < count; i++) {
-        float y = r.y + pad + (float)i * lh - s->scroll;
-        if (y > r.y + r.h) break;
+    size_t first = (size_t)(s->scroll / lh), row = 0;
+    for (size_t i = 0; i < count && r.y + pad + (float)row * lh - s->scroll <= r.y + r.h; i++) {
         ui_log_line ln = line(user, i);
-        ui_draw_text(ui->target, UI_FACE_MONO, r.x + pad, y, ln.text, strlen(ln.text), ln.color);
+        const char *at = ln.text;
+        do {
+            size_t n = log_row_bytes(at, cols);
+            float y = r.y + pad + (float)row * lh - s->scroll;
+            if (row >= first && y <= r.y + r.h)
+                ui_draw_text(ui->target, UI_FACE_MONO, r.x + pad, y, at, n, ln.color);
+            at += n, row++;
+        } while (*at);
     }
     if (max_scroll > 0) {
-        float bar = ui_em(ui, 0.3f), th = fmaxf(ui_em(ui, 1), r.h * view / content);
+        float th = fmaxf(ui_em(ui, 1), r.h * view / content);
         ui_draw_rect(
             ui->target,
             (ui_rect){r.x + r.w - bar, r.y + (r.h - th) * (s->scroll / max_scroll), bar, th},
