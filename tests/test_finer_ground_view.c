@@ -35,12 +35,6 @@
 #define W 480
 #define H 270
 
-static void run_ok(cmd_context *ctx, const char *text) {
-    og_error err = {{0}};
-    if (cmd_run(ctx, text, strlen(text), "test", &err) != 0)
-        fail_msg("'%s' failed: %s", text, err.msg);
-}
-
 static int full_resolution_height(void *user, double x, double z, double *h) {
     og_error err;
     return world_sample(user, 0, x, z, h, &err);
@@ -95,7 +89,7 @@ static double far_light_error(cmd_context *ctx, const char *dir, double x, doubl
     snprintf(path, sizeof path, "%s/height_%g.png", dir, above);
     snprintf(cmd, sizeof cmd, "view height; camera %.17g %.17g %.17g %g %g; screenshot %s %d %d",
              c.pos[0], c.pos[1], c.pos[2], c.yaw, c.pitch, path, W, H);
-    run_ok(ctx, cmd);
+    test_view_run(ctx, cmd);
     unsigned char *rgb = NULL;
     int w = 0, h = 0;
     if (image_read_rgb8(path, &rgb, &w, &h, &err) != 0) fail_msg("%s: %s", path, err.msg);

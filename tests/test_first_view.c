@@ -26,12 +26,6 @@
 #include <stdint.h>
 #include <cmocka.h>
 
-static void run_ok(cmd_context *ctx, const char *text) {
-    og_error err = {{0}};
-    if (cmd_run(ctx, text, strlen(text), "test", &err) != 0)
-        fail_msg("'%s' failed: %s", text, err.msg);
-}
-
 // Where the first view's centre ray meets the ground, in hit[].
 static void first_view_centre(cmd_context *ctx, double hit[3]) {
     og_error err = {{0}};
@@ -56,8 +50,9 @@ static void first_view_centre(cmd_context *ctx, double hit[3]) {
 static void test_island_far_from_the_centre(void **state) {
     cmd_context *ctx = *state;
     // 8 km across; a mountain 300 m high, 2 km wide, 4 km from the centre (the corner).
-    run_ok(ctx, "new flat; generator flat; size 4096; spacing 2; generate; stamp mountain 6900 "
-                "6900 scale=8 intensity=300");
+    test_view_run(ctx,
+                  "new flat; generator flat; size 4096; spacing 2; generate; stamp mountain 6900 "
+                  "6900 scale=8 intensity=300");
     double hit[3], top = 0;
     og_error err = {{0}};
     if (world_sample(ctx->world, 0, 6900, 6900, &top, &err) != 0) fail_msg("%s", err.msg);
@@ -72,7 +67,7 @@ static void test_island_far_from_the_centre(void **state) {
 
 static void test_flat_world_faces_its_centre(void **state) {
     cmd_context *ctx = *state;
-    run_ok(ctx, "new flat; generator flat; size 1024; spacing 1; generate");
+    test_view_run(ctx, "new flat; generator flat; size 1024; spacing 1; generate");
     double hit[3];
     first_view_centre(ctx, hit);
     printf("flat world: the first view's centre meets the ground at (%.0f, %.0f)\n", hit[0],
@@ -86,7 +81,7 @@ static void test_flat_world_faces_its_centre(void **state) {
 // outside the world") and the window kept the last world's camera.
 static void test_rings_past_a_small_worlds_edge(void **state) {
     cmd_context *ctx = *state;
-    run_ok(ctx, "new flat; size 1024; spacing 1; generate");
+    test_view_run(ctx, "new flat; size 1024; spacing 1; generate");
     double hit[3];
     first_view_centre(ctx, hit);
     printf("fBm world of 1024 samples: the first view's centre meets the ground at (%.0f, "
@@ -99,8 +94,9 @@ static void test_rings_past_a_small_worlds_edge(void **state) {
 // hundreds of them. Before, it stood 900 m from the land, a dozen samples: a green blur.
 static void test_coarse_samples_seen_from_afar(void **state) {
     cmd_context *ctx = *state;
-    run_ok(ctx, "new flat; generator flat; size 1201; spacing 89; generate; stamp mountain 53000 "
-                "53000 scale=2 intensity=800");
+    test_view_run(ctx,
+                  "new flat; generator flat; size 1201; spacing 89; generate; stamp mountain 53000 "
+                  "53000 scale=2 intensity=800");
     viewport *v = view_commands_viewport(ctx);
     double hit[3];
     first_view_centre(ctx, hit);

@@ -12,15 +12,23 @@
 #include <stdint.h>
 #include <cmocka.h>
 
-// The rows of text at cols, joined by '|'.
-static void fold(const char *text, size_t cols, char *out) {
+// The rows of text at cols, joined by sep into out; returns how many (each row at least
+// one byte: no endless loop).
+static size_t fold_with(const char *text, size_t cols, const char *sep, char *out) {
+    size_t rows = 0;
     out[0] = 0;
     do {
         size_t n = log_row_bytes(text, cols);
+        assert_true(n > 0);
         strncat(out, text, n);
-        text += n;
-        if (*text) strcat(out, "|");
+        text += n, rows++;
+        if (*text) strcat(out, sep);
     } while (*text);
+    return rows;
+}
+
+static void fold(const char *text, size_t cols, char *out) {
+    fold_with(text, cols, "|", out);
 }
 
 static void test_short_lines_stay_whole(void **state) {
@@ -64,15 +72,8 @@ static void test_rows_give_back_the_line(void **state) {
                        "(SRTMHGT Int16, nodata set), 88.9539 x 88.9539 m apart; heights -34 .. "
                        "1579 m; 4279 voids filled";
     for (size_t cols = 1; cols < 200; cols++) {
-        char joined[512] = "";
-        const char *at = line;
-        size_t rows = 0;
-        do {
-            size_t n = log_row_bytes(at, cols);
-            assert_true(n > 0);
-            strncat(joined, at, n);
-            at += n, rows++;
-        } while (*at);
+        char joined[512];
+        size_t rows = fold_with(line, cols, "", joined);
         assert_string_equal(joined, line);
         assert_int_equal(rows, log_rows(line, cols));
     }

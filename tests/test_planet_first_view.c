@@ -34,12 +34,6 @@
 #define LIT_LUMINANCE 30.0
 #define SPACE_LUMINANCE 12.0
 
-static void run_ok(cmd_context *ctx, const char *text) {
-    og_error err = {{0}};
-    if (cmd_run(ctx, text, strlen(text), "test", &err) != 0)
-        fail_msg("'%s' failed: %s", text, err.msg);
-}
-
 // Distance along the unit ray from pos to the sphere of radius r, or -1 when it misses.
 static double ray_sphere(const double pos[3], const double dir[3], double r) {
     const double b = pos[0] * dir[0] + pos[1] * dir[1] + pos[2] * dir[2];
@@ -98,7 +92,7 @@ static void test_new_planet_shows_the_lit_disc(void **state) {
         snprintf(cmd, sizeof cmd,
                  "camera 400 -50 600 30 -25; new planet preset=%s; screenshot %s %d %d", name, path,
                  W, H);
-        run_ok(&ctx, cmd);
+        test_view_run(&ctx, cmd);
         unsigned char *rgb = NULL;
         int iw = 0, ih = 0;
         if (image_read_rgb8(path, &rgb, &iw, &ih, &err) != 0) fail_msg("%s: %s", path, err.msg);

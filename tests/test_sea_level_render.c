@@ -24,12 +24,6 @@
 #define W 320
 #define H 180
 
-static void run_ok(cmd_context *ctx, const char *text) {
-    og_error err = {{0}};
-    if (cmd_run(ctx, text, strlen(text), "test", &err) != 0)
-        fail_msg("'%s' failed: %s", text, err.msg);
-}
-
 typedef struct view {
     const char *name;
     double height, pitch;
@@ -44,7 +38,7 @@ static double ground_share(cmd_context *ctx, const char *dir, const view *v, con
     snprintf(path, sizeof path, "%s/%s_%s.png", dir, v->name, tag);
     snprintf(cmd, sizeof cmd, "camera 300 %g 200 20 %g; screenshot %s %d %d", v->height, v->pitch,
              path, W, H);
-    run_ok(ctx, cmd);
+    test_view_run(ctx, cmd);
     unsigned char *rgb = NULL;
     int w = 0, h = 0;
     og_error err = {{0}};
@@ -62,11 +56,12 @@ static void test_ground_at_the_sea_level_is_under_water(void **state) {
     cmd_context ctx;
     test_view_context_open(&ctx);
     const char *dir = test_tmpdir("sea_level_render");
-    run_ok(&ctx, "generator flat; set base_height 0; ocean_level -1; generate; sample 300 200");
+    test_view_run(&ctx,
+                  "generator flat; set base_height 0; ocean_level -1; generate; sample 300 200");
     double above[VIEWS];
     for (int i = 0; i < VIEWS; i++)
         above[i] = ground_share(&ctx, dir, &views[i], "sea_below");
-    run_ok(&ctx, "ocean_level 0; generate");
+    test_view_run(&ctx, "ocean_level 0; generate");
     for (int i = 0; i < VIEWS; i++) {
         double under = ground_share(&ctx, dir, &views[i], "sea_at");
         printf("%s: ground-coloured %.1f%% with the sea 1 m below, %.3f%% with it at the "

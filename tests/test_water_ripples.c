@@ -26,18 +26,12 @@
 #include <stdint.h>
 #include <cmocka.h>
 
-static void run_ok(cmd_context *ctx, const char *text) {
-    og_error err = {{0}};
-    if (cmd_run(ctx, text, strlen(text), "test", &err) != 0)
-        fail_msg("'%s' failed: %s", text, err.msg);
-}
-
 // Renders the view `camera` at w x h and reads it back (caller frees).
 static unsigned char *render(cmd_context *ctx, const char *camera, const char *name, int w, int h) {
     char cmd[8400], path[4200];
     snprintf(path, sizeof path, "%s/%s.png", test_folder(), name);
     snprintf(cmd, sizeof cmd, "camera %s; screenshot %s %d %d", camera, path, w, h);
-    run_ok(ctx, cmd);
+    test_view_run(ctx, cmd);
     unsigned char *rgb = NULL;
     int iw = 0, ih = 0;
     og_error err = {{0}};
@@ -48,7 +42,7 @@ static unsigned char *render(cmd_context *ctx, const char *camera, const char *n
 
 // Open sea to the horizon everywhere: a flat world 10 m under the water.
 static void open_sea(cmd_context *ctx) {
-    run_ok(ctx, "new flat; generator flat; set ocean_level 10; generate");
+    test_view_run(ctx, "new flat; generator flat; set ocean_level 10; generate");
 }
 
 static void test_no_moire(void **state) {
